@@ -1,0 +1,15 @@
+//! Meshes for alea.
+//!
+//! The main type is [`Mesh`]: node coordinates, cells of mixed [`CellType`]s, and named groups
+//! of cells, facets ([`Facet`]) and nodes. Groups are how the rest of alea refers to
+//! substructures, loads, constraints and interfaces. [`generate`] builds structured and
+//! multi-block meshes.
+
+mod cell;
+mod error;
+pub mod generate;
+mod mesh;
+
+pub use cell::CellType;
+pub use error::MeshError;
+pub use mesh::{BoundaryFacet, Facet, Mesh};
