@@ -7,7 +7,9 @@
 
 mod cell;
 mod error;
+mod extract;
 pub mod generate;
+mod geometry;
 mod mesh;
 
 pub use cell::CellType;

@@ -1,5 +1,10 @@
-//! Mesh generators: structured rectangles and boxes, multi-block mapped quads, extrusion.
+//! Mesh generators: structured rectangles and boxes, multi-block mapped quads, ready-made shapes,
+//! extrusion.
 
+mod multiblock;
+mod shapes;
 mod structured;
 
+pub use multiblock::{Block, Curve, CurveFn, multiblock};
+pub use shapes::{annulus_sector, plate_with_hole};
 pub use structured::{box_mesh, rectangle};
