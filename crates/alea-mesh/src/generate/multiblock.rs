@@ -31,7 +31,8 @@
 //! error. Corners closer than `1e-9` times the size of the model are merged. Two blocks share an
 //! edge when its two end corners coincide and its curves' mid-points coincide; the shared edge must
 //! then have the same number of cells in both blocks and the same node positions (gradings
-//! mirrored if the edge is traversed in opposite directions), otherwise [`multiblock`]
+//! mirrored if the edge is traversed in opposite directions), and the two blocks must lie on
+//! opposite sides of it (no overlap, at most two blocks per edge), otherwise [`multiblock`]
 //! returns [`MeshError::Invalid`]. Nodes are merged along shared edges, so the mesh is conforming;
 //! distinct nodes at the same position after that (an edge met twice with different curves or
 //! parametrisations) are reported as an error. Parts that must stay un-merged along an interface
@@ -498,6 +499,8 @@ struct EdgeEntry {
     nodes: Vec<usize>, // canonical direction (from the smaller vertex id), 2n+1 entries
     block: usize,
     side: usize,
+    forward: bool, // direction of the first block's traversal
+    users: usize,
 }
 
 /// Meshes a set of blocks (see the module documentation); `kind` is `Quad4`, `Quad8`, `Tri3` or
@@ -598,12 +601,19 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
             let key = (va.min(vb), va.max(vb));
             let forward = va < vb;
             let mid = b.edge_at(k, 0.5);
-            let existing = edges.iter().find(|e| {
+            let existing = edges.iter_mut().find(|e| {
                 e.key == key
                     && dist(e.mid, mid)
                         <= tol.max(1e-7 * dist(b.corners[k], b.corners[(k + 1) % 4]))
             });
             let nodes: Vec<usize> = if let Some(e) = existing {
+                if e.users >= 2 || e.forward == forward {
+                    return Err(MeshError::Invalid(format!(
+                        "block {bi} edge {k} coincides with block {} edge {} but the blocks overlap (an edge can be shared by two blocks lying on opposite sides of it)",
+                        e.block, e.side
+                    )));
+                }
+                e.users += 1;
                 if e.nodes.len() != lat.len() {
                     return Err(MeshError::Invalid(format!(
                         "block {bi} edge {k} is shared with block {} edge {}, but has {} cells there instead of {}",
@@ -647,6 +657,8 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
                     nodes: canon,
                     block: bi,
                     side: k,
+                    forward,
+                    users: 1,
                 });
                 n
             };
