@@ -11,7 +11,9 @@ mod extract;
 pub mod generate;
 mod geometry;
 mod mesh;
+pub mod vtu;
 
 pub use cell::CellType;
 pub use error::MeshError;
 pub use mesh::{BoundaryFacet, Facet, Mesh};
+pub use vtu::{VtuEncoding, VtuWriter, write_vtm};

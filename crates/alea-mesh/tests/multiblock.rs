@@ -213,7 +213,7 @@ fn polyline_spline_and_parametric_edges() {
         .edge(1, Curve::Param(f.clone()));
     let m = multiblock(&[b], Quad8).unwrap();
     assert_positive_jacobians(&m);
-    let chords = vec![PI / 2.0 / 8.0; 8];
+    let chords = [PI / 2.0 / 8.0; 8];
     let exact: f64 = chords
         .iter()
         .map(|d| 0.5 * d.sin() + 4.0 / 3.0 * 0.5 * (2.0 * (d / 2.0).sin() - d.sin()))
