@@ -1,0 +1,97 @@
+//! A linear-elastic model: a mesh, the 2D/3D analysis kind and per-cell-group materials.
+
+use alea_mesh::Mesh;
+
+use crate::{Analysis, FemError, Material};
+
+/// Mesh + analysis + materials.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Plane strain / plane stress / solid.
+    pub analysis: Analysis,
+    materials: Vec<Material>,
+    cell_material: Vec<Option<u32>>,
+}
+
+impl Model {
+    /// A model with no material assigned yet.
+    ///
+    /// # Errors
+    /// If the analysis dimension does not match the mesh, or the thickness is not positive.
+    pub fn new(mesh: Mesh, analysis: Analysis) -> Result<Self, FemError> {
+        if analysis.dim() != mesh.dim {
+            return Err(FemError::Setup(format!(
+                "a {}D mesh needs a {}D analysis, got {analysis:?}",
+                mesh.dim,
+                analysis.dim()
+            )));
+        }
+        let t = analysis.thickness();
+        if !(t.is_finite() && t > 0.0) {
+            return Err(FemError::Setup(format!("thickness must be > 0, got {t}")));
+        }
+        mesh.validate()?;
+        let n = mesh.num_cells();
+        Ok(Model {
+            mesh,
+            analysis,
+            materials: Vec::new(),
+            cell_material: vec![None; n],
+        })
+    }
+
+    /// Assigns `material` to every cell.
+    pub fn set_material_all(&mut self, material: Material) -> &mut Self {
+        self.materials.push(material);
+        let id = (self.materials.len() - 1) as u32;
+        self.cell_material.fill(Some(id));
+        self
+    }
+
+    /// Assigns `material` to the cells of a group (later assignments win).
+    pub fn set_material(&mut self, group: &str, material: Material) -> Result<&mut Self, FemError> {
+        let cells = self.mesh.cell_group(group)?.to_vec();
+        self.materials.push(material);
+        let id = (self.materials.len() - 1) as u32;
+        for c in cells {
+            self.cell_material[c] = Some(id);
+        }
+        Ok(self)
+    }
+
+    /// The material of cell `c`.
+    pub fn material(&self, c: usize) -> Result<&Material, FemError> {
+        self.cell_material[c]
+            .map(|i| &self.materials[i as usize])
+            .ok_or_else(|| FemError::Setup(format!("cell {c} has no material assigned")))
+    }
+
+    /// Scales every material's Young's modulus by `factor` (used when E is a parameter).
+    pub fn scale_young(&mut self, factor: f64) {
+        for m in &mut self.materials {
+            m.young *= factor;
+        }
+    }
+
+    /// Checks that every cell has a material.
+    pub fn check(&self) -> Result<(), FemError> {
+        if let Some(c) = self.cell_material.iter().position(|m| m.is_none()) {
+            return Err(FemError::Setup(format!(
+                "cell {c} ({}) has no material assigned",
+                self.mesh.cell_type(c)
+            )));
+        }
+        Ok(())
+    }
+
+    /// Coordinates of the nodes of cell `c`.
+    pub fn cell_coords(&self, c: usize) -> Vec<[f64; 3]> {
+        self.mesh
+            .cell_nodes(c)
+            .iter()
+            .map(|&n| self.mesh.coords[n])
+            .collect()
+    }
+}

@@ -1,0 +1,213 @@
+//! Sparse Cholesky factorisation `A = L L^T` of a symmetric positive definite [`SymCsc`], with
+//! faer's supernodal solver.
+//!
+//! The symbolic analysis (fill-reducing ordering + elimination structure) is done once in
+//! [`Cholesky::new`]; [`Cholesky::factorize`] computes the numeric factor in a buffer owned by
+//! the solver and can be called again with new values on the same pattern (a refactorisation
+//! allocates nothing). Ordering: nested dissection by METIS (vendored C library, built by the
+//! `metis-sys` crate; no system library) on the graph of dof blocks (mesh nodes), expanded to
+//! dofs, or faer's AMD. For 3D meshes METIS is about 3x faster and needs half the memory of AMD.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+use crate::{FemError, SymCsc};
+
+/// Fill-reducing ordering.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ordering {
+    /// METIS nested dissection on the block graph (default).
+    Metis,
+    /// faer's approximate minimum degree.
+    Amd,
+    /// No reordering (tests only).
+    Identity,
+}
+
+/// A symbolic + numeric sparse Cholesky factorisation.
+pub struct Cholesky {
+    n: usize,
+    symbolic: SymbolicCholesky<usize>,
+    l_values: Vec<f64>,
+    factorized: bool,
+    stack: MemBuffer,
+}
+
+impl std::fmt::Debug for Cholesky {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Cholesky")
+            .field("n", &self.n)
+            .field("len_l", &self.l_values.len())
+            .finish()
+    }
+}
+
+/// METIS nested-dissection ordering of the block graph; returns `(perm_fwd, perm_inv)` on dofs.
+fn metis_order(a: &SymCsc, block_of_dof: &[usize]) -> Result<(Vec<usize>, Vec<usize>), FemError> {
+    let n = a.n;
+    let nb = block_of_dof.iter().map(|&b| b + 1).max().unwrap_or(0);
+    let mut adj: Vec<Vec<i32>> = vec![Vec::new(); nb];
+    for j in 0..n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            let (bi, bj) = (block_of_dof[a.row_idx[p]], block_of_dof[j]);
+            if bi != bj {
+                adj[bi].push(bj as i32);
+                adj[bj].push(bi as i32);
+            }
+        }
+    }
+    let mut xadj = Vec::with_capacity(nb + 1);
+    let mut adjncy = Vec::new();
+    xadj.push(0i32);
+    for l in adj.iter_mut() {
+        l.sort_unstable();
+        l.dedup();
+        adjncy.extend_from_slice(l);
+        xadj.push(adjncy.len() as i32);
+    }
+    let mut perm = vec![0i32; nb];
+    let mut iperm = vec![0i32; nb];
+    if nb > 1 {
+        let mut nvtxs = nb as i32;
+        let mut options = [0i32; metis_sys::METIS_NOPTIONS as usize];
+        // SAFETY: METIS reads nvtxs/xadj/adjncy (valid CSR graph without self loops, sizes as
+        // declared) and writes nb entries to perm and iperm; options is METIS_NOPTIONS long.
+        let status = unsafe {
+            metis_sys::METIS_SetDefaultOptions(options.as_mut_ptr());
+            metis_sys::METIS_NodeND(
+                &mut nvtxs,
+                xadj.as_mut_ptr(),
+                adjncy.as_mut_ptr(),
+                std::ptr::null_mut(),
+                options.as_mut_ptr(),
+                perm.as_mut_ptr(),
+                iperm.as_mut_ptr(),
+            )
+        };
+        if status != metis_sys::rstatus_et_METIS_OK {
+            return Err(FemError::Solver(format!(
+                "METIS_NodeND failed with status {status}"
+            )));
+        }
+    }
+    // perm[new_block] = old_block. Expand to dofs in block order.
+    let mut dofs_of_block: Vec<Vec<usize>> = vec![Vec::new(); nb];
+    for (d, &b) in block_of_dof.iter().enumerate() {
+        dofs_of_block[b].push(d);
+    }
+    let mut fwd = Vec::with_capacity(n);
+    for &b in &perm {
+        fwd.extend_from_slice(&dofs_of_block[b as usize]);
+    }
+    let mut inv = vec![0usize; n];
+    for (new, &old) in fwd.iter().enumerate() {
+        inv[old] = new;
+    }
+    Ok((fwd, inv))
+}
+
+impl Cholesky {
+    /// Symbolic analysis of the pattern of `a`. `block_of_dof[d]` groups dofs that share a
+    /// mesh node (used by the METIS ordering; pass `None` to treat each dof as its own block).
+    pub fn new(
+        a: &SymCsc,
+        ordering: Ordering,
+        block_of_dof: Option<&[usize]>,
+    ) -> Result<Self, FemError> {
+        let n = a.n;
+        let sym = SymbolicSparseColMatRef::new_checked(n, n, &a.col_ptr, None, &a.row_idx);
+        let perm_store;
+        let ord = match ordering {
+            Ordering::Amd => SymmetricOrdering::Amd,
+            Ordering::Identity => SymmetricOrdering::Identity,
+            Ordering::Metis => {
+                let identity: Vec<usize>;
+                let blocks = match block_of_dof {
+                    Some(b) => b,
+                    None => {
+                        identity = (0..n).collect();
+                        &identity
+                    }
+                };
+                perm_store = metis_order(a, blocks)?;
+                SymmetricOrdering::Custom(PermRef::new_checked(&perm_store.0, &perm_store.1, n))
+            }
+        };
+        let symbolic =
+            factorize_symbolic_cholesky(sym, Side::Upper, ord, CholeskySymbolicParams::default())
+                .map_err(|e| FemError::Solver(format!("symbolic Cholesky failed: {e:?}")))?;
+        let l_values = vec![0.0; symbolic.len_val()];
+        let req = symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        Ok(Cholesky {
+            n,
+            symbolic,
+            l_values,
+            factorized: false,
+            stack: MemBuffer::new(req),
+        })
+    }
+
+    /// Order of the matrix.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Number of stored entries of `L`.
+    pub fn nnz_factor(&self) -> usize {
+        self.l_values.len()
+    }
+
+    /// Numeric factorisation of `a` (same pattern as at construction).
+    ///
+    /// # Errors
+    /// [`FemError::NotPositiveDefinite`] if a pivot is not positive (e.g. a floating body: a
+    /// rigid-body mode not removed by constraints).
+    pub fn factorize(&mut self, a: &SymCsc) -> Result<(), FemError> {
+        assert_eq!(a.n, self.n, "matrix size changed");
+        let sym =
+            SymbolicSparseColMatRef::new_checked(self.n, self.n, &a.col_ptr, None, &a.row_idx);
+        let mat = SparseColMatRef::new(sym, &a.values);
+        self.factorized = false;
+        self.symbolic
+            .factorize_numeric_llt(
+                &mut self.l_values,
+                mat,
+                Side::Upper,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut self.stack),
+                Default::default(),
+            )
+            .map_err(|_| FemError::NotPositiveDefinite)?;
+        self.factorized = true;
+        Ok(())
+    }
+
+    /// Solves `A x = b` in place for the columns of `rhs` (column-major, `n x ncols`).
+    ///
+    /// # Panics
+    /// If not factorised, or if `rhs.len()` is not a multiple of `n`.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
+        assert!(self.factorized, "solve before a successful factorisation");
+        assert_eq!(rhs.len() % self.n.max(1), 0);
+        let ncols = rhs.len() / self.n.max(1);
+        if ncols > 1 {
+            let req = self.symbolic.solve_in_place_scratch::<f64>(ncols, Par::Seq);
+            if req.size_bytes() > self.stack.len() {
+                self.stack = MemBuffer::new(req);
+            }
+        }
+        let llt = LltRef::new(&self.symbolic, &self.l_values);
+        let mat = MatMut::from_column_major_slice_mut(rhs, self.n, ncols);
+        llt.solve_in_place_with_conj(Conj::No, mat, Par::Seq, MemStack::new(&mut self.stack));
+    }
+}
