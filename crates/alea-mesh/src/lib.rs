@@ -10,10 +10,12 @@ mod error;
 mod extract;
 pub mod generate;
 mod geometry;
+pub mod gmsh;
 mod mesh;
 pub mod vtu;
 
 pub use cell::CellType;
 pub use error::MeshError;
+pub use gmsh::read_msh;
 pub use mesh::{BoundaryFacet, Facet, Mesh};
 pub use vtu::{VtuEncoding, VtuWriter, write_vtm};

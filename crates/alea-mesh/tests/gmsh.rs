@@ -1,0 +1,328 @@
+//! Gmsh reader: committed fixtures (made by Gmsh 4.15 with `tests/fixtures/make_fixtures.py`)
+//! must give the same meshes as the structured generators up to node numbering; malformed files
+//! must give a `Parse` error naming the section (and line), never a panic.
+
+mod common;
+
+use std::collections::{BTreeSet, HashMap};
+use std::path::PathBuf;
+
+use alea_mesh::CellType::{self, *};
+use alea_mesh::generate::{box_mesh, rectangle};
+use alea_mesh::gmsh::parse_msh;
+use alea_mesh::{Mesh, MeshError, read_msh};
+use common::*;
+
+fn fixture(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures")
+        .join(name)
+}
+
+fn key(x: [f64; 3]) -> [i64; 3] {
+    x.map(|v| (v * 1e6).round() as i64)
+}
+
+/// Map from the generator's node indices to the read mesh's, by coordinates (1e-6).
+fn node_map(gen_mesh: &Mesh, read: &Mesh) -> Vec<usize> {
+    assert_eq!(gen_mesh.num_nodes(), read.num_nodes(), "node counts");
+    let index: HashMap<[i64; 3], usize> = read
+        .coords
+        .iter()
+        .enumerate()
+        .map(|(i, &x)| (key(x), i))
+        .collect();
+    assert_eq!(
+        index.len(),
+        read.num_nodes(),
+        "read mesh has coincident nodes"
+    );
+    gen_mesh
+        .coords
+        .iter()
+        .map(|&x| {
+            *index
+                .get(&key(x))
+                .unwrap_or_else(|| panic!("no read node at {x:?}"))
+        })
+        .collect()
+}
+
+fn cell_set(m: &Mesh, map: Option<&[usize]>) -> BTreeSet<(CellType, Vec<usize>)> {
+    m.cells()
+        .map(|(_, k, n)| {
+            let mut v: Vec<usize> = n.iter().map(|&i| map.map_or(i, |m| m[i])).collect();
+            v.sort_unstable();
+            (k, v)
+        })
+        .collect()
+}
+
+fn facet_set(m: &Mesh, name: &str, map: Option<&[usize]>) -> BTreeSet<Vec<usize>> {
+    m.facet_group(name)
+        .unwrap()
+        .iter()
+        .map(|f| {
+            let mut v: Vec<usize> = f.nodes.iter().map(|&i| map.map_or(i, |m| m[i])).collect();
+            v.sort_unstable();
+            v
+        })
+        .collect()
+}
+
+/// The read mesh equals the generated one up to node numbering: nodes, cells, groups.
+fn assert_same(read: &Mesh, expected: &Mesh, exact_cells: bool) {
+    read.validate().unwrap();
+    assert_eq!(read.dim, expected.dim);
+    assert_positive_jacobians(read);
+    assert_conforming(read);
+    assert_eq!(read.num_cells(), expected.num_cells());
+    let map = node_map(expected, read);
+    if exact_cells {
+        assert_eq!(cell_set(expected, Some(&map)), cell_set(read, None));
+    }
+    assert!((read.measure() - expected.measure()).abs() < 1e-9);
+    assert_eq!(read.cell_group("domain").unwrap().len(), read.num_cells());
+    let b = boundary_set(read);
+    for name in expected.facet_groups.keys() {
+        if exact_cells {
+            assert_eq!(
+                facet_set(expected, name, Some(&map)),
+                facet_set(read, name, None),
+                "facet group {name}"
+            );
+        } else {
+            // Gmsh splits the faces along other diagonals: same count, same nodes (below).
+            assert_eq!(
+                expected.facet_group(name).unwrap().len(),
+                read.facet_group(name).unwrap().len()
+            );
+        }
+        for f in read.facet_group(name).unwrap() {
+            assert!(
+                b.contains(&f.nodes),
+                "facet {:?} of {name} not outward",
+                f.nodes
+            );
+        }
+        let mut nodes: Vec<usize> = expected.node_groups[name].iter().map(|&i| map[i]).collect();
+        nodes.sort_unstable();
+        assert_eq!(read.node_groups[name], nodes, "node group {name}");
+    }
+}
+
+#[test]
+fn two_d_fixtures_equal_rectangle() {
+    for (name, kind) in [
+        ("q4", Quad4),
+        ("t3", Tri3),
+        ("t6", Tri6),
+        ("q8", Quad8),
+        ("cw_q4", Quad4),
+    ] {
+        for enc in ["ascii", "bin"] {
+            let file = format!("square_{name}_{enc}.msh");
+            let read = read_msh(fixture(&file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+            let expected = rectangle(2.0, 1.0, 4, 2, kind).unwrap();
+            assert_same(&read, &expected, true);
+            // Extra groups: a physical point and an unnamed physical curve (tag 12) on y = 1.
+            let origin = read.node_groups["origin"].clone();
+            assert_eq!(origin.len(), 1);
+            assert_eq!(read.coords[origin[0]], [0.0, 0.0, 0.0]);
+            assert_eq!(facet_set(&read, "12", None), facet_set(&read, "ymax", None));
+            assert_eq!(read.node_groups["12"], read.node_groups["ymax"]);
+            // The cell group also has a node group of its nodes: all of them.
+            assert_eq!(read.node_groups["domain"].len(), read.num_nodes());
+        }
+    }
+}
+
+#[test]
+fn three_d_fixtures_equal_box() {
+    for (name, kind, exact) in [
+        ("hex8", Hex8, true),
+        ("tet4", Tet4, false),
+        ("tet10", Tet10, false),
+    ] {
+        for enc in ["ascii", "bin"] {
+            let file = format!("box_{name}_{enc}.msh");
+            let read = read_msh(fixture(&file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+            let expected = box_mesh([1.0, 1.0, 2.0], [2, 2, 3], kind).unwrap();
+            assert_same(&read, &expected, exact);
+            assert_eq!(read.cell_types_present(), [kind]);
+        }
+    }
+}
+
+#[test]
+fn tet10_mid_edge_nodes_are_in_vtk_order() {
+    let m = read_msh(fixture("box_tet10_ascii.msh")).unwrap();
+    const EDGES: [(usize, usize); 6] = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)];
+    for (_, _, n) in m.cells() {
+        for (k, (a, b)) in EDGES.iter().enumerate() {
+            let (xa, xb, xm) = (m.coords[n[*a]], m.coords[n[*b]], m.coords[n[4 + k]]);
+            for d in 0..3 {
+                assert!(
+                    (0.5 * (xa[d] + xb[d]) - xm[d]).abs() < 1e-9,
+                    "node {} not on edge {a}-{b}",
+                    4 + k
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn clockwise_surface_is_reoriented() {
+    // The fixture's elements are clockwise in the file (checked here from the raw text).
+    let text = std::fs::read_to_string(fixture("square_cw_q4_ascii.msh")).unwrap();
+    let plain = std::fs::read_to_string(fixture("square_q4_ascii.msh")).unwrap();
+    assert_ne!(text, plain);
+    let m = read_msh(fixture("square_cw_q4_ascii.msh")).unwrap();
+    for c in 0..m.num_cells() {
+        assert!(m.cell_min_jacobian(c) > 0.0);
+    }
+}
+
+fn parse_err(bytes: &[u8]) -> (usize, String, String) {
+    match parse_msh(bytes, "bad.msh") {
+        Err(MeshError::Parse {
+            line,
+            section,
+            message,
+            ..
+        }) => (line, section, message),
+        Err(e) => panic!("expected a parse error, got {e}"),
+        Ok(_) => panic!("expected a parse error, got a mesh"),
+    }
+}
+
+/// 1-based number of the first line of `text` that starts with `prefix` after line `after`.
+fn line_of(text: &str, after: &str, prefix: &str) -> usize {
+    let start = text.lines().position(|l| l == after).unwrap();
+    start
+        + 1
+        + text
+            .lines()
+            .skip(start)
+            .position(|l| l.starts_with(prefix))
+            .unwrap()
+}
+
+/// The line following the first line starting with `prefix`.
+fn lines_after(text: &str, prefix: &str) -> String {
+    let mut it = text.lines().skip_while(|l| !l.starts_with(prefix));
+    it.next();
+    it.next().unwrap().to_string()
+}
+
+#[test]
+fn malformed_ascii_files_name_line_and_section() {
+    let text = std::fs::read_to_string(fixture("square_q4_ascii.msh")).unwrap();
+    // Truncated inside $Nodes.
+    let cut = text.find("$Nodes").unwrap() + 40;
+    let (_, section, msg) = parse_err(&text.as_bytes()[..cut]);
+    assert_eq!(section, "$Nodes");
+    assert!(msg.contains("file"), "{msg}");
+    // A garbage token in an element line.
+    let elem_line = line_of(&text, "$Elements", "2 1 3 ");
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let header = lines[elem_line - 1].clone();
+    let target = elem_line; // the first element of that block, 0-based index = elem_line
+    lines[target] = lines[target].replacen(' ', " x7 ", 1);
+    let (line, section, msg) = parse_err(lines.join("\n").as_bytes());
+    assert_eq!(
+        (line, section.as_str()),
+        (target + 1, "$Elements"),
+        "{msg} / {header}"
+    );
+    assert!(msg.contains("node tag") && msg.contains("x7"), "{msg}");
+    // Wrong node count in the $Nodes header.
+    let nodes_hdr = line_of(&text, "$Nodes", "");
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let parts: Vec<&str> = lines[nodes_hdr].split(' ').collect();
+    let n: usize = parts[1].parse().unwrap();
+    lines[nodes_hdr] = format!("{} {} {} {}", parts[0], n + 1, parts[2], parts[3]);
+    let (_, section, msg) = parse_err(lines.join("\n").as_bytes());
+    assert_eq!(section, "$Nodes");
+    assert!(msg.contains("announces"), "{msg}");
+    // Unknown element type 99.
+    let bad = text.replacen("\n2 1 3 ", "\n2 1 99 ", 1);
+    assert_ne!(bad, text);
+    let (line, section, msg) = parse_err(bad.as_bytes());
+    assert_eq!(section, "$Elements");
+    assert!(msg.contains("99") && line > 0, "{msg}");
+    // Missing $EndNodes.
+    let bad = text.replacen("$EndNodes\n", "", 1);
+    let (_, section, msg) = parse_err(bad.as_bytes());
+    assert_eq!(section, "$Nodes");
+    assert!(
+        msg.contains("$EndNodes") && msg.contains("$Elements"),
+        "{msg}"
+    );
+    // Non-numeric coordinate.
+    let bad = text.replacen("\n0 0 0\n", "\n0 zero 0\n", 1);
+    let (_, section, msg) = parse_err(bad.as_bytes());
+    assert_eq!(section, "$Nodes");
+    assert!(msg.contains("coordinate") && msg.contains("zero"), "{msg}");
+    // Old format version.
+    let (_, section, msg) = parse_err(text.replacen("4.1 0 8", "2.2 0 8", 1).as_bytes());
+    assert_eq!(section, "$MeshFormat");
+    assert!(msg.contains("2.2"), "{msg}");
+    // An element referring to a node tag that $Nodes does not define.
+    let first = lines_after(&text, "2 1 3 ");
+    let cut = first.trim_end().rfind(' ').unwrap();
+    let bad = text.replacen(&first, &format!("{} 999", &first[..cut]), 1);
+    let (_, section, msg) = parse_err(bad.as_bytes());
+    assert_eq!(section, "$Elements");
+    assert!(msg.contains("999"), "{msg}");
+    // No file.
+    assert!(matches!(
+        read_msh(fixture("missing.msh")),
+        Err(MeshError::Io { .. })
+    ));
+}
+
+#[test]
+fn malformed_binary_files_name_offset_and_section() {
+    let data = std::fs::read(fixture("square_q8_bin.msh")).unwrap();
+    let nodes = data.windows(6).position(|w| w == b"$Nodes").unwrap();
+    let (line, section, msg) = parse_err(&data[..nodes + 100]);
+    assert_eq!((line, section.as_str()), (0, "$Nodes"));
+    assert!(
+        msg.contains("byte offset") && msg.contains("end of file"),
+        "{msg}"
+    );
+    // Element type of the first element block set to 99 (binary int after dim and tag).
+    let el = data.windows(9).position(|w| w == b"$Elements").unwrap() + 10 + 32;
+    let mut bad = data.clone();
+    bad[el + 8..el + 12].copy_from_slice(&99i32.to_le_bytes());
+    let (line, section, msg) = parse_err(&bad);
+    assert_eq!((line, section.as_str()), (0, "$Elements"));
+    assert!(msg.contains("99"), "{msg}");
+}
+
+#[test]
+fn truncations_and_byte_flips_never_panic() {
+    for file in [
+        "square_t6_ascii.msh",
+        "square_t6_bin.msh",
+        "box_tet10_bin.msh",
+    ] {
+        let data = std::fs::read(fixture(file)).unwrap();
+        let step = (data.len() / 700).max(1);
+        for cut in (0..data.len()).step_by(step) {
+            let _ = parse_msh(&data[..cut], file);
+        }
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..400 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let mut bad = data.clone();
+            let i = (state % data.len() as u64) as usize;
+            bad[i] = (state >> 32) as u8;
+            let _ = parse_msh(&bad, file);
+        }
+    }
+}
