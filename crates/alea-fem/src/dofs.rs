@@ -306,6 +306,55 @@ impl DofMap {
         u
     }
 
+    /// Adds `T_n^T v` (a force-like vector at `node`) into the free-unknown vector `out`.
+    #[inline]
+    pub fn add_node_force(&self, node: usize, v: &[f64; 3], out: &mut [f64]) {
+        let r = self.node_dofs(node);
+        match &self.basis[node] {
+            None => {
+                for (c, g) in r.enumerate() {
+                    out[g] += v[c];
+                }
+            }
+            Some(b) => {
+                for (i, g) in r.enumerate() {
+                    out[g] += (0..self.dim).map(|c| b[i][c] * v[c]).sum::<f64>();
+                }
+            }
+        }
+    }
+
+    /// Displacement `T_n u_free + u_p` of `node` (components beyond `dim` are 0).
+    #[inline]
+    pub fn node_displacement(&self, node: usize, free: &[f64]) -> [f64; 3] {
+        let r = self.node_dofs(node);
+        let mut u = [0.0; 3];
+        match &self.basis[node] {
+            None => {
+                for (c, g) in r.enumerate() {
+                    u[c] = free[g];
+                }
+            }
+            Some(b) => {
+                u = self.prescribed[node];
+                for (i, g) in r.enumerate() {
+                    for c in 0..self.dim {
+                        u[c] += b[i][c] * free[g];
+                    }
+                }
+            }
+        }
+        u
+    }
+
+    /// Adds `s I` (an isotropic node block, e.g. a lumped interface stiffness `k m_i`) at
+    /// `node` to `a`: on the free unknowns this is `s T_n^T T_n = s I_r` (orthonormal `T_n`).
+    pub fn add_node_diagonal(&self, node: usize, s: f64, a: &mut crate::SymCsc) {
+        for g in self.node_dofs(node) {
+            a.add(g, g, s);
+        }
+    }
+
     /// Free-unknown vector `T^T f` of a full node-major vector (loads, not displacements).
     pub fn reduce(&self, full: &[f64]) -> Vec<f64> {
         let d = self.dim;

@@ -1,1 +1,26 @@
-//! placeholder
+//! Substructured LATIN solver for assemblies with frictional contact interfaces.
+//!
+//! An [`Assembly`] holds linear-elastic [`Substructure`]s (each an `alea_fem::Model` with its
+//! constraints and load cases) and [`InterfaceSpec`]s joining facet groups of two of them, with
+//! a pointwise [`InterfaceLaw`] ([`Perfect`] or [`CoulombContact`] with a friction field
+//! `mu(x)` and an initial-gap / shape-defect field `g0(x)`). [`LatinSolver`] factorises each
+//! substructure operator once and runs the LATIN iteration (thesis chapter 2.1; conventions and
+//! closed-form local stage in [`law`]) for any number of parameter points, each warm-started
+//! from the nearest finished one (multiresolution, thesis 5.1.3). A [`RunResult`] carries the
+//! displacement of every substructure, the interface fields of both stages, the contact status
+//! per point, the residual history and the quantities of interest.
+//!
+//! This crate knows nothing about probability.
+
+mod assembly;
+mod error;
+pub mod interface;
+pub mod law;
+mod result;
+mod solver;
+
+pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
+pub use error::LatinError;
+pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
+pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
+pub use solver::{LatinOptions, LatinSolver, RunInput, SearchDirection};

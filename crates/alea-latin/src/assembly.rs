@@ -1,0 +1,107 @@
+//! Description of an assembly: substructures and the interfaces that join them.
+
+use std::sync::Arc;
+
+use alea_fem::{Constraints, Model};
+
+use crate::InterfaceLaw;
+
+/// A scalar field along an interface: `x -> value` (friction coefficient, initial gap, ...).
+pub type PointField = Arc<dyn Fn([f64; 3]) -> f64 + Send + Sync>;
+
+/// A constant field.
+pub fn constant(v: f64) -> PointField {
+    Arc::new(move |_| v)
+}
+
+/// One linear-elastic substructure.
+#[derive(Clone, Debug)]
+pub struct Substructure {
+    /// Name (used in messages and outputs).
+    pub name: String,
+    /// Mesh, analysis and reference materials. A run may scale every Young's modulus of the
+    /// substructure by one factor without refactorisation.
+    pub model: Model,
+    /// Displacement constraints of its own (none for a floating substructure).
+    pub constraints: Constraints,
+    /// Load cases: full node-major external force vectors. A run multiplies case `j` by its
+    /// load factor (1 by default) and sums them.
+    pub load_cases: Vec<Vec<f64>>,
+}
+
+/// An interface between facet group `group1` of substructure `sub1` (side 1, whose outward
+/// normal is the interface normal) and facet group `group2` of substructure `sub2`.
+#[derive(Clone)]
+pub struct InterfaceSpec {
+    /// Name.
+    pub name: String,
+    /// Side-1 substructure index.
+    pub sub1: usize,
+    /// Side-1 facet group.
+    pub group1: String,
+    /// Side-2 substructure index.
+    pub sub2: usize,
+    /// Side-2 facet group.
+    pub group2: String,
+    /// Behaviour.
+    pub law: Arc<dyn InterfaceLaw>,
+    /// Default friction coefficient field `mu(x)` (runs may override it).
+    pub mu: PointField,
+    /// Default initial normal gap / shape defect `g0(x)` (runs may override it).
+    pub gap: PointField,
+    /// Node matching tolerance (default: 1e-6 x the interface size).
+    pub match_tolerance: Option<f64>,
+}
+
+impl std::fmt::Debug for InterfaceSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("InterfaceSpec")
+            .field("name", &self.name)
+            .field("side1", &(self.sub1, &self.group1))
+            .field("side2", &(self.sub2, &self.group2))
+            .field("law", &self.law.name())
+            .finish()
+    }
+}
+
+impl InterfaceSpec {
+    /// A perfect interface.
+    pub fn perfect(name: &str, sub1: usize, group1: &str, sub2: usize, group2: &str) -> Self {
+        InterfaceSpec {
+            name: name.into(),
+            sub1,
+            group1: group1.into(),
+            sub2,
+            group2: group2.into(),
+            law: Arc::new(crate::Perfect),
+            mu: constant(0.0),
+            gap: constant(0.0),
+            match_tolerance: None,
+        }
+    }
+
+    /// A frictional contact interface with constant `mu` and zero gap.
+    pub fn coulomb(
+        name: &str,
+        sub1: usize,
+        group1: &str,
+        sub2: usize,
+        group2: &str,
+        mu: f64,
+    ) -> Self {
+        InterfaceSpec {
+            law: Arc::new(crate::CoulombContact),
+            mu: constant(mu),
+            ..Self::perfect(name, sub1, group1, sub2, group2)
+        }
+    }
+}
+
+/// Substructures and interfaces.
+#[derive(Clone, Debug, Default)]
+pub struct Assembly {
+    /// The substructures.
+    pub subs: Vec<Substructure>,
+    /// The interfaces.
+    pub interfaces: Vec<InterfaceSpec>,
+}

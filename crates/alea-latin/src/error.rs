@@ -1,0 +1,46 @@
+//! Errors of the LATIN crate.
+
+/// What can go wrong when setting up or running the substructured solver.
+#[derive(Debug, thiserror::Error)]
+pub enum LatinError {
+    /// Finite-element level error in a substructure.
+    #[error("substructure '{sub}': {source}")]
+    Fem {
+        /// Substructure name.
+        sub: String,
+        /// Underlying error.
+        #[source]
+        source: alea_fem::FemError,
+    },
+    /// Mesh-level error (unknown group ...) in a substructure.
+    #[error("substructure '{sub}': {source}")]
+    Mesh {
+        /// Substructure name.
+        sub: String,
+        /// Underlying error.
+        #[source]
+        source: alea_mesh::MeshError,
+    },
+    /// The two sides of an interface do not match node to node.
+    #[error(
+        "interface '{interface}': sides do not match node to node ({side1} nodes on side 1, {side2} on side 2); worst unmatched distance {worst:e} at ({:.6}, {:.6}, {:.6}), tolerance {tol:e}",
+        at[0], at[1], at[2]
+    )]
+    Unmatched {
+        /// Interface name.
+        interface: String,
+        /// Nodes on side 1.
+        side1: usize,
+        /// Nodes on side 2.
+        side2: usize,
+        /// Largest distance from a side-1 node to its nearest side-2 node.
+        worst: f64,
+        /// Where.
+        at: [f64; 3],
+        /// Matching tolerance.
+        tol: f64,
+    },
+    /// Inconsistent set-up or run input.
+    #[error("{0}")]
+    Invalid(String),
+}

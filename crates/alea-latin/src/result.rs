@@ -1,0 +1,195 @@
+//! Results of a LATIN run and the quantities of interest computed from them.
+
+use alea_fem::{Model, post};
+
+use crate::PointStatus;
+
+/// Outcome of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RunStatus {
+    /// The error indicator went below the tolerance.
+    Converged,
+    /// The iteration limit was reached first.
+    NotConverged,
+    /// The indicator became non-finite.
+    Diverged,
+}
+
+/// Wall-clock seconds of a run.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunTimings {
+    /// All linear stages (including right-hand sides and extraction).
+    pub linear: f64,
+    /// Of which triangular solves (summed over substructures, so it can exceed `linear`
+    /// when substructures run in parallel).
+    pub triangular_solves: f64,
+    /// All local stages and error indicators.
+    pub local: f64,
+    /// The whole run.
+    pub total: f64,
+}
+
+/// Interface fields of a run, per interface point (pairs of nodes, in side-1 order).
+#[derive(Clone, Debug)]
+pub struct InterfaceResult {
+    /// Interface name.
+    pub name: String,
+    /// Law name.
+    pub law: &'static str,
+    /// Substructures of sides 1 and 2.
+    pub subs: [usize; 2],
+    /// Mesh nodes of each side, paired by index.
+    pub nodes: [Vec<usize>; 2],
+    /// Point data used in this run (position, normal, mu, gap).
+    pub points: Vec<crate::PointData>,
+    /// Lumped interface weight of each point (side 1).
+    pub weights: Vec<f64>,
+    /// Linear-stage displacements `W_s`.
+    pub w: [Vec<[f64; 3]>; 2],
+    /// Linear-stage tractions `F_s` (on substructure `s`).
+    pub f: [Vec<[f64; 3]>; 2],
+    /// Local-stage displacements `W_hat_s` (last stage).
+    pub what: [Vec<[f64; 3]>; 2],
+    /// Local-stage displacements of the stage before the last (for the CRE, thesis 3.1.3.2b).
+    pub what_prev: [Vec<[f64; 3]>; 2],
+    /// Local-stage tractions `F_hat_s`; `F_hat_2 = -F_hat_1`.
+    pub fhat: [Vec<[f64; 3]>; 2],
+    /// Contact status per point.
+    pub status: Vec<PointStatus>,
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl InterfaceResult {
+    /// Local-stage jump including the shape defect, `[W_hat] + g0 n` at point `i`.
+    pub fn jump(&self, i: usize) -> [f64; 3] {
+        let (a, b) = (self.what[0][i], self.what[1][i]);
+        let p = &self.points[i];
+        [
+            b[0] - a[0] + p.gap * p.normal[0],
+            b[1] - a[1] + p.gap * p.normal[1],
+            b[2] - a[2] + p.gap * p.normal[2],
+        ]
+    }
+
+    /// Work of the interface forces `int ([W_hat] + g0 n) . F_hat_2 dS` (thesis 2.3.2: the
+    /// work of the friction forces; with the gap included, the normal part vanishes by
+    /// complementarity, so this is `int [W_hat]_t . F_t dS <= 0` for Coulomb contact).
+    pub fn work(&self) -> f64 {
+        (0..self.points.len())
+            .map(|i| self.weights[i] * dot(&self.jump(i), &self.fhat[1][i]))
+            .sum()
+    }
+
+    /// Energy dissipated by friction, `-int [W_hat]_t . F_t dS >= 0`.
+    pub fn friction_dissipation(&self) -> f64 {
+        (0..self.points.len())
+            .map(|i| {
+                let n = self.points[i].normal;
+                let j = self.jump(i);
+                let f = self.fhat[1][i];
+                let (jn, fn_) = (dot(&j, &n), dot(&f, &n));
+                let jt = [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]];
+                let ft = [f[0] - fn_ * n[0], f[1] - fn_ * n[1], f[2] - fn_ * n[2]];
+                -self.weights[i] * dot(&jt, &ft)
+            })
+            .sum()
+    }
+
+    /// Resultant force exerted on side 2, `int F_hat_2 dS`.
+    pub fn resultant(&self) -> [f64; 3] {
+        let mut r = [0.0; 3];
+        for (m, f) in self.weights.iter().zip(&self.fhat[1]) {
+            for c in 0..3 {
+                r[c] += m * f[c];
+            }
+        }
+        r
+    }
+
+    /// Normal and tangential magnitudes of the force on side 2 at point `i`.
+    pub fn normal_tangential(&self, i: usize) -> (f64, f64) {
+        let n = self.points[i].normal;
+        let f = self.fhat[1][i];
+        let fn_ = dot(&f, &n);
+        let ft = [f[0] - fn_ * n[0], f[1] - fn_ * n[1], f[2] - fn_ * n[2]];
+        (fn_, dot(&ft, &ft).sqrt())
+    }
+
+    /// Number of points in each status `[perfect, open, stick, slip]`.
+    pub fn status_counts(&self) -> [usize; 4] {
+        let mut c = [0; 4];
+        for s in &self.status {
+            c[s.code() as usize] += 1;
+        }
+        c
+    }
+}
+
+/// Everything a run produces.
+#[derive(Clone, Debug)]
+pub struct RunResult {
+    /// Converged or not.
+    pub status: RunStatus,
+    /// Iterations done.
+    pub iterations: usize,
+    /// Error indicator after each iteration.
+    pub residuals: Vec<f64>,
+    /// Index of the stored run used as the initial guess (`None`: cold start).
+    pub warm_start: Option<usize>,
+    /// Node-major displacement of each substructure.
+    pub displacements: Vec<Vec<f64>>,
+    /// Interface fields.
+    pub interfaces: Vec<InterfaceResult>,
+    /// Young's-modulus factor of each substructure in this run.
+    pub young_factors: Vec<f64>,
+    /// Timings.
+    pub timings: RunTimings,
+}
+
+impl RunResult {
+    /// A copy of substructure `s`'s model with this run's Young's modulus.
+    pub fn scaled_model(&self, model: &Model, s: usize) -> Model {
+        let mut m = model.clone();
+        m.scale_young(self.young_factors[s]);
+        m
+    }
+
+    /// Maximum nodal (averaged) von Mises stress over the nodes of cell group `group` of
+    /// substructure `s`.
+    pub fn max_von_mises(
+        &self,
+        model: &Model,
+        s: usize,
+        group: &str,
+    ) -> Result<f64, alea_fem::FemError> {
+        let m = self.scaled_model(model, s);
+        let cells = m.mesh.cell_group(group)?.to_vec();
+        let stresses = post::nodal_stresses(&m, &self.displacements[s])?;
+        let mut best = 0.0f64;
+        for c in cells {
+            for &n in m.mesh.cell_nodes(c) {
+                best = best.max(alea_fem::von_mises(&stresses[n]));
+            }
+        }
+        Ok(best)
+    }
+
+    /// Displacement of substructure `s` at the node nearest to `x`, and that node.
+    pub fn displacement_at(&self, model: &Model, s: usize, x: [f64; 3]) -> ([f64; 3], usize) {
+        let mesh = &model.mesh;
+        let d = mesh.dim;
+        let node = (0..mesh.num_nodes())
+            .min_by(|&a, &b| {
+                let da: f64 = (0..3).map(|k| (mesh.coords[a][k] - x[k]).powi(2)).sum();
+                let db: f64 = (0..3).map(|k| (mesh.coords[b][k] - x[k]).powi(2)).sum();
+                da.total_cmp(&db)
+            })
+            .unwrap_or(0);
+        let mut u = [0.0; 3];
+        u[..d].copy_from_slice(&self.displacements[s][node * d..node * d + d]);
+        (u, node)
+    }
+}

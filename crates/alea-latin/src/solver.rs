@@ -1,0 +1,790 @@
+//! The LATIN iteration and its multiresolution state.
+//!
+//! **Linear stage** (per substructure, in parallel): with `k_s = alpha_s k0_s` proportional to
+//! the substructure's Young's-modulus factor `alpha_s`, `K + k M_Gamma = alpha_s (K0 + k0 M_Gamma)
+//! = alpha_s A0`, so the factorisation of `A0 = T^T (K0 + sum k0 M_Gamma) T` made once at set-up
+//! serves every run and iteration:
+//! `A0 u = (f + M_Gamma (F_hat + k W_hat)) / alpha - A0 u_p`, then `W = u|Gamma`,
+//! `F = F_hat - k (W - W_hat)`. With relaxation `rho`, `(W, F) <- rho (W, F) + (1 - rho)
+//! (W, F)_previous`.
+//!
+//! **Local stage** (per interface point, in parallel): closed form of [`crate::law`].
+//!
+//! **Error indicator** (k-weighted distance between the two half-iterates):
+//! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`, `||s||^2 = sum_points m (k |W|^2 + |F|^2 / k)`
+//! over both sides of every interface. The run stops when `eta < tol` (converged) or after
+//! `max_iterations` (reported as not converged, with the residual history).
+//!
+//! **Multiresolution** (thesis 5.1.3): the solver keeps the set-up (meshes, dof maps, pairings,
+//! factorisations) between runs; a run may change the Young's-modulus factors, load factors,
+//! `mu(x)` and `g0(x)` without refactorisation, and starts from the stored local-stage solution
+//! `(W_hat, F_hat)` of the nearest finished run in parameter space (Euclidean distance of the
+//! caller's normalised parameters).
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
+use rayon::prelude::*;
+
+use crate::interface::{pair_nodes, side_geometry};
+use crate::{
+    Assembly, InterfaceLaw, InterfaceResult, LatinError, PointData, PointField, PointStatus,
+    RunResult, RunStatus, RunTimings,
+};
+
+type V3 = [f64; 3];
+
+/// Search direction choice.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SearchDirection {
+    /// `k = factor * E_side / L_interface` on each side, with `E_side` the mean Young's
+    /// modulus of the cells along the side and `L` the interface length (2D) or the square root
+    /// of its area (3D).
+    Auto {
+        /// Multiplier (1 by default).
+        factor: f64,
+    },
+    /// Explicit `k0` per interface and side (`[side1, side2]`), at the reference materials.
+    Fixed(Vec<[f64; 2]>),
+}
+
+/// Solver options.
+#[derive(Clone, Debug)]
+pub struct LatinOptions {
+    /// Convergence tolerance on the error indicator.
+    pub tolerance: f64,
+    /// Maximum number of iterations.
+    pub max_iterations: usize,
+    /// Relaxation of the linear stage, in (0, 1] (1 = none).
+    pub relaxation: f64,
+    /// Search direction.
+    pub search_direction: SearchDirection,
+    /// Fill-reducing ordering of the substructure factorisations.
+    pub ordering: Ordering,
+}
+
+impl Default for LatinOptions {
+    fn default() -> Self {
+        LatinOptions {
+            tolerance: 1e-6,
+            max_iterations: 2000,
+            relaxation: 1.0,
+            search_direction: SearchDirection::Auto { factor: 1.0 },
+            ordering: Ordering::Metis,
+        }
+    }
+}
+
+/// What changes from one run to the next. Empty vectors / `None` mean "as set up".
+#[derive(Clone, Default)]
+pub struct RunInput {
+    /// Young's-modulus factor per substructure.
+    pub young_factors: Vec<f64>,
+    /// Load-case factors per substructure.
+    pub load_factors: Vec<Vec<f64>>,
+    /// Friction coefficient field per interface.
+    pub mu: Vec<Option<PointField>>,
+    /// Initial gap field per interface.
+    pub gap: Vec<Option<PointField>>,
+    /// Normalised parameter point (for the nearest-run warm start; empty: cold start).
+    pub params: Vec<f64>,
+}
+
+/// Interface nodes of one substructure on one side of one interface, in interface point order.
+#[derive(Clone, Debug)]
+struct Link {
+    iface: usize,
+    side: usize,
+    nodes: Vec<usize>,
+    weights: Vec<f64>,
+    k0: f64,
+}
+
+struct SubOperator {
+    name: String,
+    model: alea_fem::Model,
+    dofs: DofMap,
+    chol: Cholesky,
+    r_ext: Vec<Vec<f64>>,
+    r_presc: Vec<f64>,
+    links: Vec<Link>,
+}
+
+struct InterfaceOperator {
+    name: String,
+    law: Arc<dyn InterfaceLaw>,
+    sub: [usize; 2],
+    link: [usize; 2],
+    points: Vec<PointData>,
+    weights: Vec<f64>,
+    mu: PointField,
+    gap: PointField,
+}
+
+#[derive(Clone)]
+struct SubState {
+    rhs: Vec<f64>,
+    w: Vec<Vec<V3>>,
+    f: Vec<Vec<V3>>,
+}
+
+#[derive(Clone)]
+struct InterfaceState {
+    what: [Vec<V3>; 2],
+    fhat: [Vec<V3>; 2],
+    what_prev: [Vec<V3>; 2],
+    status: Vec<PointStatus>,
+}
+
+struct StoredRun {
+    params: Vec<f64>,
+    what: Vec<[Vec<V3>; 2]>,
+    fhat: Vec<[Vec<V3>; 2]>,
+}
+
+/// The substructured LATIN solver with its multiresolution state.
+pub struct LatinSolver {
+    subs: Vec<SubOperator>,
+    ifaces: Vec<InterfaceOperator>,
+    options: LatinOptions,
+    store: Vec<StoredRun>,
+    /// Seconds spent in set-up (assembly + factorisation).
+    pub setup_seconds: f64,
+}
+
+fn fem_err(sub: &str) -> impl Fn(alea_fem::FemError) -> LatinError + '_ {
+    move |source| LatinError::Fem {
+        sub: sub.to_string(),
+        source,
+    }
+}
+
+fn mesh_err(sub: &str) -> impl Fn(alea_mesh::MeshError) -> LatinError + '_ {
+    move |source| LatinError::Mesh {
+        sub: sub.to_string(),
+        source,
+    }
+}
+
+impl LatinSolver {
+    /// Sets up the assembly: pairs interfaces, assembles and factorises every substructure
+    /// operator `A0 = K0 + sum k0 M_Gamma` once.
+    pub fn new(assembly: Assembly, options: LatinOptions) -> Result<Self, LatinError> {
+        let t0 = Instant::now();
+        if !(options.relaxation > 0.0 && options.relaxation <= 1.0) {
+            return Err(LatinError::Invalid(format!(
+                "relaxation must be in (0, 1], got {}",
+                options.relaxation
+            )));
+        }
+        if !(options.tolerance > 0.0) {
+            return Err(LatinError::Invalid(format!(
+                "tolerance must be > 0, got {}",
+                options.tolerance
+            )));
+        }
+        let Assembly { subs, interfaces } = assembly;
+        let nsub = subs.len();
+        let mut links: Vec<Vec<Link>> = vec![Vec::new(); nsub];
+        let mut ifaces = Vec::new();
+        for (i, spec) in interfaces.iter().enumerate() {
+            for (s, sub) in [spec.sub1, spec.sub2].into_iter().enumerate() {
+                if sub >= nsub {
+                    return Err(LatinError::Invalid(format!(
+                        "interface '{}': side {} refers to substructure {sub}, but there are {nsub}",
+                        spec.name,
+                        s + 1
+                    )));
+                }
+            }
+            if spec.sub1 == spec.sub2 {
+                return Err(LatinError::Invalid(format!(
+                    "interface '{}' joins substructure '{}' to itself",
+                    spec.name, subs[spec.sub1].name
+                )));
+            }
+            let s1 = &subs[spec.sub1];
+            let s2 = &subs[spec.sub2];
+            let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
+                .map_err(mesh_err(&s1.name))?;
+            let g2 = side_geometry(&s2.model.mesh, &spec.group2, s2.model.analysis.thickness())
+                .map_err(mesh_err(&s2.name))?;
+            let x1: Vec<V3> = g1.nodes.iter().map(|&n| s1.model.mesh.coords[n]).collect();
+            let x2: Vec<V3> = g2.nodes.iter().map(|&n| s2.model.mesh.coords[n]).collect();
+            let partner = pair_nodes(&spec.name, &x1, &x2, spec.match_tolerance)?;
+            let nodes2: Vec<usize> = partner.iter().map(|&j| g2.nodes[j]).collect();
+            let weights2: Vec<f64> = partner.iter().map(|&j| g2.weights[j]).collect();
+            // Characteristic length and side moduli for the default search direction.
+            let total: f64 = g1.weights.iter().sum();
+            let len = if s1.model.mesh.dim == 2 {
+                total / s1.model.analysis.thickness()
+            } else {
+                total.sqrt()
+            };
+            let k0 = match &options.search_direction {
+                SearchDirection::Auto { factor } => {
+                    let e1 = side_young(&s1.model, &spec.group1).map_err(fem_err(&s1.name))?;
+                    let e2 = side_young(&s2.model, &spec.group2).map_err(fem_err(&s2.name))?;
+                    [factor * e1 / len, factor * e2 / len]
+                }
+                SearchDirection::Fixed(k) => *k.get(i).ok_or_else(|| {
+                    LatinError::Invalid(format!(
+                        "fixed search direction given for {} interfaces, but there are {}",
+                        k.len(),
+                        interfaces.len()
+                    ))
+                })?,
+            };
+            if !(k0[0] > 0.0 && k0[1] > 0.0) {
+                return Err(LatinError::Invalid(format!(
+                    "interface '{}': search direction must be > 0, got {k0:?}",
+                    spec.name
+                )));
+            }
+            let points: Vec<PointData> = x1
+                .iter()
+                .zip(&g1.normals)
+                .map(|(&x, &normal)| PointData {
+                    x,
+                    normal,
+                    mu: (spec.mu)(x),
+                    gap: (spec.gap)(x),
+                })
+                .collect();
+            let l1 = links[spec.sub1].len();
+            links[spec.sub1].push(Link {
+                iface: i,
+                side: 0,
+                nodes: g1.nodes.clone(),
+                weights: g1.weights.clone(),
+                k0: k0[0],
+            });
+            let l2 = links[spec.sub2].len();
+            links[spec.sub2].push(Link {
+                iface: i,
+                side: 1,
+                nodes: nodes2,
+                weights: weights2,
+                k0: k0[1],
+            });
+            ifaces.push(InterfaceOperator {
+                name: spec.name.clone(),
+                law: spec.law.clone(),
+                sub: [spec.sub1, spec.sub2],
+                link: [l1, l2],
+                points,
+                weights: g1.weights,
+                mu: spec.mu.clone(),
+                gap: spec.gap.clone(),
+            });
+        }
+        let ordering = options.ordering;
+        let ops: Vec<SubOperator> = subs
+            .into_par_iter()
+            .zip(links.into_par_iter())
+            .map(|(sub, links)| build_operator(sub, links, ordering))
+            .collect::<Result<_, _>>()?;
+        Ok(LatinSolver {
+            subs: ops,
+            ifaces,
+            options,
+            store: Vec::new(),
+            setup_seconds: t0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// Options in force.
+    pub fn options(&self) -> &LatinOptions {
+        &self.options
+    }
+
+    /// Changes the iteration options (tolerance, iterations, relaxation); the search direction
+    /// and ordering are fixed at set-up.
+    pub fn set_iteration_options(
+        &mut self,
+        tolerance: f64,
+        max_iterations: usize,
+        relaxation: f64,
+    ) {
+        self.options.tolerance = tolerance;
+        self.options.max_iterations = max_iterations;
+        self.options.relaxation = relaxation;
+    }
+
+    /// Number of substructures.
+    pub fn num_subs(&self) -> usize {
+        self.subs.len()
+    }
+
+    /// The model of substructure `s`.
+    pub fn model(&self, s: usize) -> &alea_fem::Model {
+        &self.subs[s].model
+    }
+
+    /// Name of substructure `s`.
+    pub fn sub_name(&self, s: usize) -> &str {
+        &self.subs[s].name
+    }
+
+    /// Number of interfaces.
+    pub fn num_interfaces(&self) -> usize {
+        self.ifaces.len()
+    }
+
+    /// Interface point data (positions, normals, default mu and gap) of interface `i`.
+    pub fn interface_points(&self, i: usize) -> &[PointData] {
+        &self.ifaces[i].points
+    }
+
+    /// Name of interface `i`.
+    pub fn interface_name(&self, i: usize) -> &str {
+        &self.ifaces[i].name
+    }
+
+    /// Number of stored (finished) runs available for warm starts.
+    pub fn stored_runs(&self) -> usize {
+        self.store.len()
+    }
+
+    /// Forgets the stored runs (every later run starts cold).
+    pub fn clear_store(&mut self) {
+        self.store.clear();
+    }
+
+    fn check_input(&self, input: &RunInput) -> Result<(), LatinError> {
+        let ns = self.subs.len();
+        if !input.young_factors.is_empty() && input.young_factors.len() != ns {
+            return Err(LatinError::Invalid(format!(
+                "{} Young's-modulus factors given for {ns} substructures",
+                input.young_factors.len()
+            )));
+        }
+        if let Some((s, a)) = input
+            .young_factors
+            .iter()
+            .enumerate()
+            .find(|(_, a)| !(a.is_finite() && **a > 0.0))
+        {
+            return Err(LatinError::Invalid(format!(
+                "Young's-modulus factor of substructure '{}' must be > 0, got {a}",
+                self.subs[s].name
+            )));
+        }
+        if !input.load_factors.is_empty() {
+            if input.load_factors.len() != ns {
+                return Err(LatinError::Invalid(format!(
+                    "load factors given for {} substructures, there are {ns}",
+                    input.load_factors.len()
+                )));
+            }
+            for (s, lf) in input.load_factors.iter().enumerate() {
+                if lf.len() != self.subs[s].r_ext.len() || lf.iter().any(|v| !v.is_finite()) {
+                    return Err(LatinError::Invalid(format!(
+                        "substructure '{}': {} finite load factors expected, got {:?}",
+                        self.subs[s].name,
+                        self.subs[s].r_ext.len(),
+                        lf
+                    )));
+                }
+            }
+        }
+        for (name, v) in [("mu", &input.mu), ("gap", &input.gap)] {
+            if !v.is_empty() && v.len() != self.ifaces.len() {
+                return Err(LatinError::Invalid(format!(
+                    "{name} fields given for {} interfaces, there are {}",
+                    v.len(),
+                    self.ifaces.len()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Runs the LATIN iteration for one parameter point. A run that does not reach the
+    /// tolerance is returned with status [`RunStatus::NotConverged`] and its residual history.
+    pub fn run(&mut self, input: &RunInput) -> Result<RunResult, LatinError> {
+        let t_start = Instant::now();
+        self.check_input(input)?;
+        let alpha: Vec<f64> = if input.young_factors.is_empty() {
+            vec![1.0; self.subs.len()]
+        } else {
+            input.young_factors.clone()
+        };
+        // Interface point data for this run.
+        let mut points: Vec<Vec<PointData>> = Vec::with_capacity(self.ifaces.len());
+        for (i, op) in self.ifaces.iter().enumerate() {
+            let mu = input
+                .mu
+                .get(i)
+                .cloned()
+                .flatten()
+                .unwrap_or_else(|| op.mu.clone());
+            let gap = input
+                .gap
+                .get(i)
+                .cloned()
+                .flatten()
+                .unwrap_or_else(|| op.gap.clone());
+            let mut pts = op.points.clone();
+            for p in pts.iter_mut() {
+                p.mu = mu(p.x);
+                p.gap = gap(p.x);
+                if !(p.mu.is_finite() && p.mu >= 0.0) {
+                    return Err(LatinError::Invalid(format!(
+                        "interface '{}': friction coefficient must be finite and >= 0, got {} at ({}, {}, {})",
+                        op.name, p.mu, p.x[0], p.x[1], p.x[2]
+                    )));
+                }
+                if !p.gap.is_finite() {
+                    return Err(LatinError::Invalid(format!(
+                        "interface '{}': gap is not finite at ({}, {}, {})",
+                        op.name, p.x[0], p.x[1], p.x[2]
+                    )));
+                }
+            }
+            points.push(pts);
+        }
+        // Constant part of each right-hand side.
+        let base: Vec<Vec<f64>> = self
+            .subs
+            .iter()
+            .enumerate()
+            .map(|(s, op)| {
+                let mut r = op.r_presc.clone();
+                for (j, rj) in op.r_ext.iter().enumerate() {
+                    let lf = input.load_factors.get(s).map_or(1.0, |v| v[j]);
+                    for (a, b) in r.iter_mut().zip(rj) {
+                        *a += lf * b / alpha[s];
+                    }
+                }
+                r
+            })
+            .collect();
+        // Initial local-stage state: nearest stored run, or zero.
+        let mut warm = None;
+        let mut istate: Vec<InterfaceState> = self
+            .ifaces
+            .iter()
+            .map(|op| {
+                let n = op.points.len();
+                InterfaceState {
+                    what: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    fhat: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    what_prev: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    status: vec![PointStatus::Open; n],
+                }
+            })
+            .collect();
+        if !input.params.is_empty() {
+            let best = self
+                .store
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| r.params.len() == input.params.len())
+                .map(|(k, r)| {
+                    let d: f64 = r
+                        .params
+                        .iter()
+                        .zip(&input.params)
+                        .map(|(a, b)| (a - b) * (a - b))
+                        .sum();
+                    (d, k)
+                })
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, k)) = best {
+                warm = Some(k);
+                for (i, st) in istate.iter_mut().enumerate() {
+                    st.what = self.store[k].what[i].clone();
+                    st.fhat = self.store[k].fhat[i].clone();
+                }
+            }
+        }
+        let mut sstate: Vec<SubState> = self
+            .subs
+            .iter()
+            .map(|op| SubState {
+                rhs: vec![0.0; op.dofs.num_free()],
+                w: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.nodes.len()])
+                    .collect(),
+                f: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.nodes.len()])
+                    .collect(),
+            })
+            .collect();
+        let mut residuals = Vec::new();
+        let mut timings = RunTimings::default();
+        let rho = self.options.relaxation;
+        let mut status = RunStatus::NotConverged;
+        let mut first = true;
+        for _ in 0..self.options.max_iterations {
+            // Linear stage.
+            let t0 = Instant::now();
+            let solve_time: f64 = self
+                .subs
+                .par_iter_mut()
+                .zip(sstate.par_iter_mut())
+                .enumerate()
+                .map(|(s, (op, st))| linear_stage(op, st, &istate, &base[s], alpha[s], rho, first))
+                .sum();
+            timings.linear += t0.elapsed().as_secs_f64();
+            timings.triangular_solves += solve_time;
+            first = false;
+            // Local stage + error indicator.
+            let t0 = Instant::now();
+            let sums: Vec<[f64; 3]> = self
+                .ifaces
+                .par_iter()
+                .zip(istate.par_iter_mut())
+                .zip(points.par_iter())
+                .map(|((op, st), pts)| local_stage(op, st, pts, &self.subs, &sstate, &alpha))
+                .collect();
+            timings.local += t0.elapsed().as_secs_f64();
+            let tot = sums.iter().fold([0.0; 3], |acc, v| {
+                [acc[0] + v[0], acc[1] + v[1], acc[2] + v[2]]
+            });
+            let den = 0.5 * (tot[1].sqrt() + tot[2].sqrt());
+            let eta = if den > 0.0 { tot[0].sqrt() / den } else { 0.0 };
+            if !eta.is_finite() {
+                residuals.push(f64::NAN);
+                status = RunStatus::Diverged;
+                break;
+            }
+            residuals.push(eta);
+            if eta < self.options.tolerance {
+                status = RunStatus::Converged;
+                break;
+            }
+        }
+        // Final fields: the last linear stage's displacement.
+        let displacements: Vec<Vec<f64>> = self
+            .subs
+            .par_iter_mut()
+            .zip(sstate.par_iter_mut())
+            // The linear stage solves in place: `rhs` holds the last reduced displacement.
+            .map(|(op, st)| op.dofs.expand(&st.rhs))
+            .collect();
+        let interfaces: Vec<InterfaceResult> = self
+            .ifaces
+            .iter()
+            .zip(istate.iter())
+            .zip(points)
+            .map(|((op, st), pts)| {
+                let side = |s: usize| &sstate[op.sub[s]];
+                InterfaceResult {
+                    name: op.name.clone(),
+                    law: op.law.name(),
+                    subs: op.sub,
+                    nodes: [
+                        self.subs[op.sub[0]].links[op.link[0]].nodes.clone(),
+                        self.subs[op.sub[1]].links[op.link[1]].nodes.clone(),
+                    ],
+                    points: pts,
+                    weights: op.weights.clone(),
+                    w: [side(0).w[op.link[0]].clone(), side(1).w[op.link[1]].clone()],
+                    f: [side(0).f[op.link[0]].clone(), side(1).f[op.link[1]].clone()],
+                    what: st.what.clone(),
+                    what_prev: st.what_prev.clone(),
+                    fhat: st.fhat.clone(),
+                    status: st.status.clone(),
+                }
+            })
+            .collect();
+        if status == RunStatus::Converged && !input.params.is_empty() {
+            self.store.push(StoredRun {
+                params: input.params.clone(),
+                what: istate.iter().map(|s| s.what.clone()).collect(),
+                fhat: istate.iter().map(|s| s.fhat.clone()).collect(),
+            });
+        }
+        timings.total = t_start.elapsed().as_secs_f64();
+        Ok(RunResult {
+            status,
+            iterations: residuals.len(),
+            residuals,
+            warm_start: warm,
+            displacements,
+            interfaces,
+            young_factors: alpha,
+            timings,
+        })
+    }
+}
+
+/// Mean Young's modulus of the cells along a facet group.
+fn side_young(model: &alea_fem::Model, group: &str) -> Result<f64, alea_fem::FemError> {
+    let facets = model
+        .mesh
+        .attach_facets(model.mesh.facet_group(group)?, None)?;
+    let mut sum = 0.0;
+    for f in &facets {
+        sum += model.material(f.cell)?.young;
+    }
+    Ok(sum / facets.len().max(1) as f64)
+}
+
+fn build_operator(
+    sub: crate::Substructure,
+    links: Vec<Link>,
+    ordering: Ordering,
+) -> Result<SubOperator, LatinError> {
+    let name = sub.name.clone();
+    let model = sub.model;
+    let dofs = DofMap::for_mesh(&model.mesh, &sub.constraints).map_err(fem_err(&name))?;
+    let asm = assemble_stiffness(&model, &dofs).map_err(fem_err(&name))?;
+    let mut a0: SymCsc = asm.k;
+    let mut r_presc = asm.f_prescribed;
+    let dim = model.mesh.dim;
+    for l in &links {
+        for (&n, &m) in l.nodes.iter().zip(&l.weights) {
+            dofs.add_node_diagonal(n, l.k0 * m, &mut a0);
+            // -T^T (k0 M) u_p for prescribed interface nodes.
+            let up = dofs.prescribed(n);
+            if up.iter().any(|&v| v != 0.0) {
+                let v = [-l.k0 * m * up[0], -l.k0 * m * up[1], -l.k0 * m * up[2]];
+                dofs.add_node_force(n, &v, &mut r_presc);
+            }
+        }
+    }
+    let _ = dim;
+    let mut chol =
+        Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
+    chol.factorize(&a0).map_err(fem_err(&name))?;
+    let n_nodes = model.mesh.num_nodes() * model.mesh.dim;
+    let r_ext: Vec<Vec<f64>> = sub
+        .load_cases
+        .iter()
+        .map(|f| {
+            if f.len() != n_nodes {
+                Err(LatinError::Invalid(format!(
+                    "substructure '{name}': load case of length {} for {n_nodes} dofs",
+                    f.len()
+                )))
+            } else {
+                Ok(dofs.reduce(f))
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(SubOperator {
+        name,
+        model,
+        dofs,
+        chol,
+        r_ext,
+        r_presc,
+        links,
+    })
+}
+
+/// One linear stage of one substructure; returns the seconds spent in the triangular solve.
+fn linear_stage(
+    op: &mut SubOperator,
+    st: &mut SubState,
+    istate: &[InterfaceState],
+    base: &[f64],
+    alpha: f64,
+    rho: f64,
+    first: bool,
+) -> f64 {
+    st.rhs.copy_from_slice(base);
+    for l in &op.links {
+        let is = &istate[l.iface];
+        let k = alpha * l.k0;
+        for (i, (&n, &m)) in l.nodes.iter().zip(&l.weights).enumerate() {
+            let fh = is.fhat[l.side][i];
+            let wh = is.what[l.side][i];
+            let v = [
+                m * (fh[0] + k * wh[0]) / alpha,
+                m * (fh[1] + k * wh[1]) / alpha,
+                m * (fh[2] + k * wh[2]) / alpha,
+            ];
+            op.dofs.add_node_force(n, &v, &mut st.rhs);
+        }
+    }
+    let t0 = Instant::now();
+    op.chol.solve_in_place(&mut st.rhs);
+    let t = t0.elapsed().as_secs_f64();
+    let r = if first { 1.0 } else { rho };
+    for (li, l) in op.links.iter().enumerate() {
+        let is = &istate[l.iface];
+        let k = alpha * l.k0;
+        for (i, &n) in l.nodes.iter().enumerate() {
+            let w = op.dofs.node_displacement(n, &st.rhs);
+            let wh = is.what[l.side][i];
+            let fh = is.fhat[l.side][i];
+            let wo = st.w[li][i];
+            let fo = st.f[li][i];
+            for c in 0..3 {
+                let f = fh[c] - k * (w[c] - wh[c]);
+                st.w[li][i][c] = r * w[c] + (1.0 - r) * wo[c];
+                st.f[li][i][c] = r * f + (1.0 - r) * fo[c];
+            }
+        }
+    }
+    t
+}
+
+/// Local stage on one interface; returns the interface's parts of `||s - s_hat||^2`,
+/// `||s||^2` and `||s_hat||^2`.
+fn local_stage(
+    op: &InterfaceOperator,
+    st: &mut InterfaceState,
+    pts: &[PointData],
+    subs: &[SubOperator],
+    sstate: &[SubState],
+    alpha: &[f64],
+) -> [f64; 3] {
+    let k = [
+        alpha[op.sub[0]] * subs[op.sub[0]].links[op.link[0]].k0,
+        alpha[op.sub[1]] * subs[op.sub[1]].links[op.link[1]].k0,
+    ];
+    let kappa = 1.0 / (1.0 / k[0] + 1.0 / k[1]);
+    let w = [
+        &sstate[op.sub[0]].w[op.link[0]],
+        &sstate[op.sub[1]].w[op.link[1]],
+    ];
+    let f = [
+        &sstate[op.sub[0]].f[op.link[0]],
+        &sstate[op.sub[1]].f[op.link[1]],
+    ];
+    std::mem::swap(&mut st.what_prev, &mut st.what);
+    let (mut dist, mut norm_s, mut norm_h) = (0.0, 0.0, 0.0);
+    for (i, p) in pts.iter().enumerate() {
+        let mut a = [[0.0; 3]; 2];
+        for s in 0..2 {
+            for c in 0..3 {
+                a[s][c] = f[s][i][c] - k[s] * w[s][i][c];
+            }
+        }
+        let r = [
+            kappa * (a[1][0] / k[1] - a[0][0] / k[0]),
+            kappa * (a[1][1] / k[1] - a[0][1] / k[0]),
+            kappa * (a[1][2] / k[1] - a[0][2] / k[0]),
+        ];
+        let sol = op.law.local_stage(p, r, kappa);
+        st.status[i] = sol.status;
+        let m = op.weights[i];
+        for c in 0..3 {
+            let phi = sol.force[c];
+            st.fhat[0][i][c] = -phi;
+            st.fhat[1][i][c] = phi;
+            st.what[0][i][c] = (-phi - a[0][c]) / k[0];
+            st.what[1][i][c] = (phi - a[1][c]) / k[1];
+        }
+        for s in 0..2 {
+            for c in 0..3 {
+                let dw = w[s][i][c] - st.what[s][i][c];
+                let df = f[s][i][c] - st.fhat[s][i][c];
+                dist += m * (k[s] * dw * dw + df * df / k[s]);
+                norm_s += m * (k[s] * w[s][i][c].powi(2) + f[s][i][c].powi(2) / k[s]);
+                norm_h += m * (k[s] * st.what[s][i][c].powi(2) + st.fhat[s][i][c].powi(2) / k[s]);
+            }
+        }
+    }
+    [dist, norm_s, norm_h]
+}
