@@ -5,7 +5,9 @@ mod common;
 use std::f64::consts::PI;
 
 use alea_mesh::CellType::{self, *};
-use alea_mesh::generate::{annulus_sector, plate_with_hole};
+use alea_mesh::generate::{
+    DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole,
+};
 use common::*;
 
 /// Area removed by the polygonal (order 1) or parabolic (order 2) approximation of a circular arc
@@ -177,4 +179,178 @@ fn annulus_sector_large_angle_and_bad_input() {
     assert!(plate_with_hole(0.5, 1.0, 1, 4, 1.0, Quad4).is_err());
     assert!(plate_with_hole(0.5, 1.0, 4, 4, f64::NAN, Quad4).is_err());
     let _: CellType = Quad4;
+}
+
+fn sorted_coords(m: &alea_mesh::Mesh, nodes: &[usize]) -> Vec<[i64; 2]> {
+    let mut v: Vec<[i64; 2]> = nodes
+        .iter()
+        .map(|&n| {
+            [
+                (m.coords[n][0] * 1e8).round() as i64,
+                (m.coords[n][1] * 1e8).round() as i64,
+            ]
+        })
+        .collect();
+    v.sort_unstable();
+    v
+}
+
+/// Exact area of the disk sector with its slot (true curved geometry).
+fn dovetail_disk_area(p: &DovetailParams) -> f64 {
+    let (wn, wb, rf) = (p.neck_half_width, p.bottom_half_width, p.fillet_radius);
+    let sector = p.half_angle * (p.r_rim.powi(2) - p.r_inner.powi(2));
+    // Slot inside the rim circle: trapezoid between the flanks, rectangle down to the slot
+    // bottom, circular segment above the chord A_L A_R, minus the two fillet corners.
+    let phi = 2.0 * (wn / p.r_rim).asin();
+    let segment = 0.5 * p.r_rim.powi(2) * (phi - phi.sin());
+    let slot = (wn + wb) * p.flank_height + 2.0 * wb * p.slot_gap + segment
+        - 2.0 * (rf * rf - PI * rf * rf / 4.0);
+    sector - slot
+}
+
+#[test]
+fn dovetail_parts_groups_and_areas() {
+    let p = DovetailParams::default();
+    for kind in [Quad4, Quad8, Tri6] {
+        let m = dovetail_root_and_disk(&p, kind).unwrap();
+        m.validate().unwrap();
+        assert_positive_jacobians(&m);
+        assert_conforming(&m);
+        assert_groups_outward(&m);
+        let root = m.cell_group("root").unwrap();
+        let disk = m.cell_group("disk").unwrap();
+        assert_eq!(root.len() + disk.len(), m.num_cells());
+        let area = |cells: &[usize]| cells.iter().map(|&c| m.cell_measure(c)).sum::<f64>();
+        // The root has straight edges: exact area (w_n + w_b) h_f + 2 w_n h_s.
+        assert!((area(root) - 528.0).abs() < 1e-9, "{}", area(root));
+        let exact = dovetail_disk_area(&p);
+        let tol = if kind == Quad4 { 2e-3 } else { 2e-5 };
+        assert!(
+            (area(disk) / exact - 1.0).abs() < tol,
+            "{kind}: {} vs {exact}",
+            area(disk)
+        );
+        // Flanks: root side and disk side have coincident but distinct nodes, node for node.
+        for side in ["left", "right"] {
+            let r = m.group_nodes(&format!("flank_{side}_root")).unwrap();
+            let d = m.group_nodes(&format!("flank_{side}_disk")).unwrap();
+            assert_eq!(r.len(), p.n_flank * kind.order() + 1);
+            assert!(r.iter().all(|n| !d.contains(n)));
+            assert_eq!(sorted_coords(&m, &r), sorted_coords(&m, &d));
+            // The flank is the segment from (w_b, y_B) to (w_n, y_A), mirrored for the left.
+            let sgn = if side == "left" { -1.0 } else { 1.0 };
+            let ya = (200f64.powi(2) - 64.0).sqrt();
+            for &n in &r {
+                let x = m.coords[n];
+                let t = (ya - x[1]) / 12.0;
+                assert!(
+                    (x[0] - sgn * (8.0 + 8.0 * t)).abs() < 1e-9
+                        && (-1e-12..=1.0 + 1e-12).contains(&t)
+                );
+            }
+        }
+        // The only coincident nodes are the flank pairs.
+        let all = sorted_coords(&m, &(0..m.num_nodes()).collect::<Vec<_>>());
+        let dup = all.windows(2).filter(|w| w[0] == w[1]).count();
+        assert_eq!(dup, 2 * (p.n_flank * kind.order() + 1));
+        // Sector sides on the radial lines at +-half_angle; bottom on r_inner.
+        let (s, c) = p.half_angle.sin_cos();
+        for x in group_coords(&m, "disk_side_right") {
+            assert!((x[0] * c - x[1] * s).abs() < 1e-9);
+        }
+        for x in group_coords(&m, "disk_side_left") {
+            assert!((x[0] * c + x[1] * s).abs() < 1e-9);
+        }
+        for x in group_coords(&m, "disk_bottom") {
+            assert!((x[0].hypot(x[1]) - p.r_inner).abs() < 1e-9);
+        }
+        for x in group_coords(&m, "disk_rim") {
+            assert!((x[0].hypot(x[1]) - p.r_rim).abs() < 1e-9);
+        }
+        for name in [
+            "root_top",
+            "root_sides",
+            "root_bottom",
+            "slot_bottom",
+            "slot_fillet",
+        ] {
+            assert!(!m.facet_group(name).unwrap().is_empty());
+        }
+        // The parts are separate substructures.
+        let (r, _) = m.extract(&["root"]).unwrap();
+        let (d, _) = m.extract(&["disk"]).unwrap();
+        assert!(
+            r.facet_groups.contains_key("flank_left_root")
+                && !r.facet_groups.contains_key("flank_left_disk")
+        );
+        assert!(
+            d.facet_groups.contains_key("flank_right_disk")
+                && !d.facet_groups.contains_key("root_top")
+        );
+        assert_eq!(r.num_nodes() + d.num_nodes(), m.num_nodes());
+    }
+}
+
+#[test]
+fn dovetail_fillet_variant_and_bad_geometry() {
+    let p = DovetailParams::default().refined(2);
+    let sharp = DovetailParams {
+        fillet_radius: 0.0,
+        ..p.clone()
+    };
+    let a = |q: &DovetailParams| {
+        let m = dovetail_root_and_disk(q, Quad8).unwrap();
+        assert_positive_jacobians(&m);
+        m.cell_group("disk")
+            .unwrap()
+            .iter()
+            .map(|&c| m.cell_measure(c))
+            .sum::<f64>()
+    };
+    let (af, a0) = (a(&p), a(&sharp));
+    // The fillets add 2 (r^2 - pi r^2 / 4) of material to the disk.
+    let rf = p.fillet_radius;
+    assert!(
+        ((af - a0) - 2.0 * (rf * rf - PI * rf * rf / 4.0)).abs() < 1e-3,
+        "{}",
+        af - a0
+    );
+    assert!((af / dovetail_disk_area(&p) - 1.0).abs() < 1e-6);
+    // Fillet nodes lie on the fillet circle or on the straight wall.
+    let m = dovetail_root_and_disk(&p, Quad8).unwrap();
+    let yb = (200f64.powi(2) - 64.0).sqrt() - 12.0;
+    let ys = yb - 4.0;
+    for x in group_coords(&m, "slot_fillet") {
+        let on_wall = (x[0].abs() - 16.0).abs() < 1e-9 && x[1] >= ys + rf - 1e-9;
+        let on_arc = ((x[0].abs() - (16.0 - rf)).hypot(x[1] - (ys + rf)) - rf).abs() < 1e-9;
+        assert!(on_wall || on_arc, "{x:?}");
+    }
+    for bad in [
+        DovetailParams {
+            neck_half_width: 20.0,
+            ..Default::default()
+        },
+        DovetailParams {
+            fillet_radius: 5.0,
+            ..Default::default()
+        },
+        DovetailParams {
+            bottom_half_width: 30.0,
+            ..Default::default()
+        },
+        DovetailParams {
+            r_inner: 190.0,
+            ..Default::default()
+        },
+        DovetailParams {
+            n_flank: 0,
+            ..Default::default()
+        },
+        DovetailParams {
+            half_angle: -1.0,
+            ..Default::default()
+        },
+    ] {
+        assert!(dovetail_root_and_disk(&bad, Quad4).is_err(), "{bad:?}");
+    }
 }

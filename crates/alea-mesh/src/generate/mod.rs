@@ -6,5 +6,5 @@ mod shapes;
 mod structured;
 
 pub use multiblock::{Block, Curve, CurveFn, multiblock};
-pub use shapes::{annulus_sector, plate_with_hole};
+pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};
