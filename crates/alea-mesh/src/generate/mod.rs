@@ -1,10 +1,12 @@
 //! Mesh generators: structured rectangles and boxes, multi-block mapped quads, ready-made shapes,
 //! extrusion.
 
+mod extrude;
 mod multiblock;
 mod shapes;
 mod structured;
 
+pub use extrude::extrude;
 pub use multiblock::{Block, Curve, CurveFn, multiblock};
 pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};
