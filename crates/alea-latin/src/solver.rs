@@ -40,9 +40,11 @@ type V3 = [f64; 3];
 pub enum SearchDirection {
     /// `k = factor * E_side / L_interface` on each side, with `E_side` the mean Young's
     /// modulus of the cells along the side and `L` the interface length (2D) or the square root
-    /// of its area (3D).
+    /// of its area (3D). The default factor 3 was the fastest of 0.1, 0.3, 1, 3, 10 on the
+    /// block-on-plane problem (stick and slip), with iteration counts growing slowly under mesh
+    /// refinement (34 / 47 / 79 iterations to 1e-6 for 8 / 16 / 32 cells across).
     Auto {
-        /// Multiplier (1 by default).
+        /// Multiplier (3 by default).
         factor: f64,
     },
     /// Explicit `k0` per interface and side (`[side1, side2]`), at the reference materials.
@@ -70,7 +72,7 @@ impl Default for LatinOptions {
             tolerance: 1e-6,
             max_iterations: 2000,
             relaxation: 1.0,
-            search_direction: SearchDirection::Auto { factor: 1.0 },
+            search_direction: SearchDirection::Auto { factor: 3.0 },
             ordering: Ordering::Metis,
         }
     }
