@@ -10,6 +10,18 @@ use std::collections::{BTreeMap, HashMap};
 
 use crate::{Facet, Mesh, MeshError};
 
+/// Sorted corner nodes of a facet (at most 4), padded: an orientation-free key.
+type FacetKey = [usize; 4];
+
+fn facet_key(corners: &[usize]) -> FacetKey {
+    let mut k = [usize::MAX; 4];
+    for (slot, &c) in k.iter_mut().zip(corners) {
+        *slot = c;
+    }
+    k.sort_unstable();
+    k
+}
+
 impl Mesh {
     /// The sub-mesh made of the cells of the named cell groups (their union), and the map from
     /// the sub-mesh's node indices to this mesh's (`map[new] = old`, increasing).
@@ -85,36 +97,60 @@ impl Mesh {
                 sub.add_cells_to_group(name, kept);
             }
         }
-        // Facets of the kept cells (in new numbering), by key: the outward facets.
-        let mut by_key: HashMap<Vec<usize>, Vec<Facet>> = HashMap::new();
-        for (_, kind, nodes) in sub.cells() {
-            for (fk, loc) in kind.facets() {
-                let f = Facet {
-                    kind: *fk,
-                    nodes: loc.iter().map(|&i| nodes[i]).collect(),
-                };
-                by_key.entry(f.key()).or_default().push(f);
+        // Group facets mapped to the new numbering (None if a node is not in the sub-mesh).
+        let mapped: Vec<(&String, Vec<Option<Facet>>)> = self
+            .facet_groups
+            .iter()
+            .map(|(name, facets)| {
+                let v = facets
+                    .iter()
+                    .map(|f| {
+                        let nodes: Option<Vec<usize>> = f
+                            .nodes
+                            .iter()
+                            .map(|&n| old_to_new.get(n).copied().filter(|&m| m != usize::MAX))
+                            .collect();
+                        nodes
+                            .filter(|n| n.len() >= f.kind.num_corners())
+                            .map(|nodes| Facet {
+                                kind: f.kind,
+                                nodes,
+                            })
+                    })
+                    .collect();
+                (name, v)
+            })
+            .collect();
+        // For each wanted key: how many kept cells it bounds, and its outward form in the first.
+        let mut wanted: HashMap<FacetKey, (usize, Option<Facet>)> = HashMap::new();
+        for (_, facets) in &mapped {
+            for f in facets.iter().flatten() {
+                wanted.insert(facet_key(&f.nodes[..f.kind.num_corners()]), (0, None));
             }
         }
-        for (name, facets) in &self.facet_groups {
-            let mut kept = Vec::new();
-            for f in facets {
-                let nodes: Option<Vec<usize>> = f
-                    .nodes
-                    .iter()
-                    .map(|&n| old_to_new.get(n).copied().filter(|&m| m != usize::MAX))
-                    .collect();
-                let Some(nodes) = nodes else { continue };
-                if nodes.len() < f.kind.num_corners() {
-                    continue;
+        if !wanted.is_empty() {
+            for (_, kind, nodes) in sub.cells() {
+                for (fk, loc) in kind.facets() {
+                    let corners: Vec<usize> =
+                        loc[..fk.num_corners()].iter().map(|&i| nodes[i]).collect();
+                    if let Some(w) = wanted.get_mut(&facet_key(&corners)) {
+                        w.0 += 1;
+                        if w.1.is_none() {
+                            w.1 = Some(Facet {
+                                kind: *fk,
+                                nodes: loc.iter().map(|&i| nodes[i]).collect(),
+                            });
+                        }
+                    }
                 }
-                let nf = Facet {
-                    kind: f.kind,
-                    nodes,
-                };
-                match by_key.get(&nf.key()).map(|v| v.as_slice()) {
-                    Some([only]) => kept.push(only.clone()),
-                    Some([_, _, ..]) => kept.push(nf),
+            }
+        }
+        for (name, facets) in mapped {
+            let mut kept = Vec::new();
+            for f in facets.into_iter().flatten() {
+                match wanted.get(&facet_key(&f.nodes[..f.kind.num_corners()])) {
+                    Some((1, Some(outward))) => kept.push(outward.clone()),
+                    Some((n, _)) if *n >= 2 => kept.push(f),
                     _ => {}
                 }
             }

@@ -684,6 +684,7 @@ fn build(f: FileData, path: &Path) -> Result<Mesh, MeshError> {
             _ => [0.0; 3],
         }
     };
+    let mut group_cells: HashMap<String, (Vec<usize>, Vec<usize>)> = HashMap::new();
     for b in f.blocks.iter().filter(|b| b.dim == dim) {
         let Some(kind) = b.kind else { continue };
         let nel = b.tags.len() / b.nodes_per;
@@ -705,10 +706,16 @@ fn build(f: FileData, path: &Path) -> Result<Mesh, MeshError> {
             }
             let c = mesh.add_cell(kind, &nodes);
             for g in &groups {
-                mesh.add_cells_to_group(g, [c]);
-                mesh.add_nodes_to_group(g, nodes.iter().copied());
+                let e = group_cells.entry(g.clone()).or_default();
+                e.0.push(c);
+                e.1.extend(nodes.iter().copied());
             }
         }
+    }
+    // Collected first: `Mesh::add_*_to_group` sorts the whole group on each call.
+    for (g, (cells, nodes)) in group_cells {
+        mesh.add_cells_to_group(&g, cells);
+        mesh.add_nodes_to_group(&g, nodes);
     }
     for b in f.blocks.iter().filter(|b| b.dim < dim) {
         let groups: Vec<String> = phys(b).iter().map(|&p| name(b.dim, p)).collect();

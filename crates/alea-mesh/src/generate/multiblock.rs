@@ -42,6 +42,7 @@
 //! name gives a facet group of that name (the edge's cell facets, outward from the block) and a
 //! node group with the same name holding the edge's nodes.
 
+use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -735,6 +736,8 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
         }
     }
     check_duplicates(&mesh, tol)?;
+    // Groups are collected first: `Mesh::add_*_to_group` sorts the whole group on each call.
+    let mut cell_groups: HashMap<&str, Vec<usize>> = HashMap::new();
     for (bi, nodes) in &cells {
         let n: Vec<usize> = nodes.iter().map(|&i| new_id[i]).collect();
         let c = mesh.add_cell(kind, &n);
@@ -749,37 +752,51 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
             )));
         }
         if let Some(g) = &ready[*bi].cell_group {
-            mesh.add_cells_to_group(g, [c]);
+            cell_groups.entry(g.as_str()).or_default().push(c);
         }
     }
+    for (g, cells) in cell_groups {
+        mesh.add_cells_to_group(g, cells);
+    }
+    let mut facet_groups: HashMap<String, Vec<Facet>> = HashMap::new();
     for (name, f) in facets {
         let f = Facet {
             kind: f.kind,
             nodes: f.nodes.iter().map(|&i| new_id[i]).collect(),
         };
-        mesh.add_nodes_to_group(&name, f.nodes.iter().copied());
-        mesh.add_facets_to_group(&name, [f]);
+        facet_groups.entry(name).or_default().push(f);
+    }
+    for (name, facets) in facet_groups {
+        let nodes: Vec<usize> = facets.iter().flat_map(|f| f.nodes.clone()).collect();
+        mesh.add_nodes_to_group(&name, nodes);
+        mesh.add_facets_to_group(&name, facets);
     }
     Ok(mesh)
 }
 
-/// Error if two distinct nodes are closer than `tol`.
+/// Error if two distinct nodes are closer than `tol` (hash grid of cell size `2 tol`: a close
+/// pair lies in the same or a neighbouring cell).
 fn check_duplicates(mesh: &Mesh, tol: f64) -> Result<(), MeshError> {
-    let mut order: Vec<usize> = (0..mesh.num_nodes()).collect();
-    let x = &mesh.coords;
-    order.sort_by(|&a, &b| x[a][0].total_cmp(&x[b][0]));
-    for (k, &a) in order.iter().enumerate() {
-        for &b in &order[k + 1..] {
-            if x[b][0] - x[a][0] > tol {
-                break;
-            }
-            if (x[b][1] - x[a][1]).abs() <= tol {
-                return Err(MeshError::Invalid(format!(
-                    "two distinct nodes at {:?}: blocks meet along an edge without sharing it (different curves, counts or corners)",
-                    x[a]
-                )));
+    let h = 2.0 * tol.max(f64::MIN_POSITIVE);
+    let cell = |x: [f64; 3]| [(x[0] / h).floor() as i64, (x[1] / h).floor() as i64];
+    let mut grid: HashMap<[i64; 2], Vec<usize>> = HashMap::with_capacity(mesh.num_nodes());
+    for (i, &x) in mesh.coords.iter().enumerate() {
+        let [cx, cy] = cell(x);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                if let Some(others) = grid.get(&[cx + dx, cy + dy]) {
+                    for &j in others {
+                        let y = mesh.coords[j];
+                        if (x[0] - y[0]).abs() <= tol && (x[1] - y[1]).abs() <= tol {
+                            return Err(MeshError::Invalid(format!(
+                                "two distinct nodes at {x:?}: blocks meet along an edge without sharing it (different curves, counts or corners)"
+                            )));
+                        }
+                    }
+                }
             }
         }
+        grid.entry([cx, cy]).or_default().push(i);
     }
     Ok(())
 }
