@@ -119,6 +119,8 @@ fn two_d_fixtures_equal_rectangle() {
         ("t6", Tri6),
         ("q8", Quad8),
         ("cw_q4", Quad4),
+        ("sparse_t6", Tri6),
+        ("param_q8", Quad8),
     ] {
         for enc in ["ascii", "bin"] {
             let file = format!("square_{name}_{enc}.msh");
@@ -325,4 +327,63 @@ fn truncations_and_byte_flips_never_panic() {
             let _ = parse_msh(&bad, file);
         }
     }
+}
+
+#[test]
+fn curved_t6_plate_with_hole_from_gmsh() {
+    let m = read_msh(fixture("plate_hole_t6.msh")).unwrap();
+    m.validate().unwrap();
+    assert_positive_jacobians(&m);
+    assert_conforming(&m);
+    assert_groups_outward(&m);
+    assert_eq!(m.cell_types_present(), [Tri6]);
+    let exact = 16.0 - std::f64::consts::PI / 4.0;
+    assert!((m.measure() / exact - 1.0).abs() < 1e-5, "{}", m.measure());
+    for x in group_coords(&m, "hole") {
+        assert!((x[0].hypot(x[1]) - 1.0).abs() < 1e-9);
+    }
+    for (g, d, v) in [
+        ("xsym", 0, 0.0),
+        ("ysym", 1, 0.0),
+        ("right", 0, 4.0),
+        ("top", 1, 4.0),
+    ] {
+        for x in group_coords(&m, g) {
+            assert!((x[d] - v).abs() < 1e-9, "{g}: {x:?}");
+        }
+    }
+    // Every boundary facet is in exactly one group.
+    let total: usize = m.facet_groups.values().map(|v| v.len()).sum();
+    assert_eq!(total, m.boundary_facets().len());
+}
+
+#[test]
+fn unknown_sections_are_skipped() {
+    let text = std::fs::read_to_string(fixture("square_t6_ascii.msh")).unwrap();
+    let plain = parse_msh(text.as_bytes(), "a.msh").unwrap();
+    let extra = text.replacen(
+        "$EndMeshFormat\n",
+        "$EndMeshFormat\n$Comments\nnot a $Nodes section\n$EndComments\n",
+        1,
+    ) + "$NodeData\n1\n\"u\"\n1\n0.0\n3\n0\n1\n1\n1 0.5\n$EndNodeData\n";
+    let m = parse_msh(extra.as_bytes(), "b.msh").unwrap();
+    assert_eq!(m.coords, plain.coords);
+    assert_eq!(m.num_cells(), plain.num_cells());
+    assert_eq!(m.facet_groups, plain.facet_groups);
+    // An unknown section that is never closed is an error.
+    let (_, section, msg) = parse_err((text.clone() + "$Periodic\n1\n").as_bytes());
+    assert_eq!(section, "$Periodic");
+    assert!(msg.contains("$EndPeriodic"), "{msg}");
+}
+
+#[test]
+fn two_d_mesh_must_lie_in_the_xy_plane() {
+    let text = std::fs::read_to_string(fixture("square_q4_ascii.msh")).unwrap();
+    let bad = text.replacen("\n2 1 0\n", "\n2 1 0.5\n", 1);
+    assert_ne!(bad, text);
+    let e = parse_msh(bad.as_bytes(), "z.msh").unwrap_err();
+    assert!(
+        matches!(&e, MeshError::Invalid(m) if m.contains("xy plane")),
+        "{e}"
+    );
 }
