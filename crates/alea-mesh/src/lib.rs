@@ -2,8 +2,17 @@
 //!
 //! The main type is [`Mesh`]: node coordinates, cells of mixed [`CellType`]s, and named groups
 //! of cells, facets ([`Facet`]) and nodes. Groups are how the rest of alea refers to
-//! substructures, loads, constraints and interfaces. [`generate`] builds structured and
-//! multi-block meshes.
+//! substructures, loads, constraints and interfaces.
+//!
+//! - [`generate`]: structured rectangles and boxes, the multi-block mapped quad generator
+//!   ([`generate::multiblock`], Coons patches with curved edges), ready-made shapes (plate with a
+//!   hole, annular sector, dovetail root in a disk sector) and extrusion of quad meshes to hexes.
+//! - [`Mesh::extract`] splits a mesh into substructures (sub-meshes of cell groups with a node
+//!   map); [`Mesh::append`] joins meshes without merging nodes.
+//! - [`read_msh`]: Gmsh `.msh` 4.1 reader (ASCII and binary, physical groups become groups).
+//! - [`VtuWriter`] / [`write_vtm`]: ParaView output with point and cell fields.
+//! - [`Mesh::cell_measure`], [`Mesh::cell_min_jacobian`]: geometric checks (areas, volumes,
+//!   orientation).
 
 mod cell;
 mod error;
