@@ -27,4 +27,4 @@ pub use cell::CellType;
 pub use error::MeshError;
 pub use gmsh::read_msh;
 pub use mesh::{BoundaryFacet, Facet, Mesh};
-pub use vtu::{VtuEncoding, VtuWriter, write_vtm};
+pub use vtu::{VtuEncoding, VtuWriter, write_pvd, write_vtm};

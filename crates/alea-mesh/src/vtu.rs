@@ -1,5 +1,6 @@
 //! ParaView output: VTK XML UnstructuredGrid (`.vtu`) files with point and cell fields, and
-//! multi-block (`.vtm`) collections of several meshes (substructures).
+//! multi-block (`.vtm`) collections of several meshes (substructures), and `.pvd` collections
+//! of files indexed by time or parameter.
 //!
 //! Hand-written rather than through `vtkio` 0.6: the format needed is small (one `Piece`,
 //! `DataArray`s in `ascii` or `binary` = base64 encoding), vtkio's old dependencies warn, and
@@ -125,6 +126,17 @@ impl<'a> VtuWriter<'a> {
                 (6, Some(TENSOR_NAMES), v)
             }
         };
+        let taken = if on_points { &self.point } else { &self.cell };
+        if taken.iter().any(|f| f.name == name)
+            || (!on_points
+                && self.groups
+                && name
+                    .strip_prefix("group_")
+                    .is_some_and(|g| self.mesh.cell_groups.contains_key(g)))
+        {
+            self.fail(format!("{place} field '{name}' is given twice"));
+            return;
+        }
         let f = Field {
             name: name.to_string(),
             ncomp,
@@ -456,4 +468,35 @@ pub fn write_vtm(
     xml.push_str("  </vtkMultiBlockDataSet>\n</VTKFile>\n");
     std::fs::write(path, xml).map_err(io(path))?;
     Ok(written)
+}
+
+/// Writes a ParaView collection (`.pvd`) of data sets indexed by a time or parameter value,
+/// e.g. one `.vtu` or `.vtm` per load step or per run: `entries` are `(value, file)` with `file`
+/// relative to the `.pvd` file's directory.
+///
+/// # Errors
+/// [`MeshError::Invalid`] for a non-finite value; [`MeshError::Io`] if the file cannot be
+/// written.
+pub fn write_pvd(path: impl AsRef<Path>, entries: &[(f64, &str)]) -> Result<(), MeshError> {
+    let path = path.as_ref();
+    let mut xml = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n  <Collection>\n",
+    );
+    for (t, file) in entries {
+        if !t.is_finite() {
+            return Err(MeshError::Invalid(format!(
+                "pvd entry '{file}' has a non-finite time value {t}"
+            )));
+        }
+        let _ = writeln!(
+            xml,
+            "    <DataSet timestep=\"{t:?}\" part=\"0\" file=\"{}\"/>",
+            xml_escape(file)
+        );
+    }
+    xml.push_str("  </Collection>\n</VTKFile>\n");
+    std::fs::write(path, xml).map_err(|source| MeshError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }

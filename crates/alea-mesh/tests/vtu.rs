@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use alea_mesh::CellType::*;
 use alea_mesh::generate::{plate_with_hole, rectangle};
-use alea_mesh::{Mesh, MeshError, VtuEncoding, VtuWriter, write_vtm};
+use alea_mesh::{Mesh, MeshError, VtuEncoding, VtuWriter, write_pvd, write_vtm};
 use base64::Engine as _;
 
 /// A `DataArray`: its attributes and decoded values (as f64).
@@ -249,4 +249,37 @@ fn multiblock_collection_of_substructures() {
         .is_err()
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn pvd_collection_and_duplicate_names() {
+    let m = rectangle(1.0, 1.0, 1, 1, Quad4).unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-mesh-pvd-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let pvd = dir.join("steps.pvd");
+    write_pvd(&pvd, &[(0.0, "a.vtu"), (0.5, "b.vtu")]).unwrap();
+    let text = std::fs::read_to_string(&pvd).unwrap();
+    assert_eq!(text.matches("<DataSet ").count(), 2);
+    assert!(text.contains("timestep=\"0.5\"") && text.contains("file=\"b.vtu\""));
+    assert!(write_pvd(&pvd, &[(f64::NAN, "x.vtu")]).is_err());
+    std::fs::remove_dir_all(&dir).unwrap();
+    // Duplicate names, including a clash with a group field.
+    let twice = VtuWriter::new(&m)
+        .point_scalar("p", &[0.0; 4])
+        .point_scalar("p", &[0.0; 4])
+        .to_xml();
+    assert!(twice.is_err());
+    assert!(
+        VtuWriter::new(&m)
+            .cell_scalar("group_domain", &[0.0])
+            .to_xml()
+            .is_err()
+    );
+    let no_groups = VtuWriter::new(&m).group_fields(false);
+    assert!(
+        no_groups
+            .cell_scalar("group_domain", &[0.0])
+            .to_xml()
+            .is_ok()
+    );
 }
