@@ -385,6 +385,8 @@ struct Ready {
     grading: [f64; 2],
     cell_group: Option<String>,
     edge_groups: [Option<String>; 4],
+    /// The user's number of each edge (they differ when a clockwise block was re-ordered).
+    user_edge: [usize; 4],
 }
 
 impl Ready {
@@ -471,6 +473,7 @@ fn prepare(index: usize, b: &Block) -> Result<Ready, MeshError> {
         grading: b.grading,
         cell_group: b.cell_group.clone(),
         edge_groups: b.edge_groups.clone(),
+        user_edge: [0, 1, 2, 3],
     };
     let area = r.signed_area();
     let scale = (0..4)
@@ -490,6 +493,7 @@ fn prepare(index: usize, b: &Block) -> Result<Ready, MeshError> {
         r.grading = [b.grading[1], b.grading[0]];
         let g = &b.edge_groups;
         r.edge_groups = [g[3].clone(), g[2].clone(), g[1].clone(), g[0].clone()];
+        r.user_edge = [3, 2, 1, 0];
     }
     Ok(r)
 }
@@ -506,6 +510,27 @@ struct EdgeEntry {
 
 /// Meshes a set of blocks (see the module documentation); `kind` is `Quad4`, `Quad8`, `Tri3` or
 /// `Tri6`.
+///
+/// ```
+/// use alea_mesh::CellType;
+/// use alea_mesh::generate::{Block, Curve, multiblock};
+///
+/// // A 2 x 1 base and, on top of it, a block with an arched top edge (from (2, 2) through
+/// // (1, 2.5) to (0, 2)) whose cells shrink toward the arch. They share the edge y = 1.
+/// let base = Block::new([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]], [4, 2])
+///     .group("base")
+///     .edge_group(0, "bottom");
+/// let arch = Block::new([[0.0, 1.0], [2.0, 1.0], [2.0, 2.0], [0.0, 2.0]], [4, 3])
+///     .edge(2, Curve::ArcThrough([1.0, 2.5]))
+///     .grading(1.0, 0.5)
+///     .group("arch")
+///     .edge_group(2, "crown");
+/// let mesh = multiblock(&[base, arch], CellType::Quad8)?;
+/// assert_eq!(mesh.num_cells(), 8 + 12);
+/// assert_eq!(mesh.facet_group("crown")?.len(), 4);
+/// assert_eq!(mesh.group_nodes("bottom")?.len(), 9); // 5 corners + 4 mid-side nodes
+/// # Ok::<(), alea_mesh::MeshError>(())
+/// ```
 ///
 /// # Errors
 /// [`MeshError::Invalid`] for bad block input (zero counts, non-positive gradings, arcs whose
@@ -593,9 +618,10 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
         let mut edge_nodes: [Vec<usize>; 4] = Default::default();
         for k in 0..4 {
             let (va, vb) = (vid[k], vid[(k + 1) % 4]);
+            let ku = b.user_edge[k];
             if va == vb {
                 return Err(MeshError::Invalid(format!(
-                    "block {bi}: edge {k} has coincident end corners (collapsed edges are not supported)"
+                    "block {bi}: edge {ku} has coincident end corners (collapsed edges are not supported)"
                 )));
             }
             let lat = edge_lattice(k);
@@ -610,14 +636,14 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
             let nodes: Vec<usize> = if let Some(e) = existing {
                 if e.users >= 2 || e.forward == forward {
                     return Err(MeshError::Invalid(format!(
-                        "block {bi} edge {k} coincides with block {} edge {} but the blocks overlap (an edge can be shared by two blocks lying on opposite sides of it)",
+                        "block {bi} edge {ku} coincides with block {} edge {} but the blocks overlap (an edge can be shared by two blocks lying on opposite sides of it)",
                         e.block, e.side
                     )));
                 }
                 e.users += 1;
                 if e.nodes.len() != lat.len() {
                     return Err(MeshError::Invalid(format!(
-                        "block {bi} edge {k} is shared with block {} edge {}, but has {} cells there instead of {}",
+                        "block {bi} edge {ku} is shared with block {} edge {}, but has {} cells there instead of {}",
                         e.block,
                         e.side,
                         (lat.len() - 1) / 2,
@@ -632,7 +658,7 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
                     let p = pos(i, j);
                     if dist(p, coords[n[q]]) > 1e-6 * dist(b.corners[k], b.corners[(k + 1) % 4]) {
                         return Err(MeshError::Invalid(format!(
-                            "block {bi} edge {k} is shared with block {} edge {}, but its node {q} is at {p:?} instead of {:?} (different grading or curve parametrisation)",
+                            "block {bi} edge {ku} is shared with block {} edge {}, but its node {q} is at {p:?} instead of {:?} (different grading or curve parametrisation)",
                             e.block, e.side, coords[n[q]]
                         )));
                     }
@@ -657,7 +683,7 @@ pub fn multiblock(blocks: &[Block], kind: CellType) -> Result<Mesh, MeshError> {
                     mid,
                     nodes: canon,
                     block: bi,
-                    side: k,
+                    side: ku,
                     forward,
                     users: 1,
                 });
