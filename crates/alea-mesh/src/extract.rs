@@ -39,6 +39,19 @@ impl Mesh {
     /// [`MeshError::UnknownGroup`] if a name is not a cell group; [`MeshError::Invalid`] if no
     /// name is given.
     pub fn extract(&self, cell_group_names: &[&str]) -> Result<(Mesh, Vec<usize>), MeshError> {
+        self.extract_with_cells(cell_group_names)
+            .map(|(m, nodes, _)| (m, nodes))
+    }
+
+    /// As [`Mesh::extract`], also returning the map from the sub-mesh's cells to this mesh's
+    /// (`cells[new] = old`, increasing), e.g. to carry per-cell data into a substructure or back.
+    ///
+    /// # Errors
+    /// As [`Mesh::extract`].
+    pub fn extract_with_cells(
+        &self,
+        cell_group_names: &[&str],
+    ) -> Result<(Mesh, Vec<usize>, Vec<usize>), MeshError> {
         if cell_group_names.is_empty() {
             return Err(MeshError::Invalid(
                 "extract() needs at least one cell group name".into(),
@@ -74,6 +87,7 @@ impl Mesh {
             sub.add_node(self.coords[old]);
         }
         let mut cell_old_to_new = vec![usize::MAX; self.num_cells()];
+        let mut cell_map = Vec::new();
         for (c, kind, nodes) in self.cells() {
             if keep[c] {
                 let n: Vec<usize> = nodes.iter().map(|&i| old_to_new[i]).collect();
@@ -85,6 +99,7 @@ impl Mesh {
                     });
                 }
                 cell_old_to_new[c] = sub.add_cell(kind, &n);
+                cell_map.push(c);
             }
         }
         for (name, cells) in &self.cell_groups {
@@ -167,7 +182,7 @@ impl Mesh {
                 sub.add_nodes_to_group(name, kept);
             }
         }
-        Ok((sub, map))
+        Ok((sub, map, cell_map))
     }
 
     /// Appends `other` to this mesh **without merging nodes** (coincident nodes stay distinct);

@@ -109,3 +109,15 @@ fn extract_then_append_restores_cells() {
     assert!(m.extract(&[]).is_err());
     assert!(joined.append(&alea_mesh::Mesh::new(3)).is_err());
 }
+
+#[test]
+fn cell_map_relates_sub_cells_to_parent_cells() {
+    let m = split_rectangle(Quad8);
+    let (sub, nodes, cells) = m.extract_with_cells(&["right"]).unwrap();
+    assert_eq!(cells, m.cell_group("right").unwrap());
+    for (new, &old) in cells.iter().enumerate() {
+        let parent: Vec<usize> = m.cell_nodes(old).to_vec();
+        let mapped: Vec<usize> = sub.cell_nodes(new).iter().map(|&n| nodes[n]).collect();
+        assert_eq!(parent, mapped);
+    }
+}
