@@ -387,3 +387,124 @@ fn two_d_mesh_must_lie_in_the_xy_plane() {
         "{e}"
     );
 }
+
+/// A two-triangle binary file written by hand: `$Entities` with one surface in physical group 7
+/// ("plate") and one curve in group 8 (unnamed), in the given endianness and size_t width.
+fn handmade_binary(big_endian: bool, size_t: usize) -> Vec<u8> {
+    let mut b: Vec<u8> = Vec::new();
+    let int = |b: &mut Vec<u8>, v: i32| {
+        b.extend(if big_endian {
+            v.to_be_bytes()
+        } else {
+            v.to_le_bytes()
+        })
+    };
+    let size = |b: &mut Vec<u8>, v: u64| {
+        let bytes = if big_endian {
+            v.to_be_bytes()
+        } else {
+            v.to_le_bytes()
+        };
+        if big_endian {
+            b.extend(&bytes[8 - size_t..]);
+        } else {
+            b.extend(&bytes[..size_t]);
+        }
+    };
+    let dbl = |b: &mut Vec<u8>, v: f64| {
+        b.extend(if big_endian {
+            v.to_be_bytes()
+        } else {
+            v.to_le_bytes()
+        })
+    };
+    b.extend(format!("$MeshFormat\n4.1 1 {size_t}\n").as_bytes());
+    int(&mut b, 1);
+    b.extend(b"\n$EndMeshFormat\n$PhysicalNames\n1\n2 7 \"plate\"\n$EndPhysicalNames\n$Entities\n");
+    for n in [0u64, 1, 1, 0] {
+        size(&mut b, n);
+    }
+    // Curve 3: bounding box, 1 physical tag (8), 0 bounding points.
+    int(&mut b, 3);
+    for v in [0.0, 0.0, 0.0, 1.0, 0.0, 0.0] {
+        dbl(&mut b, v);
+    }
+    size(&mut b, 1);
+    int(&mut b, 8);
+    size(&mut b, 0);
+    // Surface 5: 1 physical tag (7), 1 bounding curve (3).
+    int(&mut b, 5);
+    for v in [0.0, 0.0, 0.0, 1.0, 1.0, 0.0] {
+        dbl(&mut b, v);
+    }
+    size(&mut b, 1);
+    int(&mut b, 7);
+    size(&mut b, 1);
+    int(&mut b, 3);
+    b.extend(b"\n$EndEntities\n$Nodes\n");
+    for v in [1u64, 4, 10, 40] {
+        size(&mut b, v);
+    }
+    int(&mut b, 2);
+    int(&mut b, 5);
+    int(&mut b, 0);
+    size(&mut b, 4);
+    for t in [10u64, 20, 30, 40] {
+        size(&mut b, t);
+    }
+    for x in [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]] {
+        dbl(&mut b, x[0]);
+        dbl(&mut b, x[1]);
+        dbl(&mut b, 0.0);
+    }
+    b.extend(b"\n$EndNodes\n$Elements\n");
+    for v in [2u64, 3, 1, 3] {
+        size(&mut b, v);
+    }
+    // Two clockwise triangles on surface 5, one line on curve 3 (reversed: inward).
+    int(&mut b, 2);
+    int(&mut b, 5);
+    int(&mut b, 2);
+    size(&mut b, 2);
+    for e in [[1u64, 10, 30, 20], [2, 10, 40, 30]] {
+        for v in e {
+            size(&mut b, v);
+        }
+    }
+    int(&mut b, 1);
+    int(&mut b, 3);
+    int(&mut b, 1);
+    size(&mut b, 1);
+    for v in [3u64, 20, 10] {
+        size(&mut b, v);
+    }
+    b.extend(b"\n$EndElements\n");
+    b
+}
+
+#[test]
+fn binary_endianness_and_size_t_width() {
+    let reference = handmade_binary(false, 8);
+    let m = parse_msh(&reference, "le.msh").unwrap();
+    assert_eq!(m.num_cells(), 2);
+    assert_positive_jacobians(&m);
+    assert!((m.measure() - 1.0).abs() < 1e-15);
+    assert_eq!(m.cell_group("plate").unwrap(), [0, 1]);
+    // The bottom edge, given inward (1,0)->(0,0), is re-oriented outward: (0,0)->(1,0).
+    let f = &m.facet_group("8").unwrap()[0];
+    assert_eq!(
+        [m.coords[f.nodes[0]], m.coords[f.nodes[1]]],
+        [[0.0; 3], [1.0, 0.0, 0.0]]
+    );
+    assert_eq!(m.node_groups["8"].len(), 2);
+    for (be, st) in [(true, 8), (false, 4), (true, 4)] {
+        let other = parse_msh(&handmade_binary(be, st), "x.msh").unwrap();
+        assert_eq!(other.coords, m.coords);
+        assert_eq!(other.cell_groups, m.cell_groups);
+        assert_eq!(other.facet_groups, m.facet_groups);
+        assert_eq!(other.node_groups, m.node_groups);
+        for c in 0..2 {
+            assert_eq!(other.cell_nodes(c), m.cell_nodes(c));
+        }
+    }
+}
