@@ -1,6 +1,8 @@
 //! Small fixtures shared by the LATIN tests.
 #![allow(dead_code)]
 
+pub mod contact;
+
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 use alea_latin::Substructure;
 use alea_mesh::{CellType, Mesh, generate};
