@@ -217,6 +217,10 @@ fn dovetail_parts_groups_and_areas() {
         assert_positive_jacobians(&m);
         assert_conforming(&m);
         assert_groups_outward(&m);
+        if kind == Quad4 {
+            let (amin, amax, _) = shape_stats(&m);
+            assert!(amin > 45.0 && amax < 135.0, "corner angles {amin}..{amax}");
+        }
         let root = m.cell_group("root").unwrap();
         let disk = m.cell_group("disk").unwrap();
         assert_eq!(root.len() + disk.len(), m.num_cells());
@@ -311,7 +315,7 @@ fn dovetail_fillet_variant_and_bad_geometry() {
     // The fillets add 2 (r^2 - pi r^2 / 4) of material to the disk.
     let rf = p.fillet_radius;
     assert!(
-        ((af - a0) - 2.0 * (rf * rf - PI * rf * rf / 4.0)).abs() < 1e-3,
+        ((af - a0) - 2.0 * (rf * rf - PI * rf * rf / 4.0)).abs() < 2e-4,
         "{}",
         af - a0
     );
@@ -324,6 +328,21 @@ fn dovetail_fillet_variant_and_bad_geometry() {
         let on_wall = (x[0].abs() - 16.0).abs() < 1e-9 && x[1] >= ys + rf - 1e-9;
         let on_arc = ((x[0].abs() - (16.0 - rf)).hypot(x[1] - (ys + rf)) - rf).abs() < 1e-9;
         assert!(on_wall || on_arc, "{x:?}");
+    }
+    // The wall/fillet and fillet/bottom junctions are mesh nodes (no cell straddles them), and
+    // the flat bottom group holds only y = ys nodes.
+    for sx in [-1.0, 1.0] {
+        for target in [[sx * 16.0, ys + rf], [sx * (16.0 - rf), ys]] {
+            assert!(
+                m.coords
+                    .iter()
+                    .any(|x| (x[0] - target[0]).abs() < 1e-9 && (x[1] - target[1]).abs() < 1e-9),
+                "no node at {target:?}"
+            );
+        }
+    }
+    for x in group_coords(&m, "slot_bottom") {
+        assert!((x[1] - ys).abs() < 1e-9 && x[0].abs() <= 16.0 - rf + 1e-9);
     }
     for bad in [
         DovetailParams {

@@ -347,7 +347,7 @@ impl Prepared {
 }
 
 /// Node parameters in [0, 1] of `n` cells with ratio `g` of last to first cell size.
-fn distribution(n: usize, g: f64) -> Vec<f64> {
+pub(crate) fn distribution(n: usize, g: f64) -> Vec<f64> {
     if n == 1 || (g - 1.0).abs() < 1e-14 {
         return (0..=n).map(|i| i as f64 / n as f64).collect();
     }

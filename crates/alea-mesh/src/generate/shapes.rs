@@ -7,7 +7,7 @@
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
-use super::multiblock::{Block, Curve, multiblock};
+use super::multiblock::{Block, Curve, distribution, multiblock};
 use crate::{CellType, Mesh, MeshError};
 
 fn positive(name: &str, v: f64) -> Result<(), MeshError> {
@@ -313,6 +313,13 @@ impl DovetailParams {
 /// radial direction), slot gap 4, fillet radius 2.5, shank height 15. Root area
 /// (w_n + w_b) h_f + 2 w_n h_s = 528 mm^2.
 ///
+/// Mesh: the root is two blocks per half (flank trapezoid, shank); each half of the disk is
+/// four blocks (the lobe beside the flank, the lobe beside the slot wall, and two blocks below
+/// the slot) meeting at the fillet's mid-point, where the fillet is not tangent to a block edge.
+/// The wall/fillet and fillet/bottom junctions are mesh nodes, and the cells along the slot
+/// bottom shrink toward the fillet to about the size of those on the wall. With the default
+/// counts all corner angles are within 50-130 degrees.
+///
 /// Groups:
 /// - cell groups `"root"` and `"disk"` (separate substructures: use [`Mesh::extract`]);
 /// - contact facet groups `"flank_left_root"`, `"flank_right_root"` (root side, outward from the
@@ -379,12 +386,18 @@ pub fn dovetail_root_and_disk(p: &DovetailParams, kind: CellType) -> Result<Mesh
     let norm = |q: [f64; 2]| q[0].hypot(q[1]);
     let a = [wn, ya];
     let b = [wb, yb];
+    // The fillet: centre oc, from C = (wb, ys + rf) (end of the straight wall) to
+    // D = (wb - rf, ys) (start of the flat bottom); P = its mid-point, where the blocks meet
+    // (splitting at D would give a block corner of ~0 degrees, the fillet being tangent there).
+    let oc = [wb - rf, ys + rf];
+    let c45 = std::f64::consts::FRAC_1_SQRT_2;
+    let pm = [oc[0] + rf * c45, oc[1] - rf * c45];
     let d = [wb - rf, ys];
     let k = side(norm(b));
-    let l = side(norm(d));
+    let l = side(norm(pm));
     let f = side(p.r_rim);
     let g = side(p.r_inner);
-    let mx = wb - rf;
+    let mx = pm[0];
     if p.r_inner <= mx {
         return bad(format!(
             "r_inner {} must exceed the slot half width {mx}",
@@ -413,23 +426,45 @@ pub fn dovetail_root_and_disk(p: &DovetailParams, kind: CellType) -> Result<Mesh
         radius: r,
         ccw,
     };
-    // Slot wall B -> C then fillet C -> D, by arc length.
-    let wall = if rf == 0.0 {
-        Curve::Line
-    } else {
-        let lw = p.slot_gap - rf;
-        let lf = std::f64::consts::FRAC_PI_2 * rf;
-        let oc = [wb - rf, ys + rf];
-        Curve::Param(Arc::new(move |u: f64| {
-            let s = u * (lw + lf);
-            if s <= lw {
-                [wb, yb - s]
-            } else {
-                let phi = (s - lw) / rf;
-                [oc[0] + rf * phi.cos(), oc[1] - rf * phi.sin()]
-            }
-        }))
-    };
+    let quarter = std::f64::consts::FRAC_PI_4;
+    // Upper slot edge B -> C -> P (wall, upper half of the fillet); lower edge P -> D -> E
+    // (lower half of the fillet, flat bottom). Both by arc length.
+    // Cells along P -> E shrink toward the fillet down to about the size of those along B -> P.
+    let upper_len = (p.slot_gap - rf) + quarter * rf;
+    let lower_len = quarter * rf + (wb - rf);
+    let g_slot = grading_for_last(p.n_slot, lower_len, upper_len / p.n_wall as f64);
+    // Node parameters along the two edges: B -> P is uniform (t of the lower lobe block, whose
+    // edge 3 runs backwards: same set), P -> E is s of the inner block reversed.
+    let upper_nodes = distribution(p.n_wall, 1.0);
+    let lower_nodes: Vec<f64> = distribution(p.n_slot, g_slot)
+        .iter()
+        .rev()
+        .map(|s| 1.0 - s)
+        .collect();
+    let upper = path(
+        vec![
+            Seg::Line(b, [wb, ys + rf]),
+            Seg::Arc {
+                centre: oc,
+                r: rf,
+                from: 0.0,
+                to: -quarter,
+            },
+        ],
+        &upper_nodes,
+    );
+    let lower = path(
+        vec![
+            Seg::Arc {
+                centre: oc,
+                r: rf,
+                from: -quarter,
+                to: -2.0 * quarter,
+            },
+            Seg::Line(d, e),
+        ],
+        &lower_nodes,
+    );
     // Disk, right half.
     let lobe_up = Block::new([b, k, f, a], [p.n_lobe, p.n_flank])
         .edge(2, origin_arc(p.r_rim, true))
@@ -437,25 +472,44 @@ pub fn dovetail_root_and_disk(p: &DovetailParams, kind: CellType) -> Result<Mesh
         .edge_group(1, "disk_side_right")
         .edge_group(2, "disk_rim")
         .edge_group(3, "flank_right_disk");
-    let lobe_low = Block::new([d, l, k, b], [p.n_lobe, p.n_wall])
-        .edge(3, wall)
+    let lobe_low = Block::new([pm, l, k, b], [p.n_lobe, p.n_wall])
+        .edge(3, upper)
         .group("disk")
         .edge_group(1, "disk_side_right")
-        .edge_group(3, "slot_fillet");
-    let below_out = Block::new([m, g, l, d], [p.n_lobe, p.n_below])
+        .edge_group(3, "slot");
+    let below_out = Block::new([m, g, l, pm], [p.n_lobe, p.n_below])
         .edge(0, origin_arc(p.r_inner, false))
         .group("disk")
         .edge_group(0, "disk_bottom")
         .edge_group(1, "disk_side_right");
-    let below_in = Block::new([h, m, d, e], [p.n_slot, p.n_below])
+    // Corners E, H, M, P so that s runs from the axis to the fillet (graded).
+    let below_in = Block::new([h, m, pm, e], [p.n_slot, p.n_below])
         .edge(0, origin_arc(p.r_inner, false))
+        .edge(2, lower)
+        .grading(g_slot, 1.0)
         .group("disk")
         .edge_group(0, "disk_bottom")
-        .edge_group(2, "slot_bottom");
+        .edge_group(2, "slot");
     let right = [lobe_up, lobe_low, below_out, below_in];
     let mut disk_blocks: Vec<Block> = right.iter().map(mirror_x).collect();
     disk_blocks.extend(right);
     let mut mesh = multiblock(&disk_blocks, kind)?;
+    // Split the free slot surface: the flat bottom (y = ys, |x| <= wb - rf) and the rest (walls
+    // and fillets).
+    let slot = mesh.facet_groups.remove("slot").unwrap_or_default();
+    mesh.node_groups.remove("slot");
+    let tol = 1e-9 * p.r_rim;
+    let (flat, fillet): (Vec<_>, Vec<_>) = slot.into_iter().partition(|fc| {
+        fc.nodes.iter().all(|&n| {
+            let x = mesh.coords[n];
+            (x[1] - ys).abs() <= tol && x[0].abs() <= wb - rf + tol
+        })
+    });
+    for (name, facets) in [("slot_bottom", flat), ("slot_fillet", fillet)] {
+        let nodes: Vec<usize> = facets.iter().flat_map(|fc| fc.nodes.clone()).collect();
+        mesh.add_nodes_to_group(name, nodes);
+        mesh.add_facets_to_group(name, facets);
+    }
     // Root, right half.
     let q0 = [0.0, yb];
     let n0 = [0.0, ya];
@@ -473,4 +527,120 @@ pub fn dovetail_root_and_disk(p: &DovetailParams, kind: CellType) -> Result<Mesh
     let root = multiblock(&root_blocks, kind)?;
     mesh.append(&root)?;
     Ok(mesh)
+}
+
+/// A piece of a composite curve.
+enum Seg {
+    Line([f64; 2], [f64; 2]),
+    /// Arc of centre `centre`, radius `r`, from angle `from` to angle `to` (radians).
+    Arc {
+        centre: [f64; 2],
+        r: f64,
+        from: f64,
+        to: f64,
+    },
+}
+
+impl Seg {
+    fn len(&self) -> f64 {
+        match self {
+            Seg::Line(a, b) => (b[0] - a[0]).hypot(b[1] - a[1]),
+            Seg::Arc { r, from, to, .. } => r * (to - from).abs(),
+        }
+    }
+
+    fn at(&self, u: f64) -> [f64; 2] {
+        match self {
+            Seg::Line(a, b) => [a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])],
+            Seg::Arc {
+                centre,
+                r,
+                from,
+                to,
+            } => {
+                let t = from + u * (to - from);
+                [centre[0] + r * t.cos(), centre[1] + r * t.sin()]
+            }
+        }
+    }
+}
+
+/// A parametric curve through consecutive segments (zero-length ones dropped), uniform in arc
+/// length within each segment. The junctions between segments are moved to the nearest of the
+/// parameters `nodes` (increasing, from 0 to 1: where the mesh will have nodes) so that they
+/// are mesh nodes (no cell straddles a change of curvature), when there are enough of them;
+/// otherwise the curve is uniform in arc length overall.
+fn path(segs: Vec<Seg>, nodes: &[f64]) -> Curve {
+    let segs: Vec<Seg> = segs.into_iter().filter(|s| s.len() > 0.0).collect();
+    let lens: Vec<f64> = segs.iter().map(Seg::len).collect();
+    let total: f64 = lens.iter().sum();
+    // Breakpoints u_k of the segments: arc-length fractions, snapped to node parameters.
+    let mut breaks = vec![0.0];
+    let mut acc = 0.0;
+    let inner: Vec<f64> = nodes
+        .iter()
+        .copied()
+        .filter(|&u| u > 0.0 && u < 1.0)
+        .collect();
+    let mut next_free = 0;
+    let mut snapped = inner.len() + 1 >= segs.len();
+    for l in &lens[..lens.len().saturating_sub(1)] {
+        acc += l;
+        let frac = acc / total;
+        // Nearest unused inner node parameter, leaving enough for the remaining junctions.
+        let remaining = segs.len() - breaks.len() - 1;
+        let hi = inner.len().saturating_sub(remaining);
+        match (next_free..hi)
+            .min_by(|&i, &j| (inner[i] - frac).abs().total_cmp(&(inner[j] - frac).abs()))
+        {
+            Some(i) if snapped => {
+                breaks.push(inner[i]);
+                next_free = i + 1;
+            }
+            _ => {
+                snapped = false;
+                breaks.push(frac);
+            }
+        }
+    }
+    breaks.push(1.0);
+    if !snapped {
+        breaks.clear();
+        let mut acc = 0.0;
+        breaks.push(0.0);
+        for l in &lens {
+            acc += l;
+            breaks.push(acc / total);
+        }
+    }
+    Curve::Param(Arc::new(move |u: f64| {
+        let u = u.clamp(0.0, 1.0);
+        let last = segs.len() - 1;
+        let i = (0..=last).find(|&i| u <= breaks[i + 1]).unwrap_or(last);
+        let w = (u - breaks[i]) / (breaks[i + 1] - breaks[i]);
+        segs[i].at(w.clamp(0.0, 1.0))
+    }))
+}
+
+/// The grading (ratio last / first cell size) of `n` cells over a length `len` whose last cell
+/// has about the size `last` (1 if uniform cells are already that small).
+fn grading_for_last(n: usize, len: f64, last: f64) -> f64 {
+    if n < 2 || len / n as f64 <= last {
+        return 1.0;
+    }
+    let last_of = |g: f64| {
+        let r = g.powf(1.0 / (n as f64 - 1.0));
+        let first = len * (r - 1.0) / (r.powi(n as i32) - 1.0);
+        first * r.powi(n as i32 - 1)
+    };
+    let (mut lo, mut hi) = (1e-3, 1.0 - 1e-12);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if last_of(mid) > last {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    lo
 }
