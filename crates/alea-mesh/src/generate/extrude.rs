@@ -77,10 +77,11 @@ pub fn extrude(mesh: &Mesh, layers: usize, thickness: f64) -> Result<Mesh, MeshE
     for (name, facets) in &mesh.facet_groups {
         let mut faces = Vec::with_capacity(facets.len() * layers);
         for f in facets {
-            if f.kind != CellType::Line2 {
+            if f.kind != CellType::Line2 || f.nodes.len() != 2 {
                 return Err(MeshError::Invalid(format!(
-                    "facet group '{name}' holds {} facets; extrusion needs LINE2",
-                    f.kind
+                    "facet group '{name}' holds a {} facet with {} nodes; extrusion needs LINE2 (2 nodes)",
+                    f.kind,
+                    f.nodes.len()
                 )));
             }
             let (a, b) = (f.nodes[0], f.nodes[1]);
