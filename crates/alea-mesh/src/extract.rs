@@ -37,7 +37,7 @@ impl Mesh {
     ///
     /// # Errors
     /// [`MeshError::UnknownGroup`] if a name is not a cell group; [`MeshError::Invalid`] if no
-    /// name is given.
+    /// name is given; the errors of [`Mesh::validate`] for an inconsistent mesh.
     pub fn extract(&self, cell_group_names: &[&str]) -> Result<(Mesh, Vec<usize>), MeshError> {
         self.extract_with_cells(cell_group_names)
             .map(|(m, nodes, _)| (m, nodes))
@@ -57,6 +57,7 @@ impl Mesh {
                 "extract() needs at least one cell group name".into(),
             ));
         }
+        self.validate()?;
         let mut keep = vec![false; self.num_cells()];
         for name in cell_group_names {
             for &c in self.cell_group(name)? {
