@@ -36,11 +36,11 @@ pub fn stress_at(model: &Model, c: usize, u: &[f64], xi: [f64; 3]) -> Result<[f6
     Ok(model.material(c)?.stress(model.analysis, &eps))
 }
 
+/// A stress `[xx, yy, zz, yz, xz, xy]` at a physical point.
+pub type PointStress = ([f64; 3], [f64; 6]);
+
 /// Stresses at the stiffness quadrature points of every cell: `(point, stress)` lists.
-pub fn gauss_stresses(
-    model: &Model,
-    u: &[f64],
-) -> Result<Vec<Vec<([f64; 3], [f64; 6])>>, FemError> {
+pub fn gauss_stresses(model: &Model, u: &[f64]) -> Result<Vec<Vec<PointStress>>, FemError> {
     (0..model.mesh.num_cells())
         .into_par_iter()
         .map(|c| {

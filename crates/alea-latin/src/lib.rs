@@ -16,6 +16,7 @@ mod assembly;
 mod error;
 pub mod interface;
 pub mod law;
+pub mod output;
 mod result;
 mod solver;
 

@@ -1,0 +1,580 @@
+//! From a parsed model file to solver inputs: mesh, substructure models with their
+//! constraints and load cases, interfaces and LATIN options. Every semantic error names the
+//! file, line and field.
+
+use std::path::Path;
+
+use alea_fem::{Analysis, Constraints, Loads, Material, Model};
+use alea_latin::{Assembly, InterfaceSpec, LatinOptions, SearchDirection, Substructure, constant};
+use alea_mesh::{CellType, Mesh, generate};
+use toml::Spanned;
+
+use crate::spec::{LoadSpec, MeshSpec, ModelFile};
+use crate::{Source, StudyError};
+
+/// A model ready to solve.
+#[derive(Clone, Debug)]
+pub struct BuiltModel {
+    /// The whole mesh (before the split into substructures).
+    pub mesh: Mesh,
+    /// Substructures and interfaces.
+    pub assembly: Assembly,
+    /// Names of each substructure's load cases (empty string for unnamed ones).
+    pub load_names: Vec<Vec<String>>,
+    /// Solver options.
+    pub options: LatinOptions,
+    /// Units as stated.
+    pub units: crate::spec::UnitsSpec,
+}
+
+fn cell_type(src: &Source, s: &Spanned<String>) -> Result<CellType, StudyError> {
+    Ok(match s.get_ref().to_ascii_lowercase().as_str() {
+        "tri3" => CellType::Tri3,
+        "tri6" => CellType::Tri6,
+        "quad4" => CellType::Quad4,
+        "quad8" => CellType::Quad8,
+        "tet4" => CellType::Tet4,
+        "tet10" => CellType::Tet10,
+        "hex8" => CellType::Hex8,
+        other => {
+            return Err(src.error(
+                s.span(),
+                "mesh.kind",
+                format!("unknown cell type '{other}'; expected tri3, tri6, quad4, quad8, tet4, tet10 or hex8"),
+            ));
+        }
+    })
+}
+
+fn param_f64(
+    src: &Source,
+    spec: &MeshSpec,
+    key: &str,
+    default: Option<f64>,
+) -> Result<f64, StudyError> {
+    let Some(p) = &spec.params else {
+        return default.ok_or_else(|| {
+            src.error(
+                spec.generator.span(),
+                format!("mesh.params.{key}"),
+                "missing; expected a number",
+            )
+        });
+    };
+    match p.get_ref().get(key) {
+        Some(toml::Value::Float(v)) => Ok(*v),
+        Some(toml::Value::Integer(v)) => Ok(*v as f64),
+        Some(_) => Err(src.error(p.span(), format!("mesh.params.{key}"), "expected a number")),
+        None => default.ok_or_else(|| {
+            src.error(
+                p.span(),
+                format!("mesh.params.{key}"),
+                "missing; expected a number",
+            )
+        }),
+    }
+}
+
+fn param_usize(
+    src: &Source,
+    spec: &MeshSpec,
+    key: &str,
+    default: Option<usize>,
+) -> Result<usize, StudyError> {
+    let v = param_f64(src, spec, key, default.map(|d| d as f64))?;
+    if v < 1.0 || v.fract() != 0.0 {
+        let span = spec
+            .params
+            .as_ref()
+            .map_or(spec.generator.span(), |p| p.span());
+        return Err(src.error(
+            span,
+            format!("mesh.params.{key}"),
+            format!("expected a positive integer, got {v}"),
+        ));
+    }
+    Ok(v as usize)
+}
+
+fn check_params(src: &Source, spec: &MeshSpec, allowed: &[&str]) -> Result<(), StudyError> {
+    if let Some(p) = &spec.params {
+        for k in p.get_ref().keys() {
+            if !allowed.contains(&k.as_str()) {
+                return Err(src.error(
+                    p.span(),
+                    format!("mesh.params.{k}"),
+                    format!(
+                        "unknown parameter for generator '{}'; expected one of: {}",
+                        spec.generator.get_ref(),
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Builds the mesh of a `[mesh]` table.
+pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+    let kind = |default: CellType| -> Result<CellType, StudyError> {
+        spec.kind
+            .as_ref()
+            .map_or(Ok(default), |k| cell_type(src, k))
+    };
+    let gen_name = spec.generator.get_ref().as_str();
+    let mesh_err =
+        |e: alea_mesh::MeshError| src.error(spec.generator.span(), "mesh", e.to_string());
+    let vec_field =
+        |name: &str, v: &Option<Spanned<Vec<f64>>>, n: usize| -> Result<Vec<f64>, StudyError> {
+            let v = v.as_ref().ok_or_else(|| {
+                src.error(
+                    spec.generator.span(),
+                    format!("mesh.{name}"),
+                    format!("missing; expected {n} numbers"),
+                )
+            })?;
+            if v.get_ref().len() != n {
+                return Err(src.error(
+                    v.span(),
+                    format!("mesh.{name}"),
+                    format!("expected {n} values, got {}", v.get_ref().len()),
+                ));
+            }
+            Ok(v.get_ref().clone())
+        };
+    let cells = |n: usize| -> Result<Vec<usize>, StudyError> {
+        let v = spec.cells.as_ref().ok_or_else(|| {
+            src.error(
+                spec.generator.span(),
+                "mesh.cells",
+                format!("missing; expected {n} cell counts"),
+            )
+        })?;
+        if v.get_ref().len() != n || v.get_ref().contains(&0) {
+            return Err(src.error(
+                v.span(),
+                "mesh.cells",
+                format!("expected {n} positive cell counts"),
+            ));
+        }
+        Ok(v.get_ref().clone())
+    };
+    match gen_name {
+        "rectangle" => {
+            check_params(src, spec, &[])?;
+            let s = vec_field("size", &spec.size, 2)?;
+            let c = cells(2)?;
+            generate::rectangle(s[0], s[1], c[0], c[1], kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "box" => {
+            check_params(src, spec, &[])?;
+            let s = vec_field("size", &spec.size, 3)?;
+            let c = cells(3)?;
+            generate::box_mesh([s[0], s[1], s[2]], [c[0], c[1], c[2]], kind(CellType::Hex8)?).map_err(mesh_err)
+        }
+        "plate_with_hole" => {
+            check_params(src, spec, &["radius", "half_width", "n_arc", "n_radial", "grading"])?;
+            generate::plate_with_hole(
+                param_f64(src, spec, "radius", None)?,
+                param_f64(src, spec, "half_width", None)?,
+                param_usize(src, spec, "n_arc", Some(16))?,
+                param_usize(src, spec, "n_radial", Some(16))?,
+                param_f64(src, spec, "grading", Some(4.0))?,
+                kind(CellType::Quad8)?,
+            )
+            .map_err(mesh_err)
+        }
+        "annulus_sector" => {
+            check_params(src, spec, &["r_in", "r_out", "angle_deg", "n_radial", "n_theta"])?;
+            generate::annulus_sector(
+                param_f64(src, spec, "r_in", None)?,
+                param_f64(src, spec, "r_out", None)?,
+                param_f64(src, spec, "angle_deg", None)?.to_radians(),
+                param_usize(src, spec, "n_radial", Some(8))?,
+                param_usize(src, spec, "n_theta", Some(8))?,
+                kind(CellType::Quad8)?,
+            )
+            .map_err(mesh_err)
+        }
+        "dovetail" => {
+            let d = generate::DovetailParams::default();
+            check_params(src, spec, &[
+                "r_inner", "r_rim", "half_angle_deg", "neck_half_width", "bottom_half_width", "flank_height",
+                "slot_gap", "fillet_radius", "shank_height", "n_flank", "n_root", "n_shank", "n_lobe", "n_wall",
+                "n_slot", "n_below",
+            ])?;
+            let p = generate::DovetailParams {
+                r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
+                r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
+                half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?.to_radians(),
+                neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+                bottom_half_width: param_f64(src, spec, "bottom_half_width", Some(d.bottom_half_width))?,
+                flank_height: param_f64(src, spec, "flank_height", Some(d.flank_height))?,
+                slot_gap: param_f64(src, spec, "slot_gap", Some(d.slot_gap))?,
+                fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
+                shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+                n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+                n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+                n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+                n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
+                n_wall: param_usize(src, spec, "n_wall", Some(d.n_wall))?,
+                n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
+                n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
+            };
+            generate::dovetail_root_and_disk(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "gmsh" => {
+            check_params(src, spec, &[])?;
+            let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
+            let base = src.path.parent().unwrap_or(Path::new("."));
+            let path = base.join(f.get_ref());
+            alea_mesh::read_msh(&path).map_err(StudyError::Mesh)
+        }
+        other => Err(src.error(
+            spec.generator.span(),
+            "mesh.generator",
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail or gmsh"),
+        )),
+    }
+}
+
+fn positive(src: &Source, v: &Spanned<f64>, field: &str) -> Result<f64, StudyError> {
+    let x = *v.get_ref();
+    if !(x.is_finite() && x > 0.0) {
+        return Err(src.error(
+            v.span(),
+            field,
+            format!("must be a finite number > 0, got {x}"),
+        ));
+    }
+    Ok(x)
+}
+
+fn finite(src: &Source, v: &Spanned<f64>, field: &str) -> Result<f64, StudyError> {
+    let x = *v.get_ref();
+    if !x.is_finite() {
+        return Err(src.error(v.span(), field, format!("must be finite, got {x}")));
+    }
+    Ok(x)
+}
+
+fn vec3(
+    src: &Source,
+    v: &Spanned<Vec<f64>>,
+    dim: usize,
+    field: &str,
+) -> Result<[f64; 3], StudyError> {
+    let a = v.get_ref();
+    if a.len() != dim || a.iter().any(|x| !x.is_finite()) {
+        return Err(src.error(
+            v.span(),
+            field,
+            format!("expected {dim} finite components, got {a:?}"),
+        ));
+    }
+    let mut o = [0.0; 3];
+    o[..dim].copy_from_slice(a);
+    Ok(o)
+}
+
+fn build_load(
+    src: &Source,
+    model: &Model,
+    l: &LoadSpec,
+    field: &str,
+) -> Result<Vec<f64>, StudyError> {
+    let dim = model.mesh.dim;
+    let kinds = [
+        l.pressure.is_some(),
+        l.traction.is_some(),
+        l.force.is_some(),
+        l.body.is_some(),
+        l.centrifugal.is_some(),
+    ];
+    let span = l
+        .group
+        .as_ref()
+        .map(|g| g.span())
+        .or(l.name.as_ref().map(|n| n.span()))
+        .unwrap_or(0..0);
+    if kinds.iter().filter(|&&k| k).count() != 1 {
+        return Err(src.error(
+            span,
+            field,
+            "expected exactly one of pressure, traction, force, body, centrifugal",
+        ));
+    }
+    let group = l.group.as_ref().map(|g| g.get_ref().as_str());
+    let need_group = || {
+        group.ok_or_else(|| {
+            src.error(
+                span.clone(),
+                format!("{field}.group"),
+                "missing; this load needs a group",
+            )
+        })
+    };
+    let fem = |e: alea_fem::FemError| {
+        src.error(
+            l.group.as_ref().map_or(0..0, |g| g.span()),
+            format!("{field}.group"),
+            e.to_string(),
+        )
+    };
+    let mut loads = Loads::new(model);
+    if let Some(p) = &l.pressure {
+        let p = finite(src, p, &format!("{field}.pressure"))?;
+        loads.pressure(model, need_group()?, p).map_err(fem)?;
+    } else if let Some(t) = &l.traction {
+        let t = vec3(src, t, dim, &format!("{field}.traction"))?;
+        loads
+            .traction(model, need_group()?, move |_, _| t)
+            .map_err(fem)?;
+    } else if let Some(f) = &l.force {
+        let f = vec3(src, f, dim, &format!("{field}.force"))?;
+        loads.nodal_force(model, need_group()?, f).map_err(fem)?;
+    } else if let Some(b) = &l.body {
+        let b = vec3(src, b, dim, &format!("{field}.body"))?;
+        loads.body_force(model, group, move |_, _| b).map_err(fem)?;
+    } else if let Some(c) = &l.centrifugal {
+        let cs = c.get_ref();
+        let omega = finite(src, &cs.omega, &format!("{field}.centrifugal.omega"))?;
+        let center = cs.center.clone().unwrap_or_default();
+        let axis = cs.axis.clone().unwrap_or_else(|| vec![0.0, 0.0, 1.0]);
+        if center.len() > 3 || axis.len() != 3 {
+            return Err(src.error(
+                c.span(),
+                format!("{field}.centrifugal"),
+                "center has at most 3 and axis exactly 3 components",
+            ));
+        }
+        let mut p = [0.0; 3];
+        p[..center.len()].copy_from_slice(&center);
+        loads
+            .centrifugal(model, group, omega, p, [axis[0], axis[1], axis[2]])
+            .map_err(fem)?;
+    }
+    Ok(loads.f)
+}
+
+/// Builds meshes, models, constraints, loads and interfaces of a model file.
+pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyError> {
+    let mesh = build_mesh(src, &file.mesh)?;
+    let th = file
+        .analysis
+        .thickness
+        .as_ref()
+        .map(|t| positive(src, t, "analysis.thickness"))
+        .transpose()?
+        .unwrap_or(1.0);
+    let analysis = match file.analysis.kind.get_ref().as_str() {
+        "plane_strain" => Analysis::PlaneStrain { thickness: th },
+        "plane_stress" => Analysis::PlaneStress { thickness: th },
+        "solid" => Analysis::Solid,
+        other => {
+            return Err(src.error(
+                file.analysis.kind.span(),
+                "analysis.type",
+                format!("unknown analysis '{other}'; expected plane_strain, plane_stress or solid"),
+            ));
+        }
+    };
+    if analysis.dim() != mesh.dim {
+        return Err(src.error(
+            file.analysis.kind.span(),
+            "analysis.type",
+            format!(
+                "a {}D analysis does not fit the {}D mesh",
+                analysis.dim(),
+                mesh.dim
+            ),
+        ));
+    }
+    if file.substructure.is_empty() {
+        return Err(src.error(
+            0..0,
+            "substructure",
+            "at least one [[substructure]] is needed",
+        ));
+    }
+    let mut subs = Vec::new();
+    let mut load_names = Vec::new();
+    let mut names: Vec<String> = Vec::new();
+    for (i, s) in file.substructure.iter().enumerate() {
+        let f = |k: &str| format!("substructure[{i}].{k}");
+        let name = s.name.get_ref().clone();
+        if names.contains(&name) {
+            return Err(src.error(
+                s.name.span(),
+                f("name"),
+                format!("duplicate substructure name '{name}'"),
+            ));
+        }
+        names.push(name.clone());
+        let young = *s.young.get_ref();
+        let poisson = *s.poisson.get_ref();
+        let density = s.density.as_ref().map_or(0.0, |d| *d.get_ref());
+        let material = Material::new(young, poisson, density).map_err(|e| {
+            let (span, field) = if !(young.is_finite() && young > 0.0) {
+                (s.young.span(), f("young"))
+            } else if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
+                (s.poisson.span(), f("poisson"))
+            } else {
+                (
+                    s.density.as_ref().map_or(s.name.span(), |d| d.span()),
+                    f("density"),
+                )
+            };
+            src.error(span, field, e.to_string())
+        })?;
+        let sub_mesh = match &s.cells {
+            Some(c) => {
+                mesh.extract(&[c.get_ref().as_str()])
+                    .map_err(|e| src.error(c.span(), f("cells"), e.to_string()))?
+                    .0
+            }
+            None => mesh.clone(),
+        };
+        let mut model = Model::new(sub_mesh, analysis)
+            .map_err(|e| src.error(s.name.span(), f("name"), e.to_string()))?;
+        model.set_material_all(material);
+        let mut cons = Constraints::new();
+        for (j, c) in s.constraint.iter().enumerate() {
+            let cf = |k: &str| format!("substructure[{i}].constraint[{j}].{k}");
+            let g = c.group.get_ref().as_str();
+            let ge = |e: alea_fem::FemError| src.error(c.group.span(), cf("group"), e.to_string());
+            let mut any = false;
+            for (comp, v) in [&c.x, &c.y, &c.z].into_iter().enumerate() {
+                if let Some(v) = v {
+                    let val = finite(src, v, &cf(["x", "y", "z"][comp]))?;
+                    if comp >= model.mesh.dim {
+                        return Err(src.error(v.span(), cf("z"), "no z component in a 2D model"));
+                    }
+                    cons.fix_component(&model.mesh, g, comp, val).map_err(ge)?;
+                    any = true;
+                }
+            }
+            if let Some(v) = &c.normal {
+                let val = finite(src, v, &cf("normal"))?;
+                cons.fix_normal(&model.mesh, g, val).map_err(ge)?;
+                any = true;
+            }
+            if !any {
+                return Err(src.error(
+                    c.group.span(),
+                    cf("group"),
+                    "constraint imposes nothing; give x, y, z and/or normal",
+                ));
+            }
+        }
+        let mut cases = Vec::new();
+        let mut lnames = Vec::new();
+        for (j, l) in s.load.iter().enumerate() {
+            cases.push(build_load(
+                src,
+                &model,
+                l,
+                &format!("substructure[{i}].load[{j}]"),
+            )?);
+            lnames.push(
+                l.name
+                    .as_ref()
+                    .map_or(String::new(), |n| n.get_ref().clone()),
+            );
+        }
+        subs.push(Substructure {
+            name,
+            model,
+            constraints: cons,
+            load_cases: cases,
+        });
+        load_names.push(lnames);
+    }
+    let mut interfaces = Vec::new();
+    for (i, it) in file.interface.iter().enumerate() {
+        let f = |k: &str| format!("interface[{i}].{k}");
+        let side = |v: &Spanned<[String; 2]>, key: &str| -> Result<(usize, String), StudyError> {
+            let [sub, group] = v.get_ref();
+            let idx = names.iter().position(|n| n == sub).ok_or_else(|| {
+                src.error(
+                    v.span(),
+                    f(key),
+                    format!(
+                        "unknown substructure '{sub}'; defined: {}",
+                        names.join(", ")
+                    ),
+                )
+            })?;
+            if subs[idx].model.mesh.facet_group(group).is_err() {
+                let avail: Vec<&String> = subs[idx].model.mesh.facet_groups.keys().collect();
+                return Err(src.error(
+                    v.span(),
+                    f(key),
+                    format!("substructure '{sub}' has no facet group '{group}'; it has: {avail:?}"),
+                ));
+            }
+            Ok((idx, group.clone()))
+        };
+        let (s1, g1) = side(&it.side1, "side1")?;
+        let (s2, g2) = side(&it.side2, "side2")?;
+        let name = it.name.get_ref();
+        let mut spec = match it.law.get_ref().as_str() {
+            "perfect" => InterfaceSpec::perfect(name, s1, &g1, s2, &g2),
+            "coulomb" => InterfaceSpec::coulomb(name, s1, &g1, s2, &g2, 0.0),
+            other => {
+                return Err(src.error(
+                    it.law.span(),
+                    f("law"),
+                    format!("unknown law '{other}'; expected perfect or coulomb"),
+                ));
+            }
+        };
+        if let Some(mu) = &it.mu {
+            let v = *mu.get_ref();
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(src.error(
+                    mu.span(),
+                    f("mu"),
+                    format!("friction coefficient must be finite and >= 0, got {v}"),
+                ));
+            }
+            spec.mu = constant(v);
+        }
+        if let Some(g) = &it.gap {
+            spec.gap = constant(finite(src, g, &f("gap"))?);
+        }
+        interfaces.push(spec);
+    }
+    let sv = &file.solver;
+    let mut options = LatinOptions::default();
+    if let Some(t) = &sv.tolerance {
+        options.tolerance = positive(src, t, "solver.tolerance")?;
+    }
+    if let Some(m) = &sv.max_iterations {
+        options.max_iterations = *m.get_ref();
+    }
+    if let Some(r) = &sv.relaxation {
+        let v = *r.get_ref();
+        if !(v > 0.0 && v <= 1.0) {
+            return Err(src.error(
+                r.span(),
+                "solver.relaxation",
+                format!("must be in (0, 1], got {v}"),
+            ));
+        }
+        options.relaxation = v;
+    }
+    if let Some(k) = &sv.search_direction_factor {
+        options.search_direction = SearchDirection::Auto {
+            factor: positive(src, k, "solver.search_direction_factor")?,
+        };
+    }
+    Ok(BuiltModel {
+        mesh,
+        assembly: Assembly { subs, interfaces },
+        load_names,
+        options,
+        units: file.units.clone(),
+    })
+}

@@ -1,0 +1,155 @@
+//! `alea solve` and `alea demo`: one deterministic solve of a case file.
+
+use std::path::Path;
+use std::time::Instant;
+
+use alea_fem::{Loads, post, solve_elastic, von_mises};
+use alea_latin::{LatinSolver, RunInput, RunStatus};
+use alea_mesh::vtu::VtuWriter;
+use alea_study::{Source, build_model, spec::ModelFile};
+use anyhow::{Context, Result};
+
+const DEMO_DOVETAIL: &str = include_str!("../../../examples/dovetail-contact.toml");
+const DEMO_KIRSCH: &str = include_str!("../../../examples/kirsch.toml");
+
+/// Runs a built-in demo.
+pub fn demo(name: &str, out: &Path) -> Result<()> {
+    let (file, text) = match name {
+        "dovetail" => ("examples/dovetail-contact.toml", DEMO_DOVETAIL),
+        "kirsch" => ("examples/kirsch.toml", DEMO_KIRSCH),
+        other => anyhow::bail!("unknown demo '{other}'; available: dovetail, kirsch"),
+    };
+    println!("demo '{name}' (the case file is {file})");
+    solve_source(&Source::from_text(file, text), out)
+}
+
+/// Solves a case file.
+pub fn solve_file(case: &Path, out: &Path) -> Result<()> {
+    let src = Source::read(case)?;
+    solve_source(&src, out)
+}
+
+fn solve_source(src: &Source, out: &Path) -> Result<()> {
+    let t0 = Instant::now();
+    let file: ModelFile = src.parse()?;
+    let built = build_model(src, &file)?;
+    let stem = src
+        .path
+        .file_stem()
+        .map_or("case".into(), |s| s.to_string_lossy().into_owned());
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let u = &built.units;
+    println!(
+        "units: length {}, force {}, stress {}; mesh: {} nodes, {} cells; {} substructure(s), {} interface(s)",
+        u.length,
+        u.force,
+        u.stress,
+        built.mesh.num_nodes(),
+        built.mesh.num_cells(),
+        built.assembly.subs.len(),
+        built.assembly.interfaces.len()
+    );
+    if built.assembly.subs.len() == 1 && built.assembly.interfaces.is_empty() {
+        let sub = &built.assembly.subs[0];
+        let mut loads = Loads::new(&sub.model);
+        for case in &sub.load_cases {
+            for (a, b) in loads.f.iter_mut().zip(case) {
+                *a += b;
+            }
+        }
+        let sol = solve_elastic(
+            &sub.model,
+            &sub.constraints,
+            &loads,
+            alea_fem::Ordering::Metis,
+        )?;
+        let stresses = post::nodal_stresses(&sub.model, &sol.u)?;
+        let vm: Vec<f64> = stresses.iter().map(von_mises).collect();
+        let (imax, vmax) = vm
+            .iter()
+            .enumerate()
+            .fold((0, 0.0), |a, (i, &v)| if v > a.1 { (i, v) } else { a });
+        let x = sub.model.mesh.coords[imax];
+        let energy = post::strain_energy(&sub.model, &sol.u)?;
+        println!(
+            "direct solve of {} unknowns: assembly {:.3} s, factorisation {:.3} s, solve {:.3} s",
+            sol.num_free,
+            sol.timings.assembly,
+            sol.timings.symbolic + sol.timings.numeric,
+            sol.timings.solve
+        );
+        println!(
+            "max von Mises {vmax:.4} {} at ({:.3}, {:.3}, {:.3}); strain energy {energy:.6e}",
+            u.stress, x[0], x[1], x[2]
+        );
+        let stress6: Vec<f64> = stresses
+            .iter()
+            .flat_map(|s| [s[0], s[1], s[2], s[5], s[3], s[4]])
+            .collect();
+        let path = out.join(format!("{stem}.vtu"));
+        VtuWriter::new(&sub.model.mesh)
+            .point_vector("displacement", sub.model.mesh.dim, &sol.u)
+            .point_vector("reaction", sub.model.mesh.dim, &sol.reactions)
+            .point_tensor("stress", 6, &stress6)
+            .point_scalar("von_mises", &vm)
+            .write(&path)?;
+        println!(
+            "wrote {} ({:.2} s in all)",
+            path.display(),
+            t0.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
+    let mut solver = LatinSolver::new(built.assembly.clone(), built.options.clone())?;
+    println!(
+        "LATIN set-up (assembly + factorisations): {:.3} s",
+        solver.setup_seconds
+    );
+    let res = solver.run(&RunInput::default())?;
+    let last = res.residuals.last().copied().unwrap_or(0.0);
+    match res.status {
+        RunStatus::Converged => println!(
+            "converged in {} iterations (error indicator {last:.2e}), {:.3} s",
+            res.iterations, res.timings.total
+        ),
+        _ => println!(
+            "NOT CONVERGED after {} iterations: error indicator {last:.2e} (tolerance {:.1e}); results below are the last iterate",
+            res.iterations,
+            solver.options().tolerance
+        ),
+    }
+    for (s, sub) in built.assembly.subs.iter().enumerate() {
+        let all = (0..sub.model.mesh.num_cells()).collect::<Vec<_>>();
+        let mut m = res.scaled_model(solver.model(s), s);
+        m.mesh.cell_groups.insert("__all".into(), all);
+        let vm = res.max_von_mises(&m, s, "__all")?;
+        println!(
+            "  substructure {:>10}: max von Mises {vm:.4} {}",
+            sub.name, u.stress
+        );
+    }
+    for it in &res.interfaces {
+        let c = it.status_counts();
+        let r = it.resultant();
+        println!(
+            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({:.4e}, {:.4e}) {}; work of interface forces {:.4e}",
+            it.name,
+            it.law,
+            c[1],
+            c[2],
+            c[3],
+            r[0],
+            r[1],
+            u.force,
+            it.work()
+        );
+    }
+    let path = out.join(format!("{stem}.vtm"));
+    alea_latin::output::write_run(&path, &solver, &res)?;
+    println!(
+        "wrote {} ({:.2} s in all)",
+        path.display(),
+        t0.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
