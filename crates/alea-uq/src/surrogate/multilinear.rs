@@ -1,0 +1,658 @@
+//! Piecewise multilinear interpolation on an adaptive stochastic mesh (thesis 1.2.2.4b and 4.2:
+//! the "stochastic finite elements" refined by the adaptive loop).
+//!
+//! The parameter box `[lo, hi]` (`d <= 6`) is covered by a regular grid of root cells; each cell
+//! can be split into `2^d` children. On a leaf cell `C` with local coordinates `t in [0, 1]^d`
+//!
+//! ```text
+//! q~(xi) = sum_{c in corners(C)} phi_c(t) q(c),    phi_c(t) = prod_j (c_j ? t_j : 1 - t_j).
+//! ```
+//!
+//! A mesh node is a **run** if it is a corner of every leaf whose closure contains it. Otherwise
+//! it is a **hanging node**: it lies inside a face or edge of a coarser leaf `M` and its value is
+//! `M`'s interpolant there, `q(p) = sum_c phi^M_c(p) q(c)`, resolved recursively down to runs.
+//! This makes `q~` continuous. Hence the weights: `w_k(xi) = sum_c phi_c(t) W_{c,k}` with `W`
+//! the resolved node-to-run matrix; the leaf has `2^d` corners, each resolved to a few runs (in
+//! practice at most `2^d` distinct runs in total).
+//!
+//! Refinement ([`StochasticMesh::refine`]) returns the nodes that became runs (new centre, face
+//! and edge points shared with already refined neighbours or on the box boundary, and former
+//! hanging nodes freed by the refinement): these need model runs. Runs are never removed and keep
+//! their index, so run arrays only grow.
+//!
+//! The mesh can live on the physical box or on the probability-space cube `[0, 1]^d` (then
+//! evaluate at `u = T(x)` from [`JointLaw::to_unit`](crate::joint::JointLaw::to_unit)).
+//! Integer coordinates: a root cell spans `2^MAX_LEVEL` units, so node keys are exact.
+
+use super::LinearSurrogate;
+use crate::error::{Result, UqError, check_len, invalid};
+use crate::joint::JointLaw;
+use crate::quadrature::QuadratureRule;
+use std::collections::HashMap;
+
+/// Maximum refinement depth below a root cell.
+pub const MAX_LEVEL: u32 = 24;
+/// Maximum dimension.
+pub const MAX_DIM: usize = 6;
+
+type Key = [u64; MAX_DIM];
+
+/// Index of a cell of the mesh (stable: cells are never removed).
+pub type CellId = usize;
+
+/// A node that became a run after a refinement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewRun {
+    /// Run index (position in the value arrays).
+    pub run: usize,
+    /// Coordinates of the point to run.
+    pub point: Vec<f64>,
+}
+
+#[derive(Debug, Clone)]
+struct Cell {
+    origin: Key,
+    level: u32,
+    first_child: Option<usize>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum NodeKind {
+    Run(usize),
+    /// Hanging, interpolated from this leaf cell.
+    Hanging(usize),
+}
+
+/// Adaptive piecewise multilinear surrogate on a box.
+#[derive(Debug, Clone)]
+pub struct StochasticMesh {
+    d: usize,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    roots: Vec<usize>,
+    cells: Vec<Cell>,
+    nodes: HashMap<Key, NodeKind>,
+    run_keys: Vec<Key>,
+    run_points: Vec<f64>,
+    /// Per cell (valid for leaves): range in `terms`.
+    leaf_terms: Vec<(u32, u32)>,
+    /// `(corner, run, coefficient)` triples.
+    terms: Vec<(u8, u32, f64)>,
+    num_leaves: usize,
+}
+
+impl StochasticMesh {
+    /// Mesh of the box `[lo, hi]` with `roots[j]` root cells in direction `j`. The runs are the
+    /// `prod_j (roots[j] + 1)` grid nodes, numbered with the first direction fastest.
+    ///
+    /// # Errors
+    /// If `d` is 0 or above 6, the box is empty or a root count is 0 or above 65536.
+    pub fn new(lo: &[f64], hi: &[f64], roots: &[usize]) -> Result<Self> {
+        let what = "stochastic mesh";
+        check_len(what, "hi", lo.len(), hi.len())?;
+        check_len(what, "roots", lo.len(), roots.len())?;
+        let d = lo.len();
+        if d == 0 || d > MAX_DIM {
+            return Err(invalid(what, "dimension", "in 1..=6", d as f64));
+        }
+        for j in 0..d {
+            if !lo[j].is_finite() {
+                return Err(invalid(what, "lo", "finite", lo[j]));
+            }
+            if !(hi[j].is_finite() && hi[j] > lo[j]) {
+                return Err(invalid(what, "hi", "finite and > lo", hi[j]));
+            }
+            if roots[j] == 0 || roots[j] > 65536 {
+                return Err(invalid(what, "root cells", "in 1..=65536", roots[j] as f64));
+            }
+        }
+        let mut m = Self {
+            d,
+            lo: lo.to_vec(),
+            hi: hi.to_vec(),
+            roots: roots.to_vec(),
+            cells: Vec::new(),
+            nodes: HashMap::new(),
+            run_keys: Vec::new(),
+            run_points: Vec::new(),
+            leaf_terms: Vec::new(),
+            terms: Vec::new(),
+            num_leaves: 0,
+        };
+        let s = 1u64 << MAX_LEVEL;
+        let ncell: usize = roots.iter().product();
+        for flat in 0..ncell {
+            let mut origin = [0u64; MAX_DIM];
+            let mut r = flat;
+            for j in 0..d {
+                origin[j] = (r % roots[j]) as u64 * s;
+                r /= roots[j];
+            }
+            m.cells.push(Cell {
+                origin,
+                level: 0,
+                first_child: None,
+            });
+        }
+        let nnode: usize = roots.iter().map(|r| r + 1).product();
+        for flat in 0..nnode {
+            let mut key = [0u64; MAX_DIM];
+            let mut r = flat;
+            for j in 0..d {
+                key[j] = (r % (roots[j] + 1)) as u64 * s;
+                r /= roots[j] + 1;
+            }
+            m.add_run(key);
+        }
+        m.rebuild()?;
+        Ok(m)
+    }
+
+    fn add_run(&mut self, key: Key) -> usize {
+        let k = self.run_keys.len();
+        self.run_keys.push(key);
+        let p = self.key_point(&key);
+        self.run_points.extend_from_slice(&p);
+        self.nodes.insert(key, NodeKind::Run(k));
+        k
+    }
+
+    fn key_point(&self, key: &Key) -> Vec<f64> {
+        (0..self.d)
+            .map(|j| {
+                let span = (self.roots[j] as u64) << MAX_LEVEL;
+                if key[j] == span {
+                    self.hi[j]
+                } else {
+                    self.lo[j] + (self.hi[j] - self.lo[j]) * key[j] as f64 / span as f64
+                }
+            })
+            .collect()
+    }
+
+    fn size(&self, c: usize) -> u64 {
+        1u64 << (MAX_LEVEL - self.cells[c].level)
+    }
+
+    /// Number of parameters.
+    pub fn dim(&self) -> usize {
+        self.d
+    }
+    /// Number of runs.
+    pub fn num_runs(&self) -> usize {
+        self.run_keys.len()
+    }
+    /// Points of all runs, row-major `num_runs() x dim`.
+    pub fn run_points(&self) -> &[f64] {
+        &self.run_points
+    }
+    /// Point of run `k`.
+    pub fn run_point(&self, k: usize) -> &[f64] {
+        &self.run_points[k * self.d..(k + 1) * self.d]
+    }
+    /// Number of leaf cells.
+    pub fn num_leaves(&self) -> usize {
+        self.num_leaves
+    }
+    /// Number of hanging (interpolated) nodes.
+    pub fn num_hanging(&self) -> usize {
+        self.nodes
+            .values()
+            .filter(|k| matches!(k, NodeKind::Hanging(_)))
+            .count()
+    }
+    /// Leaf cells, in increasing id order.
+    pub fn leaves(&self) -> Vec<CellId> {
+        (0..self.cells.len())
+            .filter(|&c| self.cells[c].first_child.is_none())
+            .collect()
+    }
+    /// `true` if `cell` exists and is a leaf.
+    pub fn is_leaf(&self, cell: CellId) -> bool {
+        cell < self.cells.len() && self.cells[cell].first_child.is_none()
+    }
+    /// Refinement level of a cell (0 for root cells).
+    pub fn level(&self, cell: CellId) -> u32 {
+        self.cells[cell].level
+    }
+    /// Bounds `(lo, hi)` of a cell.
+    pub fn cell_bounds(&self, cell: CellId) -> (Vec<f64>, Vec<f64>) {
+        let o = self.cells[cell].origin;
+        let s = self.size(cell);
+        let mut hi = o;
+        for v in hi.iter_mut().take(self.d) {
+            *v += s;
+        }
+        (self.key_point(&o), self.key_point(&hi))
+    }
+    /// Centre of a cell.
+    pub fn cell_centre(&self, cell: CellId) -> Vec<f64> {
+        let (a, b) = self.cell_bounds(cell);
+        a.iter().zip(&b).map(|(x, y)| 0.5 * (x + y)).collect()
+    }
+
+    /// Leaf containing `xi` and the local coordinates of `xi` in it (`None` outside the box).
+    pub fn locate_local(&self, xi: &[f64], t: &mut [f64]) -> Option<CellId> {
+        let d = self.d;
+        let mut root = 0usize;
+        let mut stride = 1usize;
+        for j in 0..d {
+            let x = xi[j];
+            if !(x >= self.lo[j] && x <= self.hi[j]) {
+                return None;
+            }
+            let s = (x - self.lo[j]) / (self.hi[j] - self.lo[j]) * self.roots[j] as f64;
+            let r = (s.floor() as usize).min(self.roots[j] - 1);
+            t[j] = (s - r as f64).clamp(0.0, 1.0);
+            root += r * stride;
+            stride *= self.roots[j];
+        }
+        let mut c = root;
+        while let Some(first) = self.cells[c].first_child {
+            let mut child = 0usize;
+            for (j, tj) in t.iter_mut().enumerate().take(d) {
+                if *tj >= 0.5 {
+                    child |= 1 << j;
+                    *tj = 2.0 * *tj - 1.0;
+                } else {
+                    *tj *= 2.0;
+                }
+            }
+            c = first + child;
+        }
+        Some(c)
+    }
+
+    /// Leaf cell containing `xi` (`None` outside the box).
+    pub fn locate(&self, xi: &[f64]) -> Option<CellId> {
+        let mut t = [0.0; MAX_DIM];
+        self.locate_local(xi, &mut t[..self.d])
+    }
+
+    /// Leaf containing the neighbourhood of integer point `p` in the orthant `signs` (bit j set:
+    /// positive direction), or `None` outside the box.
+    fn locate_key(&self, p: &Key, signs: usize) -> Option<usize> {
+        let s = 1u64 << MAX_LEVEL;
+        let mut root = 0usize;
+        let mut stride = 1usize;
+        for j in 0..self.d {
+            let r = if (signs >> j) & 1 == 1 {
+                p[j] / s
+            } else {
+                if p[j] == 0 {
+                    return None;
+                }
+                (p[j] - 1) / s
+            };
+            if r >= self.roots[j] as u64 {
+                return None;
+            }
+            root += r as usize * stride;
+            stride *= self.roots[j];
+        }
+        let mut c = root;
+        while let Some(first) = self.cells[c].first_child {
+            let half = self.size(c) / 2;
+            let o = self.cells[c].origin;
+            let mut child = 0usize;
+            for j in 0..self.d {
+                let off = p[j] - o[j];
+                let up = if (signs >> j) & 1 == 1 {
+                    off >= half
+                } else {
+                    off > half
+                };
+                if up {
+                    child |= 1 << j;
+                }
+            }
+            c = first + child;
+        }
+        Some(c)
+    }
+
+    fn is_corner(&self, c: usize, p: &Key) -> bool {
+        let o = self.cells[c].origin;
+        let s = self.size(c);
+        (0..self.d).all(|j| p[j] == o[j] || p[j] == o[j] + s)
+    }
+
+    /// Classify node `p`: `None` if it is a corner of every leaf around it, else the coarsest
+    /// leaf that contains it without having it as a corner.
+    fn master_of(&self, p: &Key) -> Option<usize> {
+        let mut best: Option<usize> = None;
+        for signs in 0..(1usize << self.d) {
+            if let Some(c) = self.locate_key(p, signs)
+                && !self.is_corner(c, p)
+                && best.is_none_or(|b| self.cells[c].level < self.cells[b].level)
+            {
+                best = Some(c);
+            }
+        }
+        best
+    }
+
+    /// Split the given leaf cells into `2^d` children each. Returns the nodes that became runs,
+    /// in increasing run index.
+    ///
+    /// # Errors
+    /// If a cell is not a leaf or is already at [`MAX_LEVEL`].
+    pub fn refine(&mut self, cells: &[CellId]) -> Result<Vec<NewRun>> {
+        let d = self.d;
+        let mut todo: Vec<CellId> = cells.to_vec();
+        todo.sort_unstable();
+        todo.dedup();
+        for &c in &todo {
+            if !self.is_leaf(c) {
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!("cell {c} is not a leaf"),
+                });
+            }
+            if self.cells[c].level >= MAX_LEVEL {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "cell level",
+                    "below the maximum",
+                    self.cells[c].level as f64,
+                ));
+            }
+        }
+        for &c in &todo {
+            let o = self.cells[c].origin;
+            let half = self.size(c) / 2;
+            let level = self.cells[c].level + 1;
+            let first = self.cells.len();
+            for child in 0..(1usize << d) {
+                let mut origin = o;
+                for j in 0..d {
+                    if (child >> j) & 1 == 1 {
+                        origin[j] += half;
+                    }
+                }
+                self.cells.push(Cell {
+                    origin,
+                    level,
+                    first_child: None,
+                });
+            }
+            self.cells[c].first_child = Some(first);
+            // New nodes: o + half * m, m in {0, 1, 2}^d (placeholder kind, classified below).
+            let mut m = [0u64; MAX_DIM];
+            for _ in 0..3usize.pow(d as u32) {
+                let mut key = o;
+                for j in 0..d {
+                    key[j] += m[j] * half;
+                }
+                self.nodes.entry(key).or_insert(NodeKind::Hanging(usize::MAX));
+                for mj in m.iter_mut().take(d) {
+                    *mj += 1;
+                    if *mj < 3 {
+                        break;
+                    }
+                    *mj = 0;
+                }
+            }
+        }
+        // Reclassify every non-run node; nodes with no master become runs.
+        let mut pending: Vec<Key> = self
+            .nodes
+            .iter()
+            .filter(|(_, k)| matches!(k, NodeKind::Hanging(_)))
+            .map(|(key, _)| *key)
+            .collect();
+        pending.sort_unstable();
+        let mut new_runs = Vec::new();
+        for key in pending {
+            match self.master_of(&key) {
+                Some(mc) => {
+                    self.nodes.insert(key, NodeKind::Hanging(mc));
+                }
+                None => {
+                    let run = self.add_run(key);
+                    new_runs.push(NewRun {
+                        run,
+                        point: self.run_point(run).to_vec(),
+                    });
+                }
+            }
+        }
+        self.rebuild()?;
+        Ok(new_runs)
+    }
+
+    /// Refine every leaf once.
+    ///
+    /// # Errors
+    /// As [`StochasticMesh::refine`].
+    pub fn refine_all(&mut self) -> Result<Vec<NewRun>> {
+        let leaves = self.leaves();
+        self.refine(&leaves)
+    }
+
+    /// Resolve the weights of every node on runs and cache, per leaf, `(corner, run, coef)`.
+    fn rebuild(&mut self) -> Result<()> {
+        let mut memo: HashMap<Key, Vec<(usize, f64)>> = HashMap::new();
+        let d = self.d;
+        let mut leaf_terms = vec![(0u32, 0u32); self.cells.len()];
+        let mut terms = Vec::new();
+        let mut nl = 0;
+        for c in 0..self.cells.len() {
+            if self.cells[c].first_child.is_some() {
+                continue;
+            }
+            nl += 1;
+            let start = terms.len() as u32;
+            let o = self.cells[c].origin;
+            let s = self.size(c);
+            for corner in 0..(1usize << d) {
+                let mut key = o;
+                for j in 0..d {
+                    if (corner >> j) & 1 == 1 {
+                        key[j] += s;
+                    }
+                }
+                let w = self.resolve(&key, &mut memo, 0)?;
+                for &(run, coef) in &w {
+                    terms.push((corner as u8, run as u32, coef));
+                }
+            }
+            leaf_terms[c] = (start, terms.len() as u32);
+        }
+        self.leaf_terms = leaf_terms;
+        self.terms = terms;
+        self.num_leaves = nl;
+        Ok(())
+    }
+
+    fn resolve(
+        &self,
+        key: &Key,
+        memo: &mut HashMap<Key, Vec<(usize, f64)>>,
+        depth: u32,
+    ) -> Result<Vec<(usize, f64)>> {
+        if let Some(v) = memo.get(key) {
+            return Ok(v.clone());
+        }
+        let kind = self.nodes.get(key).copied().ok_or_else(|| UqError::Invalid {
+            what: "stochastic mesh",
+            message: "internal error: missing node".into(),
+        })?;
+        let out = match kind {
+            NodeKind::Run(k) => vec![(k, 1.0)],
+            NodeKind::Hanging(m) => {
+                if depth > MAX_LEVEL + 2 || m == usize::MAX {
+                    return Err(UqError::Invalid {
+                        what: "stochastic mesh",
+                        message: "internal error: unresolved hanging node".into(),
+                    });
+                }
+                let o = self.cells[m].origin;
+                let s = self.size(m) as f64;
+                let mut acc: Vec<(usize, f64)> = Vec::new();
+                for corner in 0..(1usize << self.d) {
+                    let mut phi = 1.0;
+                    let mut ck = o;
+                    for j in 0..self.d {
+                        let t = (key[j] - o[j]) as f64 / s;
+                        if (corner >> j) & 1 == 1 {
+                            phi *= t;
+                            ck[j] += self.size(m);
+                        } else {
+                            phi *= 1.0 - t;
+                        }
+                    }
+                    if phi == 0.0 {
+                        continue;
+                    }
+                    for (run, w) in self.resolve(&ck, memo, depth + 1)? {
+                        match acc.iter_mut().find(|e| e.0 == run) {
+                            Some(e) => e.1 += phi * w,
+                            None => acc.push((run, phi * w)),
+                        }
+                    }
+                }
+                acc
+            }
+        };
+        memo.insert(*key, out.clone());
+        Ok(out)
+    }
+
+    /// Fast evaluation (no allocation): `sum_k w_k(xi) values[k]`; `NaN` outside the box.
+    #[inline]
+    pub fn interpolate(&self, xi: &[f64], values: &[f64]) -> f64 {
+        let mut t = [0.0; MAX_DIM];
+        let Some(c) = self.locate_local(xi, &mut t[..self.d]) else {
+            return f64::NAN;
+        };
+        let mut phi = [0.0; 1 << MAX_DIM];
+        self.corner_phi(&t, &mut phi);
+        let (a, b) = self.leaf_terms[c];
+        self.terms[a as usize..b as usize]
+            .iter()
+            .map(|&(corner, run, coef)| phi[corner as usize] * coef * values[run as usize])
+            .sum()
+    }
+
+    #[inline]
+    fn corner_phi(&self, t: &[f64], phi: &mut [f64; 1 << MAX_DIM]) {
+        phi[0] = 1.0;
+        let mut n = 1;
+        for &tj in t.iter().take(self.d) {
+            for c in 0..n {
+                phi[c + n] = phi[c] * tj;
+                phi[c] *= 1.0 - tj;
+            }
+            n *= 2;
+        }
+    }
+
+    /// Probability of each leaf cell under `law` (`(cell, P(xi in cell))`, leaves in id order).
+    pub fn cell_probabilities(&self, law: &dyn JointLaw) -> Vec<(CellId, f64)> {
+        self.leaves()
+            .into_iter()
+            .map(|c| {
+                let (a, b) = self.cell_bounds(c);
+                (c, law.box_probability(&a, &b))
+            })
+            .collect()
+    }
+
+    /// Integral of `f` over each leaf cell with an `order`-point tensor Gauss-Legendre rule
+    /// (`(cell, int_cell f)`), e.g. `f = error density * pdf` for the refinement criterion.
+    ///
+    /// # Errors
+    /// If `order == 0`.
+    pub fn integrate_cells(
+        &self,
+        f: impl Fn(&[f64]) -> f64 + Sync,
+        order: usize,
+    ) -> Result<Vec<(CellId, f64)>> {
+        use rayon::prelude::*;
+        self.leaves()
+            .into_par_iter()
+            .map(|c| {
+                let (a, b) = self.cell_bounds(c);
+                Ok((c, QuadratureRule::gauss_legendre_box(&a, &b, order)?.integrate(&f)))
+            })
+            .collect()
+    }
+
+    /// Expected weights `E[w_k(xi)] = int w_k(x) f(x) dx` under a density `pdf` on the box, by
+    /// an `order`-point Gauss-Legendre rule per leaf, so that `E[q~] = sum_k E[w_k] q_k`.
+    ///
+    /// # Errors
+    /// If `order == 0`.
+    pub fn expected_weights(
+        &self,
+        pdf: impl Fn(&[f64]) -> f64 + Sync,
+        order: usize,
+    ) -> Result<Vec<f64>> {
+        let mut out = vec![0.0; self.num_runs()];
+        let mut w = Vec::new();
+        for c in self.leaves() {
+            let (a, b) = self.cell_bounds(c);
+            let r = QuadratureRule::gauss_legendre_box(&a, &b, order)?;
+            for q in 0..r.len() {
+                let x = r.node(q);
+                let f = r.weights()[q] * pdf(x);
+                if f == 0.0 {
+                    continue;
+                }
+                self.cell_weights(c, x, &mut w);
+                for &(k, wk) in &w {
+                    out[k] += f * wk;
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    fn cell_weights(&self, c: CellId, xi: &[f64], w: &mut Vec<(usize, f64)>) {
+        w.clear();
+        let o = self.cells[c].origin;
+        let s = self.size(c);
+        let mut t = [0.0; MAX_DIM];
+        let mut hi = o;
+        for v in hi.iter_mut().take(self.d) {
+            *v += s;
+        }
+        let (pl, ph) = (self.key_point(&o), self.key_point(&hi));
+        for j in 0..self.d {
+            t[j] = ((xi[j] - pl[j]) / (ph[j] - pl[j])).clamp(0.0, 1.0);
+        }
+        let mut phi = [0.0; 1 << MAX_DIM];
+        self.corner_phi(&t[..self.d], &mut phi);
+        let (a, b) = self.leaf_terms[c];
+        for &(corner, run, coef) in &self.terms[a as usize..b as usize] {
+            let v = phi[corner as usize] * coef;
+            if v == 0.0 {
+                continue;
+            }
+            match w.iter_mut().find(|e| e.0 == run as usize) {
+                Some(e) => e.1 += v,
+                None => w.push((run as usize, v)),
+            }
+        }
+    }
+}
+
+impl LinearSurrogate for StochasticMesh {
+    fn dim(&self) -> usize {
+        self.d
+    }
+    fn num_runs(&self) -> usize {
+        self.run_keys.len()
+    }
+    /// Sparse weights (empty outside the box).
+    fn weights(&self, xi: &[f64], w: &mut Vec<(usize, f64)>) {
+        w.clear();
+        if let Some(c) = self.locate(xi) {
+            self.cell_weights(c, xi, w);
+        }
+    }
+    fn eval(&self, xi: &[f64], values: &[f64]) -> f64 {
+        self.interpolate(xi, values)
+    }
+}

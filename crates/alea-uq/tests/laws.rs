@@ -1,0 +1,127 @@
+//! Verification of the marginal laws: `cdf(quantile(p)) = p`, moments against closed forms
+//! (numerical integration of the pdf), sampling moments within their confidence interval, and
+//! error messages that name the law and the field.
+
+use alea_uq::law::*;
+use alea_uq::quadrature::QuadratureRule;
+use alea_uq::rng::chunk_rng;
+
+fn laws() -> Vec<(Box<dyn Marginal>, f64, f64)> {
+    // (law, exact mean, exact std) from closed forms written independently of the code.
+    let tn_mean = {
+        // N(1, 2^2) on [0, 4]: alpha = -0.5, beta = 1.5
+        let (a, b) = (-0.5f64, 1.5f64);
+        let phi = |t: f64| (-0.5 * t * t).exp() / (2.0 * std::f64::consts::PI).sqrt();
+        // Phi(1.5) - Phi(-0.5) = 0.9331927987311419 - 0.3085375387259869
+        let z = 0.933_192_798_731_141_9 - 0.308_537_538_725_986_9;
+        let m = 1.0 + 2.0 * (phi(a) - phi(b)) / z;
+        let v = 4.0 * (1.0 + (a * phi(a) - b * phi(b)) / z - ((phi(a) - phi(b)) / z).powi(2));
+        (m, v.sqrt())
+    };
+    vec![
+        (Box::new(Uniform::new(-1.0, 3.0).unwrap()), 1.0, 4.0 / 12f64.sqrt()),
+        (Box::new(Normal::new(2.0, 0.5).unwrap()), 2.0, 0.5),
+        (Box::new(TruncatedNormal::new(1.0, 2.0, 0.0, 4.0).unwrap()), tn_mean.0, tn_mean.1),
+        (
+            Box::new(TruncatedNormal::new(0.0, 1.0, 3.0, f64::INFINITY).unwrap()),
+            // Mills ratio: E = phi(3)/(1 - Phi(3))
+            0.004_431_848_411_938_008 / 0.001_349_898_031_630_094_6,
+            {
+                let l = 0.004_431_848_411_938_008 / 0.001_349_898_031_630_094_6;
+                (1.0f64 + 3.0 * l - l * l).sqrt()
+            },
+        ),
+        (
+            Box::new(LogNormal::new(0.1, 0.4).unwrap()),
+            (0.1f64 + 0.08).exp(),
+            (((0.16f64).exp() - 1.0) * (0.2f64 + 0.16).exp()).sqrt(),
+        ),
+        (
+            Box::new(Beta::new(2.0, 5.0, 1.0, 3.0).unwrap()),
+            1.0 + 2.0 * 2.0 / 7.0,
+            2.0 * (10.0f64 / (49.0 * 8.0)).sqrt(),
+        ),
+        (Box::new(Gamma::new(3.0, 2.0, 1.0).unwrap()), 7.0, 3f64.sqrt() * 2.0),
+        (
+            Box::new(Triangular::new(0.0, 1.0, 4.0).unwrap()),
+            5.0 / 3.0,
+            ((16.0 + 1.0 - 4.0) / 18.0f64).sqrt(),
+        ),
+        (
+            // Triangle (0,0)-(1,2)-(2,0) tabulated: same as triangular(0, 1, 2).
+            Box::new(Tabulated::new(vec![0.0, 1.0, 2.0], vec![0.0, 5.0, 0.0]).unwrap()),
+            1.0,
+            (1.0 / 6.0f64).sqrt(),
+        ),
+    ]
+}
+
+#[test]
+fn cdf_of_quantile_is_identity() {
+    for (law, _, _) in laws() {
+        for i in 1..200 {
+            let p = i as f64 / 200.0;
+            let x = law.quantile(p);
+            assert!((law.cdf(x) - p).abs() < 1e-11, "{}: p = {p}, cdf = {}", law.name(), law.cdf(x));
+        }
+        for &p in &[1e-9, 1e-5, 1.0 - 1e-5] {
+            let x = law.quantile(p);
+            assert!((law.cdf(x) - p).abs() < 1e-11 * p.max(1e-3), "{}: p = {p}", law.name());
+        }
+        assert!(law.quantile(-0.1).is_nan() && law.quantile(1.1).is_nan());
+    }
+}
+
+#[test]
+fn moments_match_closed_forms() {
+    for (law, mean, std) in laws() {
+        assert!((law.mean() - mean).abs() < 1e-12 * (1.0 + mean.abs()), "{} mean", law.name());
+        assert!((law.std() - std).abs() < 1e-12 * std, "{} std {} vs {}", law.name(), law.std(), std);
+        // Numerical moments of the pdf on [q(1e-15), q(1 - 1e-15)] in 400 panels.
+        let (a, b) = (law.quantile(1e-15), law.quantile(1.0 - 1e-15));
+        let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
+        let np = 400;
+        for k in 0..np {
+            let lo = a + (b - a) * k as f64 / np as f64;
+            let hi = a + (b - a) * (k + 1) as f64 / np as f64;
+            let r = QuadratureRule::gauss_legendre_box(&[lo], &[hi], 8).unwrap();
+            m0 += r.integrate(|x| law.pdf(x[0]));
+            m1 += r.integrate(|x| x[0] * law.pdf(x[0]));
+            m2 += r.integrate(|x| x[0] * x[0] * law.pdf(x[0]));
+        }
+        assert!((m0 - 1.0).abs() < 1e-7, "{} mass {m0}", law.name());
+        assert!((m1 - mean).abs() < 1e-7 * (1.0 + mean.abs()), "{} m1 {m1}", law.name());
+        let s = (m2 - m1 * m1).sqrt();
+        assert!((s - std).abs() < 1e-6 * std, "{} std {s} vs {std}", law.name());
+    }
+}
+
+#[test]
+fn sample_moments_within_confidence_interval() {
+    let n = 40_000;
+    for (law, mean, std) in laws() {
+        let mut rng = chunk_rng(17, 0);
+        let x: Vec<f64> = (0..n).map(|_| law.sample(&mut rng)).collect();
+        let m = x.iter().sum::<f64>() / n as f64;
+        // 4.5 standard errors: a false alarm has probability 7e-6 for a given seed.
+        assert!((m - mean).abs() < 4.5 * std / (n as f64).sqrt(), "{}: {m} vs {mean}", law.name());
+        let v = x.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (n - 1) as f64;
+        assert!((v.sqrt() - std).abs() < 0.05 * std, "{}", law.name());
+    }
+}
+
+#[test]
+fn invalid_laws_name_law_and_field() {
+    let e = TruncatedNormal::new(0.0, -1.0, 0.0, 1.0).unwrap_err();
+    assert_eq!(e.to_string(), "truncated normal: std must be > 0, got -1");
+    let e = TruncatedNormal::new(0.0, 1.0, 40.0, 41.0).unwrap_err();
+    assert!(e.to_string().contains("empty truncation"), "{e}");
+    let e = TruncatedNormal::new(0.0, 1.0, 2.0, 1.0).unwrap_err();
+    assert!(e.to_string().starts_with("truncated normal: hi"), "{e}");
+    assert!(Normal::new(0.0, 0.0).unwrap_err().to_string().contains("normal: std"));
+    assert!(Beta::new(0.0, 1.0, 0.0, 1.0).unwrap_err().to_string().contains("beta: alpha"));
+    assert!(Uniform::new(1.0, 1.0).is_err());
+    assert!(Triangular::new(0.0, 2.0, 1.0).is_err());
+    assert!(Tabulated::new(vec![0.0, 1.0], vec![0.0, 0.0]).is_err());
+    assert!(Tabulated::new(vec![1.0, 0.0], vec![1.0, 1.0]).is_err());
+}
