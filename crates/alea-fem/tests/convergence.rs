@@ -25,7 +25,7 @@
 //! `body_force_is_minus_div_sigma` checks this formula against central differences of the
 //! crate's own `Material::stress` for the three analysis types.
 //!
-//! Errors, integrated cell by cell with `Quadrature::for_cell(kind, 2p + 6)` (`w det J`, no
+//! Errors, integrated cell by cell with `Quadrature::for_cell(kind, 2p + 3)` (`w det J`, no
 //! thickness): `||e||_L2^2 = int |u - u_h|^2`, `|e|_E^2 = int (eps - eps_h) . D (eps - eps_h)`,
 //! both relative to the same norms of `u`. The fitted slope of `log err` versus `log h` over the
 //! mesh sequence must be within 0.1 of `p + 1` (L2) and `p` (energy).
@@ -204,7 +204,7 @@ fn errors(model: &Model, ex: &Exact, uh: &[f64]) -> Errors {
     let mut b = vec![0.0; nv * 10 * dim];
     for (c, kind, nodes) in mesh.cells() {
         let coords = model.cell_coords(c);
-        let q = Quadrature::for_cell(kind, 2 * kind.order() + 6);
+        let q = Quadrature::for_cell(kind, 2 * kind.order() + 3);
         let m = nodes.len() * dim;
         for (xi, w) in q.points.iter().zip(&q.weights) {
             let g = point_geometry(kind, &coords, *xi);
