@@ -164,7 +164,8 @@ pub fn isj(sorted: &[f64]) -> Option<f64> {
     let a = dct2(&hist);
     let i2: Vec<f64> = (1..n_grid).map(|k| (k * k) as f64).collect();
     let a2: Vec<f64> = a[1..].iter().map(|v| (v / 2.0).powi(2)).collect();
-    let g = |t: f64| t - fixed_point(t, n, &i2, &a2);
+    // fixed_point returns t - xi gamma^[l](t); its root is t*.
+    let g = |t: f64| fixed_point(t, n, &i2, &a2);
     // Bracket the root on a logarithmic scan of (0, 0.1].
     let mut prev_t = 1e-12;
     let mut prev = g(prev_t);
