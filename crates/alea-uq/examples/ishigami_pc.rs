@@ -43,7 +43,11 @@ fn main() -> alea_uq::Result<()> {
     let exact = ish.sobol_first();
     println!("terms      {}", e.coefficients().len());
     println!("mean       {:.5}  (exact {:.5})", e.mean(), ish.mean());
-    println!("variance   {:.5}  (exact {:.5})", e.variance(), ish.variance());
+    println!(
+        "variance   {:.5}  (exact {:.5})",
+        e.variance(),
+        ish.variance()
+    );
     for i in 0..3 {
         println!("S{}         {:.5}  (exact {:.5})", i + 1, s[i], exact[i]);
     }

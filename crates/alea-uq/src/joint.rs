@@ -7,7 +7,7 @@
 //! * [`GaussianCopula`] (Nataf): `z_i = Phi^-1(F_i(x_i))`, `z ~ N(0, R)`, `y = L^-1 z` with
 //!   `R = L L^T`, `u = Phi(y)`; density
 //!   `f(x) = |R|^-1/2 exp(-z^T (R^-1 - I) z / 2) prod_i f_i(x_i)`.
-//!   [`GaussianCopula::to_standard_normal`] gives `y`, the independent standard normal variables.
+//!   [`GaussianCopula::x_to_standard_normal`] gives `y`, the independent standard normal variables.
 //! * [`BoxDensity`]: a user density on a box (a closure or a tabulated grid), normalised
 //!   numerically. Its isoprobabilistic map is the Rosenblatt transform
 //!   `u_1 = F(x_1)`, `u_2 = F(x_2 | x_1)`, ... of a piecewise-constant approximation of the density
@@ -29,16 +29,16 @@ pub trait JointLaw: Send + Sync + std::fmt::Debug {
     /// Joint density at `x`.
     fn pdf(&self, x: &[f64]) -> f64;
     /// Map `x` to independent `U(0, 1)` variables `u`.
-    fn to_unit(&self, x: &[f64], u: &mut [f64]);
+    fn x_to_unit(&self, x: &[f64], u: &mut [f64]);
     /// Inverse map: `u` in the unit cube to `x`.
-    fn from_unit(&self, u: &[f64], x: &mut [f64]);
+    fn unit_to_x(&self, u: &[f64], x: &mut [f64]);
     /// Smallest box containing the support (bounds may be infinite).
     fn bounds(&self) -> (Vec<f64>, Vec<f64>);
     /// `true` if the variables are independent.
     fn is_independent(&self) -> bool {
         false
     }
-    /// One draw into `x` (`u` uniform on the cube, then [`JointLaw::from_unit`]).
+    /// One draw into `x` (`u` uniform on the cube, then [`JointLaw::unit_to_x`]).
     fn sample(&self, rng: &mut dyn RngCore, x: &mut [f64]) {
         let mut u = [0.0; 16];
         let mut heap;
@@ -51,7 +51,7 @@ pub trait JointLaw: Send + Sync + std::fmt::Debug {
         for v in u.iter_mut() {
             *v = open01(rng);
         }
-        self.from_unit(u, x);
+        self.unit_to_x(u, x);
     }
     /// Probability of the box `[lo, hi]` (finite bounds): by default a 6-point tensor
     /// Gauss-Legendre rule on the density.
@@ -74,7 +74,12 @@ impl Independent {
     /// If `marginals` is empty.
     pub fn new(marginals: Vec<Arc<dyn Marginal>>) -> Result<Self> {
         if marginals.is_empty() {
-            return Err(invalid("independent joint law", "marginals", "non-empty", 0.0));
+            return Err(invalid(
+                "independent joint law",
+                "marginals",
+                "non-empty",
+                0.0,
+            ));
         }
         Ok(Self { marginals })
     }
@@ -89,14 +94,18 @@ impl JointLaw for Independent {
         self.marginals.len()
     }
     fn pdf(&self, x: &[f64]) -> f64 {
-        self.marginals.iter().zip(x).map(|(m, &v)| m.pdf(v)).product()
+        self.marginals
+            .iter()
+            .zip(x)
+            .map(|(m, &v)| m.pdf(v))
+            .product()
     }
-    fn to_unit(&self, x: &[f64], u: &mut [f64]) {
+    fn x_to_unit(&self, x: &[f64], u: &mut [f64]) {
         for ((m, &v), o) in self.marginals.iter().zip(x).zip(u) {
             *o = m.cdf(v);
         }
     }
-    fn from_unit(&self, u: &[f64], x: &mut [f64]) {
+    fn unit_to_x(&self, u: &[f64], x: &mut [f64]) {
         for ((m, &v), o) in self.marginals.iter().zip(u).zip(x) {
             *o = m.quantile(v);
         }
@@ -204,7 +213,7 @@ impl GaussianCopula {
     }
 
     /// Nataf map: `x` to independent standard normal variables `y = L^-1 z`.
-    pub fn to_standard_normal(&self, x: &[f64], y: &mut [f64]) {
+    pub fn x_to_standard_normal(&self, x: &[f64], y: &mut [f64]) {
         let d = self.dim();
         for i in 0..d {
             let z = norm_quantile(self.marginals[i].cdf(x[i]));
@@ -217,7 +226,7 @@ impl GaussianCopula {
     }
 
     /// Inverse Nataf map: independent standard normal `y` to `x`.
-    pub fn from_standard_normal(&self, y: &[f64], x: &mut [f64]) {
+    pub fn standard_normal_to_x(&self, y: &[f64], x: &mut [f64]) {
         let d = self.dim();
         for i in 0..d {
             let z: f64 = (0..=i).map(|k| self.chol[i * d + k] * y[k]).sum();
@@ -250,20 +259,23 @@ impl JointLaw for GaussianCopula {
         }
         self.inv_sqrt_det * (-0.5 * q).exp() * prod
     }
-    fn to_unit(&self, x: &[f64], u: &mut [f64]) {
-        self.to_standard_normal(x, u);
+    fn x_to_unit(&self, x: &[f64], u: &mut [f64]) {
+        self.x_to_standard_normal(x, u);
         for v in u.iter_mut() {
             *v = norm_cdf(*v);
         }
     }
-    fn from_unit(&self, u: &[f64], x: &mut [f64]) {
+    fn unit_to_x(&self, u: &[f64], x: &mut [f64]) {
         let y: Vec<f64> = u.iter().map(|&p| norm_quantile(p)).collect();
-        self.from_standard_normal(&y, x);
+        self.standard_normal_to_x(&y, x);
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         self.marginals.iter().map(|m| m.support()).unzip()
     }
 }
+
+/// A boxed user density function.
+type DensityFn = Box<dyn Fn(&[f64]) -> f64 + Send + Sync>;
 
 /// A user density on a box `[lo, hi]`, given as a closure or as values on a regular grid.
 ///
@@ -273,7 +285,7 @@ pub struct BoxDensity {
     lo: Vec<f64>,
     hi: Vec<f64>,
     n: usize,
-    density: Box<dyn Fn(&[f64]) -> f64 + Send + Sync>,
+    density: DensityFn,
     norm: f64,
     /// `partial[k]` has `n^(k+1)` entries: mass of the cells `(i_1..i_{k+1})` summed over the
     /// remaining indices (row-major in `(i_1, .., i_{k+1})`).
@@ -319,7 +331,12 @@ impl BoxDensity {
             }
         }
         if n == 0 || (n as f64).powi(d as i32) > (1u64 << 24) as f64 {
-            return Err(invalid(what, "cells per direction", ">= 1 with n^d <= 2^24", n as f64));
+            return Err(invalid(
+                what,
+                "cells per direction",
+                ">= 1 with n^d <= 2^24",
+                n as f64,
+            ));
         }
         let total = n.pow(d as u32);
         let mut cell = vec![0.0; total];
@@ -401,7 +418,12 @@ impl BoxDensity {
     pub fn from_grid(lo: Vec<f64>, hi: Vec<f64>, m: usize, values: Vec<f64>) -> Result<Self> {
         let d = lo.len();
         if m < 2 {
-            return Err(invalid("box density", "grid nodes per direction", ">= 2", m as f64));
+            return Err(invalid(
+                "box density",
+                "grid nodes per direction",
+                ">= 2",
+                m as f64,
+            ));
         }
         check_len("box density", "values", m.pow(d as u32), values.len())?;
         let (l2, h2) = (lo.clone(), hi.clone());
@@ -409,7 +431,8 @@ impl BoxDensity {
             let mut idx = vec![0usize; d];
             let mut t = vec![0.0; d];
             for j in 0..d {
-                let s = ((x[j] - l2[j]) / (h2[j] - l2[j]) * (m - 1) as f64).clamp(0.0, (m - 1) as f64);
+                let s =
+                    ((x[j] - l2[j]) / (h2[j] - l2[j]) * (m - 1) as f64).clamp(0.0, (m - 1) as f64);
                 let i = (s.floor() as usize).min(m - 2);
                 idx[j] = i;
                 t[j] = s - i as f64;
@@ -447,7 +470,7 @@ impl JointLaw for BoxDensity {
         }
         (self.density)(x) / self.norm
     }
-    fn to_unit(&self, x: &[f64], u: &mut [f64]) {
+    fn x_to_unit(&self, x: &[f64], u: &mut [f64]) {
         let n = self.n;
         let mut prefix = 0usize;
         for j in 0..self.dim() {
@@ -464,7 +487,7 @@ impl JointLaw for BoxDensity {
             prefix = prefix * n + i;
         }
     }
-    fn from_unit(&self, u: &[f64], x: &mut [f64]) {
+    fn unit_to_x(&self, u: &[f64], x: &mut [f64]) {
         let n = self.n;
         let mut prefix = 0usize;
         for j in 0..self.dim() {

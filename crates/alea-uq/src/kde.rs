@@ -47,7 +47,12 @@ impl Kde {
             });
         }
         if let Some(v) = samples.iter().find(|v| !v.is_finite()) {
-            return Err(crate::error::invalid("kernel density estimate", "sample", "finite", *v));
+            return Err(crate::error::invalid(
+                "kernel density estimate",
+                "sample",
+                "finite",
+                *v,
+            ));
         }
         let mut sorted = samples.to_vec();
         sorted.par_sort_unstable_by(f64::total_cmp);
@@ -199,11 +204,17 @@ pub fn isj(sorted: &[f64]) -> Option<f64> {
 fn fixed_point(t: f64, n: f64, i2: &[f64], a2: &[f64]) -> f64 {
     let l = 7;
     let pi2 = PI * PI;
+    // i2 is increasing: stop once exp(-i^2 pi^2 time) underflows.
     let sum = |s: i32, time: f64| -> f64 {
-        i2.iter()
-            .zip(a2)
-            .map(|(&i, &a)| i.powi(s) * a * (-i * pi2 * time).exp())
-            .sum::<f64>()
+        let mut acc = 0.0;
+        for (&i, &a) in i2.iter().zip(a2) {
+            let e = i * pi2 * time;
+            if e > 745.0 {
+                break;
+            }
+            acc += i.powi(s) * a * (-e).exp();
+        }
+        acc
     };
     let mut f = 2.0 * PI.powi(2 * l) * sum(l, t);
     for s in (2..l).rev() {

@@ -227,7 +227,10 @@ pub(crate) fn tridiagonal_eigen(mut d: Vec<f64>, mut e: Vec<f64>) -> (Vec<f64>, 
     }
     let mut idx: Vec<usize> = (0..n).collect();
     idx.sort_by(|&a, &b| d[a].total_cmp(&d[b]));
-    (idx.iter().map(|&i| d[i]).collect(), idx.iter().map(|&i| z[i]).collect())
+    (
+        idx.iter().map(|&i| d[i]).collect(),
+        idx.iter().map(|&i| z[i]).collect(),
+    )
 }
 
 #[cfg(test)]

@@ -48,7 +48,12 @@ impl QuadratureRule {
             .zip(orders)
             .map(|(m, &n)| {
                 if n == 0 {
-                    return Err(crate::error::invalid("tensor Gauss rule", "order", ">= 1", 0.0));
+                    return Err(crate::error::invalid(
+                        "tensor Gauss rule",
+                        "order",
+                        ">= 1",
+                        0.0,
+                    ));
                 }
                 Ok(OrthoPoly::for_marginal(m.as_ref(), n)?.gauss(n))
             })
@@ -87,10 +92,9 @@ impl QuadratureRule {
             let s: usize = idx.iter().sum();
             if s + d > level && s <= level {
                 let k = level - s;
-                let coef = if k % 2 == 0 { 1.0 } else { -1.0 } * binom(d - 1, k);
-                let rules: Vec<(Vec<f64>, Vec<f64>)> = (0..d)
-                    .map(|j| rules1d[j][idx[j] - 1].clone())
-                    .collect();
+                let coef = if k.is_multiple_of(2) { 1.0 } else { -1.0 } * binom(d - 1, k);
+                let rules: Vec<(Vec<f64>, Vec<f64>)> =
+                    (0..d).map(|j| rules1d[j][idx[j] - 1].clone()).collect();
                 let t = tensor(&rules);
                 for q in 0..t.len() {
                     let x = t.node(q);
@@ -176,7 +180,9 @@ impl QuadratureRule {
     }
     /// `sum_q w_q f(x_q)`.
     pub fn integrate(&self, f: impl Fn(&[f64]) -> f64) -> f64 {
-        (0..self.len()).map(|q| self.weights[q] * f(self.node(q))).sum()
+        (0..self.len())
+            .map(|q| self.weights[q] * f(self.node(q)))
+            .sum()
     }
 }
 

@@ -17,6 +17,9 @@ use crate::joint::JointLaw;
 use crate::rng::{CHUNK, chunk_rng, open01};
 use rayon::prelude::*;
 
+/// Per chunk: `f(A)`, `f(B)` and `f(AB_i)` for every `i`.
+type ChunkEvals = (Vec<f64>, Vec<f64>, Vec<Vec<f64>>);
+
 /// Monte Carlo Sobol' indices.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SobolIndices {
@@ -51,12 +54,17 @@ pub fn sobol_indices(
         });
     }
     if n < 2 {
-        return Err(crate::error::invalid("Sobol' indices", "sample size", ">= 2", n as f64));
+        return Err(crate::error::invalid(
+            "Sobol' indices",
+            "sample size",
+            ">= 2",
+            n as f64,
+        ));
     }
     let d = law.dim();
     let nchunks = n.div_ceil(CHUNK);
     // Per chunk: f(A), f(B), f(AB_i) for i in 0..d, each of chunk length.
-    let parts: Vec<(Vec<f64>, Vec<f64>, Vec<Vec<f64>>)> = (0..nchunks)
+    let parts: Vec<ChunkEvals> = (0..nchunks)
         .into_par_iter()
         .map(|c| {
             let len = CHUNK.min(n - c * CHUNK);
@@ -71,14 +79,14 @@ pub fn sobol_indices(
                 for v in ua.iter_mut().chain(ub.iter_mut()) {
                     *v = open01(&mut rng);
                 }
-                law.from_unit(&ua, &mut x);
+                law.unit_to_x(&ua, &mut x);
                 fa.push(model(&x));
-                law.from_unit(&ub, &mut x);
+                law.unit_to_x(&ub, &mut x);
                 fb.push(model(&x));
                 for i in 0..d {
                     let save = ua[i];
                     ua[i] = ub[i];
-                    law.from_unit(&ua, &mut x);
+                    law.unit_to_x(&ua, &mut x);
                     fab[i].push(model(&x));
                     ua[i] = save;
                 }
@@ -90,7 +98,12 @@ pub fn sobol_indices(
     let fb: Vec<f64> = parts.iter().flat_map(|p| p.1.iter().copied()).collect();
     let nf = n as f64;
     let mean = (fa.iter().sum::<f64>() + fb.iter().sum::<f64>()) / (2.0 * nf);
-    let var = (fa.iter().chain(&fb).map(|v| (v - mean).powi(2)).sum::<f64>()) / (2.0 * nf - 1.0);
+    let var = (fa
+        .iter()
+        .chain(&fb)
+        .map(|v| (v - mean).powi(2))
+        .sum::<f64>())
+        / (2.0 * nf - 1.0);
     let mut first = vec![0.0; d];
     let mut total = vec![0.0; d];
     let mut first_se = vec![0.0; d];

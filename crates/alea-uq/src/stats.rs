@@ -22,14 +22,16 @@ pub fn sample_model(
 ) -> Vec<f64> {
     let d = law.dim();
     let mut out = vec![0.0; n];
-    out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, block)| {
-        let mut rng = chunk_rng(seed, c as u64);
-        let mut x = vec![0.0; d];
-        for o in block.iter_mut() {
-            law.sample(&mut rng, &mut x);
-            *o = f(&x);
-        }
-    });
+    out.par_chunks_mut(CHUNK)
+        .enumerate()
+        .for_each(|(c, block)| {
+            let mut rng = chunk_rng(seed, c as u64);
+            let mut x = vec![0.0; d];
+            for o in block.iter_mut() {
+                law.sample(&mut rng, &mut x);
+                *o = f(&x);
+            }
+        });
     out
 }
 
@@ -59,7 +61,12 @@ impl Summary {
     /// result does not depend on the number of threads.
     pub fn of(x: &[f64]) -> Self {
         let n = x.len();
-        let sum: f64 = x.par_chunks(CHUNK).map(|c| c.iter().sum::<f64>()).collect::<Vec<_>>().iter().sum();
+        let sum: f64 = x
+            .par_chunks(CHUNK)
+            .map(|c| c.iter().sum::<f64>())
+            .collect::<Vec<_>>()
+            .iter()
+            .sum();
         let mean = sum / n as f64;
         let parts: Vec<[f64; 5]> = x
             .par_chunks(CHUNK)

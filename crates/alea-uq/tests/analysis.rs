@@ -15,7 +15,10 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 fn normal_law() -> Independent {
-    Independent::new(vec![Arc::new(Normal::new(0.0, 1.0).unwrap()) as Arc<dyn Marginal>]).unwrap()
+    Independent::new(vec![
+        Arc::new(Normal::new(0.0, 1.0).unwrap()) as Arc<dyn Marginal>
+    ])
+    .unwrap()
 }
 
 fn normal_sample(n: usize, seed: u64) -> Vec<f64> {
@@ -25,11 +28,18 @@ fn normal_sample(n: usize, seed: u64) -> Vec<f64> {
 /// Integral of the KDE by the trapezoidal rule on [-8, 8] and its L2 distance to phi.
 fn kde_mass_and_l2(k: &Kde) -> (f64, f64) {
     let n = 4001;
-    let xs: Vec<f64> = (0..n).map(|i| -8.0 + 16.0 * i as f64 / (n - 1) as f64).collect();
+    let xs: Vec<f64> = (0..n)
+        .map(|i| -8.0 + 16.0 * i as f64 / (n - 1) as f64)
+        .collect();
     let f = k.eval(&xs);
     let h = 16.0 / (n - 1) as f64;
     let mass = h * (f.iter().sum::<f64>() - 0.5 * (f[0] + f[n - 1]));
-    let l2 = (h * xs.iter().zip(&f).map(|(x, v)| (v - norm_pdf(*x)).powi(2)).sum::<f64>()).sqrt();
+    let l2 = (h * xs
+        .iter()
+        .zip(&f)
+        .map(|(x, v)| (v - norm_pdf(*x)).powi(2))
+        .sum::<f64>())
+    .sqrt();
     (mass, l2)
 }
 
@@ -42,13 +52,24 @@ fn kde_integrates_to_one_and_converges() {
         let ki = Kde::new(&x, Bandwidth::Isj).unwrap();
         let (ms, ls) = kde_mass_and_l2(&ks);
         let (mi, li) = kde_mass_and_l2(&ki);
-        eprintln!("n {n}: Silverman h {:.4} L2 {ls:.2e}; ISJ h {:.4} L2 {li:.2e}", ks.bandwidth(), ki.bandwidth());
-        assert!((ms - 1.0).abs() < 1e-9 && (mi - 1.0).abs() < 1e-9, "{ms} {mi}");
+        eprintln!(
+            "n {n}: Silverman h {:.4} L2 {ls:.2e}; ISJ h {:.4} L2 {li:.2e}",
+            ks.bandwidth(),
+            ki.bandwidth()
+        );
+        assert!(
+            (ms - 1.0).abs() < 1e-9 && (mi - 1.0).abs() < 1e-9,
+            "{ms} {mi}"
+        );
         assert!(ls < last.0 && li < last.1, "no convergence at n = {n}");
         // For normal data both rules approach the AMISE-optimal 1.06 sigma n^-1/5.
         let h_opt = (4.0f64 / 3.0).powf(0.2) * (n as f64).powf(-0.2);
         assert!((ks.bandwidth() / h_opt - 0.9 / 1.06).abs() < 0.05);
-        assert!((ki.bandwidth() / h_opt - 1.0).abs() < 0.15, "ISJ h {}", ki.bandwidth());
+        assert!(
+            (ki.bandwidth() / h_opt - 1.0).abs() < 0.15,
+            "ISJ h {}",
+            ki.bandwidth()
+        );
         assert!(ki.bandwidth() != ks.bandwidth()); // ISJ found its own root
         last = (ls, li);
     }
@@ -93,8 +114,10 @@ fn failure_probability_of_known_law_within_ci() {
 #[test]
 fn summary_statistics_match_exact_moments() {
     // Uniform(0, 1): mean 1/2, variance 1/12, skewness 0, excess kurtosis -6/5.
-    let law = Independent::new(vec![Arc::new(Uniform::new(0.0, 1.0).unwrap()) as Arc<dyn Marginal>])
-        .unwrap();
+    let law = Independent::new(vec![
+        Arc::new(Uniform::new(0.0, 1.0).unwrap()) as Arc<dyn Marginal>
+    ])
+    .unwrap();
     let x = sample_model(&law, 400_000, 3, |x| x[0]);
     let s = Summary::of(&x);
     assert!((s.mean - 0.5).abs() < 4.5 * s.mean_ci_half_width(0.6827));
@@ -115,10 +138,21 @@ fn sobol_mc_on_ishigami() {
     .unwrap();
     let r = sobol_indices(&law, 50_000, 2024, |x| ish.eval(x)).unwrap();
     let (s, st) = (ish.sobol_first(), ish.sobol_total());
-    eprintln!("MC Sobol': S {:?} +- {:?}; ST {:?} +- {:?}", r.first, r.first_se, r.total, r.total_se);
+    eprintln!(
+        "MC Sobol': S {:?} +- {:?}; ST {:?} +- {:?}",
+        r.first, r.first_se, r.total, r.total_se
+    );
     for i in 0..3 {
-        assert!((r.first[i] - s[i]).abs() < 4.5 * r.first_se[i], "S{}", i + 1);
-        assert!((r.total[i] - st[i]).abs() < 4.5 * r.total_se[i], "ST{}", i + 1);
+        assert!(
+            (r.first[i] - s[i]).abs() < 4.5 * r.first_se[i],
+            "S{}",
+            i + 1
+        );
+        assert!(
+            (r.total[i] - st[i]).abs() < 4.5 * r.total_se[i],
+            "ST{}",
+            i + 1
+        );
         assert!(r.first_se[i] < 0.02);
     }
     assert_eq!(r.evaluations, 250_000);
@@ -150,11 +184,19 @@ fn results_do_not_depend_on_thread_count() {
         let m = Summary::of(&q);
         let l = latin_hypercube_maximin(&law, 50, 4, 5);
         let so = sobol(&law, 1000, Some(8)).unwrap();
-        let k = Kde::new(&q, Bandwidth::Isj).unwrap().eval_binned(&[0.0, 3.5, 7.0]);
+        let k = Kde::new(&q, Bandwidth::Isj)
+            .unwrap()
+            .eval_binned(&[0.0, 3.5, 7.0]);
         (d, q, s, m.mean.to_bits(), m.variance.to_bits(), l, so, k)
     };
-    let p1 = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let p2 = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let p1 = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let p2 = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
     let a = p1.install(run);
     let b = p2.install(run);
     assert!(a == b, "results differ between 1 and 2 threads");

@@ -7,6 +7,10 @@ mod ishigami_pc;
 fn ishigami_example_runs() {
     let (e, loo) = ishigami_pc::run(10, 1000, 1).unwrap();
     let exact = alea_uq::samples::Ishigami::default().variance();
-    assert!((e.variance() - exact).abs() < 0.01 * exact, "{}", e.variance());
+    assert!(
+        (e.variance() - exact).abs() < 0.01 * exact,
+        "{}",
+        e.variance()
+    );
     assert!(loo < 1e-2, "{loo}");
 }

@@ -52,15 +52,15 @@ fn nataf_round_trip() {
     for u in [[0.1, 0.5, 0.9], [0.01, 0.99, 0.3], [0.5, 0.5, 0.5]] {
         let mut x = [0.0; 3];
         let mut back = [0.0; 3];
-        law.from_unit(&u, &mut x);
-        law.to_unit(&x, &mut back);
+        law.unit_to_x(&u, &mut x);
+        law.x_to_unit(&x, &mut back);
         for k in 0..3 {
             assert!((u[k] - back[k]).abs() < 1e-9, "{u:?} -> {back:?}");
         }
         let mut y = [0.0; 3];
         let mut x2 = [0.0; 3];
-        law.to_standard_normal(&x, &mut y);
-        law.from_standard_normal(&y, &mut x2);
+        law.x_to_standard_normal(&x, &mut y);
+        law.standard_normal_to_x(&y, &mut x2);
         for k in 0..3 {
             assert!((x[k] - x2[k]).abs() < 1e-9 * (1.0 + x[k].abs()));
         }
@@ -70,8 +70,10 @@ fn nataf_round_trip() {
 #[test]
 fn copula_density_integrates_to_one_and_reduces_to_bivariate_normal() {
     // Normal marginals + Gaussian copula = bivariate normal density.
-    let m: Vec<Arc<dyn Marginal>> =
-        vec![Arc::new(Normal::new(0.0, 1.0).unwrap()), Arc::new(Normal::new(0.0, 1.0).unwrap())];
+    let m: Vec<Arc<dyn Marginal>> = vec![
+        Arc::new(Normal::new(0.0, 1.0).unwrap()),
+        Arc::new(Normal::new(0.0, 1.0).unwrap()),
+    ];
     let rho: f64 = 0.5;
     let law = GaussianCopula::new(m, vec![1.0, rho, rho, 1.0]).unwrap();
     let (x, y) = (0.3, -0.7);
@@ -92,23 +94,32 @@ fn copula_density_integrates_to_one_and_reduces_to_bivariate_normal() {
 
 #[test]
 fn invalid_copula_is_reported() {
-    let m: Vec<Arc<dyn Marginal>> =
-        vec![Arc::new(Normal::new(0.0, 1.0).unwrap()), Arc::new(Normal::new(0.0, 1.0).unwrap())];
+    let m: Vec<Arc<dyn Marginal>> = vec![
+        Arc::new(Normal::new(0.0, 1.0).unwrap()),
+        Arc::new(Normal::new(0.0, 1.0).unwrap()),
+    ];
     let e = GaussianCopula::new(m.clone(), vec![1.0, 1.5, 1.5, 1.0]).unwrap_err();
-    assert!(e.to_string().starts_with("gaussian copula: correlation entry"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("gaussian copula: correlation entry"),
+        "{e}"
+    );
     let m3: Vec<Arc<dyn Marginal>> = vec![m[0].clone(), m[0].clone(), m[0].clone()];
     // Symmetric, unit diagonal, entries in [-1, 1], but not positive definite.
     let c = vec![1.0, 0.9, -0.9, 0.9, 1.0, 0.9, -0.9, 0.9, 1.0];
     let e = GaussianCopula::new(m3, c).unwrap_err();
-    assert!(e.to_string().contains("not symmetric positive definite"), "{e}");
+    assert!(
+        e.to_string().contains("not symmetric positive definite"),
+        "{e}"
+    );
 }
 
 #[test]
 fn box_density_moments_and_round_trip() {
     // f(a, b) proportional to 1 + a b on [0, 1]^2: E[a] = (1/2 + 1/6) / (5/4) = 8/15,
     // E[a b] = (1/4 + 1/9) / (5/4) = 13/45.
-    let law = BoxDensity::from_fn(vec![0.0, 0.0], vec![1.0, 1.0], 64, |x| 1.0 + x[0] * x[1])
-        .unwrap();
+    let law =
+        BoxDensity::from_fn(vec![0.0, 0.0], vec![1.0, 1.0], 64, |x| 1.0 + x[0] * x[1]).unwrap();
     assert!((law.pdf(&[0.5, 0.5]) - 1.25 / 1.25).abs() < 1e-10);
     assert!((law.pdf(&[1.0, 1.0]) - 2.0 / 1.25).abs() < 1e-10);
     let n = 100_000;
@@ -121,13 +132,14 @@ fn box_density_moments_and_round_trip() {
     for u in [[0.2, 0.7], [0.9, 0.05]] {
         let mut x = [0.0; 2];
         let mut back = [0.0; 2];
-        law.from_unit(&u, &mut x);
-        law.to_unit(&x, &mut back);
+        law.unit_to_x(&u, &mut x);
+        law.x_to_unit(&x, &mut back);
         assert!((u[0] - back[0]).abs() < 1e-12 && (u[1] - back[1]).abs() < 1e-12);
     }
     // Tabulated variant on a 3 x 3 grid of the same (multilinear) density.
-    let vals: Vec<f64> =
-        (0..9).map(|k| 1.0 + (k / 3) as f64 * 0.5 * (k % 3) as f64 * 0.5).collect();
+    let vals: Vec<f64> = (0..9)
+        .map(|k| 1.0 + (k / 3) as f64 * 0.5 * (k % 3) as f64 * 0.5)
+        .collect();
     let tab = BoxDensity::from_grid(vec![0.0, 0.0], vec![1.0, 1.0], 3, vals).unwrap();
     assert!((tab.pdf(&[0.3, 0.8]) - law.pdf(&[0.3, 0.8])).abs() < 1e-10);
 }

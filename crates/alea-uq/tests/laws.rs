@@ -19,9 +19,17 @@ fn laws() -> Vec<(Box<dyn Marginal>, f64, f64)> {
         (m, v.sqrt())
     };
     vec![
-        (Box::new(Uniform::new(-1.0, 3.0).unwrap()), 1.0, 4.0 / 12f64.sqrt()),
+        (
+            Box::new(Uniform::new(-1.0, 3.0).unwrap()),
+            1.0,
+            4.0 / 12f64.sqrt(),
+        ),
         (Box::new(Normal::new(2.0, 0.5).unwrap()), 2.0, 0.5),
-        (Box::new(TruncatedNormal::new(1.0, 2.0, 0.0, 4.0).unwrap()), tn_mean.0, tn_mean.1),
+        (
+            Box::new(TruncatedNormal::new(1.0, 2.0, 0.0, 4.0).unwrap()),
+            tn_mean.0,
+            tn_mean.1,
+        ),
         (
             Box::new(TruncatedNormal::new(0.0, 1.0, 3.0, f64::INFINITY).unwrap()),
             // Mills ratio: E = phi(3)/(1 - Phi(3))
@@ -41,7 +49,11 @@ fn laws() -> Vec<(Box<dyn Marginal>, f64, f64)> {
             1.0 + 2.0 * 2.0 / 7.0,
             2.0 * (10.0f64 / (49.0 * 8.0)).sqrt(),
         ),
-        (Box::new(Gamma::new(3.0, 2.0, 1.0).unwrap()), 7.0, 3f64.sqrt() * 2.0),
+        (
+            Box::new(Gamma::new(3.0, 2.0, 1.0).unwrap()),
+            7.0,
+            3f64.sqrt() * 2.0,
+        ),
         (
             Box::new(Triangular::new(0.0, 1.0, 4.0).unwrap()),
             5.0 / 3.0,
@@ -62,11 +74,20 @@ fn cdf_of_quantile_is_identity() {
         for i in 1..200 {
             let p = i as f64 / 200.0;
             let x = law.quantile(p);
-            assert!((law.cdf(x) - p).abs() < 1e-11, "{}: p = {p}, cdf = {}", law.name(), law.cdf(x));
+            assert!(
+                (law.cdf(x) - p).abs() < 1e-11,
+                "{}: p = {p}, cdf = {}",
+                law.name(),
+                law.cdf(x)
+            );
         }
         for &p in &[1e-9, 1e-5, 1.0 - 1e-5] {
             let x = law.quantile(p);
-            assert!((law.cdf(x) - p).abs() < 1e-11 * p.max(1e-3), "{}: p = {p}", law.name());
+            assert!(
+                (law.cdf(x) - p).abs() < 1e-11 * p.max(1e-3),
+                "{}: p = {p}",
+                law.name()
+            );
         }
         assert!(law.quantile(-0.1).is_nan() && law.quantile(1.1).is_nan());
     }
@@ -75,8 +96,18 @@ fn cdf_of_quantile_is_identity() {
 #[test]
 fn moments_match_closed_forms() {
     for (law, mean, std) in laws() {
-        assert!((law.mean() - mean).abs() < 1e-12 * (1.0 + mean.abs()), "{} mean", law.name());
-        assert!((law.std() - std).abs() < 1e-12 * std, "{} std {} vs {}", law.name(), law.std(), std);
+        assert!(
+            (law.mean() - mean).abs() < 1e-12 * (1.0 + mean.abs()),
+            "{} mean",
+            law.name()
+        );
+        assert!(
+            (law.std() - std).abs() < 1e-12 * std,
+            "{} std {} vs {}",
+            law.name(),
+            law.std(),
+            std
+        );
         // Numerical moments of the pdf on [q(1e-15), q(1 - 1e-15)] in 400 panels.
         let (a, b) = (law.quantile(1e-15), law.quantile(1.0 - 1e-15));
         let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
@@ -90,9 +121,17 @@ fn moments_match_closed_forms() {
             m2 += r.integrate(|x| x[0] * x[0] * law.pdf(x[0]));
         }
         assert!((m0 - 1.0).abs() < 1e-7, "{} mass {m0}", law.name());
-        assert!((m1 - mean).abs() < 1e-7 * (1.0 + mean.abs()), "{} m1 {m1}", law.name());
+        assert!(
+            (m1 - mean).abs() < 1e-7 * (1.0 + mean.abs()),
+            "{} m1 {m1}",
+            law.name()
+        );
         let s = (m2 - m1 * m1).sqrt();
-        assert!((s - std).abs() < 1e-6 * std, "{} std {s} vs {std}", law.name());
+        assert!(
+            (s - std).abs() < 1e-6 * std,
+            "{} std {s} vs {std}",
+            law.name()
+        );
     }
 }
 
@@ -104,7 +143,11 @@ fn sample_moments_within_confidence_interval() {
         let x: Vec<f64> = (0..n).map(|_| law.sample(&mut rng)).collect();
         let m = x.iter().sum::<f64>() / n as f64;
         // 4.5 standard errors: a false alarm has probability 7e-6 for a given seed.
-        assert!((m - mean).abs() < 4.5 * std / (n as f64).sqrt(), "{}: {m} vs {mean}", law.name());
+        assert!(
+            (m - mean).abs() < 4.5 * std / (n as f64).sqrt(),
+            "{}: {m} vs {mean}",
+            law.name()
+        );
         let v = x.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (n - 1) as f64;
         assert!((v.sqrt() - std).abs() < 0.05 * std, "{}", law.name());
     }
@@ -118,8 +161,18 @@ fn invalid_laws_name_law_and_field() {
     assert!(e.to_string().contains("empty truncation"), "{e}");
     let e = TruncatedNormal::new(0.0, 1.0, 2.0, 1.0).unwrap_err();
     assert!(e.to_string().starts_with("truncated normal: hi"), "{e}");
-    assert!(Normal::new(0.0, 0.0).unwrap_err().to_string().contains("normal: std"));
-    assert!(Beta::new(0.0, 1.0, 0.0, 1.0).unwrap_err().to_string().contains("beta: alpha"));
+    assert!(
+        Normal::new(0.0, 0.0)
+            .unwrap_err()
+            .to_string()
+            .contains("normal: std")
+    );
+    assert!(
+        Beta::new(0.0, 1.0, 0.0, 1.0)
+            .unwrap_err()
+            .to_string()
+            .contains("beta: alpha")
+    );
     assert!(Uniform::new(1.0, 1.0).is_err());
     assert!(Triangular::new(0.0, 2.0, 1.0).is_err());
     assert!(Tabulated::new(vec![0.0, 1.0], vec![0.0, 0.0]).is_err());

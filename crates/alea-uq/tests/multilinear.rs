@@ -35,9 +35,17 @@ fn exact_on_multilinear_functions_with_hanging_nodes() {
         }
         // f = 1 + sum_j (j+1) x_j + prod_j x_j + x_0 x_{d-1}: multilinear.
         let f = |x: &[f64]| {
-            1.0 + x.iter().enumerate().map(|(j, v)| (j + 1) as f64 * v).sum::<f64>()
+            1.0 + x
+                .iter()
+                .enumerate()
+                .map(|(j, v)| (j + 1) as f64 * v)
+                .sum::<f64>()
                 + x.iter().product::<f64>()
-                + if x.len() > 1 { 3.0 * x[0] * x[x.len() - 1] } else { 0.0 }
+                + if x.len() > 1 {
+                    3.0 * x[0] * x[x.len() - 1]
+                } else {
+                    0.0
+                }
         };
         let v = values(&mesh, f);
         let mut rng = chunk_rng(1, d as u64);
@@ -112,7 +120,11 @@ fn second_order_convergence_on_smooth_function() {
     let (lx, ly): (Vec<f64>, Vec<f64>) = hs.iter().zip(&es).map(|(h, e)| (h.ln(), e.ln())).unzip();
     let mx = lx.iter().sum::<f64>() / n;
     let my = ly.iter().sum::<f64>() / n;
-    let slope = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum::<f64>()
+    let slope = lx
+        .iter()
+        .zip(&ly)
+        .map(|(x, y)| (x - mx) * (y - my))
+        .sum::<f64>()
         / lx.iter().map(|x| (x - mx).powi(2)).sum::<f64>();
     eprintln!("h {hs:?} max errors {es:?} slope {slope}");
     assert!((slope - 2.0).abs() < 0.15, "slope {slope}");
@@ -160,7 +172,11 @@ fn adaptive_beats_uniform_on_kinked_function() {
             })
             .collect();
         let max = ind.iter().map(|e| e.1).fold(0.0, f64::max);
-        let mark: Vec<usize> = ind.iter().filter(|e| e.1 >= 0.5 * max).map(|e| e.0).collect();
+        let mark: Vec<usize> = ind
+            .iter()
+            .filter(|e| e.1 >= 0.5 * max)
+            .map(|e| e.0)
+            .collect();
         let new = ada.refine(&mark).unwrap();
         assert!(!new.is_empty());
     }
@@ -171,7 +187,9 @@ fn adaptive_beats_uniform_on_kinked_function() {
     let (k1, e1) = uniform[i];
     let t = ((k_ada as f64).ln() - (k0 as f64).ln()) / ((k1 as f64).ln() - (k0 as f64).ln());
     let e_uni = (e0.ln() + t * (e1.ln() - e0.ln())).exp();
-    eprintln!("adaptive: {k_ada} runs, L2 error {e_ada:.3e}; uniform at equal runs {e_uni:.3e}; uniform {uniform:?}");
+    eprintln!(
+        "adaptive: {k_ada} runs, L2 error {e_ada:.3e}; uniform at equal runs {e_uni:.3e}; uniform {uniform:?}"
+    );
     assert!(e_ada < 0.5 * e_uni, "adaptive {e_ada} vs uniform {e_uni}");
     assert!(ada.num_hanging() > 0);
 }
@@ -194,7 +212,10 @@ fn refinement_returns_new_runs_and_keeps_old_ones() {
     // Refining the right neighbour frees the hanging node on the shared edge.
     let r = m.locate(&[0.9 + 0.25, 0.1]).unwrap();
     let new = m.refine(&[r]).unwrap();
-    assert!(new.iter().any(|n| (n.point[0] - 1.0).abs() < 1e-15 && (n.point[1] - 0.25).abs() < 1e-15));
+    assert!(
+        new.iter()
+            .any(|n| (n.point[0] - 1.0).abs() < 1e-15 && (n.point[1] - 0.25).abs() < 1e-15)
+    );
     // Still hanging: (0.5, 0.5) and (1.5, 0.5), on the edges of the two unrefined upper cells.
     assert_eq!(m.num_hanging(), 2);
     assert_eq!(new.len(), 4); // (1.5, 0.25), (1.5, 0), (2, 0.25) and the freed (1, 0.25)

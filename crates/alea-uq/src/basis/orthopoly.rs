@@ -81,7 +81,9 @@ impl OrthoPoly {
         Self {
             kind: PolyKind::Hermite,
             a: vec![0.0; n],
-            b: (0..n).map(|k| if k == 0 { 1.0 } else { k as f64 }).collect(),
+            b: (0..n)
+                .map(|k| if k == 0 { 1.0 } else { k as f64 })
+                .collect(),
             shift: mean,
             scale: std,
         }
@@ -124,8 +126,8 @@ impl OrthoPoly {
             if k == 1 {
                 rb[k] = 4.0 * (1.0 + p) * (1.0 + q) / ((2.0 + p + q).powi(2) * (3.0 + p + q));
             } else if k >= 2 {
-                rb[k] = 4.0 * kf * (kf + p) * (kf + q) * (kf + p + q)
-                    / (s * s * (s + 1.0) * (s - 1.0));
+                rb[k] =
+                    4.0 * kf * (kf + p) * (kf + q) * (kf + p + q) / (s * s * (s + 1.0) * (s - 1.0));
             }
         }
         Self {
@@ -236,7 +238,10 @@ impl OrthoPoly {
     /// If `out.len() > max_degree() + 1`.
     #[inline]
     pub fn eval_all(&self, x: f64, out: &mut [f64]) {
-        assert!(out.len() <= self.a.len(), "degree above the recurrence length");
+        assert!(
+            out.len() <= self.a.len(),
+            "degree above the recurrence length"
+        );
         let t = self.standardise(x);
         if out.is_empty() {
             return;
@@ -263,10 +268,7 @@ impl OrthoPoly {
             .map(|k| if k == 0 { 0.0 } else { self.b[k].sqrt() })
             .collect();
         let (nodes, z) = tridiagonal_eigen(d, e);
-        let x = nodes
-            .iter()
-            .map(|t| self.shift + self.scale * t)
-            .collect();
+        let x = nodes.iter().map(|t| self.shift + self.scale * t).collect();
         let w = z.iter().map(|v| v * v).collect();
         (x, w)
     }
@@ -358,7 +360,11 @@ mod tests {
         for i in 0..=deg {
             for j in 0..=deg {
                 let e = if i == j { 1.0 } else { 0.0 };
-                assert!((g[i * (deg + 1) + j] - e).abs() < 1e-10, "{:?} G[{i},{j}]", p.kind);
+                assert!(
+                    (g[i * (deg + 1) + j] - e).abs() < 1e-10,
+                    "{:?} G[{i},{j}]",
+                    p.kind
+                );
             }
         }
     }

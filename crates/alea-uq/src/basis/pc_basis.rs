@@ -103,7 +103,7 @@ impl PcBasis {
     /// If `points.len()` is not a multiple of `dim`.
     pub fn design_matrix(&self, points: &[f64]) -> Result<Vec<f64>> {
         let d = self.dim();
-        if points.len() % d != 0 {
+        if !points.len().is_multiple_of(d) {
             return Err(crate::UqError::Invalid {
                 what: "PC basis",
                 message: format!("points length {} is not a multiple of {d}", points.len()),

@@ -20,7 +20,7 @@ pub fn monte_carlo(law: &dyn JointLaw, n: usize, seed: u64) -> Design {
                 for v in u.iter_mut() {
                     *v = open01(&mut rng);
                 }
-                law.from_unit(&u, x);
+                law.unit_to_x(&u, x);
             }
         });
     Design { dim: d, points }

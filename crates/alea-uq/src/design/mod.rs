@@ -38,10 +38,13 @@ impl Design {
     /// # Errors
     /// If `points.len()` is not a multiple of `dim` or `dim == 0`.
     pub fn new(dim: usize, points: Vec<f64>) -> crate::Result<Self> {
-        if dim == 0 || points.len() % dim != 0 {
+        if dim == 0 || !points.len().is_multiple_of(dim) {
             return Err(crate::UqError::Invalid {
                 what: "design",
-                message: format!("{} values do not form points of dimension {dim}", points.len()),
+                message: format!(
+                    "{} values do not form points of dimension {dim}",
+                    points.len()
+                ),
             });
         }
         Ok(Self { dim, points })
@@ -70,11 +73,15 @@ impl Design {
     pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
         self.points.chunks_exact(self.dim)
     }
-    /// Map unit-cube points through `law.from_unit`.
+    /// Map unit-cube points through `law.unit_to_x`.
     pub fn map_from_unit(&self, law: &dyn JointLaw) -> Design {
         let mut out = vec![0.0; self.points.len()];
-        for (u, x) in self.points.chunks_exact(self.dim).zip(out.chunks_exact_mut(self.dim)) {
-            law.from_unit(u, x);
+        for (u, x) in self
+            .points
+            .chunks_exact(self.dim)
+            .zip(out.chunks_exact_mut(self.dim))
+        {
+            law.unit_to_x(u, x);
         }
         Design {
             dim: self.dim,

@@ -12,15 +12,15 @@ use std::sync::Arc;
 ///
 /// # Errors
 /// If `n` exceeds the size of the tensor grid of roots, or polynomial generation fails.
-pub fn pc_collocation(
-    marginals: &[Arc<dyn Marginal>],
-    degree: usize,
-    n: usize,
-) -> Result<Design> {
+pub fn pc_collocation(marginals: &[Arc<dyn Marginal>], degree: usize, n: usize) -> Result<Design> {
     let d = marginals.len();
     let roots = marginals
         .iter()
-        .map(|m| Ok(OrthoPoly::for_marginal(m.as_ref(), degree + 1)?.gauss(degree + 1).0))
+        .map(|m| {
+            Ok(OrthoPoly::for_marginal(m.as_ref(), degree + 1)?
+                .gauss(degree + 1)
+                .0)
+        })
         .collect::<Result<Vec<_>>>()?;
     let total = (degree + 1).pow(d as u32);
     if n > total || d == 0 {

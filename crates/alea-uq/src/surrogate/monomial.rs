@@ -27,7 +27,7 @@ impl MonomialSurface {
     /// If sizes are inconsistent or the system is rank deficient (too few / degenerate points).
     pub fn fit(dim: usize, degree: usize, points: &[f64]) -> Result<Self> {
         let set = MultiIndexSet::total_degree(dim, degree)?;
-        if points.len() % dim != 0 || points.is_empty() {
+        if !points.len().is_multiple_of(dim) || points.is_empty() {
             return Err(UqError::Invalid {
                 what: "monomial response surface",
                 message: format!("points length {} is not a multiple of {dim}", points.len()),

@@ -21,7 +21,7 @@
 //! their index, so run arrays only grow.
 //!
 //! The mesh can live on the physical box or on the probability-space cube `[0, 1]^d` (then
-//! evaluate at `u = T(x)` from [`JointLaw::to_unit`](crate::joint::JointLaw::to_unit)).
+//! evaluate at `u = T(x)` from [`JointLaw::x_to_unit`](crate::joint::JointLaw::x_to_unit)).
 //! Integer coordinates: a root cell spans `2^MAX_LEVEL` units, so node keys are exact.
 
 use super::LinearSurrogate;
@@ -384,7 +384,9 @@ impl StochasticMesh {
                 for j in 0..d {
                     key[j] += m[j] * half;
                 }
-                self.nodes.entry(key).or_insert(NodeKind::Hanging(usize::MAX));
+                self.nodes
+                    .entry(key)
+                    .or_insert(NodeKind::Hanging(usize::MAX));
                 for mj in m.iter_mut().take(d) {
                     *mj += 1;
                     if *mj < 3 {
@@ -474,10 +476,14 @@ impl StochasticMesh {
         if let Some(v) = memo.get(key) {
             return Ok(v.clone());
         }
-        let kind = self.nodes.get(key).copied().ok_or_else(|| UqError::Invalid {
-            what: "stochastic mesh",
-            message: "internal error: missing node".into(),
-        })?;
+        let kind = self
+            .nodes
+            .get(key)
+            .copied()
+            .ok_or_else(|| UqError::Invalid {
+                what: "stochastic mesh",
+                message: "internal error: missing node".into(),
+            })?;
         let out = match kind {
             NodeKind::Run(k) => vec![(k, 1.0)],
             NodeKind::Hanging(m) => {
@@ -574,7 +580,10 @@ impl StochasticMesh {
             .into_par_iter()
             .map(|c| {
                 let (a, b) = self.cell_bounds(c);
-                Ok((c, QuadratureRule::gauss_legendre_box(&a, &b, order)?.integrate(&f)))
+                Ok((
+                    c,
+                    QuadratureRule::gauss_legendre_box(&a, &b, order)?.integrate(&f),
+                ))
             })
             .collect()
     }

@@ -208,7 +208,11 @@ impl PcSurrogate {
         let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (self.k as f64 - 1.0);
         let mut s = 0.0;
         for i in 0..self.k {
-            let fitted: f64 = psi[i * p..(i + 1) * p].iter().zip(&c).map(|(a, b)| a * b).sum();
+            let fitted: f64 = psi[i * p..(i + 1) * p]
+                .iter()
+                .zip(&c)
+                .map(|(a, b)| a * b)
+                .sum();
             let r = (values[i] - fitted) / (1.0 - h[i]);
             s += r * r;
         }
