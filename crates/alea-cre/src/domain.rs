@@ -1,0 +1,119 @@
+//! The CRE estimate of one domain (a whole structure, or one isolated substructure).
+
+use alea_fem::{Constraints, DofMap, Model};
+use rayon::prelude::*;
+
+use crate::CreError;
+use crate::data::{LoadData, SideForces};
+use crate::eet::phase1::{EdgeTractions, Phase1Input, phase1};
+use crate::eet::phase2::{ElementStress, element};
+
+/// Estimator options.
+#[derive(Clone, Copy, Debug)]
+pub struct CreOptions {
+    /// Extra degree `k` of the phase-2 local spaces (degree `p + k`); 3 as in the thesis.
+    pub extra_degree: usize,
+    /// Relative tolerance of the interface admissibility checks (3.27).
+    pub admissibility_tolerance: f64,
+}
+
+impl Default for CreOptions {
+    fn default() -> Self {
+        CreOptions {
+            extra_degree: 3,
+            admissibility_tolerance: 1e-8,
+        }
+    }
+}
+
+/// Estimate on one domain.
+#[derive(Clone, Debug)]
+pub struct DomainEstimate {
+    /// `theta = (sum_E theta_E^2)^(1/2) = ||sigma_hat - sigma_h||_{K^-1}`.
+    pub theta: f64,
+    /// `theta_E` of each cell.
+    pub element_theta: Vec<f64>,
+    /// Energy norm of the FE solution `||u_h||_K = (int sigma_h : eps_h)^(1/2)`.
+    pub energy_norm: f64,
+    /// Largest relative residual of the phase-1 node systems (0 when the FE solution is in
+    /// equilibrium with the given loads).
+    pub compatibility_defect: f64,
+    /// Largest relative out-of-balance of the element loads of phase 2.
+    pub balance_defect: f64,
+    /// Phase-1 edge tractions.
+    pub tractions: EdgeTractions,
+    /// Phase-2 admissible stress of each cell.
+    pub stresses: Vec<ElementStress>,
+}
+
+impl DomainEstimate {
+    /// Energy density of the error per cell, `theta_E^2 / |E|` (for plots).
+    pub fn error_density(&self, model: &Model) -> Vec<f64> {
+        self.element_theta
+            .iter()
+            .enumerate()
+            .map(|(c, t)| {
+                let m = model.mesh.cell_measure(c) * model.analysis.thickness();
+                if m > 0.0 { t * t / m } else { 0.0 }
+            })
+            .collect()
+    }
+}
+
+/// Estimates the error of the FE displacement `u` of `model` under `constraints` and `loads`.
+/// `u_hat = u_h` must be kinematically admissible: the constraints hold exactly (they do for
+/// the FE solution when the prescribed values are those of the exact problem).
+pub fn estimate_domain(
+    model: &Model,
+    constraints: &Constraints,
+    loads: &LoadData,
+    u: &[f64],
+    options: &CreOptions,
+) -> Result<DomainEstimate, CreError> {
+    let dofs = DofMap::for_mesh(&model.mesh, constraints)?;
+    estimate_with_sides(model, &dofs, loads, &[], u, options)
+}
+
+/// As [`estimate_domain`], with discrete interface forces on facet groups (substructures).
+pub fn estimate_with_sides(
+    model: &Model,
+    dofs: &DofMap,
+    loads: &LoadData,
+    sides: &[SideForces],
+    u: &[f64],
+    options: &CreOptions,
+) -> Result<DomainEstimate, CreError> {
+    model.check()?;
+    if let Some(i) = u.iter().position(|v| !v.is_finite()) {
+        return Err(CreError::Invalid(format!(
+            "displacement entry {i} is not finite"
+        )));
+    }
+    let tr = phase1(&Phase1Input {
+        model,
+        dofs,
+        u,
+        body: loads.body.as_ref(),
+        tractions: &loads.tractions,
+        sides,
+    })?;
+    let degree = 1 + options.extra_degree.max(1);
+    let per: Vec<_> = (0..model.mesh.num_cells())
+        .into_par_iter()
+        .map(|c| element(model, c, u, loads.body.as_ref(), &tr, degree))
+        .collect::<Result<_, _>>()?;
+    let theta2: f64 = per.iter().map(|r| r.theta2).sum();
+    let energy2: f64 = per.iter().map(|r| r.energy2).sum();
+    let balance_defect = per.iter().fold(0.0f64, |m, r| m.max(r.balance_defect));
+    let element_theta = per.iter().map(|r| r.theta2.max(0.0).sqrt()).collect();
+    let stresses = per.into_iter().map(|r| r.stress).collect();
+    Ok(DomainEstimate {
+        theta: theta2.max(0.0).sqrt(),
+        element_theta,
+        energy_norm: energy2.max(0.0).sqrt(),
+        compatibility_defect: tr.compatibility_defect,
+        balance_defect,
+        tractions: tr,
+        stresses,
+    })
+}

@@ -1,0 +1,6 @@
+//! The standard EET technique (Ladeveze-Leguillon 1983; Ladeveze-Pelle 2004 ch. 2; thesis
+//! 3.1.1.4 b): phase 1 ([`phase1`]) builds equilibrated edge tractions, phase 2 ([`phase2`])
+//! the admissible stress element by element.
+
+pub mod phase1;
+pub mod phase2;

@@ -1,0 +1,537 @@
+//! EET phase 1: traction densities on the element edges (thesis (3.20)-(3.22)).
+//!
+//! With `phi_i` the FE shape function of node `i` and `Q_E(i) = int_E sigma_h : eps(phi_i) -
+//! int_E f phi_i` (a vector: one entry per direction), the prolongation condition (3.21) and the
+//! element equilibrium (3.20) give, for every element `E` around node `i` ((3.22)):
+//!
+//! `sum_{Gamma in dE, i in Gamma} eta_E b_(i,Gamma) = Q_E(i)`,  `b_(i,Gamma) = int_Gamma F_hat phi_i dS`.
+//!
+//! Node by node this is a small system (one equation per element around the node, one unknown
+//! per edge around it, per direction). Unknowns: interior edges, and boundary edges in the
+//! directions constrained at all their nodes (the reaction is free there); on the other
+//! boundary edges `b` is data: prescribed tractions, interface densities (see
+//! [`interface_densities`]) or zero on free edges. The systems are singular (interior nodes) but
+//! compatible when `u_h` is the FE solution for these loads: the node's equation sum is its FE
+//! equilibrium. Among the solutions we take the one closest (Euclidean) to the projections of the
+//! averaged FE tractions `b_bar = int_Gamma 1/2 (sigma_h|E + sigma_h|E') n phi_i`, the usual
+//! minimisation of Ladeveze-Leguillon. A non-zero residual (incompatible data) is reported as
+//! the compatibility defect. Directions are taken node by node in the frame of the node's
+//! constraints (free directions, then constrained ones), so skew constraints are handled.
+//!
+//! On a straight 2-node edge the density of degree 1 is recovered from its two projections:
+//! `F_a = (2 / L) (2 b_a - b_b)`. Everything is per unit thickness.
+
+use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
+use alea_mesh::Mesh;
+
+use crate::CreError;
+use crate::data::{SideForces, TractionField, VectorField};
+use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
+use crate::linalg::least_change;
+use crate::topology::Topology;
+
+/// Data part of an edge's density.
+#[derive(Clone, Copy, Debug)]
+pub struct EdgeData {
+    /// Index of the traction field in the domain's load data.
+    pub field: usize,
+    /// Projector applied to the field (removes directions constrained along the edge).
+    pub projector: [[f64; 2]; 2],
+}
+
+/// Density on one edge (first-cell orientation: the traction exerted on the edge's first cell).
+#[derive(Clone, Debug, Default)]
+pub struct EdgeDensity {
+    /// Linear part: values at the edge's two nodes.
+    pub lin: [[f64; 2]; 2],
+    /// Prescribed-traction part (possibly non-polynomial).
+    pub data: Vec<EdgeData>,
+}
+
+/// Result of phase 1.
+#[derive(Clone)]
+pub struct EdgeTractions {
+    /// Mesh edges.
+    pub topo: Topology,
+    /// Density of each edge.
+    pub density: Vec<EdgeDensity>,
+    /// Prescribed traction fields (indexed by [`EdgeData::field`]).
+    pub fields: Vec<TractionField>,
+    /// Largest relative residual of the node systems (0 when compatible).
+    pub compatibility_defect: f64,
+}
+
+impl std::fmt::Debug for EdgeTractions {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EdgeTractions")
+            .field("edges", &self.density.len())
+            .field("compatibility_defect", &self.compatibility_defect)
+            .finish()
+    }
+}
+
+impl EdgeTractions {
+    /// Traction on edge `e`'s first cell at parameter `s in [0, 1]` (from `nodes[0]`), physical
+    /// point `x` and first-cell outward normal `n`.
+    pub fn traction(&self, e: usize, s: f64, x: [f64; 3], n: [f64; 2]) -> [f64; 2] {
+        let d = &self.density[e];
+        let mut t = [
+            (1.0 - s) * d.lin[0][0] + s * d.lin[1][0],
+            (1.0 - s) * d.lin[0][1] + s * d.lin[1][1],
+        ];
+        for ed in &d.data {
+            let v = (self.fields[ed.field])(x, [n[0], n[1], 0.0]);
+            let p = ed.projector;
+            t[0] += p[0][0] * v[0] + p[0][1] * v[1];
+            t[1] += p[1][0] * v[0] + p[1][1] * v[1];
+        }
+        t
+    }
+}
+
+/// Inputs of phase 1 for one domain.
+pub struct Phase1Input<'a> {
+    /// Model (materials already scaled).
+    pub model: &'a Model,
+    /// Constraints of the domain.
+    pub dofs: &'a DofMap,
+    /// FE displacement, node-major.
+    pub u: &'a [f64],
+    /// Body force.
+    pub body: Option<&'a VectorField>,
+    /// Prescribed tractions by facet group.
+    pub tractions: &'a [(String, TractionField)],
+    /// Discrete interface forces by side.
+    pub sides: &'a [SideForces],
+}
+
+/// Per node: orthonormal frame (rows) and the number of free directions (the rest are
+/// constrained).
+fn node_frames(dofs: &DofMap, nn: usize) -> Vec<([[f64; 2]; 2], usize)> {
+    let mut scratch = vec![0.0; dofs.num_free()];
+    (0..nn)
+        .map(|n| {
+            if dofs.is_free_node(n) {
+                return ([[1.0, 0.0], [0.0, 1.0]], 2);
+            }
+            let r = dofs.node_dofs(n);
+            let nf = r.len();
+            let mut free = [[0.0; 2]; 2];
+            for c in 0..2 {
+                let mut v = [0.0; 3];
+                v[c] = 1.0;
+                dofs.add_node_force(n, &v, &mut scratch);
+                for (i, g) in r.clone().enumerate() {
+                    free[i][c] = scratch[g];
+                    scratch[g] = 0.0;
+                }
+            }
+            match nf {
+                0 => ([[1.0, 0.0], [0.0, 1.0]], 0),
+                1 => {
+                    let t = free[0];
+                    ([t, [-t[1], t[0]]], 1)
+                }
+                _ => ([[1.0, 0.0], [0.0, 1.0]], 2),
+            }
+        })
+        .collect()
+}
+
+/// True if direction `d` is constrained at a node with frame `f`.
+fn constrained(f: &([[f64; 2]; 2], usize), d: [f64; 2]) -> bool {
+    let free_part: f64 = (0..f.1)
+        .map(|k| (f.0[k][0] * d[0] + f.0[k][1] * d[1]).powi(2))
+        .sum();
+    free_part < 1e-12
+}
+
+/// Linear densities on the edges of each interface side whose consistent nodal forces equal the
+/// given discrete forces: `M t = g / thickness`, `M` the consistent edge mass of the side (1D,
+/// symmetric positive definite), solved by Jacobi-preconditioned conjugate gradients to round-off.
+/// Returns, per edge of the side, the nodal values `[t_a, t_b]` in edge-node order.
+pub fn interface_densities(
+    mesh: &Mesh,
+    topo: &Topology,
+    side: &SideForces,
+    thickness: f64,
+) -> Result<Vec<(usize, [[f64; 2]; 2])>, CreError> {
+    let facets = mesh.facet_group(&side.group)?;
+    let mut local: std::collections::HashMap<usize, usize> = Default::default();
+    for (i, &n) in side.nodes.iter().enumerate() {
+        local.insert(n, i);
+    }
+    if side.forces.len() != side.nodes.len() {
+        return Err(CreError::Invalid(format!(
+            "side '{}': {} forces for {} nodes",
+            side.group,
+            side.forces.len(),
+            side.nodes.len()
+        )));
+    }
+    let n = side.nodes.len();
+    let mut edges = Vec::new();
+    let mut diag = vec![0.0; n];
+    for f in facets {
+        let (a, b) = (f.nodes[0], f.nodes[1]);
+        let e = topo.find(a, b).ok_or_else(|| {
+            CreError::Invalid(format!(
+                "facet ({a}, {b}) of '{}' is not a mesh edge",
+                side.group
+            ))
+        })?;
+        let (ia, ib) = match (local.get(&a), local.get(&b)) {
+            (Some(&ia), Some(&ib)) => (ia, ib),
+            _ => {
+                return Err(CreError::Invalid(format!(
+                    "facet ({a}, {b}) of '{}' has a node without interface force",
+                    side.group
+                )));
+            }
+        };
+        let (_, len, _) = topo.geometry(mesh, e);
+        // Oriented like the mesh edge.
+        let (i0, i1) = if topo.edges[e].nodes[0] == a {
+            (ia, ib)
+        } else {
+            (ib, ia)
+        };
+        diag[i0] += len / 3.0;
+        diag[i1] += len / 3.0;
+        edges.push((e, i0, i1, len));
+    }
+    let apply = |x: &[f64], y: &mut [f64]| {
+        y.fill(0.0);
+        for &(_, i0, i1, len) in &edges {
+            y[i0] += len / 6.0 * (2.0 * x[i0] + x[i1]);
+            y[i1] += len / 6.0 * (x[i0] + 2.0 * x[i1]);
+        }
+    };
+    let mut t = vec![[0.0; 2]; n];
+    for c in 0..2 {
+        let g: Vec<f64> = side.forces.iter().map(|f| f[c] / thickness).collect();
+        let mut x = vec![0.0; n];
+        let mut r = g.clone();
+        let mut z: Vec<f64> = r
+            .iter()
+            .zip(&diag)
+            .map(|(r, d)| if *d > 0.0 { r / d } else { 0.0 })
+            .collect();
+        let mut p = z.clone();
+        let mut ap = vec![0.0; n];
+        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+        let gnorm = g.iter().map(|v| v * v).sum::<f64>().sqrt();
+        for _ in 0..4 * n + 20 {
+            if r.iter().map(|v| v * v).sum::<f64>().sqrt() <= 1e-15 * gnorm {
+                break;
+            }
+            apply(&p, &mut ap);
+            let pap: f64 = p.iter().zip(&ap).map(|(a, b)| a * b).sum();
+            if !(pap > 0.0) {
+                break;
+            }
+            let alpha = rz / pap;
+            for i in 0..n {
+                x[i] += alpha * p[i];
+                r[i] -= alpha * ap[i];
+            }
+            for i in 0..n {
+                z[i] = if diag[i] > 0.0 { r[i] / diag[i] } else { 0.0 };
+            }
+            let rz2: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+            let beta = rz2 / rz;
+            rz = rz2;
+            for i in 0..n {
+                p[i] = z[i] + beta * p[i];
+            }
+        }
+        for i in 0..n {
+            t[i][c] = x[i];
+        }
+    }
+    Ok(edges
+        .iter()
+        .map(|&(e, i0, i1, _)| (e, [t[i0], t[i1]]))
+        .collect())
+}
+
+/// Runs phase 1 on one domain.
+pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
+    let model = inp.model;
+    let mesh = &model.mesh;
+    if mesh.dim != 2 {
+        return Err(CreError::Invalid("the EET estimator is 2D only".into()));
+    }
+    let nn = mesh.num_nodes();
+    if inp.u.len() != 2 * nn {
+        return Err(CreError::Invalid(format!(
+            "displacement of length {} for {nn} nodes",
+            inp.u.len()
+        )));
+    }
+    let topo = Topology::new(mesh)?;
+    let th = model.analysis.thickness();
+    let frames = node_frames(inp.dofs, nn);
+    let ne = topo.edges.len();
+    let mut density = vec![EdgeDensity::default(); ne];
+
+    // Edge-constrained projector of boundary edges: P = I - sum q q^T over the directions
+    // constrained at both nodes.
+    let edge_projector = |e: usize| -> [[f64; 2]; 2] {
+        let [a, b] = topo.edges[e].nodes;
+        let mut p = [[1.0, 0.0], [0.0, 1.0]];
+        let fa = &frames[a];
+        for k in fa.1..2 {
+            let q = fa.0[k];
+            if constrained(&frames[b], q) {
+                for i in 0..2 {
+                    for j in 0..2 {
+                        p[i][j] -= q[i] * q[j];
+                    }
+                }
+            }
+        }
+        p
+    };
+
+    // Known projections b on boundary edges: b_known[e][node] (vector).
+    let mut b_known = vec![[[0.0; 2]; 2]; ne];
+    let line_rule = Quadrature::for_cell(alea_mesh::CellType::Line2, 4);
+    for (fi, (group, field)) in inp.tractions.iter().enumerate() {
+        for f in mesh.facet_group(group)? {
+            let e = topo.find(f.nodes[0], f.nodes[1]).ok_or_else(|| {
+                CreError::Invalid(format!(
+                    "facet {:?} of '{group}' is not a mesh edge",
+                    f.nodes
+                ))
+            })?;
+            if !topo.edges[e].is_boundary() {
+                return Err(CreError::Invalid(format!(
+                    "traction group '{group}' contains the interior edge {:?}",
+                    f.nodes
+                )));
+            }
+            let projector = edge_projector(e);
+            density[e].data.push(EdgeData {
+                field: fi,
+                projector,
+            });
+            let (n, len, [xa, xb]) = topo.geometry(mesh, e);
+            for (xi, w) in line_rule.points.iter().zip(&line_rule.weights) {
+                let s = 0.5 * (xi[0] + 1.0);
+                let x = [
+                    (1.0 - s) * xa[0] + s * xb[0],
+                    (1.0 - s) * xa[1] + s * xb[1],
+                    0.0,
+                ];
+                let v = field(x, [n[0], n[1], 0.0]);
+                let pv = [
+                    projector[0][0] * v[0] + projector[0][1] * v[1],
+                    projector[1][0] * v[0] + projector[1][1] * v[1],
+                ];
+                let dl = 0.5 * w * len;
+                for c in 0..2 {
+                    b_known[e][0][c] += dl * (1.0 - s) * pv[c];
+                    b_known[e][1][c] += dl * s * pv[c];
+                }
+            }
+        }
+    }
+    for side in inp.sides {
+        for (e, t) in interface_densities(mesh, &topo, side, th)? {
+            if !topo.edges[e].is_boundary() {
+                return Err(CreError::Invalid(format!(
+                    "interface side '{}' contains an interior edge",
+                    side.group
+                )));
+            }
+            let p = edge_projector(e);
+            let (_, len, _) = topo.geometry(mesh, e);
+            let pt = [
+                [
+                    p[0][0] * t[0][0] + p[0][1] * t[0][1],
+                    p[1][0] * t[0][0] + p[1][1] * t[0][1],
+                ],
+                [
+                    p[0][0] * t[1][0] + p[0][1] * t[1][1],
+                    p[1][0] * t[1][0] + p[1][1] * t[1][1],
+                ],
+            ];
+            for c in 0..2 {
+                density[e].lin[0][c] += pt[0][c];
+                density[e].lin[1][c] += pt[1][c];
+                b_known[e][0][c] += len / 6.0 * (2.0 * pt[0][c] + pt[1][c]);
+                b_known[e][1][c] += len / 6.0 * (pt[0][c] + 2.0 * pt[1][c]);
+            }
+        }
+    }
+
+    // Element residuals Q_E(i) (per unit thickness) and FE stresses along the edges.
+    let ncell = mesh.num_cells();
+    let mut q_res: Vec<Vec<[f64; 2]>> = Vec::with_capacity(ncell);
+    let mut ke = Vec::new();
+    for c in 0..ncell {
+        let kind = mesh.cell_type(c);
+        let nodes = mesh.cell_nodes(c);
+        let coords = model.cell_coords(c);
+        alea_fem::assembly::element_stiffness(model, c, &mut ke)?;
+        let m = nodes.len() * 2;
+        let ue: Vec<f64> = nodes
+            .iter()
+            .flat_map(|&n| [inp.u[2 * n], inp.u[2 * n + 1]])
+            .collect();
+        let mut q = vec![[0.0; 2]; nodes.len()];
+        for a in 0..nodes.len() {
+            for ca in 0..2 {
+                let r = a * 2 + ca;
+                q[a][ca] = (0..m).map(|j| ke[r * m + j] * ue[j]).sum::<f64>() / th;
+            }
+        }
+        if let Some(body) = inp.body {
+            let rule = Quadrature::for_cell(kind, 2 * kind.order() + 2);
+            for (xi, w) in rule.points.iter().zip(&rule.weights) {
+                let g = point_geometry(kind, &coords, *xi);
+                let b = body(g.x);
+                for a in 0..nodes.len() {
+                    for ca in 0..2 {
+                        q[a][ca] -= w * g.det * g.n[a] * b[ca];
+                    }
+                }
+            }
+        }
+        q_res.push(q);
+    }
+    // b_bar: averaged FE traction projections, per edge and edge node (first orientation).
+    let rule = gauss01(3);
+    let mut b_bar = vec![[[0.0; 2]; 2]; ne];
+    for (e, edge) in topo.edges.iter().enumerate() {
+        let (n, len, _) = topo.geometry(mesh, e);
+        let share = 1.0 / edge.cells.len() as f64;
+        for (k, &(c, l)) in edge.cells.iter().enumerate() {
+            let kind = mesh.cell_type(c);
+            let coords = model.cell_coords(c);
+            let nodes = mesh.cell_nodes(c);
+            let ue: Vec<f64> = nodes
+                .iter()
+                .flat_map(|&nd| [inp.u[2 * nd], inp.u[2 * nd + 1]])
+                .collect();
+            let d = hooke(model.material(c)?, model.analysis);
+            for &(s, w) in &rule {
+                // The second cell runs along the edge in the opposite direction.
+                let s_cell = if k == 0 { s } else { 1.0 - s };
+                let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, l, s_cell));
+                let t = traction_of(&mul3(&d, &eps), n);
+                for c2 in 0..2 {
+                    b_bar[e][0][c2] += share * w * len * (1.0 - s) * t[c2];
+                    b_bar[e][1][c2] += share * w * len * s * t[c2];
+                }
+            }
+        }
+    }
+
+    // Node systems.
+    let mut b_unknown = vec![[[0.0; 2]; 2]; ne];
+    let mut defect: f64 = 0.0;
+    for i in 0..nn {
+        let cells = &topo.node_cells[i];
+        if cells.is_empty() {
+            continue;
+        }
+        let edges = &topo.node_edges[i];
+        let frame = &frames[i];
+        let slot = |e: usize| if topo.edges[e].nodes[0] == i { 0 } else { 1 };
+        for d in 0..2 {
+            let r = frame.0[d];
+            let is_constrained_dir = d >= frame.1;
+            // Unknown edges in this direction.
+            let unknown: Vec<usize> = edges
+                .iter()
+                .copied()
+                .filter(|&e| {
+                    let ed = &topo.edges[e];
+                    !ed.is_boundary()
+                        || (is_constrained_dir
+                            && ed.nodes.iter().all(|&nd| constrained(&frames[nd], r)))
+                })
+                .collect();
+            let m = cells.len();
+            let nu = unknown.len();
+            let mut a = vec![0.0; m * nu];
+            let mut rhs = vec![0.0; m];
+            let mut scale = 0.0;
+            for (row, &c) in cells.iter().enumerate() {
+                let a_loc = mesh
+                    .cell_nodes(c)
+                    .iter()
+                    .position(|&nd| nd == i)
+                    .unwrap_or(0);
+                let qv = q_res[c][a_loc];
+                rhs[row] = qv[0] * r[0] + qv[1] * r[1];
+                scale += rhs[row].abs();
+                for &(e, eta) in &topo.cell_edges[c] {
+                    if !topo.edges[e].nodes.contains(&i) {
+                        continue;
+                    }
+                    if let Some(col) = unknown.iter().position(|&u| u == e) {
+                        a[row * nu + col] += eta;
+                    } else {
+                        let bk = b_known[e][slot(e)];
+                        rhs[row] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
+                    }
+                }
+            }
+            let x_bar: Vec<f64> = unknown
+                .iter()
+                .map(|&e| {
+                    let bb = b_bar[e][slot(e)];
+                    bb[0] * r[0] + bb[1] * r[1]
+                })
+                .collect();
+            // Weighted minimisation sum_Gamma (x - x_bar)^2 / L_Gamma: substitute
+            // x = sqrt(L) y and minimise |y - y_bar|^2.
+            let sq: Vec<f64> = unknown
+                .iter()
+                .map(|&e| topo.geometry(mesh, e).1.sqrt())
+                .collect();
+            for row in 0..m {
+                for col in 0..nu {
+                    a[row * nu + col] *= sq[col];
+                }
+            }
+            let y_bar: Vec<f64> = x_bar.iter().zip(&sq).map(|(x, s)| x / s).collect();
+            let (mut x, res) = least_change(&a, m, nu, &rhs, &y_bar);
+            for (v, s) in x.iter_mut().zip(&sq) {
+                *v *= s;
+            }
+            let known_scale: f64 = edges
+                .iter()
+                .map(|&e| {
+                    let bk = b_known[e][slot(e)];
+                    (bk[0] * r[0] + bk[1] * r[1]).abs()
+                })
+                .sum();
+            let denom = scale + known_scale;
+            if denom > 0.0 {
+                defect = defect.max(res / denom);
+            }
+            for (col, &e) in unknown.iter().enumerate() {
+                let s = slot(e);
+                b_unknown[e][s][0] += x[col] * r[0];
+                b_unknown[e][s][1] += x[col] * r[1];
+            }
+        }
+    }
+    for (e, bu) in b_unknown.iter().enumerate() {
+        let (_, len, _) = topo.geometry(mesh, e);
+        for c in 0..2 {
+            density[e].lin[0][c] += 2.0 / len * (2.0 * bu[0][c] - bu[1][c]);
+            density[e].lin[1][c] += 2.0 / len * (2.0 * bu[1][c] - bu[0][c]);
+        }
+    }
+    Ok(EdgeTractions {
+        topo,
+        density,
+        fields: inp.tractions.iter().map(|t| t.1.clone()).collect(),
+        compatibility_defect: defect,
+    })
+}

@@ -1,0 +1,155 @@
+//! Small dense linear algebra: Cholesky solve and the least-norm solution of small (possibly
+//! singular) systems through a symmetric eigendecomposition (cyclic Jacobi).
+
+/// Solves `a x = b` in place for a symmetric positive definite row-major `n x n` matrix `a`
+/// (overwritten by its Cholesky factor). Returns `false` if `a` is not positive definite.
+pub fn cholesky_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
+    for j in 0..n {
+        let mut d = a[j * n + j];
+        for k in 0..j {
+            d -= a[j * n + k] * a[j * n + k];
+        }
+        if !(d > 0.0) || !d.is_finite() {
+            return false;
+        }
+        let d = d.sqrt();
+        a[j * n + j] = d;
+        for i in j + 1..n {
+            let mut s = a[i * n + j];
+            for k in 0..j {
+                s -= a[i * n + k] * a[j * n + k];
+            }
+            a[i * n + j] = s / d;
+        }
+    }
+    for i in 0..n {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= a[i * n + k] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= a[k * n + i] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    true
+}
+
+/// Eigen-decomposition of a symmetric row-major `n x n` matrix by cyclic Jacobi rotations:
+/// returns `(eigenvalues, eigenvectors)` with eigenvector `k` in column `k` (row-major `v`).
+pub fn sym_eigen(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut a = a.to_vec();
+    let mut v = vec![0.0; n * n];
+    for i in 0..n {
+        v[i * n + i] = 1.0;
+    }
+    for _sweep in 0..60 {
+        let mut off = 0.0;
+        let mut diag = 0.0;
+        for i in 0..n {
+            diag += a[i * n + i] * a[i * n + i];
+            for j in i + 1..n {
+                off += a[i * n + j] * a[i * n + j];
+            }
+        }
+        if off <= 1e-30 * diag || off == 0.0 {
+            break;
+        }
+        for p in 0..n {
+            for q in p + 1..n {
+                let apq = a[p * n + q];
+                if apq == 0.0 {
+                    continue;
+                }
+                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for k in 0..n {
+                    let akp = a[k * n + p];
+                    let akq = a[k * n + q];
+                    a[k * n + p] = c * akp - s * akq;
+                    a[k * n + q] = s * akp + c * akq;
+                }
+                for k in 0..n {
+                    let apk = a[p * n + k];
+                    let aqk = a[q * n + k];
+                    a[p * n + k] = c * apk - s * aqk;
+                    a[q * n + k] = s * apk + c * aqk;
+                }
+                for k in 0..n {
+                    let vkp = v[k * n + p];
+                    let vkq = v[k * n + q];
+                    v[k * n + p] = c * vkp - s * vkq;
+                    v[k * n + q] = s * vkp + c * vkq;
+                }
+            }
+        }
+    }
+    ((0..n).map(|i| a[i * n + i]).collect(), v)
+}
+
+/// Least-change solution of the underdetermined (possibly singular) system `A x = c`
+/// (`m x n`, row-major): `x = x_bar + A^T lambda` with `lambda = (A A^T)^+ (c - A x_bar)`, i.e.
+/// the `x` closest to `x_bar` among the least-squares solutions. Returns `(x, |A x - c|)`.
+pub fn least_change(a: &[f64], m: usize, n: usize, c: &[f64], x_bar: &[f64]) -> (Vec<f64>, f64) {
+    let mut r: Vec<f64> = (0..m)
+        .map(|i| c[i] - (0..n).map(|j| a[i * n + j] * x_bar[j]).sum::<f64>())
+        .collect();
+    let mut aat = vec![0.0; m * m];
+    for i in 0..m {
+        for j in 0..m {
+            aat[i * m + j] = (0..n).map(|k| a[i * n + k] * a[j * n + k]).sum();
+        }
+    }
+    let (lam, v) = sym_eigen(&aat, m);
+    let lmax = lam.iter().fold(0.0f64, |s, &l| s.max(l.abs()));
+    let mut mult = vec![0.0; m];
+    for k in 0..m {
+        if lam[k] > 1e-11 * lmax && lam[k] > 0.0 {
+            let proj: f64 = (0..m).map(|i| v[i * m + k] * r[i]).sum::<f64>() / lam[k];
+            for i in 0..m {
+                mult[i] += proj * v[i * m + k];
+            }
+        }
+    }
+    let mut x = x_bar.to_vec();
+    for j in 0..n {
+        x[j] += (0..m).map(|i| a[i * n + j] * mult[i]).sum::<f64>();
+    }
+    for i in 0..m {
+        r[i] = c[i] - (0..n).map(|j| a[i * n + j] * x[j]).sum::<f64>();
+    }
+    let res = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+    (x, res)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cholesky_and_least_change() {
+        let mut a = vec![4.0, 1.0, 1.0, 3.0];
+        let mut b = vec![1.0, 2.0];
+        assert!(cholesky_solve(&mut a, &mut b, 2));
+        assert!((4.0 * b[0] + b[1] - 1.0).abs() < 1e-14);
+        assert!((b[0] + 3.0 * b[1] - 2.0).abs() < 1e-14);
+        // Interior-node-like system: 3 elements around a node, 3 edges (cyclic), singular but
+        // compatible (rhs sums to zero).
+        let a = vec![1.0, -1.0, 0.0, 0.0, 1.0, -1.0, -1.0, 0.0, 1.0];
+        let c = vec![1.0, 2.0, -3.0];
+        let (x, res) = least_change(&a, 3, 3, &c, &[5.0, 5.0, 5.0]);
+        assert!(res < 1e-12);
+        // The minimal change keeps the mean of x at 5.
+        assert!(((x[0] + x[1] + x[2]) / 3.0 - 5.0).abs() < 1e-12);
+        // Incompatible rhs: residual reported.
+        let (_, res) = least_change(&a, 3, 3, &[1.0, 1.0, 1.0], &[0.0; 3]);
+        assert!((res - 3f64.sqrt()).abs() < 1e-12);
+    }
+}
