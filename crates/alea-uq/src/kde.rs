@@ -171,32 +171,34 @@ pub fn isj(sorted: &[f64]) -> Option<f64> {
     let a2: Vec<f64> = a[1..].iter().map(|v| (v / 2.0).powi(2)).collect();
     // fixed_point returns t - xi gamma^[l](t); its root is t*.
     let g = |t: f64| fixed_point(t, n, &i2, &a2);
-    // Bracket the root on a logarithmic scan of (0, 0.1].
-    let mut prev_t = 1e-12;
-    let mut prev = g(prev_t);
+    // Bracket the root by a logarithmic scan of [1e-12, 0.1] from the top (g < 0 below the
+    // root, > 0 above; the sums are cheap for large t since their terms underflow early),
+    // then bisect in log t.
+    let steps = 120;
+    let t_at = |k: usize| 0.1 * (1e-12f64 / 0.1).powf(k as f64 / steps as f64);
     let mut bracket = None;
-    for k in 1..=120 {
-        let t = 1e-12 * (0.1f64 / 1e-12).powf(k as f64 / 120.0);
-        let v = g(t);
+    let mut prev = g(t_at(0));
+    for k in 1..=steps {
+        let v = g(t_at(k));
         if prev.is_finite() && v.is_finite() && prev.signum() != v.signum() {
-            bracket = Some((prev_t, t));
+            bracket = Some((t_at(k), t_at(k - 1)));
             break;
         }
-        prev_t = t;
         prev = v;
     }
-    let (mut a_t, mut b_t) = bracket?;
-    let mut ga = g(a_t);
-    for _ in 0..100 {
-        let m = 0.5 * (a_t + b_t);
-        let gm = g(m);
+    let (a_t, b_t) = bracket?;
+    let (mut la, mut lb) = (a_t.ln(), b_t.ln());
+    let ga = g(a_t);
+    for _ in 0..60 {
+        let m = 0.5 * (la + lb);
+        let gm = g(m.exp());
         if gm.signum() == ga.signum() {
-            a_t = m;
-            ga = gm;
+            la = m;
         } else {
-            b_t = m;
+            lb = m;
         }
     }
+    let (a_t, b_t) = (la.exp(), lb.exp());
     let t = 0.5 * (a_t + b_t);
     Some(t.sqrt() * r)
 }

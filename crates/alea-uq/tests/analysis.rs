@@ -77,6 +77,38 @@ fn kde_integrates_to_one_and_converges() {
 }
 
 #[test]
+fn isj_beats_silverman_on_bimodal_data() {
+    // 0.5 N(-3, 0.5^2) + 0.5 N(3, 0.5^2): Silverman's rule oversmooths (it sees sigma ~ 3).
+    let x = normal_sample(20_000, 11);
+    let y: Vec<f64> = x
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            if i % 2 == 0 {
+                -3.0 + 0.5 * v
+            } else {
+                3.0 + 0.5 * v
+            }
+        })
+        .collect();
+    let pdf = |t: f64| 0.5 * (norm_pdf((t + 3.0) / 0.5) + norm_pdf((t - 3.0) / 0.5)) / 0.5;
+    let pts: Vec<f64> = (0..801).map(|i| -6.0 + 12.0 * i as f64 / 800.0).collect();
+    let err = |k: &Kde| {
+        let f = k.eval(&pts);
+        (pts.iter()
+            .zip(&f)
+            .map(|(t, v)| (v - pdf(*t)).powi(2))
+            .sum::<f64>()
+            * 0.015)
+            .sqrt()
+    };
+    let es = err(&Kde::new(&y, Bandwidth::Silverman).unwrap());
+    let ei = err(&Kde::new(&y, Bandwidth::Isj).unwrap());
+    eprintln!("bimodal L2: Silverman {es:.3e}, ISJ {ei:.3e}");
+    assert!(ei < 0.5 * es, "ISJ {ei} vs Silverman {es}");
+}
+
+#[test]
 fn kde_binned_matches_direct() {
     let x = normal_sample(50_000, 7);
     let k = Kde::new(&x, Bandwidth::Silverman).unwrap();

@@ -71,6 +71,9 @@ pub struct StochasticMesh {
     hi: Vec<f64>,
     roots: Vec<usize>,
     cells: Vec<Cell>,
+    /// First child of each cell (`u32::MAX` for leaves): a compact copy of
+    /// `Cell::first_child` for cache-friendly point location.
+    child: Vec<u32>,
     nodes: HashMap<Key, NodeKind>,
     run_keys: Vec<Key>,
     run_points: Vec<f64>,
@@ -112,6 +115,7 @@ impl StochasticMesh {
             hi: hi.to_vec(),
             roots: roots.to_vec(),
             cells: Vec::new(),
+            child: Vec::new(),
             nodes: HashMap::new(),
             run_keys: Vec::new(),
             run_points: Vec::new(),
@@ -133,6 +137,7 @@ impl StochasticMesh {
                 level: 0,
                 first_child: None,
             });
+            m.child.push(u32::MAX);
         }
         let nnode: usize = roots.iter().map(|r| r + 1).product();
         for flat in 0..nnode {
@@ -248,7 +253,12 @@ impl StochasticMesh {
             stride *= self.roots[j];
         }
         let mut c = root;
-        while let Some(first) = self.cells[c].first_child {
+        loop {
+            let first = self.child[c];
+            if first == u32::MAX {
+                break;
+            }
+            let first = first as usize;
             let mut child = 0usize;
             for (j, tj) in t.iter_mut().enumerate().take(d) {
                 if *tj >= 0.5 {
@@ -375,8 +385,10 @@ impl StochasticMesh {
                     level,
                     first_child: None,
                 });
+                self.child.push(u32::MAX);
             }
             self.cells[c].first_child = Some(first);
+            self.child[c] = first as u32;
             // New nodes: o + half * m, m in {0, 1, 2}^d (placeholder kind, classified below).
             let mut m = [0u64; MAX_DIM];
             for _ in 0..3usize.pow(d as u32) {
