@@ -57,7 +57,8 @@ pub struct EdgeTractions {
     pub density: Vec<EdgeDensity>,
     /// Prescribed traction fields (indexed by [`EdgeData::field`]).
     pub fields: Vec<TractionField>,
-    /// Largest relative residual of the node systems (0 when compatible).
+    /// Largest residual of the node systems relative to the largest node load (sum of the
+    /// absolute element residuals and data at a node) of the domain: 0 when compatible.
     pub compatibility_defect: f64,
 }
 
@@ -431,7 +432,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
 
     // Node systems.
     let mut b_unknown = vec![[[0.0; 2]; 2]; ne];
-    let mut defect: f64 = 0.0;
+    let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
     for i in 0..nn {
         let cells = &topo.node_cells[i];
         if cells.is_empty() {
@@ -510,10 +511,8 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                     (bk[0] * r[0] + bk[1] * r[1]).abs()
                 })
                 .sum();
-            let denom = scale + known_scale;
-            if denom > 0.0 {
-                defect = defect.max(res / denom);
-            }
+            max_res = max_res.max(res);
+            max_scale = max_scale.max(scale + known_scale);
             for (col, &e) in unknown.iter().enumerate() {
                 let s = slot(e);
                 b_unknown[e][s][0] += x[col] * r[0];
@@ -532,6 +531,10 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
         topo,
         density,
         fields: inp.tractions.iter().map(|t| t.1.clone()).collect(),
-        compatibility_defect: defect,
+        compatibility_defect: if max_scale > 0.0 {
+            max_res / max_scale
+        } else {
+            0.0
+        },
     })
 }
