@@ -7,7 +7,7 @@
 //! * [`GaussianCopula`] (Nataf): `z_i = Phi^-1(F_i(x_i))`, `z ~ N(0, R)`, `y = L^-1 z` with
 //!   `R = L L^T`, `u = Phi(y)`; density
 //!   `f(x) = |R|^-1/2 exp(-z^T (R^-1 - I) z / 2) prod_i f_i(x_i)`.
-//!   [`GaussianCopula::x_to_standard_normal`] gives `y`, the independent standard normal variables.
+//!   [`JointLaw::x_to_standard_normal`] gives `y`, the independent standard normal variables.
 //! * [`BoxDensity`]: a user density on a box (a closure or a tabulated grid), normalised
 //!   numerically. Its isoprobabilistic map is the Rosenblatt transform
 //!   `u_1 = F(x_1)`, `u_2 = F(x_2 | x_1)`, ... of a piecewise-constant approximation of the density
@@ -32,6 +32,19 @@ pub trait JointLaw: Send + Sync + std::fmt::Debug {
     fn x_to_unit(&self, x: &[f64], u: &mut [f64]);
     /// Inverse map: `u` in the unit cube to `x`.
     fn unit_to_x(&self, u: &[f64], x: &mut [f64]);
+    /// Map `x` to independent standard normal variables `y` (`y_i = Phi^-1(u_i)`); for the
+    /// Gaussian copula this is the Nataf transform.
+    fn x_to_standard_normal(&self, x: &[f64], y: &mut [f64]) {
+        self.x_to_unit(x, y);
+        for v in y.iter_mut() {
+            *v = norm_quantile(*v);
+        }
+    }
+    /// Inverse of [`JointLaw::x_to_standard_normal`].
+    fn standard_normal_to_x(&self, y: &[f64], x: &mut [f64]) {
+        let u: Vec<f64> = y.iter().map(|&v| norm_cdf(v)).collect();
+        self.unit_to_x(&u, x);
+    }
     /// Smallest box containing the support (bounds may be infinite).
     fn bounds(&self) -> (Vec<f64>, Vec<f64>);
     /// `true` if the variables are independent.
@@ -211,9 +224,14 @@ impl GaussianCopula {
     pub fn correlation(&self) -> &[f64] {
         &self.corr
     }
+}
 
+impl JointLaw for GaussianCopula {
+    fn dim(&self) -> usize {
+        self.marginals.len()
+    }
     /// Nataf map: `x` to independent standard normal variables `y = L^-1 z`.
-    pub fn x_to_standard_normal(&self, x: &[f64], y: &mut [f64]) {
+    fn x_to_standard_normal(&self, x: &[f64], y: &mut [f64]) {
         let d = self.dim();
         for i in 0..d {
             let z = norm_quantile(self.marginals[i].cdf(x[i]));
@@ -226,19 +244,14 @@ impl GaussianCopula {
     }
 
     /// Inverse Nataf map: independent standard normal `y` to `x`.
-    pub fn standard_normal_to_x(&self, y: &[f64], x: &mut [f64]) {
+    fn standard_normal_to_x(&self, y: &[f64], x: &mut [f64]) {
         let d = self.dim();
         for i in 0..d {
             let z: f64 = (0..=i).map(|k| self.chol[i * d + k] * y[k]).sum();
             x[i] = self.marginals[i].quantile(norm_cdf(z));
         }
     }
-}
 
-impl JointLaw for GaussianCopula {
-    fn dim(&self) -> usize {
-        self.marginals.len()
-    }
     fn pdf(&self, x: &[f64]) -> f64 {
         let d = self.dim();
         let mut prod = 1.0;
