@@ -1,0 +1,287 @@
+//! LATIN benchmark: a 2D four-substructure frictional assembly (dovetail blade root in a disk
+//! sector, both split in halves on x = 0: two Coulomb contact interfaces on the flanks, two
+//! perfect interfaces on x = 0), ~22 000 dof.
+//!
+//! Measures, with 1 and 2 threads:
+//! - set-up (assembly + factorisation of the four operators);
+//! - iterations to tolerance 1e-6 at the nominal point, and the time per iteration against the
+//!   raw triangular solves of that iteration (`RunTimings`);
+//! - a 5 x 5 parameter series (mu in [0.1, 0.9] x root Young's-modulus factor in
+//!   [0.875, 1.125]): cold runs (a new solver per run: set-up + iterations from zero, the
+//!   thesis's "restart a code per run"), cold iterations only (one solver, no warm start) and
+//!   warm runs (one solver, each run started from the nearest finished one).
+//!
+//! Run: `CARGO_TARGET_DIR=/work/target-latin cargo bench -p alea-latin --bench latin`
+//! (results in `crates/alea-latin/BENCHMARKS.md`).
+
+use std::time::Instant;
+
+use alea_fem::{Analysis, Constraints, Loads, Material, Model};
+use alea_latin::{
+    Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunResult, RunStatus,
+    SearchDirection, Substructure, constant,
+};
+use alea_mesh::generate::{DovetailParams, dovetail_root_and_disk};
+use alea_mesh::{CellType, Facet, Mesh};
+
+const E: f64 = 200e3;
+const NU: f64 = 0.3;
+/// Blade pull on the root top (MPa) and its tangential (bending) part.
+const PULL: f64 = 200.0;
+const SHEAR: f64 = 30.0;
+
+/// Cell-group part `part` of `mesh`, cut at x = 0 (`left`: centroid x < 0), with the cut
+/// facets as the facet/node group `"cut"`.
+fn half(mesh: &Mesh, part: &str, left: bool) -> Mesh {
+    let mut m = mesh.clone();
+    let name = format!("{part}_{}", if left { "l" } else { "r" });
+    let cells: Vec<usize> = m
+        .cell_group(part)
+        .unwrap()
+        .iter()
+        .copied()
+        .filter(|&c| {
+            let xs = m.cell_coords(c);
+            let cx = xs.iter().map(|x| x[0]).sum::<f64>() / xs.len() as f64;
+            (cx < 0.0) == left
+        })
+        .collect();
+    m.add_cells_to_group(&name, cells);
+    let (mut sub, _) = m.extract(&[&name]).unwrap();
+    let (lo, hi) = sub.bounding_box();
+    let tol = 1e-9 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let cut: Vec<Facet> = sub
+        .boundary_facets()
+        .into_iter()
+        .filter(|b| b.facet.nodes.iter().all(|&n| sub.coords[n][0].abs() <= tol))
+        .map(|b| b.facet)
+        .collect();
+    let nodes: Vec<usize> = cut.iter().flat_map(|f| f.nodes.clone()).collect();
+    assert!(!cut.is_empty(), "{name}: no facet on x = 0");
+    sub.add_facets_to_group("cut", cut);
+    sub.add_nodes_to_group("cut", nodes);
+    sub
+}
+
+fn model(mesh: Mesh) -> Model {
+    let mut m = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
+    m.set_material_all(Material::new(E, NU, 7.8e-9).unwrap());
+    m
+}
+
+/// Substructures 0 root_l, 1 root_r, 2 disk_l, 3 disk_r.
+fn assembly(refine: usize) -> Assembly {
+    let p = DovetailParams::default().refined(refine);
+    let mesh = dovetail_root_and_disk(&p, CellType::Quad4).unwrap();
+    let mut subs = Vec::new();
+    for (part, left) in [
+        ("root", true),
+        ("root", false),
+        ("disk", true),
+        ("disk", false),
+    ] {
+        let m = model(half(&mesh, part, left));
+        let name = format!("{part}_{}", if left { "left" } else { "right" });
+        let mut c = Constraints::new();
+        let mut loads = Loads::new(&m);
+        if part == "disk" {
+            let side = if left {
+                "disk_side_left"
+            } else {
+                "disk_side_right"
+            };
+            c.fix_normal(&m.mesh, side, 0.0).unwrap();
+        } else {
+            loads
+                .traction(&m, "root_top", |_, _| [SHEAR, PULL, 0.0])
+                .unwrap();
+        }
+        subs.push(Substructure {
+            name,
+            model: m,
+            constraints: c,
+            load_cases: vec![loads.f],
+        });
+    }
+    let interfaces = vec![
+        InterfaceSpec::coulomb(
+            "flank_left",
+            0,
+            "flank_left_root",
+            2,
+            "flank_left_disk",
+            0.5,
+        ),
+        InterfaceSpec::coulomb(
+            "flank_right",
+            1,
+            "flank_right_root",
+            3,
+            "flank_right_disk",
+            0.5,
+        ),
+        InterfaceSpec::perfect("root_cut", 0, "cut", 1, "cut"),
+        InterfaceSpec::perfect("disk_cut", 2, "cut", 3, "cut"),
+    ];
+    Assembly { subs, interfaces }
+}
+
+/// Tolerance 1e-6; search direction `k = 0.5 E / L` per interface side: the fastest of
+/// 0.1, 0.2, 0.3, 0.5, 1 and 3 (the default) on this assembly (run with `LATIN_BENCH_SCAN=1`;
+/// see BENCHMARKS.md).
+fn options() -> LatinOptions {
+    LatinOptions {
+        tolerance: 1e-6,
+        max_iterations: 5000,
+        search_direction: SearchDirection::Auto { factor: 0.5 },
+        ..Default::default()
+    }
+}
+
+/// The 5 x 5 grid in snake order (each point next to the previous one) with its normalised
+/// parameters.
+fn grid() -> Vec<(f64, f64, Vec<f64>)> {
+    let mut pts = Vec::new();
+    for i in 0..5 {
+        let ef = 0.875 + 0.0625 * i as f64;
+        for jj in 0..5 {
+            let j = if i % 2 == 0 { jj } else { 4 - jj };
+            let mu = 0.1 + 0.2 * j as f64;
+            pts.push((mu, ef, vec![j as f64 / 4.0, i as f64 / 4.0]));
+        }
+    }
+    pts
+}
+
+fn input(mu: f64, ef: f64, params: Vec<f64>) -> RunInput {
+    RunInput {
+        young_factors: vec![ef, ef, 1.0, 1.0],
+        mu: vec![Some(constant(mu)), Some(constant(mu)), None, None],
+        params,
+        ..Default::default()
+    }
+}
+
+#[derive(Default)]
+struct Series {
+    seconds: f64,
+    iterations: usize,
+    results: Vec<RunResult>,
+}
+
+fn series(asm: &Assembly, mode: &str) -> Series {
+    let mut s = Series::default();
+    let mut shared = (mode != "cold").then(|| LatinSolver::new(asm.clone(), options()).unwrap());
+    let t0 = Instant::now();
+    for (mu, ef, params) in grid() {
+        let params = if mode == "warm" { params } else { vec![] };
+        let r = match shared.as_mut() {
+            Some(solver) => solver.run(&input(mu, ef, params)).unwrap(),
+            None => {
+                let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
+                solver.run(&input(mu, ef, params)).unwrap()
+            }
+        };
+        assert_eq!(r.status, RunStatus::Converged, "{mode} mu {mu} ef {ef}");
+        s.iterations += r.iterations;
+        s.results.push(r);
+    }
+    s.seconds = t0.elapsed().as_secs_f64();
+    s
+}
+
+fn main() {
+    let refine: usize = std::env::var("LATIN_BENCH_REFINE")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(6);
+    let t = Instant::now();
+    let asm = assembly(refine);
+    let ndof: usize = asm.subs.iter().map(|s| 2 * s.model.mesh.num_nodes()).sum();
+    let sizes: Vec<usize> = asm
+        .subs
+        .iter()
+        .map(|s| 2 * s.model.mesh.num_nodes())
+        .collect();
+    println!(
+        "dovetail refined x{refine}: {ndof} dof in 4 substructures {sizes:?} (meshing {:.2}s)",
+        t.elapsed().as_secs_f64()
+    );
+    if std::env::var("LATIN_BENCH_SCAN").is_ok() {
+        // Search-direction scan at the nominal point (iterations only).
+        for factor in [0.1, 0.2, 0.3, 0.5, 1.0, 3.0] {
+            let mut opts = options();
+            opts.search_direction = SearchDirection::Auto { factor };
+            let mut solver = LatinSolver::new(asm.clone(), opts).unwrap();
+            let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+            println!(
+                "k factor {factor}: {:?} after {} iterations ({:.2} s)",
+                r.status, r.iterations, r.timings.total
+            );
+        }
+        return;
+    }
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            println!("\n## {threads} thread(s)");
+            // Nominal point: set-up, iterations, per-iteration cost.
+            let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
+            let setup = solver.setup_seconds;
+            let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+            assert_eq!(r.status, RunStatus::Converged);
+            let it = r.iterations as f64;
+            let tm = r.timings;
+            let counts: Vec<[usize; 4]> =
+                r.interfaces.iter().map(|i| i.status_counts()).collect();
+            println!("set-up (assembly + factorisation): {:.3} s", setup);
+            println!(
+                "nominal run (mu 0.5, E factor 1): {} iterations to 1e-6, run {:.3} s; statuses [perfect, open, stick, slip] {counts:?}",
+                r.iterations, tm.total
+            );
+            println!(
+                "per iteration: total {:.3} ms = linear {:.3} ms (of which triangular solves {:.3} ms, summed over substructures) + local {:.3} ms; (linear + local) / solves = {:.2}",
+                1e3 * tm.total / it,
+                1e3 * tm.linear / it,
+                1e3 * tm.triangular_solves / it,
+                1e3 * tm.local / it,
+                (tm.linear + tm.local) / tm.triangular_solves
+            );
+            let cold = series(&asm, "cold");
+            let iters = series(&asm, "iters");
+            let warm = series(&asm, "warm");
+            // Same answers (to the tolerance): friction work of both flanks.
+            let mut worst = 0.0f64;
+            for (a, b) in warm.results.iter().zip(&iters.results) {
+                for k in 0..2 {
+                    let (wa, wb) = (a.interfaces[k].work(), b.interfaces[k].work());
+                    let scale = a.interfaces[k]
+                        .resultant()
+                        .iter()
+                        .map(|v| v.abs())
+                        .fold(0.0, f64::max);
+                    worst = worst.max((wa - wb).abs() / (scale * 1e-3 + wb.abs()));
+                }
+            }
+            println!(
+                "25 runs: cold (new solver per run) {:.3} s ({} iterations, {:.3} s/run); cold iterations only {:.3} s ({} iterations); warm {:.3} s ({} iterations, {:.3} s/run)",
+                cold.seconds,
+                cold.iterations,
+                cold.seconds / 25.0,
+                iters.seconds,
+                iters.iterations,
+                warm.seconds,
+                warm.iterations,
+                warm.seconds / 25.0
+            );
+            println!(
+                "speed-up warm vs cold: {:.2}x; warm vs cold iterations only: {:.2}x; worst relative difference of the friction work warm vs cold: {worst:.1e}",
+                cold.seconds / warm.seconds,
+                iters.seconds / warm.seconds
+            );
+        });
+    }
+}
