@@ -21,7 +21,7 @@ pub use grid::{corners_and_centre, tensor_grid};
 pub use lhs::{latin_hypercube, latin_hypercube_maximin};
 pub use mc::monte_carlo;
 pub use pc_points::pc_collocation;
-pub use sobol_seq::{SobolSequence, sobol};
+pub use sobol_seq::{SOBOL_MAX_DIM, SobolSequence, sobol};
 
 use crate::joint::JointLaw;
 

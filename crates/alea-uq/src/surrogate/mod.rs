@@ -22,7 +22,7 @@ mod multilinear;
 mod pc;
 
 pub use monomial::MonomialSurface;
-pub use multilinear::{CellId, NewRun, StochasticMesh};
+pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, StochasticMesh};
 pub use pc::{PcExpansion, PcSurrogate};
 
 /// A surrogate `q~(xi) = sum_k w_k(xi) q_k` over `num_runs()` runs.
