@@ -18,7 +18,9 @@
 //! - A skew (normal) constraint on a rotated side is the same constraint as a component one on
 //!   the axis-aligned side: rotating the whole model by 30 degrees rotates `u` and `sigma` and
 //!   changes nothing else (relative 1e-9); uniaxial tension `s0` then gives `sigma = s0 e e`,
-//!   `e` the rotated x axis, exactly.
+//!   `e` the rotated x axis, exactly. Imposing `u . n = d` (a non-zero skew constraint) on the
+//!   rotated far side instead gives `s0 = E d / L`, `u = R (d x / L, -nu d y / L)` exactly, and a
+//!   purely normal reaction of resultant `s0 h t e`.
 //!
 //! ```text
 //!  2D: [0, 4] x [0, 1], plane stress t = 2         3D: [0, 2] x [0, 1] x [0, 1]
@@ -359,6 +361,64 @@ fn skew_constraints_are_rotation_invariant() {
             assert!(du < 1e-9 * umax, "{kind}: displacement not rotated: {du:e}");
             assert!(ds < 1e-9 * smax, "{kind}: stress not rotated: {ds:e}");
         }
+    }
+}
+
+#[test]
+fn prescribed_normal_displacement_on_rotated_sides() {
+    // [0, 2] x [0, 1] rotated by 30 degrees, rollers (u . n = 0) on xmin and ymin, and
+    // u . n = d imposed on xmax: uniaxial stress s = E d / L along e = (cos 30, sin 30), exact
+    // displacement u = R (d x / L, -nu d y / L) in body coordinates, reaction on xmax
+    // = s * height * thickness along e, purely normal at every node.
+    let (l, hgt, t, d) = (2.0, 1.0, 1.5, 1e-3);
+    let r = rot(30.0);
+    let rt = rot(-30.0);
+    for kind in [CellType::Quad4, CellType::Quad8, CellType::Tri6] {
+        let mut mesh = generate::rectangle(l, hgt, 6, 3, kind).unwrap();
+        for x in &mut mesh.coords {
+            *x = apply(&r, *x);
+        }
+        let model = model_of(mesh, Analysis::PlaneStress { thickness: t });
+        let mut cons = Constraints::new();
+        cons.fix_normal(&model.mesh, "xmin", 0.0).unwrap();
+        cons.fix_normal(&model.mesh, "ymin", 0.0).unwrap();
+        cons.fix_normal(&model.mesh, "xmax", d).unwrap();
+        let sol = solve_elastic(&model, &cons, &Loads::new(&model), Ordering::Metis).unwrap();
+        let s0 = E * d / l;
+        let e = [r[0][0], r[1][0]];
+        for (n, x) in model.mesh.coords.iter().enumerate() {
+            let xb = apply(&rt, *x);
+            let ue = apply(&r, [d * xb[0] / l, -NU * d * xb[1] / l, 0.0]);
+            for c in 0..2 {
+                assert!(
+                    (sol.u[2 * n + c] - ue[c]).abs() < 1e-12,
+                    "{kind}: u at {xb:?} = {:?}, exact {ue:?}",
+                    &sol.u[2 * n..2 * n + 2]
+                );
+            }
+        }
+        let sig = nodal_stresses(&model, &sol.u).unwrap();
+        for s in &sig {
+            let want = [s0 * e[0] * e[0], s0 * e[1] * e[1], s0 * e[0] * e[1]];
+            for (k, w) in [s[0], s[1], s[5]].iter().zip(want) {
+                assert!(
+                    (k - w).abs() < 1e-9 * s0,
+                    "{kind}: stress {s:?}, want {want:?}"
+                );
+            }
+        }
+        let mut total = [0.0; 2];
+        for n in model.mesh.group_nodes("xmax").unwrap() {
+            let (rx, ry) = (sol.reactions[2 * n], sol.reactions[2 * n + 1]);
+            // Tangential part of each nodal reaction vanishes.
+            assert!((-rx * e[1] + ry * e[0]).abs() < 1e-9 * s0 * hgt * t);
+            total[0] += rx;
+            total[1] += ry;
+        }
+        let want = s0 * hgt * t;
+        eprintln!("{kind}: reaction on xmax {total:?}, closed form {want} along {e:?}");
+        assert!((total[0] - want * e[0]).abs() < 1e-10 * want);
+        assert!((total[1] - want * e[1]).abs() < 1e-10 * want);
     }
 }
 
