@@ -263,6 +263,9 @@ impl JointLaw for GaussianCopula {
             }
             prod *= f;
             z[i] = norm_quantile(self.marginals[i].cdf(x[i]));
+            if !z[i].is_finite() {
+                return 0.0; // on the boundary of the support
+            }
         }
         let mut q = 0.0;
         for i in 0..d {

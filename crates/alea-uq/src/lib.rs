@@ -17,6 +17,41 @@
 //! * [`stats`], [`kde::Kde`], [`sobol`]: Monte Carlo statistics, kernel density estimates, failure
 //!   probabilities and Sobol' indices.
 //!
+//! ```
+//! use alea_uq::{basis::PcBasis, design::latin_hypercube, joint::Independent, law::*};
+//! use alea_uq::surrogate::{LinearSurrogate, PcSurrogate, StochasticMesh};
+//! use std::sync::Arc;
+//!
+//! # fn main() -> alea_uq::Result<()> {
+//! let m: Vec<Arc<dyn Marginal>> = vec![
+//!     Arc::new(TruncatedNormal::new(1.0, 0.2, 0.5, 1.5)?),
+//!     Arc::new(Uniform::new(0.0, 1.0)?),
+//! ];
+//! let law = Independent::new(m.clone())?;
+//! let model = |x: &[f64]| x[0] * x[0] + x[1];
+//!
+//! // Polynomial chaos by regression: the weights do not depend on the values.
+//! let design = latin_hypercube(&law, 30, 7);
+//! let runs = design.evaluate(model);
+//! let pc = PcSurrogate::regression(PcBasis::total_degree(&m, 2)?, design.points())?;
+//! assert!((pc.eval(&[1.1, 0.3], &runs) - model(&[1.1, 0.3])).abs() < 1e-10);
+//! let mean = pc.expansion(&runs)?.mean();
+//! assert!((mean - (law.marginals()[0].std().powi(2) + 1.0 + 0.5)).abs() < 1e-10);
+//!
+//! // Piecewise bilinear on a stochastic mesh: refine, run the new points, interpolate.
+//! let mut mesh = StochasticMesh::new(&[0.5, 0.0], &[1.5, 1.0], &[2, 2])?;
+//! let mut q: Vec<f64> = (0..mesh.num_runs()).map(|k| model(mesh.run_point(k))).collect();
+//! let cell = mesh.locate(&[0.6, 0.1]).unwrap();
+//! for run in mesh.refine(&[cell])? {
+//!     q.push(model(&run.point));
+//! }
+//! let mut w = Vec::new();
+//! mesh.weights(&[0.6, 0.1], &mut w); // (run, weight) pairs
+//! assert!((w.iter().map(|(k, wk)| wk * q[*k]).sum::<f64>() - mesh.eval(&[0.6, 0.1], &q)).abs() < 1e-14);
+//! # Ok(())
+//! # }
+//! ```
+//!
 //! Determinism: every random routine takes a seed and splits its work in fixed chunks with their
 //! own ChaCha8 stream, so results do not depend on the number of rayon threads.
 

@@ -26,6 +26,10 @@ pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, StochasticMesh};
 pub use pc::{PcExpansion, PcSurrogate};
 
 /// A surrogate `q~(xi) = sum_k w_k(xi) q_k` over `num_runs()` runs.
+///
+/// # Panics
+/// `eval` and `eval_field` index the value arrays by run: they panic if `values` holds fewer than
+/// `num_runs()` entries (rows); `xi` must have `dim()` entries.
 pub trait LinearSurrogate: Send + Sync {
     /// Number of parameters.
     fn dim(&self) -> usize;

@@ -224,6 +224,10 @@ impl StochasticMesh {
         self.cells[cell].level
     }
     /// Bounds `(lo, hi)` of a cell.
+    ///
+    /// # Panics
+    /// If `cell` is not a cell id of this mesh (as for [`StochasticMesh::level`],
+    /// [`StochasticMesh::cell_centre`] and [`StochasticMesh::neighbours`]).
     pub fn cell_bounds(&self, cell: CellId) -> (Vec<f64>, Vec<f64>) {
         let o = self.cells[cell].origin;
         let s = self.size(cell);
@@ -608,6 +612,9 @@ impl StochasticMesh {
     }
 
     /// Fast evaluation (no allocation): `sum_k w_k(xi) values[k]`; `NaN` outside the box.
+    ///
+    /// # Panics
+    /// If `values.len() < num_runs()` or `xi.len() < dim()`.
     #[inline]
     pub fn interpolate(&self, xi: &[f64], values: &[f64]) -> f64 {
         let mut t = [0.0; MAX_DIM];
