@@ -341,3 +341,38 @@ fn balanced_refinement_keeps_two_to_one() {
         assert!(max_w <= 1 << d, "d = {d}: {max_w} weights");
     }
 }
+
+#[test]
+fn mesh_on_the_probability_cube() {
+    // x = T^-1(u) with truncated normal and beta marginals; E[f(x)] = int q~(u) du.
+    use alea_uq::law::{Beta, TruncatedNormal};
+    let law = Independent::new(vec![
+        Arc::new(TruncatedNormal::new(0.0, 1.0, -2.0, 2.0).unwrap()) as Arc<dyn Marginal>,
+        Arc::new(Beta::new(2.0, 2.0, 0.0, 1.0).unwrap()),
+    ])
+    .unwrap();
+    let f = |x: &[f64]| x[0] * x[0] + x[1];
+    let tn = TruncatedNormal::new(0.0, 1.0, -2.0, 2.0).unwrap();
+    let exact = tn.std().powi(2) + 0.5;
+    let mut mesh = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[4, 4]).unwrap();
+    let mut errs = Vec::new();
+    for _ in 0..4 {
+        let q: Vec<f64> = (0..mesh.num_runs())
+            .map(|k| {
+                let mut x = [0.0; 2];
+                law.unit_to_x(mesh.run_point(k), &mut x);
+                f(&x)
+            })
+            .collect();
+        let ew = mesh.expected_weights(|_| 1.0, 2).unwrap();
+        assert!((ew.iter().sum::<f64>() - 1.0).abs() < 1e-13);
+        let e: f64 = ew.iter().zip(&q).map(|(a, b)| a * b).sum();
+        errs.push((e - exact).abs());
+        mesh.refine_all().unwrap();
+    }
+    eprintln!("probability-cube mean errors {errs:?}");
+    // Second order in h: each halving divides the error by about 4.
+    for w in errs.windows(2) {
+        assert!(w[1] < 0.35 * w[0], "{errs:?}");
+    }
+}

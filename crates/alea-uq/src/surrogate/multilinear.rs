@@ -24,7 +24,10 @@
 //! their index, so run arrays only grow.
 //!
 //! The mesh can live on the physical box or on the probability-space cube `[0, 1]^d` (then
-//! evaluate at `u = T(x)` from [`JointLaw::x_to_unit`](crate::joint::JointLaw::x_to_unit)).
+//! run the model at `x = T^-1(u)` from [`JointLaw::unit_to_x`](crate::joint::JointLaw::unit_to_x)
+//! and evaluate at `u = T(x)`; the faces of the cube map to the bounds of the support, which must
+//! then be finite, e.g. truncated normal laws). On the cube every cell's probability is its volume
+//! (independent inputs) and `E[q~] = sum_k E[w_k] q_k` with `expected_weights(|_| 1.0, order)`.
 //! Integer coordinates: a root cell spans `2^MAX_LEVEL` units, so node keys are exact.
 
 use super::LinearSurrogate;
