@@ -58,8 +58,7 @@ fn main() {
         Arc::new(Uniform::new(0.0, 1.0).unwrap()),
     ])
     .unwrap();
-    let mut mesh = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[100, 100]).unwrap();
-    let _ = &mut mesh;
+    let mesh = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[100, 100]).unwrap();
     let values: Vec<f64> = (0..mesh.num_runs())
         .map(|k| {
             let x = mesh.run_point(k);

@@ -80,8 +80,7 @@ fn copula_density_integrates_to_one_and_reduces_to_bivariate_normal() {
     let exact = (-(x * x - 2.0 * rho * x * y + y * y) / (2.0 * (1.0 - rho * rho))).exp()
         / (2.0 * std::f64::consts::PI * (1.0 - rho * rho).sqrt());
     assert!((law.pdf(&[x, y]) - exact).abs() < 1e-13);
-    let p = law.box_probability(&[-8.0, -8.0], &[8.0, 8.0]);
-    let _ = p; // the 6-point rule over [-8, 8]^2 is too coarse; use cells instead
+    // Probability of [-8, 8]^2 summed over unit cells (6-point Gauss-Legendre per cell).
     let mut total = 0.0;
     for i in 0..16 {
         for j in 0..16 {
