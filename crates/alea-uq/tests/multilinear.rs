@@ -376,3 +376,25 @@ fn mesh_on_the_probability_cube() {
         assert!(w[1] < 0.35 * w[0], "{errs:?}");
     }
 }
+
+#[test]
+fn replaying_refinements_reproduces_the_mesh() {
+    let mut a = StochasticMesh::new(&[0.0, 0.0, 0.0], &[1.0, 2.0, 3.0], &[1, 2, 1]).unwrap();
+    let mut b = StochasticMesh::new(&[0.0, 0.0, 0.0], &[1.0, 2.0, 3.0], &[1, 2, 1]).unwrap();
+    let mut history = Vec::new();
+    for step in 0..4 {
+        let leaves = a.leaves();
+        let mark: Vec<usize> = leaves
+            .iter()
+            .copied()
+            .filter(|c| (c + step) % 3 == 0)
+            .collect();
+        a.refine(&mark).unwrap();
+        history.push(mark);
+    }
+    for mark in &history {
+        b.refine(mark).unwrap();
+    }
+    assert_eq!(a.run_points(), b.run_points());
+    assert_eq!(a.leaves(), b.leaves());
+}

@@ -276,3 +276,26 @@ fn hyperbolic_basis_sizes() {
     let s = MultiIndexSet::hyperbolic(3, 12, 0.5).unwrap();
     assert!(s.len() < MultiIndexSet::total_degree(3, 12).unwrap().len());
 }
+
+#[test]
+fn ill_conditioned_regression_is_reported() {
+    // Points clustered in a tiny region: the degree-4 design matrix is numerically singular or
+    // at least flagged as ill-conditioned.
+    let m = ishigami_marginals();
+    let pts: Vec<f64> = (0..100)
+        .flat_map(|i| {
+            let t = i as f64 * 1e-5;
+            [0.1 + t, 0.2 + t * t, 0.3 - t]
+        })
+        .collect();
+    match PcSurrogate::regression(PcBasis::total_degree(&m, 4).unwrap(), &pts) {
+        Err(e) => assert!(e.to_string().contains("singular"), "{e}"),
+        Ok(pc) => {
+            assert!(pc.condition_estimate() > 1e8);
+            assert!(pc.warnings().iter().any(|w| w.contains("ill-conditioned")));
+        }
+    }
+    // Too few points for the basis.
+    let e = PcSurrogate::regression(PcBasis::total_degree(&m, 4).unwrap(), &pts[..30]).unwrap_err();
+    assert!(e.to_string().contains("at least as many points"), "{e}");
+}

@@ -29,6 +29,9 @@
 //! then be finite, e.g. truncated normal laws). On the cube every cell's probability is its volume
 //! (independent inputs) and `E[q~] = sum_k E[w_k] q_k` with `expected_weights(|_| 1.0, order)`.
 //! Integer coordinates: a root cell spans `2^MAX_LEVEL` units, so node keys are exact.
+//! Cell ids and run indices are deterministic: replaying the same sequence of `refine` calls on
+//! a new mesh reproduces it exactly (a store only needs the box, the root counts and the lists
+//! of refined cell ids).
 
 use super::LinearSurrogate;
 use crate::error::{Result, UqError, check_len, invalid};
