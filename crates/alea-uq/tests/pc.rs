@@ -299,3 +299,31 @@ fn ill_conditioned_regression_is_reported() {
     let e = PcSurrogate::regression(PcBasis::total_degree(&m, 4).unwrap(), &pts[..30]).unwrap_err();
     assert!(e.to_string().contains("at least as many points"), "{e}");
 }
+
+#[test]
+fn dependent_inputs_through_the_nataf_map() {
+    // x ~ Gaussian copula with N(1, 1) and N(0, 2^2) marginals, rho = 0.6; q = x0 + x1.
+    // Var q = 1 + 4 + 2 * 0.6 * 2 = 7.4. The chaos is built in the independent y variables.
+    use alea_uq::joint::{GaussianCopula, JointLaw};
+    let marg: Vec<Arc<dyn Marginal>> = vec![
+        Arc::new(Normal::new(1.0, 1.0).unwrap()),
+        Arc::new(Normal::new(0.0, 2.0).unwrap()),
+    ];
+    let law = GaussianCopula::new(marg, vec![1.0, 0.6, 0.6, 1.0]).unwrap();
+    let std_normal: Vec<Arc<dyn Marginal>> =
+        vec![Arc::new(Normal::standard()), Arc::new(Normal::standard())];
+    let design = pc_collocation(&std_normal, 2, 9).unwrap();
+    let y = design.evaluate(|yv| {
+        let mut x = [0.0; 2];
+        law.standard_normal_to_x(yv, &mut x);
+        x[0] + x[1]
+    });
+    let e = PcSurrogate::regression(
+        PcBasis::total_degree(&std_normal, 2).unwrap(),
+        design.points(),
+    )
+    .unwrap()
+    .expansion(&y)
+    .unwrap();
+    assert!((e.mean() - 1.0).abs() < 1e-12 && (e.variance() - 7.4).abs() < 1e-12);
+}
