@@ -394,6 +394,17 @@ mod tests {
     }
 
     #[test]
+    fn series_and_continued_fraction_agree_at_the_switch() {
+        for &x in &[1.5, 2.0] {
+            let cf = erfc_cf(x);
+            let series = 1.0 - erf_series(x);
+            assert!(rel(cf, series) < 1e-13, "x = {x}: {cf} vs {series}");
+        }
+        assert!(rel(erfc(2.5), 4.069_520_174_449_59e-4) < 1e-14);
+        assert!(rel(erfc(2.0), 4.677_734_981_047_266e-3) < 1e-14);
+    }
+
+    #[test]
     fn norm_quantile_known_values() {
         assert!(rel(norm_quantile(0.975), 1.959_963_984_540_054) < 1e-14);
         assert!(rel(norm_quantile(0.025), -1.959_963_984_540_054) < 1e-14);
