@@ -1,0 +1,188 @@
+//! What the report is made of: a plain data structure the study runner fills in.
+//!
+//! Everything here is serialisable (serde), so a study can save the report input as JSON and
+//! the report can be rebuilt from it later. `write_report` validates it first: every number
+//! must be finite (a NaN anywhere is an error naming its field), except the bounds `lo`/`hi`
+//! of a parameter, which may be infinite (an untruncated law).
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::ReportError;
+
+/// Everything the report shows about one study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReportInput {
+    /// Title of the page (the study's name).
+    pub title: String,
+    /// Path of the study file, shown as is.
+    pub study_file: String,
+    /// Units by quantity kind: `("length", "mm")`, `("stress", "MPa")`, ...
+    pub units: Vec<(String, String)>,
+    /// The surrogate method in words, e.g. "polynomial chaos, degree 2, regression on 9 runs".
+    pub method: String,
+    /// The random parameters, in the order of `RunInfo::params`.
+    pub parameters: Vec<ParamInfo>,
+    /// Every deterministic run of the study (converged or not).
+    pub runs: Vec<RunInfo>,
+    /// LATIN error indicator per iteration for a few runs: (label, history).
+    pub residual_histories: Vec<(String, Vec<f64>)>,
+    /// The quantities of interest, in the order of `RunInfo::qois`.
+    pub qois: Vec<QoiReport>,
+    /// Methods side by side on one QoI (thesis table 2.1), when the study asked for it.
+    pub comparison: Option<Comparison>,
+    /// Wall time per step: ("solves", s), ("surrogate", s), ("monte carlo", s) ...
+    pub timings: Vec<(String, f64)>,
+    /// Warnings shown prominently at the top of the report.
+    pub notes: Vec<String>,
+}
+
+/// One random parameter.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParamInfo {
+    pub name: String,
+    /// The law in words, e.g. "truncated normal (240e3, 10e3) on [210e3, 270e3]".
+    pub law: String,
+    /// Lower bound of the support (may be -inf; JSON holds it as the string "-inf").
+    #[serde(with = "bound")]
+    pub lo: f64,
+    /// Upper bound of the support (may be +inf; JSON holds it as the string "inf").
+    #[serde(with = "bound")]
+    pub hi: f64,
+}
+
+/// One deterministic run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunInfo {
+    /// Parameter values, in the order of `ReportInput::parameters`.
+    pub params: Vec<f64>,
+    /// "converged", "not converged", "failed", ...
+    pub status: String,
+    /// LATIN iterations.
+    pub iterations: usize,
+    /// Wall time of the run in seconds.
+    pub seconds: f64,
+    /// QoI values in the order of `ReportInput::qois`; empty for a run that produced none.
+    pub qois: Vec<f64>,
+}
+
+/// The distribution of one quantity of interest.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct QoiReport {
+    pub name: String,
+    pub unit: String,
+    /// Monte Carlo samples on the surrogate (may be 250 000; plots subsample as needed).
+    pub samples: Vec<f64>,
+    pub mean: f64,
+    pub std: f64,
+    pub skewness: f64,
+    /// (probability, value).
+    pub quantiles: Vec<(f64, f64)>,
+    /// (x, pdf) on a grid.
+    pub kde: Vec<(f64, f64)>,
+    /// Failure probabilities for the user's thresholds.
+    pub failure: Vec<FailureInfo>,
+    /// The response surface over two parameters, when there is one to show.
+    pub surface: Option<Surface>,
+}
+
+/// Probability of failure for one threshold, with its confidence interval.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FailureInfo {
+    pub threshold: f64,
+    pub probability: f64,
+    pub ci_low: f64,
+    pub ci_high: f64,
+}
+
+/// A QoI as a function of two parameters, on a regular grid, with the runs that built it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Surface {
+    pub param_names: [String; 2],
+    /// Grid abscissae (strictly increasing).
+    pub x: Vec<f64>,
+    /// Grid ordinates (strictly increasing).
+    pub y: Vec<f64>,
+    /// Row-major: `values[j * x.len() + i]` is the value at `(x[i], y[j])`.
+    pub values: Vec<f64>,
+    /// Collocation points `(p1, p2, qoi)`.
+    pub points: Vec<[f64; 3]>,
+}
+
+/// Several surrogate methods on one QoI, side by side.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Comparison {
+    pub qoi: String,
+    pub rows: Vec<ComparisonRow>,
+}
+
+/// One method of a comparison.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ComparisonRow {
+    pub method: String,
+    pub runs: usize,
+    pub mean: f64,
+    pub std: f64,
+    /// (x, pdf) on a grid.
+    pub kde: Vec<(f64, f64)>,
+}
+
+impl ReportInput {
+    /// Saves the input as pretty JSON (so a report can be rebuilt later).
+    pub fn save_json(&self, path: &Path) -> Result<(), ReportError> {
+        let text = serde_json::to_string_pretty(self).map_err(|e| ReportError::Json {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        std::fs::write(path, text).map_err(|source| ReportError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// Loads an input saved by [`ReportInput::save_json`].
+    pub fn load_json(path: &Path) -> Result<Self, ReportError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ReportError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        serde_json::from_str(&text).map_err(|e| ReportError::Json {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    }
+}
+
+/// A support bound in JSON: a number, or the strings "inf" / "-inf" (JSON has no infinity).
+mod bound {
+    use serde::{Deserialize, Deserializer, Serializer, de::Error};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_infinite() {
+            s.serialize_str(if *v > 0.0 { "inf" } else { "-inf" })
+        } else {
+            s.serialize_f64(*v)
+        }
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Bound {
+        Number(f64),
+        Text(String),
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        match Bound::deserialize(d)? {
+            Bound::Number(v) => Ok(v),
+            Bound::Text(t) => match t.as_str() {
+                "inf" | "+inf" => Ok(f64::INFINITY),
+                "-inf" => Ok(f64::NEG_INFINITY),
+                other => Err(D::Error::custom(format!(
+                    "expected a number, \"inf\" or \"-inf\", found \"{other}\""
+                ))),
+            },
+        }
+    }
+}
