@@ -73,8 +73,9 @@ impl Constraints {
     }
 
     /// Imposes the normal displacement `u . n = value` on the nodes of facet group `group`,
-    /// with `n` the nodal normal (average of the adjacent facets' normals weighted by their
-    /// measure). Use it for symmetry planes that are not aligned with an axis.
+    /// with `n` the nodal normal (average of the adjacent facets' normals at the node, weighted
+    /// by their measure factor there) and oriented like the facets (outward for boundary groups
+    /// of generated meshes). Use it for symmetry planes that are not aligned with an axis.
     pub fn fix_normal(
         &mut self,
         mesh: &Mesh,
@@ -85,13 +86,11 @@ impl Constraints {
         let mut normals: std::collections::BTreeMap<usize, [f64; 3]> = Default::default();
         for f in facets {
             let coords: Vec<[f64; 3]> = f.nodes.iter().map(|&n| mesh.coords[n]).collect();
-            let center = if f.kind.dim() == 1 {
-                [0.0; 3]
-            } else {
-                [0.3, 0.3, 0.0]
-            };
-            let g = crate::kinematics::facet_geometry(f.kind, &coords, center);
-            for &n in &f.nodes {
+            // The facet's normal at each of its nodes (not at its centre: on a curved group
+            // the end nodes would get a normal tilted by half a facet's turning angle).
+            let at_nodes = crate::reference::node_coords(f.kind);
+            for (&n, &xi) in f.nodes.iter().zip(&at_nodes) {
+                let g = crate::kinematics::facet_geometry(f.kind, &coords, xi);
                 let e = normals.entry(n).or_insert([0.0; 3]);
                 for k in 0..3 {
                     e[k] += g.normal[k] * g.jac;
