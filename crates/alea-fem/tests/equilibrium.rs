@@ -35,7 +35,7 @@
 
 use alea_fem::{
     Analysis, Constraints, FemError, Loads, Material, Model, Ordering, post::nodal_stresses,
-    post::strain_energy, solve_elastic,
+    post::strain_energy, solve_elastic, von_mises,
 };
 use alea_mesh::{CellType, Mesh, generate};
 
@@ -350,6 +350,9 @@ fn skew_constraints_are_rotation_invariant() {
                             "{kind}: uniaxial stress {got:?} vs {want:?}"
                         );
                     }
+                    // Von Mises of a uniaxial state is its magnitude, whatever the direction.
+                    let vm = von_mises(&s1[n]);
+                    assert!((vm - 100.0).abs() < 1e-9 * 100.0, "{kind}: von Mises {vm}");
                 }
             }
             eprintln!(

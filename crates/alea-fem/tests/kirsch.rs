@@ -164,6 +164,12 @@ fn stress_concentration_and_ligament_on_q8() {
     let scf = sig[top][0] / S;
     eprintln!("Q8 Kirsch: s_xx(0, a) / s = {scf:.5}");
     assert!((scf - 3.0).abs() < 0.005 * 3.0, "SCF {scf}, expected 3");
+    // The hole edge is traction-free, so the state there is uniaxial (hoop): von Mises = 3 s.
+    let vm = alea_fem::von_mises(&sig[top]) / S;
+    assert!(
+        (vm - 3.0).abs() < 0.005 * 3.0,
+        "von Mises {vm} s, expected 3 s"
+    );
 
     // Ligament x = 0 and the line y = 0: every node against the closed form.
     let mut worst: f64 = 0.0;
