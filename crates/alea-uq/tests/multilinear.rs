@@ -398,3 +398,32 @@ fn replaying_refinements_reproduces_the_mesh() {
     assert_eq!(a.run_points(), b.run_points());
     assert_eq!(a.leaves(), b.leaves());
 }
+
+#[test]
+fn exact_mean_and_variance_from_weight_moments() {
+    // x ~ U(0, 1)^2, q = x0 + x0 x1 (multilinear, so q~ = q): E q = 3/4, Var q = 31/144.
+    let mut m = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[2, 3]).unwrap();
+    let c = m.locate(&[0.1, 0.9]).unwrap();
+    m.refine(&[c]).unwrap(); // with hanging nodes
+    let q = values(&m, |x| x[0] + x[0] * x[1]);
+    let ew = m.expected_weights(|_| 1.0, 2).unwrap();
+    let mean: f64 = ew.iter().zip(&q).map(|(a, b)| a * b).sum();
+    let m2: f64 = m
+        .weight_second_moments(|_| 1.0, 3)
+        .unwrap()
+        .iter()
+        .map(|&(k, l, v)| {
+            if k == l {
+                v * q[k] * q[k]
+            } else {
+                2.0 * v * q[k] * q[l]
+            }
+        })
+        .sum();
+    assert!((mean - 0.75).abs() < 1e-14, "{mean}");
+    assert!(
+        (m2 - mean * mean - 31.0 / 144.0).abs() < 1e-14,
+        "{}",
+        m2 - mean * mean
+    );
+}

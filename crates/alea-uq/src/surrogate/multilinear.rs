@@ -713,6 +713,46 @@ impl StochasticMesh {
         Ok(out)
     }
 
+    /// Second moments of the weights, `M_kl = E[w_k(xi) w_l(xi)] = int w_k w_l f dx`, under a
+    /// density `pdf` on the box (`order`-point Gauss-Legendre per leaf; `order = 2` is exact for
+    /// a piecewise-constant density). Returned sparse, as `(k, l, M_kl)` with `k <= l`, sorted.
+    /// Then `E[q~^2] = sum_kl M_kl q_k q_l` and, for a field or an energy with Gram matrix
+    /// `G_kl = <u_k, u_l>`, `E[||u~||^2] = sum_kl M_kl G_kl` (counting `k != l` twice).
+    ///
+    /// # Errors
+    /// If `order == 0`.
+    pub fn weight_second_moments(
+        &self,
+        pdf: impl Fn(&[f64]) -> f64 + Sync,
+        order: usize,
+    ) -> Result<Vec<(usize, usize, f64)>> {
+        let mut acc: HashMap<(usize, usize), f64> = HashMap::new();
+        let mut w = Vec::new();
+        for c in self.leaves() {
+            let (a, b) = self.cell_bounds(c);
+            let r = QuadratureRule::gauss_legendre_box(&a, &b, order)?;
+            for q in 0..r.len() {
+                let x = r.node(q);
+                let f = r.weights()[q] * pdf(x);
+                if f == 0.0 {
+                    continue;
+                }
+                self.cell_weights(c, x, &mut w);
+                for &(k, wk) in &w {
+                    for &(l, wl) in &w {
+                        if k <= l {
+                            *acc.entry((k, l)).or_insert(0.0) += f * wk * wl;
+                        }
+                    }
+                }
+            }
+        }
+        let mut out: Vec<(usize, usize, f64)> =
+            acc.into_iter().map(|((k, l), v)| (k, l, v)).collect();
+        out.sort_unstable_by_key(|e| (e.0, e.1));
+        Ok(out)
+    }
+
     fn cell_weights(&self, c: CellId, xi: &[f64], w: &mut Vec<(usize, f64)>) {
         w.clear();
         let o = self.cells[c].origin;
