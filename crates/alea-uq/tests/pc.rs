@@ -327,3 +327,24 @@ fn dependent_inputs_through_the_nataf_map() {
     .unwrap();
     assert!((e.mean() - 1.0).abs() < 1e-12 && (e.variance() - 7.4).abs() < 1e-12);
 }
+
+#[test]
+fn weight_moments_give_mean_and_variance() {
+    let m = ishigami_marginals();
+    let law = Independent::new(m.clone()).unwrap();
+    let ish = Ishigami::default();
+    let design = latin_hypercube(&law, 120, 5);
+    let y = design.evaluate(|x| ish.eval(x));
+    let pc =
+        PcSurrogate::regression(PcBasis::total_degree(&m, 4).unwrap(), design.points()).unwrap();
+    let e = pc.expansion(&y).unwrap();
+    let ew = pc.expected_weights();
+    let mean: f64 = ew.iter().zip(&y).map(|(a, b)| a * b).sum();
+    let mm = pc.weight_second_moments();
+    let k = y.len();
+    let m2: f64 = (0..k)
+        .map(|i| y[i] * (0..k).map(|j| mm[i * k + j] * y[j]).sum::<f64>())
+        .sum();
+    assert!((mean - e.mean()).abs() < 1e-10);
+    assert!((m2 - mean * mean - e.variance()).abs() < 1e-9 * e.variance());
+}

@@ -191,6 +191,39 @@ impl PcSurrogate {
         })
     }
 
+    /// Expected weights `E[w_k] = A_0k` (orthonormality: only the constant term has a non-zero
+    /// mean), so that `E[q~] = sum_k E[w_k] q_k`.
+    pub fn expected_weights(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.k];
+        for (a, row) in self.basis.indices().iter().zip(self.a.chunks_exact(self.k)) {
+            if a.iter().all(|&v| v == 0) {
+                for (o, r) in out.iter_mut().zip(row) {
+                    *o += r;
+                }
+            }
+        }
+        out
+    }
+
+    /// Second moments of the weights, `M_kl = E[w_k w_l] = sum_alpha A_alpha,k A_alpha,l`,
+    /// dense row-major `K x K`: `E[q~^2] = q^T M q`.
+    pub fn weight_second_moments(&self) -> Vec<f64> {
+        let k = self.k;
+        let mut m = vec![0.0; k * k];
+        for row in self.a.chunks_exact(k) {
+            for i in 0..k {
+                let ri = row[i];
+                if ri == 0.0 {
+                    continue;
+                }
+                for (mv, rj) in m[i * k..(i + 1) * k].iter_mut().zip(row) {
+                    *mv += ri * rj;
+                }
+            }
+        }
+        m
+    }
+
     /// Normalised leave-one-out error `e_LOO` (regression only).
     ///
     /// # Errors
