@@ -12,7 +12,11 @@
 //!   warm runs (one solver, each run started from the nearest finished one).
 //!
 //! Run: `CARGO_TARGET_DIR=/work/target-latin cargo bench -p alea-latin --bench latin`
-//! (results in `crates/alea-latin/BENCHMARKS.md`).
+//! (results in `crates/alea-latin/BENCHMARKS.md`). Diagnostics instead of the benchmark:
+//! `LATIN_BENCH_SCAN=1` (iterations vs the search-direction factor), `LATIN_BENCH_SCAN2=1`
+//! (separate factors for contact and perfect interfaces), `LATIN_BENCH_HIST=1` (residual
+//! histories of cold and warm runs, and of the all-perfect assembly); `LATIN_BENCH_REFINE=n`
+//! changes the mesh density (default 6).
 
 use std::time::Instant;
 
@@ -207,6 +211,77 @@ fn main() {
         "dovetail refined x{refine}: {ndof} dof in 4 substructures {sizes:?} (meshing {:.2}s)",
         t.elapsed().as_secs_f64()
     );
+    if std::env::var("LATIN_BENCH_HIST").is_ok() {
+        let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
+        let show = |name: &str, r: &RunResult| {
+            let h: Vec<String> = r
+                .residuals
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| i % 50 == 0)
+                .map(|(i, v)| format!("{i}:{v:.1e}"))
+                .collect();
+            println!("{name}: {} iterations; {}", r.iterations, h.join(" "));
+        };
+        let r = solver.run(&input(0.3, 1.0, vec![0.25, 0.5])).unwrap();
+        show("cold mu 0.3", &r);
+        let r = solver.run(&input(0.5, 1.0, vec![0.5, 0.5])).unwrap();
+        show("warm mu 0.5 from 0.3", &r);
+        let r = solver.run(&input(0.5, 1.0625, vec![0.5, 0.75])).unwrap();
+        show("warm E 1.0625 from 1", &r);
+        let r = solver.run(&input(0.5, 1.0, vec![0.5, 0.5])).unwrap();
+        show("warm same point", &r);
+        let mut asm2 = asm.clone();
+        for i in asm2.interfaces.iter_mut() {
+            i.law = std::sync::Arc::new(alea_latin::Perfect);
+        }
+        let mut s2 = LatinSolver::new(asm2, options()).unwrap();
+        let r = s2.run(&input(0.5, 1.0, vec![])).unwrap();
+        show("all perfect", &r);
+        return;
+    }
+    if std::env::var("LATIN_BENCH_SCAN2").is_ok() {
+        // Separate factors for the contact and the perfect interfaces.
+        let lens: Vec<f64> = asm
+            .interfaces
+            .iter()
+            .map(|i| {
+                let m = &asm.subs[i.sub1].model.mesh;
+                alea_latin::interface::side_geometry(m, &i.group1, 1.0)
+                    .unwrap()
+                    .weights
+                    .iter()
+                    .sum::<f64>()
+            })
+            .collect();
+        println!("interface lengths {lens:?}");
+        for (fc, fp) in [
+            (0.5, 0.5),
+            (0.5, 2.0),
+            (0.5, 5.0),
+            (0.5, 0.2),
+            (1.0, 2.0),
+            (0.2, 2.0),
+        ] {
+            let k: Vec<[f64; 2]> = lens
+                .iter()
+                .enumerate()
+                .map(|(i, l)| {
+                    let f = if i < 2 { fc } else { fp };
+                    [f * E / l, f * E / l]
+                })
+                .collect();
+            let mut opts = options();
+            opts.search_direction = SearchDirection::Fixed(k);
+            let mut solver = LatinSolver::new(asm.clone(), opts).unwrap();
+            let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+            println!(
+                "contact {fc}, perfect {fp}: {:?} after {} iterations ({:.2} s)",
+                r.status, r.iterations, r.timings.total
+            );
+        }
+        return;
+    }
     if std::env::var("LATIN_BENCH_SCAN").is_ok() {
         // Search-direction scan at the nominal point (iterations only).
         for factor in [0.1, 0.2, 0.3, 0.5, 1.0, 3.0] {
