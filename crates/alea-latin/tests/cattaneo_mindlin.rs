@@ -46,8 +46,10 @@
 //! tangential relative displacement, hence no friction and no slip, and (b) in the tangential
 //! phase the slip zones only grow and the slip direction never changes, so the incremental slip
 //! integrates to a total slip that satisfies the static law at the final load. Conversely, the
-//! static problem has a unique solution for `Q' < mu P'` here (the normal problem decouples and
-//! fixes `p`; the tangential problem with the fixed bound `mu p` is then a monotone problem), so
+//! static problem has a unique solution for `Q' < mu P'` here: the normal problem decouples and
+//! fixes `p`, and the tangential problem with the then given slip bound `mu p(x)` is a
+//! Tresca-type problem, i.e. a strictly convex minimisation with a unique traction field (the
+//! stick zone pins the rigid tangential motion of the floating cylinder). So
 //! one static solve with both load cases applied (load factors `[1, Q'/(mu P')]`) gives the
 //! Cattaneo-Mindlin state. It would not for non-monotonic or non-proportional-after-normal paths
 //! (unloading, oblique loading with dissimilar materials), which need an incremental law.
