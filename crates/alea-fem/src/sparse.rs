@@ -66,17 +66,32 @@ impl SymCsc {
 
     /// Scatters a dense symmetric block `ke` (row-major, `dofs.len()^2`) at `dofs`; entries
     /// with a dof equal to `usize::MAX` (eliminated) are skipped.
+    ///
+    /// # Panics
+    /// If an entry is not in the pattern.
     pub fn add_block(&mut self, dofs: &[usize], ke: &[f64]) {
         let m = dofs.len();
         for (q, &gj) in dofs.iter().enumerate() {
             if gj == usize::MAX {
                 continue;
             }
+            let start = self.col_ptr[gj];
+            let rows = &self.row_idx[start..self.col_ptr[gj + 1]];
+            // The dofs of a node are consecutive, so the next row is usually the next entry
+            // of the column: try it before a binary search.
+            let mut next = usize::MAX;
             for (p, &gi) in dofs.iter().enumerate() {
                 if gi == usize::MAX || gi > gj {
                     continue;
                 }
-                self.add(gi, gj, ke[p * m + q]);
+                let k = if rows.get(next) == Some(&gi) {
+                    next
+                } else {
+                    rows.binary_search(&gi)
+                        .unwrap_or_else(|_| panic!("entry ({gi}, {gj}) not in the sparse pattern"))
+                };
+                self.values[start + k] += ke[p * m + q];
+                next = k + 1;
             }
         }
     }
