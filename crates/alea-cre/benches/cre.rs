@@ -1,1 +1,203 @@
-fn main() {}
+//! CRE benchmark: one estimate on the LATIN benchmark assembly (dovetail blade root in a disk
+//! sector, each split in halves on x = 0: four substructures, two Coulomb contact interfaces on
+//! the flanks, two perfect interfaces on x = 0, Q4, ~22 000 dof; built as in
+//! `crates/alea-latin/benches/latin.rs`) against one deterministic LATIN solve (set-up +
+//! iterations to 1e-6) of the same assembly, with 1 and 2 threads. The thesis quotes an
+//! estimate at 1.5x a deterministic run.
+//!
+//! Run: `CARGO_TARGET_DIR=/work/target-cre cargo bench -p alea-cre --bench cre`
+//! (results in `crates/alea-cre/BENCHMARKS.md`). `CRE_BENCH_REFINE` changes the refinement
+//! (default 6).
+
+use std::time::Instant;
+
+use alea_cre::{CreOptions, LoadData, estimate_latin};
+use alea_fem::{Analysis, Constraints, Loads, Material, Model};
+use alea_latin::{
+    Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunStatus, SearchDirection,
+    Substructure,
+};
+use alea_mesh::generate::{DovetailParams, dovetail_root_and_disk};
+use alea_mesh::{CellType, Facet, Mesh};
+
+const E: f64 = 200e3;
+const NU: f64 = 0.3;
+/// Blade pull on the root top (MPa) and its tangential (bending) part.
+const PULL: f64 = 200.0;
+const SHEAR: f64 = 30.0;
+
+/// Cell-group part `part` of `mesh`, cut at x = 0 (`left`: centroid x < 0), with the cut
+/// facets as the facet/node group `"cut"`.
+fn half(mesh: &Mesh, part: &str, left: bool) -> Mesh {
+    let mut m = mesh.clone();
+    let name = format!("{part}_{}", if left { "l" } else { "r" });
+    let cells: Vec<usize> = m
+        .cell_group(part)
+        .unwrap()
+        .iter()
+        .copied()
+        .filter(|&c| {
+            let xs = m.cell_coords(c);
+            let cx = xs.iter().map(|x| x[0]).sum::<f64>() / xs.len() as f64;
+            (cx < 0.0) == left
+        })
+        .collect();
+    m.add_cells_to_group(&name, cells);
+    let (mut sub, _) = m.extract(&[&name]).unwrap();
+    let (lo, hi) = sub.bounding_box();
+    let tol = 1e-9 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let cut: Vec<Facet> = sub
+        .boundary_facets()
+        .into_iter()
+        .filter(|b| b.facet.nodes.iter().all(|&n| sub.coords[n][0].abs() <= tol))
+        .map(|b| b.facet)
+        .collect();
+    let nodes: Vec<usize> = cut.iter().flat_map(|f| f.nodes.clone()).collect();
+    assert!(!cut.is_empty(), "{name}: no facet on x = 0");
+    sub.add_facets_to_group("cut", cut);
+    sub.add_nodes_to_group("cut", nodes);
+    sub
+}
+
+fn model(mesh: Mesh) -> Model {
+    let mut m = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
+    m.set_material_all(Material::new(E, NU, 7.8e-9).unwrap());
+    m
+}
+
+/// Substructures 0 root_l, 1 root_r, 2 disk_l, 3 disk_r.
+fn assembly(refine: usize) -> Assembly {
+    let p = DovetailParams::default().refined(refine);
+    let mesh = dovetail_root_and_disk(&p, CellType::Quad4).unwrap();
+    let mut subs = Vec::new();
+    for (part, left) in [
+        ("root", true),
+        ("root", false),
+        ("disk", true),
+        ("disk", false),
+    ] {
+        let m = model(half(&mesh, part, left));
+        let name = format!("{part}_{}", if left { "left" } else { "right" });
+        let mut c = Constraints::new();
+        let mut loads = Loads::new(&m);
+        if part == "disk" {
+            let side = if left {
+                "disk_side_left"
+            } else {
+                "disk_side_right"
+            };
+            c.fix_normal(&m.mesh, side, 0.0).unwrap();
+        } else {
+            loads
+                .traction(&m, "root_top", |_, _| [SHEAR, PULL, 0.0])
+                .unwrap();
+        }
+        subs.push(Substructure {
+            name,
+            model: m,
+            constraints: c,
+            load_cases: vec![loads.f],
+        });
+    }
+    let interfaces = vec![
+        InterfaceSpec::coulomb(
+            "flank_left",
+            0,
+            "flank_left_root",
+            2,
+            "flank_left_disk",
+            0.5,
+        ),
+        InterfaceSpec::coulomb(
+            "flank_right",
+            1,
+            "flank_right_root",
+            3,
+            "flank_right_disk",
+            0.5,
+        ),
+        InterfaceSpec::perfect("root_cut", 0, "cut", 1, "cut"),
+        InterfaceSpec::perfect("disk_cut", 2, "cut", 3, "cut"),
+    ];
+    Assembly { subs, interfaces }
+}
+
+fn options() -> LatinOptions {
+    LatinOptions {
+        tolerance: 1e-6,
+        max_iterations: 5000,
+        search_direction: SearchDirection::Auto { factor: 0.5 },
+        ..Default::default()
+    }
+}
+
+fn loads() -> Vec<LoadData> {
+    let root = LoadData::new().traction("root_top", |_, _| [SHEAR, PULL, 0.0]);
+    vec![root.clone(), root, LoadData::new(), LoadData::new()]
+}
+
+fn main() {
+    let refine: usize = std::env::var("CRE_BENCH_REFINE")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(6);
+    let asm = assembly(refine);
+    let ndof: usize = asm.subs.iter().map(|s| 2 * s.model.mesh.num_nodes()).sum();
+    let ncell: usize = asm.subs.iter().map(|s| s.model.mesh.num_cells()).sum();
+    println!("dovetail refined x{refine}: {ndof} dof, {ncell} cells in 4 substructures");
+    let data = loads();
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut best = [f64::INFINITY; 3];
+            let mut summary = String::new();
+            for _ in 0..3 {
+                let t0 = Instant::now();
+                let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
+                let setup = t0.elapsed().as_secs_f64();
+                let r = solver.run(&RunInput::default()).unwrap();
+                let solve = t0.elapsed().as_secs_f64();
+                assert_eq!(r.status, RunStatus::Converged);
+                let t1 = Instant::now();
+                let est = estimate_latin(&asm, &data, &r, &CreOptions::default()).unwrap();
+                let cre = t1.elapsed().as_secs_f64();
+                best = [best[0].min(setup), best[1].min(solve), best[2].min(cre)];
+                let p1: f64 = est.substructures.iter().map(|d| d.seconds[0]).sum();
+                let p2: f64 = est.substructures.iter().map(|d| d.seconds[1]).sum();
+                println!("  estimate {cre:.3} s: phase 1 {p1:.3} s, phase 2 {p2:.3} s");
+                summary = format!(
+                    "{} iterations; theta = {:.4e}, relative {:.3e}, substructures {:?}, interface terms {:?}, compatibility defect {:.1e}, violations {:?}",
+                    r.iterations,
+                    est.theta,
+                    est.relative,
+                    est.substructure_theta()
+                        .iter()
+                        .map(|t| format!("{t:.3e}"))
+                        .collect::<Vec<_>>(),
+                    est.interfaces
+                        .iter()
+                        .map(|i| format!("{:.2e}", i.term))
+                        .collect::<Vec<_>>(),
+                    est.compatibility_defect(),
+                    est.interfaces.iter().map(|i| i.violations).collect::<Vec<_>>()
+                );
+            }
+            println!("\n## {threads} thread(s) (best of 3)");
+            println!("{summary}");
+            println!(
+                "| LATIN set-up | LATIN solve (set-up + iterations) | CRE estimate | CRE / solve |"
+            );
+            println!("|---|---|---|---|");
+            println!(
+                "| {:.3} s | {:.3} s | {:.3} s | {:.2} |",
+                best[0],
+                best[1],
+                best[2],
+                best[2] / best[1]
+            );
+        });
+    }
+}

@@ -1,4 +1,52 @@
-//! Constitutive-relation-error (CRE) estimator (thesis chapter 3.1; placeholder doc, see below).
+//! Constitutive-relation-error (CRE) estimator for linear-elastic substructures and frictional
+//! contact interfaces (thesis chapter 3.1, SEED-NOTES section 4). Deterministic only (the
+//! stochastic estimator of 3.2 builds on it).
+//!
+//! # The estimate
+//! With an admissible pair (`u_hat` kinematically admissible, `sigma_hat` statically
+//! admissible), the CRE (3.16) `e^2 = 1/2 ||sigma_hat - K eps(u_hat)||^2_{K^-1}` satisfies the
+//! Prager-Synge identity (3.19) `||u_ex - u_hat||^2_K + ||sigma_ex - sigma_hat||^2_{K^-1} =
+//! 2 e^2`, so `theta = sqrt(2) e` bounds the energy-norm error `||u_ex - u_h||_K =
+//! (int (sigma_ex - sigma_h) : eps(u_ex - u_h))^(1/2)`. We take `u_hat = u_h` and build
+//! `sigma_hat` by the standard EET technique ([`eet`]): phase 1 (3.20)-(3.22) equilibrated edge
+//! tractions from the prolongation condition, node by node; phase 2 (3.23) element-by-element
+//! Neumann problems solved with degree `p + 3` polynomials. Element contributions
+//! `theta_E^2 = ||sigma_hat - sigma_h||^2_{K^-1,E}`, `theta^2 = sum_E theta_E^2`.
+//!
+//! With contact (3.26): `e^2 = 1/2 sum_s ||sigma_hat^s - K eps(u_hat^s)||^2 + int_Ic [b(-w_hat,
+//! F_hat) + w_hat . F_hat] dS`, hence here `theta^2 = sum_s theta_s^2 + 2 sum_I term_I`.
+//! Substructure fields ([`estimate_latin`]): each substructure is isolated and loaded by the
+//! interface forces its last linear-stage solution is in equilibrium with (lumped interface
+//! mass: nodal forces `m_i F_i`, reproduced exactly by per-side linear densities), then EET.
+//! Interface fields ([`interface`]): `w_hat` = jump (gap included) of local stage `n - 1`,
+//! `F_hat` = force of local stage `n` (3.1.3.2 b), strictly admissible (3.27); de Saxce
+//! bipotential; indicator functions checked with a tolerance and reported, never infinite.
+//! Relative error: `theta / ||u_h||_K`.
+//!
+//! # What is guaranteed
+//! `theta >= ||u_ex - u_h||_K` holds **if** (i) `u_h` is kinematically admissible (the
+//! prescribed displacements are those of the exact problem and the FE space represents them:
+//! homogeneous or piecewise-linear data), (ii) the FE solution is in equilibrium with the loads
+//! given to the estimator as functions ([`LoadData`]: same body force and tractions as the
+//! nodal load vectors) - reported as [`DomainEstimate::compatibility_defect`], (iii) the
+//! phase-2 local problems are solved exactly and the data integrals are exact. (iii) never holds
+//! exactly: the degree `p + 3` displacement solution of a Neumann problem has slightly *less*
+//! energy than the exact local solution (corner singularities of the local problems make this
+//! convergence slow; `tests/admissibility.rs` measures `theta(p+3)` 3 % below `theta(p+5)` on
+//! T3), and non-polynomial loads are integrated by quadrature
+//! ([`DomainEstimate::balance_defect`]). So `theta` is a *nearly* guaranteed bound; the
+//! measured efficiency indices (1.17 on Q4, 2.6-2.9 on T3, see the tests) leave a wide margin.
+//! For an assembly, the bound additionally needs a **converged LATIN** solution: the
+//! substructure stresses are in equilibrium with the linear-stage forces `F_n` while the
+//! interface term uses the local-stage `(W_hat_(n-1), F_hat_n)`; only at convergence are these
+//! the same interface fields, and only then is (3.26) the CRE of one admissible solution. The
+//! interface term is `>= 0` for any strictly admissible pair (always, up to round-off); it
+//! vanishes wherever the point's status (open/stick/slip, slip direction) is the same at stages
+//! `n - 1` and `n`, so it is not a measure of the LATIN convergence error by itself.
+//!
+//! # Scope
+//! 2D (plane strain / plane stress), Tri3 and Quad4 cells (others are rejected with
+//! [`CreError::UnsupportedCell`]); constraints along axes or skew (`fix_normal`).
 
 mod data;
 mod domain;

@@ -280,7 +280,15 @@ fn exact_local(kind: CellType) {
     let u = vec![0.0; 2 * ids.len()];
     let body: alea_cre::VectorField = Arc::new(move |_| f);
     for degree in 2..=6 {
-        let r = alea_cre::eet::phase2::element(&m, 0, &u, Some(&body), &tr, degree).unwrap();
+        let r = alea_cre::eet::phase2::element(
+            &m,
+            0,
+            &u,
+            Some(&body),
+            &tr,
+            &alea_cre::eet::phase2::Phase2Rules::new(degree),
+        )
+        .unwrap();
         let q = Quadrature::for_cell(kind, 8);
         let coords = m.cell_coords(0);
         let (mut e2, mut dmax, mut smax): (f64, f64, f64) = (0.0, 0.0, 0.0);

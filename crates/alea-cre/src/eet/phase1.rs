@@ -23,6 +23,7 @@
 
 use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
 use alea_mesh::Mesh;
+use rayon::prelude::*;
 
 use crate::CreError;
 use crate::data::{SideForces, TractionField, VectorField};
@@ -147,6 +148,9 @@ fn constrained(f: &([[f64; 2]; 2], usize), d: [f64; 2]) -> bool {
     free_part < 1e-12
 }
 
+/// A linear density on one edge: `(edge, [value at nodes[0], value at nodes[1]])`.
+pub type EdgeLinear = (usize, [[f64; 2]; 2]);
+
 /// Linear densities on the edges of each interface side whose consistent nodal forces equal the
 /// given discrete forces: `M t = g / thickness`, `M` the consistent edge mass of the side (1D,
 /// symmetric positive definite), solved by Jacobi-preconditioned conjugate gradients to round-off.
@@ -156,7 +160,7 @@ pub fn interface_densities(
     topo: &Topology,
     side: &SideForces,
     thickness: f64,
-) -> Result<Vec<(usize, [[f64; 2]; 2])>, CreError> {
+) -> Result<Vec<EdgeLinear>, CreError> {
     let facets = mesh.facet_group(&side.group)?;
     let mut local: std::collections::HashMap<usize, usize> = Default::default();
     for (i, &n) in side.nodes.iter().enumerate() {
@@ -369,155 +373,176 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
 
     // Element residuals Q_E(i) (per unit thickness) and FE stresses along the edges.
     let ncell = mesh.num_cells();
-    let mut q_res: Vec<Vec<[f64; 2]>> = Vec::with_capacity(ncell);
-    let mut ke = Vec::new();
-    for c in 0..ncell {
-        let kind = mesh.cell_type(c);
-        let nodes = mesh.cell_nodes(c);
-        let coords = model.cell_coords(c);
-        alea_fem::assembly::element_stiffness(model, c, &mut ke)?;
-        let m = nodes.len() * 2;
-        let ue: Vec<f64> = nodes
-            .iter()
-            .flat_map(|&n| [inp.u[2 * n], inp.u[2 * n + 1]])
-            .collect();
-        let mut q = vec![[0.0; 2]; nodes.len()];
-        for a in 0..nodes.len() {
-            for ca in 0..2 {
-                let r = a * 2 + ca;
-                q[a][ca] = (0..m).map(|j| ke[r * m + j] * ue[j]).sum::<f64>() / th;
-            }
-        }
-        if let Some(body) = inp.body {
-            let rule = Quadrature::for_cell(kind, 2 * kind.order() + 2);
-            for (xi, w) in rule.points.iter().zip(&rule.weights) {
-                let g = point_geometry(kind, &coords, *xi);
-                let b = body(g.x);
-                for a in 0..nodes.len() {
-                    for ca in 0..2 {
-                        q[a][ca] -= w * g.det * g.n[a] * b[ca];
-                    }
-                }
-            }
-        }
-        q_res.push(q);
-    }
-    // b_bar: averaged FE traction projections, per edge and edge node (first orientation).
-    let rule = gauss01(3);
-    let mut b_bar = vec![[[0.0; 2]; 2]; ne];
-    for (e, edge) in topo.edges.iter().enumerate() {
-        let (n, len, _) = topo.geometry(mesh, e);
-        let share = 1.0 / edge.cells.len() as f64;
-        for (k, &(c, l)) in edge.cells.iter().enumerate() {
+    let q_res: Vec<Vec<[f64; 2]>> = (0..ncell)
+        .into_par_iter()
+        .map(|c| -> Result<Vec<[f64; 2]>, CreError> {
+            let mut ke = Vec::new();
             let kind = mesh.cell_type(c);
-            let coords = model.cell_coords(c);
             let nodes = mesh.cell_nodes(c);
+            let coords = model.cell_coords(c);
+            alea_fem::assembly::element_stiffness(model, c, &mut ke)?;
+            let m = nodes.len() * 2;
             let ue: Vec<f64> = nodes
                 .iter()
-                .flat_map(|&nd| [inp.u[2 * nd], inp.u[2 * nd + 1]])
+                .flat_map(|&n| [inp.u[2 * n], inp.u[2 * n + 1]])
                 .collect();
-            let d = hooke(model.material(c)?, model.analysis);
-            for &(s, w) in &rule {
-                // The second cell runs along the edge in the opposite direction.
-                let s_cell = if k == 0 { s } else { 1.0 - s };
-                let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, l, s_cell));
-                let t = traction_of(&mul3(&d, &eps), n);
-                for c2 in 0..2 {
-                    b_bar[e][0][c2] += share * w * len * (1.0 - s) * t[c2];
-                    b_bar[e][1][c2] += share * w * len * s * t[c2];
+            let mut q = vec![[0.0; 2]; nodes.len()];
+            for a in 0..nodes.len() {
+                for ca in 0..2 {
+                    let r = a * 2 + ca;
+                    q[a][ca] = (0..m).map(|j| ke[r * m + j] * ue[j]).sum::<f64>() / th;
                 }
             }
-        }
-    }
+            if let Some(body) = inp.body {
+                let rule = Quadrature::for_cell(kind, 2 * kind.order() + 2);
+                for (xi, w) in rule.points.iter().zip(&rule.weights) {
+                    let g = point_geometry(kind, &coords, *xi);
+                    let b = body(g.x);
+                    for a in 0..nodes.len() {
+                        for ca in 0..2 {
+                            q[a][ca] -= w * g.det * g.n[a] * b[ca];
+                        }
+                    }
+                }
+            }
+            Ok(q)
+        })
+        .collect::<Result<_, _>>()?;
+    // b_bar: averaged FE traction projections, per edge and edge node (first orientation).
+    let rule = gauss01(3);
+    let b_bar: Vec<[[f64; 2]; 2]> = topo
+        .edges
+        .par_iter()
+        .enumerate()
+        .map(|(e, edge)| -> Result<[[f64; 2]; 2], CreError> {
+            let mut bb = [[0.0; 2]; 2];
+            let (n, len, _) = topo.geometry(mesh, e);
+            let share = 1.0 / edge.cells.len() as f64;
+            for (k, &(c, l)) in edge.cells.iter().enumerate() {
+                let kind = mesh.cell_type(c);
+                let coords = model.cell_coords(c);
+                let nodes = mesh.cell_nodes(c);
+                let ue: Vec<f64> = nodes
+                    .iter()
+                    .flat_map(|&nd| [inp.u[2 * nd], inp.u[2 * nd + 1]])
+                    .collect();
+                let d = hooke(model.material(c)?, model.analysis);
+                for &(s, w) in &rule {
+                    // The second cell runs along the edge in the opposite direction.
+                    let s_cell = if k == 0 { s } else { 1.0 - s };
+                    let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, l, s_cell));
+                    let t = traction_of(&mul3(&d, &eps), n);
+                    for c2 in 0..2 {
+                        bb[0][c2] += share * w * len * (1.0 - s) * t[c2];
+                        bb[1][c2] += share * w * len * s * t[c2];
+                    }
+                }
+            }
+            Ok(bb)
+        })
+        .collect::<Result<_, _>>()?;
 
     // Node systems.
+    type NodeOut = (Vec<(usize, usize, [f64; 2])>, f64, f64);
+    let per_node: Vec<NodeOut> = (0..nn)
+        .into_par_iter()
+        .map(|i| {
+            let mut out: Vec<(usize, usize, [f64; 2])> = Vec::new();
+            let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
+            let cells = &topo.node_cells[i];
+            if cells.is_empty() {
+                return (out, 0.0, 0.0);
+            }
+            let edges = &topo.node_edges[i];
+            let frame = &frames[i];
+            let slot = |e: usize| if topo.edges[e].nodes[0] == i { 0 } else { 1 };
+            for d in 0..2 {
+                let r = frame.0[d];
+                let is_constrained_dir = d >= frame.1;
+                // Unknown edges in this direction.
+                let unknown: Vec<usize> = edges
+                    .iter()
+                    .copied()
+                    .filter(|&e| {
+                        let ed = &topo.edges[e];
+                        !ed.is_boundary()
+                            || (is_constrained_dir
+                                && ed.nodes.iter().all(|&nd| constrained(&frames[nd], r)))
+                    })
+                    .collect();
+                let m = cells.len();
+                let nu = unknown.len();
+                let mut a = vec![0.0; m * nu];
+                let mut rhs = vec![0.0; m];
+                let mut scale = 0.0;
+                for (row, &c) in cells.iter().enumerate() {
+                    let a_loc = mesh
+                        .cell_nodes(c)
+                        .iter()
+                        .position(|&nd| nd == i)
+                        .unwrap_or(0);
+                    let qv = q_res[c][a_loc];
+                    rhs[row] = qv[0] * r[0] + qv[1] * r[1];
+                    scale += rhs[row].abs();
+                    for &(e, eta) in &topo.cell_edges[c] {
+                        if !topo.edges[e].nodes.contains(&i) {
+                            continue;
+                        }
+                        if let Some(col) = unknown.iter().position(|&u| u == e) {
+                            a[row * nu + col] += eta;
+                        } else {
+                            let bk = b_known[e][slot(e)];
+                            rhs[row] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
+                        }
+                    }
+                }
+                let x_bar: Vec<f64> = unknown
+                    .iter()
+                    .map(|&e| {
+                        let bb = b_bar[e][slot(e)];
+                        bb[0] * r[0] + bb[1] * r[1]
+                    })
+                    .collect();
+                // Weighted minimisation sum_Gamma (x - x_bar)^2 / L_Gamma: substitute
+                // x = sqrt(L) y and minimise |y - y_bar|^2.
+                let sq: Vec<f64> = unknown
+                    .iter()
+                    .map(|&e| topo.geometry(mesh, e).1.sqrt())
+                    .collect();
+                for row in 0..m {
+                    for col in 0..nu {
+                        a[row * nu + col] *= sq[col];
+                    }
+                }
+                let y_bar: Vec<f64> = x_bar.iter().zip(&sq).map(|(x, s)| x / s).collect();
+                let (mut x, res) = least_change(&a, m, nu, &rhs, &y_bar);
+                for (v, s) in x.iter_mut().zip(&sq) {
+                    *v *= s;
+                }
+                let known_scale: f64 = edges
+                    .iter()
+                    .map(|&e| {
+                        let bk = b_known[e][slot(e)];
+                        (bk[0] * r[0] + bk[1] * r[1]).abs()
+                    })
+                    .sum();
+                max_res = max_res.max(res);
+                max_scale = max_scale.max(scale + known_scale);
+                for (col, &e) in unknown.iter().enumerate() {
+                    out.push((e, slot(e), [x[col] * r[0], x[col] * r[1]]));
+                }
+            }
+            (out, max_res, max_scale)
+        })
+        .collect();
     let mut b_unknown = vec![[[0.0; 2]; 2]; ne];
     let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
-    for i in 0..nn {
-        let cells = &topo.node_cells[i];
-        if cells.is_empty() {
-            continue;
-        }
-        let edges = &topo.node_edges[i];
-        let frame = &frames[i];
-        let slot = |e: usize| if topo.edges[e].nodes[0] == i { 0 } else { 1 };
-        for d in 0..2 {
-            let r = frame.0[d];
-            let is_constrained_dir = d >= frame.1;
-            // Unknown edges in this direction.
-            let unknown: Vec<usize> = edges
-                .iter()
-                .copied()
-                .filter(|&e| {
-                    let ed = &topo.edges[e];
-                    !ed.is_boundary()
-                        || (is_constrained_dir
-                            && ed.nodes.iter().all(|&nd| constrained(&frames[nd], r)))
-                })
-                .collect();
-            let m = cells.len();
-            let nu = unknown.len();
-            let mut a = vec![0.0; m * nu];
-            let mut rhs = vec![0.0; m];
-            let mut scale = 0.0;
-            for (row, &c) in cells.iter().enumerate() {
-                let a_loc = mesh
-                    .cell_nodes(c)
-                    .iter()
-                    .position(|&nd| nd == i)
-                    .unwrap_or(0);
-                let qv = q_res[c][a_loc];
-                rhs[row] = qv[0] * r[0] + qv[1] * r[1];
-                scale += rhs[row].abs();
-                for &(e, eta) in &topo.cell_edges[c] {
-                    if !topo.edges[e].nodes.contains(&i) {
-                        continue;
-                    }
-                    if let Some(col) = unknown.iter().position(|&u| u == e) {
-                        a[row * nu + col] += eta;
-                    } else {
-                        let bk = b_known[e][slot(e)];
-                        rhs[row] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
-                    }
-                }
-            }
-            let x_bar: Vec<f64> = unknown
-                .iter()
-                .map(|&e| {
-                    let bb = b_bar[e][slot(e)];
-                    bb[0] * r[0] + bb[1] * r[1]
-                })
-                .collect();
-            // Weighted minimisation sum_Gamma (x - x_bar)^2 / L_Gamma: substitute
-            // x = sqrt(L) y and minimise |y - y_bar|^2.
-            let sq: Vec<f64> = unknown
-                .iter()
-                .map(|&e| topo.geometry(mesh, e).1.sqrt())
-                .collect();
-            for row in 0..m {
-                for col in 0..nu {
-                    a[row * nu + col] *= sq[col];
-                }
-            }
-            let y_bar: Vec<f64> = x_bar.iter().zip(&sq).map(|(x, s)| x / s).collect();
-            let (mut x, res) = least_change(&a, m, nu, &rhs, &y_bar);
-            for (v, s) in x.iter_mut().zip(&sq) {
-                *v *= s;
-            }
-            let known_scale: f64 = edges
-                .iter()
-                .map(|&e| {
-                    let bk = b_known[e][slot(e)];
-                    (bk[0] * r[0] + bk[1] * r[1]).abs()
-                })
-                .sum();
-            max_res = max_res.max(res);
-            max_scale = max_scale.max(scale + known_scale);
-            for (col, &e) in unknown.iter().enumerate() {
-                let s = slot(e);
-                b_unknown[e][s][0] += x[col] * r[0];
-                b_unknown[e][s][1] += x[col] * r[1];
-            }
+    for (out, res, scale) in per_node {
+        max_res = max_res.max(res);
+        max_scale = max_scale.max(scale);
+        for (e, slot, v) in out {
+            b_unknown[e][slot][0] += v[0];
+            b_unknown[e][slot][1] += v[1];
         }
     }
     for (e, bu) in b_unknown.iter().enumerate() {

@@ -80,10 +80,26 @@ pub struct ElementResult {
     pub stress: ElementStress,
 }
 
-fn cell_rule(kind: CellType, degree: usize) -> Quadrature {
-    match kind {
-        CellType::Tri3 => Quadrature::triangle(2 * degree),
-        _ => Quadrature::tensor(2, degree + 1),
+/// Quadrature rules of the local problems of one degree (built once, shared by all cells).
+#[derive(Clone, Debug)]
+pub struct Phase2Rules {
+    /// Local polynomial degree.
+    pub degree: usize,
+    tri: Quadrature,
+    quad: Quadrature,
+    edge: Vec<(f64, f64)>,
+}
+
+impl Phase2Rules {
+    /// Rules for local degree `degree`: exact for the stiffness on triangles (`2 degree`),
+    /// `degree + 1` Gauss points per direction on quadrilaterals, `degree + 4` on edges.
+    pub fn new(degree: usize) -> Self {
+        Phase2Rules {
+            degree,
+            tri: Quadrature::triangle(2 * degree),
+            quad: Quadrature::tensor(2, degree + 1),
+            edge: gauss01(degree + 4),
+        }
     }
 }
 
@@ -94,8 +110,9 @@ pub fn element(
     u: &[f64],
     body: Option<&VectorField>,
     tr: &EdgeTractions,
-    degree: usize,
+    rules: &Phase2Rules,
 ) -> Result<ElementResult, CreError> {
+    let degree = rules.degree;
     let mesh = &model.mesh;
     let kind = mesh.cell_type(c);
     let coords = model.cell_coords(c);
@@ -111,7 +128,10 @@ pub fn element(
     let mut k = vec![0.0; nb * nb];
     let mut l = vec![0.0; nb];
     let mut p = PolyPoint::default();
-    let rule = cell_rule(kind, degree);
+    let rule = match kind {
+        CellType::Tri3 => &rules.tri,
+        _ => &rules.quad,
+    };
     let mut db = vec![[0.0; 3]; nb];
     // Resultants for the balance check: force (2) and moment about the centre.
     let ctr = space.center;
@@ -149,7 +169,7 @@ pub fn element(
             res[2] += wd * ((g.x[0] - ctr[0]) * f[1] - (g.x[1] - ctr[1]) * f[0]);
             abs_sum += wd * (f[0].abs() + f[1].abs());
         }
-        pts.push((wd, g.x, eps_h));
+        pts.push((wd, eps_h, p.eps.clone()));
     }
     for i in 0..nb {
         for j in 0..i {
@@ -157,11 +177,11 @@ pub fn element(
         }
     }
     // Edge loads.
-    let erule = gauss01(degree + 4);
+    let erule = &rules.edge;
     for (l_idx, &(e, eta)) in tr.topo.cell_edges[c].iter().enumerate() {
         let (n, len, [xa, xb]) = tr.topo.geometry(mesh, e);
         let _ = l_idx;
-        for &(s, w) in &erule {
+        for &(s, w) in erule {
             let x = [
                 (1.0 - s) * xa[0] + s * xb[0],
                 (1.0 - s) * xa[1] + s * xb[1],
@@ -191,12 +211,11 @@ pub fn element(
     }
     let coeffs = l;
     let (mut theta2, mut energy2) = (0.0, 0.0);
-    for (wd, x, eps_h) in pts {
-        space.eval(x, false, &mut p);
+    for (wd, eps_h, eps) in pts {
         let mut e = [0.0; 3];
         for (j, a) in coeffs.iter().enumerate() {
             for cc in 0..3 {
-                e[cc] += a * p.eps[j][cc];
+                e[cc] += a * eps[j][cc];
             }
         }
         let de = [e[0] - eps_h[0], e[1] - eps_h[1], e[2] - eps_h[2]];
