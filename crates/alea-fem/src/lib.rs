@@ -33,5 +33,5 @@ pub use material::{Analysis, Material, von_mises};
 pub use model::Model;
 pub use problem::{ElasticSolution, Timings, solve_elastic};
 pub use quadrature::Quadrature;
-pub use solver::{Cholesky, Ordering};
+pub use solver::{Cholesky, Ordering, SolveScratch};
 pub use sparse::SymCsc;

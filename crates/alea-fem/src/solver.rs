@@ -253,3 +253,44 @@ impl Cholesky {
         llt.solve_in_place_with_conj(Conj::No, mat, Par::Seq, MemStack::new(&mut self.stack));
     }
 }
+
+/// Scratch memory for [`Cholesky::solve_with`]: one per thread, so that one factorisation can
+/// serve concurrent solves.
+pub struct SolveScratch(MemBuffer);
+
+impl std::fmt::Debug for SolveScratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolveScratch")
+            .field("bytes", &self.0.len())
+            .finish()
+    }
+}
+
+impl Cholesky {
+    /// Scratch for solves with up to `ncols` right-hand sides.
+    pub fn solve_scratch(&self, ncols: usize) -> SolveScratch {
+        SolveScratch(MemBuffer::new(
+            self.symbolic
+                .solve_in_place_scratch::<f64>(ncols.max(1), Par::Seq),
+        ))
+    }
+
+    /// Solves `A x = b` in place like [`Cholesky::solve_in_place`], through a shared reference
+    /// and caller-owned scratch (from [`Cholesky::solve_scratch`] with at least as many
+    /// columns).
+    ///
+    /// # Panics
+    /// If not factorised, or if `rhs.len()` is not a multiple of `n`.
+    pub fn solve_with(&self, rhs: &mut [f64], scratch: &mut SolveScratch) {
+        assert!(self.factorized, "solve before a successful factorisation");
+        assert_eq!(rhs.len() % self.n.max(1), 0);
+        let ncols = rhs.len() / self.n.max(1);
+        let req = self.symbolic.solve_in_place_scratch::<f64>(ncols, Par::Seq);
+        if req.size_bytes() > scratch.0.len() {
+            scratch.0 = MemBuffer::new(req);
+        }
+        let llt = LltRef::new(&self.symbolic, &self.l_values);
+        let mat = MatMut::from_column_major_slice_mut(rhs, self.n, ncols);
+        llt.solve_in_place_with_conj(Conj::No, mat, Par::Seq, MemStack::new(&mut scratch.0));
+    }
+}

@@ -24,4 +24,4 @@ pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
 pub use error::LatinError;
 pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
-pub use solver::{LatinOptions, LatinSolver, RunInput, SearchDirection};
+pub use solver::{LatinOptions, LatinSolver, LocalState, RunInput, SearchDirection};

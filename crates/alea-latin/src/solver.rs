@@ -21,10 +21,10 @@
 //! `(W_hat, F_hat)` of the nearest finished run in parameter space (Euclidean distance of the
 //! caller's normalised parameters).
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
+use alea_fem::{Cholesky, DofMap, Ordering, SolveScratch, SymCsc, assemble_stiffness};
 use rayon::prelude::*;
 
 use crate::interface::{pair_nodes, side_geometry};
@@ -91,6 +91,56 @@ pub struct RunInput {
     pub gap: Vec<Option<PointField>>,
     /// Normalised parameter point (for the nearest-run warm start; empty: cold start).
     pub params: Vec<f64>,
+    /// Explicit initial local-stage state (takes precedence over the nearest stored run).
+    pub initial: Option<Arc<LocalState>>,
+}
+
+/// The local-stage state `(W_hat, F_hat)` on both sides of every interface: everything a run
+/// needs to start from (thesis 5.1.3).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocalState {
+    /// `W_hat` per interface, `[side 1, side 2]`, per point.
+    pub what: Vec<[Vec<V3>; 2]>,
+    /// `F_hat` per interface, `[side 1, side 2]`, per point.
+    pub fhat: Vec<[Vec<V3>; 2]>,
+}
+
+impl LocalState {
+    /// Flattens to little-endian-friendly `f64`s: for each interface, `what[0], what[1],
+    /// fhat[0], fhat[1]` point by point, 3 components each.
+    pub fn to_vec(&self) -> Vec<f64> {
+        let mut out = Vec::new();
+        for (w, f) in self.what.iter().zip(&self.fhat) {
+            for arr in [&w[0], &w[1], &f[0], &f[1]] {
+                for p in arr.iter() {
+                    out.extend_from_slice(p);
+                }
+            }
+        }
+        out
+    }
+
+    /// Inverse of [`LocalState::to_vec`] given the number of points of each interface.
+    pub fn from_slice(points: &[usize], data: &[f64]) -> Option<Self> {
+        let total: usize = points.iter().map(|n| 12 * n).sum();
+        if data.len() != total {
+            return None;
+        }
+        let mut it = data.chunks_exact(3).map(|c| [c[0], c[1], c[2]]);
+        let mut what = Vec::new();
+        let mut fhat = Vec::new();
+        for &n in points {
+            let mut take = || {
+                (0..n)
+                    .map(|_| it.next().unwrap_or([0.0; 3]))
+                    .collect::<Vec<V3>>()
+            };
+            let (w0, w1, f0, f1) = (take(), take(), take(), take());
+            what.push([w0, w1]);
+            fhat.push([f0, f1]);
+        }
+        Some(LocalState { what, fhat })
+    }
 }
 
 /// Interface nodes of one substructure on one side of one interface, in interface point order.
@@ -124,9 +174,9 @@ struct InterfaceOperator {
     gap: PointField,
 }
 
-#[derive(Clone)]
 struct SubState {
     rhs: Vec<f64>,
+    scratch: SolveScratch,
     w: Vec<Vec<V3>>,
     f: Vec<Vec<V3>>,
 }
@@ -150,7 +200,7 @@ pub struct LatinSolver {
     subs: Vec<SubOperator>,
     ifaces: Vec<InterfaceOperator>,
     options: LatinOptions,
-    store: Vec<StoredRun>,
+    store: Mutex<Vec<StoredRun>>,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
 }
@@ -291,7 +341,7 @@ impl LatinSolver {
             subs: ops,
             ifaces,
             options,
-            store: Vec::new(),
+            store: Mutex::new(Vec::new()),
             setup_seconds: t0.elapsed().as_secs_f64(),
         })
     }
@@ -346,12 +396,31 @@ impl LatinSolver {
 
     /// Number of stored (finished) runs available for warm starts.
     pub fn stored_runs(&self) -> usize {
-        self.store.len()
+        self.store.lock().map_or(0, |s| s.len())
     }
 
     /// Forgets the stored runs (every later run starts cold).
     pub fn clear_store(&mut self) {
-        self.store.clear();
+        if let Ok(mut s) = self.store.lock() {
+            s.clear();
+        }
+    }
+
+    /// Adds a finished run's local-stage state to the warm-start store (e.g. runs reloaded
+    /// from disk when a study resumes).
+    pub fn remember(&self, params: Vec<f64>, state: &LocalState) {
+        if let Ok(mut s) = self.store.lock() {
+            s.push(StoredRun {
+                params,
+                what: state.what.clone(),
+                fhat: state.fhat.clone(),
+            });
+        }
+    }
+
+    /// Number of points of each interface (the shape of a [`LocalState`]).
+    pub fn interface_sizes(&self) -> Vec<usize> {
+        self.ifaces.iter().map(|i| i.points.len()).collect()
     }
 
     fn check_input(&self, input: &RunInput) -> Result<(), LatinError> {
@@ -406,6 +475,12 @@ impl LatinSolver {
     /// Runs the LATIN iteration for one parameter point. A run that does not reach the
     /// tolerance is returned with status [`RunStatus::NotConverged`] and its residual history.
     pub fn run(&mut self, input: &RunInput) -> Result<RunResult, LatinError> {
+        self.run_shared(input)
+    }
+
+    /// [`LatinSolver::run`] through a shared reference: several runs may proceed at once on
+    /// different threads (each allocates its own scratch; the factorisations are shared).
+    pub fn run_shared(&self, input: &RunInput) -> Result<RunResult, LatinError> {
         let t_start = Instant::now();
         self.check_input(input)?;
         let alpha: Vec<f64> = if input.young_factors.is_empty() {
@@ -478,9 +553,28 @@ impl LatinSolver {
                 }
             })
             .collect();
-        if !input.params.is_empty() {
-            let best = self
+        if let Some(init) = &input.initial {
+            if init.what.len() != istate.len()
+                || init
+                    .what
+                    .iter()
+                    .zip(&istate)
+                    .any(|(w, st)| w[0].len() != st.what[0].len())
+            {
+                return Err(LatinError::Invalid(
+                    "initial local-stage state does not match the interfaces".into(),
+                ));
+            }
+            for (i, st) in istate.iter_mut().enumerate() {
+                st.what = init.what[i].clone();
+                st.fhat = init.fhat[i].clone();
+            }
+        } else if !input.params.is_empty() {
+            let store = self
                 .store
+                .lock()
+                .map_err(|_| LatinError::Invalid("warm-start store poisoned".into()))?;
+            let best = store
                 .iter()
                 .enumerate()
                 .filter(|(_, r)| r.params.len() == input.params.len())
@@ -497,8 +591,8 @@ impl LatinSolver {
             if let Some((_, k)) = best {
                 warm = Some(k);
                 for (i, st) in istate.iter_mut().enumerate() {
-                    st.what = self.store[k].what[i].clone();
-                    st.fhat = self.store[k].fhat[i].clone();
+                    st.what = store[k].what[i].clone();
+                    st.fhat = store[k].fhat[i].clone();
                 }
             }
         }
@@ -507,6 +601,7 @@ impl LatinSolver {
             .iter()
             .map(|op| SubState {
                 rhs: vec![0.0; op.dofs.num_free()],
+                scratch: op.chol.solve_scratch(1),
                 w: op
                     .links
                     .iter()
@@ -529,7 +624,7 @@ impl LatinSolver {
             let t0 = Instant::now();
             let solve_time: f64 = self
                 .subs
-                .par_iter_mut()
+                .par_iter()
                 .zip(sstate.par_iter_mut())
                 .enumerate()
                 .map(|(s, (op, st))| linear_stage(op, st, &istate, &base[s], alpha[s], rho, first))
@@ -566,7 +661,7 @@ impl LatinSolver {
         // Final fields: the last linear stage's displacement.
         let displacements: Vec<Vec<f64>> = self
             .subs
-            .par_iter_mut()
+            .par_iter()
             .zip(sstate.par_iter_mut())
             // The linear stage solves in place: `rhs` holds the last reduced displacement.
             .map(|(op, st)| op.dofs.expand(&st.rhs))
@@ -597,8 +692,12 @@ impl LatinSolver {
                 }
             })
             .collect();
-        if status == RunStatus::Converged && !input.params.is_empty() {
-            self.store.push(StoredRun {
+        if status == RunStatus::Converged
+            && !input.params.is_empty()
+            && input.initial.is_none()
+            && let Ok(mut store) = self.store.lock()
+        {
+            store.push(StoredRun {
                 params: input.params.clone(),
                 what: istate.iter().map(|s| s.what.clone()).collect(),
                 fhat: istate.iter().map(|s| s.fhat.clone()).collect(),
@@ -685,7 +784,7 @@ fn build_operator(
 
 /// One linear stage of one substructure; returns the seconds spent in the triangular solve.
 fn linear_stage(
-    op: &mut SubOperator,
+    op: &SubOperator,
     st: &mut SubState,
     istate: &[InterfaceState],
     base: &[f64],
@@ -709,7 +808,7 @@ fn linear_stage(
         }
     }
     let t0 = Instant::now();
-    op.chol.solve_in_place(&mut st.rhs);
+    op.chol.solve_with(&mut st.rhs, &mut st.scratch);
     let t = t0.elapsed().as_secs_f64();
     let r = if first { 1.0 } else { rho };
     for (li, l) in op.links.iter().enumerate() {

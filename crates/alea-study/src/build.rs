@@ -5,12 +5,86 @@
 use std::path::Path;
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::{Assembly, InterfaceSpec, LatinOptions, SearchDirection, Substructure, constant};
+use std::sync::Arc;
+
+use alea_latin::{
+    Assembly, InterfaceSpec, LatinOptions, PointField, RunInput, SearchDirection, Substructure,
+};
 use alea_mesh::{CellType, Mesh, generate};
 use toml::Spanned;
 
-use crate::spec::{LoadSpec, MeshSpec, ModelFile};
+use crate::expr::Expr;
+use crate::params::ParamSpace;
+use crate::spec::{LoadSpec, MeshSpec, ModelFile, NumOrExpr};
 use crate::{Source, StudyError};
+
+/// How the parameters enter the model: expressions evaluated for each run.
+#[derive(Clone, Debug)]
+pub struct Parametric {
+    /// Number of parameters.
+    pub nparams: usize,
+    /// Young's modulus of each substructure (expression of the parameters).
+    pub young: Vec<Expr>,
+    /// Its value at the nominal point (the factorised reference).
+    pub young_nominal: Vec<f64>,
+    /// Factor of each load case of each substructure.
+    pub load_factors: Vec<Vec<Expr>>,
+    /// Friction profile of each interface (expression of the parameters, `x, y, z` and the
+    /// defines, in that slot order).
+    pub mu: Vec<Expr>,
+    /// Gap profile of each interface (same variables).
+    pub gap: Vec<Expr>,
+    /// The `[[define]]` expressions, evaluated in order after `x, y, z`.
+    pub defines: Vec<Expr>,
+}
+
+impl Parametric {
+    fn profile(&self, e: &Expr, theta: &[f64]) -> PointField {
+        let e = e.clone();
+        let defines = self.defines.clone();
+        let theta = theta.to_vec();
+        Arc::new(move |x: [f64; 3]| {
+            let mut v = Vec::with_capacity(theta.len() + 3 + defines.len());
+            v.extend_from_slice(&theta);
+            v.extend_from_slice(&x);
+            for d in &defines {
+                let val = d.eval(&v);
+                v.push(val);
+            }
+            e.eval(&v)
+        })
+    }
+
+    /// The solver input for parameter point `theta`; `params` is the normalised point used
+    /// to find the nearest finished run.
+    pub fn run_input(&self, theta: &[f64], params: Vec<f64>) -> RunInput {
+        RunInput {
+            young_factors: self
+                .young
+                .iter()
+                .zip(&self.young_nominal)
+                .map(|(e, n)| e.eval(theta) / n)
+                .collect(),
+            load_factors: self
+                .load_factors
+                .iter()
+                .map(|f| f.iter().map(|e| e.eval(theta)).collect())
+                .collect(),
+            mu: self
+                .mu
+                .iter()
+                .map(|e| Some(self.profile(e, theta)))
+                .collect(),
+            gap: self
+                .gap
+                .iter()
+                .map(|e| Some(self.profile(e, theta)))
+                .collect(),
+            params,
+            initial: None,
+        }
+    }
+}
 
 /// A model ready to solve.
 #[derive(Clone, Debug)]
@@ -25,6 +99,27 @@ pub struct BuiltModel {
     pub options: LatinOptions,
     /// Units as stated.
     pub units: crate::spec::UnitsSpec,
+    /// How the parameters enter the model.
+    pub parametric: Parametric,
+}
+
+/// Compiles a number-or-expression against `vars`.
+fn compile(
+    src: &Source,
+    v: &Spanned<NumOrExpr>,
+    vars: &[&str],
+    field: &str,
+) -> Result<Expr, StudyError> {
+    match v.get_ref() {
+        NumOrExpr::Num(x) => {
+            if !x.is_finite() {
+                return Err(src.error(v.span(), field, format!("must be finite, got {x}")));
+            }
+            Ok(Expr::constant(*x))
+        }
+        NumOrExpr::Expr(t) => Expr::parse(t, vars)
+            .map_err(|e| src.error(v.span(), field, format!("expression '{t}': {e}"))),
+    }
 }
 
 fn cell_type(src: &Source, s: &Spanned<String>) -> Result<CellType, StudyError> {
@@ -359,7 +454,36 @@ fn build_load(
 }
 
 /// Builds meshes, models, constraints, loads and interfaces of a model file.
-pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyError> {
+/// Builds meshes, models, constraints, loads and interfaces of a model file; parameters enter
+/// through `params` (the model is set up at their nominal point).
+pub fn build_model(
+    src: &Source,
+    file: &ModelFile,
+    params: &ParamSpace,
+) -> Result<BuiltModel, StudyError> {
+    let pvars: Vec<&str> = params.names.iter().map(|s| s.as_str()).collect();
+    let mut profile_vars: Vec<&str> = pvars.clone();
+    profile_vars.extend(["x", "y", "z"]);
+    let mut defines = Vec::new();
+    for (i, d) in file.define.iter().enumerate() {
+        let e = Expr::parse(d.value.get_ref(), &profile_vars)
+            .map_err(|e| src.error(d.value.span(), format!("define[{i}].value"), e.to_string()))?;
+        let name = d.name.get_ref().as_str();
+        if profile_vars.contains(&name)
+            || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        {
+            return Err(src.error(
+                d.name.span(),
+                format!("define[{i}].name"),
+                format!("'{name}' is not a new usable name"),
+            ));
+        }
+        profile_vars.push(name);
+        defines.push(e);
+    }
+    let mut young_e = Vec::new();
+    let mut young_nominal = Vec::new();
+    let mut load_factors = Vec::new();
     let mesh = build_mesh(src, &file.mesh)?;
     let th = file
         .analysis
@@ -412,7 +536,10 @@ pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyEr
             ));
         }
         names.push(name.clone());
-        let young = *s.young.get_ref();
+        let ye = compile(src, &s.young, &pvars, &f("young"))?;
+        let young = ye.eval(&params.nominal);
+        young_e.push(ye);
+        young_nominal.push(young);
         let poisson = *s.poisson.get_ref();
         let density = s.density.as_ref().map_or(0.0, |d| *d.get_ref());
         let material = Material::new(young, poisson, density).map_err(|e| {
@@ -470,19 +597,21 @@ pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyEr
         }
         let mut cases = Vec::new();
         let mut lnames = Vec::new();
+        let mut factors = Vec::new();
         for (j, l) in s.load.iter().enumerate() {
-            cases.push(build_load(
-                src,
-                &model,
-                l,
-                &format!("substructure[{i}].load[{j}]"),
-            )?);
+            let field = format!("substructure[{i}].load[{j}]");
+            cases.push(build_load(src, &model, l, &field)?);
             lnames.push(
                 l.name
                     .as_ref()
                     .map_or(String::new(), |n| n.get_ref().clone()),
             );
+            factors.push(match &l.factor {
+                Some(fe) => compile(src, fe, &pvars, &format!("{field}.factor"))?,
+                None => Expr::constant(1.0),
+            });
         }
+        load_factors.push(factors);
         subs.push(Substructure {
             name,
             model,
@@ -491,6 +620,15 @@ pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyEr
         });
         load_names.push(lnames);
     }
+    let mut parametric = Parametric {
+        nparams: params.names.len(),
+        young: young_e,
+        young_nominal,
+        load_factors,
+        mu: Vec::new(),
+        gap: Vec::new(),
+        defines,
+    };
     let mut interfaces = Vec::new();
     for (i, it) in file.interface.iter().enumerate() {
         let f = |k: &str| format!("interface[{i}].{k}");
@@ -530,20 +668,29 @@ pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyEr
                 ));
             }
         };
-        if let Some(mu) = &it.mu {
-            let v = *mu.get_ref();
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(src.error(
-                    mu.span(),
-                    f("mu"),
-                    format!("friction coefficient must be finite and >= 0, got {v}"),
-                ));
+        let mu = match &it.mu {
+            Some(m) => {
+                if let NumOrExpr::Num(v) = m.get_ref()
+                    && !(v.is_finite() && *v >= 0.0)
+                {
+                    return Err(src.error(
+                        m.span(),
+                        f("mu"),
+                        format!("friction coefficient must be finite and >= 0, got {v}"),
+                    ));
+                }
+                compile(src, m, &profile_vars, &f("mu"))?
             }
-            spec.mu = constant(v);
-        }
-        if let Some(g) = &it.gap {
-            spec.gap = constant(finite(src, g, &f("gap"))?);
-        }
+            None => Expr::constant(0.0),
+        };
+        let gap = match &it.gap {
+            Some(g) => compile(src, g, &profile_vars, &f("gap"))?,
+            None => Expr::constant(0.0),
+        };
+        spec.mu = parametric.profile(&mu, &params.nominal);
+        spec.gap = parametric.profile(&gap, &params.nominal);
+        parametric.mu.push(mu);
+        parametric.gap.push(gap);
         interfaces.push(spec);
     }
     let sv = &file.solver;
@@ -576,5 +723,6 @@ pub fn build_model(src: &Source, file: &ModelFile) -> Result<BuiltModel, StudyEr
         load_names,
         options,
         units: file.units.clone(),
+        parametric,
     })
 }

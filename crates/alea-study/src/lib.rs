@@ -3,11 +3,19 @@
 //!
 //! Errors ([`StudyError`]) name the file, the line and the field of every bad input.
 
+pub mod analysis;
 mod build;
 mod error;
+pub mod expr;
+pub mod method;
+mod params;
+pub mod qoi;
+pub mod runner;
 mod source;
 pub mod spec;
+pub mod store;
 
-pub use build::{BuiltModel, build_mesh, build_model};
+pub use build::{BuiltModel, Parametric, build_mesh, build_model};
 pub use error::StudyError;
+pub use params::{ParamSpace, build_params};
 pub use source::Source;

@@ -6,6 +6,17 @@
 use serde::Deserialize;
 use toml::Spanned;
 
+/// A number, or an expression (a string) of the parameters (and, for interface profiles, of the
+/// position `x, y, z` and the `[[define]]`d names). See [`crate::expr`].
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum NumOrExpr {
+    /// A plain number.
+    Num(f64),
+    /// An expression.
+    Expr(String),
+}
+
 /// `[units]`: stated for the reader and copied to outputs; not converted.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -119,6 +130,9 @@ pub struct LoadSpec {
     /// Centrifugal inertia.
     #[serde(default)]
     pub centrifugal: Option<Spanned<CentrifugalSpec>>,
+    /// Load factor: a number or an expression of the parameters. Default 1.
+    #[serde(default)]
+    pub factor: Option<Spanned<NumOrExpr>>,
 }
 
 /// `[[substructure]]`.
@@ -130,8 +144,8 @@ pub struct SubstructureSpec {
     /// Cell group of the mesh forming this substructure (default: every cell).
     #[serde(default)]
     pub cells: Option<Spanned<String>>,
-    /// Young's modulus (stress).
-    pub young: Spanned<f64>,
+    /// Young's modulus (stress): a number or an expression of the parameters.
+    pub young: Spanned<NumOrExpr>,
     /// Poisson's ratio.
     pub poisson: Spanned<f64>,
     /// Density (mass / volume). Default 0.
@@ -157,12 +171,14 @@ pub struct InterfaceSpecToml {
     pub side2: Spanned<[String; 2]>,
     /// `perfect` or `coulomb`.
     pub law: Spanned<String>,
-    /// Friction coefficient (coulomb). Default 0.
+    /// Friction coefficient (coulomb): a number or an expression of the parameters and the
+    /// position. Default 0.
     #[serde(default)]
-    pub mu: Option<Spanned<f64>>,
-    /// Initial normal gap (length). Default 0.
+    pub mu: Option<Spanned<NumOrExpr>>,
+    /// Initial normal gap / shape defect (length), positive opens the contact: a number or an
+    /// expression of the parameters and the position. Default 0.
     #[serde(default)]
-    pub gap: Option<Spanned<f64>>,
+    pub gap: Option<Spanned<NumOrExpr>>,
 }
 
 /// `[solver]`.
@@ -183,10 +199,198 @@ pub struct SolverSpec {
     pub search_direction_factor: Option<Spanned<f64>>,
 }
 
-/// The model part shared by `alea solve` case files and study files.
+/// `[study]`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudySpec {
+    /// Title shown in the report.
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Seed of every random draw (designs, Monte Carlo). Default 1.
+    #[serde(default)]
+    pub seed: Option<u64>,
+}
+
+/// `[[parameter]]`: a random parameter and its marginal law.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterSpec {
+    /// Name used in expressions.
+    pub name: Spanned<String>,
+    /// `uniform`, `normal`, `truncated_normal`, `lognormal`, `beta`, `triangular`.
+    pub law: Spanned<String>,
+    /// Mean (normal, truncated_normal: of the parent normal; lognormal: of the variable).
+    #[serde(default)]
+    pub mean: Option<Spanned<f64>>,
+    /// Standard deviation (same conventions as `mean`).
+    #[serde(default)]
+    pub std: Option<Spanned<f64>>,
+    /// Lower bound (uniform, truncated_normal, beta, triangular).
+    #[serde(default)]
+    pub lo: Option<Spanned<f64>>,
+    /// Upper bound.
+    #[serde(default)]
+    pub hi: Option<Spanned<f64>>,
+    /// Mode (triangular).
+    #[serde(default)]
+    pub mode: Option<Spanned<f64>>,
+    /// Shape parameters (beta).
+    #[serde(default)]
+    pub alpha: Option<Spanned<f64>>,
+    /// Shape parameters (beta).
+    #[serde(default)]
+    pub beta: Option<Spanned<f64>>,
+    /// Unit (for the report).
+    #[serde(default)]
+    pub unit: Option<String>,
+}
+
+/// `[joint]`: how the parameters depend on each other. Default: independent.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointSpec {
+    /// `independent`, `gaussian_copula` or `density`.
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    /// Correlation matrix of the Gaussian copula (rows).
+    #[serde(default)]
+    pub correlation: Option<Spanned<Vec<Vec<f64>>>>,
+    /// Joint density on the box of the marginals' bounds (expression of the parameters; need
+    /// not be normalised). The marginal laws then only give the box.
+    #[serde(default)]
+    pub density: Option<Spanned<String>>,
+}
+
+/// `[[define]]`: a named helper quantity for interface profiles, e.g. an abscissa along the
+/// contact line `s = (y - 120) / 10`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DefineSpec {
+    /// Name.
+    pub name: Spanned<String>,
+    /// Expression of `x, y, z`, the parameters and earlier defines.
+    pub value: Spanned<String>,
+}
+
+/// `[[quantity]]`: a quantity of interest computed from each run.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct QuantitySpec {
+    /// Name.
+    pub name: Spanned<String>,
+    /// `interface_work` (int ([W] + g0 n) . F dS), `friction_dissipation`,
+    /// `interface_force` (resultant component), `max_von_mises`, `displacement`.
+    pub kind: Spanned<String>,
+    /// Interface (interface_work, friction_dissipation, interface_force).
+    #[serde(default)]
+    pub interface: Option<Spanned<String>>,
+    /// Substructure (max_von_mises, displacement).
+    #[serde(default)]
+    pub substructure: Option<Spanned<String>>,
+    /// Cell group (max_von_mises; default all cells of the substructure).
+    #[serde(default)]
+    pub group: Option<Spanned<String>>,
+    /// Point (displacement: the nearest node).
+    #[serde(default)]
+    pub point: Option<Spanned<Vec<f64>>>,
+    /// Component 0, 1, 2 (displacement, interface_force).
+    #[serde(default)]
+    pub component: Option<Spanned<usize>>,
+    /// Unit (for the report).
+    #[serde(default)]
+    pub unit: Option<String>,
+    /// Failure thresholds: P(q > threshold) is reported.
+    #[serde(default)]
+    pub thresholds: Vec<f64>,
+}
+
+/// `[[method]]`: how runs become a surrogate. The first method is the study's answer; the
+/// others are computed for comparison (runs at the same points are shared).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MethodSpec {
+    /// `pc_regression`, `pc_projection`, `polynomial`, `piecewise_linear`, `monte_carlo`.
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    /// Label in tables and plots (default from the type).
+    #[serde(default)]
+    pub label: Option<String>,
+    /// Polynomial degree (pc_*, polynomial).
+    #[serde(default)]
+    pub degree: Option<Spanned<usize>>,
+    /// Design: `pc_collocation` (roots of the next orthogonal polynomial), `grid`, `lhs`,
+    /// `sobol`, `monte_carlo`, `corners_centre`. Default by method.
+    #[serde(default)]
+    pub design: Option<Spanned<String>>,
+    /// Points per parameter (grid; pc_projection quadrature; piecewise_linear nodes).
+    #[serde(default)]
+    pub points_per_dim: Option<Spanned<usize>>,
+    /// Number of runs (lhs, sobol, monte_carlo, pc_collocation).
+    #[serde(default)]
+    pub runs: Option<Spanned<usize>>,
+}
+
+/// `[analysis]` of the surrogate.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StatsSpec {
+    /// Monte Carlo draws on the surrogate. Default 250 000.
+    #[serde(default)]
+    pub samples: Option<Spanned<usize>>,
+    /// KDE bandwidth rule: `silverman` or `isj`. Default `isj` (falls back to Silverman).
+    #[serde(default)]
+    pub bandwidth: Option<Spanned<String>>,
+    /// Points of the KDE curve. Default 512.
+    #[serde(default)]
+    pub kde_points: Option<Spanned<usize>>,
+    /// Confidence level of intervals. Default 0.95.
+    #[serde(default)]
+    pub confidence: Option<Spanned<f64>>,
+}
+
+/// `[output]`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Write a ParaView file for every run. Default false.
+    #[serde(default)]
+    pub vtu: Option<bool>,
+    /// Write the HTML report and plots. Default true.
+    #[serde(default)]
+    pub report: Option<bool>,
+    /// Write samples.csv. Default true.
+    #[serde(default)]
+    pub samples_csv: Option<bool>,
+}
+
+/// A study (or a deterministic case: a study without parameters) file.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelFile {
+    /// Title and seed.
+    #[serde(default)]
+    pub study: StudySpec,
+    /// Random parameters.
+    #[serde(default)]
+    pub parameter: Vec<ParameterSpec>,
+    /// Their dependence.
+    #[serde(default)]
+    pub joint: Option<JointSpec>,
+    /// Helper quantities for interface profiles.
+    #[serde(default)]
+    pub define: Vec<DefineSpec>,
+    /// Quantities of interest.
+    #[serde(default)]
+    pub quantity: Vec<QuantitySpec>,
+    /// Methods.
+    #[serde(default)]
+    pub method: Vec<MethodSpec>,
+    /// Statistics settings (`[statistics]`).
+    #[serde(default)]
+    pub statistics: StatsSpec,
+    /// Outputs.
+    #[serde(default)]
+    pub output: OutputSpec,
     /// Units.
     pub units: UnitsSpec,
     /// Mesh.

@@ -2,6 +2,7 @@
 
 mod report;
 mod solve;
+mod study_cmd;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -27,6 +28,24 @@ enum Command {
         #[arg(long, default_value = "out")]
         out: PathBuf,
     },
+    /// Run a stochastic study: the runs (resumable), surrogates, Monte Carlo statistics,
+    /// summary.json, samples.csv and an HTML report, in a study directory.
+    Run {
+        /// The study file (TOML).
+        study: PathBuf,
+        /// Study directory (default: out/<study file name>).
+        #[arg(long)]
+        dir: Option<PathBuf>,
+        /// Discard the runs of a previous version of the study file.
+        #[arg(long)]
+        restart: bool,
+        /// Worker threads (default: all cores; results do not depend on it).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar.
+        #[arg(long, short)]
+        quiet: bool,
+    },
     /// Run a built-in demonstration case and write ParaView output.
     Demo {
         /// Which demo: `dovetail` (blade root in its disk, frictional contact) or `kirsch`
@@ -44,6 +63,21 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Solve { case, out } => solve::solve_file(&case, &out),
         Command::Demo { name, out } => solve::demo(&name, &out),
+        Command::Run {
+            study,
+            dir,
+            restart,
+            threads,
+            quiet,
+        } => {
+            if let Some(n) = threads {
+                let _ = rayon::ThreadPoolBuilder::new()
+                    .num_threads(n.max(1))
+                    .build_global();
+            }
+            let dir = dir.unwrap_or_else(|| study_cmd::default_dir(&study));
+            study_cmd::run(&study, &dir, restart, quiet)
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,9 +4,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use alea_fem::{Loads, post, solve_elastic, von_mises};
-use alea_latin::{LatinSolver, RunInput, RunStatus};
+use alea_latin::{LatinSolver, RunStatus};
 use alea_mesh::vtu::VtuWriter;
-use alea_study::{Source, build_model, spec::ModelFile};
+use alea_study::{Source, build_model, build_params, spec::ModelFile};
 use anyhow::{Context, Result};
 
 const DEMO_DOVETAIL: &str = include_str!("../../../examples/dovetail-contact.toml");
@@ -32,7 +32,21 @@ pub fn solve_file(case: &Path, out: &Path) -> Result<()> {
 fn solve_source(src: &Source, out: &Path) -> Result<()> {
     let t0 = Instant::now();
     let file: ModelFile = src.parse()?;
-    let built = build_model(src, &file)?;
+    let params = build_params(src, &file)?;
+    let built = build_model(src, &file, &params)?;
+    let input = built.parametric.run_input(&params.nominal, vec![]);
+    if !params.names.is_empty() {
+        println!(
+            "parameters at their nominal (mean) values: {}",
+            params
+                .names
+                .iter()
+                .zip(&params.nominal)
+                .map(|(n, v)| format!("{n} = {v:.6}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
     let stem = src
         .path
         .file_stem()
@@ -52,11 +66,18 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     if built.assembly.subs.len() == 1 && built.assembly.interfaces.is_empty() {
         let sub = &built.assembly.subs[0];
         let mut loads = Loads::new(&sub.model);
-        for case in &sub.load_cases {
+        for (case, factor) in sub.load_cases.iter().zip(&input.load_factors[0]) {
             for (a, b) in loads.f.iter_mut().zip(case) {
-                *a += b;
+                *a += factor * b;
             }
         }
+        let mut model = sub.model.clone();
+        model.scale_young(input.young_factors[0]);
+        let sub = alea_latin::Substructure {
+            model,
+            ..sub.clone()
+        };
+        let sub = &sub;
         let sol = solve_elastic(
             &sub.model,
             &sub.constraints,
@@ -105,7 +126,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         "LATIN set-up (assembly + factorisations): {:.3} s",
         solver.setup_seconds
     );
-    let res = solver.run(&RunInput::default())?;
+    let res = solver.run(&input)?;
     let last = res.residuals.last().copied().unwrap_or(0.0);
     match res.status {
         RunStatus::Converged => println!(

@@ -1,0 +1,306 @@
+//! Statistics of a study: for each method, the surrogate over its converged runs, Monte Carlo
+//! on the surrogate (seeded, thread-count independent), moments, quantiles, a Gaussian kernel
+//! density estimate of the PDF, and failure probabilities `P(q > threshold)` with Wilson
+//! confidence intervals. The Monte Carlo method uses the run values themselves.
+
+use std::time::Instant;
+
+use alea_uq::design;
+use alea_uq::kde::{Bandwidth, Kde};
+use alea_uq::stats::{Summary, failure_probability, quantile_sorted};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::method::{Method, MethodKind};
+use crate::runner::Study;
+use crate::store::{RunRecord, point_key};
+
+/// `P(q > threshold)`.
+#[derive(Clone, Debug, Serialize)]
+pub struct FailureStat {
+    /// Threshold.
+    pub threshold: f64,
+    /// Estimate.
+    pub probability: f64,
+    /// Lower bound of the confidence interval.
+    pub ci_low: f64,
+    /// Upper bound.
+    pub ci_high: f64,
+}
+
+/// Statistics of one quantity of interest under one method.
+#[derive(Clone, Debug, Serialize)]
+pub struct QoiStats {
+    /// Name.
+    pub name: String,
+    /// Unit.
+    pub unit: String,
+    /// Mean.
+    pub mean: f64,
+    /// Standard deviation.
+    pub std: f64,
+    /// Skewness.
+    pub skewness: f64,
+    /// Smallest sample.
+    pub min: f64,
+    /// Largest sample.
+    pub max: f64,
+    /// Half width of the confidence interval of the mean (Monte Carlo error).
+    pub mean_ci_half_width: f64,
+    /// `(probability, value)` quantiles.
+    pub quantiles: Vec<(f64, f64)>,
+    /// KDE bandwidth.
+    pub bandwidth: f64,
+    /// `(x, pdf)` of the KDE.
+    pub kde: Vec<(f64, f64)>,
+    /// Failure probabilities.
+    pub failure: Vec<FailureStat>,
+    /// The samples (not serialised).
+    #[serde(skip)]
+    pub samples: Vec<f64>,
+}
+
+/// The result of one method.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodResult {
+    /// Label.
+    pub label: String,
+    /// Description.
+    pub description: String,
+    /// Design points.
+    pub design_runs: usize,
+    /// Runs used by the surrogate.
+    pub runs_used: usize,
+    /// Runs left out (not converged): their parameters and status.
+    pub left_out: Vec<(Vec<f64>, String)>,
+    /// Why the method produced no statistics, if it did not.
+    pub error: Option<String>,
+    /// Statistics per quantity of interest.
+    pub qois: Vec<QoiStats>,
+    /// Seconds to build the surrogate.
+    pub surrogate_seconds: f64,
+    /// Seconds of Monte Carlo on it.
+    pub monte_carlo_seconds: f64,
+    /// Monte Carlo draws.
+    pub draws: usize,
+    /// The draws (physical parameter points, row-major; empty for the Monte Carlo method; not
+    /// serialised).
+    #[serde(skip)]
+    pub points: Vec<f64>,
+}
+
+/// Settings of the analysis.
+#[derive(Clone, Debug)]
+pub struct AnalysisSettings {
+    /// Draws on the surrogate.
+    pub samples: usize,
+    /// KDE bandwidth rule.
+    pub bandwidth: Bandwidth,
+    /// KDE curve points.
+    pub kde_points: usize,
+    /// Confidence level.
+    pub confidence: f64,
+}
+
+fn qoi_stats(study: &Study, q: usize, samples: Vec<f64>, s: &AnalysisSettings) -> QoiStats {
+    let qoi = &study.qois[q];
+    let sum = Summary::of(&samples);
+    let mut sorted = samples.clone();
+    sorted.sort_by(|a, b| a.total_cmp(b));
+    let quantiles = [0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99]
+        .iter()
+        .map(|&p| (p, quantile_sorted(&sorted, p)))
+        .collect();
+    let kde = Kde::new(&samples, s.bandwidth).or_else(|_| Kde::new(&samples, Bandwidth::Silverman));
+    let (bandwidth, kde_curve) = match kde {
+        Ok(k) => {
+            let h = k.bandwidth();
+            let (a, b) = (sum.min - 3.0 * h, sum.max + 3.0 * h);
+            let n = s.kde_points.max(2);
+            let xs: Vec<f64> = (0..n)
+                .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+                .collect();
+            let ys = k.eval_binned(&xs);
+            (h, xs.into_iter().zip(ys).collect())
+        }
+        Err(_) => (0.0, Vec::new()),
+    };
+    let failure = qoi
+        .thresholds
+        .iter()
+        .map(|&t| {
+            let f = failure_probability(&samples, t, s.confidence);
+            FailureStat {
+                threshold: t,
+                probability: f.p,
+                ci_low: f.lower,
+                ci_high: f.upper,
+            }
+        })
+        .collect();
+    QoiStats {
+        name: qoi.name.clone(),
+        unit: qoi.unit.clone(),
+        mean: sum.mean,
+        std: if sum.std.is_finite() { sum.std } else { 0.0 },
+        skewness: if sum.skewness.is_finite() {
+            sum.skewness
+        } else {
+            0.0
+        },
+        min: sum.min,
+        max: sum.max,
+        mean_ci_half_width: {
+            let h = sum.mean_ci_half_width(s.confidence);
+            if h.is_finite() { h } else { 0.0 }
+        },
+        quantiles,
+        bandwidth,
+        kde: kde_curve,
+        failure,
+        samples,
+    }
+}
+
+/// Analyses one method over the records of a study (records in any order).
+pub fn analyse_method(
+    study: &Study,
+    method: &Method,
+    records: &[RunRecord],
+    s: &AnalysisSettings,
+) -> MethodResult {
+    let by_key: std::collections::HashMap<String, &RunRecord> =
+        records.iter().map(|r| (point_key(&r.params), r)).collect();
+    let mut used_points = Vec::new();
+    let mut values: Vec<Vec<f64>> = vec![Vec::new(); study.qois.len()];
+    let mut left_out = Vec::new();
+    for p in &method.points {
+        match by_key.get(&point_key(p)) {
+            Some(r) if r.converged() => {
+                used_points.push(p.clone());
+                for (q, v) in r.qois.iter().enumerate() {
+                    values[q].push(*v);
+                }
+            }
+            Some(r) => left_out.push((p.clone(), r.status.clone())),
+            None => left_out.push((p.clone(), "missing".into())),
+        }
+    }
+    let mut out = MethodResult {
+        label: method.label.clone(),
+        description: method.description.clone(),
+        design_runs: method.points.len(),
+        runs_used: used_points.len(),
+        left_out,
+        error: None,
+        qois: Vec::new(),
+        surrogate_seconds: 0.0,
+        monte_carlo_seconds: 0.0,
+        draws: 0,
+        points: Vec::new(),
+    };
+    if method.kind == MethodKind::MonteCarlo {
+        out.draws = used_points.len();
+        if used_points.len() < 2 {
+            out.error = Some("fewer than 2 converged runs".into());
+            return out;
+        }
+        out.qois = values
+            .into_iter()
+            .enumerate()
+            .map(|(q, v)| qoi_stats(study, q, v, s))
+            .collect();
+        return out;
+    }
+    let t0 = Instant::now();
+    let sur = match method.surrogate(&study.params, &used_points) {
+        Ok(sur) => sur,
+        Err(e) => {
+            out.error = Some(if out.left_out.is_empty() {
+                e
+            } else {
+                format!("{e} ({} runs did not converge)", out.left_out.len())
+            });
+            return out;
+        }
+    };
+    out.surrogate_seconds = t0.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let d = study.params.names.len();
+    let draws = design::monte_carlo(
+        study.params.joint.as_ref(),
+        s.samples,
+        study.seed.wrapping_add(0x9e37_79b9),
+    );
+    let pts = draws.points();
+    let nq = study.qois.len();
+    // Weights once per draw, reused for every quantity.
+    let per_draw: Vec<Vec<f64>> = pts
+        .par_chunks(d)
+        .map_init(
+            || (vec![0.0; d], Vec::new()),
+            |(t, w), x| {
+                sur.weights(x, t, w);
+                (0..nq)
+                    .map(|q| w.iter().map(|&(k, wk)| wk * values[q][k]).sum())
+                    .collect()
+            },
+        )
+        .collect();
+    out.qois = (0..nq)
+        .map(|q| qoi_stats(study, q, per_draw.iter().map(|v| v[q]).collect(), s))
+        .collect();
+    out.monte_carlo_seconds = t0.elapsed().as_secs_f64();
+    out.draws = s.samples;
+    out.points = pts.to_vec();
+    out
+}
+
+/// Response surface of the first quantity... of quantity `q` under `method` over the first two
+/// parameters (others at their nominal values), on an `n x n` grid of the parameter box:
+/// `(x, y, values row-major by y)`.
+pub fn response_surface(
+    study: &Study,
+    method: &Method,
+    records: &[RunRecord],
+    q: usize,
+    n: usize,
+) -> Option<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    let d = study.params.names.len();
+    if d < 2 || method.kind == MethodKind::MonteCarlo {
+        return None;
+    }
+    let by_key: std::collections::HashMap<String, &RunRecord> =
+        records.iter().map(|r| (point_key(&r.params), r)).collect();
+    let mut pts = Vec::new();
+    let mut vals = Vec::new();
+    for p in &method.points {
+        if let Some(r) = by_key.get(&point_key(p))
+            && r.converged()
+        {
+            pts.push(p.clone());
+            vals.push(r.qois[q]);
+        }
+    }
+    let sur = method.surrogate(&study.params, &pts).ok()?;
+    let (lo, hi) = (&study.params.lo, &study.params.hi);
+    let xs: Vec<f64> = (0..n)
+        .map(|i| lo[0] + (hi[0] - lo[0]) * i as f64 / (n - 1) as f64)
+        .collect();
+    let ys: Vec<f64> = (0..n)
+        .map(|i| lo[1] + (hi[1] - lo[1]) * i as f64 / (n - 1) as f64)
+        .collect();
+    let mut t = vec![0.0; d];
+    let mut w = Vec::new();
+    let mut z = Vec::with_capacity(n * n);
+    for &y in &ys {
+        for &x in &xs {
+            let mut p = study.params.nominal.clone();
+            p[0] = x;
+            p[1] = y;
+            sur.weights(&p, &mut t, &mut w);
+            z.push(w.iter().map(|&(k, wk)| wk * vals[k]).sum());
+        }
+    }
+    Some((xs, ys, z))
+}

@@ -1,0 +1,379 @@
+//! A small expression language for quantities that depend on parameters and position:
+//! friction and gap profiles along an interface (thesis (5.1)-(5.4)), Young's moduli, load
+//! factors.
+//!
+//! Grammar (usual precedence, `^` right-associative, unary minus binds looser than `^`):
+//! ```text
+//! expr  := term (('+' | '-') term)*
+//! term  := unary (('*' | '/') unary)*
+//! unary := ('-' | '+') unary | power
+//! power := atom ('^' unary)?
+//! atom  := number | name | name '(' expr (',' expr)* ')' | '(' expr ')'
+//! ```
+//! Functions: `exp ln log10 sqrt abs sin cos tan atan tanh` (one argument), `min max pow
+//! atan2` (two). Constant: `pi`. Names are resolved at compile time against the variables the
+//! caller allows (parameter names, and `x y z` for profiles); an unknown name is an error that
+//! says which names exist. Written by hand: the crates that do this (meval, evalexpr) bring an
+//! interpreter with dynamic types and their own error model, for ~250 lines here.
+
+use std::fmt;
+
+/// A compiled expression; variables are slots in the array passed to [`Expr::eval`].
+#[derive(Clone, Debug)]
+pub struct Expr {
+    node: Node,
+    text: String,
+}
+
+#[derive(Clone, Debug)]
+enum Node {
+    Num(f64),
+    Var(usize),
+    Neg(Box<Node>),
+    Bin(char, Box<Node>, Box<Node>),
+    Call1(fn(f64) -> f64, Box<Node>),
+    Call2(fn(f64, f64) -> f64, Box<Node>, Box<Node>),
+}
+
+/// A syntax or name error, with the byte position in the expression text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExprError {
+    /// Byte offset in the text.
+    pub pos: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for ExprError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "at character {}: {}", self.pos + 1, self.message)
+    }
+}
+
+struct Parser<'a> {
+    s: &'a [u8],
+    pos: usize,
+    vars: &'a [&'a str],
+}
+
+fn func1(name: &str) -> Option<fn(f64) -> f64> {
+    Some(match name {
+        "exp" => f64::exp,
+        "ln" => f64::ln,
+        "log10" => f64::log10,
+        "sqrt" => f64::sqrt,
+        "abs" => f64::abs,
+        "sin" => f64::sin,
+        "cos" => f64::cos,
+        "tan" => f64::tan,
+        "atan" => f64::atan,
+        "tanh" => f64::tanh,
+        _ => return None,
+    })
+}
+
+fn func2(name: &str) -> Option<fn(f64, f64) -> f64> {
+    Some(match name {
+        "min" => f64::min,
+        "max" => f64::max,
+        "pow" => f64::powf,
+        "atan2" => f64::atan2,
+        _ => return None,
+    })
+}
+
+impl<'a> Parser<'a> {
+    fn err<T>(&self, message: impl Into<String>) -> Result<T, ExprError> {
+        Err(ExprError {
+            pos: self.pos,
+            message: message.into(),
+        })
+    }
+    fn skip(&mut self) {
+        while self.pos < self.s.len() && self.s[self.pos].is_ascii_whitespace() {
+            self.pos += 1;
+        }
+    }
+    fn peek(&mut self) -> Option<u8> {
+        self.skip();
+        self.s.get(self.pos).copied()
+    }
+    fn expr(&mut self) -> Result<Node, ExprError> {
+        let mut a = self.term()?;
+        while let Some(c @ (b'+' | b'-')) = self.peek() {
+            self.pos += 1;
+            let b = self.term()?;
+            a = Node::Bin(c as char, Box::new(a), Box::new(b));
+        }
+        Ok(a)
+    }
+    fn term(&mut self) -> Result<Node, ExprError> {
+        let mut a = self.unary()?;
+        while let Some(c @ (b'*' | b'/')) = self.peek() {
+            self.pos += 1;
+            let b = self.unary()?;
+            a = Node::Bin(c as char, Box::new(a), Box::new(b));
+        }
+        Ok(a)
+    }
+    fn unary(&mut self) -> Result<Node, ExprError> {
+        match self.peek() {
+            Some(b'-') => {
+                self.pos += 1;
+                Ok(Node::Neg(Box::new(self.unary()?)))
+            }
+            Some(b'+') => {
+                self.pos += 1;
+                self.unary()
+            }
+            _ => self.power(),
+        }
+    }
+    fn power(&mut self) -> Result<Node, ExprError> {
+        let a = self.atom()?;
+        if self.peek() == Some(b'^') {
+            self.pos += 1;
+            let b = self.unary()?;
+            return Ok(Node::Bin('^', Box::new(a), Box::new(b)));
+        }
+        Ok(a)
+    }
+    fn atom(&mut self) -> Result<Node, ExprError> {
+        match self.peek() {
+            None => self.err("unexpected end of expression"),
+            Some(b'(') => {
+                self.pos += 1;
+                let e = self.expr()?;
+                if self.peek() != Some(b')') {
+                    return self.err("expected ')'");
+                }
+                self.pos += 1;
+                Ok(e)
+            }
+            Some(c) if c.is_ascii_digit() || c == b'.' => {
+                let start = self.pos;
+                while self.pos < self.s.len()
+                    && (self.s[self.pos].is_ascii_digit() || self.s[self.pos] == b'.')
+                {
+                    self.pos += 1;
+                }
+                if self.pos < self.s.len() && (self.s[self.pos] | 0x20) == b'e' {
+                    let save = self.pos;
+                    self.pos += 1;
+                    if self.pos < self.s.len()
+                        && (self.s[self.pos] == b'+' || self.s[self.pos] == b'-')
+                    {
+                        self.pos += 1;
+                    }
+                    let digits = self.pos;
+                    while self.pos < self.s.len() && self.s[self.pos].is_ascii_digit() {
+                        self.pos += 1;
+                    }
+                    if self.pos == digits {
+                        self.pos = save;
+                    }
+                }
+                let text = std::str::from_utf8(&self.s[start..self.pos]).unwrap_or("");
+                match text.parse::<f64>() {
+                    Ok(v) => Ok(Node::Num(v)),
+                    Err(_) => {
+                        self.pos = start;
+                        self.err(format!("malformed number '{text}'"))
+                    }
+                }
+            }
+            Some(c) if c.is_ascii_alphabetic() || c == b'_' => {
+                let start = self.pos;
+                while self.pos < self.s.len()
+                    && (self.s[self.pos].is_ascii_alphanumeric() || self.s[self.pos] == b'_')
+                {
+                    self.pos += 1;
+                }
+                let name = std::str::from_utf8(&self.s[start..self.pos]).unwrap_or("");
+                if self.peek() == Some(b'(') {
+                    self.pos += 1;
+                    let mut args = vec![self.expr()?];
+                    while self.peek() == Some(b',') {
+                        self.pos += 1;
+                        args.push(self.expr()?);
+                    }
+                    if self.peek() != Some(b')') {
+                        return self.err("expected ')' after the arguments");
+                    }
+                    self.pos += 1;
+                    let mut args = args.into_iter();
+                    return match (args.len(), func1(name), func2(name)) {
+                        (1, Some(f), _) => Ok(Node::Call1(f, Box::new(args.next().unwrap()))),
+                        (2, _, Some(f)) => {
+                            let a = args.next().unwrap();
+                            Ok(Node::Call2(f, Box::new(a), Box::new(args.next().unwrap())))
+                        }
+                        (n, f1, f2) if f1.is_some() || f2.is_some() => {
+                            self.pos = start;
+                            self.err(format!(
+                                "function '{name}' takes {} argument(s), got {n}",
+                                if f1.is_some() { 1 } else { 2 }
+                            ))
+                        }
+                        _ => {
+                            self.pos = start;
+                            self.err(format!("unknown function '{name}'; known: exp ln log10 sqrt abs sin cos tan atan tanh min max pow atan2"))
+                        }
+                    };
+                }
+                if name == "pi" {
+                    return Ok(Node::Num(std::f64::consts::PI));
+                }
+                match self.vars.iter().position(|v| *v == name) {
+                    Some(i) => Ok(Node::Var(i)),
+                    None => {
+                        self.pos = start;
+                        self.err(format!(
+                            "unknown name '{name}'; available: {}",
+                            if self.vars.is_empty() {
+                                "none".to_string()
+                            } else {
+                                self.vars.join(", ")
+                            }
+                        ))
+                    }
+                }
+            }
+            Some(c) => self.err(format!("unexpected character '{}'", c as char)),
+        }
+    }
+}
+
+impl Expr {
+    /// Compiles `text`, allowing the variables `vars` (slot `i` is `vars[i]`).
+    pub fn parse(text: &str, vars: &[&str]) -> Result<Self, ExprError> {
+        let mut p = Parser {
+            s: text.as_bytes(),
+            pos: 0,
+            vars,
+        };
+        let node = p.expr()?;
+        if p.peek().is_some() {
+            return p.err("unexpected text after the expression");
+        }
+        Ok(Expr {
+            node,
+            text: text.to_string(),
+        })
+    }
+
+    /// A constant.
+    pub fn constant(v: f64) -> Self {
+        Expr {
+            node: Node::Num(v),
+            text: v.to_string(),
+        }
+    }
+
+    /// The source text.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// True if the expression uses variable slot `i`.
+    pub fn uses(&self, i: usize) -> bool {
+        fn walk(n: &Node, i: usize) -> bool {
+            match n {
+                Node::Num(_) => false,
+                Node::Var(j) => *j == i,
+                Node::Neg(a) | Node::Call1(_, a) => walk(a, i),
+                Node::Bin(_, a, b) | Node::Call2(_, a, b) => walk(a, i) || walk(b, i),
+            }
+        }
+        walk(&self.node, i)
+    }
+
+    /// Evaluates with `vars[i]` the value of slot `i`.
+    pub fn eval(&self, vars: &[f64]) -> f64 {
+        fn ev(n: &Node, v: &[f64]) -> f64 {
+            match n {
+                Node::Num(x) => *x,
+                Node::Var(i) => v[*i],
+                Node::Neg(a) => -ev(a, v),
+                Node::Bin(op, a, b) => {
+                    let (a, b) = (ev(a, v), ev(b, v));
+                    match op {
+                        '+' => a + b,
+                        '-' => a - b,
+                        '*' => a * b,
+                        '/' => a / b,
+                        _ => a.powf(b),
+                    }
+                }
+                Node::Call1(f, a) => f(ev(a, v)),
+                Node::Call2(f, a, b) => f(ev(a, v), ev(b, v)),
+            }
+        }
+        ev(&self.node, vars)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn precedence_associativity_and_functions() {
+        let v = ["a", "b", "x"];
+        let e = |t: &str, vals: &[f64]| Expr::parse(t, &v).unwrap().eval(vals);
+        assert_eq!(e("1 + 2 * 3", &[0.0; 3]), 7.0);
+        assert_eq!(e("2 ^ 3 ^ 2", &[0.0; 3]), 512.0);
+        assert_eq!(e("-2 ^ 2", &[0.0; 3]), -4.0);
+        assert_eq!(e("(1 + 2) * 3", &[0.0; 3]), 9.0);
+        assert_eq!(e("8 / 4 / 2", &[0.0; 3]), 1.0);
+        assert_eq!(e("1.5e3 + 2E-1", &[0.0; 3]), 1500.2);
+        assert_eq!(e("a * x + b", &[2.0, 1.0, 3.0]), 7.0);
+        assert!(
+            (e("exp(ln(2)) + max(a, b) + pow(2, 0.5)^2", &[5.0, 1.0, 0.0]) - 9.0).abs() < 1e-14
+        );
+        assert!((e("sin(pi / 2)", &[0.0; 3]) - 1.0).abs() < 1e-15);
+        // Thesis (5.2) friction profile at x = La: mu ~ 0.2 + 0.6 a.
+        let mu = "0.2 + 0.6 * (a * exp(-(x - 0.7)^2 / 0.13) + b * exp(-(x - 1.5)^2 / 0.13))";
+        let got = e(mu, &[0.5, 0.0, 0.7]);
+        assert!((got - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn errors_say_where_and_what() {
+        let v = ["a"];
+        let err = Expr::parse("a + bb", &v).unwrap_err();
+        assert_eq!(err.pos, 4);
+        assert!(err.message.contains("unknown name 'bb'") && err.message.contains("a"));
+        assert!(
+            Expr::parse("2 * (a + 1", &v)
+                .unwrap_err()
+                .message
+                .contains("')'")
+        );
+        assert!(
+            Expr::parse("foo(1)", &v)
+                .unwrap_err()
+                .message
+                .contains("unknown function")
+        );
+        assert!(
+            Expr::parse("min(1)", &v)
+                .unwrap_err()
+                .message
+                .contains("2 argument")
+        );
+        assert!(
+            Expr::parse("1 2", &v)
+                .unwrap_err()
+                .message
+                .contains("after the expression")
+        );
+        assert!(
+            Expr::parse("", &v)
+                .unwrap_err()
+                .message
+                .contains("end of expression")
+        );
+        assert!(Expr::parse("3 $", &v).is_err());
+    }
+}

@@ -1,0 +1,339 @@
+//! Methods: a design (the collocation points to run) and a linear surrogate built on the runs
+//! (thesis chapter 1.3 and 2.3): polynomial chaos by regression on PC collocation points (roots
+//! of the next-degree orthogonal polynomials) or by projection on a tensor Gauss rule; a
+//! standard (monomial) polynomial by least squares on a grid; piecewise multilinear
+//! interpolation on a regular stochastic mesh; or plain Monte Carlo on the model.
+
+use alea_uq::basis::PcBasis;
+use alea_uq::design::{self, Design};
+use alea_uq::quadrature::QuadratureRule;
+use alea_uq::surrogate::{LinearSurrogate, MonomialSurface, PcSurrogate, StochasticMesh};
+
+use crate::spec::MethodSpec;
+use crate::{ParamSpace, Source, StudyError};
+
+/// The kinds of methods.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MethodKind {
+    /// PC of total degree `degree`, coefficients by least squares.
+    PcRegression {
+        /// Degree.
+        degree: usize,
+    },
+    /// PC of total degree `degree`, coefficients by projection on a tensor Gauss rule.
+    PcProjection {
+        /// Degree.
+        degree: usize,
+    },
+    /// Monomials of total degree `degree` (on the parameter box mapped to [-1, 1]).
+    Polynomial {
+        /// Degree.
+        degree: usize,
+    },
+    /// Piecewise multilinear interpolation on a regular grid of the parameter box.
+    PiecewiseLinear {
+        /// Nodes per parameter.
+        nodes: usize,
+    },
+    /// Statistics of the model runs themselves.
+    MonteCarlo,
+}
+
+/// A method with its design.
+#[derive(Clone, Debug)]
+pub struct Method {
+    /// Label for tables and plots.
+    pub label: String,
+    /// Kind.
+    pub kind: MethodKind,
+    /// Design points (physical), one per run.
+    pub points: Vec<Vec<f64>>,
+    /// Quadrature weights (projection only).
+    pub rule: Option<QuadratureRule>,
+    /// A one-line description for the report.
+    pub description: String,
+}
+
+fn rows(d: &Design) -> Vec<Vec<f64>> {
+    d.iter().map(|p| p.to_vec()).collect()
+}
+
+/// Builds the methods of a study file with their designs.
+pub fn build_methods(
+    src: &Source,
+    specs: &[MethodSpec],
+    params: &ParamSpace,
+    seed: u64,
+) -> Result<Vec<Method>, StudyError> {
+    let d = params.names.len();
+    let mut out = Vec::new();
+    for (i, m) in specs.iter().enumerate() {
+        let f = |k: &str| format!("method[{i}].{k}");
+        let uq =
+            |e: alea_uq::UqError| src.error(m.kind.span(), format!("method[{i}]"), e.to_string());
+        let degree = m.degree.as_ref().map(|v| *v.get_ref());
+        let ppd = m.points_per_dim.as_ref().map(|v| *v.get_ref());
+        if ppd == Some(0) || ppd == Some(1) {
+            return Err(src.error(
+                m.points_per_dim
+                    .as_ref()
+                    .map_or(m.kind.span(), |v| v.span()),
+                f("points_per_dim"),
+                "must be at least 2",
+            ));
+        }
+        let runs = m.runs.as_ref().map(|v| *v.get_ref());
+        let design_name = m.design.as_ref().map(|s| s.get_ref().as_str());
+        let design_span = m.design.as_ref().map_or(m.kind.span(), |s| s.span());
+        let generic_design = |name: &str, default_runs: usize| -> Result<Design, StudyError> {
+            let n = runs.unwrap_or(default_runs);
+            match name {
+                "lhs" => Ok(design::latin_hypercube(params.joint.as_ref(), n, seed)),
+                "monte_carlo" => Ok(design::monte_carlo(params.joint.as_ref(), n, seed)),
+                "sobol" => design::sobol(params.joint.as_ref(), n, Some(seed)).map_err(uq),
+                "grid" => {
+                    let k = ppd.unwrap_or(3);
+                    design::tensor_grid(&params.lo, &params.hi, &vec![k; d]).map_err(uq)
+                }
+                "corners_centre" => design::corners_and_centre(&params.lo, &params.hi).map_err(uq),
+                other => Err(src.error(design_span.clone(), f("design"), format!("unknown design '{other}'; expected pc_collocation, grid, lhs, sobol, monte_carlo or corners_centre"))),
+            }
+        };
+        if d == 0 {
+            return Err(src.error(
+                m.kind.span(),
+                f("type"),
+                "a method needs at least one [[parameter]]",
+            ));
+        }
+        let (kind, points, rule, description) = match m.kind.get_ref().as_str() {
+            "pc_regression" => {
+                let p = degree.unwrap_or(2);
+                let basis_len = PcBasis::total_degree(&params.marginals, p)
+                    .map_err(uq)?
+                    .len();
+                let full = (p + 1).pow(d as u32);
+                let dflt = full.min((2 * basis_len).max(basis_len + 1));
+                let des = match design_name.unwrap_or("pc_collocation") {
+                    "pc_collocation" => {
+                        design::pc_collocation(&params.marginals, p, runs.unwrap_or(dflt))
+                            .map_err(uq)?
+                    }
+                    other => generic_design(other, 2 * basis_len)?,
+                };
+                if des.len() < basis_len {
+                    return Err(src.error(m.kind.span(), f("runs"), format!("PC of degree {p} in {d} parameters has {basis_len} terms: at least that many runs are needed, got {}", des.len())));
+                }
+                let n = des.len();
+                (
+                    MethodKind::PcRegression { degree: p },
+                    rows(&des),
+                    None,
+                    format!(
+                        "polynomial chaos of degree {p} ({basis_len} terms), least squares on {n} runs"
+                    ),
+                )
+            }
+            "pc_projection" => {
+                let p = degree.unwrap_or(2);
+                let q = ppd.unwrap_or(p + 1);
+                let rule =
+                    QuadratureRule::tensor_gauss(&params.marginals, &vec![q; d]).map_err(uq)?;
+                let pts: Vec<Vec<f64>> = (0..rule.len()).map(|k| rule.node(k).to_vec()).collect();
+                let n = pts.len();
+                (
+                    MethodKind::PcProjection { degree: p },
+                    pts,
+                    Some(rule),
+                    format!(
+                        "polynomial chaos of degree {p}, projection on a {q}-point-per-parameter Gauss rule ({n} runs)"
+                    ),
+                )
+            }
+            "polynomial" => {
+                let p = degree.unwrap_or(2);
+                let des = generic_design(design_name.unwrap_or("grid"), 0)?;
+                let n = des.len();
+                (
+                    MethodKind::Polynomial { degree: p },
+                    rows(&des),
+                    None,
+                    format!("standard polynomial of degree {p}, least squares on {n} runs"),
+                )
+            }
+            "piecewise_linear" => {
+                let k = ppd.unwrap_or(3);
+                if let Some(dn) = design_name
+                    && dn != "grid"
+                {
+                    return Err(src.error(
+                        design_span,
+                        f("design"),
+                        "piecewise_linear runs on the grid of its stochastic mesh nodes",
+                    ));
+                }
+                let mesh =
+                    StochasticMesh::new(&params.lo, &params.hi, &vec![k - 1; d]).map_err(uq)?;
+                let pts: Vec<Vec<f64>> = (0..mesh.num_runs())
+                    .map(|r| mesh.run_point(r).to_vec())
+                    .collect();
+                let n = pts.len();
+                (
+                    MethodKind::PiecewiseLinear { nodes: k },
+                    pts,
+                    None,
+                    format!("piecewise multilinear on a regular {k}^{d} grid ({n} runs)"),
+                )
+            }
+            "monte_carlo" => {
+                let des = generic_design(design_name.unwrap_or("monte_carlo"), 100)?;
+                let n = des.len();
+                (
+                    MethodKind::MonteCarlo,
+                    rows(&des),
+                    None,
+                    format!("Monte Carlo on the model ({n} runs)"),
+                )
+            }
+            other => {
+                return Err(src.error(
+                    m.kind.span(),
+                    f("type"),
+                    format!("unknown method '{other}'; expected pc_regression, pc_projection, polynomial, piecewise_linear or monte_carlo"),
+                ));
+            }
+        };
+        let label = m.label.clone().unwrap_or_else(|| match &kind {
+            MethodKind::PcRegression { degree } => format!("PC regression p={degree}"),
+            MethodKind::PcProjection { degree } => format!("PC projection p={degree}"),
+            MethodKind::Polynomial { degree } => format!("polynomial p={degree}"),
+            MethodKind::PiecewiseLinear { nodes } => format!("piecewise linear {nodes}^{d}"),
+            MethodKind::MonteCarlo => "Monte Carlo".into(),
+        });
+        out.push(Method {
+            label,
+            kind,
+            points,
+            rule,
+            description,
+        });
+    }
+    Ok(out)
+}
+
+/// A surrogate in physical coordinates, whatever its internal coordinates.
+pub struct Surrogate {
+    inner: Box<dyn LinearSurrogate>,
+    /// Map physical -> internal: `(x - shift) * scale`, per coordinate.
+    shift: Vec<f64>,
+    scale: Vec<f64>,
+    /// Clamp physical points into `[lo, hi]` before evaluation (piecewise linear).
+    clamp: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+impl std::fmt::Debug for Surrogate {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Surrogate")
+            .field("runs", &self.inner.num_runs())
+            .finish()
+    }
+}
+
+impl Surrogate {
+    /// Number of runs it is built on.
+    pub fn num_runs(&self) -> usize {
+        self.inner.num_runs()
+    }
+
+    /// Non-zero weights at physical point `x` (scratch `t` of the parameter dimension).
+    pub fn weights(&self, x: &[f64], t: &mut [f64], w: &mut Vec<(usize, f64)>) {
+        for j in 0..x.len() {
+            let mut v = x[j];
+            if let Some((lo, hi)) = &self.clamp {
+                v = v.clamp(lo[j], hi[j]);
+            }
+            t[j] = (v - self.shift[j]) * self.scale[j];
+        }
+        self.inner.weights(t, w);
+    }
+}
+
+impl Method {
+    /// Builds the surrogate on the runs at `points` (a subset of the design: the converged
+    /// runs). Methods that need every design point (projection, piecewise linear) refuse a
+    /// subset.
+    pub fn surrogate(&self, params: &ParamSpace, points: &[Vec<f64>]) -> Result<Surrogate, String> {
+        let d = params.names.len();
+        let flat: Vec<f64> = points.iter().flatten().copied().collect();
+        let identity = || (vec![0.0; d], vec![1.0; d]);
+        let complete = points.len() == self.points.len();
+        let (inner, (shift, scale), clamp): (Box<dyn LinearSurrogate>, _, _) = match &self.kind {
+            MethodKind::PcRegression { degree } => {
+                let basis =
+                    PcBasis::total_degree(&params.marginals, *degree).map_err(|e| e.to_string())?;
+                (
+                    Box::new(PcSurrogate::regression(basis, &flat).map_err(|e| e.to_string())?),
+                    identity(),
+                    None,
+                )
+            }
+            MethodKind::PcProjection { degree } => {
+                if !complete {
+                    return Err("projection needs a run at every quadrature node".into());
+                }
+                let basis =
+                    PcBasis::total_degree(&params.marginals, *degree).map_err(|e| e.to_string())?;
+                let rule = self.rule.as_ref().ok_or("projection without a rule")?;
+                (
+                    Box::new(PcSurrogate::projection(basis, rule).map_err(|e| e.to_string())?),
+                    identity(),
+                    None,
+                )
+            }
+            MethodKind::Polynomial { degree } => {
+                // Fit on the box mapped to [-1, 1]^d: monomials of raw parameters (e.g. E ~ 2e5
+                // and mu ~ 0.5) would be hopelessly ill-conditioned.
+                let shift: Vec<f64> = (0..d)
+                    .map(|j| 0.5 * (params.lo[j] + params.hi[j]))
+                    .collect();
+                let scale: Vec<f64> = (0..d)
+                    .map(|j| 2.0 / (params.hi[j] - params.lo[j]))
+                    .collect();
+                let t: Vec<f64> = points
+                    .iter()
+                    .flat_map(|p| {
+                        (0..d)
+                            .map(|j| (p[j] - shift[j]) * scale[j])
+                            .collect::<Vec<_>>()
+                    })
+                    .collect();
+                (
+                    Box::new(MonomialSurface::fit(d, *degree, &t).map_err(|e| e.to_string())?),
+                    (shift, scale),
+                    None,
+                )
+            }
+            MethodKind::PiecewiseLinear { nodes } => {
+                if !complete {
+                    return Err(
+                        "piecewise-linear interpolation needs a run at every grid node".into(),
+                    );
+                }
+                let mesh = StochasticMesh::new(&params.lo, &params.hi, &vec![nodes - 1; d])
+                    .map_err(|e| e.to_string())?;
+                (
+                    Box::new(mesh),
+                    identity(),
+                    Some((params.lo.clone(), params.hi.clone())),
+                )
+            }
+            MethodKind::MonteCarlo => return Err("Monte Carlo has no surrogate".into()),
+        };
+        Ok(Surrogate {
+            inner,
+            shift,
+            scale,
+            clamp,
+        })
+    }
+}

@@ -1,0 +1,252 @@
+//! The random parameters of a study: marginal laws, joint law, nominal point and the box used
+//! by grids and the stochastic mesh.
+
+use std::sync::Arc;
+
+use alea_uq::joint::{BoxDensity, GaussianCopula, Independent, JointLaw};
+use alea_uq::law::{Beta, LogNormal, Marginal, Normal, Triangular, TruncatedNormal, Uniform};
+use toml::Spanned;
+
+use crate::expr::Expr;
+use crate::spec::{ModelFile, ParameterSpec};
+use crate::{Source, StudyError};
+
+/// Parameters, laws and the joint law.
+#[derive(Clone, Debug)]
+pub struct ParamSpace {
+    /// Names (the expression variables, in order).
+    pub names: Vec<String>,
+    /// Units (for the report).
+    pub units: Vec<String>,
+    /// Human-readable law descriptions.
+    pub descriptions: Vec<String>,
+    /// Marginal laws.
+    pub marginals: Vec<Arc<dyn Marginal>>,
+    /// Joint law.
+    pub joint: Arc<dyn JointLaw>,
+    /// Nominal point (marginal means): used by `alea solve` and as the reference of scale
+    /// factors.
+    pub nominal: Vec<f64>,
+    /// Lower corner of the parameter box (support, or the 1e-6 quantile if unbounded).
+    pub lo: Vec<f64>,
+    /// Upper corner.
+    pub hi: Vec<f64>,
+}
+
+fn need(
+    src: &Source,
+    p: &ParameterSpec,
+    v: &Option<Spanned<f64>>,
+    field: &str,
+    i: usize,
+) -> Result<f64, StudyError> {
+    v.as_ref().map(|s| *s.get_ref()).ok_or_else(|| {
+        src.error(
+            p.law.span(),
+            format!("parameter[{i}].{field}"),
+            format!("law '{}' needs '{field}'", p.law.get_ref()),
+        )
+    })
+}
+
+fn marginal(
+    src: &Source,
+    p: &ParameterSpec,
+    i: usize,
+) -> Result<(Arc<dyn Marginal>, String), StudyError> {
+    let f = |k: &str| {
+        need(
+            src,
+            p,
+            match k {
+                "mean" => &p.mean,
+                "std" => &p.std,
+                "lo" => &p.lo,
+                "hi" => &p.hi,
+                "mode" => &p.mode,
+                "alpha" => &p.alpha,
+                _ => &p.beta,
+            },
+            k,
+            i,
+        )
+    };
+    let bad = |e: alea_uq::UqError| {
+        src.error(
+            p.law.span(),
+            format!("parameter[{i}] ({})", p.name.get_ref()),
+            e.to_string(),
+        )
+    };
+    let law = p.law.get_ref().as_str();
+    let (m, d): (Arc<dyn Marginal>, String) = match law {
+        "uniform" => {
+            let (a, b) = (f("lo")?, f("hi")?);
+            (
+                Arc::new(Uniform::new(a, b).map_err(bad)?),
+                format!("uniform on [{a}, {b}]"),
+            )
+        }
+        "normal" => {
+            let (m, s) = (f("mean")?, f("std")?);
+            (
+                Arc::new(Normal::new(m, s).map_err(bad)?),
+                format!("normal (mean {m}, std {s})"),
+            )
+        }
+        "truncated_normal" => {
+            let (m, s, a, b) = (f("mean")?, f("std")?, f("lo")?, f("hi")?);
+            (
+                Arc::new(TruncatedNormal::new(m, s, a, b).map_err(bad)?),
+                format!("truncated normal (mean {m}, std {s}) on [{a}, {b}]"),
+            )
+        }
+        "lognormal" => {
+            let (m, s) = (f("mean")?, f("std")?);
+            (
+                Arc::new(LogNormal::from_mean_std(m, s).map_err(bad)?),
+                format!("lognormal (mean {m}, std {s})"),
+            )
+        }
+        "beta" => {
+            let (al, be, a, b) = (f("alpha")?, f("beta")?, f("lo")?, f("hi")?);
+            (
+                Arc::new(Beta::new(al, be, a, b).map_err(bad)?),
+                format!("beta ({al}, {be}) on [{a}, {b}]"),
+            )
+        }
+        "triangular" => {
+            let (a, c, b) = (f("lo")?, f("mode")?, f("hi")?);
+            (
+                Arc::new(Triangular::new(a, c, b).map_err(bad)?),
+                format!("triangular ({a}, {c}, {b})"),
+            )
+        }
+        other => {
+            return Err(src.error(
+                p.law.span(),
+                format!("parameter[{i}].law"),
+                format!("unknown law '{other}'; expected uniform, normal, truncated_normal, lognormal, beta or triangular"),
+            ));
+        }
+    };
+    Ok((m, d))
+}
+
+/// Builds the parameter space of a study file (empty if it has no parameters).
+pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyError> {
+    let mut names: Vec<String> = Vec::new();
+    let mut marginals = Vec::new();
+    let mut descriptions = Vec::new();
+    let reserved = ["x", "y", "z", "pi"];
+    for (i, p) in file.parameter.iter().enumerate() {
+        let n = p.name.get_ref();
+        let valid = n
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !valid || reserved.contains(&n.as_str()) || names.contains(n) {
+            return Err(src.error(
+                p.name.span(),
+                format!("parameter[{i}].name"),
+                format!(
+                    "'{n}' is not a usable name (letters, digits, '_'; unique; not x, y, z or pi)"
+                ),
+            ));
+        }
+        names.push(n.clone());
+        let (m, d) = marginal(src, p, i)?;
+        marginals.push(m);
+        descriptions.push(d);
+    }
+    let d = names.len();
+    let nominal: Vec<f64> = marginals.iter().map(|m| m.mean()).collect();
+    let (mut lo, mut hi) = (Vec::new(), Vec::new());
+    for m in &marginals {
+        let (a, b) = m.support();
+        lo.push(if a.is_finite() { a } else { m.quantile(1e-6) });
+        hi.push(if b.is_finite() {
+            b
+        } else {
+            m.quantile(1.0 - 1e-6)
+        });
+    }
+    let joint: Arc<dyn JointLaw> = match &file.joint {
+        None => Arc::new(
+            Independent::new(marginals.clone()).map_err(|e| StudyError::Other(e.to_string()))?,
+        ),
+        Some(j) => match j.kind.get_ref().as_str() {
+            "independent" => Arc::new(
+                Independent::new(marginals.clone())
+                    .map_err(|e| StudyError::Other(e.to_string()))?,
+            ),
+            "gaussian_copula" => {
+                let c = j.correlation.as_ref().ok_or_else(|| {
+                    src.error(
+                        j.kind.span(),
+                        "joint.correlation",
+                        "a Gaussian copula needs a correlation matrix",
+                    )
+                })?;
+                let rows = c.get_ref();
+                if rows.len() != d || rows.iter().any(|r| r.len() != d) {
+                    return Err(src.error(
+                        c.span(),
+                        "joint.correlation",
+                        format!("expected a {d} x {d} matrix (one row per parameter)"),
+                    ));
+                }
+                let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+                Arc::new(
+                    GaussianCopula::new(marginals.clone(), flat)
+                        .map_err(|e| src.error(c.span(), "joint.correlation", e.to_string()))?,
+                )
+            }
+            "density" => {
+                let t = j.density.as_ref().ok_or_else(|| {
+                    src.error(
+                        j.kind.span(),
+                        "joint.density",
+                        "a density joint law needs 'density' (an expression of the parameters)",
+                    )
+                })?;
+                let vars: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+                let e = Expr::parse(t.get_ref(), &vars)
+                    .map_err(|e| src.error(t.span(), "joint.density", e.to_string()))?;
+                let n = if d <= 2 {
+                    256
+                } else if d == 3 {
+                    48
+                } else {
+                    12
+                };
+                Arc::new(
+                    BoxDensity::from_fn(lo.clone(), hi.clone(), n, move |x| e.eval(x))
+                        .map_err(|e| src.error(t.span(), "joint.density", e.to_string()))?,
+                )
+            }
+            other => {
+                return Err(src.error(
+                    j.kind.span(),
+                    "joint.type",
+                    format!("unknown joint law '{other}'; expected independent, gaussian_copula or density"),
+                ));
+            }
+        },
+    };
+    Ok(ParamSpace {
+        units: file
+            .parameter
+            .iter()
+            .map(|p| p.unit.clone().unwrap_or_default())
+            .collect(),
+        names,
+        descriptions,
+        marginals,
+        joint,
+        nominal,
+        lo,
+        hi,
+    })
+}

@@ -1,0 +1,491 @@
+//! `alea run`: a stochastic study end to end - runs (resumable), surrogate, Monte Carlo,
+//! statistics, `summary.json`, `samples.csv` and the HTML report.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method, response_surface};
+use alea_study::runner::{Progress, Study, run_study};
+use alea_study::store::RunRecord;
+use alea_uq::kde::Bandwidth;
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::report::{
+    self, Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReportInput, RunInfo,
+    Surface,
+};
+
+/// Progress bar: runs done, ETA, mean LATIN iterations, failures.
+struct Bar {
+    bar: ProgressBar,
+    iterations: AtomicUsize,
+    runs: AtomicUsize,
+    failures: AtomicUsize,
+}
+
+impl Progress for Bar {
+    fn begin(&self, total: usize, done: usize) {
+        self.bar.set_length(total as u64);
+        self.bar.set_position(done as u64);
+        if done > 0 {
+            self.bar.println(format!(
+                "resuming: {done} of {total} runs already in the study directory"
+            ));
+        }
+    }
+    fn finished(&self, rec: &RunRecord) {
+        let n = self.runs.fetch_add(1, Ordering::Relaxed) + 1;
+        let it = self.iterations.fetch_add(rec.iterations, Ordering::Relaxed) + rec.iterations;
+        let f = self.failures.load(Ordering::Relaxed) + usize::from(!rec.converged());
+        if !rec.converged() {
+            self.failures.fetch_add(1, Ordering::Relaxed);
+        }
+        self.bar.set_message(format!(
+            "mean LATIN iterations {:.0}, not converged {f}",
+            it as f64 / n as f64
+        ));
+        self.bar.inc(1);
+    }
+    fn end(&self) {
+        self.bar.finish();
+    }
+}
+
+fn settings(study: &Study) -> Result<AnalysisSettings> {
+    let s = &study.file.statistics;
+    let samples = s.samples.as_ref().map_or(250_000, |v| *v.get_ref());
+    let bandwidth = match s.bandwidth.as_ref().map(|v| v.get_ref().as_str()) {
+        None | Some("isj") => Bandwidth::Isj,
+        Some("silverman") => Bandwidth::Silverman,
+        Some(other) => {
+            let span = s.bandwidth.as_ref().map_or(0..0, |v| v.span());
+            return Err(study
+                .source
+                .error(
+                    span,
+                    "statistics.bandwidth",
+                    format!("unknown rule '{other}'; expected isj or silverman"),
+                )
+                .into());
+        }
+    };
+    let confidence = s.confidence.as_ref().map_or(0.95, |v| *v.get_ref());
+    if !(confidence > 0.0 && confidence < 1.0) {
+        let span = s.confidence.as_ref().map_or(0..0, |v| v.span());
+        return Err(study
+            .source
+            .error(span, "statistics.confidence", "must be in (0, 1)")
+            .into());
+    }
+    if samples < 2 {
+        let span = s.samples.as_ref().map_or(0..0, |v| v.span());
+        return Err(study
+            .source
+            .error(span, "statistics.samples", "must be at least 2")
+            .into());
+    }
+    Ok(AnalysisSettings {
+        samples,
+        bandwidth,
+        kde_points: s.kde_points.as_ref().map_or(512, |v| *v.get_ref()),
+        confidence,
+    })
+}
+
+/// Default study directory: `out/<file stem>`.
+pub fn default_dir(study: &Path) -> PathBuf {
+    let stem = study
+        .file_stem()
+        .map_or("study".into(), |s| s.to_string_lossy().into_owned());
+    PathBuf::from("out").join(stem)
+}
+
+/// Runs the study in `path` into `dir`.
+pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
+    let t_all = Instant::now();
+    let study = Study::load(path)?;
+    let settings = settings(&study)?;
+    println!(
+        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs -> {}",
+        study.title(),
+        study.params.names.len(),
+        study.qois.len(),
+        if study.qois.len() == 1 { "y" } else { "ies" },
+        study.methods.len(),
+        study.all_points().len(),
+        dir.display()
+    );
+    let bar = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(0)
+    };
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{spinner} runs {pos}/{len} [{bar:30}] {elapsed_precise} ETA {eta} {msg}",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    let progress = Bar {
+        bar,
+        iterations: AtomicUsize::new(0),
+        runs: AtomicUsize::new(0),
+        failures: AtomicUsize::new(0),
+    };
+    let runs = run_study(&study, dir, restart, &progress)?;
+    let failed: Vec<&RunRecord> = runs.records.iter().filter(|r| !r.converged()).collect();
+    println!(
+        "runs: {} computed, {} resumed; solver set-up {:.2} s, solves {:.2} s ({:.1} runs/s)",
+        runs.computed,
+        runs.resumed,
+        runs.setup_seconds,
+        runs.solve_seconds,
+        runs.computed as f64 / runs.solve_seconds.max(1e-9)
+    );
+    let mut notes = Vec::new();
+    if !failed.is_empty() {
+        let msg = format!(
+            "{} run(s) did not converge and are left out of the surrogates: {}",
+            failed.len(),
+            failed
+                .iter()
+                .take(10)
+                .map(|r| format!(
+                    "{:?} ({}, error indicator {:.1e} after {} iterations)",
+                    r.params, r.status, r.residual, r.iterations
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+        eprintln!("warning: {msg}");
+        notes.push(msg);
+    }
+    let t0 = Instant::now();
+    let results: Vec<MethodResult> = study
+        .methods
+        .iter()
+        .map(|m| analyse_method(&study, m, &runs.records, &settings))
+        .collect();
+    let analysis_seconds = t0.elapsed().as_secs_f64();
+    for r in &results {
+        if let Some(e) = &r.error {
+            let msg = format!("method '{}' gave no statistics: {e}", r.label);
+            eprintln!("warning: {msg}");
+            notes.push(msg);
+        }
+    }
+    print_table(&study, &results);
+    write_summary(
+        &study,
+        dir,
+        &results,
+        &runs.records,
+        runs.computed,
+        runs.resumed,
+    )?;
+    if study.output.samples_csv.unwrap_or(true) {
+        write_samples(&study, dir, &results[0])?;
+    }
+    if study.output.report.unwrap_or(true) {
+        let t0 = Instant::now();
+        let input = report_input(
+            &study,
+            &results,
+            &runs.records,
+            &notes,
+            &[
+                ("solver set-up".into(), runs.setup_seconds),
+                ("solves".into(), runs.solve_seconds),
+                ("surrogates + Monte Carlo".into(), analysis_seconds),
+            ],
+        )?;
+        let files = report::write_report(&dir.join("report"), &input)?;
+        println!(
+            "report: {} ({} plots, {:.2} s)",
+            files.html.display(),
+            files.plots.len(),
+            t0.elapsed().as_secs_f64()
+        );
+    }
+    println!("done in {:.2} s", t_all.elapsed().as_secs_f64());
+    Ok(())
+}
+
+fn print_table(study: &Study, results: &[MethodResult]) {
+    for (q, qoi) in study.qois.iter().enumerate() {
+        println!("\n{} [{}]", qoi.name, qoi.unit);
+        println!(
+            "  {:<34} {:>5} {:>14} {:>14} {:>10}",
+            "method", "runs", "mean", "std", "skewness"
+        );
+        for r in results {
+            match r.qois.get(q) {
+                Some(s) => println!(
+                    "  {:<34} {:>5} {:>14.6e} {:>14.6e} {:>10.3}",
+                    r.label, r.runs_used, s.mean, s.std, s.skewness
+                ),
+                None => println!(
+                    "  {:<34} {:>5} {:>14} {:>14} {:>10}",
+                    r.label, r.runs_used, "-", "-", "-"
+                ),
+            }
+        }
+        if let Some(s) = results[0].qois.get(q) {
+            for f in &s.failure {
+                println!(
+                    "  P({} > {}) = {:.4e}  ({:.0}% interval [{:.4e}, {:.4e}])",
+                    qoi.name,
+                    f.threshold,
+                    f.probability,
+                    100.0 * 0.95,
+                    f.ci_low,
+                    f.ci_high
+                );
+            }
+        }
+    }
+    println!();
+}
+
+fn write_summary(
+    study: &Study,
+    dir: &Path,
+    results: &[MethodResult],
+    records: &[RunRecord],
+    computed: usize,
+    resumed: usize,
+) -> Result<()> {
+    let _ = (computed, resumed); // timings and resume counts vary between invocations: not in the summary
+    let runs: Vec<serde_json::Value> = records
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "params": r.params, "status": r.status, "iterations": r.iterations,
+                "residual": r.residual, "qois": r.qois,
+            })
+        })
+        .collect();
+    let methods: Vec<serde_json::Value> = results
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "label": r.label, "description": r.description, "design_runs": r.design_runs,
+                "runs_used": r.runs_used, "left_out": r.left_out, "error": r.error,
+                "draws": r.draws, "qois": r.qois,
+            })
+        })
+        .collect();
+    let v = serde_json::json!({
+        "title": study.title(),
+        "study_file": study.source.path.display().to_string(),
+        "study_hash": study.hash,
+        "seed": study.seed,
+        "units": {
+            "length": study.model.units.length, "force": study.model.units.force,
+            "stress": study.model.units.stress, "density": study.model.units.density,
+        },
+        "parameters": study.params.names.iter().enumerate().map(|(j, n)| serde_json::json!({
+            "name": n, "law": study.params.descriptions[j], "unit": study.params.units[j],
+            "lo": study.params.lo[j], "hi": study.params.hi[j], "nominal": study.params.nominal[j],
+        })).collect::<Vec<_>>(),
+        "methods": methods,
+        "runs": runs,
+    });
+    let text = serde_json::to_string_pretty(&v)?;
+    if text.contains("NaN") || text.contains("null,") && false {
+        anyhow::bail!("internal error: a non-finite value reached summary.json");
+    }
+    let path = dir.join("summary.json");
+    std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+    println!("summary: {}", path.display());
+    Ok(())
+}
+
+fn write_samples(study: &Study, dir: &Path, r: &MethodResult) -> Result<()> {
+    if r.qois.is_empty() || r.points.is_empty() {
+        return Ok(());
+    }
+    let path = dir.join("samples.csv");
+    let f = std::fs::File::create(&path).with_context(|| format!("writing {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(f);
+    let d = study.params.names.len();
+    let header: Vec<String> = study
+        .params
+        .names
+        .iter()
+        .cloned()
+        .chain(study.qois.iter().map(|q| q.name.clone()))
+        .collect();
+    writeln!(w, "{}", header.join(","))?;
+    for i in 0..r.draws {
+        let mut line = String::new();
+        for j in 0..d {
+            line.push_str(&format!("{:.10e},", r.points[i * d + j]));
+        }
+        let vals: Vec<String> = r
+            .qois
+            .iter()
+            .map(|q| format!("{:.10e}", q.samples[i]))
+            .collect();
+        line.push_str(&vals.join(","));
+        writeln!(w, "{line}")?;
+    }
+    w.flush()?;
+    println!(
+        "samples: {} ({} draws on the {} surrogate)",
+        path.display(),
+        r.draws,
+        r.label
+    );
+    Ok(())
+}
+
+fn report_input(
+    study: &Study,
+    results: &[MethodResult],
+    records: &[RunRecord],
+    notes: &[String],
+    timings: &[(String, f64)],
+) -> Result<ReportInput> {
+    let main = &results[0];
+    let units = &study.model.units;
+    let mut unit_list = vec![
+        ("length".to_string(), units.length.clone()),
+        ("force".into(), units.force.clone()),
+        ("stress".into(), units.stress.clone()),
+    ];
+    if let Some(d) = &units.density {
+        unit_list.push(("density".into(), d.clone()));
+    }
+    let qois = study
+        .qois
+        .iter()
+        .enumerate()
+        .filter_map(|(q, qoi)| {
+            let s = main.qois.get(q)?;
+            let surface =
+                response_surface(study, &study.methods[0], records, q, 41).map(|(x, y, values)| {
+                    Surface {
+                        param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
+                        x,
+                        y,
+                        values,
+                        points: study.methods[0]
+                            .points
+                            .iter()
+                            .filter_map(|p| {
+                                let r = records.iter().find(|r| &r.params == p)?;
+                                r.converged().then(|| [p[0], p[1], r.qois[q]])
+                            })
+                            .collect(),
+                    }
+                });
+            Some(QoiReport {
+                name: qoi.name.clone(),
+                unit: qoi.unit.clone(),
+                samples: s.samples.clone(),
+                mean: s.mean,
+                std: s.std,
+                skewness: s.skewness,
+                quantiles: s.quantiles.clone(),
+                kde: s.kde.clone(),
+                failure: s
+                    .failure
+                    .iter()
+                    .map(|f| FailureInfo {
+                        threshold: f.threshold,
+                        probability: f.probability,
+                        ci_low: f.ci_low,
+                        ci_high: f.ci_high,
+                    })
+                    .collect(),
+                surface,
+            })
+        })
+        .collect();
+    let comparison = (results.len() > 1).then(|| Comparison {
+        qoi: study.qois[0].name.clone(),
+        rows: results
+            .iter()
+            .filter_map(|r| {
+                let s = r.qois.first()?;
+                Some(ComparisonRow {
+                    method: r.label.clone(),
+                    runs: r.runs_used,
+                    mean: s.mean,
+                    std: s.std,
+                    kde: s.kde.clone(),
+                })
+            })
+            .collect(),
+    });
+    let mut histories: Vec<(String, Vec<f64>)> = records
+        .iter()
+        .take(4)
+        .map(|r| {
+            (
+                format!("run at {}", fmt_point(&r.params)),
+                r.history.clone(),
+            )
+        })
+        .collect();
+    if let Some(worst) = records.iter().max_by_key(|r| r.iterations)
+        && !histories.iter().any(|h| h.1 == worst.history)
+    {
+        histories.push((
+            format!("slowest: {}", fmt_point(&worst.params)),
+            worst.history.clone(),
+        ));
+    }
+    Ok(ReportInput {
+        title: study.title(),
+        study_file: study.source.path.display().to_string(),
+        units: unit_list,
+        method: format!("{}: {}", main.label, main.description),
+        parameters: study
+            .params
+            .names
+            .iter()
+            .enumerate()
+            .map(|(j, n)| ParamInfo {
+                name: n.clone(),
+                law: study.params.descriptions[j].clone(),
+                lo: study.params.lo[j],
+                hi: study.params.hi[j],
+            })
+            .collect(),
+        runs: records
+            .iter()
+            .map(|r| RunInfo {
+                params: r.params.clone(),
+                status: r.status.clone(),
+                iterations: r.iterations,
+                seconds: r.seconds,
+                qois: r
+                    .qois
+                    .iter()
+                    .map(|v| if v.is_finite() { *v } else { 0.0 })
+                    .collect(),
+            })
+            .collect(),
+        residual_histories: histories,
+        qois,
+        comparison,
+        timings: timings.to_vec(),
+        notes: notes.to_vec(),
+    })
+}
+
+fn fmt_point(p: &[f64]) -> String {
+    format!(
+        "({})",
+        p.iter()
+            .map(|v| format!("{v:.4}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
