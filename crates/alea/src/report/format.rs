@@ -46,6 +46,19 @@ pub fn prob(p: f64) -> String {
     num(p, 4)
 }
 
+/// A count with thin-space thousands separators: 250 000.
+pub fn count(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (k, c) in digits.chars().enumerate() {
+        if k > 0 && (digits.len() - k).is_multiple_of(3) {
+            out.push('\u{2009}');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// Seconds as "12.3 s", "850 ms", "2 min 05 s".
 pub fn seconds(s: f64) -> String {
     if s >= 120.0 {
@@ -104,6 +117,9 @@ mod tests {
         assert_eq!(num(2.5e7, 4), "2.5e7");
         assert_eq!(num(0.0, 4), "0");
         assert_eq!(num(-0.0001, 1), "-1e-4");
+        assert_eq!(count(250_000), "250\u{2009}000");
+        assert_eq!(count(121), "121");
+        assert_eq!(count(1000), "1\u{2009}000");
         assert_eq!(seconds(0.0123), "12.3 ms");
         assert_eq!(seconds(3.0), "3 s");
         assert_eq!(seconds(125.0), "2 min 05 s");

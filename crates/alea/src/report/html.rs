@@ -2,7 +2,7 @@
 
 use std::fmt::Write;
 
-use super::format::{esc, num, prob, seconds};
+use super::format::{count, esc, num, prob, seconds};
 use super::plots::{Figure, Kind};
 use super::{Comparison, QoiReport, ReportInput, RunInfo};
 
@@ -269,7 +269,7 @@ fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
         );
     }
     row(o, "Skewness", num(q.skewness, 3));
-    row(o, "Monte Carlo samples", q.samples.len().to_string());
+    row(o, "Monte Carlo samples", count(q.samples.len()));
     o.push_str("</tbody></table></div>\n");
     // Quantiles.
     o.push_str("<div><h3>Quantiles</h3>");

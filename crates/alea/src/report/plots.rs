@@ -12,7 +12,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::format::{num, slug};
+use super::format::{count, num, slug};
 use super::{Comparison, QoiReport, ReportError, ReportInput, Surface};
 
 /// DejaVu Sans (Bitstream Vera licence, see assets/fonts/DejaVu-LICENSE.txt).
@@ -452,7 +452,7 @@ fn configure_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
         .position(position)
         .margin(12)
         .legend_area_size(30)
-        .label_font(font(14.0))
+        .label_font(font(15.0))
         .background_style(WHITE.mix(0.92))
         .border_style(LEGEND_EDGE)
         .draw()
@@ -477,7 +477,7 @@ fn draw_pdf<DB: DrawingBackend>(
         .fold(0.0, f64::max);
     let ymax = if ymax > 0.0 { ymax * 1.15 } else { 1.0 };
     let mut chart = ChartBuilder::on(root)
-        .caption(format!("Probability density of {}", q.name), font(22.0))
+        .caption(format!("Probability density of {}", q.name), font(24.0))
         .margin(18)
         .x_label_area_size(54)
         .y_label_area_size(72)
@@ -491,8 +491,8 @@ fn draw_pdf<DB: DrawingBackend>(
         .y_labels(7)
         .x_label_formatter(&|v| num(*v, 4))
         .y_label_formatter(&|v| num(*v, 3))
-        .axis_desc_style(font(16.0))
-        .label_style(font(14.0))
+        .axis_desc_style(font(17.0))
+        .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
         .light_line_style(GRID_LIGHT)
         .draw()
@@ -504,7 +504,7 @@ fn draw_pdf<DB: DrawingBackend>(
                     .map(|&(a, b, d)| Rectangle::new([(a, 0.0), (b, d)], HIST_FILL.filled())),
             )
             .map_err(err)?
-            .label(format!("histogram of {} samples", sorted.len()))
+            .label(format!("histogram of {} samples", count(sorted.len())))
             .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 22, y + 6)], HIST_FILL.filled()));
         chart
             .draw_series(
@@ -587,7 +587,7 @@ fn draw_cdf<DB: DrawingBackend>(
 ) -> DrawResult {
     let ((lo, hi), on_scale) = qoi_x_range(q, sorted);
     let mut chart = ChartBuilder::on(root)
-        .caption(format!("Cumulative distribution of {}", q.name), font(22.0))
+        .caption(format!("Cumulative distribution of {}", q.name), font(24.0))
         .margin(18)
         .x_label_area_size(54)
         .y_label_area_size(72)
@@ -601,8 +601,8 @@ fn draw_cdf<DB: DrawingBackend>(
         .y_labels(11)
         .x_label_formatter(&|v| num(*v, 4))
         .y_label_formatter(&|v| num(*v, 2))
-        .axis_desc_style(font(16.0))
-        .label_style(font(14.0))
+        .axis_desc_style(font(17.0))
+        .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
         .light_line_style(GRID_LIGHT)
         .draw()
@@ -626,7 +626,7 @@ fn draw_cdf<DB: DrawingBackend>(
         chart
             .draw_series(LineSeries::new(pts, KDE.stroke_width(2)))
             .map_err(err)?
-            .label(format!("empirical CDF ({n} samples)"))
+            .label(format!("empirical CDF ({} samples)", count(n)))
             .legend(line_legend(KDE, 2));
     }
     chart
@@ -728,7 +728,7 @@ fn draw_surface<DB: DrawingBackend>(
     let left_w = w as i32 - 140;
     let (left, right) = root.split_horizontally(left_w);
     let mut chart = ChartBuilder::on(&left)
-        .caption(format!("Response surface of {}", q.name), font(22.0))
+        .caption(format!("Response surface of {}", q.name), font(24.0))
         .margin(18)
         .margin_right(8)
         .x_label_area_size(54)
@@ -744,8 +744,8 @@ fn draw_surface<DB: DrawingBackend>(
         .y_labels(8)
         .x_label_formatter(&|v| num(*v, 4))
         .y_label_formatter(&|v| num(*v, 4))
-        .axis_desc_style(font(16.0))
-        .label_style(font(14.0))
+        .axis_desc_style(font(17.0))
+        .label_style(font(15.0))
         .draw()
         .map_err(err)?;
     // Filled levels over the grid: pixels here, an embedded PNG in the SVG (a vector raster of
@@ -867,7 +867,7 @@ fn draw_convergence<DB: DrawingBackend>(
         (y0 / 10.0, y1 * 10.0)
     };
     let mut chart = ChartBuilder::on(root)
-        .caption("Convergence of the LATIN iterations", font(22.0))
+        .caption("Convergence of the LATIN iterations", font(24.0))
         .margin(18)
         .x_label_area_size(54)
         .y_label_area_size(72)
@@ -887,8 +887,8 @@ fn draw_convergence<DB: DrawingBackend>(
             }
         })
         .y_label_formatter(&|v| num(*v, 2))
-        .axis_desc_style(font(16.0))
-        .label_style(font(14.0))
+        .axis_desc_style(font(17.0))
+        .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
         .light_line_style(GRID_LIGHT)
         .draw()
@@ -934,7 +934,7 @@ fn draw_comparison<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(root)
         .caption(
             format!("Probability density of {}: methods compared", c.qoi),
-            font(22.0),
+            font(24.0),
         )
         .margin(18)
         .x_label_area_size(54)
@@ -949,8 +949,8 @@ fn draw_comparison<DB: DrawingBackend>(
         .y_labels(7)
         .x_label_formatter(&|v| num(*v, 4))
         .y_label_formatter(&|v| num(*v, 3))
-        .axis_desc_style(font(16.0))
-        .label_style(font(14.0))
+        .axis_desc_style(font(17.0))
+        .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
         .light_line_style(GRID_LIGHT)
         .draw()
