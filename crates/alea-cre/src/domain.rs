@@ -17,6 +17,29 @@ pub struct CreOptions {
     pub admissibility_tolerance: f64,
 }
 
+impl CreOptions {
+    /// Checks the options.
+    ///
+    /// # Errors
+    /// [`CreError::Invalid`] if `extra_degree` is not in `1..=10` or the tolerance is negative or
+    /// not finite.
+    pub fn validate(&self) -> Result<(), CreError> {
+        if !(1..=10).contains(&self.extra_degree) {
+            return Err(CreError::Invalid(format!(
+                "extra_degree must be in 1..=10, got {}",
+                self.extra_degree
+            )));
+        }
+        let t = self.admissibility_tolerance;
+        if !(t.is_finite() && t >= 0.0) {
+            return Err(CreError::Invalid(format!(
+                "admissibility_tolerance must be finite and >= 0, got {t}"
+            )));
+        }
+        Ok(())
+    }
+}
+
 impl Default for CreOptions {
     fn default() -> Self {
         CreOptions {
@@ -85,6 +108,7 @@ pub fn estimate_with_sides(
     u: &[f64],
     options: &CreOptions,
 ) -> Result<DomainEstimate, CreError> {
+    options.validate()?;
     model.check()?;
     if let Some(i) = u.iter().position(|v| !v.is_finite()) {
         return Err(CreError::Invalid(format!(
@@ -102,12 +126,17 @@ pub fn estimate_with_sides(
     })?;
     let t1 = t0.elapsed().as_secs_f64();
     let t0 = std::time::Instant::now();
-    let rules = Phase2Rules::new(1 + options.extra_degree.max(1));
+    let rules = Phase2Rules::new(1 + options.extra_degree);
     let per: Vec<_> = (0..model.mesh.num_cells())
         .into_par_iter()
         .map(|c| element(model, c, u, loads.body.as_ref(), &tr, &rules))
         .collect::<Result<_, _>>()?;
     let theta2: f64 = per.iter().map(|r| r.theta2).sum();
+    if !theta2.is_finite() {
+        return Err(CreError::Invalid(
+            "non-finite error estimate (degenerate cell or non-finite load data)".into(),
+        ));
+    }
     let energy2: f64 = per.iter().map(|r| r.energy2).sum();
     let balance_defect = per.iter().fold(0.0f64, |m, r| m.max(r.balance_defect));
     let element_theta = per.iter().map(|r| r.theta2.max(0.0).sqrt()).collect();

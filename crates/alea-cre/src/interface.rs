@@ -27,6 +27,8 @@
 
 use alea_latin::InterfaceResult;
 
+use crate::CreError;
+
 /// Interface term of one interface.
 #[derive(Clone, Debug)]
 pub struct InterfaceEstimate {
@@ -49,8 +51,23 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 }
 
 /// Evaluates the interface term of a run's interface.
-pub fn interface_term(ir: &InterfaceResult, tolerance: f64) -> InterfaceEstimate {
+///
+/// # Errors
+/// [`CreError::Invalid`] if the per-point arrays of `ir` do not all have the same length.
+pub fn interface_term(ir: &InterfaceResult, tolerance: f64) -> Result<InterfaceEstimate, CreError> {
     let np = ir.points.len();
+    let lens = [
+        ir.weights.len(),
+        ir.what_prev[0].len(),
+        ir.what_prev[1].len(),
+        ir.fhat[1].len(),
+    ];
+    if lens.iter().any(|&l| l != np) {
+        return Err(CreError::Invalid(format!(
+            "interface '{}': {np} points but arrays of lengths {lens:?}",
+            ir.name
+        )));
+    }
     let jump = |i: usize| -> [f64; 3] {
         let (a, b) = (ir.what_prev[0][i], ir.what_prev[1][i]);
         let p = &ir.points[i];
@@ -114,12 +131,12 @@ pub fn interface_term(ir: &InterfaceResult, tolerance: f64) -> InterfaceEstimate
         term += ir.weights[i] * e;
         density.push(e);
     }
-    InterfaceEstimate {
+    Ok(InterfaceEstimate {
         name: ir.name.clone(),
         law: ir.law,
         term,
         density,
         violations,
         max_violation,
-    }
+    })
 }

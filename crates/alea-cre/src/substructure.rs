@@ -30,6 +30,7 @@ pub fn estimate_latin(
     run: &RunResult,
     options: &CreOptions,
 ) -> Result<CreResult, CreError> {
+    options.validate()?;
     let ns = assembly.subs.len();
     if loads.len() != ns || run.displacements.len() != ns || run.young_factors.len() != ns {
         return Err(CreError::Invalid(format!(
@@ -82,6 +83,16 @@ pub fn estimate_latin(
                     })
                     .collect::<Result<_, _>>()?
             };
+            if weights.len() != ir.nodes[s].len() || ir.f[s].len() != ir.nodes[s].len() {
+                return Err(CreError::Invalid(format!(
+                    "interface '{}' side {}: {} nodes, {} weights, {} forces",
+                    spec.name,
+                    s + 1,
+                    ir.nodes[s].len(),
+                    weights.len(),
+                    ir.f[s].len()
+                )));
+            }
             let forces = ir.f[s]
                 .iter()
                 .zip(&weights)
@@ -111,6 +122,6 @@ pub fn estimate_latin(
         .interfaces
         .iter()
         .map(|ir| interface_term(ir, options.admissibility_tolerance))
-        .collect();
+        .collect::<Result<_, _>>()?;
     Ok(CreResult::new(subs, interfaces))
 }

@@ -1,0 +1,53 @@
+//! Bad input gives typed errors, not panics.
+
+use alea_cre::{CreError, CreOptions, LoadData, estimate_domain};
+use alea_fem::{Analysis, Constraints, Material, Model};
+use alea_mesh::{CellType, generate};
+
+fn model(kind: CellType) -> Model {
+    let mesh = generate::rectangle(1.0, 1.0, 2, 2, kind).unwrap();
+    let mut m = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
+    m.set_material_all(Material::new(1.0, 0.3, 0.0).unwrap());
+    m
+}
+
+#[test]
+fn typed_errors() {
+    let m = model(CellType::Quad4);
+    let mut c = Constraints::new();
+    c.clamp(&m.mesh, "xmin").unwrap();
+    let u = vec![0.0; 2 * m.mesh.num_nodes()];
+    let opts = CreOptions::default();
+    // Wrong displacement length.
+    let r = estimate_domain(&m, &c, &LoadData::new(), &u[1..], &opts);
+    assert!(matches!(r, Err(CreError::Invalid(_))), "{r:?}");
+    // Non-finite displacement.
+    let mut bad = u.clone();
+    bad[3] = f64::NAN;
+    let r = estimate_domain(&m, &c, &LoadData::new(), &bad, &opts);
+    assert!(matches!(r, Err(CreError::Invalid(_))));
+    // Unknown traction group.
+    let data = LoadData::new().traction("nope", |_, _| [1.0, 0.0, 0.0]);
+    let r = estimate_domain(&m, &c, &data, &u, &opts);
+    assert!(matches!(r, Err(CreError::Mesh(_))), "{r:?}");
+    // Bad options.
+    let r = estimate_domain(
+        &m,
+        &c,
+        &LoadData::new(),
+        &u,
+        &CreOptions {
+            extra_degree: 0,
+            ..Default::default()
+        },
+    );
+    assert!(matches!(r, Err(CreError::Invalid(_))));
+    // Model without material.
+    let mesh = generate::rectangle(1.0, 1.0, 2, 2, CellType::Quad4).unwrap();
+    let nm = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
+    let r = estimate_domain(&nm, &c, &LoadData::new(), &u, &opts);
+    assert!(matches!(r, Err(CreError::Fem(_))), "{r:?}");
+    // Zero displacement, no load: zero estimate.
+    let r = estimate_domain(&m, &c, &LoadData::new(), &u, &opts).unwrap();
+    assert_eq!(r.theta, 0.0);
+}
