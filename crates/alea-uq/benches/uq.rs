@@ -24,17 +24,31 @@ use std::hint::black_box;
 use std::sync::Arc;
 use std::time::Instant;
 
-fn time(reps: usize, mut f: impl FnMut()) -> (f64, f64) {
+/// Process CPU time (all threads) in seconds.
+fn cpu_now() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes into the timespec we own.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// Median wall time, minimum wall time and median process CPU time of `reps` runs.
+fn time(reps: usize, mut f: impl FnMut()) -> (f64, f64, f64) {
     f(); // warm-up
-    let mut t: Vec<f64> = (0..reps)
-        .map(|_| {
-            let s = Instant::now();
-            f();
-            s.elapsed().as_secs_f64()
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    (t[t.len() / 2], t[0])
+    let mut wall = Vec::with_capacity(reps);
+    let mut cpu = Vec::with_capacity(reps);
+    for _ in 0..reps {
+        let (s, c) = (Instant::now(), cpu_now());
+        f();
+        wall.push(s.elapsed().as_secs_f64());
+        cpu.push(cpu_now() - c);
+    }
+    wall.sort_by(f64::total_cmp);
+    cpu.sort_by(f64::total_cmp);
+    (wall[reps / 2], wall[0], cpu[reps / 2])
 }
 
 fn fmt(s: f64) -> String {
@@ -68,8 +82,8 @@ fn main() {
     let kde_data = sample_model(&law3, 250_000, 1, |x| ish.eval(x));
     let kde_pts: Vec<f64> = (0..512).map(|i| -10.0 + 28.0 * i as f64 / 511.0).collect();
 
-    println!("| case | threads | median | min |");
-    println!("|---|---|---|---|");
+    println!("| case | threads | wall median | wall min | CPU median (all threads) |");
+    println!("|---|---|---|---|---|");
     for threads in [1, 2] {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -78,7 +92,7 @@ fn main() {
         pool.install(|| {
             // 1. PC regression.
             let mut seed = 0;
-            let (med, min) = time(200, || {
+            let (med, min, cpu) = time(200, || {
                 seed += 1;
                 let basis = PcBasis::total_degree(&m, 4).unwrap();
                 let design = latin_hypercube(&law3, 200, seed);
@@ -88,57 +102,63 @@ fn main() {
                 black_box((e.mean(), e.variance(), e.sobol_first()));
             });
             println!(
-                "| PC degree 4, regression on 200 LHS points of Ishigami + mean, variance, S_i (35 terms) | {threads} | {} | {} |",
+                "| PC degree 4, regression on 200 LHS points of Ishigami + mean, variance, S_i (35 terms) | {threads} | {} | {} | {} |",
                 fmt(med),
-                fmt(min)
+                fmt(min),
+                fmt(cpu)
             );
             // 2. MC on the piecewise-bilinear surrogate.
             assert_eq!(mesh.num_leaves(), 10_000);
-            let (med, min) = time(10, || {
+            let (med, min, cpu) = time(10, || {
                 let q = sample_model(&law2, 1_000_000, 7, |x| mesh.interpolate(x, &values));
                 black_box(Summary::of(&q).mean);
             });
             println!(
-                "| 10^6 MC evaluations of a 2D piecewise-bilinear surrogate, 10^4 cells (+ mean/std) | {threads} | {} | {} |",
+                "| 10^6 MC evaluations of a 2D piecewise-bilinear surrogate, 10^4 cells (+ mean/std) | {threads} | {} | {} | {} |",
                 fmt(med),
-                fmt(min)
+                fmt(min),
+                fmt(cpu)
             );
-            let (med, min) = time(10, || {
+            let (med, min, cpu) = time(10, || {
                 let q = sample_model(&law2, 1_000_000, 7, |x| x[0] + x[1]);
                 black_box(Summary::of(&q).mean);
             });
             println!(
-                "| (same, sampling only: 10^6 draws of U(0,1)^2 through the joint law) | {threads} | {} | {} |",
+                "| (same, sampling only: 10^6 draws of U(0,1)^2 through the joint law) | {threads} | {} | {} | {} |",
                 fmt(med),
-                fmt(min)
+                fmt(min),
+                fmt(cpu)
             );
             // 3. KDE.
-            let (med, min) = time(10, || {
+            let (med, min, cpu) = time(10, || {
                 let k = Kde::new(&kde_data, Bandwidth::Silverman).unwrap();
                 black_box(k.eval_binned(&kde_pts));
             });
             println!(
-                "| KDE 250 000 samples at 512 points, Silverman, binned evaluation | {threads} | {} | {} |",
+                "| KDE 250 000 samples at 512 points, Silverman, binned evaluation | {threads} | {} | {} | {} |",
                 fmt(med),
-                fmt(min)
+                fmt(min),
+                fmt(cpu)
             );
-            let (med, min) = time(5, || {
+            let (med, min, cpu) = time(5, || {
                 let k = Kde::new(&kde_data, Bandwidth::Silverman).unwrap();
                 black_box(k.eval(&kde_pts));
             });
             println!(
-                "| KDE 250 000 samples at 512 points, Silverman, exact evaluation | {threads} | {} | {} |",
+                "| KDE 250 000 samples at 512 points, Silverman, exact evaluation | {threads} | {} | {} | {} |",
                 fmt(med),
-                fmt(min)
+                fmt(min),
+                fmt(cpu)
             );
-            let (med, min) = time(5, || {
+            let (med, min, cpu) = time(5, || {
                 let k = Kde::new(&kde_data, Bandwidth::Isj).unwrap();
                 black_box(k.eval_binned(&kde_pts));
             });
             println!(
-                "| KDE 250 000 samples at 512 points, ISJ bandwidth, binned evaluation | {threads} | {} | {} |",
+                "| KDE 250 000 samples at 512 points, ISJ bandwidth, binned evaluation | {threads} | {} | {} | {} |",
                 fmt(med),
-                fmt(min)
+                fmt(min),
+                fmt(cpu)
             );
         });
     }
