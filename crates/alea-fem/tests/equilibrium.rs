@@ -29,6 +29,8 @@
 //!  ymax: pressure 5                                 ymax: pressure 5
 //!  body: (1 + x, -2), centrifugal about (-1, 0.5)   body: (1 + x, -2, z), centrifugal
 //! ```
+//! Per-group materials: a bar of two materials in series (nu = 0) is reproduced exactly.
+//!
 //! Goal: the statements above to round-off on every element type, and every bad input (E <= 0,
 //! nu >= 0.5, unknown group, floating body, conflicting constraints, inverted cell, 2D/3D
 //! mismatch) gives a `FemError` naming the problem, never a panic.
@@ -422,6 +424,49 @@ fn prescribed_normal_displacement_on_rotated_sides() {
         eprintln!("{kind}: reaction on xmax {total:?}, closed form {want} along {e:?}");
         assert!((total[0] - want * e[0]).abs() < 1e-10 * want);
         assert!((total[1] - want * e[1]).abs() < 1e-10 * want);
+    }
+}
+
+#[test]
+fn per_group_materials_bar_in_series() {
+    // [0, 3] x [0, 1] with E1 on x < 1 and E2 = 4 E1 on x > 1, nu = 0 (no lateral coupling, so
+    // the uniaxial state is exact): traction s0 on xmax, rollers on xmin and ymin. Exact:
+    // s_xx = s0, u_x = s0 x / E1 for x <= 1, s0 (1 / E1 + (x - 1) / E2) beyond, u_y = 0.
+    let (e1, e2, s0) = (1000.0, 4000.0, 10.0);
+    for kind in [CellType::Tri3, CellType::Quad8, CellType::Tri6] {
+        let mut mesh = generate::rectangle(3.0, 1.0, 6, 2, kind).unwrap();
+        let left: Vec<usize> = (0..mesh.num_cells())
+            .filter(|&c| {
+                let nodes = mesh.cell_nodes(c);
+                nodes.iter().map(|&n| mesh.coords[n][0]).sum::<f64>() / (nodes.len() as f64) < 1.0
+            })
+            .collect();
+        mesh.add_cells_to_group("soft", left);
+        let mut model = Model::new(mesh, Analysis::PlaneStress { thickness: 1.0 }).unwrap();
+        model.set_material_all(Material::new(e2, 0.0, 0.0).unwrap());
+        model
+            .set_material("soft", Material::new(e1, 0.0, 0.0).unwrap())
+            .unwrap();
+        let mut cons = Constraints::new();
+        cons.fix_component(&model.mesh, "xmin", 0, 0.0).unwrap();
+        cons.fix_component(&model.mesh, "ymin", 1, 0.0).unwrap();
+        let mut loads = Loads::new(&model);
+        loads
+            .traction(&model, "xmax", |_, _| [s0, 0.0, 0.0])
+            .unwrap();
+        let sol = solve_elastic(&model, &cons, &loads, Ordering::Metis).unwrap();
+        for (n, x) in model.mesh.coords.iter().enumerate() {
+            let ux = if x[0] <= 1.0 {
+                s0 * x[0] / e1
+            } else {
+                s0 * (1.0 / e1 + (x[0] - 1.0) / e2)
+            };
+            assert!((sol.u[2 * n] - ux).abs() < 1e-12, "{kind}: u_x at {x:?}");
+            assert!(sol.u[2 * n + 1].abs() < 1e-12, "{kind}: u_y at {x:?}");
+        }
+        for s in nodal_stresses(&model, &sol.u).unwrap() {
+            assert!((s[0] - s0).abs() < 1e-10 * s0 && s[1].abs() < 1e-10 * s0);
+        }
     }
 }
 
