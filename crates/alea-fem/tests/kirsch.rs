@@ -37,11 +37,13 @@
 //!        0    a   ysym: u_y = 0      L
 //! ```
 //! Goal: stress concentration factor `s_xx(0, a) / s = 3` within 2 % (issue 2) - we get much closer
-//! on Q8 (32 cells along the quarter arc, 20 radially, grading 5: 3.0045) and assert 0.5 % - the
-//! ligament stress `s_xx(0, y)` and `s_yy(x, 0)` at every node within 1 % of `s` (observed 0.45 %),
-//! and every nodal displacement within 0.1 % of the largest (observed 2e-5). On Q4 the SCF error
-//! must fall like `h` (the hole-top node is a domain corner, where a Q4 stress is first-order:
-//! 3.049, 3.029, 3.016) and be below 1 % with 128 x 80 cells (arc x radial).
+//! and assert 0.5 % on Q8 and T6 (32 cells along the quarter arc, 20 radially, grading 5: Q8
+//! 3.0045, T6 3.0032, and the same for von Mises, the hole edge being uniaxial) - the stresses
+//! `s_xx(0, y)` and `s_yy(x, 0)` along both symmetry lines at every node within 1 % of `s` on Q8
+//! (observed 0.45 %) and 2 % on T6 (0.92 %), and every nodal displacement within 0.1 % of the
+//! largest (observed 2e-5 and 9e-5). On Q4 the SCF error must fall like `h` (the hole-top node is a
+//! domain corner, where a Q4 stress is first-order: 3.049, 3.029, 3.016) and be below 1 % with 128
+//! x 80 cells (arc x radial).
 
 use alea_fem::{
     Analysis, Constraints, Loads, Material, Model, Ordering, post::nodal_stresses, solve_elastic,
@@ -135,9 +137,11 @@ fn exact_fields_are_consistent() {
     assert!((kirsch_stress([0.0, A, 0.0])[0] - 3.0 * S).abs() < 1e-12 * S);
 }
 
-#[test]
-fn stress_concentration_and_ligament_on_q8() {
-    let mesh = generate::plate_with_hole(A, L, 32, 20, 5.0, CellType::Quad8).unwrap();
+/// Solves the quarter plate in `kind` and checks the SCF (relative tolerance `tol_scf`), the
+/// stresses along both symmetry lines (`tol_line` of `s`) and the displacements (`tol_u` of the
+/// largest).
+fn check_fine(kind: CellType, tol_scf: f64, tol_line: f64, tol_u: f64) {
+    let mesh = generate::plate_with_hole(A, L, 32, 20, 5.0, kind).unwrap();
     let mut model = Model::new(mesh, Analysis::PlaneStress { thickness: 2.0 }).unwrap();
     model.set_material_all(Material::new(E, NU, 0.0).unwrap());
     let mut cons = Constraints::new();
@@ -162,8 +166,11 @@ fn stress_concentration_and_ligament_on_q8() {
         })
         .expect("node at the top of the hole");
     let scf = sig[top][0] / S;
-    eprintln!("Q8 Kirsch: s_xx(0, a) / s = {scf:.5}");
-    assert!((scf - 3.0).abs() < 0.005 * 3.0, "SCF {scf}, expected 3");
+    eprintln!("{kind} Kirsch: s_xx(0, a) / s = {scf:.5}");
+    assert!(
+        (scf - 3.0).abs() < tol_scf * 3.0,
+        "{kind}: SCF {scf}, expected 3"
+    );
     // The hole edge is traction-free, so the state there is uniaxial (hoop): von Mises = 3 s.
     let vm = alea_fem::von_mises(&sig[top]) / S;
     assert!(
@@ -181,14 +188,14 @@ fn stress_concentration_and_ligament_on_q8() {
             let err = (sig[n][k] - exact[k]).abs() / S;
             worst = worst.max(err);
             assert!(
-                err < 0.01,
-                "{group} at {x:?}: s = {} vs {} (closed form)",
+                err < tol_line,
+                "{kind} {group} at {x:?}: s = {} vs {} (closed form)",
                 sig[n][k],
                 exact[k]
             );
         }
     }
-    eprintln!("Q8 Kirsch: worst ligament stress error {:.2e} s", worst);
+    eprintln!("{kind} Kirsch: worst ligament stress error {:.2e} s", worst);
 
     // Displacements at every node, relative to the largest exact displacement.
     let umax = mesh
@@ -204,8 +211,18 @@ fn stress_concentration_and_ligament_on_q8() {
         let u = kirsch_displacement(x);
         uerr = uerr.max((sol.u[2 * n] - u[0]).hypot(sol.u[2 * n + 1] - u[1]) / umax);
     }
-    eprintln!("Q8 Kirsch: max displacement error {uerr:.2e} of max |u|");
-    assert!(uerr < 1e-3, "displacement error {uerr:e}");
+    eprintln!("{kind} Kirsch: max displacement error {uerr:.2e} of max |u|");
+    assert!(uerr < tol_u, "{kind}: displacement error {uerr:e}");
+}
+
+#[test]
+fn stress_concentration_and_ligament_on_q8() {
+    check_fine(CellType::Quad8, 0.005, 0.01, 1e-3);
+}
+
+#[test]
+fn stress_concentration_and_ligament_on_t6() {
+    check_fine(CellType::Tri6, 0.005, 0.02, 1e-3);
 }
 
 #[test]
