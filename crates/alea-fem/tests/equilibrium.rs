@@ -470,6 +470,29 @@ fn per_group_materials_bar_in_series() {
     }
 }
 
+#[test]
+fn scaling_young_scales_displacements() {
+    // Linear elasticity: u is proportional to 1 / E for given loads (Model::scale_young, used
+    // when E is an uncertain parameter), stresses do not change, reactions do not change.
+    let mesh = generate::rectangle(3.0, 1.0, 6, 2, CellType::Quad8).unwrap();
+    let mut model = model_of(mesh, Analysis::PlaneStress { thickness: 1.0 });
+    let mut cons = Constraints::new();
+    cons.clamp(&model.mesh, "xmin").unwrap();
+    let mut loads = Loads::new(&model);
+    loads.pressure(&model, "ymax", 2.0).unwrap();
+    let u1 = solve_elastic(&model, &cons, &loads, Ordering::Amd).unwrap();
+    model.scale_young(2.5);
+    let u2 = solve_elastic(&model, &cons, &loads, Ordering::Amd).unwrap();
+    let umax = u1.u.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    for (a, b) in u1.u.iter().zip(&u2.u) {
+        assert!((a - 2.5 * b).abs() < 1e-12 * umax);
+    }
+    let rmax = u1.reactions.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    for (a, b) in u1.reactions.iter().zip(&u2.reactions) {
+        assert!((a - b).abs() < 1e-10 * rmax);
+    }
+}
+
 fn small_model() -> Model {
     let mesh = generate::rectangle(2.0, 1.0, 4, 2, CellType::Quad4).unwrap();
     model_of(mesh, Analysis::PlaneStrain { thickness: 1.0 })
