@@ -473,7 +473,7 @@ fn per_group_materials_bar_in_series() {
 #[test]
 fn scaling_young_scales_displacements() {
     // Linear elasticity: u is proportional to 1 / E for given loads (Model::scale_young, used
-    // when E is an uncertain parameter), stresses do not change, reactions do not change.
+    // when E is an uncertain parameter); the reactions do not change.
     let mesh = generate::rectangle(3.0, 1.0, 6, 2, CellType::Quad8).unwrap();
     let mut model = model_of(mesh, Analysis::PlaneStress { thickness: 1.0 });
     let mut cons = Constraints::new();
