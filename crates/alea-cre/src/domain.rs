@@ -126,10 +126,17 @@ pub fn estimate_with_sides(
     })?;
     let t1 = t0.elapsed().as_secs_f64();
     let t0 = std::time::Instant::now();
-    let rules = Phase2Rules::new(1 + options.extra_degree);
+    // Local degree p + k for cells of order p (1: T3/Q4, 2: T6/Q8).
+    let rules = [
+        Phase2Rules::new(1 + options.extra_degree),
+        Phase2Rules::new(2 + options.extra_degree),
+    ];
     let per: Vec<_> = (0..model.mesh.num_cells())
         .into_par_iter()
-        .map(|c| element(model, c, u, loads.body.as_ref(), &tr, &rules))
+        .map(|c| {
+            let order = model.mesh.cell_type(c).order().clamp(1, 2);
+            element(model, c, u, loads.body.as_ref(), &tr, &rules[order - 1])
+        })
         .collect::<Result<_, _>>()?;
     let theta2: f64 = per.iter().map(|r| r.theta2).sum();
     if !theta2.is_finite() {

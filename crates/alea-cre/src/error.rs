@@ -10,7 +10,7 @@ pub enum CreError {
     #[error(transparent)]
     Fem(#[from] alea_fem::FemError),
     /// A cell type the estimator does not handle.
-    #[error("cell {cell}: the EET estimator handles Tri3 and Quad4 cells, not {kind}")]
+    #[error("cell {cell}: the EET estimator handles Tri3, Quad4, Tri6 and Quad8 cells, not {kind}")]
     UnsupportedCell {
         /// Cell index.
         cell: usize,

@@ -1,5 +1,7 @@
-//! Edges of a 2D mesh of Tri3/Quad4 cells: each edge once, oriented outward from its first
-//! cell, with its one or two cells; node-to-edge and node-to-cell incidences.
+//! Edges of a 2D mesh of Tri3/Quad4/Tri6/Quad8 cells: each edge once, oriented outward from its
+//! first cell, with its one or two cells and its mid-side node (quadratic cells); node-to-edge
+//! and node-to-cell incidences. Edges must be straight (a quadratic edge's mid node at the
+//! middle of its end nodes).
 
 use std::collections::HashMap;
 
@@ -12,6 +14,8 @@ use crate::CreError;
 pub struct Edge {
     /// End nodes, in the (outward, counter-clockwise) order of the first cell's facet.
     pub nodes: [usize; 2],
+    /// Mid-side node of a quadratic edge.
+    pub mid: Option<usize>,
     /// `(cell, local facet index)`: the first cell defines the orientation (`eta = +1`); an
     /// interior edge has a second cell (`eta = -1`).
     pub cells: Vec<(usize, usize)>,
@@ -21,6 +25,37 @@ impl Edge {
     /// True for a boundary edge (one cell).
     pub fn is_boundary(&self) -> bool {
         self.cells.len() == 1
+    }
+
+    /// Position of node `i` on the edge: 0 and 1 for the ends, 2 for the mid node.
+    pub fn slot(&self, i: usize) -> Option<usize> {
+        if self.nodes[0] == i {
+            Some(0)
+        } else if self.nodes[1] == i {
+            Some(1)
+        } else if self.mid == Some(i) {
+            Some(2)
+        } else {
+            None
+        }
+    }
+
+    /// All nodes (ends, then mid node).
+    pub fn all_nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.nodes.iter().copied().chain(self.mid)
+    }
+
+    /// Edge shape functions at `s in [0, 1]` (ends, mid; the mid entry is 0 on a linear edge).
+    pub fn shape(&self, s: f64) -> [f64; 3] {
+        if self.mid.is_some() {
+            [
+                (1.0 - s) * (1.0 - 2.0 * s),
+                s * (2.0 * s - 1.0),
+                4.0 * s * (1.0 - s),
+            ]
+        } else {
+            [1.0 - s, s, 0.0]
+        }
     }
 }
 
@@ -44,14 +79,17 @@ fn key(a: usize, b: usize) -> [usize; 2] {
 }
 
 impl Topology {
-    /// Builds the topology; every cell must be a Tri3 or Quad4.
+    /// Builds the topology; every cell must be a Tri3, Quad4, Tri6 or Quad8 with straight edges.
     pub fn new(mesh: &Mesh) -> Result<Self, CreError> {
         let mut edges: Vec<Edge> = Vec::new();
         let mut index = HashMap::new();
         let mut cell_edges = Vec::with_capacity(mesh.num_cells());
         let mut node_cells = vec![Vec::new(); mesh.num_nodes()];
         for (c, kind, nodes) in mesh.cells() {
-            if !matches!(kind, CellType::Tri3 | CellType::Quad4) {
+            if !matches!(
+                kind,
+                CellType::Tri3 | CellType::Quad4 | CellType::Tri6 | CellType::Quad8
+            ) {
                 return Err(CreError::UnsupportedCell {
                     cell: c,
                     kind: kind.to_string(),
@@ -60,6 +98,19 @@ impl Topology {
             let mut ce = Vec::new();
             for (l, (_, loc)) in kind.facets().iter().enumerate() {
                 let (a, b) = (nodes[loc[0]], nodes[loc[1]]);
+                let mid = loc.get(2).map(|&k| nodes[k]);
+                if let Some(m) = mid {
+                    let (xa, xb, xm) = (mesh.coords[a], mesh.coords[b], mesh.coords[m]);
+                    let len = ((xb[0] - xa[0]).powi(2) + (xb[1] - xa[1]).powi(2)).sqrt();
+                    let off = ((xm[0] - 0.5 * (xa[0] + xb[0])).powi(2)
+                        + (xm[1] - 0.5 * (xa[1] + xb[1])).powi(2))
+                    .sqrt();
+                    if off > 1e-8 * len {
+                        return Err(CreError::Invalid(format!(
+                            "cell {c}: curved edge ({a}, {m}, {b}) (mid node off the chord by {off:e}); only straight edges are supported"
+                        )));
+                    }
+                }
                 match index.get(&key(a, b)) {
                     Some(&e) => {
                         let edge: &mut Edge = &mut edges[e];
@@ -76,6 +127,7 @@ impl Topology {
                         ce.push((edges.len(), 1.0));
                         edges.push(Edge {
                             nodes: [a, b],
+                            mid,
                             cells: vec![(c, l)],
                         });
                     }
@@ -88,7 +140,7 @@ impl Topology {
         }
         let mut node_edges = vec![Vec::new(); mesh.num_nodes()];
         for (e, edge) in edges.iter().enumerate() {
-            for &n in &edge.nodes {
+            for n in edge.all_nodes() {
                 node_edges[n].push(e);
             }
         }

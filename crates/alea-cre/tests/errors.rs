@@ -47,6 +47,20 @@ fn typed_errors() {
     let nm = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
     let r = estimate_domain(&nm, &c, &LoadData::new(), &u, &opts);
     assert!(matches!(r, Err(CreError::Fem(_))), "{r:?}");
+    // Curved quadratic edge.
+    let mut cm = model(CellType::Tri6);
+    let f = cm.mesh.facet_group("ymin").unwrap()[0].clone();
+    cm.mesh.coords[f.nodes[2]][1] -= 0.05;
+    let cu = vec![0.0; 2 * cm.mesh.num_nodes()];
+    let r = estimate_domain(&cm, &Constraints::new(), &LoadData::new(), &cu, &opts);
+    assert!(matches!(r, Err(CreError::Invalid(_))), "{r:?}");
+    // 3D mesh.
+    let bm = generate::box_mesh([1.0; 3], [1, 1, 1], CellType::Hex8).unwrap();
+    let mut m3 = Model::new(bm, Analysis::Solid).unwrap();
+    m3.set_material_all(Material::new(1.0, 0.3, 0.0).unwrap());
+    let u3 = vec![0.0; 3 * m3.mesh.num_nodes()];
+    let r = estimate_domain(&m3, &Constraints::new(), &LoadData::new(), &u3, &opts);
+    assert!(r.is_err(), "{r:?}");
     // Zero displacement, no load: zero estimate.
     let r = estimate_domain(&m, &c, &LoadData::new(), &u, &opts).unwrap();
     assert_eq!(r.theta, 0.0);

@@ -6,10 +6,11 @@
 //! exact tractions `sigma(u) n` prescribed on the three other sides (Neumann-loaded).
 //! The true error `||u_ex - u_h||_K` is integrated with high-order rules.
 //!
-//! Checks on every mesh of a refinement sequence (structured and distorted, T3 and Q4):
+//! Checks on every mesh of a refinement sequence (structured and distorted, T3, Q4, T6, Q8):
 //! `1 <= theta / ||e|| <= 3`, and the fitted convergence slope of `theta` within 0.15 of that
-//! of the true error. The estimator's own diagnostics (phase-1 compatibility, element balance)
-//! must be at round-off.
+//! of the true error (which converges at rate p on the regular meshes). The phase-1 node
+//! systems must be compatible to round-off; the element balance of phase 2 holds to the
+//! quadrature error of the (non-polynomial) body force.
 
 mod common;
 
@@ -19,6 +20,7 @@ use alea_mesh::CellType;
 use common::*;
 
 fn run(kind: CellType, distortion: f64, neumann: bool, analysis: Analysis) {
+    let rate = kind.order() as f64;
     let mut hs = Vec::new();
     let mut errs = Vec::new();
     let mut thetas = Vec::new();
@@ -66,7 +68,14 @@ fn run(kind: CellType, distortion: f64, neumann: bool, analysis: Analysis) {
     let (se, st) = (slope(&hs, &errs), slope(&hs, &thetas));
     println!("{kind}: slopes error {se:.3}, theta {st:.3}");
     assert!((se - st).abs() < 0.15, "slopes {se} vs {st}");
-    assert!(se > 0.85, "true error converges at rate 1 (got {se})");
+    if distortion == 0.0 {
+        // (On randomly distorted meshes Q8 serendipity elements lose part of their order -
+        // Arnold-Boffi-Falk - so the FE rate itself is only checked on the regular meshes.)
+        assert!(
+            se > rate - 0.15,
+            "true error converges at rate {rate} (got {se})"
+        );
+    }
 }
 
 const PS: Analysis = Analysis::PlaneStrain { thickness: 1.0 };
@@ -102,4 +111,30 @@ fn q4_distorted_neumann() {
 #[test]
 fn q4_distorted_clamped() {
     run(CellType::Quad4, 0.25, false, PS);
+}
+
+#[test]
+fn t6_clamped() {
+    run(CellType::Tri6, 0.0, false, PS);
+}
+
+#[test]
+fn q8_distorted_neumann() {
+    // Corner nodes moved, mid-side nodes kept at the middle of the (straight) edges.
+    run(CellType::Quad8, 0.25, true, PS);
+}
+
+#[test]
+fn t6_distorted_clamped() {
+    run(CellType::Tri6, 0.1, false, PS);
+}
+
+#[test]
+fn t6_neumann_plane_stress() {
+    run(
+        CellType::Tri6,
+        0.0,
+        true,
+        Analysis::PlaneStress { thickness: 0.5 },
+    );
 }

@@ -18,8 +18,11 @@
 //! the compatibility defect. Directions are taken node by node in the frame of the node's
 //! constraints (free directions, then constrained ones), so skew constraints are handled.
 //!
-//! On a straight 2-node edge the density of degree 1 is recovered from its two projections:
-//! `F_a = (2 / L) (2 b_a - b_b)`. Everything is per unit thickness.
+//! For quadratic cells (T6/Q8) the same holds with every node of the mesh, vertex or mid-side
+//! (the mid-side node's system has one unknown, determined by its FE equilibrium). On each edge
+//! the density of degree `p` (1 or 2) is recovered from its `p + 1` projections through the
+//! edge mass matrix: `F_a = (2 / L) (2 b_a - b_b)` on a 2-node edge. Everything is per unit
+//! thickness.
 
 use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
 use alea_mesh::Mesh;
@@ -28,7 +31,7 @@ use rayon::prelude::*;
 use crate::CreError;
 use crate::data::{SideForces, TractionField, VectorField};
 use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
-use crate::linalg::least_change;
+use crate::linalg::{cholesky_solve, least_change};
 use crate::topology::Topology;
 
 /// Data part of an edge's density.
@@ -43,8 +46,9 @@ pub struct EdgeData {
 /// Density on one edge (first-cell orientation: the traction exerted on the edge's first cell).
 #[derive(Clone, Debug, Default)]
 pub struct EdgeDensity {
-    /// Linear part: values at the edge's two nodes.
-    pub lin: [[f64; 2]; 2],
+    /// Polynomial part: values at the edge's end nodes and mid node (the mid value is unused on
+    /// a 2-node edge), interpolated with [`crate::topology::Edge::shape`].
+    pub lin: [[f64; 2]; 3],
     /// Prescribed-traction part (possibly non-polynomial).
     pub data: Vec<EdgeData>,
 }
@@ -77,10 +81,12 @@ impl EdgeTractions {
     /// point `x` and first-cell outward normal `n`.
     pub fn traction(&self, e: usize, s: f64, x: [f64; 3], n: [f64; 2]) -> [f64; 2] {
         let d = &self.density[e];
-        let mut t = [
-            (1.0 - s) * d.lin[0][0] + s * d.lin[1][0],
-            (1.0 - s) * d.lin[0][1] + s * d.lin[1][1],
-        ];
+        let sh = self.topo.edges[e].shape(s);
+        let mut t = [0.0; 2];
+        for k in 0..3 {
+            t[0] += sh[k] * d.lin[k][0];
+            t[1] += sh[k] * d.lin[k][1];
+        }
         for ed in &d.data {
             let v = (self.fields[ed.field])(x, [n[0], n[1], 0.0]);
             let p = ed.projector;
@@ -148,13 +154,28 @@ fn constrained(f: &([[f64; 2]; 2], usize), d: [f64; 2]) -> bool {
     free_part < 1e-12
 }
 
-/// A linear density on one edge: `(edge, [value at nodes[0], value at nodes[1]])`.
-pub type EdgeLinear = (usize, [[f64; 2]; 2]);
+/// A polynomial density on one edge: `(edge, values at [nodes[0], nodes[1], mid])`.
+pub type EdgeLinear = (usize, [[f64; 2]; 3]);
 
-/// Linear densities on the edges of each interface side whose consistent nodal forces equal the
-/// given discrete forces: `M t = g / thickness`, `M` the consistent edge mass of the side (1D,
-/// symmetric positive definite), solved by Jacobi-preconditioned conjugate gradients to round-off.
-/// Returns, per edge of the side, the nodal values `[t_a, t_b]` in edge-node order.
+/// Consistent edge mass `int N_a N_b ds` (ends, mid) of an edge of length `len`.
+fn edge_mass(quadratic: bool, len: f64) -> [[f64; 3]; 3] {
+    if quadratic {
+        let c = len / 30.0;
+        [
+            [4.0 * c, -c, 2.0 * c],
+            [-c, 4.0 * c, 2.0 * c],
+            [2.0 * c, 2.0 * c, 16.0 * c],
+        ]
+    } else {
+        let c = len / 6.0;
+        [[2.0 * c, c, 0.0], [c, 2.0 * c, 0.0], [0.0, 0.0, 0.0]]
+    }
+}
+
+/// Densities of degree `p` on the edges of an interface side whose consistent nodal forces
+/// equal the given discrete forces: `M t = g / thickness`, `M` the consistent edge mass of the
+/// side (1D, symmetric positive definite), solved by Jacobi-preconditioned conjugate gradients
+/// to round-off. Returns, per edge of the side, the nodal values (ends, mid) in edge order.
 pub fn interface_densities(
     mesh: &Mesh,
     topo: &Topology,
@@ -175,7 +196,8 @@ pub fn interface_densities(
         )));
     }
     let n = side.nodes.len();
-    let mut edges = Vec::new();
+    // (edge, local indices of [end0, end1, mid] (usize::MAX if none), mass).
+    let mut edges: Vec<(usize, [usize; 3], [[f64; 3]; 3])> = Vec::new();
     let mut diag = vec![0.0; n];
     for f in facets {
         let (a, b) = (f.nodes[0], f.nodes[1]);
@@ -185,31 +207,38 @@ pub fn interface_densities(
                 side.group
             ))
         })?;
-        let (ia, ib) = match (local.get(&a), local.get(&b)) {
-            (Some(&ia), Some(&ib)) => (ia, ib),
-            _ => {
-                return Err(CreError::Invalid(format!(
-                    "facet ({a}, {b}) of '{}' has a node without interface force",
+        let edge = &topo.edges[e];
+        let mut idx = [usize::MAX; 3];
+        for (k, nd) in edge.all_nodes().enumerate() {
+            idx[k] = *local.get(&nd).ok_or_else(|| {
+                CreError::Invalid(format!(
+                    "facet ({a}, {b}) of '{}' has node {nd} without interface force",
                     side.group
-                )));
-            }
-        };
+                ))
+            })?;
+        }
         let (_, len, _) = topo.geometry(mesh, e);
-        // Oriented like the mesh edge.
-        let (i0, i1) = if topo.edges[e].nodes[0] == a {
-            (ia, ib)
-        } else {
-            (ib, ia)
-        };
-        diag[i0] += len / 3.0;
-        diag[i1] += len / 3.0;
-        edges.push((e, i0, i1, len));
+        let m = edge_mass(edge.mid.is_some(), len);
+        for k in 0..3 {
+            if idx[k] != usize::MAX {
+                diag[idx[k]] += m[k][k];
+            }
+        }
+        edges.push((e, idx, m));
     }
     let apply = |x: &[f64], y: &mut [f64]| {
         y.fill(0.0);
-        for &(_, i0, i1, len) in &edges {
-            y[i0] += len / 6.0 * (2.0 * x[i0] + x[i1]);
-            y[i1] += len / 6.0 * (x[i0] + 2.0 * x[i1]);
+        for (_, idx, m) in &edges {
+            for a in 0..3 {
+                if idx[a] == usize::MAX {
+                    continue;
+                }
+                for b in 0..3 {
+                    if idx[b] != usize::MAX {
+                        y[idx[a]] += m[a][b] * x[idx[b]];
+                    }
+                }
+            }
         }
     };
     let mut t = vec![[0.0; 2]; n];
@@ -256,7 +285,15 @@ pub fn interface_densities(
     }
     Ok(edges
         .iter()
-        .map(|&(e, i0, i1, _)| (e, [t[i0], t[i1]]))
+        .map(|&(e, idx, _)| {
+            let mut v = [[0.0; 2]; 3];
+            for k in 0..3 {
+                if idx[k] != usize::MAX {
+                    v[k] = t[idx[k]];
+                }
+            }
+            (e, v)
+        })
         .collect())
 }
 
@@ -283,12 +320,15 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
     // Edge-constrained projector of boundary edges: P = I - sum q q^T over the directions
     // constrained at both nodes.
     let edge_projector = |e: usize| -> [[f64; 2]; 2] {
-        let [a, b] = topo.edges[e].nodes;
+        let a = topo.edges[e].nodes[0];
         let mut p = [[1.0, 0.0], [0.0, 1.0]];
         let fa = &frames[a];
         for k in fa.1..2 {
             let q = fa.0[k];
-            if constrained(&frames[b], q) {
+            if topo.edges[e]
+                .all_nodes()
+                .all(|nd| constrained(&frames[nd], q))
+            {
                 for i in 0..2 {
                     for j in 0..2 {
                         p[i][j] -= q[i] * q[j];
@@ -300,8 +340,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
     };
 
     // Known projections b on boundary edges: b_known[e][node] (vector).
-    let mut b_known = vec![[[0.0; 2]; 2]; ne];
-    let line_rule = Quadrature::for_cell(alea_mesh::CellType::Line2, 4);
+    let mut b_known = vec![[[0.0; 2]; 3]; ne];
     for (fi, (group, field)) in inp.tractions.iter().enumerate() {
         for f in mesh.facet_group(group)? {
             let e = topo.find(f.nodes[0], f.nodes[1]).ok_or_else(|| {
@@ -322,6 +361,13 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                 projector,
             });
             let (n, len, [xa, xb]) = topo.geometry(mesh, e);
+            let edge = &topo.edges[e];
+            // The rule of `alea_fem::Loads::traction`, so that the projections are those of the
+            // FE load vector.
+            let line_rule = Quadrature::for_cell(
+                alea_mesh::CellType::Line2,
+                2 * (1 + edge.mid.is_some() as usize) + 2,
+            );
             for (xi, w) in line_rule.points.iter().zip(&line_rule.weights) {
                 let s = 0.5 * (xi[0] + 1.0);
                 let x = [
@@ -335,9 +381,11 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                     projector[1][0] * v[0] + projector[1][1] * v[1],
                 ];
                 let dl = 0.5 * w * len;
-                for c in 0..2 {
-                    b_known[e][0][c] += dl * (1.0 - s) * pv[c];
-                    b_known[e][1][c] += dl * s * pv[c];
+                let sh = edge.shape(s);
+                for k in 0..3 {
+                    for c in 0..2 {
+                        b_known[e][k][c] += dl * sh[k] * pv[c];
+                    }
                 }
             }
         }
@@ -352,21 +400,19 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
             }
             let p = edge_projector(e);
             let (_, len, _) = topo.geometry(mesh, e);
-            let pt = [
-                [
-                    p[0][0] * t[0][0] + p[0][1] * t[0][1],
-                    p[1][0] * t[0][0] + p[1][1] * t[0][1],
-                ],
-                [
-                    p[0][0] * t[1][0] + p[0][1] * t[1][1],
-                    p[1][0] * t[1][0] + p[1][1] * t[1][1],
-                ],
-            ];
-            for c in 0..2 {
-                density[e].lin[0][c] += pt[0][c];
-                density[e].lin[1][c] += pt[1][c];
-                b_known[e][0][c] += len / 6.0 * (2.0 * pt[0][c] + pt[1][c]);
-                b_known[e][1][c] += len / 6.0 * (pt[0][c] + 2.0 * pt[1][c]);
+            let m = edge_mass(topo.edges[e].mid.is_some(), len);
+            let mut pt = [[0.0; 2]; 3];
+            for k in 0..3 {
+                pt[k] = [
+                    p[0][0] * t[k][0] + p[0][1] * t[k][1],
+                    p[1][0] * t[k][0] + p[1][1] * t[k][1],
+                ];
+            }
+            for k in 0..3 {
+                for c in 0..2 {
+                    density[e].lin[k][c] += pt[k][c];
+                    b_known[e][k][c] += (0..3).map(|j| m[k][j] * pt[j][c]).sum::<f64>();
+                }
             }
         }
     }
@@ -409,13 +455,13 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
         })
         .collect::<Result<_, _>>()?;
     // b_bar: averaged FE traction projections, per edge and edge node (first orientation).
-    let rule = gauss01(3);
-    let b_bar: Vec<[[f64; 2]; 2]> = topo
+    let rule = gauss01(4);
+    let b_bar: Vec<[[f64; 2]; 3]> = topo
         .edges
         .par_iter()
         .enumerate()
-        .map(|(e, edge)| -> Result<[[f64; 2]; 2], CreError> {
-            let mut bb = [[0.0; 2]; 2];
+        .map(|(e, edge)| -> Result<[[f64; 2]; 3], CreError> {
+            let mut bb = [[0.0; 2]; 3];
             let (n, len, _) = topo.geometry(mesh, e);
             let share = 1.0 / edge.cells.len() as f64;
             for (k, &(c, l)) in edge.cells.iter().enumerate() {
@@ -432,9 +478,11 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                     let s_cell = if k == 0 { s } else { 1.0 - s };
                     let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, l, s_cell));
                     let t = traction_of(&mul3(&d, &eps), n);
-                    for c2 in 0..2 {
-                        bb[0][c2] += share * w * len * (1.0 - s) * t[c2];
-                        bb[1][c2] += share * w * len * s * t[c2];
+                    let sh = edge.shape(s);
+                    for kk in 0..3 {
+                        for c2 in 0..2 {
+                            bb[kk][c2] += share * w * len * sh[kk] * t[c2];
+                        }
                     }
                 }
             }
@@ -455,7 +503,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
             }
             let edges = &topo.node_edges[i];
             let frame = &frames[i];
-            let slot = |e: usize| if topo.edges[e].nodes[0] == i { 0 } else { 1 };
+            let slot = |e: usize| topo.edges[e].slot(i).unwrap_or(0);
             for d in 0..2 {
                 let r = frame.0[d];
                 let is_constrained_dir = d >= frame.1;
@@ -467,7 +515,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                         let ed = &topo.edges[e];
                         !ed.is_boundary()
                             || (is_constrained_dir
-                                && ed.nodes.iter().all(|&nd| constrained(&frames[nd], r)))
+                                && ed.all_nodes().all(|nd| constrained(&frames[nd], r)))
                     })
                     .collect();
                 let m = cells.len();
@@ -485,7 +533,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                     rhs[row] = qv[0] * r[0] + qv[1] * r[1];
                     scale += rhs[row].abs();
                     for &(e, eta) in &topo.cell_edges[c] {
-                        if !topo.edges[e].nodes.contains(&i) {
+                        if topo.edges[e].slot(i).is_none() {
                             continue;
                         }
                         if let Some(col) = unknown.iter().position(|&u| u == e) {
@@ -535,7 +583,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
             (out, max_res, max_scale)
         })
         .collect();
-    let mut b_unknown = vec![[[0.0; 2]; 2]; ne];
+    let mut b_unknown = vec![[[0.0; 2]; 3]; ne];
     let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
     for (out, res, scale) in per_node {
         max_res = max_res.max(res);
@@ -547,9 +595,23 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
     }
     for (e, bu) in b_unknown.iter().enumerate() {
         let (_, len, _) = topo.geometry(mesh, e);
-        for c in 0..2 {
-            density[e].lin[0][c] += 2.0 / len * (2.0 * bu[0][c] - bu[1][c]);
-            density[e].lin[1][c] += 2.0 / len * (2.0 * bu[1][c] - bu[0][c]);
+        if topo.edges[e].mid.is_some() {
+            let m = edge_mass(true, len);
+            for c in 0..2 {
+                let mut a: Vec<f64> = m.iter().flatten().copied().collect();
+                let mut b = vec![bu[0][c], bu[1][c], bu[2][c]];
+                if !cholesky_solve(&mut a, &mut b, 3) {
+                    return Err(CreError::Invalid(format!("degenerate edge {e}")));
+                }
+                for k in 0..3 {
+                    density[e].lin[k][c] += b[k];
+                }
+            }
+        } else {
+            for c in 0..2 {
+                density[e].lin[0][c] += 2.0 / len * (2.0 * bu[0][c] - bu[1][c]);
+                density[e].lin[1][c] += 2.0 / len * (2.0 * bu[1][c] - bu[0][c]);
+            }
         }
     }
     Ok(EdgeTractions {

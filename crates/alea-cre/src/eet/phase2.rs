@@ -129,7 +129,7 @@ pub fn element(
     let mut l = vec![0.0; nb];
     let mut p = PolyPoint::default();
     let rule = match kind {
-        CellType::Tri3 => &rules.tri,
+        CellType::Tri3 | CellType::Tri6 => &rules.tri,
         _ => &rules.quad,
     };
     let mut db = vec![[0.0; 3]; nb];

@@ -131,6 +131,19 @@ pub fn square(n: usize, kind: CellType, distortion: f64) -> Mesh {
             x[1] += 2.0 * distortion * h * r2;
         }
     }
+    // Quadratic cells: mid-side nodes back to the middle of their (straight) edges.
+    if kind.order() == 2 {
+        let mut mids = Vec::new();
+        for (_, k, nodes) in m.cells() {
+            for (_, loc) in k.facets() {
+                mids.push((nodes[loc[0]], nodes[loc[1]], nodes[loc[2]]));
+            }
+        }
+        for (a, b, c) in mids {
+            let (xa, xb) = (m.coords[a], m.coords[b]);
+            m.coords[c] = [0.5 * (xa[0] + xb[0]), 0.5 * (xa[1] + xb[1]), 0.0];
+        }
+    }
     m
 }
 
