@@ -20,7 +20,16 @@ pub fn tensor_grid(lo: &[f64], hi: &[f64], counts: &[usize]) -> Result<Design> {
             return Err(invalid("tensor grid", "hi", ">= lo", hi[j]));
         }
     }
-    let total: usize = counts.iter().product();
+    let Some(total) = counts
+        .iter()
+        .try_fold(1usize, |acc, &c| acc.checked_mul(c))
+        .filter(|&t| t <= 1 << 28)
+    else {
+        return Err(crate::UqError::Invalid {
+            what: "tensor grid",
+            message: format!("too many points: {counts:?}"),
+        });
+    };
     let mut points = Vec::with_capacity(total * d);
     let mut idx = vec![0usize; d];
     for _ in 0..total {

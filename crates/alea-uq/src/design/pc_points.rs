@@ -22,7 +22,15 @@ pub fn pc_collocation(marginals: &[Arc<dyn Marginal>], degree: usize, n: usize) 
                 .0)
         })
         .collect::<Result<Vec<_>>>()?;
-    let total = (degree + 1).pow(d as u32);
+    let total = (degree + 1).checked_pow(d as u32).filter(|&t| t <= 1 << 26);
+    let Some(total) = total else {
+        return Err(invalid(
+            "PC collocation",
+            "degree",
+            "such that (degree + 1)^dim <= 2^26",
+            degree as f64,
+        ));
+    };
     if n > total || d == 0 {
         return Err(invalid(
             "PC collocation",

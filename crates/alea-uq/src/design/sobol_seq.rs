@@ -153,7 +153,11 @@ impl SobolSequence {
         self.dim
     }
 
-    /// Point number `i` (0-based; unscrambled sequences skip the origin) into `u`.
+    /// Point number `i` (0-based; unscrambled sequences skip the origin) into `u`. The
+    /// direction numbers have 32 bits: the sequence is defined for `i < 2^32`.
+    ///
+    /// # Panics
+    /// If `u.len() < dim()`.
     pub fn point(&self, i: u64, u: &mut [f64]) {
         let i = if self.scrambled { i } else { i + 1 };
         let g = i ^ (i >> 1);

@@ -118,6 +118,16 @@ impl StochasticMesh {
                 return Err(invalid(what, "root cells", "in 1..=65536", roots[j] as f64));
             }
         }
+        let ncell = roots
+            .iter()
+            .try_fold(1usize, |acc, &r| acc.checked_mul(r))
+            .filter(|&n| n <= 1 << 24);
+        if ncell.is_none() {
+            return Err(UqError::Invalid {
+                what,
+                message: format!("too many root cells: {roots:?} (at most 2^24 in total)"),
+            });
+        }
         let mut m = Self {
             d,
             lo: lo.to_vec(),
