@@ -60,6 +60,14 @@ details > summary { cursor: pointer; font-weight: 600; color: var(--accent); mar
 .scroll { overflow-x: auto; }
 .bar { display:inline-block; height: 10px; background: #6a9fd0; border-radius: 2px;
   vertical-align: middle; }
+.hint { color: var(--muted); font-size: 13px; margin: -4px 0 6px; }
+tr.failed td { background: #fff7f6; }
+@media print {
+  body { background: #fff; }
+  header.top { background: none; color: var(--ink); border-bottom: 2px solid var(--accent); }
+  section { box-shadow: none; break-inside: avoid-page; }
+  figure { break-inside: avoid; }
+}
 footer { color: var(--muted); font-size: 12px; text-align: center; margin-top: 12px; }
 "#;
 
@@ -297,7 +305,8 @@ fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
         o.push_str("<p class=\"ok-note\">No threshold given.</p>");
     } else {
         o.push_str(
-            "<table><thead><tr><th class=\"n\">Threshold</th><th class=\"n\">P<sub>f</sub></th>\
+            "<p class=\"hint\">P<sub>f</sub> = P(q &gt; threshold), with its confidence \
+             interval</p><table><thead><tr><th class=\"n\">Threshold</th><th class=\"n\">P<sub>f</sub></th>\
              <th class=\"n\">Confidence interval</th></tr></thead><tbody>\n",
         );
         for f in &q.failure {
@@ -440,7 +449,16 @@ fn runs(o: &mut String, input: &ReportInput) {
     }
     o.push_str("</tr></thead><tbody>\n");
     for (i, r) in input.runs.iter().enumerate() {
-        let _ = write!(o, "<tr><td class=\"n\">{}</td>", i + 1);
+        let _ = write!(
+            o,
+            "<tr{}><td class=\"n\">{}</td>",
+            if is_converged(r) {
+                ""
+            } else {
+                " class=\"failed\""
+            },
+            i + 1
+        );
         for v in &r.params {
             let _ = write!(o, "<td class=\"n\">{}</td>", num(*v, 5));
         }

@@ -560,10 +560,10 @@ fn draw_thresholds<'a, DB: DrawingBackend + 'a>(
 ) -> DrawResult {
     for (f, on) in q.failure.iter().zip(on_scale) {
         let label = format!(
-            "threshold {}: Pf = {}{}",
+            "P(q > {}) = {}{}",
             num(f.threshold, 4),
             num(f.probability, 3),
-            if *on { "" } else { " (off scale)" }
+            if *on { "" } else { " (threshold off scale)" }
         );
         // Off scale: no line, only the legend entry.
         let pts: Vec<(f64, f64)> = if *on {

@@ -50,7 +50,8 @@ fn work(e: f64, mu: f64) -> f64 {
 fn synthetic() -> ReportInput {
     let mut rng = Rng(42);
     let (m, s) = (10.0, 2.0);
-    let samples: Vec<f64> = (0..20_000).map(|_| rng.normal(m, s)).collect();
+    // The size a study draws by default.
+    let samples: Vec<f64> = (0..250_000).map(|_| rng.normal(m, s)).collect();
     let z = [
         (0.01, -2.326),
         (0.05, -1.645),
@@ -323,6 +324,12 @@ fn full_report_is_written() {
     assert!(html.contains("0.02275") && html.contains("[0.0207, 0.0248]"));
     assert!(html.contains("reference (11 x 11 grid)"));
     assert!(!html.contains("NaN"));
+    // 250 000 samples, yet a light page (plots are subsampled or binned).
+    assert!(
+        html.len() < 1_000_000,
+        "report.html is {} bytes",
+        html.len()
+    );
     // The whole page is well-formed XML too (inline SVGs included) once the doctype is gone.
     let body = html.trim_start_matches("<!DOCTYPE html>\n");
     let xml = body.replace("<meta charset=\"utf-8\">", "<meta charset=\"utf-8\"/>");
@@ -483,4 +490,17 @@ fn json_round_trip_keeps_infinite_bounds() {
         assert!((a - b).abs() <= 1e-14 * b.abs());
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn file_stems_are_unique_and_safe() {
+    let mut input = synthetic();
+    let mut twin = input.qois[1].clone();
+    twin.name = "max (σ)".into();
+    input.qois.push(twin);
+    input.qois[0].name = "../../etc/passwd".into();
+    assert_eq!(
+        super::plots::qoi_stems(&input),
+        ["etc_passwd", "max", "max_2"]
+    );
 }
