@@ -9,6 +9,13 @@
 //! does). Phase 1 turns them into the piecewise-linear edge density whose consistent nodal forces
 //! are exactly `m_i F_i` ([`crate::eet::phase1::interface_densities`]) and treats the interface
 //! edges as loaded boundary edges.
+//!
+//! The forces are read from the run (`InterfaceResult::f` and the weights), so `K u_h = f +
+//! M_Gamma F` holds exactly only with the LATIN relaxation 1 (the default): with relaxation
+//! `rho < 1` the stored `F` is relaxed while `u_h` is not, and the phase-1 node systems become
+//! slightly incompatible - reported in [`crate::DomainEstimate::compatibility_defect`] (least-squares
+//! solution, estimate no longer a bound). Load factors other than 1 must be folded into the
+//! [`LoadData`] functions.
 
 use std::collections::HashMap;
 
