@@ -68,6 +68,19 @@ tr.failed td { background: #fff7f6; }
   section { box-shadow: none; break-inside: avoid-page; }
   figure { break-inside: avoid; }
 }
+.glance { display:grid; grid-template-columns: repeat(auto-fit, minmax(230px, 1fr)); gap: 12px;
+  margin-top: 18px; }
+.card { display:block; text-decoration:none; color:inherit; border:1px solid var(--line);
+  border-top: 4px solid var(--accent); border-radius: 6px; padding: 10px 14px; background:#fbfcfe; }
+.card .name { color: var(--muted); font-size: 13px; }
+.card .big { font-size: 22px; font-weight: 600; font-variant-numeric: tabular-nums; }
+.card .pm { font-weight: 400; color: #344252; }
+.card .unit { font-size: 14px; font-weight: 400; color: var(--muted); }
+.card .pf { font-size: 13px; color: #344252; }
+.card .ci { color: var(--muted); }
+nav.toc { margin-top: 10px; font-size: 13px; }
+nav.toc a { color: #fff; opacity: .85; text-decoration: none; margin-right: 14px; }
+nav.toc a:hover { opacity: 1; text-decoration: underline; }
 footer { color: var(--muted); font-size: 12px; text-align: center; margin-top: 12px; }
 "#;
 
@@ -145,9 +158,10 @@ pub fn render(input: &ReportInput, figures: &[Figure]) -> String {
          <meta name=\"generator\" content=\"alea {version}\">\n<title>{t}</title>\n\
          <style>{CSS}</style>\n</head>\n<body>\n\
          <header class=\"top\"><div class=\"inner\"><h1>{t}</h1>\
-         <div class=\"sub\">Stochastic study report &middot; alea {version}</div></div></header>\n<main>\n",
+         <div class=\"sub\">Stochastic study report &middot; alea {version}</div>{nav}</div></header>\n<main>\n",
         t = esc(title),
         version = env!("CARGO_PKG_VERSION"),
+        nav = toc(input, figures),
     );
     notes(&mut o, input);
     overview(&mut o, input);
@@ -177,6 +191,34 @@ pub fn render(input: &ReportInput, figures: &[Figure]) -> String {
         env!("CARGO_PKG_VERSION")
     );
     o
+}
+
+/// Links to the sections.
+fn toc(input: &ReportInput, figures: &[Figure]) -> String {
+    let mut links = vec![("study".to_string(), "Study".to_string())];
+    if !input.notes.is_empty() {
+        links.insert(0, ("warnings".into(), "Warnings".into()));
+    }
+    links.push(("parameters".into(), "Parameters".into()));
+    for (k, q) in input.qois.iter().enumerate() {
+        links.push((format!("qoi-{k}"), esc(&q.name)));
+    }
+    if input.comparison.is_some() {
+        links.push(("comparison".into(), "Comparison".into()));
+    }
+    if figure(figures, Kind::Convergence).is_some() {
+        links.push(("convergence".into(), "Convergence".into()));
+    }
+    links.push(("runs".into(), "Runs".into()));
+    if !input.timings.is_empty() {
+        links.push(("timings".into(), "Timings".into()));
+    }
+    let mut out = String::from("<nav class=\"toc\">");
+    for (id, label) in links {
+        let _ = write!(out, "<a href=\"#{id}\">{label}</a>");
+    }
+    out.push_str("</nav>");
+    out
 }
 
 fn notes(o: &mut String, input: &ReportInput) {
@@ -221,7 +263,39 @@ fn overview(o: &mut String, input: &ReportInput) {
             esc(unit)
         );
     }
-    o.push_str("</dd>\n</dl></section>\n");
+    o.push_str("</dd>\n</dl>\n");
+    // At a glance: one card per QoI.
+    if !input.qois.is_empty() {
+        o.push_str("<div class=\"glance\">\n");
+        for (k, q) in input.qois.iter().enumerate() {
+            let unit = esc(&q.unit);
+            let _ = write!(
+                o,
+                "<a class=\"card\" href=\"#qoi-{k}\"><div class=\"name\">{}</div>\
+                 <div class=\"big\">{} <span class=\"pm\">± {}</span> \
+                 <span class=\"unit\">{unit}</span></div>",
+                esc(&q.name),
+                num(q.mean, 4),
+                num(q.std, 3)
+            );
+            match q.failure.first() {
+                Some(f) => {
+                    let _ = write!(
+                        o,
+                        "<div class=\"pf\">P(q &gt; {}) = {} <span class=\"ci\">[{}, {}]</span></div>",
+                        num(f.threshold, 4),
+                        prob(f.probability),
+                        prob(f.ci_low),
+                        prob(f.ci_high)
+                    );
+                }
+                None => o.push_str("<div class=\"pf\">mean ± standard deviation</div>"),
+            }
+            o.push_str("</a>\n");
+        }
+        o.push_str("</div>\n");
+    }
+    o.push_str("</section>\n");
 }
 
 fn bound(v: f64) -> String {

@@ -405,6 +405,13 @@ fn qoi_x_range(q: &QoiReport, sorted: &[f64]) -> ((f64, f64), Vec<bool>) {
     (pad(r.unwrap_or((lo, hi)), 0.03), on_scale)
 }
 
+/// A curve's points in increasing x (a KDE grid handed over in any order still draws right).
+fn by_x(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut v = points.to_vec();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    v
+}
+
 /// Freedman-Diaconis bins (10 to 60) of sorted samples, as (left, right, density).
 fn histogram(sorted: &[f64]) -> Vec<(f64, f64, f64)> {
     let n = sorted.len();
@@ -527,7 +534,7 @@ fn draw_pdf<DB: DrawingBackend>(
     }
     if q.kde.len() >= 2 {
         chart
-            .draw_series(LineSeries::new(q.kde.iter().copied(), KDE.stroke_width(3)))
+            .draw_series(LineSeries::new(by_x(&q.kde), KDE.stroke_width(3)))
             .map_err(err)?
             .label("kernel density estimate")
             .legend(line_legend(KDE, 3));
@@ -971,7 +978,7 @@ fn draw_comparison<DB: DrawingBackend>(
         if reference {
             chart
                 .draw_series(DashedLineSeries::new(
-                    row.kde.iter().copied(),
+                    by_x(&row.kde),
                     10,
                     5,
                     color.stroke_width(width),
@@ -981,10 +988,7 @@ fn draw_comparison<DB: DrawingBackend>(
                 .legend(line_legend(color, width));
         } else {
             chart
-                .draw_series(LineSeries::new(
-                    row.kde.iter().copied(),
-                    color.stroke_width(width),
-                ))
+                .draw_series(LineSeries::new(by_x(&row.kde), color.stroke_width(width)))
                 .map_err(err)?
                 .label(label)
                 .legend(line_legend(color, width));
