@@ -1,6 +1,7 @@
 //! The loading data the estimator needs as functions (the FE solver only saw nodal vectors):
 //! body force and prescribed tractions, plus the discrete interface forces of a substructure.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// A body force `b(x)` (force per volume).
@@ -55,6 +56,10 @@ impl LoadData {
     }
 }
 
+/// Per facet of a side (key: sorted end nodes), target projections `(node, int_facet t phi_node)`
+/// per unit thickness, in the orientation of the side's own outward normal.
+pub type FacetProjections = HashMap<[usize; 2], Vec<(usize, [f64; 2])>>;
+
 /// Discrete nodal forces applied to the nodes of a facet group (an interface side): force on
 /// `nodes[i]` is `forces[i]` (total, thickness included, as in the FE right-hand side).
 #[derive(Clone, Debug)]
@@ -65,4 +70,9 @@ pub struct SideForces {
     pub nodes: Vec<usize>,
     /// Nodal forces.
     pub forces: Vec<[f64; 3]>,
+    /// Target projections of the side's traction density (the split of each nodal force
+    /// between the edges around the node is the one closest to them). `None`: the projections of
+    /// the domain's own FE traction `sigma_h n`. For an interface, the average of the two sides'
+    /// FE tractions makes the two sides' densities opposite once the forces are.
+    pub reference: Option<FacetProjections>,
 }

@@ -17,7 +17,7 @@
 //! F_hat) + w_hat . F_hat] dS`, hence here `theta^2 = sum_s theta_s^2 + 2 sum_I term_I`.
 //! Substructure fields ([`estimate_latin`]): each substructure is isolated and loaded by the
 //! interface forces its last linear-stage solution is in equilibrium with (lumped interface
-//! mass: nodal forces `m_i F_i`, reproduced exactly by per-side linear densities), then EET.
+//! mass: nodal forces `m_i F_i`, reproduced exactly by the interface edge densities), then EET.
 //! Interface fields ([`interface`]): `w_hat` = jump (gap included) of local stage `n - 1`,
 //! `F_hat` = force of local stage `n` (3.1.3.2 b), strictly admissible (3.27); de Saxce
 //! bipotential; indicator functions checked with a tolerance and reported, never infinite.

@@ -6,9 +6,12 @@
 //! `F = F_hat - k (W - W_hat)` (`InterfaceResult::f`). The discrete interface forces on the
 //! substructure are therefore `m_i F_i` (side 1: the run's weights; side 2: the HRZ weights of
 //! side 2's own facet group, recomputed with `alea_latin::interface::side_geometry`, as the solver
-//! does). Phase 1 turns them into the piecewise-linear edge density whose consistent nodal forces
-//! are exactly `m_i F_i` ([`crate::eet::phase1::interface_densities`]) and treats the interface
-//! edges as loaded boundary edges.
+//! does). Phase 1 turns them into edge densities of degree `p` whose consistent nodal forces are
+//! exactly `m_i F_i` ([`crate::eet::phase1::interface_densities`]: at each node the force is split
+//! between the side edges around it as close as possible to the average of the two sides' FE
+//! traction projections, so that both sides get opposite densities once `F_1 = -F_2`; in the
+//! directions constrained at a node the force contains a reaction and is not imposed) and treats
+//! the interface edges as loaded boundary edges.
 //!
 //! The forces are read from the run (`InterfaceResult::f` and the weights), so `K u_h = f +
 //! M_Gamma F` holds exactly only with the LATIN relaxation 1 (the default): with relaxation
@@ -19,12 +22,13 @@
 
 use std::collections::HashMap;
 
-use alea_fem::DofMap;
+use alea_fem::{DofMap, Model};
 use alea_latin::{Assembly, RunResult, interface::side_geometry};
 
 use crate::CreError;
-use crate::data::{LoadData, SideForces};
+use crate::data::{FacetProjections, LoadData, SideForces};
 use crate::domain::{CreOptions, estimate_with_sides};
+use crate::eet::phase1::facet_projections;
 use crate::interface::interface_term;
 use crate::result::CreResult;
 
@@ -53,8 +57,12 @@ pub fn estimate_latin(
             run.interfaces.len()
         )));
     }
+    let models: Vec<Model> = (0..ns)
+        .map(|s| run.scaled_model(&assembly.subs[s].model, s))
+        .collect();
     let mut sides: Vec<Vec<SideForces>> = vec![Vec::new(); ns];
     for (spec, ir) in assembly.interfaces.iter().zip(&run.interfaces) {
+        let refs = interface_references(spec, ir, &models, run)?;
         for s in 0..2 {
             let (sub, group) = if s == 0 {
                 (spec.sub1, &spec.group1)
@@ -109,15 +117,15 @@ pub fn estimate_latin(
                 group: group.clone(),
                 nodes: ir.nodes[s].clone(),
                 forces,
+                reference: Some(refs[s].clone()),
             });
         }
     }
     let mut subs = Vec::with_capacity(ns);
-    for (s, sub) in assembly.subs.iter().enumerate() {
-        let model = run.scaled_model(&sub.model, s);
+    for (s, (sub, model)) in assembly.subs.iter().zip(&models).enumerate() {
         let dofs = DofMap::for_mesh(&model.mesh, &sub.constraints)?;
         subs.push(estimate_with_sides(
-            &model,
+            model,
             &dofs,
             &loads[s],
             &sides[s],
@@ -131,4 +139,62 @@ pub fn estimate_latin(
         .map(|ir| interface_term(ir, options.admissibility_tolerance))
         .collect::<Result<_, _>>()?;
     Ok(CreResult::new(subs, interfaces))
+}
+
+/// Target projections of both sides of an interface: the average of the two sides' FE traction
+/// projections (side 2's taken with the opposite sign, through the node pairing), so that the
+/// two sides' densities are exactly opposite once their nodal forces are (converged LATIN).
+/// Facets without a matching facet on the other side keep their own projections.
+fn interface_references(
+    spec: &alea_latin::InterfaceSpec,
+    ir: &alea_latin::InterfaceResult,
+    models: &[Model],
+    run: &RunResult,
+) -> Result<[FacetProjections; 2], CreError> {
+    let (s1, s2) = (spec.sub1, spec.sub2);
+    if s1 >= models.len() || s2 >= models.len() || ir.nodes[0].len() != ir.nodes[1].len() {
+        return Err(CreError::Invalid(format!(
+            "interface '{}': inconsistent substructures or node pairs",
+            spec.name
+        )));
+    }
+    let p1 = facet_projections(&models[s1], &run.displacements[s1], &spec.group1)?;
+    let p2 = facet_projections(&models[s2], &run.displacements[s2], &spec.group2)?;
+    let partner: HashMap<usize, usize> = ir.nodes[0]
+        .iter()
+        .copied()
+        .zip(ir.nodes[1].iter().copied())
+        .collect();
+    let mut r1 = p1.clone();
+    let mut r2 = p2.clone();
+    for (key, list1) in &p1 {
+        let (Some(&a), Some(&b)) = (partner.get(&key[0]), partner.get(&key[1])) else {
+            continue;
+        };
+        let key2 = [a.min(b), a.max(b)];
+        let Some(list2) = p2.get(&key2) else {
+            continue;
+        };
+        let mut avg1 = Vec::with_capacity(list1.len());
+        let mut avg2 = Vec::with_capacity(list1.len());
+        let mut complete = true;
+        for &(n1, v1) in list1 {
+            let found = partner
+                .get(&n1)
+                .and_then(|n2| list2.iter().find(|(m, _)| m == n2).map(|&(m, v)| (m, v)));
+            match found {
+                Some((n2, v2)) => {
+                    let avg = [0.5 * (v1[0] - v2[0]), 0.5 * (v1[1] - v2[1])];
+                    avg1.push((n1, avg));
+                    avg2.push((n2, [-avg[0], -avg[1]]));
+                }
+                None => complete = false,
+            }
+        }
+        if complete {
+            r1.insert(*key, avg1);
+            r2.insert(key2, avg2);
+        }
+    }
+    Ok([r1, r2])
 }

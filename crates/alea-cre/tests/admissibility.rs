@@ -401,8 +401,16 @@ fn check_side(kind: CellType) {
         group: "ymin".into(),
         nodes: nodes.clone(),
         forces: forces.clone(),
+        reference: None,
     };
-    let dens = interface_densities(&m, &topo, &side, th).unwrap();
+    // Arbitrary targets: the split changes, the nodal forces must not.
+    let b_bar: Vec<[[f64; 2]; 3]> = (0..topo.edges.len())
+        .map(|e| {
+            let v = (e as f64 * 0.37).sin();
+            [[v, -v], [0.5 * v, 0.1], [0.0, v]]
+        })
+        .collect();
+    let dens = interface_densities(&m, &topo, &side, th, &b_bar, None).unwrap();
     let mut got = vec![[0.0; 2]; nodes.len()];
     let (x, w) = alea_fem::quadrature::gauss_legendre(4);
     for (e, t) in dens {

@@ -12,11 +12,13 @@
 //!  y=0 +-----+-----+
 //!     x=0         x=1
 //! ```
-//! Checks: the substructured estimate (substructures loaded by the lumped interface forces of
-//! the converged linear stage) bounds the true error with efficiency <= 3, its phase-1 node
-//! systems are compatible (the lumped interface forces are reproduced exactly), the perfect
-//! interface terms vanish, and the global estimate is close to the single-domain estimate of
-//! the same mesh.
+//! Checks (T3, Q4, T6, Q8): the substructured estimate (substructures loaded by the lumped
+//! interface forces of the converged linear stage) bounds the true error with efficiency <= 3,
+//! its phase-1 node systems are compatible (the lumped interface forces are reproduced
+//! exactly), the perfect interface terms vanish, and the global estimate is within 5 % of the
+//! single-domain estimate of the same mesh. (The top-left cell of S00 has an interface node
+//! that is also clamped: there the lumped force holds a reaction and must not be imposed in
+//! the constrained directions - a case this test caught.)
 
 mod common;
 
@@ -39,7 +41,7 @@ fn sub_mesh(i: usize, j: usize, n: usize, kind: CellType) -> alea_mesh::Mesh {
     m
 }
 
-fn check(kind: CellType, n: usize) -> f64 {
+fn check(kind: CellType, n: usize, max_ratio: f64) -> f64 {
     let b = body(PS);
     let mut subs = Vec::new();
     let mut data = Vec::new();
@@ -138,8 +140,12 @@ fn check(kind: CellType, n: usize) -> f64 {
             it.term
         );
     }
-    // Same discretisation, different interface tractions: the estimates are close.
-    assert!((est.theta / single.theta - 1.0).abs() < 0.15);
+    // Same FE solution; the interface tractions differ only in how each nodal interface force is
+    // split between the edges around the node (targets: the averaged FE tractions of both
+    // sides), so the estimates nearly coincide (measured ratios 1.000-1.014).
+    let ratio = est.theta / single.theta;
+    println!("{kind} n={n}: substructured / single-domain theta = {ratio:.3}");
+    assert!(ratio > 0.97 && ratio < max_ratio, "ratio {ratio}");
     let dir = std::env::temp_dir().join("alea_cre_perfect.vtu");
     write_error_vtu(&assembly.subs[0].model, &est.substructures[0], &dir).unwrap();
     assert!(
@@ -152,13 +158,21 @@ fn check(kind: CellType, n: usize) -> f64 {
 
 #[test]
 fn q4_two_by_two() {
-    let e1 = check(CellType::Quad4, 4);
-    let e2 = check(CellType::Quad4, 8);
+    let e1 = check(CellType::Quad4, 4, 1.05);
+    let e2 = check(CellType::Quad4, 8, 1.05);
     assert!(e2 < 0.6 * e1);
 }
 
 #[test]
 fn t3_two_by_two() {
-    check(CellType::Tri3, 4);
-    check(CellType::Tri3, 8);
+    check(CellType::Tri3, 4, 1.05);
+    check(CellType::Tri3, 8, 1.05);
+}
+
+#[test]
+fn quadratic_two_by_two() {
+    // Quadratic interface sides: HRZ-lumped weights of 3-node facets, reproduced by quadratic
+    // edge densities.
+    check(CellType::Quad8, 4, 1.05);
+    check(CellType::Tri6, 4, 1.05);
 }

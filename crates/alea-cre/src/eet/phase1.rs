@@ -29,7 +29,7 @@ use alea_mesh::Mesh;
 use rayon::prelude::*;
 
 use crate::CreError;
-use crate::data::{SideForces, TractionField, VectorField};
+use crate::data::{FacetProjections, SideForces, TractionField, VectorField};
 use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
 use crate::linalg::{cholesky_solve, least_change};
 use crate::topology::Topology;
@@ -113,9 +113,13 @@ pub struct Phase1Input<'a> {
     pub sides: &'a [SideForces],
 }
 
+/// A node's orthonormal frame (rows) and its number of free directions (the first ones; the
+/// rest are constrained).
+pub type NodeFrame = ([[f64; 2]; 2], usize);
+
 /// Per node: orthonormal frame (rows) and the number of free directions (the rest are
 /// constrained).
-fn node_frames(dofs: &DofMap, nn: usize) -> Vec<([[f64; 2]; 2], usize)> {
+fn node_frames(dofs: &DofMap, nn: usize) -> Vec<NodeFrame> {
     let mut scratch = vec![0.0; dofs.num_free()];
     (0..nn)
         .map(|n| {
@@ -172,21 +176,27 @@ fn edge_mass(quadratic: bool, len: f64) -> [[f64; 3]; 3] {
     }
 }
 
-/// Densities of degree `p` on the edges of an interface side whose consistent nodal forces
-/// equal the given discrete forces: `M t = g / thickness`, `M` the consistent edge mass of the
-/// side (1D, symmetric positive definite), solved by Jacobi-preconditioned conjugate gradients
-/// to round-off. Returns, per edge of the side, the nodal values (ends, mid) in edge order.
+/// Densities of degree `p` on the edges of an interface side whose consistent nodal forces equal
+/// the given discrete forces `g_i` (per unit thickness: `g_i / thickness`).
+///
+/// Node by node, the projections `b_(i,Gamma) = int_Gamma F phi_i` on the side edges around
+/// node `i` (one or two) are the closest to the targets `b_bar` (the averaged FE traction
+/// projections, see [`SideForces::reference`]) with `sum_Gamma b_(i,Gamma) = g_i`:
+/// `b_(i,Gamma) = b_bar_(i,Gamma) + (g_i - sum b_bar) / n_i`. Each edge's density is then
+/// recovered from its projections through the edge mass matrix (discontinuous at the nodes).
+/// `b_bar[e]` are the projections of edge `e` (edge orientation, slots ends/mid); entries of
+/// `side.reference` replace them. With node `frames` (constraint frames of the domain), the
+/// force is imposed only in each node's free directions. Returns, per edge of the side, the
+/// nodal values (ends, mid).
 pub fn interface_densities(
     mesh: &Mesh,
     topo: &Topology,
     side: &SideForces,
     thickness: f64,
+    b_bar: &[[[f64; 2]; 3]],
+    frames: Option<&[NodeFrame]>,
 ) -> Result<Vec<EdgeLinear>, CreError> {
     let facets = mesh.facet_group(&side.group)?;
-    let mut local: std::collections::HashMap<usize, usize> = Default::default();
-    for (i, &n) in side.nodes.iter().enumerate() {
-        local.insert(n, i);
-    }
     if side.forces.len() != side.nodes.len() {
         return Err(CreError::Invalid(format!(
             "side '{}': {} forces for {} nodes",
@@ -195,10 +205,15 @@ pub fn interface_densities(
             side.nodes.len()
         )));
     }
-    let n = side.nodes.len();
-    // (edge, local indices of [end0, end1, mid] (usize::MAX if none), mass).
-    let mut edges: Vec<(usize, [usize; 3], [[f64; 3]; 3])> = Vec::new();
-    let mut diag = vec![0.0; n];
+    let force: std::collections::HashMap<usize, [f64; 3]> = side
+        .nodes
+        .iter()
+        .copied()
+        .zip(side.forces.iter().copied())
+        .collect();
+    // Target projections per (edge, slot), and the side edges around each node.
+    let mut targets: Vec<(usize, [[f64; 2]; 3])> = Vec::new();
+    let mut around: std::collections::HashMap<usize, Vec<(usize, usize)>> = Default::default();
     for f in facets {
         let (a, b) = (f.nodes[0], f.nodes[1]);
         let e = topo.find(a, b).ok_or_else(|| {
@@ -208,93 +223,134 @@ pub fn interface_densities(
             ))
         })?;
         let edge = &topo.edges[e];
-        let mut idx = [usize::MAX; 3];
-        for (k, nd) in edge.all_nodes().enumerate() {
-            idx[k] = *local.get(&nd).ok_or_else(|| {
-                CreError::Invalid(format!(
+        let mut t = *b_bar
+            .get(e)
+            .ok_or_else(|| CreError::Invalid(format!("edge {e} has no reference projection")))?;
+        if let Some(r) = side
+            .reference
+            .as_ref()
+            .and_then(|r| r.get(&[a.min(b), a.max(b)]))
+        {
+            for &(nd, v) in r {
+                if let Some(k) = edge.slot(nd) {
+                    t[k] = v;
+                }
+            }
+        }
+        let k = targets.len();
+        for (slot, nd) in edge.all_nodes().enumerate() {
+            if !force.contains_key(&nd) {
+                return Err(CreError::Invalid(format!(
                     "facet ({a}, {b}) of '{}' has node {nd} without interface force",
                     side.group
-                ))
-            })?;
+                )));
+            }
+            around.entry(nd).or_default().push((k, slot));
         }
+        targets.push((e, t));
+    }
+    let mut proj: Vec<[[f64; 2]; 3]> = targets.iter().map(|t| t.1).collect();
+    for (nd, list) in &around {
+        let g = force[nd];
+        // In the directions constrained at the node the discrete force holds a reaction: keep the
+        // targets there (the Dirichlet edges of the node system take the rest).
+        let (basis, nfree) = frames.map_or(([[1.0, 0.0], [0.0, 1.0]], 2), |f| f[*nd]);
+        for r in basis.iter().take(nfree) {
+            let sum: f64 = list
+                .iter()
+                .map(|&(k, slot)| targets[k].1[slot][0] * r[0] + targets[k].1[slot][1] * r[1])
+                .sum();
+            let corr = ((g[0] * r[0] + g[1] * r[1]) / thickness - sum) / list.len() as f64;
+            for &(k, slot) in list {
+                proj[k][slot][0] += corr * r[0];
+                proj[k][slot][1] += corr * r[1];
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(targets.len());
+    for (k, &(e, _)) in targets.iter().enumerate() {
+        let edge = &topo.edges[e];
         let (_, len, _) = topo.geometry(mesh, e);
+        let n = if edge.mid.is_some() { 3 } else { 2 };
         let m = edge_mass(edge.mid.is_some(), len);
-        for k in 0..3 {
-            if idx[k] != usize::MAX {
-                diag[idx[k]] += m[k][k];
+        let mut v = [[0.0; 2]; 3];
+        for c in 0..2 {
+            let mut a: Vec<f64> = (0..n)
+                .flat_map(|i| (0..n).map(move |j| (i, j)))
+                .map(|(i, j)| m[i][j])
+                .collect();
+            let mut b: Vec<f64> = (0..n).map(|i| proj[k][i][c]).collect();
+            if !cholesky_solve(&mut a, &mut b, n) {
+                return Err(CreError::Invalid(format!("degenerate edge {e}")));
+            }
+            for i in 0..n {
+                v[i][c] = b[i];
             }
         }
-        edges.push((e, idx, m));
+        out.push((e, v));
     }
-    let apply = |x: &[f64], y: &mut [f64]| {
-        y.fill(0.0);
-        for (_, idx, m) in &edges {
-            for a in 0..3 {
-                if idx[a] == usize::MAX {
-                    continue;
-                }
-                for b in 0..3 {
-                    if idx[b] != usize::MAX {
-                        y[idx[a]] += m[a][b] * x[idx[b]];
-                    }
-                }
-            }
-        }
-    };
-    let mut t = vec![[0.0; 2]; n];
-    for c in 0..2 {
-        let g: Vec<f64> = side.forces.iter().map(|f| f[c] / thickness).collect();
-        let mut x = vec![0.0; n];
-        let mut r = g.clone();
-        let mut z: Vec<f64> = r
+    Ok(out)
+}
+
+/// Projections `int_facet (sigma_h n) phi_node dS` (per unit thickness, `n` outward) of the FE
+/// traction of `u` on every facet of group `group`, keyed by the facet's sorted end nodes.
+pub fn facet_projections(
+    model: &Model,
+    u: &[f64],
+    group: &str,
+) -> Result<FacetProjections, CreError> {
+    let mesh = &model.mesh;
+    if u.len() != 2 * mesh.num_nodes() {
+        return Err(CreError::Invalid(format!(
+            "displacement of length {} for {} nodes",
+            u.len(),
+            mesh.num_nodes()
+        )));
+    }
+    let rule = gauss01(4);
+    let mut out = FacetProjections::new();
+    for bf in mesh.attach_facets(mesh.facet_group(group)?, None)? {
+        let c = bf.cell;
+        let kind = mesh.cell_type(c);
+        let nodes = mesh.cell_nodes(c);
+        let coords = model.cell_coords(c);
+        let ue: Vec<f64> = nodes
             .iter()
-            .zip(&diag)
-            .map(|(r, d)| if *d > 0.0 { r / d } else { 0.0 })
+            .flat_map(|&nd| [u[2 * nd], u[2 * nd + 1]])
             .collect();
-        let mut p = z.clone();
-        let mut ap = vec![0.0; n];
-        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
-        let gnorm = g.iter().map(|v| v * v).sum::<f64>().sqrt();
-        for _ in 0..4 * n + 20 {
-            if r.iter().map(|v| v * v).sum::<f64>().sqrt() <= 1e-15 * gnorm {
-                break;
-            }
-            apply(&p, &mut ap);
-            let pap: f64 = p.iter().zip(&ap).map(|(a, b)| a * b).sum();
-            if !(pap > 0.0) {
-                break;
-            }
-            let alpha = rz / pap;
-            for i in 0..n {
-                x[i] += alpha * p[i];
-                r[i] -= alpha * ap[i];
-            }
-            for i in 0..n {
-                z[i] = if diag[i] > 0.0 { r[i] / diag[i] } else { 0.0 };
-            }
-            let rz2: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
-            let beta = rz2 / rz;
-            rz = rz2;
-            for i in 0..n {
-                p[i] = z[i] + beta * p[i];
-            }
-        }
-        for i in 0..n {
-            t[i][c] = x[i];
-        }
-    }
-    Ok(edges
-        .iter()
-        .map(|&(e, idx, _)| {
-            let mut v = [[0.0; 2]; 3];
-            for k in 0..3 {
-                if idx[k] != usize::MAX {
-                    v[k] = t[idx[k]];
+        let d = hooke(model.material(c)?, model.analysis);
+        let fnodes = &bf.facet.nodes;
+        let (xa, xb) = (mesh.coords[fnodes[0]], mesh.coords[fnodes[1]]);
+        let t = [xb[0] - xa[0], xb[1] - xa[1]];
+        let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+        let n = [t[1] / len, -t[0] / len];
+        let quadratic = fnodes.len() == 3;
+        let mut proj = vec![[0.0; 2]; fnodes.len()];
+        for &(s, w) in &rule {
+            let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, bf.local, s));
+            let tr = traction_of(&mul3(&d, &eps), n);
+            let sh = if quadratic {
+                [
+                    (1.0 - s) * (1.0 - 2.0 * s),
+                    s * (2.0 * s - 1.0),
+                    4.0 * s * (1.0 - s),
+                ]
+            } else {
+                [1.0 - s, s, 0.0]
+            };
+            for (k, p) in proj.iter_mut().enumerate() {
+                for c2 in 0..2 {
+                    p[c2] += w * len * sh[k] * tr[c2];
                 }
             }
-            (e, v)
-        })
-        .collect())
+        }
+        let (a, b) = (fnodes[0], fnodes[1]);
+        out.insert(
+            [a.min(b), a.max(b)],
+            fnodes.iter().copied().zip(proj).collect(),
+        );
+    }
+    Ok(out)
 }
 
 /// Runs phase 1 on one domain.
@@ -390,33 +446,6 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
             }
         }
     }
-    for side in inp.sides {
-        for (e, t) in interface_densities(mesh, &topo, side, th)? {
-            if !topo.edges[e].is_boundary() {
-                return Err(CreError::Invalid(format!(
-                    "interface side '{}' contains an interior edge",
-                    side.group
-                )));
-            }
-            let p = edge_projector(e);
-            let (_, len, _) = topo.geometry(mesh, e);
-            let m = edge_mass(topo.edges[e].mid.is_some(), len);
-            let mut pt = [[0.0; 2]; 3];
-            for k in 0..3 {
-                pt[k] = [
-                    p[0][0] * t[k][0] + p[0][1] * t[k][1],
-                    p[1][0] * t[k][0] + p[1][1] * t[k][1],
-                ];
-            }
-            for k in 0..3 {
-                for c in 0..2 {
-                    density[e].lin[k][c] += pt[k][c];
-                    b_known[e][k][c] += (0..3).map(|j| m[k][j] * pt[j][c]).sum::<f64>();
-                }
-            }
-        }
-    }
-
     // Element residuals Q_E(i) (per unit thickness) and FE stresses along the edges.
     let ncell = mesh.num_cells();
     let q_res: Vec<Vec<[f64; 2]>> = (0..ncell)
@@ -489,6 +518,34 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
             Ok(bb)
         })
         .collect::<Result<_, _>>()?;
+
+    // Interface sides (after b_bar, which they use as the minimisation target).
+    for side in inp.sides {
+        for (e, t) in interface_densities(mesh, &topo, side, th, &b_bar, Some(&frames))? {
+            if !topo.edges[e].is_boundary() {
+                return Err(CreError::Invalid(format!(
+                    "interface side '{}' contains an interior edge",
+                    side.group
+                )));
+            }
+            let p = edge_projector(e);
+            let (_, len, _) = topo.geometry(mesh, e);
+            let m = edge_mass(topo.edges[e].mid.is_some(), len);
+            let mut pt = [[0.0; 2]; 3];
+            for k in 0..3 {
+                pt[k] = [
+                    p[0][0] * t[k][0] + p[0][1] * t[k][1],
+                    p[1][0] * t[k][0] + p[1][1] * t[k][1],
+                ];
+            }
+            for k in 0..3 {
+                for c in 0..2 {
+                    density[e].lin[k][c] += pt[k][c];
+                    b_known[e][k][c] += (0..3).map(|j| m[k][j] * pt[j][c]).sum::<f64>();
+                }
+            }
+        }
+    }
 
     // Node systems.
     type NodeOut = (Vec<(usize, usize, [f64; 2])>, f64, f64);
