@@ -405,6 +405,35 @@ fn qoi_x_range(q: &QoiReport, sorted: &[f64]) -> ((f64, f64), Vec<bool>) {
     (pad(r.unwrap_or((lo, hi)), 0.03), on_scale)
 }
 
+/// Tick labels for an axis over `[lo, hi]` with about `n` ticks, all in one style: fixed with
+/// the decimals of the tick step (0.0005, 0.0010 ...), or scientific for very large or very
+/// small magnitudes.
+pub fn ticks(lo: f64, hi: f64, n: usize) -> impl Fn(&f64) -> String {
+    let m = lo.abs().max(hi.abs());
+    let raw = (hi - lo).abs() / n.max(1) as f64;
+    let scientific = !(m > 0.0) || !(1e-3..1e6).contains(&m) || !(raw > 0.0);
+    let decimals = if scientific {
+        0
+    } else {
+        let p = 10f64.powf(raw.log10().floor());
+        let nice = [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|k| k * p)
+            .find(|s| *s >= raw * 0.999)
+            .unwrap_or(10.0 * p);
+        (-nice.log10().floor()).clamp(0.0, 9.0) as usize
+    };
+    move |v: &f64| {
+        if scientific {
+            num(*v, 3)
+        } else if v.abs() < 0.5 * 10f64.powi(-(decimals as i32)) {
+            "0".to_string()
+        } else {
+            format!("{v:.decimals$}")
+        }
+    }
+}
+
 /// A curve's points in increasing x (a KDE grid handed over in any order still draws right).
 fn by_x(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let mut v = points.to_vec();
@@ -496,8 +525,8 @@ fn draw_pdf<DB: DrawingBackend>(
         .y_desc("probability density")
         .x_labels(8)
         .y_labels(7)
-        .x_label_formatter(&|v| num(*v, 4))
-        .y_label_formatter(&|v| num(*v, 3))
+        .x_label_formatter(&ticks(lo, hi, 8))
+        .y_label_formatter(&ticks(0.0, ymax, 7))
         .axis_desc_style(font(17.0))
         .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
@@ -606,8 +635,8 @@ fn draw_cdf<DB: DrawingBackend>(
         .y_desc("probability")
         .x_labels(8)
         .y_labels(11)
-        .x_label_formatter(&|v| num(*v, 4))
-        .y_label_formatter(&|v| num(*v, 2))
+        .x_label_formatter(&ticks(lo, hi, 8))
+        .y_label_formatter(&ticks(0.0, 1.0, 10))
         .axis_desc_style(font(17.0))
         .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
@@ -749,8 +778,8 @@ fn draw_surface<DB: DrawingBackend>(
         .y_desc(s.param_names[1].as_str())
         .x_labels(8)
         .y_labels(8)
-        .x_label_formatter(&|v| num(*v, 4))
-        .y_label_formatter(&|v| num(*v, 4))
+        .x_label_formatter(&ticks(xlo, xhi, 8))
+        .y_label_formatter(&ticks(ylo, yhi, 8))
         .axis_desc_style(font(17.0))
         .label_style(font(15.0))
         .draw()
@@ -829,7 +858,7 @@ fn draw_surface<DB: DrawingBackend>(
         .disable_x_axis()
         .set_tick_mark_size(LabelAreaPosition::Right, 5)
         .y_labels(8)
-        .y_label_formatter(&|v| num(*v, 4))
+        .y_label_formatter(&ticks(vmin, vmax, 8))
         .y_desc(axis_label(&q.name, &q.unit))
         .axis_desc_style(font(15.0))
         .label_style(font(13.0))
@@ -954,8 +983,8 @@ fn draw_comparison<DB: DrawingBackend>(
         .y_desc("probability density")
         .x_labels(8)
         .y_labels(7)
-        .x_label_formatter(&|v| num(*v, 4))
-        .y_label_formatter(&|v| num(*v, 3))
+        .x_label_formatter(&ticks(x0, x1, 8))
+        .y_label_formatter(&ticks(0.0, ymax, 7))
         .axis_desc_style(font(17.0))
         .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
