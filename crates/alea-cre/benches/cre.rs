@@ -131,6 +131,19 @@ fn options() -> LatinOptions {
     }
 }
 
+/// CPU seconds used so far by all threads of the process (sum of `/proc/self/task/*/schedstat`
+/// run times; threads that have exited are not counted, rayon's pool threads persist).
+fn cpu_seconds() -> f64 {
+    let Ok(dir) = std::fs::read_dir("/proc/self/task") else {
+        return f64::NAN;
+    };
+    dir.filter_map(|e| e.ok())
+        .filter_map(|e| std::fs::read_to_string(e.path().join("schedstat")).ok())
+        .filter_map(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .sum::<f64>()
+        * 1e-9
+}
+
 fn loads() -> Vec<LoadData> {
     let root = LoadData::new().traction("root_top", |_, _| [SHEAR, PULL, 0.0]);
     vec![root.clone(), root, LoadData::new(), LoadData::new()]
@@ -156,18 +169,26 @@ fn main() {
             let mut summary = String::new();
             for _ in 0..3 {
                 let t0 = Instant::now();
+                let c0 = cpu_seconds();
                 let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
                 let setup = t0.elapsed().as_secs_f64();
                 let r = solver.run(&RunInput::default()).unwrap();
                 let solve = t0.elapsed().as_secs_f64();
+                let solve_cpu = cpu_seconds() - c0;
                 assert_eq!(r.status, RunStatus::Converged);
                 let t1 = Instant::now();
+                let c1 = cpu_seconds();
                 let est = estimate_latin(&asm, &data, &r, &CreOptions::default()).unwrap();
                 let cre = t1.elapsed().as_secs_f64();
+                let cpu = cpu_seconds() - c1;
                 best = [best[0].min(setup), best[1].min(solve), best[2].min(cre)];
                 let p1: f64 = est.substructures.iter().map(|d| d.seconds[0]).sum();
                 let p2: f64 = est.substructures.iter().map(|d| d.seconds[1]).sum();
-                println!("  estimate {cre:.3} s: phase 1 {p1:.3} s, phase 2 {p2:.3} s");
+                println!(
+                    "  solve {solve:.3} s (CPU {solve_cpu:.3} s); estimate {cre:.3} s (CPU {cpu:.3} s, {:.2} cores busy): phase 1 {p1:.3} s, phase 2 {p2:.3} s; CPU ratio {:.2}",
+                    cpu / cre,
+                    cpu / solve_cpu
+                );
                 summary = format!(
                     "{} iterations; theta = {:.4e}, relative {:.3e}, substructures {:?}, interface terms {:?}, compatibility defect {:.1e}, violations {:?}",
                     r.iterations,
