@@ -1003,7 +1003,12 @@ fn draw_comparison<DB: DrawingBackend>(
             k += 1;
             (PALETTE[(k - 1) % PALETTE.len()], 2)
         };
-        let label = format!("{} ({} runs)", row.method, row.runs);
+        // Labels often say their run count already ("chaos p=2 (9 runs)").
+        let label = if row.method.contains("run") {
+            row.method.clone()
+        } else {
+            format!("{} ({} runs)", row.method, row.runs)
+        };
         if reference {
             chart
                 .draw_series(DashedLineSeries::new(
