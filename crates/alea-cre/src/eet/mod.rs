@@ -4,3 +4,4 @@
 
 pub mod phase1;
 pub mod phase2;
+pub mod sides;
