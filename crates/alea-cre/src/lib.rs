@@ -36,7 +36,7 @@
 //! `theta(p+3) / theta(p+5)` = 0.97 (T3, Q4), 0.95 (T6), 0.86 (Q8)), and non-polynomial loads
 //! are integrated by quadrature ([`DomainEstimate::balance_defect`]). So `theta` is a *nearly*
 //! guaranteed bound; the measured efficiency indices (manufactured solutions: 1.17-1.27 Q4,
-//! 2.6-2.9 T3, 1.07-1.57 Q8, 2.1-2.6 T6) leave a margin, smallest for Q8, where raising
+//! 2.27-2.76 T3, 1.07-1.57 Q8, 2.14-2.64 T6) leave a margin, smallest for Q8, where raising
 //! [`CreOptions::extra_degree`] is advisable when a strict bound matters.
 //! For an assembly, the bound additionally needs a **converged LATIN** solution: the
 //! substructure stresses are in equilibrium with the linear-stage forces `F_n` while the
