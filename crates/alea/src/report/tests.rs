@@ -291,11 +291,39 @@ fn full_report_is_written() {
         check_png(&png, size);
         let elements: &[&str] = match stem {
             s if s.starts_with("pdf_friction") => &["rect", "polyline", "text", "line"],
-            s if s.starts_with("surface") => &["rect", "circle", "text"],
+            s if s.starts_with("surface") => &["rect", "circle", "text", "image"],
             _ => &["polyline", "text"],
         };
         check_svg(&svg, size, elements);
     }
+    // The surface's filled levels: an embedded PNG (2 pixels per plot pixel), no placeholder.
+    let svg = std::fs::read_to_string(dir.join("surface_friction_work.svg")).unwrap();
+    assert!(!svg.contains("@@"), "raster placeholder left in the SVG");
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let image = doc
+        .descendants()
+        .find(|n| n.tag_name().name() == "image")
+        .unwrap();
+    let width: u32 = image.attribute("width").unwrap().parse().unwrap();
+    let height: u32 = image.attribute("height").unwrap().parse().unwrap();
+    let data = image
+        .attribute("href")
+        .unwrap()
+        .strip_prefix("data:image/png;base64,")
+        .unwrap();
+    use base64::Engine;
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(data)
+        .unwrap();
+    let reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .unwrap();
+    assert_eq!(
+        (reader.info().width, reader.info().height),
+        (2 * width, 2 * height)
+    );
+    assert!(width > 400 && height > 400, "{width} x {height}");
+
     let html = std::fs::read_to_string(&files.html).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>"));
     assert_eq!(html.matches("<svg class=\"plot\"").count(), stems.len());
