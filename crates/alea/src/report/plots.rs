@@ -441,7 +441,7 @@ fn by_x(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     v
 }
 
-/// Freedman-Diaconis bins (10 to 60) of sorted samples, as (left, right, density).
+/// Freedman-Diaconis bins (10 to 80) of sorted samples, as (left, right, density).
 fn histogram(sorted: &[f64]) -> Vec<(f64, f64, f64)> {
     let n = sorted.len();
     if n < 2 {
@@ -458,7 +458,7 @@ fn histogram(sorted: &[f64]) -> Vec<(f64, f64, f64)> {
     } else {
         (n as f64).sqrt().ceil() as usize
     }
-    .clamp(10, 60);
+    .clamp(10, 80);
     let width = (hi - lo) / bins as f64;
     let mut counts = vec![0usize; bins];
     for &v in sorted {

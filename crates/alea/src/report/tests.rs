@@ -468,8 +468,14 @@ fn degenerate_inputs_give_a_report() {
     let files = write_report(&dir, &input).unwrap();
     // PDF and CDF only: the history has no positive value, the comparison no curve.
     assert_eq!(files.plots.len(), 4);
-    check_png(&dir.join("pdf_compliance.png"), SIZE);
-    check_svg(&dir.join("cdf_compliance.svg"), SIZE, &["polyline"]);
+    for stem in ["pdf_compliance", "cdf_compliance"] {
+        check_png(&dir.join(format!("{stem}.png")), SIZE);
+        check_svg(
+            &dir.join(format!("{stem}.svg")),
+            SIZE,
+            &["polyline", "text"],
+        );
+    }
     let html = std::fs::read_to_string(&files.html).unwrap();
     assert!(html.contains("alea study report"));
     assert!(html.contains("−∞") && html.contains("∞"));
