@@ -403,7 +403,8 @@ fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
         Kind::Pdf(k),
         &format!(
             "Probability density of {}: kernel density estimate over the normalised histogram \
-             of the Monte Carlo samples on the surrogate; dashed: mean; red: failure thresholds",
+             of the Monte Carlo samples on the surrogate; dashed: mean; red: failure thresholds, \
+             shaded: the failure region q > threshold",
             q.name
         ),
     );

@@ -434,6 +434,27 @@ pub fn ticks(lo: f64, hi: f64, n: usize) -> impl Fn(&f64) -> String {
     }
 }
 
+/// The region under a curve (increasing x) right of `t`, as a closed polygon; `None` when the
+/// curve ends before `t`.
+fn tail_polygon(curve: &[(f64, f64)], t: f64) -> Option<Vec<(f64, f64)>> {
+    let last = *curve.last()?;
+    if last.0 <= t {
+        return None;
+    }
+    let k = curve.partition_point(|p| p.0 <= t);
+    let start = if k == 0 {
+        curve[0]
+    } else {
+        let (a, b) = (curve[k - 1], curve[k]);
+        let w = (t - a.0) / (b.0 - a.0);
+        (t, a.1 + w * (b.1 - a.1))
+    };
+    let mut poly = vec![(start.0, 0.0), start];
+    poly.extend_from_slice(&curve[k..]);
+    poly.push((last.0, 0.0));
+    Some(poly)
+}
+
 /// A curve's points in increasing x (a KDE grid handed over in any order still draws right).
 fn by_x(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let mut v = points.to_vec();
@@ -562,6 +583,18 @@ fn draw_pdf<DB: DrawingBackend>(
             .legend(line_legend(KDE, 4));
     }
     if q.kde.len() >= 2 {
+        // The failure region P(q > t) shaded under the KDE, for each threshold on scale.
+        let kde = by_x(&q.kde);
+        for (f, on) in q.failure.iter().zip(&on_scale) {
+            if let (true, Some(tail)) = (*on, tail_polygon(&kde, f.threshold)) {
+                chart
+                    .draw_series(std::iter::once(Polygon::new(
+                        tail,
+                        THRESHOLD.mix(0.14).filled(),
+                    )))
+                    .map_err(err)?;
+            }
+        }
         chart
             .draw_series(LineSeries::new(by_x(&q.kde), KDE.stroke_width(3)))
             .map_err(err)?
