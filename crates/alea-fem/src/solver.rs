@@ -84,6 +84,12 @@ fn metis_order(a: &SymCsc, block_of_dof: &[usize]) -> Result<(Vec<usize>, Vec<us
         let mut options = [0i32; metis_sys::METIS_NOPTIONS as usize];
         // SAFETY: METIS reads nvtxs/xadj/adjncy (valid CSR graph without self loops, sizes as
         // declared) and writes nb entries to perm and iperm; options is METIS_NOPTIONS long.
+        // METIS keeps its random-number state in process globals: concurrent calls (several
+        // substructures set up in parallel) would interleave it and give orderings, hence
+        // rounding, that change from one run to the next. One call at a time; each call seeds
+        // the generator itself, so the ordering is then reproducible.
+        static METIS_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+        let _guard = METIS_LOCK.lock().unwrap_or_else(|e| e.into_inner());
         let status = unsafe {
             metis_sys::METIS_SetDefaultOptions(options.as_mut_ptr());
             metis_sys::METIS_NodeND(

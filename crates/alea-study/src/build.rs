@@ -319,6 +319,25 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
             };
             generate::dovetail_root_and_disk(&p, kind(CellType::Quad4)?).map_err(mesh_err)
         }
+        "blade_root_simple" => {
+            let d = generate::BladeRootParams::default();
+            check_params(src, spec, &[
+                "half_width", "bottom_half_width", "neck_half_width", "flank_height", "shank_height",
+                "n_flank", "n_side", "n_root", "n_shank",
+            ])?;
+            let p = generate::BladeRootParams {
+                half_width: param_f64(src, spec, "half_width", Some(d.half_width))?,
+                bottom_half_width: param_f64(src, spec, "bottom_half_width", Some(d.bottom_half_width))?,
+                neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+                flank_height: param_f64(src, spec, "flank_height", Some(d.flank_height))?,
+                shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+                n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+                n_side: param_usize(src, spec, "n_side", Some(d.n_side))?,
+                n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+                n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+            };
+            generate::blade_root_simple(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
         "gmsh" => {
             check_params(src, spec, &[])?;
             let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
@@ -329,7 +348,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         other => Err(src.error(
             spec.generator.span(),
             "mesh.generator",
-            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail or gmsh"),
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple or gmsh"),
         )),
     }
 }

@@ -11,6 +11,27 @@ use crate::expr::Expr;
 use crate::spec::{ModelFile, ParameterSpec};
 use crate::{Source, StudyError};
 
+/// The law of zero parameters (a deterministic case): one point, probability 1.
+#[derive(Debug)]
+struct NoParameters;
+
+impl JointLaw for NoParameters {
+    fn dim(&self) -> usize {
+        0
+    }
+    fn pdf(&self, _x: &[f64]) -> f64 {
+        1.0
+    }
+    fn x_to_unit(&self, _x: &[f64], _u: &mut [f64]) {}
+    fn unit_to_x(&self, _u: &[f64], _x: &mut [f64]) {}
+    fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        (Vec::new(), Vec::new())
+    }
+    fn is_independent(&self) -> bool {
+        true
+    }
+}
+
 /// Parameters, laws and the joint law.
 #[derive(Clone, Debug)]
 pub struct ParamSpace {
@@ -173,6 +194,7 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
         });
     }
     let joint: Arc<dyn JointLaw> = match &file.joint {
+        None if d == 0 => Arc::new(NoParameters),
         None => Arc::new(
             Independent::new(marginals.clone()).map_err(|e| StudyError::Other(e.to_string()))?,
         ),

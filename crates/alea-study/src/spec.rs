@@ -194,7 +194,7 @@ pub struct SolverSpec {
     /// Relaxation in (0, 1]. Default 1.
     #[serde(default)]
     pub relaxation: Option<Spanned<f64>>,
-    /// Search direction factor (k = factor E / L). Default 3.
+    /// Search direction factor (k = factor E / L). Default 1.
     #[serde(default)]
     pub search_direction_factor: Option<Spanned<f64>>,
 }

@@ -46,6 +46,11 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Rebuild the HTML report and plots of a finished study directory from its saved data.
+    Report {
+        /// The study directory.
+        dir: PathBuf,
+    },
     /// Run a built-in demonstration case and write ParaView output.
     Demo {
         /// Which demo: `dovetail` (blade root in its disk, frictional contact) or `kirsch`
@@ -63,6 +68,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Solve { case, out } => solve::solve_file(&case, &out),
         Command::Demo { name, out } => solve::demo(&name, &out),
+        Command::Report { dir } => study_cmd::rebuild_report(&dir),
         Command::Run {
             study,
             dir,

@@ -95,6 +95,19 @@ fn settings(study: &Study) -> Result<AnalysisSettings> {
     })
 }
 
+/// `alea report`: rebuilds the report of a finished study from its saved input, without
+/// recomputing anything.
+pub fn rebuild_report(dir: &Path) -> Result<()> {
+    let input = report::ReportInput::load_json(&dir.join("report").join("report-input.json"))?;
+    let files = report::write_report(&dir.join("report"), &input)?;
+    println!(
+        "report: {} ({} plots)",
+        files.html.display(),
+        files.plots.len()
+    );
+    Ok(())
+}
+
 /// Default study directory: `out/<file stem>`.
 pub fn default_dir(study: &Path) -> PathBuf {
     let stem = study
@@ -187,8 +200,10 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         runs.computed,
         runs.resumed,
     )?;
-    if study.output.samples_csv.unwrap_or(true) {
-        write_samples(&study, dir, &results[0])?;
+    if study.output.samples_csv.unwrap_or(true)
+        && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
+    {
+        write_samples(&study, dir, main)?;
     }
     if study.output.report.unwrap_or(true) {
         let t0 = Instant::now();
@@ -204,6 +219,7 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
             ],
         )?;
         let files = report::write_report(&dir.join("report"), &input)?;
+        input.save_json(&dir.join("report").join("report-input.json"))?;
         println!(
             "report: {} ({} plots, {:.2} s)",
             files.html.display(),
@@ -234,7 +250,7 @@ fn print_table(study: &Study, results: &[MethodResult]) {
                 ),
             }
         }
-        if let Some(s) = results[0].qois.get(q) {
+        if let Some(s) = results.iter().find_map(|r| r.qois.get(q)) {
             for f in &s.failure {
                 println!(
                     "  P({} > {}) = {:.4e}  ({:.0}% interval [{:.4e}, {:.4e}])",
@@ -296,7 +312,7 @@ fn write_summary(
         "runs": runs,
     });
     let text = serde_json::to_string_pretty(&v)?;
-    if text.contains("NaN") || text.contains("null,") && false {
+    if text.contains("NaN") {
         anyhow::bail!("internal error: a non-finite value reached summary.json");
     }
     let path = dir.join("summary.json");
@@ -351,7 +367,8 @@ fn report_input(
     notes: &[String],
     timings: &[(String, f64)],
 ) -> Result<ReportInput> {
-    let main = &results[0];
+    // The first method that produced statistics answers; the others are compared with it.
+    let main_index = results.iter().position(|r| !r.qois.is_empty());
     let units = &study.model.units;
     let mut unit_list = vec![
         ("length".to_string(), units.length.clone()),
@@ -366,15 +383,16 @@ fn report_input(
         .iter()
         .enumerate()
         .filter_map(|(q, qoi)| {
-            let s = main.qois.get(q)?;
+            let m = main_index?;
+            let s = results[m].qois.get(q)?;
             let surface =
-                response_surface(study, &study.methods[0], records, q, 41).map(|(x, y, values)| {
+                response_surface(study, &study.methods[m], records, q, 41).map(|(x, y, values)| {
                     Surface {
                         param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
                         x,
                         y,
                         values,
-                        points: study.methods[0]
+                        points: study.methods[m]
                             .points
                             .iter()
                             .filter_map(|p| {
@@ -445,7 +463,10 @@ fn report_input(
         title: study.title(),
         study_file: study.source.path.display().to_string(),
         units: unit_list,
-        method: format!("{}: {}", main.label, main.description),
+        method: main_index.map_or_else(
+            || "no method produced statistics (see the notes)".to_string(),
+            |m| format!("{}: {}", results[m].label, results[m].description),
+        ),
         parameters: study
             .params
             .names
@@ -465,11 +486,15 @@ fn report_input(
                 status: r.status.clone(),
                 iterations: r.iterations,
                 seconds: r.seconds,
-                qois: r
-                    .qois
-                    .iter()
-                    .map(|v| if v.is_finite() { *v } else { 0.0 })
-                    .collect(),
+                // Non-finite values only occur in runs that did not converge.
+                qois: if main_index.is_some() {
+                    r.qois
+                        .iter()
+                        .map(|v| if v.is_finite() { *v } else { 0.0 })
+                        .collect()
+                } else {
+                    Vec::new()
+                },
             })
             .collect(),
         residual_histories: histories,

@@ -15,9 +15,6 @@
 //!
 //! `<qoi>` is the QoI name reduced to ASCII letters, digits, `-` and `_`.
 
-// Used by the study command (in progress).
-#![allow(dead_code)]
-
 mod data;
 mod format;
 mod html;

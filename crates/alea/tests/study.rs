@@ -1,0 +1,297 @@
+//! `alea run` end to end on a coarse version of the thesis's simple blade root:
+//! - a study killed with SIGKILL part-way resumes, recomputes no committed run, and ends with a
+//!   `summary.json` identical to an uninterrupted run's;
+//! - the same study with 1 and 2 threads gives byte-identical `summary.json`;
+//! - malformed study files give specific messages naming file, line and field, exit code 2,
+//!   never a panic.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+fn alea() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_alea"))
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("alea-study-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The shipped comparison study on a coarse mesh and a 7 x 7 reference grid (about 60 runs).
+fn coarse_study(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/blade-root-simple-comparison.toml"))
+        .unwrap()
+        .replace(
+            "params = { n_flank = 24, n_side = 30, n_root = 24, n_shank = 18 }",
+            "params = { n_flank = 8, n_side = 10, n_root = 8, n_shank = 6 }",
+        )
+        .replace("points_per_dim = 11", "points_per_dim = 7")
+        .replace(
+            "[[method]]\ntype = \"pc_regression\"",
+            "[statistics]\nsamples = 20000\n\n[[method]]\ntype = \"pc_regression\"",
+        );
+    assert!(
+        text.contains("n_flank = 8")
+            && text.contains("points_per_dim = 7")
+            && text.contains("samples = 20000")
+    );
+    let path = dir.join("study.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn run(study: &Path, dir: &Path, extra: &[&str]) -> std::process::Output {
+    alea()
+        .arg("run")
+        .arg(study)
+        .arg("--dir")
+        .arg(dir)
+        .arg("-q")
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn killed_study_resumes_to_the_same_summary() {
+    let base = tmp("resume");
+    let study = coarse_study(&base);
+    // Uninterrupted reference.
+    let full = base.join("full");
+    let o = run(&study, &full, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let reference = std::fs::read(full.join("summary.json")).unwrap();
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    let total: usize = out
+        .split(" distinct runs")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|s| s.parse().ok())
+        .expect("distinct run count printed");
+    assert!(total > 50, "{out}");
+    // Start, wait for a few committed runs, SIGKILL.
+    let dir = base.join("killed");
+    let mut child = alea()
+        .arg("run")
+        .arg(&study)
+        .arg("--dir")
+        .arg(&dir)
+        .arg("-q")
+        .arg("--threads")
+        .arg("1")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    let fields = dir.join("fields");
+    loop {
+        let n = std::fs::read_dir(&fields).map(|d| d.count()).unwrap_or(0);
+        if n >= 10 {
+            break;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(120), "no progress");
+        if let Ok(Some(_)) = child.try_wait() {
+            panic!("the study finished before it could be killed");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.kill().unwrap(); // SIGKILL on Unix
+    child.wait().unwrap();
+    assert!(!dir.join("summary.json").exists(), "killed before the end");
+    let o = run(&study, &dir, &[]);
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        o.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // "runs: C computed, R resumed"
+    let nums: Vec<usize> = text
+        .split("runs: ")
+        .nth(1)
+        .unwrap()
+        .split(|c: char| !c.is_ascii_digit())
+        .filter(|s| !s.is_empty())
+        .take(2)
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let (computed, resumed) = (nums[0], nums[1]);
+    assert_eq!(computed + resumed, total, "{text}");
+    assert!(resumed >= 9, "committed runs must be kept: {text}");
+    let resumed_summary = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    let reference = String::from_utf8(reference).unwrap();
+    if let Some((i, (a, b))) = reference
+        .lines()
+        .zip(resumed_summary.lines())
+        .enumerate()
+        .find(|(_, (a, b))| a != b)
+    {
+        panic!("resumed summary differs at line {}: {a:?} vs {b:?}", i + 1);
+    }
+    assert_eq!(resumed_summary.len(), reference.len());
+    // A third invocation computes nothing.
+    let o = run(&study, &dir, &[]);
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains(&format!("runs: 0 computed, {total} resumed"))
+    );
+    // A changed study file is refused unless --restart.
+    let changed = base.join("study.toml");
+    let t = std::fs::read_to_string(&changed)
+        .unwrap()
+        .replace("seed = 2008", "seed = 2009");
+    std::fs::write(&changed, t).unwrap();
+    let o = run(&changed, &dir, &[]);
+    assert_eq!(o.status.code(), Some(4));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--restart"));
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+#[test]
+fn one_and_two_threads_give_identical_summaries() {
+    let base = tmp("threads");
+    let study = coarse_study(&base);
+    let mut outs = Vec::new();
+    for t in ["1", "2"] {
+        let dir = base.join(format!("t{t}"));
+        let o = run(&study, &dir, &["--threads", t]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        outs.push(std::fs::read(dir.join("summary.json")).unwrap());
+        assert!(dir.join("report/report.html").exists());
+        assert!(dir.join("samples.csv").exists());
+        // The report can be rebuilt from the saved data alone.
+        std::fs::remove_file(dir.join("report/report.html")).unwrap();
+        let o = alea().arg("report").arg(&dir).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(dir.join("report/report.html").exists());
+    }
+    assert!(
+        outs[0] == outs[1],
+        "summaries differ between 1 and 2 threads"
+    );
+    let text = String::from_utf8_lossy(&outs[0]);
+    assert!(!text.contains("NaN") && !text.contains("inf"));
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+#[test]
+fn malformed_study_files_give_specific_errors() {
+    let base = tmp("bad");
+    let good = std::fs::read_to_string(root().join("examples/blade-root-simple.toml")).unwrap();
+    // (original text, replacement, field named in the message, phrase of the message)
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            "seed = 2008",
+            "seed = 2008\ncolour = 1",
+            "colour",
+            "unknown field",
+        ),
+        ("mean = 0.5", "mean = \"half\"", "mean", "invalid type"),
+        (
+            "mean = 0.5\nstd = 0.2\n",
+            "mean = 0.5\n",
+            "parameter[1].std",
+            "needs 'std'",
+        ),
+        (
+            "side1 = [\"S1\", \"G1_disk\"]",
+            "side1 = [\"S1\", \"G1_disc\"]",
+            "interface[0].side1",
+            "no facet group 'G1_disc'",
+        ),
+        (
+            "mu = \"mu\"\n\n[[interface]]\nname = \"G2\"",
+            "mu = -0.2\n\n[[interface]]\nname = \"G2\"",
+            "interface[0].mu",
+            ">= 0",
+        ),
+        (
+            "mu = \"mu\"\n\n[[interface]]\nname = \"G2\"",
+            "mu = \"mu - 0.5\"\n\n[[interface]]\nname = \"G2\"",
+            "interface[0].mu",
+            ">= 0",
+        ),
+        (
+            "young = 210e3\npoisson = 0.3\n# symmetry",
+            "young = 0.0\npoisson = 0.3\n# symmetry",
+            "substructure[0].young",
+            "> 0",
+        ),
+        (
+            "young = \"E2\"\npoisson = 0.3",
+            "young = \"E2\"\npoisson = 0.5",
+            "substructure[1].poisson",
+            "(-1, 0.5)",
+        ),
+        (
+            "young = 210e3\npoisson = 0.3\n# symmetry",
+            "young = nan\npoisson = 0.3\n# symmetry",
+            "substructure[0].young",
+            "finite",
+        ),
+        (
+            "young = \"E2\"",
+            "young = \"E3\"",
+            "substructure[1].young",
+            "unknown name 'E3'",
+        ),
+        (
+            "law = \"truncated_normal\"\nmean = 0.5\nstd = 0.2",
+            "law = \"truncated_normal\"\nmean = 0.5\nstd = -0.2",
+            "parameter[1]",
+            "std",
+        ),
+        (
+            "interface = \"G2\"",
+            "interface = \"G3\"",
+            "quantity[0].interface",
+            "unknown interface 'G3'",
+        ),
+        (
+            "type = \"pc_regression\"",
+            "type = \"kriging\"",
+            "method[0].type",
+            "unknown method 'kriging'",
+        ),
+    ];
+    for (i, (from, to, field, phrase)) in cases.iter().enumerate() {
+        assert!(
+            good.contains(from),
+            "case {i}: fixture must contain {from:?}"
+        );
+        let text = good.replacen(from, to, 1);
+        let path = base.join(format!("bad{i}.toml"));
+        std::fs::write(&path, &text).unwrap();
+        let o = run(&path, &base.join(format!("d{i}")), &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "case {i}: {err}");
+        assert!(!err.contains("panicked"), "case {i}: {err}");
+        assert!(
+            err.contains(&format!("bad{i}.toml:")),
+            "case {i}: file not named: {err}"
+        );
+        assert!(
+            err.contains(field),
+            "case {i}: field {field} not named: {err}"
+        );
+        assert!(err.contains(phrase), "case {i}: '{phrase}' not in: {err}");
+        let line: usize = err
+            .split(&format!("bad{i}.toml:"))
+            .nth(1)
+            .unwrap()
+            .split(':')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(line > 0, "case {i}: no line: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&base);
+}
