@@ -12,123 +12,15 @@
 use std::time::Instant;
 
 use alea_cre::{CreOptions, LoadData, estimate_latin};
-use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::{
-    Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunStatus, SearchDirection,
-    Substructure,
-};
-use alea_mesh::generate::{DovetailParams, dovetail_root_and_disk};
-use alea_mesh::{CellType, Facet, Mesh};
+use alea_latin::samples::{PULL, SHEAR};
+use alea_latin::{Assembly, LatinOptions, LatinSolver, RunInput, RunStatus};
 
-const E: f64 = 200e3;
-const NU: f64 = 0.3;
-/// Blade pull on the root top (MPa) and its tangential (bending) part.
-const PULL: f64 = 200.0;
-const SHEAR: f64 = 30.0;
-
-/// Cell-group part `part` of `mesh`, cut at x = 0 (`left`: centroid x < 0), with the cut
-/// facets as the facet/node group `"cut"`.
-fn half(mesh: &Mesh, part: &str, left: bool) -> Mesh {
-    let mut m = mesh.clone();
-    let name = format!("{part}_{}", if left { "l" } else { "r" });
-    let cells: Vec<usize> = m
-        .cell_group(part)
-        .unwrap()
-        .iter()
-        .copied()
-        .filter(|&c| {
-            let xs = m.cell_coords(c);
-            let cx = xs.iter().map(|x| x[0]).sum::<f64>() / xs.len() as f64;
-            (cx < 0.0) == left
-        })
-        .collect();
-    m.add_cells_to_group(&name, cells);
-    let (mut sub, _) = m.extract(&[&name]).unwrap();
-    let (lo, hi) = sub.bounding_box();
-    let tol = 1e-9 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    let cut: Vec<Facet> = sub
-        .boundary_facets()
-        .into_iter()
-        .filter(|b| b.facet.nodes.iter().all(|&n| sub.coords[n][0].abs() <= tol))
-        .map(|b| b.facet)
-        .collect();
-    let nodes: Vec<usize> = cut.iter().flat_map(|f| f.nodes.clone()).collect();
-    assert!(!cut.is_empty(), "{name}: no facet on x = 0");
-    sub.add_facets_to_group("cut", cut);
-    sub.add_nodes_to_group("cut", nodes);
-    sub
-}
-
-fn model(mesh: Mesh) -> Model {
-    let mut m = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
-    m.set_material_all(Material::new(E, NU, 7.8e-9).unwrap());
-    m
-}
-
-/// Substructures 0 root_l, 1 root_r, 2 disk_l, 3 disk_r.
 fn assembly(refine: usize) -> Assembly {
-    let p = DovetailParams::default().refined(refine);
-    let mesh = dovetail_root_and_disk(&p, CellType::Quad4).unwrap();
-    let mut subs = Vec::new();
-    for (part, left) in [
-        ("root", true),
-        ("root", false),
-        ("disk", true),
-        ("disk", false),
-    ] {
-        let m = model(half(&mesh, part, left));
-        let name = format!("{part}_{}", if left { "left" } else { "right" });
-        let mut c = Constraints::new();
-        let mut loads = Loads::new(&m);
-        if part == "disk" {
-            let side = if left {
-                "disk_side_left"
-            } else {
-                "disk_side_right"
-            };
-            c.fix_normal(&m.mesh, side, 0.0).unwrap();
-        } else {
-            loads
-                .traction(&m, "root_top", |_, _| [SHEAR, PULL, 0.0])
-                .unwrap();
-        }
-        subs.push(Substructure {
-            name,
-            model: m,
-            constraints: c,
-            load_cases: vec![loads.f],
-        });
-    }
-    let interfaces = vec![
-        InterfaceSpec::coulomb(
-            "flank_left",
-            0,
-            "flank_left_root",
-            2,
-            "flank_left_disk",
-            0.5,
-        ),
-        InterfaceSpec::coulomb(
-            "flank_right",
-            1,
-            "flank_right_root",
-            3,
-            "flank_right_disk",
-            0.5,
-        ),
-        InterfaceSpec::perfect("root_cut", 0, "cut", 1, "cut"),
-        InterfaceSpec::perfect("disk_cut", 2, "cut", 3, "cut"),
-    ];
-    Assembly { subs, interfaces }
+    alea_latin::samples::four_part_dovetail(refine).expect("the sample assembly builds")
 }
 
 fn options() -> LatinOptions {
-    LatinOptions {
-        tolerance: 1e-6,
-        max_iterations: 5000,
-        search_direction: SearchDirection::Auto { factor: 0.5 },
-        ..Default::default()
-    }
+    alea_latin::samples::four_part_dovetail_options()
 }
 
 /// CPU seconds used so far by all threads of the process (sum of `/proc/self/task/*/schedstat`

@@ -18,6 +18,7 @@ pub mod interface;
 pub mod law;
 pub mod output;
 mod result;
+pub mod samples;
 mod solver;
 
 pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
