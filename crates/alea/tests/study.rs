@@ -257,7 +257,7 @@ fn malformed_study_files_give_specific_errors() {
         (
             "type = \"pc_regression\"",
             "type = \"kriging\"",
-            "method[0].type",
+            "method[1].type",
             "unknown method 'kriging'",
         ),
     ];
