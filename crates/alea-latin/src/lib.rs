@@ -12,6 +12,7 @@
 //!
 //! This crate knows nothing about probability.
 
+mod anderson;
 mod assembly;
 mod error;
 pub mod interface;

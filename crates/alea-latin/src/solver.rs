@@ -15,6 +15,13 @@
 //! over both sides of every interface. The run stops when `eta < tol` (converged) or after
 //! `max_iterations` (reported as not converged, with the residual history).
 //!
+//! **Acceleration** (`LatinOptions::acceleration`, default depth 5): the sequence of local-stage
+//! states is a fixed-point iteration; Anderson mixing of the last iterates (module
+//! `anderson`) removes the slow global modes that the single-scale LATIN leaves to hundreds of
+//! iterations when substructures float (measured: 877 -> 100 iterations on the 23k-dof
+//! dovetail, 655 -> 131 on the perfect 2 x 2 test). The reported state is always a true local
+//! stage; the acceleration only changes the input of the next linear stage.
+//!
 //! **Multiresolution** (thesis 5.1.3): the solver keeps the set-up (meshes, dof maps, pairings,
 //! factorisations) between runs; a run may change the Young's-modulus factors, load factors,
 //! `mu(x)` and `g0(x)` without refactorisation, and starts from the stored local-stage solution
@@ -27,6 +34,7 @@ use std::time::Instant;
 use alea_fem::{Cholesky, DofMap, Ordering, SolveScratch, SymCsc, assemble_stiffness};
 use rayon::prelude::*;
 
+use crate::anderson::Anderson;
 use crate::interface::{pair_nodes, side_geometry};
 use crate::{
     Assembly, InterfaceLaw, InterfaceResult, LatinError, PointData, PointField, PointStatus,
@@ -65,6 +73,8 @@ pub struct LatinOptions {
     pub search_direction: SearchDirection,
     /// Fill-reducing ordering of the substructure factorisations.
     pub ordering: Ordering,
+    /// Anderson acceleration depth (0: off; default 5): see the `anderson` module.
+    pub acceleration: usize,
 }
 
 impl Default for LatinOptions {
@@ -75,6 +85,7 @@ impl Default for LatinOptions {
             relaxation: 1.0,
             search_direction: SearchDirection::Auto { factor: 1.0 },
             ordering: Ordering::Metis,
+            acceleration: 5,
         }
     }
 }
@@ -184,9 +195,13 @@ struct SubState {
 
 #[derive(Clone)]
 struct InterfaceState {
+    /// Input of the next linear stage (the last local stage, or an accelerated state).
     what: [Vec<V3>; 2],
     fhat: [Vec<V3>; 2],
+    /// Local-stage output before the last one.
     what_prev: [Vec<V3>; 2],
+    /// Last local-stage output.
+    what_last: [Vec<V3>; 2],
     status: Vec<PointStatus>,
 }
 
@@ -550,6 +565,7 @@ impl LatinSolver {
                     what: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
                     fhat: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
                     what_prev: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    what_last: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
                     status: vec![PointStatus::Open; n],
                 }
             })
@@ -568,6 +584,7 @@ impl LatinSolver {
             }
             for (i, st) in istate.iter_mut().enumerate() {
                 st.what = init.what[i].clone();
+                st.what_last = init.what[i].clone();
                 st.fhat = init.fhat[i].clone();
             }
         } else if !input.params.is_empty() {
@@ -593,6 +610,7 @@ impl LatinSolver {
                 warm = Some(k);
                 for (i, st) in istate.iter_mut().enumerate() {
                     st.what = store[k].what[i].clone();
+                    st.what_last = store[k].what[i].clone();
                     st.fhat = store[k].fhat[i].clone();
                 }
             }
@@ -620,7 +638,56 @@ impl LatinSolver {
         let rho = self.options.relaxation;
         let mut status = RunStatus::NotConverged;
         let mut first = true;
+        // Scaling of the packed state for the acceleration: sqrt(m k) W and sqrt(m / k) F.
+        let scales: Vec<[f64; 2]> = self
+            .ifaces
+            .iter()
+            .map(|op| {
+                [
+                    alpha[op.sub[0]] * self.subs[op.sub[0]].links[op.link[0]].k0,
+                    alpha[op.sub[1]] * self.subs[op.sub[1]].links[op.link[1]].k0,
+                ]
+            })
+            .collect();
+        let pack = |istate: &[InterfaceState]| -> Vec<f64> {
+            let mut v = Vec::new();
+            for ((st, op), k) in istate.iter().zip(&self.ifaces).zip(&scales) {
+                for s in 0..2 {
+                    for (i, m) in op.weights.iter().enumerate() {
+                        let (a, b) = ((m * k[s]).sqrt(), (m / k[s]).sqrt());
+                        v.extend(st.what[s][i].iter().map(|w| a * w));
+                        v.extend(st.fhat[s][i].iter().map(|f| b * f));
+                    }
+                }
+            }
+            v
+        };
+        let unpack = |istate: &mut [InterfaceState], v: &[f64]| {
+            let mut it = v.iter();
+            for ((st, op), k) in istate.iter_mut().zip(&self.ifaces).zip(&scales) {
+                for s in 0..2 {
+                    for (i, m) in op.weights.iter().enumerate() {
+                        let (a, b) = ((m * k[s]).sqrt(), (m / k[s]).sqrt());
+                        for c in 0..3 {
+                            st.what[s][i][c] = it.next().copied().unwrap_or(0.0) / a;
+                        }
+                        for c in 0..3 {
+                            st.fhat[s][i][c] = it.next().copied().unwrap_or(0.0) / b;
+                        }
+                    }
+                }
+            }
+        };
+        let mut anderson = Anderson::new(self.options.acceleration);
+        let mut best_eta = f64::INFINITY;
+        // The accelerated state is applied at the start of the next iteration only, so that
+        // whenever the loop ends the interface state is a true local stage.
+        let mut pending: Option<Vec<f64>> = None;
         for _ in 0..self.options.max_iterations {
+            if let Some(v) = pending.take() {
+                unpack(&mut istate, &v);
+            }
+            let x_in = (self.options.acceleration > 0).then(|| pack(&istate));
             // Linear stage.
             let t0 = Instant::now();
             let solve_time: f64 = self
@@ -657,6 +724,16 @@ impl LatinSolver {
             if eta < self.options.tolerance {
                 status = RunStatus::Converged;
                 break;
+            }
+            if let Some(x) = x_in {
+                // Safeguard: a clear increase of the indicator restarts from a plain step.
+                if eta > 2.0 * best_eta {
+                    anderson.reset();
+                } else {
+                    let f = pack(&istate);
+                    pending = Some(anderson.step(&x, &f));
+                }
+                best_eta = best_eta.min(eta);
             }
         }
         // Final fields: the last linear stage's displacement.
@@ -854,7 +931,7 @@ fn local_stage(
         &sstate[op.sub[0]].f[op.link[0]],
         &sstate[op.sub[1]].f[op.link[1]],
     ];
-    std::mem::swap(&mut st.what_prev, &mut st.what);
+    std::mem::swap(&mut st.what_prev, &mut st.what_last);
     let (mut dist, mut norm_s, mut norm_h) = (0.0, 0.0, 0.0);
     for (i, p) in pts.iter().enumerate() {
         let mut a = [[0.0; 3]; 2];
@@ -888,5 +965,7 @@ fn local_stage(
             }
         }
     }
+    st.what_last[0].clone_from(&st.what[0]);
+    st.what_last[1].clone_from(&st.what[1]);
     [dist, norm_s, norm_h]
 }

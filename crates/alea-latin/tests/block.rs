@@ -270,3 +270,66 @@ fn multiresolution_matches_cold_solves_on_a_parameter_series() {
     assert!(works[0] < -1e-3 && works[8].abs() < 1e-3 * works[0].abs());
     assert!(iters.0 < iters.1, "warm starts must save iterations");
 }
+
+#[test]
+fn anderson_acceleration_matches_plain_iterations_with_fewer_of_them() {
+    // Partial slip: the top is pushed sideways by less than the gross-slip displacement.
+    let p = 10.0;
+    let mut results = Vec::new();
+    for depth in [0, 5] {
+        let bm = model(rect(0.0, 0.0, L, H, 16, 8, CellType::Quad4), E, 0.3);
+        let mut c = Constraints::new();
+        c.fix_component(&bm.mesh, "ymax", 0, 0.035).unwrap();
+        let block = with_load(sub("block", bm, c), |m, l| {
+            l.pressure(m, "ymax", p).unwrap();
+        });
+        let plane = {
+            let m = model(rect(0.0, -H, L, H, 16, 8, CellType::Quad4), E, 0.3);
+            let mut c = Constraints::new();
+            c.clamp(&m.mesh, "ymin").unwrap();
+            sub("plane", m, c)
+        };
+        let mut s = LatinSolver::new(
+            Assembly {
+                subs: vec![plane, block],
+                interfaces: vec![InterfaceSpec::coulomb("contact", 0, "ymax", 1, "ymin", 0.3)],
+            },
+            LatinOptions {
+                tolerance: 1e-10,
+                max_iterations: 20000,
+                acceleration: depth,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let r = s.run(&RunInput::default()).unwrap();
+        assert_eq!(r.status, RunStatus::Converged, "depth {depth}");
+        results.push(r);
+    }
+    let (plain, fast) = (&results[0], &results[1]);
+    let counts = fast.interfaces[0].status_counts();
+    eprintln!(
+        "plain {:?} {:?}, fast {counts:?}",
+        plain.interfaces[0].status_counts(),
+        plain.interfaces[0].resultant()
+    );
+    assert!(
+        counts[2] > 0 && counts[3] > 0,
+        "partial slip expected: {counts:?}"
+    );
+    assert_eq!(plain.interfaces[0].status, fast.interfaces[0].status);
+    for i in 0..plain.interfaces[0].points.len() {
+        for c in 0..2 {
+            let (a, b) = (
+                plain.interfaces[0].fhat[1][i][c],
+                fast.interfaces[0].fhat[1][i][c],
+            );
+            assert!((a - b).abs() < 1e-6 * p, "point {i}: {a} vs {b}");
+        }
+    }
+    eprintln!(
+        "iterations plain {} vs accelerated {}",
+        plain.iterations, fast.iterations
+    );
+    assert!(3 * fast.iterations < plain.iterations);
+}

@@ -731,6 +731,9 @@ pub fn build_model(
         }
         options.relaxation = v;
     }
+    if let Some(a) = &sv.acceleration {
+        options.acceleration = *a.get_ref();
+    }
     if let Some(k) = &sv.search_direction_factor {
         options.search_direction = SearchDirection::Auto {
             factor: positive(src, k, "solver.search_direction_factor")?,

@@ -197,6 +197,9 @@ pub struct SolverSpec {
     /// Search direction factor (k = factor E / L). Default 1.
     #[serde(default)]
     pub search_direction_factor: Option<Spanned<f64>>,
+    /// Anderson acceleration depth (0: off). Default 5.
+    #[serde(default)]
+    pub acceleration: Option<Spanned<usize>>,
 }
 
 /// `[study]`.
