@@ -200,3 +200,29 @@ fn pc_and_monte_carlo_match_the_exact_law() {
     assert_eq!(again.records, runs.records);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn per_run_paraview_files_on_request() {
+    let text = STUDY.replace("runs = 400", "runs = 3").replace(
+        "degree = 4\ndesign = \"lhs\"\nruns = 40",
+        "degree = 1\ndesign = \"lhs\"\nruns = 4",
+    ) + "\n[output]\nvtu = true\n";
+    let study = Study::from_source(Source::from_text("vtu.toml", &text)).unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-vtu-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let runs = run_study(&study, &dir, false, &NoProgress).unwrap();
+    assert_eq!(runs.records.len(), 7);
+    let vtm: Vec<_> = std::fs::read_dir(dir.join("vtu"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().extension().is_some_and(|x| x == "vtm"))
+        .collect();
+    assert_eq!(vtm.len(), 7);
+    for e in vtm {
+        let part = e.path().with_extension("").join("plate.vtu");
+        let xml = std::fs::read_to_string(&part).unwrap();
+        assert!(xml.contains("Name=\"displacement\"") && xml.contains("Name=\"von_mises\""));
+        assert!(!xml.contains("NaN"));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
