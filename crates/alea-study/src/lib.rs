@@ -7,6 +7,7 @@ pub mod analysis;
 mod build;
 mod error;
 pub mod expr;
+pub mod fields;
 pub mod method;
 mod params;
 pub mod qoi;

@@ -364,6 +364,9 @@ pub struct OutputSpec {
     /// Write samples.csv. Default true.
     #[serde(default)]
     pub samples_csv: Option<bool>,
+    /// Write mean and standard-deviation fields (ParaView) of the main method. Default true.
+    #[serde(default)]
+    pub mean_fields: Option<bool>,
 }
 
 /// A study (or a deterministic case: a study without parameters) file.

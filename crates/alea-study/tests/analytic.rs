@@ -226,3 +226,52 @@ fn per_run_paraview_files_on_request() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn mean_and_std_fields_agree_with_the_scalar_statistics() {
+    // The tip displacement is both a quantity of interest and a node of the field: the field
+    // statistics (weight moments on the same draws) must equal the scalar ones.
+    let text = STUDY.replace("runs = 400", "runs = 3");
+    let study = Study::from_source(Source::from_text("fields.toml", &text)).unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-fields-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let runs = run_study(&study, &dir, false, &NoProgress).unwrap();
+    let settings = AnalysisSettings {
+        samples: 50_000,
+        bandwidth: Bandwidth::Silverman,
+        kde_points: 64,
+        confidence: 0.95,
+    };
+    let res = analyse_method(&study, &study.methods[0], &runs.records, &settings);
+    let q = &res.qois[0];
+    let fields = alea_study::fields::mean_std_fields(&study, &runs, &dir, 0, &res.points).unwrap();
+    let model = runs.solver.model(0);
+    let tip = (0..model.mesh.num_nodes())
+        .find(|&n| {
+            (model.mesh.coords[n][0] - 100.0).abs() < 1e-9
+                && (model.mesh.coords[n][1] - 20.0).abs() < 1e-9
+        })
+        .unwrap();
+    let (m, s) = (
+        fields[0].displacement_mean[2 * tip],
+        fields[0].displacement_std[2 * tip],
+    );
+    assert!(
+        (m - q.mean).abs() < 1e-9 * q.mean.abs(),
+        "mean {m} vs {}",
+        q.mean
+    );
+    // Population vs sample variance: a factor sqrt(n / (n - 1)).
+    assert!((s - q.std).abs() < 1e-4 * q.std, "std {s} vs {}", q.std);
+    // Uniaxial stress s = P * 200 MPa everywhere: von Mises mean = 200 E[P] = 200, std = 20.
+    let vm_mean = &fields[0].von_mises_mean;
+    let vm_std = &fields[0].von_mises_std;
+    for n in 0..model.mesh.num_nodes() {
+        assert!((vm_mean[n] - 200.0).abs() < 1.0, "node {n}: {}", vm_mean[n]);
+        assert!((vm_std[n] - 20.0).abs() < 0.5, "node {n}: {}", vm_std[n]);
+    }
+    let path =
+        alea_study::fields::write_mean_std_fields(&study, &runs, &dir, 0, &res.points).unwrap();
+    assert!(path.exists() && dir.join("paraview/mean_std/plate.vtu").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -205,6 +205,26 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
     {
         write_samples(&study, dir, main)?;
     }
+    if study.output.mean_fields.unwrap_or(true)
+        && let Some(m) = results
+            .iter()
+            .position(|r| !r.qois.is_empty() && !r.points.is_empty())
+    {
+        let t0 = Instant::now();
+        match alea_study::fields::write_mean_std_fields(&study, &runs, dir, m, &results[m].points) {
+            Ok(path) => println!(
+                "mean / std fields: {} ({}, {:.2} s)",
+                path.display(),
+                results[m].label,
+                t0.elapsed().as_secs_f64()
+            ),
+            Err(e) => {
+                let msg = format!("mean / std fields not written: {e}");
+                eprintln!("warning: {msg}");
+                notes.push(msg);
+            }
+        }
+    }
     if study.output.report.unwrap_or(true) {
         let t0 = Instant::now();
         let input = report_input(
