@@ -14,7 +14,8 @@ pub enum QoiKind {
     FrictionDissipation(usize),
     /// Component of the resultant force on side 2 of an interface.
     InterfaceForce(usize, usize),
-    /// Maximum nodal von Mises stress over a cell group (`None`: all cells) of a substructure.
+    /// Maximum nodal von Mises stress over the nodes of a cell, facet or node group (`None`:
+    /// all nodes) of a substructure.
     MaxVonMises(usize, Option<String>),
     /// Displacement component at the node nearest to a point.
     Displacement(usize, [f64; 3], usize),
@@ -112,20 +113,11 @@ pub fn build_qois(
                 let s = sub()?;
                 let g = match &q.group {
                     Some(g) => {
-                        if model.assembly.subs[s]
-                            .model
-                            .mesh
-                            .cell_group(g.get_ref())
-                            .is_err()
-                        {
+                        if let Err(e) = model.assembly.subs[s].model.mesh.group_nodes(g.get_ref()) {
                             return Err(src.error(
                                 g.span(),
                                 f("group"),
-                                format!(
-                                    "substructure '{}' has no cell group '{}'",
-                                    subs[s],
-                                    g.get_ref()
-                                ),
+                                format!("substructure '{}': {e}", subs[s]),
                             ));
                         }
                         Some(g.get_ref().clone())
@@ -180,17 +172,19 @@ impl Qoi {
             QoiKind::FrictionDissipation(i) => res.interfaces[*i].friction_dissipation(),
             QoiKind::InterfaceForce(i, c) => res.interfaces[*i].resultant()[*c],
             QoiKind::MaxVonMises(s, g) => {
-                let model = solver.model(*s);
-                match g {
-                    Some(g) => res.max_von_mises(model, *s, g)?,
-                    None => {
-                        let mut m = model.clone();
-                        m.mesh
-                            .cell_groups
-                            .insert("__all".into(), (0..m.mesh.num_cells()).collect());
-                        res.max_von_mises(&m, *s, "__all")?
-                    }
-                }
+                let model = res.scaled_model(solver.model(*s), *s);
+                let nodes: Vec<usize> = match g {
+                    Some(g) => model
+                        .mesh
+                        .group_nodes(g)
+                        .map_err(alea_fem::FemError::from)?,
+                    None => (0..model.mesh.num_nodes()).collect(),
+                };
+                let stresses = alea_fem::post::nodal_stresses(&model, &res.displacements[*s])?;
+                nodes
+                    .iter()
+                    .map(|&n| alea_fem::von_mises(&stresses[n]))
+                    .fold(0.0, f64::max)
             }
             QoiKind::Displacement(s, x, c) => res.displacement_at(solver.model(*s), *s, *x).0[*c],
         })
