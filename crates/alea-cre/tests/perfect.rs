@@ -146,13 +146,18 @@ fn check(kind: CellType, n: usize, max_ratio: f64) -> f64 {
     let ratio = est.theta / single.theta;
     println!("{kind} n={n}: substructured / single-domain theta = {ratio:.3}");
     assert!(ratio > 0.97 && ratio < max_ratio, "ratio {ratio}");
-    let dir = std::env::temp_dir().join("alea_cre_perfect.vtu");
+    // One file per test case and process: the tests of this file run concurrently.
+    let dir = std::env::temp_dir().join(format!(
+        "alea_cre_perfect_{}_{kind}_{n}.vtu",
+        std::process::id()
+    ));
     write_error_vtu(&assembly.subs[0].model, &est.substructures[0], &dir).unwrap();
     assert!(
         std::fs::read_to_string(&dir)
             .unwrap()
             .contains("error_density")
     );
+    let _ = std::fs::remove_file(&dir);
     err
 }
 
