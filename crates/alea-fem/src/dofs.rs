@@ -346,6 +346,25 @@ impl DofMap {
         u
     }
 
+    /// The part of `v` in the constrained directions of `node`: `v` minus its projection on the
+    /// node's free directions (zero for an unconstrained node; components beyond `dim` are
+    /// kept, they are never free).
+    pub fn constrained_part(&self, node: usize, v: [f64; 3]) -> [f64; 3] {
+        let Some(b) = &self.basis[node] else {
+            let mut out = [0.0; 3];
+            out[self.dim..].copy_from_slice(&v[self.dim..]);
+            return out;
+        };
+        let mut out = v;
+        for bi in &b[..self.nfree[node] as usize] {
+            let s = dot(bi, &v);
+            for c in 0..3 {
+                out[c] -= s * bi[c];
+            }
+        }
+        out
+    }
+
     /// Adds `s I` (an isotropic node block, e.g. a lumped interface stiffness `k m_i`) at
     /// `node` to `a`: on the free unknowns this is `s T_n^T T_n = s I_r` (orthonormal `T_n`).
     pub fn add_node_diagonal(&self, node: usize, s: f64, a: &mut crate::SymCsc) {

@@ -14,6 +14,7 @@
 
 mod anderson;
 mod assembly;
+mod equilibrium;
 mod error;
 pub mod interface;
 pub mod law;
@@ -23,6 +24,7 @@ pub mod samples;
 mod solver;
 
 pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
+pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
 pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};

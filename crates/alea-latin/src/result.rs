@@ -3,6 +3,7 @@
 use alea_fem::{Model, post};
 
 use crate::PointStatus;
+use crate::equilibrium::SubEquilibrium;
 
 /// Outcome of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -13,6 +14,28 @@ pub enum RunStatus {
     NotConverged,
     /// The indicator became non-finite.
     Diverged,
+    /// No static equilibrium: some substructure is not balanced by its loads and the interface
+    /// forces the law allows. Reported when the error indicator falls below the tolerance on an
+    /// unbalanced state (the iterates drift and the relative indicator shrinks), when a
+    /// floating substructure moves rigidly by more than the bound, or when the iteration limit
+    /// is reached with an imbalance that did not decrease over the second half of the run. The
+    /// problem most likely has no static solution (a body pushed beyond its sliding limit,
+    /// contacts all open under a net load). See [`RunResult::equilibrium`] and
+    /// `LatinSolver::equilibrium_report`.
+    NoEquilibrium,
+}
+
+impl RunStatus {
+    /// Lower-case label for messages and files ("converged", "not converged", "diverged",
+    /// "no equilibrium").
+    pub fn label(self) -> &'static str {
+        match self {
+            RunStatus::Converged => "converged",
+            RunStatus::NotConverged => "not converged",
+            RunStatus::Diverged => "diverged",
+            RunStatus::NoEquilibrium => "no equilibrium",
+        }
+    }
 }
 
 /// Wall-clock seconds of a run.
@@ -145,6 +168,9 @@ pub struct RunResult {
     pub interfaces: Vec<InterfaceResult>,
     /// Young's-modulus factor of each substructure in this run.
     pub young_factors: Vec<f64>,
+    /// Equilibrium check of each substructure at the end of the run (applied loads + local-stage
+    /// interface forces, rigid motion); see [`RunStatus::NoEquilibrium`].
+    pub equilibrium: Vec<SubEquilibrium>,
     /// Timings.
     pub timings: RunTimings,
 }

@@ -12,8 +12,16 @@
 //!
 //! **Error indicator** (k-weighted distance between the two half-iterates):
 //! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`, `||s||^2 = sum_points m (k |W|^2 + |F|^2 / k)`
-//! over both sides of every interface. The run stops when `eta < tol` (converged) or after
-//! `max_iterations` (reported as not converged, with the residual history).
+//! over both sides of every interface. The indicator is relative to the size of the iterates,
+//! so on its own it cannot tell convergence from a floating substructure drifting away (the
+//! iterates grow, the indicator shrinks). When `eta < tol`, the run is **converged** only if
+//! every substructure is also in equilibrium under its loads and the local-stage interface
+//! forces and no floating substructure moved rigidly by more than a bound (module
+//! `equilibrium`, options `equilibrium_tolerance` and `max_rigid_motion`); otherwise it goes on
+//! for a few iterations and ends as [`RunStatus::NoEquilibrium`]. A run that reaches
+//! `max_iterations` is not converged, or has no equilibrium when a substructure drifts beyond
+//! the bound or its sampled imbalance did not decrease over the second half of the run. Only
+//! converged runs are kept for warm starts.
 //!
 //! **Acceleration** (`LatinOptions::acceleration`, default depth 5): the sequence of local-stage
 //! states is a fixed-point iteration; Anderson mixing of the last iterates (module
@@ -35,6 +43,7 @@ use alea_fem::{Cholesky, DofMap, Ordering, SolveScratch, SymCsc, assemble_stiffn
 use rayon::prelude::*;
 
 use crate::anderson::Anderson;
+use crate::equilibrium::{RigidModes, SubEquilibrium};
 use crate::interface::{pair_nodes, side_geometry};
 use crate::{
     Assembly, InterfaceLaw, InterfaceResult, LatinError, PointData, PointField, PointStatus,
@@ -75,6 +84,17 @@ pub struct LatinOptions {
     pub ordering: Ordering,
     /// Anderson acceleration depth (0: off; default 5): see the `anderson` module.
     pub acceleration: usize,
+    /// Largest relative imbalance of a substructure under its loads and the local-stage
+    /// interface forces for a run to be called converged (module `equilibrium`; default 1e-4).
+    pub equilibrium_tolerance: f64,
+    /// Largest rigid displacement of a floating substructure, relative to the model size (the
+    /// diagonal of the assembly's bounding box), for a run to be called converged (default 10).
+    /// Linear elasticity scales with the load, so no physical bound applies; this one catches a
+    /// substructure drifting away (measured: 1e3 to 1e8 model sizes within a few hundred
+    /// iterations) even where its imbalance looks small, and leaves any balanced linear answer
+    /// alone (manufactured solutions move floating parts by half the model size). The rigid
+    /// motion of every run is reported in [`RunResult::equilibrium`].
+    pub max_rigid_motion: f64,
 }
 
 impl Default for LatinOptions {
@@ -86,6 +106,8 @@ impl Default for LatinOptions {
             search_direction: SearchDirection::Auto { factor: 1.0 },
             ordering: Ordering::Metis,
             acceleration: 5,
+            equilibrium_tolerance: 1e-4,
+            max_rigid_motion: 10.0,
         }
     }
 }
@@ -173,6 +195,7 @@ struct SubOperator {
     r_ext: Vec<Vec<f64>>,
     r_presc: Vec<f64>,
     links: Vec<Link>,
+    rigid: RigidModes,
 }
 
 struct InterfaceOperator {
@@ -217,6 +240,8 @@ pub struct LatinSolver {
     ifaces: Vec<InterfaceOperator>,
     options: LatinOptions,
     store: Mutex<Vec<StoredRun>>,
+    /// Diagonal of the assembly's bounding box (the scale of the rigid-motion bound).
+    model_size: f64,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
 }
@@ -246,6 +271,12 @@ impl LatinSolver {
                 options.relaxation
             )));
         }
+        if !(options.equilibrium_tolerance > 0.0 && options.max_rigid_motion > 0.0) {
+            return Err(LatinError::Invalid(format!(
+                "equilibrium tolerance and rigid-motion bound must be > 0, got {} and {}",
+                options.equilibrium_tolerance, options.max_rigid_motion
+            )));
+        }
         if !(options.tolerance > 0.0) {
             return Err(LatinError::Invalid(format!(
                 "tolerance must be > 0, got {}",
@@ -254,6 +285,7 @@ impl LatinSolver {
         }
         let Assembly { subs, interfaces } = assembly;
         let nsub = subs.len();
+        let model_size = bounding_diagonal(subs.iter().flat_map(|s| s.model.mesh.coords.iter()));
         let mut links: Vec<Vec<Link>> = vec![Vec::new(); nsub];
         let mut ifaces = Vec::new();
         for (i, spec) in interfaces.iter().enumerate() {
@@ -358,6 +390,7 @@ impl LatinSolver {
             ifaces,
             options,
             store: Mutex::new(Vec::new()),
+            model_size,
             setup_seconds: t0.elapsed().as_secs_f64(),
         })
     }
@@ -683,7 +716,15 @@ impl LatinSolver {
         // The accelerated state is applied at the start of the next iteration only, so that
         // whenever the loop ends the interface state is a true local stage.
         let mut pending: Option<Vec<f64>> = None;
-        for _ in 0..self.options.max_iterations {
+        // Iterations spent below the tolerance without equilibrium (see `equilibrium`).
+        let mut unbalanced = 0;
+        let mut equilibrium: Option<Vec<SubEquilibrium>> = None;
+        // (iteration, largest relative imbalance), sampled along the run: tells a run that
+        // cannot balance its loads from a slow one when the iteration limit is reached.
+        let floating = self.subs.iter().any(|op| op.rigid.num_free() > 0);
+        let stride = (self.options.max_iterations / 100).max(10);
+        let mut imbalance: Vec<(usize, f64)> = Vec::new();
+        for iteration in 0..self.options.max_iterations {
             if let Some(v) = pending.take() {
                 unpack(&mut istate, &v);
             }
@@ -721,9 +762,28 @@ impl LatinSolver {
                 break;
             }
             residuals.push(eta);
+            if floating && iteration % stride == stride - 1 {
+                let eq = self.equilibrium(&istate, &sstate, &input.load_factors);
+                let worst = eq.iter().map(|e| e.relative_imbalance).fold(0.0, f64::max);
+                imbalance.push((iteration, worst));
+            }
             if eta < self.options.tolerance {
-                status = RunStatus::Converged;
-                break;
+                // Small indicator: converged only if every substructure is in equilibrium.
+                let eq = self.equilibrium(&istate, &sstate, &input.load_factors);
+                let drift = eq
+                    .iter()
+                    .any(|e| e.relative_rigid_motion > self.options.max_rigid_motion);
+                if self.balanced(&eq) {
+                    status = RunStatus::Converged;
+                    equilibrium = Some(eq);
+                    break;
+                }
+                unbalanced += 1;
+                if drift || unbalanced > UNBALANCED_ITERATIONS {
+                    status = RunStatus::NoEquilibrium;
+                    equilibrium = Some(eq);
+                    break;
+                }
             }
             if let Some(x) = x_in {
                 // Safeguard: a clear increase of the indicator restarts from a plain step.
@@ -735,6 +795,25 @@ impl LatinSolver {
                 }
                 best_eta = best_eta.min(eta);
             }
+        }
+        let equilibrium = match equilibrium {
+            Some(eq) => eq,
+            None => self.equilibrium(&istate, &sstate, &input.load_factors),
+        };
+        // A run stopped by the iteration limit while a floating substructure drifts away, or
+        // stays out of balance without improving, has no static equilibrium rather than a slow
+        // convergence.
+        if status == RunStatus::NotConverged
+            && (equilibrium
+                .iter()
+                .any(|e| e.relative_rigid_motion > self.options.max_rigid_motion)
+                || persistent_imbalance(
+                    &imbalance,
+                    residuals.len(),
+                    self.options.equilibrium_tolerance,
+                ))
+        {
+            status = RunStatus::NoEquilibrium;
         }
         // Final fields: the last linear stage's displacement.
         let displacements: Vec<Vec<f64>> = self
@@ -790,10 +869,113 @@ impl LatinSolver {
             displacements,
             interfaces,
             young_factors: alpha,
+            equilibrium,
             timings,
         })
     }
+
+    /// A sentence naming the substructure whose equilibrium check fails worst, with its
+    /// unbalanced force and moment (free directions) and its rigid motion; `None` when every
+    /// substructure is within the bounds of the options.
+    pub fn equilibrium_report(&self, r: &RunResult) -> Option<String> {
+        let o = &self.options;
+        let badness = |e: &SubEquilibrium| {
+            (e.relative_imbalance / o.equilibrium_tolerance)
+                .max(e.relative_rigid_motion / o.max_rigid_motion)
+        };
+        let (s, e) = r
+            .equilibrium
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| !e.holds(o.equilibrium_tolerance, o.max_rigid_motion))
+            .max_by(|a, b| badness(a.1).total_cmp(&badness(b.1)))?;
+        let dim = self.subs[s].model.mesh.dim;
+        let force = e.force[..dim]
+            .iter()
+            .map(|v| format!("{v:.4e}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        let moment = if dim == 2 {
+            format!("{:.4e}", e.moment[2])
+        } else {
+            format!(
+                "({:.4e}, {:.4e}, {:.4e})",
+                e.moment[0], e.moment[1], e.moment[2]
+            )
+        };
+        Some(format!(
+            "substructure '{}': unbalanced force ({force}), moment {moment} = {:.3e} of its load \
+             (tolerance {:.1e}); rigid motion {:.3e} x the model size (bound {})",
+            self.subs[s].name,
+            e.relative_imbalance,
+            o.equilibrium_tolerance,
+            e.relative_rigid_motion,
+            o.max_rigid_motion
+        ))
+    }
+
+    /// True if every substructure satisfies both equilibrium bounds of the options.
+    fn balanced(&self, eq: &[SubEquilibrium]) -> bool {
+        eq.iter().all(|e| {
+            e.holds(
+                self.options.equilibrium_tolerance,
+                self.options.max_rigid_motion,
+            )
+        })
+    }
+
+    /// Equilibrium of every substructure under its loads (with the run's load factors) and the
+    /// local-stage interface forces, with its rigid motion (module `equilibrium`).
+    fn equilibrium(
+        &self,
+        istate: &[InterfaceState],
+        sstate: &[SubState],
+        load_factors: &[Vec<f64>],
+    ) -> Vec<SubEquilibrium> {
+        self.subs
+            .par_iter()
+            .zip(sstate.par_iter())
+            .enumerate()
+            .map(|(s, (op, st))| {
+                let rm = &op.rigid;
+                if rm.num_free() == 0 {
+                    return SubEquilibrium::default();
+                }
+                let coords = &op.model.mesh.coords;
+                let (mut g, mut scale) = rm.applied(load_factors.get(s).map(|v| v.as_slice()));
+                for l in &op.links {
+                    let fhat = &istate[l.iface].fhat[l.side];
+                    for ((&n, &m), f) in l.nodes.iter().zip(&l.weights).zip(fhat) {
+                        let mf = [m * f[0], m * f[1], m * f[2]];
+                        rm.add_force(&coords[n], &mf, &mut g, &mut scale);
+                    }
+                }
+                let u = op.dofs.expand(&st.rhs);
+                rm.finish(&g, scale, coords, &u, self.model_size)
+            })
+            .collect()
+    }
 }
+
+/// True if the sampled imbalance of the second half of a run is above the tolerance and not
+/// below half the smallest one of its first half: the loads are not balanced and the iteration
+/// does not bring them closer to balance.
+fn persistent_imbalance(samples: &[(usize, f64)], iterations: usize, tolerance: f64) -> bool {
+    let min_of = |first: bool| {
+        samples
+            .iter()
+            .filter(|(i, _)| (2 * i < iterations) == first)
+            .map(|s| s.1)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (early, late) = (min_of(true), min_of(false));
+    early.is_finite() && late.is_finite() && late > tolerance && late >= 0.5 * early
+}
+
+/// Iterations a run may spend below the tolerance while some substructure is out of
+/// equilibrium (within the rigid-motion bound) before it is reported as having no static
+/// equilibrium: a true solution restores the balance within a few iterations.
+const UNBALANCED_ITERATIONS: usize = 25;
 
 /// Mean Young's modulus of the cells along a facet group.
 fn side_young(model: &alea_fem::Model, group: &str) -> Result<f64, alea_fem::FemError> {
@@ -830,25 +1012,24 @@ fn build_operator(
             }
         }
     }
-    let _ = dim;
     let mut chol =
         Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
     chol.factorize(&a0).map_err(fem_err(&name))?;
     let n_nodes = model.mesh.num_nodes() * model.mesh.dim;
-    let r_ext: Vec<Vec<f64>> = sub
-        .load_cases
-        .iter()
-        .map(|f| {
-            if f.len() != n_nodes {
-                Err(LatinError::Invalid(format!(
-                    "substructure '{name}': load case of length {} for {n_nodes} dofs",
-                    f.len()
-                )))
-            } else {
-                Ok(dofs.reduce(f))
-            }
-        })
-        .collect::<Result<_, _>>()?;
+    if let Some(f) = sub.load_cases.iter().find(|f| f.len() != n_nodes) {
+        return Err(LatinError::Invalid(format!(
+            "substructure '{name}': load case of length {} for {n_nodes} dofs",
+            f.len()
+        )));
+    }
+    let rigid = RigidModes::new(
+        dim,
+        &model.mesh.coords,
+        |n, v| dofs.constrained_part(n, v),
+        &sub.load_cases,
+        (0..model.mesh.num_nodes()).any(|n| dofs.prescribed(n).iter().any(|&v| v != 0.0)),
+    );
+    let r_ext: Vec<Vec<f64>> = sub.load_cases.iter().map(|f| dofs.reduce(f)).collect();
     Ok(SubOperator {
         name,
         model,
@@ -857,7 +1038,24 @@ fn build_operator(
         r_ext,
         r_presc,
         links,
+        rigid,
     })
+}
+
+/// Diagonal of the bounding box of a set of points (0 for none).
+fn bounding_diagonal<'a>(points: impl Iterator<Item = &'a [f64; 3]>) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for x in points {
+        for c in 0..3 {
+            lo[c] = lo[c].min(x[c]);
+            hi[c] = hi[c].max(x[c]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return 0.0;
+    }
+    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// One linear stage of one substructure; returns the seconds spent in the triangular solve.

@@ -734,6 +734,12 @@ pub fn build_model(
     if let Some(a) = &sv.acceleration {
         options.acceleration = *a.get_ref();
     }
+    if let Some(t) = &sv.equilibrium_tolerance {
+        options.equilibrium_tolerance = positive(src, t, "solver.equilibrium_tolerance")?;
+    }
+    if let Some(t) = &sv.max_rigid_motion {
+        options.max_rigid_motion = positive(src, t, "solver.max_rigid_motion")?;
+    }
     if let Some(k) = &sv.search_direction_factor {
         options.search_direction = SearchDirection::Auto {
             factor: positive(src, k, "solver.search_direction_factor")?,

@@ -338,10 +338,9 @@ pub fn run_study(
                     .iter()
                     .map(|q| q.eval(&solver, &res))
                     .collect::<Result<Vec<_>, _>>()?;
-                let status = match res.status {
-                    RunStatus::Converged => "converged",
-                    RunStatus::NotConverged => "not converged",
-                    RunStatus::Diverged => "diverged",
+                let status = match (res.status, solver.equilibrium_report(&res)) {
+                    (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
+                    (st, _) => st.label().to_string(),
                 };
                 let state = LocalState {
                     what: res.interfaces.iter().map(|it| it.what.clone()).collect(),
@@ -349,7 +348,7 @@ pub fn run_study(
                 };
                 let rec = RunRecord {
                     params: theta.clone(),
-                    status: status.into(),
+                    status,
                     iterations: res.iterations,
                     residual: res
                         .residuals

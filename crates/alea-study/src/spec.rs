@@ -200,6 +200,12 @@ pub struct SolverSpec {
     /// Anderson acceleration depth (0: off). Default 5.
     #[serde(default)]
     pub acceleration: Option<Spanned<usize>>,
+    /// Largest relative imbalance of a substructure for a run to be converged. Default 1e-4.
+    #[serde(default)]
+    pub equilibrium_tolerance: Option<Spanned<f64>>,
+    /// Largest rigid motion of a floating substructure relative to the model size. Default 10.
+    #[serde(default)]
+    pub max_rigid_motion: Option<Spanned<f64>>,
 }
 
 /// `[study]`.

@@ -19,7 +19,8 @@ use crate::StudyError;
 pub struct RunRecord {
     /// Parameter point (physical values).
     pub params: Vec<f64>,
-    /// `converged`, `not converged` or `diverged`.
+    /// `converged`, `not converged`, `diverged`, or `no equilibrium: <which substructure, its
+    /// unbalanced force and moment, its rigid motion>`.
     pub status: String,
     /// LATIN iterations.
     pub iterations: usize,

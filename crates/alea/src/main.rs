@@ -89,9 +89,12 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            let code = e
-                .downcast_ref::<alea_study::StudyError>()
-                .map_or(1, |s| s.exit_code());
+            let code = if e.downcast_ref::<solve::SolveFailed>().is_some() {
+                4
+            } else {
+                e.downcast_ref::<alea_study::StudyError>()
+                    .map_or(1, |s| s.exit_code())
+            };
             ExitCode::from(code as u8)
         }
     }

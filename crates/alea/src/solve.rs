@@ -130,8 +130,15 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     let last = res.residuals.last().copied().unwrap_or(0.0);
     match res.status {
         RunStatus::Converged => println!(
-            "converged in {} iterations (error indicator {last:.2e}), {:.3} s",
+            "converged in {} iterations (error indicator {last:.2e}, every substructure in equilibrium), {:.3} s",
             res.iterations, res.timings.total
+        ),
+        RunStatus::NoEquilibrium => println!(
+            "NO STATIC EQUILIBRIUM after {} iterations (error indicator {last:.2e}): {}; results below are the last iterate",
+            res.iterations,
+            solver
+                .equilibrium_report(&res)
+                .unwrap_or_else(|| "a floating substructure drifts".into())
         ),
         _ => println!(
             "NOT CONVERGED after {} iterations: error indicator {last:.2e} (tolerance {:.1e}); results below are the last iterate",
@@ -139,13 +146,32 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             solver.options().tolerance
         ),
     }
+    if res.status != RunStatus::Converged {
+        let h = &res.residuals;
+        let shown: Vec<String> = h
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| (i + 1).is_power_of_two() || *i + 1 == h.len())
+            .map(|(i, v)| format!("{}: {v:.2e}", i + 1))
+            .collect();
+        println!("  error indicator by iteration: {}", shown.join(", "));
+    }
     for (s, sub) in built.assembly.subs.iter().enumerate() {
         let all = (0..sub.model.mesh.num_cells()).collect::<Vec<_>>();
         let mut m = res.scaled_model(solver.model(s), s);
         m.mesh.cell_groups.insert("__all".into(), all);
         let vm = res.max_von_mises(&m, s, "__all")?;
+        let eq = &res.equilibrium[s];
+        let balance = if eq.free_modes > 0 {
+            format!(
+                "; {} free rigid mode(s): unbalanced load {:.2e} of its load, rigid motion {:.2e} x the model size",
+                eq.free_modes, eq.relative_imbalance, eq.relative_rigid_motion
+            )
+        } else {
+            String::new()
+        };
         println!(
-            "  substructure {:>10}: max von Mises {vm:.4} {}",
+            "  substructure {:>10}: max von Mises {vm:.4} {}{balance}",
             sub.name, u.stress
         );
     }
@@ -172,5 +198,14 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         path.display(),
         t0.elapsed().as_secs_f64()
     );
+    if res.status != RunStatus::Converged {
+        return Err(SolveFailed(res.status.label()).into());
+    }
     Ok(())
 }
+
+/// A deterministic solve that did not converge (its output is written all the same): the
+/// command exits with code 4.
+#[derive(Debug, thiserror::Error)]
+#[error("the solve ended with status '{0}' (output written, see above)")]
+pub struct SolveFailed(pub &'static str);

@@ -128,3 +128,81 @@ fn bad_case_files_name_file_line_and_field() {
         .unwrap();
     assert_eq!(o.status.code(), Some(3));
 }
+
+/// The simple blade root with its root pulled out of the slot (reversed pressure on its lower
+/// face, contacts all open): no static equilibrium. `alea solve` must say so, naming the root
+/// and its unbalanced force, write its output all the same, and exit with code 4.
+#[test]
+fn solve_without_static_equilibrium_exits_4() {
+    let out = tmp("pulled-out");
+    let case = out.join("pulled-out.toml");
+    std::fs::write(
+        &case,
+        r#"
+[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "blade_root_simple"
+kind = "quad4"
+params = { half_width = 35.0, bottom_half_width = 15.0, neck_half_width = 8.0, flank_height = 10.0, shank_height = 15.0, n_flank = 6, n_side = 8, n_root = 6, n_shank = 4 }
+
+[analysis]
+type = "plane_strain"
+thickness = 1.0
+
+[[substructure]]
+name = "S1"
+cells = "S1"
+young = 210e3
+poisson = 0.3
+constraint = [ { group = "S1_left", x = 0.0 }, { group = "S1_bottom", y = 0.0 } ]
+
+[[substructure]]
+name = "S2"
+cells = "S2"
+young = 210e3
+poisson = 0.3
+load = [ { name = "pull", group = "S2_bottom", pressure = -1000.0 } ]
+
+[[substructure]]
+name = "S3"
+cells = "S3"
+young = 210e3
+poisson = 0.3
+constraint = [ { group = "S3_right", x = 0.0 }, { group = "S3_bottom", y = 0.0 } ]
+
+[[interface]]
+name = "G1"
+side1 = ["S1", "G1_disk"]
+side2 = ["S2", "G1_root"]
+law = "coulomb"
+mu = 0.5
+
+[[interface]]
+name = "G2"
+side1 = ["S3", "G2_disk"]
+side2 = ["S2", "G2_root"]
+law = "coulomb"
+mu = 0.5
+"#,
+    )
+    .unwrap();
+    let o = alea()
+        .args(["solve", case.to_str().unwrap(), "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(4), "{text}");
+    assert!(text.contains("NO STATIC EQUILIBRIUM"), "{text}");
+    // The whole pull, 1000 MPa over the 30 mm lower face, is unbalanced.
+    assert!(
+        text.contains("substructure 'S2': unbalanced force ("),
+        "{text}"
+    );
+    assert!(text.contains(", -3.0000e4), moment"), "{text}");
+    assert!(out.join("pulled-out.vtm").exists());
+}

@@ -1,0 +1,186 @@
+//! Studies never report statistics on states out of equilibrium.
+//!
+//! The simple blade root (thesis 2.3, `examples/blade-root-simple.toml`, coarse mesh) in two
+//! variants without a static solution for some or all parameter points:
+//! - **pulled out**: the pressure on the root's lower face reversed (-1000 MPa over the 30 mm
+//!   face: a net 30 000 N/mm pulling the root out of its slot, all contacts open): every run must
+//!   end as "no equilibrium" naming the root S2, none as converged;
+//! - **lateral load 2000** instead of 500 on the root's vertical faces (both push the same way:
+//!   a net 2 x 2000 x 15 = 60 000 N/mm sideways): the flanks cannot hold it at low friction. Every
+//!   run reported converged must balance the loads on S2 with its interface forces (checked here
+//!   independently, from the interface resultants the study records as quantities of interest),
+//!   and the low-friction runs must not be converged.
+
+use alea_study::Source;
+use alea_study::runner::{NoProgress, Study, run_study};
+
+const STUDY: &str = r#"
+[study]
+seed = 1
+
+[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "blade_root_simple"
+kind = "quad4"
+params = { half_width = 35.0, bottom_half_width = 15.0, neck_half_width = 8.0, flank_height = 10.0, shank_height = 15.0, n_flank = 8, n_side = 10, n_root = 8, n_shank = 6 }
+
+[analysis]
+type = "plane_strain"
+thickness = 1.0
+
+[[parameter]]
+name = "E2"
+law = "uniform"
+lo = 210e3
+hi = 270e3
+
+[[parameter]]
+name = "mu"
+law = "uniform"
+lo = 0.1
+hi = 0.9
+
+[[substructure]]
+name = "S1"
+cells = "S1"
+young = 210e3
+poisson = 0.3
+constraint = [ { group = "S1_left", x = 0.0 }, { group = "S1_bottom", y = 0.0 } ]
+
+[[substructure]]
+name = "S2"
+cells = "S2"
+young = "E2"
+poisson = 0.3
+load = [
+  { name = "p", group = "S2_bottom", pressure = PRESSURE },
+  { name = "F_left", group = "S2_left", pressure = LATERAL },
+  { name = "F_right", group = "S2_right", pressure = -LATERAL },
+]
+
+[[substructure]]
+name = "S3"
+cells = "S3"
+young = 210e3
+poisson = 0.3
+constraint = [ { group = "S3_right", x = 0.0 }, { group = "S3_bottom", y = 0.0 } ]
+
+[[interface]]
+name = "G1"
+side1 = ["S1", "G1_disk"]
+side2 = ["S2", "G1_root"]
+law = "coulomb"
+mu = "mu"
+
+[[interface]]
+name = "G2"
+side1 = ["S3", "G2_disk"]
+side2 = ["S2", "G2_root"]
+law = "coulomb"
+mu = "mu"
+
+[[quantity]]
+name = "G1x"
+kind = "interface_force"
+interface = "G1"
+component = 0
+
+[[quantity]]
+name = "G1y"
+kind = "interface_force"
+interface = "G1"
+component = 1
+
+[[quantity]]
+name = "G2x"
+kind = "interface_force"
+interface = "G2"
+component = 0
+
+[[quantity]]
+name = "G2y"
+kind = "interface_force"
+interface = "G2"
+component = 1
+
+[[method]]
+type = "piecewise_linear"
+points_per_dim = 3
+
+[solver]
+tolerance = 1e-6
+max_iterations = 1500
+"#;
+
+fn study(pressure: f64, lateral: f64) -> Study {
+    let text = STUDY
+        .replace("PRESSURE", &format!("{pressure:.1}"))
+        .replace("LATERAL", &format!("{lateral:.1}"));
+    Study::from_source(Source::from_text("no_equilibrium.toml", &text)).unwrap()
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("alea-noeq-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn a_root_pulled_out_of_its_slot_never_converges() {
+    let s = study(-1000.0, 500.0);
+    let dir = scratch("pulled-out");
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(runs.records.len(), 9);
+    for r in &runs.records {
+        assert!(
+            r.status.starts_with("no equilibrium") && r.status.contains("'S2'"),
+            "{:?}: {}",
+            r.params,
+            r.status
+        );
+    }
+}
+
+#[test]
+fn converged_runs_under_a_large_lateral_load_balance_their_loads() {
+    let lateral = 2000.0;
+    let s = study(1000.0, lateral);
+    let dir = scratch("lateral");
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    // Loads on S2: the pressure on the 30 mm lower face pushes +y, both lateral pressures on the
+    // 15 mm shank faces push +x.
+    let applied = [2.0 * lateral * 15.0, 1000.0 * 30.0];
+    let scale = applied[0].hypot(applied[1]);
+    let (mut converged, mut low_mu_failed) = (0, 0);
+    for r in &runs.records {
+        let mu = r.params[1];
+        if r.converged() {
+            converged += 1;
+            // Interface forces on S2 (side 2 of both flanks) + applied load = 0.
+            let fx = r.qois[0] + r.qois[2] + applied[0];
+            let fy = r.qois[1] + r.qois[3] + applied[1];
+            assert!(
+                fx.hypot(fy) < 1e-4 * scale,
+                "{:?} converged out of balance: ({fx}, {fy})",
+                r.params
+            );
+        } else {
+            assert!(
+                r.status.starts_with("no equilibrium") || r.status == "not converged",
+                "{}",
+                r.status
+            );
+            if mu < 0.2 {
+                low_mu_failed += 1;
+            }
+        }
+    }
+    assert_eq!(low_mu_failed, 3, "mu = 0.1 cannot hold the lateral load");
+    assert!(converged >= 3, "mu = 0.9 holds it: {converged} converged");
+}
