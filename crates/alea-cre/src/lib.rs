@@ -62,6 +62,7 @@ pub mod interface;
 mod linalg;
 pub mod poly;
 mod result;
+mod samples;
 mod substructure;
 pub mod topology;
 
@@ -70,4 +71,5 @@ pub use domain::{CreOptions, DomainEstimate, estimate_domain, estimate_with_side
 pub use error::CreError;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};
+pub use samples::EnergySampler;
 pub use substructure::estimate_latin;

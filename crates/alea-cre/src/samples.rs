@@ -1,0 +1,198 @@
+//! Energy-weighted samples of the admissible and FE stress fields, the data of the stochastic
+//! estimator (thesis 3.2, 4.1; crate `alea-estimate`).
+//!
+//! For a substructure with reference Hooke matrices `D0_E` (every Young's modulus at factor 1)
+//! and Cholesky factors `D0_E = R_E R_E^T`, a stress field `sigma` is represented by the vector
+//! of its values at the quadrature points `x_q` of every cell, in **compliance coordinates**
+//!
+//! ```text
+//! y_q = sqrt(w_q |J_q| t) R_E^{-1} sigma(x_q)          (3 numbers per point in 2D)
+//! ```
+//!
+//! (`w_q` the rule weight, `|J_q|` the Jacobian, `t` the thickness), so that every compliance
+//! inner product is a plain dot product:
+//! `int sigma : D0^-1 : tau dx = sum_q y_q(sigma) . y_q(tau)`. With a Young's factor `alpha`
+//! (`D = alpha D0`), `||sigma||^2_{D^-1} = |y(sigma)|^2 / alpha`.
+//!
+//! The quadrature rules are those of the phase-2 local problems ([`crate::eet::phase2`]: degree
+//! `2 (p + k)` on triangles, `(p + k + 1)^2` Gauss points on quadrilaterals), so that
+//! `|y(sigma_hat) - y(sigma_h)|^2 / alpha = theta^2` reproduces the deterministic estimate to
+//! round-off. `y(sigma_h)` comes from the FE displacement and `y(sigma_hat)` from the phase-2
+//! solution of a [`DomainEstimate`] of the same model (same mesh and cell order).
+//!
+//! 2D cells (Tri3, Quad4, Tri6, Quad8) only, as the estimate itself.
+
+use alea_fem::{Model, Quadrature};
+use alea_mesh::CellType;
+
+use crate::CreError;
+use crate::domain::{CreOptions, DomainEstimate};
+use crate::fe::{hooke, strain_h};
+
+/// Quadrature points of every cell and the factors that map stresses to compliance
+/// coordinates, built once per substructure (reference materials).
+#[derive(Clone, Debug)]
+pub struct EnergySampler {
+    /// Per cell: physical points and `sqrt(w |J| t)`.
+    points: Vec<Vec<([f64; 3], [f64; 3], f64)>>,
+    /// Per cell: lower Cholesky factor of the reference Hooke matrix.
+    factors: Vec<[[f64; 3]; 3]>,
+    /// Offset of each cell's values in a sample vector (`num_cells + 1` entries).
+    offsets: Vec<usize>,
+}
+
+/// Lower Cholesky factor of a symmetric positive definite 3 x 3 matrix.
+fn cholesky3(d: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let mut l = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..=i {
+            let s: f64 = (0..j).map(|k| l[i][k] * l[j][k]).sum();
+            if i == j {
+                let v = d[i][i] - s;
+                if !(v > 0.0) {
+                    return None;
+                }
+                l[i][i] = v.sqrt();
+            } else {
+                l[i][j] = (d[i][j] - s) / l[j][j];
+            }
+        }
+    }
+    Some(l)
+}
+
+/// Solves `L y = s` (lower triangular).
+fn forward3(l: &[[f64; 3]; 3], s: &[f64; 3]) -> [f64; 3] {
+    let y0 = s[0] / l[0][0];
+    let y1 = (s[1] - l[1][0] * y0) / l[1][1];
+    let y2 = (s[2] - l[2][0] * y0 - l[2][1] * y1) / l[2][2];
+    [y0, y1, y2]
+}
+
+impl EnergySampler {
+    /// Builds the sampler of `model` (its materials are the reference ones, factor 1).
+    ///
+    /// # Errors
+    /// [`CreError::UnsupportedCell`] for 3D cells, [`CreError::Invalid`] for a non-positive
+    /// Hooke matrix or invalid options, FE errors for degenerate cells.
+    pub fn new(model: &Model, options: &CreOptions) -> Result<Self, CreError> {
+        options.validate()?;
+        let mesh = &model.mesh;
+        let th = model.analysis.thickness();
+        let rules = |order: usize| {
+            let degree = order + options.extra_degree;
+            (
+                Quadrature::triangle(2 * degree),
+                Quadrature::tensor(2, degree + 1),
+            )
+        };
+        let by_order = [rules(1), rules(2)];
+        let mut points = Vec::with_capacity(mesh.num_cells());
+        let mut factors = Vec::with_capacity(mesh.num_cells());
+        let mut offsets = vec![0];
+        for c in 0..mesh.num_cells() {
+            let kind = mesh.cell_type(c);
+            let rule = match kind {
+                CellType::Tri3 | CellType::Tri6 => &by_order[kind.order().clamp(1, 2) - 1].0,
+                CellType::Quad4 | CellType::Quad8 => &by_order[kind.order().clamp(1, 2) - 1].1,
+                other => {
+                    return Err(CreError::UnsupportedCell {
+                        cell: c,
+                        kind: other.to_string(),
+                    });
+                }
+            };
+            let coords = model.cell_coords(c);
+            let d = hooke(model.material(c)?, model.analysis);
+            let l = cholesky3(&d).ok_or_else(|| {
+                CreError::Invalid(format!("cell {c}: Hooke matrix is not positive definite"))
+            })?;
+            let zero = vec![0.0; 2 * coords.len()];
+            let mut pts = Vec::with_capacity(rule.len());
+            for (xi, w) in rule.points.iter().zip(&rule.weights) {
+                let (_, g) = strain_h(kind, &coords, &zero, *xi);
+                if g.det <= 0.0 {
+                    return Err(alea_fem::FemError::BadJacobian {
+                        cell: c,
+                        kind: kind.to_string(),
+                        det: g.det,
+                    }
+                    .into());
+                }
+                pts.push((*xi, g.x, (w * g.det * th).sqrt()));
+            }
+            offsets.push(offsets[c] + 3 * pts.len());
+            points.push(pts);
+            factors.push(l);
+        }
+        Ok(EnergySampler {
+            points,
+            factors,
+            offsets,
+        })
+    }
+
+    /// Length of a sample vector.
+    pub fn len(&self) -> usize {
+        self.offsets.last().copied().unwrap_or(0)
+    }
+
+    /// True if the model has no cell.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Offset of each cell's values in a sample vector (`num_cells + 1` entries).
+    pub fn cell_offsets(&self) -> &[usize] {
+        &self.offsets
+    }
+
+    /// Samples of the FE stress `sigma_h = alpha D0 eps(u)` of the displacement `u` (node-major,
+    /// 2 per node) with Young's factor `alpha`.
+    pub fn fe_stress(&self, model: &Model, u: &[f64], alpha: f64) -> Vec<f64> {
+        let mesh = &model.mesh;
+        let mut out = Vec::with_capacity(self.len());
+        for (c, pts) in self.points.iter().enumerate() {
+            let kind = mesh.cell_type(c);
+            let coords = model.cell_coords(c);
+            let ue: Vec<f64> = mesh
+                .cell_nodes(c)
+                .iter()
+                .flat_map(|&n| [u[2 * n], u[2 * n + 1]])
+                .collect();
+            let l = &self.factors[c];
+            for (xi, _, s) in pts {
+                let (e, _) = strain_h(kind, &coords, &ue, *xi);
+                // y = R^-1 (alpha R R^T e) = alpha R^T e.
+                for i in 0..3 {
+                    let v: f64 = (i..3).map(|k| l[k][i] * e[k]).sum();
+                    out.push(s * alpha * v);
+                }
+            }
+        }
+        out
+    }
+
+    /// Samples of the admissible stress of a phase-2 estimate of the same model (any Young's
+    /// factor: the estimate's stresses carry it).
+    ///
+    /// # Errors
+    /// [`CreError::Invalid`] if the estimate has another number of cells.
+    pub fn admissible_stress(&self, estimate: &DomainEstimate) -> Result<Vec<f64>, CreError> {
+        if estimate.stresses.len() != self.points.len() {
+            return Err(CreError::Invalid(format!(
+                "estimate of {} cells for a sampler of {}",
+                estimate.stresses.len(),
+                self.points.len()
+            )));
+        }
+        let mut out = Vec::with_capacity(self.len());
+        for ((pts, st), l) in self.points.iter().zip(&estimate.stresses).zip(&self.factors) {
+            for (_, x, s) in pts {
+                let y = forward3(l, &st.stress(*x));
+                out.extend(y.iter().map(|v| s * v));
+            }
+        }
+        Ok(out)
+    }
+}

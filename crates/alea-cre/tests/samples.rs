@@ -1,0 +1,66 @@
+//! The energy-weighted samples of the stochastic estimator reproduce the deterministic estimate:
+//! `|y(sigma_hat) - y(sigma_h)|^2 / alpha = theta^2` cell by cell and in total, and
+//! `|y(sigma_h)|^2 / alpha = ||u_h||_K^2`, for every 2D cell type, a distorted mesh and a Young's
+//! modulus scaled by `alpha` (the samples are in the compliance coordinates of the reference
+//! material).
+
+mod common;
+
+use alea_cre::{CreOptions, EnergySampler, LoadData, estimate_domain};
+use alea_fem::{Analysis, Constraints, Loads, Ordering, solve_elastic};
+use alea_mesh::CellType;
+use common::*;
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+#[test]
+fn samples_reproduce_the_deterministic_estimate() {
+    let analysis = Analysis::PlaneStrain { thickness: 2.0 };
+    for kind in [CellType::Tri3, CellType::Quad4, CellType::Tri6, CellType::Quad8] {
+        let reference = model(square(6, kind, 0.2), analysis);
+        let alpha = 1.7;
+        let mut m = reference.clone();
+        m.scale_young(alpha);
+        let mut cons = Constraints::new();
+        cons.clamp(&m.mesh, "xmin").unwrap();
+        let mut loads = Loads::new(&m);
+        let b = body(analysis);
+        loads.body_force(&m, None, move |x, _| b(x)).unwrap();
+        let mut data = LoadData::new().body(b);
+        for g in ["xmax", "ymin", "ymax"] {
+            loads.traction(&m, g, exact_traction(analysis)).unwrap();
+            data = data.traction(g, exact_traction(analysis));
+        }
+        let sol = solve_elastic(&m, &cons, &loads, Ordering::Metis).unwrap();
+        let est = estimate_domain(&m, &cons, &data, &sol.u, &CreOptions::default()).unwrap();
+        let sampler = EnergySampler::new(&reference, &CreOptions::default()).unwrap();
+        let ya = sampler.admissible_stress(&est).unwrap();
+        let yh = sampler.fe_stress(&reference, &sol.u, alpha);
+        assert_eq!(ya.len(), sampler.len());
+        assert_eq!(yh.len(), sampler.len());
+        let diff: Vec<f64> = ya.iter().zip(&yh).map(|(a, b)| a - b).collect();
+        let theta2 = dot(&diff, &diff) / alpha;
+        assert!(
+            (theta2 - est.theta * est.theta).abs() < 1e-10 * est.theta * est.theta,
+            "{kind}: {theta2} against {}",
+            est.theta * est.theta
+        );
+        let energy2 = dot(&yh, &yh) / alpha;
+        assert!(
+            (energy2 - est.energy_norm.powi(2)).abs() < 1e-10 * est.energy_norm.powi(2),
+            "{kind}: energy {energy2} against {}",
+            est.energy_norm.powi(2)
+        );
+        let off = sampler.cell_offsets();
+        for (c, t) in est.element_theta.iter().enumerate() {
+            let d = &diff[off[c]..off[c + 1]];
+            let t2 = dot(d, d) / alpha;
+            assert!(
+                (t2 - t * t).abs() < 1e-9 * (t * t).max(1e-14 * theta2),
+                "{kind} cell {c}"
+            );
+        }
+    }
+}
