@@ -28,13 +28,19 @@ use alea_mesh::CellType;
 use crate::CreError;
 use crate::domain::{CreOptions, DomainEstimate};
 use crate::fe::{hooke, strain_h};
+use crate::poly::{PolyPoint, PolySpace};
 
 /// Quadrature points of every cell and the factors that map stresses to compliance
 /// coordinates, built once per substructure (reference materials).
 #[derive(Clone, Debug)]
 pub struct EnergySampler {
-    /// Per cell: physical points and `sqrt(w |J| t)`.
+    /// Per cell: reference and physical points and `sqrt(w |J| t)`.
     points: Vec<Vec<([f64; 3], [f64; 3], f64)>>,
+    /// Per cell: the phase-2 displacement space (its coefficients are the compact form of an
+    /// admissible stress, see [`EnergySampler::admissible_from_coefficients`]).
+    spaces: Vec<PolySpace>,
+    /// Offset of each cell's coefficients (`num_cells + 1` entries).
+    coefficient_offsets: Vec<usize>,
     /// Per cell: lower Cholesky factor of the reference Hooke matrix.
     factors: Vec<[[f64; 3]; 3]>,
     /// Offset of each cell's values in a sample vector (`num_cells + 1` entries).
@@ -90,6 +96,8 @@ impl EnergySampler {
         let mut points = Vec::with_capacity(mesh.num_cells());
         let mut factors = Vec::with_capacity(mesh.num_cells());
         let mut offsets = vec![0];
+        let mut spaces = Vec::with_capacity(mesh.num_cells());
+        let mut coefficient_offsets = vec![0];
         for c in 0..mesh.num_cells() {
             let kind = mesh.cell_type(c);
             let rule = match kind {
@@ -124,9 +132,14 @@ impl EnergySampler {
             offsets.push(offsets[c] + 3 * pts.len());
             points.push(pts);
             factors.push(l);
+            let space = PolySpace::new(kind.order().clamp(1, 2) + options.extra_degree, &coords);
+            coefficient_offsets.push(coefficient_offsets[c] + space.len());
+            spaces.push(space);
         }
         Ok(EnergySampler {
             points,
+            spaces,
+            coefficient_offsets,
             factors,
             offsets,
         })
@@ -173,6 +186,72 @@ impl EnergySampler {
         out
     }
 
+    /// Offset of each cell's phase-2 coefficients in a coefficient vector (`num_cells + 1`
+    /// entries).
+    pub fn coefficient_offsets(&self) -> &[usize] {
+        &self.coefficient_offsets
+    }
+
+    /// The phase-2 coefficients of every cell of an estimate, concatenated in cell order: the
+    /// compact form of its admissible stress (`sigma_hat = alpha D0 eps(sum_j a_j v_j)`).
+    ///
+    /// # Errors
+    /// [`CreError::Invalid`] if the estimate does not belong to this sampler's model and options.
+    pub fn coefficients(&self, estimate: &DomainEstimate) -> Result<Vec<f64>, CreError> {
+        if estimate.stresses.len() != self.spaces.len() {
+            return Err(CreError::Invalid(format!(
+                "estimate of {} cells for a sampler of {}",
+                estimate.stresses.len(),
+                self.spaces.len()
+            )));
+        }
+        let mut out = Vec::with_capacity(self.coefficient_offsets[self.spaces.len()]);
+        for (c, st) in estimate.stresses.iter().enumerate() {
+            let n = self.coefficient_offsets[c + 1] - self.coefficient_offsets[c];
+            if st.coeffs.len() != n {
+                return Err(CreError::Invalid(format!(
+                    "cell {c}: {} phase-2 coefficients, the sampler expects {n} (other extra degree?)",
+                    st.coeffs.len()
+                )));
+            }
+            out.extend_from_slice(&st.coeffs);
+        }
+        Ok(out)
+    }
+
+    /// Samples of the admissible stress `alpha D0 eps(v)` of the cells `cells` from their
+    /// phase-2 coefficients (`coefficients` as returned by [`EnergySampler::coefficients`],
+    /// all cells): the values of those cells, in order, are appended to `out`.
+    ///
+    /// # Panics
+    /// If `coefficients` is shorter than the model's coefficient count or a cell is out of range.
+    pub fn admissible_from_coefficients(
+        &self,
+        coefficients: &[f64],
+        alpha: f64,
+        cells: std::ops::Range<usize>,
+        out: &mut Vec<f64>,
+    ) {
+        let mut p = PolyPoint::default();
+        for c in cells {
+            let a = &coefficients[self.coefficient_offsets[c]..self.coefficient_offsets[c + 1]];
+            let l = &self.factors[c];
+            for (_, x, s) in &self.points[c] {
+                self.spaces[c].eval(*x, false, &mut p);
+                let mut e = [0.0; 3];
+                for (aj, ej) in a.iter().zip(&p.eps) {
+                    for k in 0..3 {
+                        e[k] += aj * ej[k];
+                    }
+                }
+                for i in 0..3 {
+                    let v: f64 = (i..3).map(|k| l[k][i] * e[k]).sum();
+                    out.push(s * alpha * v);
+                }
+            }
+        }
+    }
+
     /// Samples of the admissible stress of a phase-2 estimate of the same model (any Young's
     /// factor: the estimate's stresses carry it).
     ///
@@ -187,7 +266,12 @@ impl EnergySampler {
             )));
         }
         let mut out = Vec::with_capacity(self.len());
-        for ((pts, st), l) in self.points.iter().zip(&estimate.stresses).zip(&self.factors) {
+        for ((pts, st), l) in self
+            .points
+            .iter()
+            .zip(&estimate.stresses)
+            .zip(&self.factors)
+        {
             for (_, x, s) in pts {
                 let y = forward3(l, &st.stress(*x));
                 out.extend(y.iter().map(|v| s * v));

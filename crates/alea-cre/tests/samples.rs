@@ -18,7 +18,12 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn samples_reproduce_the_deterministic_estimate() {
     let analysis = Analysis::PlaneStrain { thickness: 2.0 };
-    for kind in [CellType::Tri3, CellType::Quad4, CellType::Tri6, CellType::Quad8] {
+    for kind in [
+        CellType::Tri3,
+        CellType::Quad4,
+        CellType::Tri6,
+        CellType::Quad8,
+    ] {
         let reference = model(square(6, kind, 0.2), analysis);
         let alpha = 1.7;
         let mut m = reference.clone();
@@ -53,6 +58,18 @@ fn samples_reproduce_the_deterministic_estimate() {
             "{kind}: energy {energy2} against {}",
             est.energy_norm.powi(2)
         );
+        // The compact form (phase-2 coefficients) gives the same samples.
+        let coeffs = sampler.coefficients(&est).unwrap();
+        assert_eq!(coeffs.len(), *sampler.coefficient_offsets().last().unwrap());
+        let mut yc = Vec::new();
+        sampler.admissible_from_coefficients(&coeffs, alpha, 0..m.mesh.num_cells(), &mut yc);
+        assert_eq!(yc.len(), ya.len());
+        for (a, b) in yc.iter().zip(&ya) {
+            assert!(
+                (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
+                "{kind}: {a} vs {b}"
+            );
+        }
         let off = sampler.cell_offsets();
         for (c, t) in est.element_theta.iter().enumerate() {
             let d = &diff[off[c]..off[c + 1]];
