@@ -18,6 +18,13 @@
 //! meshes ([`StochasticMesh::refine`]) a hanging node may resolve through several coarser levels
 //! and a point can depend on more runs (up to 6 in 2D and 14 in 3D in the random stress test).
 //!
+//! **Centred refinement** ([`StochasticMesh::refine_centred`], the thesis's adaptive criteria
+//! 4.2.2): a refined cell gets one run, its centre; the other new nodes are interpolated from the
+//! cell for good (the thesis's structured stochastic mesh whose extra nodes are "interpolated,
+//! not run"), so the surrogate changes only inside the cell, through the centre's hat function.
+//! [`StochasticMesh::refine_at_point`] places one run at a dyadic point by splitting the leaves
+//! around it with interpolated nodes only (the maximum-error criterion).
+//!
 //! Refinement ([`StochasticMesh::refine`]) returns the nodes that became runs (new centre, face
 //! and edge points shared with already refined neighbours or on the box boundary, and former
 //! hanging nodes freed by the refinement): these need model runs. Runs are never removed and keep
@@ -68,8 +75,11 @@ struct Cell {
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum NodeKind {
     Run(usize),
-    /// Hanging, interpolated from this leaf cell.
+    /// Hanging, interpolated from this leaf cell (re-classified after every refinement).
     Hanging(usize),
+    /// Interpolated for good from this (refined) cell: a node of a centred refinement
+    /// ([`StochasticMesh::refine_centred`]) that the thesis fills by interpolation, not by a run.
+    Fixed(usize),
 }
 
 /// Adaptive piecewise multilinear surrogate on a box.
@@ -218,11 +228,12 @@ impl StochasticMesh {
     pub fn num_leaves(&self) -> usize {
         self.num_leaves
     }
-    /// Number of hanging (interpolated) nodes.
+    /// Number of interpolated nodes (hanging nodes and the interpolated nodes of centred
+    /// refinements).
     pub fn num_hanging(&self) -> usize {
         self.nodes
             .values()
-            .filter(|k| matches!(k, NodeKind::Hanging(_)))
+            .filter(|k| matches!(k, NodeKind::Hanging(_) | NodeKind::Fixed(_)))
             .count()
     }
     /// Leaf cells, in increasing id order.
@@ -458,6 +469,269 @@ impl StochasticMesh {
         Ok(new_runs)
     }
 
+    /// Splits leaf `c` into its `2^d` children and classifies the `3^d` nodes of the split:
+    /// the centre becomes a run if `centre_run` (pushed to `new_runs`), every other node that is
+    /// neither a run nor already interpolated for good is interpolated from `c` for good.
+    fn split_interpolated(
+        &mut self,
+        c: CellId,
+        centre_run: bool,
+        new_runs: &mut Vec<NewRun>,
+    ) -> Result<()> {
+        if !self.is_leaf(c) {
+            return Err(UqError::Invalid {
+                what: "stochastic mesh",
+                message: format!("cell {c} is not a leaf"),
+            });
+        }
+        if self.cells[c].level >= MAX_LEVEL {
+            return Err(invalid(
+                "stochastic mesh",
+                "cell level",
+                "below the maximum",
+                self.cells[c].level as f64,
+            ));
+        }
+        let d = self.d;
+        let o = self.cells[c].origin;
+        let half = self.size(c) / 2;
+        let level = self.cells[c].level + 1;
+        let first = self.cells.len();
+        for child in 0..(1usize << d) {
+            let mut origin = o;
+            for j in 0..d {
+                if (child >> j) & 1 == 1 {
+                    origin[j] += half;
+                }
+            }
+            self.cells.push(Cell {
+                origin,
+                level,
+                first_child: None,
+            });
+            self.child.push(u32::MAX);
+        }
+        self.cells[c].first_child = Some(first);
+        self.child[c] = first as u32;
+        let mut m = [0u64; MAX_DIM];
+        for _ in 0..3usize.pow(d as u32) {
+            let mut key = o;
+            for j in 0..d {
+                key[j] += m[j] * half;
+            }
+            let centre = m[..d].iter().all(|&v| v == 1);
+            let corner = m[..d].iter().all(|&v| v != 1);
+            if centre && centre_run {
+                let run = self.add_run(key);
+                new_runs.push(NewRun {
+                    run,
+                    point: self.run_point(run).to_vec(),
+                });
+            } else if !corner {
+                match self.nodes.get(&key) {
+                    Some(NodeKind::Run(_)) | Some(NodeKind::Fixed(_)) => {}
+                    _ => {
+                        self.nodes.insert(key, NodeKind::Fixed(c));
+                    }
+                }
+            }
+            for mj in m.iter_mut().take(d) {
+                *mj += 1;
+                if *mj < 3 {
+                    break;
+                }
+                *mj = 0;
+            }
+        }
+        Ok(())
+    }
+
+    /// Re-classifies the hanging nodes after splits and rebuilds the weights. A hanging node
+    /// left without a leaf master lies on a split cell: it is interpolated from it for good.
+    fn settle(&mut self, split: &[CellId]) -> Result<()> {
+        let mut pending: Vec<Key> = self
+            .nodes
+            .iter()
+            .filter(|(_, k)| matches!(k, NodeKind::Hanging(_)))
+            .map(|(key, _)| *key)
+            .collect();
+        pending.sort_unstable();
+        for key in pending {
+            let kind = match self.master_of(&key) {
+                Some(mc) => NodeKind::Hanging(mc),
+                None => {
+                    let owner = split.iter().copied().find(|&c| {
+                        let o = self.cells[c].origin;
+                        let s = self.size(c);
+                        (0..self.d).all(|j| key[j] >= o[j] && key[j] <= o[j] + s)
+                    });
+                    match owner {
+                        Some(c) => NodeKind::Fixed(c),
+                        None => {
+                            return Err(UqError::Invalid {
+                                what: "stochastic mesh",
+                                message: "internal error: a hanging node lost its master".into(),
+                            });
+                        }
+                    }
+                }
+            };
+            self.nodes.insert(key, kind);
+        }
+        self.rebuild()
+    }
+
+    /// Refines leaf cells **at their centres** (the thesis's improved criterion, 4.2.2.2, and
+    /// the structured stochastic mesh of 4.2.1 b): each cell is split into `2^d` children, its
+    /// centre becomes a run, and every other new node is interpolated from the cell (not run).
+    /// The surrogate is unchanged outside the cells and, inside, changes only through the
+    /// centres' values; it stays continuous. Returns one new run per cell, in cell order.
+    ///
+    /// # Errors
+    /// If a cell is not a leaf or is already at [`MAX_LEVEL`].
+    pub fn refine_centred(&mut self, cells: &[CellId]) -> Result<Vec<NewRun>> {
+        let mut todo: Vec<CellId> = cells.to_vec();
+        todo.sort_unstable();
+        todo.dedup();
+        for &c in &todo {
+            if !self.is_leaf(c) || self.cells[c].level >= MAX_LEVEL {
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!("cell {c} is not a leaf below the maximum level"),
+                });
+            }
+        }
+        let mut new_runs = Vec::with_capacity(todo.len());
+        for &c in &todo {
+            self.split_interpolated(c, true, &mut new_runs)?;
+        }
+        self.settle(&todo)?;
+        Ok(new_runs)
+    }
+
+    /// One new run at `xi` (the thesis's maximum-error criterion, 4.2.2.1): the leaves around
+    /// `xi` are split, with interpolated nodes only, until `xi` is the centre of a leaf, which
+    /// is then refined at its centre. `xi` must be a dyadic point strictly inside a leaf, such
+    /// as those of [`StochasticMesh::sub_cell_centres`].
+    ///
+    /// # Errors
+    /// If `xi` is outside the box, not a dyadic point of the mesh, or already a node.
+    pub fn refine_at_point(&mut self, xi: &[f64]) -> Result<NewRun> {
+        let d = self.d;
+        if xi.len() != d {
+            return Err(invalid(
+                "stochastic mesh",
+                "point dimension",
+                "the mesh's",
+                xi.len() as f64,
+            ));
+        }
+        let mut key = [0u64; MAX_DIM];
+        for j in 0..d {
+            let span = ((self.roots[j] as u64) << MAX_LEVEL) as f64;
+            let t = (xi[j] - self.lo[j]) / (self.hi[j] - self.lo[j]) * span;
+            if !(t > 0.0 && t < span) {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "point",
+                    "strictly inside the box",
+                    xi[j],
+                ));
+            }
+            key[j] = t.round() as u64;
+            if (t - key[j] as f64).abs() > 1e-6 {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "point",
+                    "a dyadic point of the mesh",
+                    xi[j],
+                ));
+            }
+        }
+        if self.nodes.contains_key(&key) {
+            return Err(UqError::Invalid {
+                what: "stochastic mesh",
+                message: format!("{xi:?} is already a node of the mesh"),
+            });
+        }
+        let mut split = Vec::new();
+        let mut runs = Vec::new();
+        loop {
+            let p = self.key_point(&key);
+            let c = self.locate(&p).ok_or_else(|| UqError::Invalid {
+                what: "stochastic mesh",
+                message: format!("{xi:?} is outside the mesh"),
+            })?;
+            let o = self.cells[c].origin;
+            let half = self.size(c) / 2;
+            let is_centre = (0..d).all(|j| key[j] == o[j] + half);
+            if half == 0 {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "point",
+                    "a dyadic point of the mesh",
+                    xi[0],
+                ));
+            }
+            split.push(c);
+            self.split_interpolated(c, is_centre, &mut runs)?;
+            if is_centre {
+                break;
+            }
+            if (0..d).any(|j| key[j] == o[j] + half) {
+                // On a split plane but not the centre: never a leaf centre below.
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!(
+                        "{xi:?} lies on a face of the refined cells, not a cell centre"
+                    ),
+                });
+            }
+        }
+        self.settle(&split)?;
+        runs.pop().ok_or_else(|| UqError::Invalid {
+            what: "stochastic mesh",
+            message: "internal error: no run created".into(),
+        })
+    }
+
+    /// Centres of the `2^(d depth)` sub-cells of `cell` at relative depth `depth` (the candidate
+    /// points of the maximum-error criterion), row-major `n x d`.
+    ///
+    /// # Errors
+    /// If the sub-cells would be deeper than [`MAX_LEVEL`] or more than 2^20.
+    pub fn sub_cell_centres(&self, cell: CellId, depth: u32) -> Result<Vec<f64>> {
+        let d = self.d;
+        if self.cells[cell].level + depth + 1 > MAX_LEVEL || (d as u32) * depth > 20 {
+            return Err(invalid(
+                "stochastic mesh",
+                "sub-cell depth",
+                "within the maximum level and 2^20 points",
+                depth as f64,
+            ));
+        }
+        let o = self.cells[cell].origin;
+        let step = self.size(cell) >> depth;
+        let n = 1usize << depth;
+        let mut out = Vec::with_capacity(n.pow(d as u32) * d);
+        let mut idx = [0usize; MAX_DIM];
+        for _ in 0..n.pow(d as u32) {
+            let mut key = o;
+            for j in 0..d {
+                key[j] += step / 2 + idx[j] as u64 * step;
+            }
+            out.extend(self.key_point(&key));
+            for v in idx.iter_mut().take(d) {
+                *v += 1;
+                if *v < n {
+                    break;
+                }
+                *v = 0;
+            }
+        }
+        Ok(out)
+    }
+
     /// Leaf cells adjacent to `cell` (sharing a face, an edge or a corner).
     pub fn neighbours(&self, cell: CellId) -> Vec<CellId> {
         let d = self.d;
@@ -588,7 +862,7 @@ impl StochasticMesh {
             })?;
         let out = match kind {
             NodeKind::Run(k) => vec![(k, 1.0)],
-            NodeKind::Hanging(m) => {
+            NodeKind::Hanging(m) | NodeKind::Fixed(m) => {
                 if depth > MAX_LEVEL + 2 || m == usize::MAX {
                     return Err(UqError::Invalid {
                         what: "stochastic mesh",
