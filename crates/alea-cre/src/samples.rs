@@ -30,12 +30,15 @@ use crate::domain::{CreOptions, DomainEstimate};
 use crate::fe::{hooke, strain_h};
 use crate::poly::{PolyPoint, PolySpace};
 
+/// A quadrature point: reference coordinates, physical coordinates and `sqrt(w |J| t)`.
+type SamplePoint = ([f64; 3], [f64; 3], f64);
+
 /// Quadrature points of every cell and the factors that map stresses to compliance
 /// coordinates, built once per substructure (reference materials).
 #[derive(Clone, Debug)]
 pub struct EnergySampler {
     /// Per cell: reference and physical points and `sqrt(w |J| t)`.
-    points: Vec<Vec<([f64; 3], [f64; 3], f64)>>,
+    points: Vec<Vec<SamplePoint>>,
     /// Per cell: the phase-2 displacement space (its coefficients are the compact form of an
     /// admissible stress, see [`EnergySampler::admissible_from_coefficients`]).
     spaces: Vec<PolySpace>,

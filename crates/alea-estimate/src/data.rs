@@ -1,0 +1,289 @@
+//! What the estimator needs of the model (a [`Layout`], fixed for a study) and of each run
+//! (a [`RunData`]), and a compact binary form of the latter for a study's store.
+
+use crate::EstimateError;
+
+/// One substructure: the length of its sample vectors and where each cell's samples start.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SubLayout {
+    /// Name (for messages and outputs).
+    pub name: String,
+    /// Offset of each cell's samples (`num_cells + 1` entries; the last is the vector length).
+    /// Empty when the substructure part is not estimated (e.g. cells without an admissible
+    /// stress construction): the substructure then contributes nothing.
+    pub cell_offsets: Vec<usize>,
+}
+
+impl SubLayout {
+    /// Length of a sample vector (0 when the substructure part is not estimated).
+    pub fn len(&self) -> usize {
+        self.cell_offsets.last().copied().unwrap_or(0)
+    }
+
+    /// True if the substructure part is not estimated.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Number of cells (0 when not estimated).
+    pub fn num_cells(&self) -> usize {
+        self.cell_offsets.len().saturating_sub(1)
+    }
+}
+
+/// The behaviour of an interface, as far as the estimator is concerned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InterfaceKind {
+    /// Bonded: density `w . F`, no stochastic part.
+    Perfect,
+    /// Unilateral contact with Coulomb friction `mu(x, xi)`.
+    Contact,
+}
+
+/// One interface: lumped point weights and normals (side 1's outward normal).
+#[derive(Clone, Debug, PartialEq)]
+pub struct InterfaceLayout {
+    /// Name.
+    pub name: String,
+    /// Behaviour.
+    pub kind: InterfaceKind,
+    /// Integration weight of each point.
+    pub weights: Vec<f64>,
+    /// Unit normal at each point.
+    pub normals: Vec<[f64; 3]>,
+}
+
+/// The entities of the model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    /// Substructures.
+    pub subs: Vec<SubLayout>,
+    /// Interfaces.
+    pub interfaces: Vec<InterfaceLayout>,
+}
+
+/// The admissible solution of one run (module doc of the crate).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunData {
+    /// Young's-modulus factor of each substructure in this run.
+    pub young: Vec<f64>,
+    /// Per substructure: samples of the admissible stress `sigma_hat` (empty when not
+    /// estimated).
+    pub admissible: Vec<Vec<f64>>,
+    /// Per substructure: samples of the FE stress `sigma_h` (same layout).
+    pub fe: Vec<Vec<f64>>,
+    /// Per interface and point: the jump `w_hat` (gap included) of local stage `n - 1`.
+    pub jump: Vec<Vec<[f64; 3]>>,
+    /// Per interface and point: the force `F_hat` on side 2 of local stage `n`.
+    pub force: Vec<Vec<[f64; 3]>>,
+}
+
+impl Layout {
+    /// Checks a run's data against the layout: counts, lengths, finite values, factors > 0.
+    ///
+    /// # Errors
+    /// [`EstimateError::Invalid`] naming the first inconsistency.
+    pub fn check(&self, run: &RunData) -> Result<(), EstimateError> {
+        let ns = self.subs.len();
+        let ni = self.interfaces.len();
+        if run.young.len() != ns || run.admissible.len() != ns || run.fe.len() != ns {
+            return Err(EstimateError::Invalid(format!(
+                "{ns} substructures, but the run has {} Young's factors, {} admissible and {} FE sample vectors",
+                run.young.len(),
+                run.admissible.len(),
+                run.fe.len()
+            )));
+        }
+        if run.jump.len() != ni || run.force.len() != ni {
+            return Err(EstimateError::Invalid(format!(
+                "{ni} interfaces, but the run has {} jump and {} force fields",
+                run.jump.len(),
+                run.force.len()
+            )));
+        }
+        for (s, sub) in self.subs.iter().enumerate() {
+            let a = run.young[s];
+            if !(a.is_finite() && a > 0.0) {
+                return Err(EstimateError::Invalid(format!(
+                    "substructure '{}': Young's factor {a}",
+                    sub.name
+                )));
+            }
+            for (what, v) in [("admissible", &run.admissible[s]), ("FE", &run.fe[s])] {
+                if v.len() != sub.len() {
+                    return Err(EstimateError::Invalid(format!(
+                        "substructure '{}': {what} samples of length {}, expected {}",
+                        sub.name,
+                        v.len(),
+                        sub.len()
+                    )));
+                }
+                if v.iter().any(|x| !x.is_finite()) {
+                    return Err(EstimateError::Invalid(format!(
+                        "substructure '{}': non-finite {what} sample",
+                        sub.name
+                    )));
+                }
+            }
+        }
+        for (i, it) in self.interfaces.iter().enumerate() {
+            let np = it.weights.len();
+            if it.normals.len() != np || run.jump[i].len() != np || run.force[i].len() != np {
+                return Err(EstimateError::Invalid(format!(
+                    "interface '{}': {np} points, {} normals, {} jumps, {} forces",
+                    it.name,
+                    it.normals.len(),
+                    run.jump[i].len(),
+                    run.force[i].len()
+                )));
+            }
+            if run.jump[i]
+                .iter()
+                .chain(&run.force[i])
+                .flatten()
+                .any(|x| !x.is_finite())
+            {
+                return Err(EstimateError::Invalid(format!(
+                    "interface '{}': non-finite jump or force",
+                    it.name
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+const MAGIC: &[u8; 8] = b"aleaCRE1";
+
+impl RunData {
+    /// Little-endian binary form: a magic, the counts, then every array in field order.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        out.extend_from_slice(MAGIC);
+        let put_u64 =
+            |out: &mut Vec<u8>, v: usize| out.extend_from_slice(&(v as u64).to_le_bytes());
+        put_u64(&mut out, self.young.len());
+        put_u64(&mut out, self.jump.len());
+        for v in self.admissible.iter().chain(&self.fe) {
+            put_u64(&mut out, v.len());
+        }
+        for v in self.jump.iter().chain(&self.force) {
+            put_u64(&mut out, v.len());
+        }
+        let put = |out: &mut Vec<u8>, v: f64| out.extend_from_slice(&v.to_le_bytes());
+        for &a in &self.young {
+            put(&mut out, a);
+        }
+        for v in self.admissible.iter().chain(&self.fe) {
+            for &x in v {
+                put(&mut out, x);
+            }
+        }
+        for v in self.jump.iter().chain(&self.force) {
+            for p in v {
+                for &x in p {
+                    put(&mut out, x);
+                }
+            }
+        }
+        out
+    }
+
+    /// Inverse of [`RunData::to_bytes`].
+    ///
+    /// # Errors
+    /// [`EstimateError::Invalid`] for a truncated or foreign byte string.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, EstimateError> {
+        let mut c = Cursor { bytes, pos: 0 };
+        if c.take(8)? != MAGIC {
+            return Err(Cursor::bad());
+        }
+        let ns = c.len()?;
+        let ni = c.len()?;
+        // Every count is checked against the bytes left before anything is allocated.
+        if ns > bytes.len() / 8 || ni > bytes.len() / 8 {
+            return Err(Cursor::bad());
+        }
+        let sub_lens = (0..2 * ns)
+            .map(|_| c.len())
+            .collect::<Result<Vec<_>, _>>()?;
+        let if_lens = (0..2 * ni)
+            .map(|_| c.len())
+            .collect::<Result<Vec<_>, _>>()?;
+        let total = ns as u128
+            + sub_lens.iter().map(|&n| n as u128).sum::<u128>()
+            + 3 * if_lens.iter().map(|&n| n as u128).sum::<u128>();
+        if total * 8 != (bytes.len() - c.pos) as u128 {
+            return Err(Cursor::bad());
+        }
+        let young = c.f64s(ns)?;
+        let mut admissible = Vec::with_capacity(ns);
+        for &n in &sub_lens[..ns] {
+            admissible.push(c.f64s(n)?);
+        }
+        let mut fe = Vec::with_capacity(ns);
+        for &n in &sub_lens[ns..] {
+            fe.push(c.f64s(n)?);
+        }
+        let mut points = |n: usize| -> Result<Vec<[f64; 3]>, EstimateError> {
+            Ok(c.f64s(3 * n)?
+                .chunks_exact(3)
+                .map(|v| [v[0], v[1], v[2]])
+                .collect())
+        };
+        let jump = if_lens[..ni]
+            .iter()
+            .map(|&n| points(n))
+            .collect::<Result<_, _>>()?;
+        let force = if_lens[ni..]
+            .iter()
+            .map(|&n| points(n))
+            .collect::<Result<_, _>>()?;
+        Ok(RunData {
+            young,
+            admissible,
+            fe,
+            jump,
+            force,
+        })
+    }
+}
+
+/// A reading position in a byte string.
+struct Cursor<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+}
+
+impl<'a> Cursor<'a> {
+    fn bad() -> EstimateError {
+        EstimateError::Invalid("run data: truncated or not an estimator file".into())
+    }
+
+    fn take(&mut self, n: usize) -> Result<&'a [u8], EstimateError> {
+        let end = self
+            .pos
+            .checked_add(n)
+            .filter(|&e| e <= self.bytes.len())
+            .ok_or_else(Self::bad)?;
+        let s = &self.bytes[self.pos..end];
+        self.pos = end;
+        Ok(s)
+    }
+
+    fn len(&mut self) -> Result<usize, EstimateError> {
+        let b: [u8; 8] = self.take(8)?.try_into().map_err(|_| Self::bad())?;
+        usize::try_from(u64::from_le_bytes(b)).map_err(|_| Self::bad())
+    }
+
+    fn f64s(&mut self, n: usize) -> Result<Vec<f64>, EstimateError> {
+        let b = self.take(n.checked_mul(8).ok_or_else(Self::bad)?)?;
+        Ok(b.chunks_exact(8)
+            .map(|c| {
+                let mut a = [0u8; 8];
+                a.copy_from_slice(c);
+                f64::from_le_bytes(a)
+            })
+            .collect())
+    }
+}

@@ -1,0 +1,651 @@
+//! The estimator: Gram matrices and interface data of the runs, the terms at one parameter
+//! point ([`Estimator::at`]), their expectations over a [`Rule`] ([`Estimator::expectation`]),
+//! and the exact substructure part from weight moments ([`Estimator::substructure_moments`]).
+//! The formulas are in the crate doc.
+
+use std::collections::BTreeMap;
+
+use rayon::prelude::*;
+
+use crate::data::{InterfaceKind, Layout, RunData};
+use crate::gram::Gram;
+use crate::{EstimateError, Rule};
+
+/// The weights of a surrogate: `w_k(xi)` of the runs, as `(run, weight)` pairs.
+pub trait Weights: Sync {
+    /// Clears `w` and pushes the non-zero weights at `xi`.
+    fn weights(&self, xi: &[f64], w: &mut Vec<(usize, f64)>);
+}
+
+/// Every surrogate of the stochastic toolkit gives its weights.
+impl<S: alea_uq::surrogate::LinearSurrogate + ?Sized> Weights for S {
+    fn weights(&self, xi: &[f64], w: &mut Vec<(usize, f64)>) {
+        alea_uq::surrogate::LinearSurrogate::weights(self, xi, w);
+    }
+}
+
+/// What the parameters change in the model, as far as the estimate is concerned.
+pub trait Parameters: Sync {
+    /// Young's-modulus factor of every substructure at `xi` (`out` has one slot per
+    /// substructure).
+    fn young(&self, xi: &[f64], out: &mut [f64]);
+    /// Friction coefficient at every point of interface `interface` at `xi` (`out` has one
+    /// slot per point; not called for perfect interfaces).
+    fn friction(&self, xi: &[f64], interface: usize, out: &mut [f64]);
+}
+
+/// Terms of one substructure at one point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SubPoint {
+    /// `e_s^2 = 1/2 ||sigma~ - sigma_h1||^2` (3.30 integrand).
+    pub e2: f64,
+    /// `geo_s^2 = 1/2 ||sigma~ - sigma_h2||^2` (4.2 integrand).
+    pub geo2: f64,
+    /// `||sigma~||^2_{K^-1}` (4.8 denominator integrand).
+    pub norm2: f64,
+}
+
+/// Terms of one interface at one point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct InterfacePoint {
+    /// `e_I = sum_i m_i rho(w~, F_1)` (3.31 integrand).
+    pub e: f64,
+    /// `geo_I = sum_i m_i rho(w~, F_2)` (4.4 integrand).
+    pub geo: f64,
+}
+
+/// Every term at one parameter point.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PointEstimate {
+    /// Per substructure.
+    pub subs: Vec<SubPoint>,
+    /// Per interface.
+    pub interfaces: Vec<InterfacePoint>,
+    /// Largest relative violation of the interface admissibility (`w~_n >= 0`, `F_n >= 0`) at
+    /// this point (0 if none).
+    pub violation: f64,
+}
+
+impl PointEstimate {
+    /// `e^2(xi)`: the CRE of the interpolated admissible solution (3.28 integrand).
+    pub fn e2(&self) -> f64 {
+        self.subs.iter().map(|s| s.e2).sum::<f64>()
+            + self.interfaces.iter().map(|i| i.e).sum::<f64>()
+    }
+
+    /// Space part of `e^2(xi)`.
+    pub fn geo2(&self) -> f64 {
+        self.subs.iter().map(|s| s.geo2).sum::<f64>()
+            + self.interfaces.iter().map(|i| i.geo).sum::<f64>()
+    }
+
+    /// Stochastic part `e^2 - geo^2` at `xi`.
+    pub fn sto2(&self) -> f64 {
+        self.e2() - self.geo2()
+    }
+
+    /// `sum_s ||sigma~_s||^2_{K^-1}` at `xi`.
+    pub fn norm2(&self) -> f64 {
+        self.subs.iter().map(|s| s.norm2).sum()
+    }
+}
+
+/// Expectations of one entity's terms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EntityEstimate {
+    /// Substructure or interface name.
+    pub name: String,
+    /// `E[e^2]` of the entity (3.30 / 3.31).
+    pub e2: f64,
+    /// `E[geo^2]` (4.2 / 4.4).
+    pub geo2: f64,
+    /// `E[e^2] - E[geo^2]` (4.3 / 4.5).
+    pub sto2: f64,
+    /// Substructures: the part of `e2` from the error of the mean fields (3.32); interfaces: 0.
+    pub mean2: f64,
+    /// Substructures: `e2 - mean2`, the part from the fluctuations (3.32); interfaces: 0.
+    pub std2: f64,
+}
+
+/// The expectations over a rule (crate doc, "Totals").
+#[derive(Clone, Debug, PartialEq)]
+pub struct Estimate {
+    /// Per substructure.
+    pub subs: Vec<EntityEstimate>,
+    /// Per interface.
+    pub interfaces: Vec<EntityEstimate>,
+    /// `e~^2` (3.28).
+    pub e2: f64,
+    /// `I_geo^2` (4.7).
+    pub geo2: f64,
+    /// `I_sto^2 = e~^2 - I_geo^2` (4.6).
+    pub sto2: f64,
+    /// `E[sum_s ||sigma~_s||^2_{K^-1}]`.
+    pub norm2: f64,
+    /// Per cell tag of the rule: `(cell, int sto(xi) f(xi) dxi, int e^2 f dxi)` over the cell
+    /// (probability weights), cells in increasing tag order.
+    pub cells: Vec<(usize, f64, f64)>,
+    /// Probability (rule weight) of the points where the interpolated interface fields violate
+    /// the admissibility beyond the tolerance (the estimate is then not a bound there).
+    pub violation_probability: f64,
+    /// Largest relative violation over the rule.
+    pub max_violation: f64,
+}
+
+fn rel(v: f64, norm2: f64) -> f64 {
+    if norm2 > 0.0 && v > 0.0 {
+        (v / norm2).sqrt()
+    } else {
+        0.0
+    }
+}
+
+impl Estimate {
+    /// Relative error `e~ / (E[sum ||sigma~||^2])^(1/2)`.
+    pub fn relative(&self) -> f64 {
+        rel(self.e2, self.norm2)
+    }
+
+    /// `i_geo` (4.8); 0 if `I_geo^2 <= 0`.
+    pub fn i_geo(&self) -> f64 {
+        rel(self.geo2, self.norm2)
+    }
+
+    /// `i_sto` (4.9); 0 if `I_sto^2 <= 0`.
+    pub fn i_sto(&self) -> f64 {
+        rel(self.sto2, self.norm2)
+    }
+
+    /// Relative share of an entity's `e2` (or `geo2`, `sto2`) in the normalisation.
+    pub fn relative_of(&self, v: f64) -> f64 {
+        rel(v, self.norm2)
+    }
+}
+
+/// Weight moments of one substructure: `M_f = E[f(xi) w w^T]`, dense row-major `K x K`, for
+/// `f = 1 / alpha_s`, `1` and `alpha_s`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SubstructureMoments {
+    /// `E[w w^T / alpha]`.
+    pub inv_alpha: Vec<f64>,
+    /// `E[w w^T]`.
+    pub one: Vec<f64>,
+    /// `E[alpha w w^T]`.
+    pub alpha: Vec<f64>,
+}
+
+/// Options of the estimator.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Relative tolerance of the interface admissibility checks.
+    pub admissibility_tolerance: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            admissibility_tolerance: 1e-8,
+        }
+    }
+}
+
+/// The runs' data reduced to what the pointwise terms need.
+#[derive(Clone, Debug)]
+pub struct Estimator {
+    layout: Layout,
+    k: usize,
+    /// Per substructure, per run: Young's factor.
+    young: Vec<Vec<f64>>,
+    /// Per substructure (`None` when not estimated).
+    grams: Vec<Option<Gram>>,
+    /// Per interface, point-major: `jump[p * K + k]`.
+    jump: Vec<Vec<[f64; 3]>>,
+    /// Per interface, point-major: `force[p * K + k]`.
+    force: Vec<Vec<[f64; 3]>>,
+    options: Options,
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `sum_kl x_k y_l M_kl` over sparse vectors.
+fn form(m: &[f64], k: usize, x: &[(usize, f64)], y: &[(usize, f64)]) -> f64 {
+    let mut s = 0.0;
+    for &(i, xi) in x {
+        let row = &m[i * k..(i + 1) * k];
+        let mut r = 0.0;
+        for &(j, yj) in y {
+            r += row[j] * yj;
+        }
+        s += xi * r;
+    }
+    s
+}
+
+impl Estimator {
+    /// Builds the Gram matrices and gathers the interface data of `runs` (in surrogate run
+    /// order: run `k` of the surrogate is `runs[k]`).
+    ///
+    /// # Errors
+    /// [`EstimateError::Invalid`] if a run does not match the layout.
+    pub fn new(layout: Layout, runs: &[RunData], options: Options) -> Result<Self, EstimateError> {
+        for (k, r) in runs.iter().enumerate() {
+            layout
+                .check(r)
+                .map_err(|e| EstimateError::Invalid(format!("run {k}: {e}")))?;
+        }
+        if !(options.admissibility_tolerance >= 0.0 && options.admissibility_tolerance.is_finite())
+        {
+            return Err(EstimateError::Invalid(format!(
+                "admissibility tolerance {}",
+                options.admissibility_tolerance
+            )));
+        }
+        let k = runs.len();
+        let young = (0..layout.subs.len())
+            .map(|s| runs.iter().map(|r| r.young[s]).collect())
+            .collect();
+        let grams = layout
+            .subs
+            .iter()
+            .enumerate()
+            .map(|(s, sub)| {
+                (!sub.is_empty()).then(|| {
+                    let a: Vec<&[f64]> = runs.iter().map(|r| r.admissible[s].as_slice()).collect();
+                    let h: Vec<&[f64]> = runs.iter().map(|r| r.fe[s].as_slice()).collect();
+                    Gram::new(&a, &h)
+                })
+            })
+            .collect();
+        let gather = |f: &dyn Fn(&RunData) -> &Vec<Vec<[f64; 3]>>, i: usize| -> Vec<[f64; 3]> {
+            let np = layout.interfaces[i].weights.len();
+            let mut out = Vec::with_capacity(np * k);
+            for p in 0..np {
+                for r in runs {
+                    out.push(f(r)[i][p]);
+                }
+            }
+            out
+        };
+        let ni = layout.interfaces.len();
+        let jump = (0..ni).map(|i| gather(&|r| &r.jump, i)).collect();
+        let force = (0..ni).map(|i| gather(&|r| &r.force, i)).collect();
+        Ok(Estimator {
+            layout,
+            k,
+            young,
+            grams,
+            jump,
+            force,
+            options,
+        })
+    }
+
+    /// The layout.
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// Number of runs.
+    pub fn num_runs(&self) -> usize {
+        self.k
+    }
+
+    /// The Gram matrices of substructure `s` (`None` when its part is not estimated).
+    pub fn gram(&self, s: usize) -> Option<&Gram> {
+        self.grams[s].as_ref()
+    }
+
+    /// Every term at `xi` with the surrogate weights `w` (from [`Weights::weights`]).
+    pub fn at(&self, xi: &[f64], w: &[(usize, f64)], params: &dyn Parameters) -> PointEstimate {
+        let ns = self.layout.subs.len();
+        let mut alpha = vec![1.0; ns];
+        params.young(xi, &mut alpha);
+        let k = self.k;
+        let subs = (0..ns)
+            .map(|s| {
+                let Some(g) = &self.grams[s] else {
+                    return SubPoint::default();
+                };
+                let a = alpha[s];
+                let d: Vec<(usize, f64)> = w
+                    .iter()
+                    .map(|&(r, wr)| (r, wr * (a / self.young[s][r])))
+                    .collect();
+                let caac = form(&g.aa, k, w, w);
+                let e2 = 0.5 * (caac - 2.0 * form(&g.ah, k, w, &d) + form(&g.hh, k, &d, &d)) / a;
+                let geo2 = 0.5 * (caac - 2.0 * form(&g.ah, k, w, w) + form(&g.hh, k, w, w)) / a;
+                SubPoint {
+                    e2,
+                    geo2,
+                    norm2: caac / a,
+                }
+            })
+            .collect();
+        let tol = self.options.admissibility_tolerance;
+        let mut violation: f64 = 0.0;
+        let mut mu = Vec::new();
+        let interfaces = self
+            .layout
+            .interfaces
+            .iter()
+            .enumerate()
+            .map(|(i, it)| {
+                let np = it.weights.len();
+                let contact = it.kind == InterfaceKind::Contact;
+                if contact {
+                    mu.clear();
+                    mu.resize(np, 0.0);
+                    params.friction(xi, i, &mut mu);
+                }
+                // Interpolated fields, then the scales of the admissibility checks.
+                let mut wf: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(np);
+                let (mut w_scale, mut f_scale): (f64, f64) = (0.0, 0.0);
+                for p in 0..np {
+                    let mut wt = [0.0; 3];
+                    let mut ft = [0.0; 3];
+                    for &(r, wr) in w {
+                        let (j, f) = (&self.jump[i][p * k + r], &self.force[i][p * k + r]);
+                        for c in 0..3 {
+                            wt[c] += wr * j[c];
+                            ft[c] += wr * f[c];
+                        }
+                    }
+                    w_scale = w_scale.max(dot(&wt, &wt).sqrt());
+                    f_scale = f_scale.max(dot(&ft, &ft).sqrt());
+                    wf.push((wt, ft));
+                }
+                let mut out = InterfacePoint::default();
+                for (p, (wt, ft)) in wf.iter().enumerate() {
+                    let m = it.weights[p];
+                    if !contact {
+                        let v = m * dot(wt, ft);
+                        out.e += v;
+                        out.geo += v;
+                        continue;
+                    }
+                    let n = it.normals[p];
+                    let (wn, fn_) = (dot(wt, &n), dot(ft, &n));
+                    if w_scale > 0.0 && wn < -tol * w_scale {
+                        violation = violation.max(-wn / w_scale);
+                    }
+                    if f_scale > 0.0 && fn_ < -tol * f_scale {
+                        violation = violation.max(-fn_ / f_scale);
+                    }
+                    let wtan = [wt[0] - wn * n[0], wt[1] - wn * n[1], wt[2] - wn * n[2]];
+                    let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
+                    let wtn = dot(&wtan, &wtan).sqrt();
+                    let ftn = dot(&ftan, &ftan).sqrt();
+                    let radius = mu[p] * fn_.max(0.0);
+                    // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
+                    let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
+                    let sto = if ftn > radius {
+                        let s = radius / ftn - 1.0;
+                        s * dot(&wtan, &ftan)
+                    } else {
+                        0.0
+                    };
+                    out.geo += m * geo;
+                    out.e += m * (geo + sto);
+                }
+                out
+            })
+            .collect();
+        PointEstimate {
+            subs,
+            interfaces,
+            violation,
+        }
+    }
+
+    /// [`Estimator::at`] at every point of a row-major list, in parallel (results in order).
+    pub fn evaluate(
+        &self,
+        points: &[f64],
+        dim: usize,
+        weights: &dyn Weights,
+        params: &dyn Parameters,
+    ) -> Vec<PointEstimate> {
+        points
+            .par_chunks(dim.max(1))
+            .map_init(Vec::new, |w, xi| {
+                weights.weights(xi, w);
+                self.at(xi, w, params)
+            })
+            .collect()
+    }
+
+    /// Expectations of every term over `rule` (crate doc), with per-cell sums.
+    pub fn expectation(
+        &self,
+        rule: &Rule,
+        weights: &dyn Weights,
+        params: &dyn Parameters,
+    ) -> Estimate {
+        let ns = self.layout.subs.len();
+        let ni = self.layout.interfaces.len();
+        let k = self.k;
+        // Fixed chunks summed in order: independent of the thread count.
+        const CHUNK: usize = 512;
+        struct Part {
+            subs: Vec<[f64; 3]>,
+            ifs: Vec<[f64; 2]>,
+            // Per substructure: E[w / sqrt(alpha)] and E[sqrt(alpha) w] (mean split, 3.32).
+            p: Vec<Vec<f64>>,
+            q: Vec<Vec<f64>>,
+            cells: BTreeMap<usize, (f64, f64)>,
+            viol_p: f64,
+            viol_max: f64,
+        }
+        let starts: Vec<usize> = (0..rule.len()).step_by(CHUNK).collect();
+        let parts: Vec<Part> = starts
+            .par_iter()
+            .map(|&q0| {
+                let mut part = Part {
+                    subs: vec![[0.0; 3]; ns],
+                    ifs: vec![[0.0; 2]; ni],
+                    p: vec![vec![0.0; k]; ns],
+                    q: vec![vec![0.0; k]; ns],
+                    cells: BTreeMap::new(),
+                    viol_p: 0.0,
+                    viol_max: 0.0,
+                };
+                let mut w = Vec::new();
+                let mut alpha = vec![1.0; ns];
+                for q in q0..(q0 + CHUNK).min(rule.len()) {
+                    let xi = rule.point(q);
+                    let om = rule.weight(q);
+                    weights.weights(xi, &mut w);
+                    let pe = self.at(xi, &w, params);
+                    params.young(xi, &mut alpha);
+                    for (s, sp) in pe.subs.iter().enumerate() {
+                        part.subs[s][0] += om * sp.e2;
+                        part.subs[s][1] += om * sp.geo2;
+                        part.subs[s][2] += om * sp.norm2;
+                        let sa = alpha[s].sqrt();
+                        for &(r, wr) in &w {
+                            part.p[s][r] += om * wr / sa;
+                            part.q[s][r] += om * wr * sa;
+                        }
+                    }
+                    for (i, ip) in pe.interfaces.iter().enumerate() {
+                        part.ifs[i][0] += om * ip.e;
+                        part.ifs[i][1] += om * ip.geo;
+                    }
+                    let c = part.cells.entry(rule.cell(q)).or_insert((0.0, 0.0));
+                    c.0 += om * pe.sto2();
+                    c.1 += om * pe.e2();
+                    if pe.violation > 0.0 {
+                        part.viol_p += om;
+                        part.viol_max = part.viol_max.max(pe.violation);
+                    }
+                }
+                part
+            })
+            .collect();
+        let mut subs = vec![[0.0; 3]; ns];
+        let mut ifs = vec![[0.0; 2]; ni];
+        let mut p = vec![vec![0.0; k]; ns];
+        let mut q = vec![vec![0.0; k]; ns];
+        let mut cells: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
+        let (mut viol_p, mut viol_max) = (0.0, 0.0f64);
+        for part in &parts {
+            for s in 0..ns {
+                for c in 0..3 {
+                    subs[s][c] += part.subs[s][c];
+                }
+                for r in 0..k {
+                    p[s][r] += part.p[s][r];
+                    q[s][r] += part.q[s][r];
+                }
+            }
+            for i in 0..ni {
+                ifs[i][0] += part.ifs[i][0];
+                ifs[i][1] += part.ifs[i][1];
+            }
+            for (&c, &(a, b)) in &part.cells {
+                let e = cells.entry(c).or_insert((0.0, 0.0));
+                e.0 += a;
+                e.1 += b;
+            }
+            viol_p += part.viol_p;
+            viol_max = viol_max.max(part.viol_max);
+        }
+        let sub_est: Vec<EntityEstimate> = (0..ns)
+            .map(|s| {
+                let [e2, geo2, _] = subs[s];
+                let mean2 = match &self.grams[s] {
+                    Some(g) => {
+                        let pv: Vec<(usize, f64)> = p[s].iter().copied().enumerate().collect();
+                        let qv: Vec<(usize, f64)> = q[s]
+                            .iter()
+                            .enumerate()
+                            .map(|(r, v)| (r, v / self.young[s][r]))
+                            .collect();
+                        0.5 * (form(&g.aa, k, &pv, &pv) - 2.0 * form(&g.ah, k, &pv, &qv)
+                            + form(&g.hh, k, &qv, &qv))
+                    }
+                    None => 0.0,
+                };
+                EntityEstimate {
+                    name: self.layout.subs[s].name.clone(),
+                    e2,
+                    geo2,
+                    sto2: e2 - geo2,
+                    mean2,
+                    std2: e2 - mean2,
+                }
+            })
+            .collect();
+        let if_est: Vec<EntityEstimate> = (0..ni)
+            .map(|i| EntityEstimate {
+                name: self.layout.interfaces[i].name.clone(),
+                e2: ifs[i][0],
+                geo2: ifs[i][1],
+                sto2: ifs[i][0] - ifs[i][1],
+                mean2: 0.0,
+                std2: 0.0,
+            })
+            .collect();
+        let e2 = sub_est.iter().chain(&if_est).map(|e| e.e2).sum::<f64>();
+        let geo2 = sub_est.iter().chain(&if_est).map(|e| e.geo2).sum::<f64>();
+        Estimate {
+            subs: sub_est,
+            interfaces: if_est,
+            e2,
+            geo2,
+            sto2: e2 - geo2,
+            norm2: subs.iter().map(|v| v[2]).sum(),
+            cells: cells.into_iter().map(|(c, (a, b))| (c, a, b)).collect(),
+            violation_probability: viol_p,
+            max_violation: viol_max,
+        }
+    }
+
+    /// Weight moments of every substructure over `rule` ([`SubstructureMoments`]).
+    pub fn moments(
+        &self,
+        rule: &Rule,
+        weights: &dyn Weights,
+        params: &dyn Parameters,
+    ) -> Vec<SubstructureMoments> {
+        let ns = self.layout.subs.len();
+        let k = self.k;
+        let mut out: Vec<SubstructureMoments> = (0..ns)
+            .map(|_| SubstructureMoments {
+                inv_alpha: vec![0.0; k * k],
+                one: vec![0.0; k * k],
+                alpha: vec![0.0; k * k],
+            })
+            .collect();
+        let mut w = Vec::new();
+        let mut alpha = vec![1.0; ns];
+        for q in 0..rule.len() {
+            let xi = rule.point(q);
+            let om = rule.weight(q);
+            weights.weights(xi, &mut w);
+            params.young(xi, &mut alpha);
+            for (s, m) in out.iter_mut().enumerate() {
+                for &(i, wi) in &w {
+                    for &(j, wj) in &w {
+                        let v = om * wi * wj;
+                        m.inv_alpha[i * k + j] += v / alpha[s];
+                        m.one[i * k + j] += v;
+                        m.alpha[i * k + j] += v * alpha[s];
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The substructure terms from weight moments (exact when the moments are):
+    /// `E[e_s^2] = 1/2 [tr(M_{1/alpha} A) - 2 tr(M_1 B D) + tr(M_alpha D C D)]`,
+    /// `E[geo_s^2] = 1/2 tr(M_{1/alpha} (A - B - B^T + C))`, `E[||sigma~||^2] =
+    /// tr(M_{1/alpha} A)`; returns `[e2, geo2, norm2]` per substructure (zeros when not
+    /// estimated).
+    ///
+    /// # Errors
+    /// [`EstimateError::Invalid`] if the moments do not match the runs.
+    pub fn substructure_moments(
+        &self,
+        moments: &[SubstructureMoments],
+    ) -> Result<Vec<[f64; 3]>, EstimateError> {
+        let k = self.k;
+        if moments.len() != self.layout.subs.len()
+            || moments.iter().any(|m| {
+                m.inv_alpha.len() != k * k || m.one.len() != k * k || m.alpha.len() != k * k
+            })
+        {
+            return Err(EstimateError::Invalid(format!(
+                "moments of {} substructures for {} runs",
+                moments.len(),
+                k
+            )));
+        }
+        Ok(self
+            .grams
+            .iter()
+            .zip(moments)
+            .enumerate()
+            .map(|(s, (g, m))| {
+                let Some(g) = g else {
+                    return [0.0; 3];
+                };
+                let y = &self.young[s];
+                let (mut a, mut b, mut c, mut geo) = (0.0, 0.0, 0.0, 0.0);
+                for i in 0..k {
+                    for j in 0..k {
+                        let ij = i * k + j;
+                        a += m.inv_alpha[ij] * g.aa[ij];
+                        b += m.one[ij] * g.ah[ij] / y[j];
+                        c += m.alpha[ij] * g.hh[ij] / (y[i] * y[j]);
+                        geo += m.inv_alpha[ij] * (g.aa[ij] - 2.0 * g.ah[ij] + g.hh[ij]);
+                    }
+                }
+                [0.5 * (a - 2.0 * b + c), 0.5 * geo, a]
+            })
+            .collect())
+    }
+}

@@ -1,0 +1,120 @@
+//! Gram matrices of the runs' stress samples, per substructure:
+//! `A_kl = y(sigma_hat_k) . y(sigma_hat_l)`, `B_kl = y(sigma_hat_k) . y(sigma_h,l)`,
+//! `C_kl = y(sigma_h,k) . y(sigma_h,l)` (crate doc). With them every substructure term at any
+//! parameter point is a quadratic form in the `K` weights, whatever the size of the mesh.
+//!
+//! Computed as `Y^T Y` products (faer's matmul) on blocks of sample rows, in parallel over the
+//! blocks with a sequential product inside each and the partial sums added in block order, so
+//! the result does not depend on the thread count.
+
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, MatRef, Par};
+use rayon::prelude::*;
+
+/// The three Gram matrices of one substructure, dense row-major `K x K`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Gram {
+    /// Number of runs.
+    pub k: usize,
+    /// `A_kl = a_k . a_l` (admissible with admissible).
+    pub aa: Vec<f64>,
+    /// `B_kl = a_k . h_l` (admissible with FE; not symmetric).
+    pub ah: Vec<f64>,
+    /// `C_kl = h_k . h_l` (FE with FE).
+    pub hh: Vec<f64>,
+}
+
+impl Gram {
+    /// The Gram matrices of sample vectors `a[k]` (admissible) and `h[k]` (FE), all of one
+    /// length.
+    ///
+    /// # Panics
+    /// If the vectors do not all have the same length or the slices differ in length.
+    pub fn new(a: &[&[f64]], h: &[&[f64]]) -> Self {
+        let k = a.len();
+        assert_eq!(h.len(), k, "as many FE as admissible sample vectors");
+        let n = a.first().map_or(0, |v| v.len());
+        assert!(
+            a.iter().chain(h).all(|v| v.len() == n),
+            "sample vectors of one length"
+        );
+        if k == 0 || n == 0 {
+            return Gram {
+                k,
+                aa: vec![0.0; k * k],
+                ah: vec![0.0; k * k],
+                hh: vec![0.0; k * k],
+            };
+        }
+        let block = (n / 16).max(4096).min(n);
+        let starts: Vec<usize> = (0..n).step_by(block).collect();
+        let parts: Vec<[Mat<f64>; 3]> = starts
+            .par_iter()
+            .map(|&r0| {
+                let r1 = (r0 + block).min(n);
+                let m = r1 - r0;
+                let gather = |v: &[&[f64]]| -> Vec<f64> {
+                    let mut buf = Vec::with_capacity(m * k);
+                    for col in v {
+                        buf.extend_from_slice(&col[r0..r1]);
+                    }
+                    buf
+                };
+                let (ba, bh) = (gather(a), gather(h));
+                let ya = MatRef::from_column_major_slice(&ba, m, k);
+                let yh = MatRef::from_column_major_slice(&bh, m, k);
+                let mut out = [Mat::zeros(k, k), Mat::zeros(k, k), Mat::zeros(k, k)];
+                for (dst, (l, r)) in out.iter_mut().zip([(ya, ya), (ya, yh), (yh, yh)]) {
+                    matmul(dst, Accum::Replace, l.transpose(), r, 1.0, Par::Seq);
+                }
+                out
+            })
+            .collect();
+        let mut sum = [vec![0.0; k * k], vec![0.0; k * k], vec![0.0; k * k]];
+        for p in &parts {
+            for (s, m) in sum.iter_mut().zip(p) {
+                for i in 0..k {
+                    for j in 0..k {
+                        s[i * k + j] += m[(i, j)];
+                    }
+                }
+            }
+        }
+        let [aa, ah, hh] = sum;
+        Gram { k, aa, ah, hh }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gram_matches_plain_dot_products() {
+        // Lengths across the block size (several blocks, a partial last one).
+        for n in [7usize, 4096 * 3 + 17] {
+            let k = 5;
+            let a: Vec<Vec<f64>> = (0..k)
+                .map(|r| {
+                    (0..n)
+                        .map(|i| ((i * 7 + r * 13) % 11) as f64 - 5.0)
+                        .collect()
+                })
+                .collect();
+            let h: Vec<Vec<f64>> = (0..k)
+                .map(|r| (0..n).map(|i| ((i * 3 + r * 5) % 7) as f64 * 0.5).collect())
+                .collect();
+            let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
+            let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
+            let g = Gram::new(&ar, &hr);
+            let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+            for i in 0..k {
+                for j in 0..k {
+                    assert_eq!(g.aa[i * k + j], dot(&a[i], &a[j]));
+                    assert_eq!(g.ah[i * k + j], dot(&a[i], &h[j]));
+                    assert_eq!(g.hh[i * k + j], dot(&h[i], &h[j]));
+                }
+            }
+        }
+    }
+}
