@@ -235,14 +235,6 @@ impl Estimator {
                 .check(r)
                 .map_err(|e| EstimateError::Invalid(format!("run {k}: {e}")))?;
         }
-        if !(options.admissibility_tolerance >= 0.0 && options.admissibility_tolerance.is_finite())
-        {
-            return Err(EstimateError::Invalid(format!(
-                "admissibility tolerance {}",
-                options.admissibility_tolerance
-            )));
-        }
-        let k = runs.len();
         let young = (0..layout.subs.len())
             .map(|s| runs.iter().map(|r| r.young[s]).collect())
             .collect();
@@ -258,19 +250,99 @@ impl Estimator {
                 })
             })
             .collect();
-        let gather = |f: &dyn Fn(&RunData) -> &Vec<Vec<[f64; 3]>>, i: usize| -> Vec<[f64; 3]> {
-            let np = layout.interfaces[i].weights.len();
-            let mut out = Vec::with_capacity(np * k);
-            for p in 0..np {
-                for r in runs {
-                    out.push(f(r)[i][p]);
-                }
-            }
-            out
-        };
+        let jump = runs.iter().map(|r| r.jump.clone()).collect();
+        let force = runs.iter().map(|r| r.force.clone()).collect();
+        Self::from_parts(layout, young, grams, jump, force, options)
+    }
+
+    /// Builds the estimator from Gram matrices computed elsewhere (e.g. substructure by
+    /// substructure, to bound memory) and the runs' interface fields: `young[s][k]`,
+    /// `grams[s]` (`None`: substructure part not estimated), `jump[k][i][p]`, `force[k][i][p]`.
+    ///
+    /// # Errors
+    /// [`EstimateError::Invalid`] on inconsistent counts or non-finite data.
+    pub fn from_parts(
+        layout: Layout,
+        young: Vec<Vec<f64>>,
+        grams: Vec<Option<Gram>>,
+        jump: Vec<Vec<Vec<[f64; 3]>>>,
+        force: Vec<Vec<Vec<[f64; 3]>>>,
+        options: Options,
+    ) -> Result<Self, EstimateError> {
+        if !(options.admissibility_tolerance >= 0.0 && options.admissibility_tolerance.is_finite())
+        {
+            return Err(EstimateError::Invalid(format!(
+                "admissibility tolerance {}",
+                options.admissibility_tolerance
+            )));
+        }
+        let k = jump.len();
+        let ns = layout.subs.len();
         let ni = layout.interfaces.len();
-        let jump = (0..ni).map(|i| gather(&|r| &r.jump, i)).collect();
-        let force = (0..ni).map(|i| gather(&|r| &r.force, i)).collect();
+        if young.len() != ns
+            || grams.len() != ns
+            || force.len() != k
+            || young
+                .iter()
+                .any(|y| y.len() != k || y.iter().any(|a| !(a.is_finite() && *a > 0.0)))
+            || grams.iter().flatten().any(|g| g.k != k)
+        {
+            return Err(EstimateError::Invalid(format!(
+                "{ns} substructures and {k} runs: inconsistent Young's factors or Gram matrices"
+            )));
+        }
+        for (s, g) in grams.iter().enumerate() {
+            if g.is_some() == layout.subs[s].is_empty() {
+                return Err(EstimateError::Invalid(format!(
+                    "substructure '{}': Gram matrices {} but the layout says it is {}estimated",
+                    layout.subs[s].name,
+                    if g.is_some() { "given" } else { "missing" },
+                    if layout.subs[s].is_empty() {
+                        "not "
+                    } else {
+                        ""
+                    }
+                )));
+            }
+        }
+        let gather =
+            |f: &Vec<Vec<Vec<[f64; 3]>>>, i: usize| -> Result<Vec<[f64; 3]>, EstimateError> {
+                let np = layout.interfaces[i].weights.len();
+                let mut out = Vec::with_capacity(np * k);
+                for p in 0..np {
+                    for run in f {
+                        let v = run
+                        .get(i)
+                        .and_then(|pts| pts.get(p))
+                        .filter(|v| v.iter().all(|x| x.is_finite()))
+                        .ok_or_else(|| {
+                            EstimateError::Invalid(format!(
+                                "interface '{}': a run lacks point {p} or has a non-finite value",
+                                layout.interfaces[i].name
+                            ))
+                        })?;
+                        out.push(*v);
+                    }
+                }
+                Ok(out)
+            };
+        if jump.iter().chain(&force).any(|r| r.len() != ni)
+            || jump.iter().chain(&force).any(|r| {
+                r.iter()
+                    .zip(&layout.interfaces)
+                    .any(|(pts, it)| pts.len() != it.weights.len())
+            })
+        {
+            return Err(EstimateError::Invalid(format!(
+                "{ni} interfaces: a run's interface fields do not match the layout"
+            )));
+        }
+        let jump = (0..ni)
+            .map(|i| gather(&jump, i))
+            .collect::<Result<_, _>>()?;
+        let force = (0..ni)
+            .map(|i| gather(&force, i))
+            .collect::<Result<_, _>>()?;
         Ok(Estimator {
             layout,
             k,

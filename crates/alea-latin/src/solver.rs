@@ -443,6 +443,16 @@ impl LatinSolver {
         &self.ifaces[i].name
     }
 
+    /// Lumped integration weight of each point of interface `i` (side 1).
+    pub fn interface_weights(&self, i: usize) -> &[f64] {
+        &self.ifaces[i].weights
+    }
+
+    /// Law name of interface `i` ("perfect", "coulomb").
+    pub fn interface_law(&self, i: usize) -> &'static str {
+        self.ifaces[i].law.name()
+    }
+
     /// Number of stored (finished) runs available for warm starts.
     pub fn stored_runs(&self) -> usize {
         self.store.lock().map_or(0, |s| s.len())

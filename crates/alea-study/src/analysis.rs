@@ -11,6 +11,7 @@ use alea_uq::stats::{Summary, failure_probability, quantile_sorted};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::StudyError;
 use crate::method::{Method, MethodKind};
 use crate::runner::Study;
 use crate::store::{RunRecord, point_key};
@@ -100,6 +101,46 @@ pub struct AnalysisSettings {
     pub kde_points: usize,
     /// Confidence level.
     pub confidence: f64,
+}
+
+/// The `[statistics]` settings of a study, checked.
+///
+/// # Errors
+/// [`StudyError::Input`] naming the bad field.
+pub fn analysis_settings(study: &Study) -> Result<AnalysisSettings, StudyError> {
+    let s = &study.file.statistics;
+    let samples = s.samples.as_ref().map_or(250_000, |v| *v.get_ref());
+    let bandwidth = match s.bandwidth.as_ref().map(|v| v.get_ref().as_str()) {
+        None | Some("isj") => Bandwidth::Isj,
+        Some("silverman") => Bandwidth::Silverman,
+        Some(other) => {
+            let span = s.bandwidth.as_ref().map_or(0..0, |v| v.span());
+            return Err(study.source.error(
+                span,
+                "statistics.bandwidth",
+                format!("unknown rule '{other}'; expected isj or silverman"),
+            ));
+        }
+    };
+    let confidence = s.confidence.as_ref().map_or(0.95, |v| *v.get_ref());
+    if !(confidence > 0.0 && confidence < 1.0) {
+        let span = s.confidence.as_ref().map_or(0..0, |v| v.span());
+        return Err(study
+            .source
+            .error(span, "statistics.confidence", "must be in (0, 1)"));
+    }
+    if samples < 2 {
+        let span = s.samples.as_ref().map_or(0..0, |v| v.span());
+        return Err(study
+            .source
+            .error(span, "statistics.samples", "must be at least 2"));
+    }
+    Ok(AnalysisSettings {
+        samples,
+        bandwidth,
+        kde_points: s.kde_points.as_ref().map_or(512, |v| *v.get_ref()),
+        confidence,
+    })
 }
 
 fn qoi_stats(study: &Study, q: usize, samples: Vec<f64>, s: &AnalysisSettings) -> QoiStats {

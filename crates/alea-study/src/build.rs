@@ -39,7 +39,8 @@ pub struct Parametric {
 }
 
 impl Parametric {
-    fn profile(&self, e: &Expr, theta: &[f64]) -> PointField {
+    /// The field `x -> e(theta, x, defines)` of an interface profile expression at `theta`.
+    pub(crate) fn profile(&self, e: &Expr, theta: &[f64]) -> PointField {
         let e = e.clone();
         let defines = self.defines.clone();
         let theta = theta.to_vec();

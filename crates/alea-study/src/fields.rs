@@ -76,7 +76,7 @@ pub fn mean_std_fields(
     m: usize,
     draws: &[f64],
 ) -> Result<Vec<MeanStdFields>, StudyError> {
-    let method = &study.methods[m];
+    let method = &runs.methods[m];
     if method.kind == MethodKind::MonteCarlo {
         return Err(StudyError::Other(
             "Monte Carlo on the model has no surrogate for fields".into(),

@@ -3,9 +3,12 @@
 //!
 //! Errors ([`StudyError`]) name the file, the line and the field of every bad input.
 
+pub mod adaptive;
 pub mod analysis;
 mod build;
+pub mod cre;
 mod error;
+pub mod estimate;
 pub mod expr;
 pub mod fields;
 pub mod method;

@@ -2,7 +2,9 @@
 //! (thesis chapter 1.3 and 2.3): polynomial chaos by regression on PC collocation points (roots
 //! of the next-degree orthogonal polynomials) or by projection on a tensor Gauss rule; a
 //! standard (monomial) polynomial by least squares on a grid; piecewise multilinear
-//! interpolation on a regular stochastic mesh; or plain Monte Carlo on the model.
+//! interpolation on a regular stochastic mesh; piecewise multilinear interpolation on an
+//! **adaptive** stochastic mesh that chooses its own runs with the stochastic error estimate
+//! (thesis 4.2; the loop is in [`crate::adaptive`]); or plain Monte Carlo on the model.
 
 use alea_uq::basis::PcBasis;
 use alea_uq::design::{self, Design};
@@ -37,6 +39,36 @@ pub enum MethodKind {
     },
     /// Statistics of the model runs themselves.
     MonteCarlo,
+    /// Piecewise multilinear on a stochastic mesh refined by the stochastic error estimate.
+    Adaptive(AdaptiveSettings),
+}
+
+/// The refinement criterion of an adaptive method (thesis 4.2.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Criterion {
+    /// Every cell whose stochastic error is at least `fraction` of the largest gets a run at its
+    /// centre; several runs per estimate.
+    Improved {
+        /// Fraction of the largest cell contribution (the thesis: 0.5).
+        fraction: f64,
+    },
+    /// One run at the point of largest stochastic error density, searched over the centres of
+    /// the `2^(d depth)` sub-cells of every cell.
+    MaxError {
+        /// Sub-cell depth of the candidate points.
+        depth: u32,
+    },
+}
+
+/// Settings of an adaptive method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveSettings {
+    /// Refinement criterion.
+    pub criterion: Criterion,
+    /// Stop when `i_sto <= target` (`None`: when `i_sto <= i_geo` and `i_geo` is stable).
+    pub target: Option<f64>,
+    /// Run budget.
+    pub max_runs: usize,
 }
 
 /// A method with its design.
@@ -52,6 +84,8 @@ pub struct Method {
     pub rule: Option<QuadratureRule>,
     /// A one-line description for the report.
     pub description: String,
+    /// Adaptive methods: the stochastic mesh once the loop has run (its runs are `points`).
+    pub mesh: Option<StochasticMesh>,
 }
 
 fn rows(d: &Design) -> Vec<Vec<f64>> {
@@ -185,6 +219,45 @@ pub fn build_methods(
                     format!("piecewise multilinear on a regular {k}^{d} grid ({n} runs)"),
                 )
             }
+            "adaptive" => {
+                let settings = adaptive_settings(src, m, i, d)?;
+                if let Some(dn) = design_name
+                    && dn != "corners_centre"
+                {
+                    return Err(src.error(
+                        design_span,
+                        f("design"),
+                        "an adaptive method starts from the corners and the centre of the parameter box (design = \"corners_centre\")",
+                    ));
+                }
+                let mut mesh =
+                    StochasticMesh::new(&params.lo, &params.hi, &vec![1; d]).map_err(uq)?;
+                mesh.refine_centred(&[0]).map_err(uq)?;
+                let pts: Vec<Vec<f64>> = (0..mesh.num_runs())
+                    .map(|r| mesh.run_point(r).to_vec())
+                    .collect();
+                let crit = match settings.criterion {
+                    Criterion::Improved { fraction } => format!(
+                        "improved criterion (cells above {:.0} % of the largest error)",
+                        100.0 * fraction
+                    ),
+                    Criterion::MaxError { .. } => "maximum-error criterion".to_string(),
+                };
+                let stop = match settings.target {
+                    Some(t) => format!("i_sto <= {t}"),
+                    None => "i_sto <= i_geo".to_string(),
+                };
+                (
+                    MethodKind::Adaptive(settings),
+                    pts,
+                    None,
+                    format!(
+                        "adaptive piecewise multilinear from the {} corners and the centre, {crit}, until {stop} or {} runs",
+                        1usize << d,
+                        settings.max_runs
+                    ),
+                )
+            }
             "monte_carlo" => {
                 let des = generic_design(design_name.unwrap_or("monte_carlo"), 100)?;
                 let n = des.len();
@@ -199,7 +272,7 @@ pub fn build_methods(
                 return Err(src.error(
                     m.kind.span(),
                     f("type"),
-                    format!("unknown method '{other}'; expected pc_regression, pc_projection, polynomial, piecewise_linear or monte_carlo"),
+                    format!("unknown method '{other}'; expected pc_regression, pc_projection, polynomial, piecewise_linear, adaptive or monte_carlo"),
                 ));
             }
         };
@@ -209,6 +282,10 @@ pub fn build_methods(
             MethodKind::Polynomial { degree } => format!("polynomial p={degree}"),
             MethodKind::PiecewiseLinear { nodes } => format!("piecewise linear {nodes}^{d}"),
             MethodKind::MonteCarlo => "Monte Carlo".into(),
+            MethodKind::Adaptive(a) => match a.criterion {
+                Criterion::Improved { .. } => "adaptive (improved)".into(),
+                Criterion::MaxError { .. } => "adaptive (max error)".into(),
+            },
         });
         out.push(Method {
             label,
@@ -216,9 +293,105 @@ pub fn build_methods(
             points,
             rule,
             description,
+            mesh: None,
         });
     }
     Ok(out)
+}
+
+fn adaptive_settings(
+    src: &Source,
+    m: &MethodSpec,
+    i: usize,
+    d: usize,
+) -> Result<AdaptiveSettings, StudyError> {
+    let f = |k: &str| format!("method[{i}].{k}");
+    if d > alea_uq::surrogate::MAX_DIM {
+        return Err(src.error(
+            m.kind.span(),
+            f("type"),
+            format!(
+                "an adaptive stochastic mesh has at most {} parameters, the study has {d}",
+                alea_uq::surrogate::MAX_DIM
+            ),
+        ));
+    }
+    let fraction = match &m.fraction {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x > 0.0 && x <= 1.0) {
+                return Err(src.error(
+                    v.span(),
+                    f("fraction"),
+                    format!("must be in (0, 1], got {x}"),
+                ));
+            }
+            x
+        }
+        None => 0.5,
+    };
+    let depth = match &m.depth {
+        Some(v) => {
+            let x = *v.get_ref();
+            if x == 0 || (x as usize) * d > 18 {
+                return Err(src.error(
+                    v.span(),
+                    f("depth"),
+                    format!("must be in 1..={} for {d} parameters (2^(d depth) candidate points per cell)", 18 / d.max(1)),
+                ));
+            }
+            x
+        }
+        None => (18 / d.max(1)).min(3) as u32,
+    };
+    let criterion = match m.criterion.as_ref().map(|c| c.get_ref().as_str()) {
+        None | Some("improved") => Criterion::Improved { fraction },
+        Some("max_error") => Criterion::MaxError { depth },
+        Some(other) => {
+            let sp = m.criterion.as_ref().map_or(m.kind.span(), |c| c.span());
+            return Err(src.error(
+                sp,
+                f("criterion"),
+                format!("unknown criterion '{other}'; expected improved or max_error"),
+            ));
+        }
+    };
+    let target = match &m.target {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x > 0.0 && x < 1.0) {
+                return Err(src.error(
+                    v.span(),
+                    f("target"),
+                    format!("must be in (0, 1), got {x}"),
+                ));
+            }
+            Some(x)
+        }
+        None => None,
+    };
+    let start = (1usize << d) + 1;
+    let max_runs = match &m.max_runs {
+        Some(v) => {
+            let x = *v.get_ref();
+            if x < start || x > 100_000 {
+                return Err(src.error(
+                    v.span(),
+                    f("max_runs"),
+                    format!(
+                        "must be in {start}..=100000 (the start design has {start} runs), got {x}"
+                    ),
+                ));
+            }
+            x
+        }
+        None => 100.max(start),
+    };
+    Ok(AdaptiveSettings {
+        criterion,
+        target,
+        max_runs,
+    })
 }
 
 /// A surrogate in physical coordinates, whatever its internal coordinates.
@@ -258,7 +431,27 @@ impl Surrogate {
     }
 }
 
+impl alea_estimate::Weights for Surrogate {
+    fn weights(&self, xi: &[f64], w: &mut Vec<(usize, f64)>) {
+        let mut t = vec![0.0; xi.len()];
+        Surrogate::weights(self, xi, &mut t, w);
+    }
+}
+
 impl Method {
+    /// The stochastic mesh of a piecewise-linear or adaptive method (its cells are the
+    /// integration cells of the error estimate); `None` for global surrogates.
+    pub fn stochastic_mesh(&self, params: &ParamSpace) -> Option<StochasticMesh> {
+        match &self.kind {
+            MethodKind::PiecewiseLinear { nodes } => {
+                let d = params.names.len();
+                StochasticMesh::new(&params.lo, &params.hi, &vec![nodes - 1; d]).ok()
+            }
+            MethodKind::Adaptive(_) => self.mesh.clone(),
+            _ => None,
+        }
+    }
+
     /// Builds the surrogate on the runs at `points` (a subset of the design: the converged
     /// runs). Methods that need every design point (projection, piecewise linear) refuse a
     /// subset.
@@ -323,6 +516,20 @@ impl Method {
                     .map_err(|e| e.to_string())?;
                 (
                     Box::new(mesh),
+                    identity(),
+                    Some((params.lo.clone(), params.hi.clone())),
+                )
+            }
+            MethodKind::Adaptive(_) => {
+                let mesh = self
+                    .mesh
+                    .as_ref()
+                    .ok_or("the adaptive loop has not built its stochastic mesh")?;
+                if !complete || mesh.num_runs() != points.len() {
+                    return Err("the adaptive stochastic mesh needs a run at every node".into());
+                }
+                (
+                    Box::new(mesh.clone()),
                     identity(),
                     Some((params.lo.clone(), params.hi.clone())),
                 )

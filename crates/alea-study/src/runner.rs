@@ -13,6 +13,7 @@
 //! already holds runs skips them (a resume) and loads their local-stage states for the warm
 //! starts.
 
+use std::collections::HashMap;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -20,7 +21,8 @@ use std::time::Instant;
 use alea_latin::{LatinSolver, LocalState, RunStatus};
 use rayon::prelude::*;
 
-use crate::method::{Method, build_methods};
+use crate::cre::CreSetup;
+use crate::method::{Method, MethodKind, build_methods};
 use crate::qoi::{Qoi, build_qois};
 use crate::spec::{ModelFile, OutputSpec};
 use crate::store::{RunRecord, Store, point_key, text_hash};
@@ -62,6 +64,8 @@ pub trait Progress: Sync {
     fn begin(&self, _total: usize, _done: usize) {}
     /// A run finished (converged or not).
     fn finished(&self, _rec: &RunRecord) {}
+    /// `n` more runs were added to the study (an adaptive step).
+    fn more(&self, _n: usize) {}
     /// All runs are done.
     fn end(&self) {}
 }
@@ -249,7 +253,8 @@ fn nn_order(points: &[Vec<f64>], origin: &[f64]) -> Vec<usize> {
 
 /// What [`run_study`] returns.
 pub struct StudyRuns {
-    /// Every design point's record, in [`Study::all_points`] order.
+    /// Every run's record: the fixed designs' points in [`Study::all_points`] order, then the
+    /// runs of the adaptive methods in the order they were chosen.
     pub records: Vec<RunRecord>,
     /// Runs computed by this invocation.
     pub computed: usize,
@@ -259,11 +264,216 @@ pub struct StudyRuns {
     pub setup_seconds: f64,
     /// Wall-clock seconds of the solves of this invocation.
     pub solve_seconds: f64,
+    /// Wall-clock seconds of the runs' deterministic error estimates of this invocation
+    /// (included in `solve_seconds`).
+    pub estimate_seconds: f64,
     /// The solver (for field output and further runs).
     pub solver: Arc<LatinSolver>,
+    /// The study's methods as they ended: adaptive methods with their stochastic mesh and runs.
+    pub methods: Vec<Method>,
+    /// The adaptive loops, one per adaptive method (in method order).
+    pub adaptive: Vec<crate::adaptive::AdaptiveOutcome>,
+    /// Error estimation set-up, when the study estimates its error.
+    pub cre: Option<Arc<CreSetup>>,
 }
 
-/// Runs (or resumes) every design point of `study` in the study directory `dir`.
+/// Runs the deterministic solves of a study and keeps the state they share: the solver, the
+/// store, the finished runs (warm-start sources, in completion order of the fixed schedule).
+pub(crate) struct Runner<'a> {
+    pub(crate) study: &'a Study,
+    pub(crate) dir: &'a Path,
+    store: Mutex<Store>,
+    pub(crate) solver: Arc<LatinSolver>,
+    pub(crate) by_key: HashMap<String, RunRecord>,
+    finished: Vec<Vec<f64>>,
+    sizes: Vec<usize>,
+    progress: &'a dyn Progress,
+    pub(crate) cre: Option<Arc<CreSetup>>,
+    pub(crate) computed: usize,
+    pub(crate) resumed: usize,
+    pub(crate) solve_seconds: f64,
+    pub(crate) estimate_seconds: f64,
+}
+
+impl<'a> Runner<'a> {
+    /// Runs (or finds in the store) every point of `points` that is not finished yet, in
+    /// batches of the fixed schedule, each warm-started from the nearest converged run of the
+    /// earlier batches.
+    pub(crate) fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError> {
+        let study = self.study;
+        let mut seen = std::collections::HashSet::new();
+        let todo: Vec<Vec<f64>> = points
+            .iter()
+            .filter(|p| seen.insert(point_key(p)))
+            .filter(|p| !self.finished.iter().any(|f| point_key(f) == point_key(p)))
+            .cloned()
+            .collect();
+        for p in &todo {
+            study.check_point(&self.solver, p)?;
+        }
+        let normalised: Vec<Vec<f64>> = todo.iter().map(|p| study.normalise(p)).collect();
+        let centre = study.normalise(&study.params.nominal);
+        let order = nn_order(&normalised, &centre);
+        let t0 = Instant::now();
+        for batch in schedule(order.len()) {
+            let members: Vec<usize> = order[batch].to_vec();
+            // Warm-start sources: converged runs of earlier batches only.
+            let sources: Vec<(Vec<f64>, Arc<LocalState>)> = self
+                .finished
+                .iter()
+                .filter_map(|p| {
+                    let r = self.by_key.get(&point_key(p))?;
+                    if !r.converged() {
+                        return None;
+                    }
+                    LocalState::from_slice(&self.sizes, &r.state)
+                        .map(|s| (study.normalise(p), Arc::new(s)))
+                })
+                .collect();
+            let pending: Vec<usize> = members
+                .iter()
+                .copied()
+                .filter(|&i| !self.by_key.contains_key(&point_key(&todo[i])))
+                .collect();
+            self.resumed += members.len() - pending.len();
+            let results: Vec<Result<(RunRecord, f64), StudyError>> = pending
+                .par_iter()
+                .map(|&i| self.solve(&todo[i], &normalised[i], &sources))
+                .collect();
+            for r in results {
+                let (rec, est) = r?;
+                self.computed += 1;
+                self.estimate_seconds += est;
+                self.by_key.insert(point_key(&rec.params), rec);
+            }
+            self.finished
+                .extend(members.iter().map(|&i| todo[i].clone()));
+        }
+        self.solve_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// One solve (and its error estimate when the study has one), committed to the store.
+    /// Returns the record and the seconds of the estimate.
+    fn solve(
+        &self,
+        theta: &[f64],
+        normalised: &[f64],
+        sources: &[(Vec<f64>, Arc<LocalState>)],
+    ) -> Result<(RunRecord, f64), StudyError> {
+        let study = self.study;
+        let solver = &self.solver;
+        let mut input = study.model.parametric.run_input(theta, vec![]);
+        input.initial = sources
+            .iter()
+            .enumerate()
+            .map(|(k, (p, s))| {
+                let d: f64 = p
+                    .iter()
+                    .zip(normalised)
+                    .map(|(a, b)| (a - b) * (a - b))
+                    .sum();
+                (d, k, s)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
+            .map(|(_, _, s)| s.clone());
+        let res = solver.run_shared(&input)?;
+        let qois = study
+            .qois
+            .iter()
+            .map(|q| q.eval(solver, &res))
+            .collect::<Result<Vec<_>, _>>()?;
+        let status = match (res.status, solver.equilibrium_report(&res)) {
+            (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
+            (st, _) => st.label().to_string(),
+        };
+        let state = LocalState {
+            what: res.interfaces.iter().map(|it| it.what.clone()).collect(),
+            fhat: res.interfaces.iter().map(|it| it.fhat.clone()).collect(),
+        };
+        let rec = RunRecord {
+            params: theta.to_vec(),
+            status,
+            iterations: res.iterations,
+            residual: res
+                .residuals
+                .last()
+                .copied()
+                .filter(|v| v.is_finite())
+                .unwrap_or(f64::MAX),
+            seconds: res.timings.total,
+            qois: qois
+                .iter()
+                .map(|&v| if v.is_finite() { v } else { f64::NAN })
+                .collect(),
+            history: res
+                .residuals
+                .iter()
+                .map(|v| if v.is_finite() { *v } else { f64::MAX })
+                .collect(),
+            state: state.to_vec(),
+        };
+        if rec.qois.iter().any(|v| v.is_nan()) && rec.converged() {
+            return Err(StudyError::Other(format!(
+                "a quantity of interest is not finite at {theta:?}"
+            )));
+        }
+        let (cre, est_seconds) = match (&self.cre, rec.converged()) {
+            (Some(setup), true) => {
+                let c = setup.estimate_run(study, solver, theta, &res)?;
+                let s = c.seconds;
+                (Some(c.to_values()), s)
+            }
+            _ => (None, 0.0),
+        };
+        let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
+        let store = || {
+            self.store
+                .lock()
+                .map_err(|_| StudyError::Other("store lock poisoned".into()))
+        };
+        if study.output.vtu.unwrap_or(false) {
+            let stem = store()?
+                .field_path(theta)
+                .file_stem()
+                .map_or("run".into(), |s| s.to_string_lossy().into_owned());
+            let path = self.dir.join("vtu").join(format!("{stem}.vtm"));
+            alea_latin::output::write_run(&path, solver, &res)?;
+        }
+        store()?.commit(&rec, &fields, cre.as_deref())?;
+        self.progress.finished(&rec);
+        Ok((rec, est_seconds))
+    }
+
+    /// The store (locked).
+    pub(crate) fn store(&self) -> Result<std::sync::MutexGuard<'_, Store>, StudyError> {
+        self.store
+            .lock()
+            .map_err(|_| StudyError::Other("store lock poisoned".into()))
+    }
+
+    /// Tells the progress observer about runs added by an adaptive step.
+    pub(crate) fn announce(&self, more: usize) {
+        self.progress.more(more);
+    }
+}
+
+/// True if the study estimates its error: an `[error]` table (not disabled) or an adaptive
+/// method.
+pub fn estimates_error(study: &Study) -> bool {
+    study
+        .file
+        .error
+        .as_ref()
+        .is_some_and(|e| e.enabled.unwrap_or(true))
+        || study
+            .methods
+            .iter()
+            .any(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+}
+
+/// Runs (or resumes) every design point of `study` in the study directory `dir`, then the
+/// adaptive methods' loops.
 pub fn run_study(
     study: &Study,
     dir: &Path,
@@ -271,9 +481,8 @@ pub fn run_study(
     progress: &dyn Progress,
 ) -> Result<StudyRuns, StudyError> {
     let store = Store::open(dir, &study.hash, restart)?;
-    let points = study.all_points();
     let previous = store.runs()?;
-    let mut by_key: std::collections::HashMap<String, RunRecord> = previous
+    let by_key: HashMap<String, RunRecord> = previous
         .into_iter()
         .map(|r| (point_key(&r.params), r))
         .collect();
@@ -281,141 +490,94 @@ pub fn run_study(
         study.model.assembly.clone(),
         study.model.options.clone(),
     )?);
-    for p in &points {
-        study.check_point(&solver, p)?;
-    }
-    let sizes = solver.interface_sizes();
-    let normalised: Vec<Vec<f64>> = points.iter().map(|p| study.normalise(p)).collect();
-    let centre = study.normalise(&study.params.nominal);
-    let order = nn_order(&normalised, &centre);
-    let done_before = points
+    let cre = if estimates_error(study) {
+        Some(Arc::new(CreSetup::new(study, &solver)?))
+    } else {
+        None
+    };
+    let fixed: Vec<Vec<f64>> = {
+        let mut seen = std::collections::HashSet::new();
+        study
+            .methods
+            .iter()
+            .filter(|m| !matches!(m.kind, MethodKind::Adaptive(_)))
+            .flat_map(|m| m.points.iter())
+            .filter(|p| seen.insert(point_key(p)))
+            .cloned()
+            .collect()
+    };
+    let adaptive_start: usize = study
+        .methods
+        .iter()
+        .filter(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+        .map(|m| m.points.len())
+        .sum();
+    let done_before = fixed
         .iter()
         .filter(|p| by_key.contains_key(&point_key(p)))
         .count();
-    progress.begin(points.len(), done_before);
-    let store = Mutex::new(store);
-    let t0 = Instant::now();
-    let mut computed = 0;
-    let mut finished_order: Vec<usize> = Vec::new(); // indices into points, in schedule order
-    for batch in schedule(order.len()) {
-        let members: Vec<usize> = order[batch].to_vec();
-        // Warm-start sources: converged runs of earlier batches only.
-        let sources: Vec<(usize, Arc<LocalState>)> = finished_order
-            .iter()
-            .filter_map(|&i| {
-                let r = by_key.get(&point_key(&points[i]))?;
-                if !r.converged() {
-                    return None;
-                }
-                LocalState::from_slice(&sizes, &r.state).map(|s| (i, Arc::new(s)))
-            })
-            .collect();
-        let pending: Vec<usize> = members
-            .iter()
-            .copied()
-            .filter(|&i| !by_key.contains_key(&point_key(&points[i])))
-            .collect();
-        let results: Vec<Result<RunRecord, StudyError>> = pending
-            .par_iter()
-            .map(|&i| {
-                let theta = &points[i];
-                let mut input = study.model.parametric.run_input(theta, vec![]);
-                input.initial = sources
-                    .iter()
-                    .map(|(k, s)| {
-                        let d: f64 = normalised[*k]
-                            .iter()
-                            .zip(&normalised[i])
-                            .map(|(a, b)| (a - b) * (a - b))
-                            .sum();
-                        (d, *k, s)
-                    })
-                    .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
-                    .map(|(_, _, s)| s.clone());
-                let res = solver.run_shared(&input)?;
-                let qois = study
-                    .qois
-                    .iter()
-                    .map(|q| q.eval(&solver, &res))
-                    .collect::<Result<Vec<_>, _>>()?;
-                let status = match (res.status, solver.equilibrium_report(&res)) {
-                    (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
-                    (st, _) => st.label().to_string(),
-                };
-                let state = LocalState {
-                    what: res.interfaces.iter().map(|it| it.what.clone()).collect(),
-                    fhat: res.interfaces.iter().map(|it| it.fhat.clone()).collect(),
-                };
-                let rec = RunRecord {
-                    params: theta.clone(),
-                    status,
-                    iterations: res.iterations,
-                    residual: res
-                        .residuals
-                        .last()
-                        .copied()
-                        .filter(|v| v.is_finite())
-                        .unwrap_or(f64::MAX),
-                    seconds: res.timings.total,
-                    qois: qois
-                        .iter()
-                        .map(|&v| if v.is_finite() { v } else { f64::NAN })
-                        .collect(),
-                    history: res
-                        .residuals
-                        .iter()
-                        .map(|v| if v.is_finite() { *v } else { f64::MAX })
-                        .collect(),
-                    state: state.to_vec(),
-                };
-                if rec.qois.iter().any(|v| v.is_nan()) && rec.converged() {
-                    return Err(StudyError::Other(format!(
-                        "a quantity of interest is not finite at {theta:?}"
-                    )));
-                }
-                let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
-                if study.output.vtu.unwrap_or(false) {
-                    let path = dir.join("vtu").join(format!(
-                        "{}.vtm",
-                        store
-                            .lock()
-                            .map_err(|_| StudyError::Other("store lock poisoned".into()))?
-                            .field_path(theta)
-                            .file_stem()
-                            .map_or("run".into(), |s| s.to_string_lossy().into_owned())
-                    ));
-                    alea_latin::output::write_run(&path, &solver, &res)?;
-                }
-                store
-                    .lock()
-                    .map_err(|_| StudyError::Other("store lock poisoned".into()))?
-                    .commit(&rec, &fields)?;
-                progress.finished(&rec);
-                Ok(rec)
-            })
-            .collect();
-        for r in results {
-            let rec = r?;
-            computed += 1;
-            by_key.insert(point_key(&rec.params), rec);
+    progress.begin(fixed.len() + adaptive_start, done_before);
+    let mut runner = Runner {
+        study,
+        dir,
+        store: Mutex::new(store),
+        sizes: solver.interface_sizes(),
+        solver,
+        by_key,
+        finished: Vec::new(),
+        progress,
+        cre,
+        computed: 0,
+        resumed: 0,
+        solve_seconds: 0.0,
+        estimate_seconds: 0.0,
+    };
+    runner.run_points(&fixed)?;
+    let mut methods = study.methods.clone();
+    let mut adaptive = Vec::new();
+    for (m, method) in methods.iter_mut().enumerate() {
+        if let MethodKind::Adaptive(settings) = method.kind {
+            let outcome = crate::adaptive::run_adaptive(&mut runner, m, &settings)?;
+            method.points = (0..outcome.mesh.num_runs())
+                .map(|r| outcome.mesh.run_point(r).to_vec())
+                .collect();
+            method.mesh = Some(outcome.mesh.clone());
+            adaptive.push(outcome);
         }
-        finished_order.extend(members);
     }
     progress.end();
-    let records = points
+    let mut order: Vec<Vec<f64>> = fixed;
+    let mut seen: std::collections::HashSet<String> = order.iter().map(|p| point_key(p)).collect();
+    for m in &methods {
+        if matches!(m.kind, MethodKind::Adaptive(_)) {
+            order.extend(
+                m.points
+                    .iter()
+                    .filter(|p| seen.insert(point_key(p)))
+                    .cloned(),
+            );
+        }
+    }
+    let records = order
         .iter()
         .map(|p| {
-            by_key
-                .remove(&point_key(p))
+            runner
+                .by_key
+                .get(&point_key(p))
+                .cloned()
                 .ok_or_else(|| StudyError::Other("a run is missing".into()))
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(StudyRuns {
         records,
-        computed,
-        resumed: done_before,
-        setup_seconds: solver.setup_seconds,
-        solve_seconds: t0.elapsed().as_secs_f64(),
-        solver,
+        computed: runner.computed,
+        resumed: runner.resumed,
+        setup_seconds: runner.solver.setup_seconds,
+        solve_seconds: runner.solve_seconds,
+        estimate_seconds: runner.estimate_seconds,
+        solver: runner.solver.clone(),
+        methods,
+        adaptive,
+        cre: runner.cre.clone(),
     })
 }

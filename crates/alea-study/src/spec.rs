@@ -337,6 +337,47 @@ pub struct MethodSpec {
     /// Number of runs (lhs, sobol, monte_carlo, pc_collocation).
     #[serde(default)]
     pub runs: Option<Spanned<usize>>,
+    /// `adaptive`: refinement criterion, `improved` (default) or `max_error` (thesis 4.2.2).
+    #[serde(default)]
+    pub criterion: Option<Spanned<String>>,
+    /// `adaptive`: stop when `i_sto` is at most this (default: when `i_sto <= i_geo`).
+    #[serde(default)]
+    pub target: Option<Spanned<f64>>,
+    /// `adaptive`: run budget (default 100).
+    #[serde(default)]
+    pub max_runs: Option<Spanned<usize>>,
+    /// `adaptive`, improved criterion: refine every cell whose stochastic error is at least
+    /// this fraction of the largest (default 0.5).
+    #[serde(default)]
+    pub fraction: Option<Spanned<f64>>,
+    /// `adaptive`, maximum-error criterion: the candidate points are the centres of the
+    /// `2^(d depth)` sub-cells of each cell (default 3).
+    #[serde(default)]
+    pub depth: Option<Spanned<u32>>,
+}
+
+/// `[error]`: the stochastic error estimate (thesis 3.2, 4.1).
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ErrorSpec {
+    /// Estimate the error of every method with a surrogate. Default true when the table is
+    /// present (an `adaptive` method always estimates).
+    #[serde(default)]
+    pub enabled: Option<bool>,
+    /// Warn when `i_geo` or `i_sto` exceeds this. Default 0.1.
+    #[serde(default)]
+    pub warn: Option<Spanned<f64>>,
+    /// Cells per parameter of the integration partition of global surrogates (piecewise-linear
+    /// and adaptive methods integrate on their own stochastic cells). Default 16 / 8 / 4 / 2 for
+    /// 1-2 / 3 / 4 / 5-6 parameters.
+    #[serde(default)]
+    pub cells_per_dim: Option<Spanned<usize>>,
+    /// Gauss points per parameter in each integration cell. Default 4.
+    #[serde(default)]
+    pub points_per_cell: Option<Spanned<usize>>,
+    /// Grid points per parameter of the error-density maps. Default 80.
+    #[serde(default)]
+    pub map_points: Option<Spanned<usize>>,
 }
 
 /// `[analysis]` of the surrogate.
@@ -400,6 +441,9 @@ pub struct ModelFile {
     /// Statistics settings (`[statistics]`).
     #[serde(default)]
     pub statistics: StatsSpec,
+    /// Stochastic error estimate (`[error]`).
+    #[serde(default)]
+    pub error: Option<ErrorSpec>,
     /// Outputs.
     #[serde(default)]
     pub output: OutputSpec,

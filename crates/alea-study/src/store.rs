@@ -135,6 +135,7 @@ impl Store {
                 .map_err(db_err(dir))?;
                 tx.commit().map_err(db_err(dir))?;
                 let _ = std::fs::remove_dir_all(dir.join("fields"));
+                let _ = std::fs::remove_dir_all(dir.join("cre"));
                 std::fs::create_dir_all(dir.join("fields")).map_err(io(dir))?;
             }
             Some(_) => {
@@ -196,21 +197,45 @@ impl Store {
         self.dir.join("fields").join(format!("run_{h:016x}.bin"))
     }
 
-    /// Commits a finished run: its fields (f64 little-endian, atomically renamed into place),
-    /// then its row.
-    pub fn commit(&self, rec: &RunRecord, fields: &[f64]) -> Result<(), StudyError> {
-        let path = self.field_path(&rec.params);
+    /// Path of the error-estimate file of a run (`cre/run_<hash>.bin`, next to its fields).
+    pub fn cre_path(&self, params: &[f64]) -> PathBuf {
+        let f = self.field_path(params);
+        let name = f.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+        self.dir.join("cre").join(name)
+    }
+
+    /// Writes `values` (f64 little-endian) to `path` through a synced temporary file renamed
+    /// into place.
+    fn write_atomic(path: &Path, values: &[f64]) -> Result<(), StudyError> {
         let tmp = path.with_extension("tmp");
         let io = |p: &Path| {
             let p = p.to_path_buf();
             move |source| StudyError::Io { path: p, source }
         };
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(io(parent))?;
+        }
         {
             let mut f = std::fs::File::create(&tmp).map_err(io(&tmp))?;
-            f.write_all(&to_blob(fields)).map_err(io(&tmp))?;
+            f.write_all(&to_blob(values)).map_err(io(&tmp))?;
             f.sync_all().map_err(io(&tmp))?;
         }
-        std::fs::rename(&tmp, &path).map_err(io(&path))?;
+        std::fs::rename(&tmp, path).map_err(io(path))
+    }
+
+    /// Commits a finished run: its fields and, if given, its error estimate (each f64
+    /// little-endian, atomically renamed into place), then its row. A committed row therefore
+    /// always has its files.
+    pub fn commit(
+        &self,
+        rec: &RunRecord,
+        fields: &[f64],
+        cre: Option<&[f64]>,
+    ) -> Result<(), StudyError> {
+        Self::write_atomic(&self.field_path(&rec.params), fields)?;
+        if let Some(c) = cre {
+            Self::write_atomic(&self.cre_path(&rec.params), c)?;
+        }
         self.conn
             .execute(
                 "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state)
@@ -229,6 +254,16 @@ impl Store {
             )
             .map_err(db_err(&self.dir))?;
         Ok(())
+    }
+
+    /// Reads a run's error-estimate file (`None` if the run has none).
+    pub fn cre(&self, params: &[f64]) -> Result<Option<Vec<f64>>, StudyError> {
+        let path = self.cre_path(params);
+        match std::fs::read(&path) {
+            Ok(b) => Ok(Some(from_blob(&b))),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+            Err(source) => Err(StudyError::Io { path, source }),
+        }
     }
 
     /// Reads a run's field file.

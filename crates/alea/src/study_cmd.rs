@@ -6,10 +6,9 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method, response_surface};
+use alea_study::analysis::{MethodResult, analyse_method, response_surface};
 use alea_study::runner::{Progress, Study, run_study};
 use alea_study::store::RunRecord;
-use alea_uq::kde::Bandwidth;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -54,47 +53,6 @@ impl Progress for Bar {
     }
 }
 
-fn settings(study: &Study) -> Result<AnalysisSettings> {
-    let s = &study.file.statistics;
-    let samples = s.samples.as_ref().map_or(250_000, |v| *v.get_ref());
-    let bandwidth = match s.bandwidth.as_ref().map(|v| v.get_ref().as_str()) {
-        None | Some("isj") => Bandwidth::Isj,
-        Some("silverman") => Bandwidth::Silverman,
-        Some(other) => {
-            let span = s.bandwidth.as_ref().map_or(0..0, |v| v.span());
-            return Err(study
-                .source
-                .error(
-                    span,
-                    "statistics.bandwidth",
-                    format!("unknown rule '{other}'; expected isj or silverman"),
-                )
-                .into());
-        }
-    };
-    let confidence = s.confidence.as_ref().map_or(0.95, |v| *v.get_ref());
-    if !(confidence > 0.0 && confidence < 1.0) {
-        let span = s.confidence.as_ref().map_or(0..0, |v| v.span());
-        return Err(study
-            .source
-            .error(span, "statistics.confidence", "must be in (0, 1)")
-            .into());
-    }
-    if samples < 2 {
-        let span = s.samples.as_ref().map_or(0..0, |v| v.span());
-        return Err(study
-            .source
-            .error(span, "statistics.samples", "must be at least 2")
-            .into());
-    }
-    Ok(AnalysisSettings {
-        samples,
-        bandwidth,
-        kde_points: s.kde_points.as_ref().map_or(512, |v| *v.get_ref()),
-        confidence,
-    })
-}
-
 /// `alea report`: rebuilds the report of a finished study from its saved input, without
 /// recomputing anything.
 pub fn rebuild_report(dir: &Path) -> Result<()> {
@@ -120,7 +78,7 @@ pub fn default_dir(study: &Path) -> PathBuf {
 pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
     let t_all = Instant::now();
     let study = Study::load(path)?;
-    let settings = settings(&study)?;
+    let settings = alea_study::analysis::analysis_settings(&study)?;
     println!(
         "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs -> {}",
         study.title(),
@@ -178,7 +136,7 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         notes.push(msg);
     }
     let t0 = Instant::now();
-    let results: Vec<MethodResult> = study
+    let results: Vec<MethodResult> = runs
         .methods
         .iter()
         .map(|m| analyse_method(&study, m, &runs.records, &settings))
@@ -229,6 +187,7 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         let t0 = Instant::now();
         let input = report_input(
             &study,
+            &runs.methods,
             &results,
             &runs.records,
             &notes,
@@ -382,6 +341,7 @@ fn write_samples(study: &Study, dir: &Path, r: &MethodResult) -> Result<()> {
 
 fn report_input(
     study: &Study,
+    methods: &[alea_study::method::Method],
     results: &[MethodResult],
     records: &[RunRecord],
     notes: &[String],
@@ -406,13 +366,13 @@ fn report_input(
             let m = main_index?;
             let s = results[m].qois.get(q)?;
             let surface =
-                response_surface(study, &study.methods[m], records, q, 41).map(|(x, y, values)| {
+                response_surface(study, &methods[m], records, q, 41).map(|(x, y, values)| {
                     Surface {
                         param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
                         x,
                         y,
                         values,
-                        points: study.methods[m]
+                        points: methods[m]
                             .points
                             .iter()
                             .filter_map(|p| {

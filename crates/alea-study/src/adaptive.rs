@@ -1,0 +1,240 @@
+//! The adaptive loop of an `adaptive` method (thesis 4.2, figure 4.6): runs -> stochastic
+//! error estimate -> criterion -> new runs, on a piecewise-multilinear stochastic mesh.
+//!
+//! 1. Start from the corners of the parameter box and its centre (`2^d + 1` runs).
+//! 2. Run every node of the mesh that is a run and not finished yet (warm-started from the
+//!    nearest converged runs of earlier batches and steps; a resumed study finds them in the
+//!    store).
+//! 3. Estimate (crate `alea-estimate`): `e~`, `I_geo`, `I_sto` on the mesh's cells; the
+//!    statistics of every quantity of interest on the current surrogate.
+//! 4. Stop when `i_sto <= target` (if given), else when `i_sto <= i_geo` and `i_geo` changed by
+//!    at most 10 % since the previous step (stable); or when the run budget is reached or no cell
+//!    carries stochastic error.
+//! 5. Mark and refine: the improved criterion refines every cell whose integrated stochastic
+//!    error is at least `fraction` of the largest at its centre (one run per cell; the other new
+//!    nodes interpolated), the maximum-error criterion places one run at the sub-cell centre of
+//!    largest stochastic error density. Then back to 2.
+//!
+//! Every step is a pure function of the runs' results, so a resumed loop replays the same steps
+//! and recomputes no run. Cost in the thesis's units (tables 4.3-4.4): a run counts 1, an
+//! estimate 1.5.
+
+use alea_estimate::refine;
+use alea_uq::surrogate::StochasticMesh;
+
+use crate::StudyError;
+use crate::analysis::{AnalysisSettings, analyse_method};
+use crate::cre::StudyParameters;
+use crate::estimate::{ErrorSettings, MethodError, error_settings, estimate_method};
+use crate::method::{AdaptiveSettings, Criterion, Method};
+use crate::runner::Runner;
+use crate::store::point_key;
+
+/// Statistics of one quantity of interest at one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepQoi {
+    /// Mean.
+    pub mean: f64,
+    /// Standard deviation.
+    pub std: f64,
+    /// `P(q > threshold)` for each threshold of the quantity.
+    pub failure: Vec<f64>,
+}
+
+/// One step of the loop.
+#[derive(Clone, Debug)]
+pub struct StepRecord {
+    /// Runs of the surrogate at this step.
+    pub runs: usize,
+    /// Runs added by the refinement that ended this step (0 for the last step).
+    pub new_runs: usize,
+    /// The estimate.
+    pub error: MethodError,
+    /// Statistics of each quantity of interest on this step's surrogate.
+    pub qois: Vec<StepQoi>,
+    /// Seconds of this step's solves (wall clock).
+    pub solve_seconds: f64,
+    /// Seconds of this step's estimate (per-run CRE of its new runs + stochastic estimate).
+    pub estimate_seconds: f64,
+    /// Cumulative cost in the thesis's units: runs + 1.5 x estimates.
+    pub thesis_cost: f64,
+}
+
+/// The outcome of one adaptive method.
+#[derive(Clone, Debug)]
+pub struct AdaptiveOutcome {
+    /// Index of the method in the study.
+    pub method: usize,
+    /// The final stochastic mesh (its runs are the method's runs).
+    pub mesh: StochasticMesh,
+    /// Every step, in order.
+    pub steps: Vec<StepRecord>,
+    /// Why the loop stopped.
+    pub stop: String,
+    /// Set when the loop could not go on (a run that did not converge).
+    pub error: Option<String>,
+    /// The estimator of the last step (for maps and element fields).
+    pub estimator: Option<alea_estimate::Estimator>,
+}
+
+/// The start mesh: the parameter box with its corners and centre as runs.
+pub fn start_mesh(lo: &[f64], hi: &[f64]) -> Result<StochasticMesh, StudyError> {
+    let uq = |e: alea_uq::UqError| StudyError::Other(e.to_string());
+    let mut mesh = StochasticMesh::new(lo, hi, &vec![1; lo.len()]).map_err(uq)?;
+    mesh.refine_centred(&[0]).map_err(uq)?;
+    Ok(mesh)
+}
+
+/// Runs the adaptive loop of method `m`.
+pub(crate) fn run_adaptive(
+    runner: &mut Runner<'_>,
+    m: usize,
+    settings: &AdaptiveSettings,
+) -> Result<AdaptiveOutcome, StudyError> {
+    let study = runner.study;
+    let setup = runner
+        .cre
+        .clone()
+        .ok_or_else(|| StudyError::Other("adaptive method without error estimation".into()))?;
+    let err_settings: ErrorSettings = error_settings(study)?;
+    let stats: AnalysisSettings = crate::analysis::analysis_settings(study)?;
+    let params = &study.params;
+    let mut mesh = start_mesh(&params.lo, &params.hi)?;
+    let mut steps: Vec<StepRecord> = Vec::new();
+    let mut estimates = 0usize;
+    let mut last_estimator = None;
+    let (stop, error) = loop {
+        let points: Vec<Vec<f64>> = (0..mesh.num_runs())
+            .map(|r| mesh.run_point(r).to_vec())
+            .collect();
+        let (solve0, est0) = (runner.solve_seconds, runner.estimate_seconds);
+        runner.run_points(&points)?;
+        let solve_seconds = runner.solve_seconds - solve0;
+        if let Some(p) = points.iter().find(|p| {
+            runner
+                .by_key
+                .get(&point_key(p))
+                .is_none_or(|r| !r.converged())
+        }) {
+            let status = runner
+                .by_key
+                .get(&point_key(p))
+                .map_or("missing".to_string(), |r| r.status.clone());
+            break (
+                "a run did not converge".to_string(),
+                Some(format!(
+                    "the run at {p:?} did not converge ({status}); the adaptive stochastic mesh needs every run"
+                )),
+            );
+        }
+        let mut method: Method = study.methods[m].clone();
+        method.points = points.clone();
+        method.mesh = Some(mesh.clone());
+        let sur = method
+            .surrogate(params, &points)
+            .map_err(StudyError::Other)?;
+        let (est, merr) = {
+            let store = runner.store()?;
+            estimate_method(
+                study,
+                &setup,
+                &runner.solver,
+                &store,
+                &method,
+                &points,
+                &sur,
+                &err_settings,
+            )?
+        };
+        estimates += 1;
+        let records: Vec<_> = points
+            .iter()
+            .filter_map(|p| runner.by_key.get(&point_key(p)).cloned())
+            .collect();
+        let analysis = analyse_method(study, &method, &records, &stats);
+        let qois = analysis
+            .qois
+            .iter()
+            .map(|q| StepQoi {
+                mean: q.mean,
+                std: q.std,
+                failure: q.failure.iter().map(|f| f.probability).collect(),
+            })
+            .collect();
+        let (i_sto, i_geo) = (merr.estimate.i_sto(), merr.estimate.i_geo());
+        let estimate_seconds = runner.estimate_seconds - est0 + merr.seconds;
+        let runs = mesh.num_runs();
+        let thesis_cost = runs as f64 + 1.5 * estimates as f64;
+        let previous_geo = steps.last().map(|s| s.error.estimate.i_geo());
+        let cells = merr.estimate.cells.clone();
+        last_estimator = Some(est.clone());
+        steps.push(StepRecord {
+            runs,
+            new_runs: 0,
+            error: merr,
+            qois,
+            solve_seconds,
+            estimate_seconds,
+            thesis_cost,
+        });
+        match settings.target {
+            Some(t) if i_sto <= t => break (format!("i_sto = {i_sto:.4} <= target {t}"), None),
+            None if i_sto <= i_geo
+                && previous_geo.is_some_and(|g| (g - i_geo).abs() <= 0.1 * i_geo) =>
+            {
+                break (
+                    format!("i_sto = {i_sto:.4} <= i_geo = {i_geo:.4}, i_geo stable"),
+                    None,
+                );
+            }
+            _ => {}
+        }
+        if runs >= settings.max_runs {
+            break (format!("run budget of {} reached", settings.max_runs), None);
+        }
+        let new = match settings.criterion {
+            Criterion::Improved { fraction } => {
+                let mut marked = refine::improved(&cells, fraction)
+                    .map_err(|e| StudyError::Other(e.to_string()))?;
+                let room = settings.max_runs - runs;
+                if marked.len() > room {
+                    // Keep the largest contributions within the budget.
+                    let contrib = |c: &usize| cells.iter().find(|x| x.0 == *c).map_or(0.0, |x| x.1);
+                    marked.sort_by(|a, b| contrib(b).total_cmp(&contrib(a)).then(a.cmp(b)));
+                    marked.truncate(room);
+                    marked.sort_unstable();
+                }
+                if marked.is_empty() {
+                    break ("no cell carries stochastic error".to_string(), None);
+                }
+                mesh.refine_centred(&marked)
+                    .map_err(|e| StudyError::Other(e.to_string()))?
+                    .len()
+            }
+            Criterion::MaxError { depth } => {
+                let sp = StudyParameters::new(&study.model.parametric, &runner.solver);
+                let best =
+                    refine::max_error_point(&mesh, &est, &sur, &sp, params.joint.as_ref(), depth)
+                        .map_err(|e| StudyError::Other(e.to_string()))?;
+                let Some((point, _)) = best else {
+                    break ("no point carries stochastic error".to_string(), None);
+                };
+                mesh.refine_at_point(&point)
+                    .map_err(|e| StudyError::Other(e.to_string()))?;
+                1
+            }
+        };
+        if let Some(s) = steps.last_mut() {
+            s.new_runs = new;
+        }
+        runner.announce(new);
+    };
+    Ok(AdaptiveOutcome {
+        method: m,
+        mesh,
+        steps,
+        stop,
+        error,
+        estimator: last_estimator,
+    })
+}

@@ -1,0 +1,322 @@
+//! The stochastic error estimate of a study's surrogate (thesis 3.2, 4.1; crate
+//! `alea-estimate`): the estimator built from the stored runs, the integration rule, the
+//! indicators `e~`, `I_geo`, `I_sto` per entity, and the error-density maps.
+//!
+//! **Expectations.** The substructure terms are quadratic forms in the surrogate's weights
+//! (Gram matrices of the runs' stress samples); the interface terms are not (norm of the
+//! interpolated slip, projection on the Coulomb disk of `mu(xi)`). Every term is integrated with
+//! one rule: per integration cell a tensor Gauss-Legendre rule of `points_per_cell` points per
+//! parameter, weighted by the joint density. The cells are the stochastic mesh's for
+//! piecewise-linear and adaptive methods (the rule then follows the kinks of the weights), and a
+//! regular partition of the parameter box for global surrogates (`cells_per_dim`). The
+//! substructure part is exact for polynomial weights times the density on each cell; the
+//! interface part converges with the cells.
+//!
+//! **Admissibility.** The interpolated fields are admissible for the loads at `xi` only if the
+//! surrogate reproduces the load factors; [`MethodError::load_defect`] reports the largest
+//! relative error of that reproduction on the rule (0 for load factors affine in the
+//! parameters), and [`alea_estimate::Estimate::violation_probability`] the probability of points
+//! where the interpolated interface fields leave the admissible set (negative gap or normal
+//! force). Either makes the estimate no longer a guaranteed bound; both are reported.
+
+use std::time::Instant;
+
+use alea_estimate::density::{PairMap, pair_maps};
+use alea_estimate::rule::{CellBox, Rule};
+use alea_estimate::{Estimate, Estimator, EstimatorOptions, Weights};
+use alea_latin::LatinSolver;
+
+use crate::StudyError;
+use crate::cre::{CreRecord, CreSetup, StudyParameters};
+use crate::method::{Method, Surrogate};
+use crate::runner::Study;
+use crate::store::Store;
+
+/// Settings of the `[error]` table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorSettings {
+    /// Warn when `i_geo` or `i_sto` exceeds this.
+    pub warn: f64,
+    /// Cells per parameter of the regular integration partition (global surrogates).
+    pub cells_per_dim: usize,
+    /// Gauss points per parameter per cell.
+    pub points_per_cell: usize,
+    /// Grid points per parameter of the density maps.
+    pub map_points: usize,
+}
+
+/// Reads and checks the `[error]` table (defaults when absent).
+///
+/// # Errors
+/// [`StudyError::Input`] naming the bad field.
+pub fn error_settings(study: &Study) -> Result<ErrorSettings, StudyError> {
+    let d = study.params.names.len();
+    let e = study.file.error.clone().unwrap_or_default();
+    let src = &study.source;
+    let warn = match &e.warn {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(x > 0.0 && x.is_finite()) {
+                return Err(src.error(v.span(), "error.warn", format!("must be > 0, got {x}")));
+            }
+            x
+        }
+        None => 0.1,
+    };
+    let default_cells = match d {
+        0..=2 => 16,
+        3 => 8,
+        4 => 4,
+        _ => 2,
+    };
+    let cells_per_dim = match &e.cells_per_dim {
+        Some(v) => *v.get_ref(),
+        None => default_cells,
+    };
+    let points_per_cell = match &e.points_per_cell {
+        Some(v) => *v.get_ref(),
+        None => 4,
+    };
+    let total = (cells_per_dim as f64 * points_per_cell as f64).powi(d as i32);
+    if cells_per_dim == 0 || points_per_cell == 0 || total > alea_estimate::rule::MAX_POINTS as f64
+    {
+        let span = e
+            .cells_per_dim
+            .as_ref()
+            .or(e.points_per_cell.as_ref())
+            .map_or(0..0, |v| v.span());
+        return Err(src.error(
+            span,
+            "error.cells_per_dim",
+            format!(
+                "{cells_per_dim} cells x {points_per_cell} points per parameter in {d} parameters = {total:.0} integration points (need 1 to {})",
+                alea_estimate::rule::MAX_POINTS
+            ),
+        ));
+    }
+    let map_points = match &e.map_points {
+        Some(v) => {
+            let x = *v.get_ref();
+            if !(2..=1000).contains(&x) {
+                return Err(src.error(
+                    v.span(),
+                    "error.map_points",
+                    format!("must be in 2..=1000, got {x}"),
+                ));
+            }
+            x
+        }
+        None => 80,
+    };
+    Ok(ErrorSettings {
+        warn,
+        cells_per_dim,
+        points_per_cell,
+        map_points,
+    })
+}
+
+/// The error estimate of one surrogate.
+#[derive(Clone, Debug)]
+pub struct MethodError {
+    /// Expectations per entity and in total.
+    pub estimate: Estimate,
+    /// Runs the surrogate is built on.
+    pub runs: usize,
+    /// Points of the integration rule.
+    pub rule_points: usize,
+    /// The integration cells, in the order of their tags in `estimate.cells`.
+    pub cells: Vec<(usize, CellBox)>,
+    /// Largest relative error of the surrogate's reproduction of the load factors on the rule.
+    pub load_defect: f64,
+    /// False when some substructure has no admissible-stress construction (3D): interfaces
+    /// only.
+    pub substructures_estimated: bool,
+    /// Seconds to build the estimator and integrate.
+    pub seconds: f64,
+}
+
+/// Builds the estimator of the runs at `points` (converged, with their error estimates in the
+/// store; surrogate run order), substructure by substructure to bound memory.
+///
+/// # Errors
+/// [`StudyError::Other`] if a run lacks its stored estimate or does not match the model.
+pub fn build_estimator(
+    setup: &CreSetup,
+    solver: &LatinSolver,
+    store: &Store,
+    points: &[Vec<f64>],
+) -> Result<Estimator, StudyError> {
+    let mut records = Vec::with_capacity(points.len());
+    let mut fields = Vec::with_capacity(points.len());
+    for p in points {
+        let values = store.cre(p)?.ok_or_else(|| {
+            StudyError::Other(format!(
+                "the run at {p:?} has no stored error estimate (a study run before error estimation was enabled: run it again with --restart)"
+            ))
+        })?;
+        let rec = CreRecord::from_values(&values).ok_or_else(|| {
+            StudyError::Other(format!(
+                "the stored error estimate of the run at {p:?} is damaged"
+            ))
+        })?;
+        records.push(rec);
+        fields.push(store.fields(p)?);
+    }
+    let ns = solver.num_subs();
+    let mut young = vec![Vec::with_capacity(points.len()); ns];
+    for r in &records {
+        for s in 0..ns {
+            young[s].push(*r.young.get(s).ok_or_else(|| {
+                StudyError::Other("a stored error estimate does not match the model".into())
+            })?);
+        }
+    }
+    let mut grams = Vec::with_capacity(ns);
+    for s in 0..ns {
+        if setup.layout.subs[s].is_empty() {
+            grams.push(None);
+            continue;
+        }
+        let mut a = Vec::with_capacity(records.len());
+        let mut h = Vec::with_capacity(records.len());
+        for (r, f) in records.iter().zip(&fields) {
+            let (ya, yh) = setup.sub_samples(solver, s, r, f)?;
+            a.push(ya);
+            h.push(yh);
+        }
+        let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
+        let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
+        grams.push(Some(alea_estimate::gram::Gram::new(&ar, &hr)));
+    }
+    let jump = records.iter().map(|r| r.jump.clone()).collect();
+    let force = records.iter().map(|r| r.force.clone()).collect();
+    Estimator::from_parts(
+        setup.layout.clone(),
+        young,
+        grams,
+        jump,
+        force,
+        EstimatorOptions {
+            admissibility_tolerance: setup.options.admissibility_tolerance,
+        },
+    )
+    .map_err(|e| StudyError::Other(e.to_string()))
+}
+
+/// The integration rule of a method (module doc): its cells and the rule.
+///
+/// # Errors
+/// Size or law errors of the rule.
+pub fn integration_rule(
+    study: &Study,
+    method: &Method,
+    settings: &ErrorSettings,
+) -> Result<(Vec<(usize, CellBox)>, Rule), StudyError> {
+    let params = &study.params;
+    let cells: Vec<(usize, CellBox)> = match method.stochastic_mesh(params) {
+        Some(mesh) => mesh
+            .leaves()
+            .into_iter()
+            .map(|c| (c, mesh.cell_bounds(c)))
+            .collect(),
+        None => Rule::regular_cells(&params.lo, &params.hi, settings.cells_per_dim)
+            .map_err(|e| StudyError::Other(e.to_string()))?
+            .into_iter()
+            .enumerate()
+            .collect(),
+    };
+    let boxes: Vec<CellBox> = cells.iter().map(|c| c.1.clone()).collect();
+    let tags: Vec<usize> = cells.iter().map(|c| c.0).collect();
+    let rule = Rule::on_cells(
+        &boxes,
+        &tags,
+        settings.points_per_cell,
+        params.joint.as_ref(),
+    )
+    .map_err(|e| StudyError::Other(format!("method '{}': {e}", method.label)))?;
+    Ok((cells, rule))
+}
+
+/// The stochastic error of `method`'s surrogate `sur` built on the converged runs `points`.
+///
+/// # Errors
+/// As [`build_estimator`] and [`integration_rule`].
+pub fn estimate_method(
+    study: &Study,
+    setup: &CreSetup,
+    solver: &LatinSolver,
+    store: &Store,
+    method: &Method,
+    points: &[Vec<f64>],
+    sur: &Surrogate,
+    settings: &ErrorSettings,
+) -> Result<(Estimator, MethodError), StudyError> {
+    let t0 = Instant::now();
+    let est = build_estimator(setup, solver, store, points)?;
+    let (cells, rule) = integration_rule(study, method, settings)?;
+    let params = StudyParameters::new(&study.model.parametric, solver);
+    let estimate = est.expectation(&rule, sur, &params);
+    let load_defect = load_defect(study, points, &rule, sur);
+    Ok((
+        est,
+        MethodError {
+            estimate,
+            runs: points.len(),
+            rule_points: rule.len(),
+            cells,
+            load_defect,
+            substructures_estimated: setup.substructures_estimated(),
+            seconds: t0.elapsed().as_secs_f64(),
+        },
+    ))
+}
+
+/// Largest relative error of the surrogate's interpolation of every load factor on the rule.
+fn load_defect(study: &Study, points: &[Vec<f64>], rule: &Rule, sur: &Surrogate) -> f64 {
+    let par = &study.model.parametric;
+    let mut worst: f64 = 0.0;
+    let mut w = Vec::new();
+    for s in &par.load_factors {
+        for e in s {
+            let vals: Vec<f64> = points.iter().map(|p| e.eval(p)).collect();
+            let scale = vals.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !(scale > 0.0) {
+                continue;
+            }
+            for q in 0..rule.len() {
+                let xi = rule.point(q);
+                Weights::weights(sur, xi, &mut w);
+                let interp: f64 = w.iter().map(|&(k, wk)| wk * vals[k]).sum();
+                worst = worst.max((interp - e.eval(xi)).abs() / scale);
+            }
+        }
+    }
+    worst
+}
+
+/// Error-density maps of a method over every pair of parameters (crate `alea-estimate`,
+/// module `density`).
+///
+/// # Errors
+/// Size errors of the maps.
+pub fn density_maps(
+    study: &Study,
+    solver: &LatinSolver,
+    est: &Estimator,
+    sur: &Surrogate,
+    settings: &ErrorSettings,
+) -> Result<Vec<PairMap>, StudyError> {
+    let params = StudyParameters::new(&study.model.parametric, solver);
+    pair_maps(
+        est,
+        sur,
+        &params,
+        study.params.joint.as_ref(),
+        &study.params.lo,
+        &study.params.hi,
+        settings.map_points,
+        400_000,
+    )
+    .map_err(|e| StudyError::Other(e.to_string()))
+}
