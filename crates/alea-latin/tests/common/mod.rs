@@ -68,3 +68,21 @@ pub fn restrict(ref_mesh: &Mesh, reference: &[f64], mesh: &Mesh) -> Vec<f64> {
     }
     out
 }
+
+/// Structured box `[x0, x0 + l] ` (per direction) of `Hex8`, `Tet4` or `Tet10` cells.
+pub fn cuboid(x0: [f64; 3], l: [f64; 3], n: [usize; 3], kind: CellType) -> Mesh {
+    let mut m = generate::box_mesh(l, n, kind).unwrap();
+    for x in m.coords.iter_mut() {
+        for d in 0..3 {
+            x[d] += x0[d];
+        }
+    }
+    m
+}
+
+/// A 3D solid model with one material.
+pub fn solid(mesh: Mesh, young: f64, poisson: f64) -> Model {
+    let mut m = Model::new(mesh, Analysis::Solid).unwrap();
+    m.set_material_all(Material::new(young, poisson, 0.0).unwrap());
+    m
+}
