@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod contact;
+pub mod contact3d;
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 use alea_latin::Substructure;
