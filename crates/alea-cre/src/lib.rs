@@ -62,11 +62,14 @@ pub mod interface;
 mod linalg;
 pub mod poly;
 mod result;
+pub mod solid;
 mod substructure;
 pub mod topology;
 
-pub use data::{LoadData, SideForces, TractionField, VectorField};
-pub use domain::{CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
+pub use data::{
+    FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
+};
+pub use domain::{Admissible, CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
 pub use error::CreError;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};
