@@ -71,7 +71,10 @@ fn typed_errors() {
     t3.mesh.coords[mid][2] += 0.05;
     let ut = vec![0.0; 3 * t3.mesh.num_nodes()];
     let r = estimate_domain(&t3, &Constraints::new(), &LoadData::new(), &ut, &opts);
-    assert!(matches!(r, Err(CreError::Invalid(ref m)) if m.contains("curved")), "{r:?}");
+    assert!(
+        matches!(r, Err(CreError::Invalid(ref m)) if m.contains("curved")),
+        "{r:?}"
+    );
     // Zero displacement, no load: zero estimate.
     let r = estimate_domain(&m, &c, &LoadData::new(), &u, &opts).unwrap();
     assert_eq!(r.theta, 0.0);
