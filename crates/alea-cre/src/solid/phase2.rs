@@ -7,7 +7,8 @@
 //! With an isotropic material (`lambda`, `mu` of the cell), the stiffness of two vector basis
 //! functions `phi_a e_c` and `phi_b e_d` is `lambda G_cd[a][b] + mu (delta_cd sum_e G_ee[a][b] +
 //! G_dc[a][b])` with the scalar integrals `G_pq[a][b] = int_E d_p phi_a d_q phi_b` (six blocks of
-//! `n_s x n_s`, `G_qp = G_pq^T`), and the load is `L_c[a] = int_E f_c phi_a + sum_faces int eta
+//! `n_s x n_s`, `G_qp = G_pq^T`, computed as products `B_p^T B_q` of the weighted gradient
+//! tables by faer's matrix product), and the load is `L_c[a] = int_E f_c phi_a + sum_faces int eta
 //! F_hat_c phi_a`: the local matrices cost `O(n_s^2)` per quadrature point instead of
 //! `O((3 n_s)^2)`. Volume rules: collapsed Gauss of degree `2 (p + k) - 1` on tetrahedra (exact
 //! for the stiffness on affine cells), `p + k + 1` Gauss points per direction on hexahedra;
@@ -23,9 +24,12 @@ use alea_mesh::CellType;
 
 use super::phase1::FaceTractions;
 use super::poly::{PolySpace3, ScalarPoint};
+use faer::linalg::matmul::matmul;
+use faer::linalg::solvers::Solve;
+use faer::{Accum, Mat, MatRef, Par, Side};
+
 use crate::CreError;
 use crate::data::VectorField;
-use crate::linalg::cholesky_solve;
 
 /// The admissible stress of one 3D element: `sigma_hat = K eps(sum_c sum_s u[c][s] phi_s e_c)`.
 #[derive(Clone, Debug)]
@@ -169,17 +173,22 @@ pub fn element(
     } else {
         &rules.tet
     };
-    // Scalar integrals: G[k] for (p, q) in PAIRS, row-major ns x ns.
+    // Scalar integrals G_pq = B_p^T B_q with B_d[q][s] = sqrt(w_q det_q) d_d phi_s(x_q)
+    // (column-major npts x ns), for (p, q) in PAIRS.
     const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
-    let mut gmat = vec![vec![0.0; ns * ns]; 6];
+    let npts = rule.len();
+    let mut bmat = [
+        vec![0.0; npts * ns],
+        vec![0.0; npts * ns],
+        vec![0.0; npts * ns],
+    ];
     let mut load = [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]];
     let mut p = ScalarPoint::default();
     let ctr = space.center;
     let (mut res, mut abs_sum) = ([0.0; 6], 0.0);
     // Per point: weight, FE displacement gradient, scalar gradients (for theta).
     let mut pts: Vec<(f64, [[f64; 3]; 3], Vec<[f64; 3]>)> = Vec::with_capacity(rule.len());
-    let mut gcomp = [vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]];
-    for (xi, w) in rule.points.iter().zip(&rule.weights) {
+    for (q, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
         let g = point_geometry(kind, &coords, *xi);
         if g.det <= 0.0 {
             return Err(alea_fem::FemError::BadJacobian {
@@ -199,20 +208,10 @@ pub fn element(
             }
         }
         space.eval(g.x, false, &mut p);
-        for s in 0..ns {
+        let sw = wd.sqrt();
+        for (s, gr) in p.grad.iter().enumerate() {
             for d in 0..3 {
-                gcomp[d][s] = p.grad[s][d];
-            }
-        }
-        for (k, &(pp, qq)) in PAIRS.iter().enumerate() {
-            let gm = &mut gmat[k];
-            let (gp, gq) = (&gcomp[pp], &gcomp[qq]);
-            for a in 0..ns {
-                let wa = wd * gp[a];
-                let row = &mut gm[a * ns..(a + 1) * ns];
-                for (r, &b) in row.iter_mut().zip(gq.iter()) {
-                    *r += wa * b;
-                }
+                bmat[d][s * npts + q] = sw * gr[d];
             }
         }
         if let Some(b) = body {
@@ -248,6 +247,23 @@ pub fn element(
             add_resultant(&mut res, &mut abs_sum, ws, g.x, ctr, t);
         }
     }
+    let gmat: Vec<Mat<f64>> = PAIRS
+        .iter()
+        .map(|&(pp, qq)| {
+            let bp = MatRef::from_column_major_slice(&bmat[pp], npts, ns);
+            let bq = MatRef::from_column_major_slice(&bmat[qq], npts, ns);
+            let mut g = Mat::<f64>::zeros(ns, ns);
+            matmul(
+                g.as_mut(),
+                Accum::Replace,
+                bp.transpose(),
+                bq,
+                1.0,
+                Par::Seq,
+            );
+            g
+        })
+        .collect();
     let h = space.scale;
     let balance_defect = if abs_sum > 0.0 {
         (res[..3].iter().map(|v| v.abs()).sum::<f64>()
@@ -270,25 +286,21 @@ pub fn element(
     };
     let gval = |pp: usize, qq: usize, a: usize, b: usize| -> f64 {
         let (k, tr) = gidx(pp, qq);
-        if tr {
-            gmat[k][b * ns + a]
-        } else {
-            gmat[k][a * ns + b]
-        }
+        if tr { gmat[k][(b, a)] } else { gmat[k][(a, b)] }
     };
     let block = |cc: usize, a: usize, d: usize, b: usize| -> f64 {
         let mut v = lam * gval(cc, d, a, b) + mu * gval(d, cc, a, b);
         if cc == d {
-            v += mu * (gmat[0][a * ns + b] + gmat[1][a * ns + b] + gmat[2][a * ns + b]);
+            v += mu * (gmat[0][(a, b)] + gmat[1][(a, b)] + gmat[2][(a, b)]);
         }
         v
     };
     let nb = space.len();
-    let mut kmat = vec![0.0; nb * nb];
-    let mut l = vec![0.0; nb];
+    let mut kmat = Mat::<f64>::zeros(nb, nb);
+    let mut l = Mat::<f64>::zeros(nb, 1);
     for (i, fi) in space.funcs.iter().enumerate() {
         for &(ci, si, ai) in &fi.terms[..fi.nterms] {
-            l[i] += ai * load[ci][si];
+            l[(i, 0)] += ai * load[ci][si];
         }
         for j in i..nb {
             let fj = &space.funcs[j];
@@ -298,14 +310,19 @@ pub fn element(
                     v += ai * aj * block(ci, si, cj, sj);
                 }
             }
-            kmat[i * nb + j] = v;
-            kmat[j * nb + i] = v;
+            kmat[(i, j)] = v;
+            kmat[(j, i)] = v;
         }
     }
-    if !cholesky_solve(&mut kmat, &mut l, nb) {
+    let llt = kmat
+        .llt(Side::Lower)
+        .map_err(|_| CreError::LocalSolve { cell: c })?;
+    llt.solve_in_place(l.as_mut());
+    let v: Vec<f64> = (0..nb).map(|i| l[(i, 0)]).collect();
+    if v.iter().any(|x| !x.is_finite()) {
         return Err(CreError::LocalSolve { cell: c });
     }
-    let coeffs = space.expand(&l);
+    let coeffs = space.expand(&v);
     let (mut theta2, mut energy2) = (0.0, 0.0);
     let energy = |g: &[[f64; 3]; 3]| -> f64 {
         let tr = g[0][0] + g[1][1] + g[2][2];
