@@ -148,6 +148,10 @@ impl SolidRules {
     }
 }
 
+/// A volume quadrature point kept for `theta_E`: weight `w det J`, FE displacement gradient,
+/// gradients of the scalar basis.
+type VolumePoint = (f64, [[f64; 3]; 3], Vec<[f64; 3]>);
+
 /// Solves the local problem of 3D cell `c` and evaluates its contribution.
 pub fn element(
     model: &Model,
@@ -187,7 +191,7 @@ pub fn element(
     let ctr = space.center;
     let (mut res, mut abs_sum) = ([0.0; 6], 0.0);
     // Per point: weight, FE displacement gradient, scalar gradients (for theta).
-    let mut pts: Vec<(f64, [[f64; 3]; 3], Vec<[f64; 3]>)> = Vec::with_capacity(rule.len());
+    let mut pts: Vec<VolumePoint> = Vec::with_capacity(rule.len());
     for (q, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
         let g = point_geometry(kind, &coords, *xi);
         if g.det <= 0.0 {
