@@ -8,6 +8,11 @@
 //! Run: `CARGO_TARGET_DIR=/work/target-cre cargo bench -p alea-cre --bench cre`
 //! (results in `crates/alea-cre/BENCHMARKS.md`). `CRE_BENCH_REFINE` changes the refinement
 //! (default 6).
+//!
+//! 3D case (`CRE_BENCH_CASE=3d`): the same four-part assembly with each substructure's mesh
+//! (refinement `CRE_BENCH_REFINE`, default 2) extruded along z into `CRE_BENCH_LAYERS`
+//! (default 8) layers of Hex8 over 20 mm, out-of-plane displacement blocked on `z = 0`, the
+//! same loads (Coulomb flanks and perfect cuts become face interfaces).
 
 use std::time::Instant;
 
@@ -36,20 +41,75 @@ fn cpu_seconds() -> f64 {
         * 1e-9
 }
 
+/// The 3D case: every substructure of the 2D assembly extruded into Hex8.
+fn assembly_3d(refine: usize, layers: usize) -> Assembly {
+    use alea_fem::{Analysis, Constraints, Loads, Model};
+    let flat = assembly(refine);
+    let subs = flat
+        .subs
+        .into_iter()
+        .map(|s| {
+            let mesh = alea_mesh::generate::extrude(&s.model.mesh, layers, 20.0).unwrap();
+            let mut m = Model::new(mesh, Analysis::Solid).unwrap();
+            m.set_material_all(*s.model.material(0).unwrap());
+            let mut c = Constraints::new();
+            c.fix_component(&m.mesh, "zmin", 2, 0.0).unwrap();
+            let mut l = Loads::new(&m);
+            if s.name.starts_with("disk") {
+                let side = s.name.replace("disk_", "disk_side_");
+                c.fix_normal(&m.mesh, &side, 0.0).unwrap();
+            } else {
+                l.traction(&m, "root_top", |_, _| [SHEAR, PULL, 0.0])
+                    .unwrap();
+            }
+            alea_latin::Substructure {
+                name: s.name,
+                model: m,
+                constraints: c,
+                load_cases: vec![l.f],
+            }
+        })
+        .collect();
+    Assembly {
+        subs,
+        interfaces: flat.interfaces,
+    }
+}
+
 fn loads() -> Vec<LoadData> {
     let root = LoadData::new().traction("root_top", |_, _| [SHEAR, PULL, 0.0]);
     vec![root.clone(), root, LoadData::new(), LoadData::new()]
 }
 
 fn main() {
-    let refine: usize = std::env::var("CRE_BENCH_REFINE")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(6);
-    let asm = assembly(refine);
-    let ndof: usize = asm.subs.iter().map(|s| 2 * s.model.mesh.num_nodes()).sum();
+    let solid = std::env::var("CRE_BENCH_CASE").is_ok_and(|v| v == "3d");
+    let env = |k: &str, d: usize| -> usize {
+        std::env::var(k)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(d)
+    };
+    let refine = env("CRE_BENCH_REFINE", if solid { 2 } else { 6 });
+    let layers = env("CRE_BENCH_LAYERS", 8);
+    let asm = if solid {
+        assembly_3d(refine, layers)
+    } else {
+        assembly(refine)
+    };
+    let dim = asm.subs[0].model.mesh.dim;
+    let ndof: usize = asm
+        .subs
+        .iter()
+        .map(|s| dim * s.model.mesh.num_nodes())
+        .sum();
     let ncell: usize = asm.subs.iter().map(|s| s.model.mesh.num_cells()).sum();
-    println!("dovetail refined x{refine}: {ndof} dof, {ncell} cells in 4 substructures");
+    if solid {
+        println!(
+            "3D dovetail refined x{refine}, {layers} Hex8 layers: {ndof} dof, {ncell} cells in 4 substructures"
+        );
+    } else {
+        println!("dovetail refined x{refine}: {ndof} dof, {ncell} cells in 4 substructures");
+    }
     let data = loads();
     for threads in [1, 2] {
         let pool = rayon::ThreadPoolBuilder::new()

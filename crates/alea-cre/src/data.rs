@@ -60,8 +60,13 @@ impl LoadData {
 /// per unit thickness, in the orientation of the side's own outward normal.
 pub type FacetProjections = HashMap<[usize; 2], Vec<(usize, [f64; 2])>>;
 
+/// Per face of a 3D side (key: sorted corner nodes), target projections `(node, int_face t
+/// phi_node dS)`, in the orientation of the side's own outward normal.
+pub type FaceProjections = HashMap<Vec<usize>, Vec<(usize, [f64; 3])>>;
+
 /// Discrete nodal forces applied to the nodes of a facet group (an interface side): force on
 /// `nodes[i]` is `forces[i]` (total, thickness included, as in the FE right-hand side).
+/// `reference` serves 2D sides (edges), `face_reference` 3D sides (faces).
 #[derive(Clone, Debug)]
 pub struct SideForces {
     /// Facet group of the side.
@@ -75,4 +80,6 @@ pub struct SideForces {
     /// the domain's own FE traction `sigma_h n`. For an interface, the average of the two sides'
     /// FE tractions makes the two sides' densities opposite once the forces are.
     pub reference: Option<FacetProjections>,
+    /// The same targets for a 3D side (faces); `None`: the domain's own FE tractions.
+    pub face_reference: Option<FaceProjections>,
 }

@@ -7,6 +7,8 @@ use crate::CreError;
 use crate::data::{LoadData, SideForces};
 use crate::eet::phase1::{EdgeTractions, Phase1Input, phase1};
 use crate::eet::phase2::{ElementStress, Phase2Rules, element};
+use crate::solid::phase1::FaceTractions;
+use crate::solid::phase2::{SolidElementStress, SolidRules};
 
 /// Estimator options.
 #[derive(Clone, Copy, Debug)]
@@ -63,15 +65,64 @@ pub struct DomainEstimate {
     pub compatibility_defect: f64,
     /// Largest relative out-of-balance of the element loads of phase 2.
     pub balance_defect: f64,
-    /// Phase-1 edge tractions.
-    pub tractions: EdgeTractions,
-    /// Phase-2 admissible stress of each cell.
-    pub stresses: Vec<ElementStress>,
+    /// The statically admissible field: phase-1 densities and phase-2 element stresses.
+    pub admissible: Admissible,
     /// Wall-clock seconds of phase 1 and phase 2 (with the element contributions).
     pub seconds: [f64; 2],
 }
 
+/// The statically admissible field of an estimate, by dimension.
+#[derive(Clone, Debug)]
+pub enum Admissible {
+    /// 2D: edge densities and element stresses `[s_xx, s_yy, s_xy]`.
+    Plane {
+        /// Phase-1 edge tractions.
+        tractions: EdgeTractions,
+        /// Phase-2 admissible stress of each cell.
+        stresses: Vec<ElementStress>,
+    },
+    /// 3D: face densities and element stresses `[xx, yy, zz, yz, xz, xy]`.
+    Solid {
+        /// Phase-1 face tractions.
+        tractions: FaceTractions,
+        /// Phase-2 admissible stress of each cell.
+        stresses: Vec<SolidElementStress>,
+    },
+}
+
 impl DomainEstimate {
+    /// Phase-1 edge tractions of a 2D estimate.
+    pub fn edge_tractions(&self) -> Option<&EdgeTractions> {
+        match &self.admissible {
+            Admissible::Plane { tractions, .. } => Some(tractions),
+            Admissible::Solid { .. } => None,
+        }
+    }
+
+    /// Phase-2 element stresses of a 2D estimate.
+    pub fn plane_stresses(&self) -> Option<&[ElementStress]> {
+        match &self.admissible {
+            Admissible::Plane { stresses, .. } => Some(stresses),
+            Admissible::Solid { .. } => None,
+        }
+    }
+
+    /// Phase-1 face tractions of a 3D estimate.
+    pub fn face_tractions(&self) -> Option<&FaceTractions> {
+        match &self.admissible {
+            Admissible::Solid { tractions, .. } => Some(tractions),
+            Admissible::Plane { .. } => None,
+        }
+    }
+
+    /// Phase-2 element stresses of a 3D estimate.
+    pub fn solid_stresses(&self) -> Option<&[SolidElementStress]> {
+        match &self.admissible {
+            Admissible::Solid { stresses, .. } => Some(stresses),
+            Admissible::Plane { .. } => None,
+        }
+    }
+
     /// Energy density of the error per cell, `theta_E^2 / |E|` (for plots).
     pub fn error_density(&self, model: &Model) -> Vec<f64> {
         self.element_theta
@@ -115,6 +166,9 @@ pub fn estimate_with_sides(
             "displacement entry {i} is not finite"
         )));
     }
+    if model.mesh.dim == 3 {
+        return estimate_solid(model, dofs, loads, sides, u, options);
+    }
     let t0 = std::time::Instant::now();
     let tr = phase1(&Phase1Input {
         model,
@@ -154,8 +208,66 @@ pub fn estimate_with_sides(
         energy_norm: energy2.max(0.0).sqrt(),
         compatibility_defect: tr.compatibility_defect,
         balance_defect,
-        tractions: tr,
-        stresses,
+        admissible: Admissible::Plane {
+            tractions: tr,
+            stresses,
+        },
+        seconds: [t1, t0.elapsed().as_secs_f64()],
+    })
+}
+
+/// The 3D path of [`estimate_with_sides`] (module [`crate::solid`]).
+fn estimate_solid(
+    model: &Model,
+    dofs: &DofMap,
+    loads: &LoadData,
+    sides: &[SideForces],
+    u: &[f64],
+    options: &CreOptions,
+) -> Result<DomainEstimate, CreError> {
+    let t0 = std::time::Instant::now();
+    let tr = crate::solid::phase1::phase1(&crate::solid::phase1::Phase1Input {
+        model,
+        dofs,
+        u,
+        body: loads.body.as_ref(),
+        tractions: &loads.tractions,
+        sides,
+    })?;
+    let t1 = t0.elapsed().as_secs_f64();
+    let t0 = std::time::Instant::now();
+    // Local degree p + k for cells of order p (1: Tet4/Hex8, 2: Tet10).
+    let rules = [
+        SolidRules::new(1 + options.extra_degree, 1),
+        SolidRules::new(2 + options.extra_degree, 2),
+    ];
+    let per: Vec<_> = (0..model.mesh.num_cells())
+        .into_par_iter()
+        .map(|c| {
+            let order = model.mesh.cell_type(c).order().clamp(1, 2);
+            crate::solid::phase2::element(model, c, u, loads.body.as_ref(), &tr, &rules[order - 1])
+        })
+        .collect::<Result<_, _>>()?;
+    let theta2: f64 = per.iter().map(|r| r.theta2).sum();
+    if !theta2.is_finite() {
+        return Err(CreError::Invalid(
+            "non-finite error estimate (degenerate cell or non-finite load data)".into(),
+        ));
+    }
+    let energy2: f64 = per.iter().map(|r| r.energy2).sum();
+    let balance_defect = per.iter().fold(0.0f64, |m, r| m.max(r.balance_defect));
+    let element_theta = per.iter().map(|r| r.theta2.max(0.0).sqrt()).collect();
+    let stresses = per.into_iter().map(|r| r.stress).collect();
+    Ok(DomainEstimate {
+        theta: theta2.max(0.0).sqrt(),
+        element_theta,
+        energy_norm: energy2.max(0.0).sqrt(),
+        compatibility_defect: tr.compatibility_defect,
+        balance_defect,
+        admissible: Admissible::Solid {
+            tractions: tr,
+            stresses,
+        },
         seconds: [t1, t0.elapsed().as_secs_f64()],
     })
 }

@@ -24,6 +24,13 @@
 //! but is then **not** a bound). A perfect interface has `b(v, F) = chi_{v = 0}(v)`: its density
 //! is `w . F` and the check is `|w| <= tol W_scale` with `W_scale` the largest side displacement.
 //! The integral uses the lumped interface weights of the run (`InterfaceResult::weights`).
+//!
+//! **2D and 3D.** Everything is computed on 3-vectors: `w_t = w - w_n n`, `F_t = F - F_n n` are
+//! the projections on the tangent line (2D) or plane (3D) and `|w_t|` their Euclidean norm, so
+//! the same code serves both (`tests/contact3d.rs`: hand-made states with oblique slips, and a 3D
+//! LATIN run). In 3D the density at a slipping point, `mu F_n |w_t| (1 - cos angle(-w_t, F_t))`,
+//! is non-zero while the slip direction still turns between stages `n - 1` and `n`, so the
+//! term decays with the LATIN residual instead of vanishing as soon as the statuses settle.
 
 use alea_latin::InterfaceResult;
 

@@ -8,9 +8,10 @@
 //! Prager-Synge identity (3.19) `||u_ex - u_hat||^2_K + ||sigma_ex - sigma_hat||^2_{K^-1} =
 //! 2 e^2`, so `theta = sqrt(2) e` bounds the energy-norm error `||u_ex - u_h||_K =
 //! (int (sigma_ex - sigma_h) : eps(u_ex - u_h))^(1/2)`. We take `u_hat = u_h` and build
-//! `sigma_hat` by the standard EET technique ([`eet`]): phase 1 (3.20)-(3.22) equilibrated edge
-//! tractions from the prolongation condition, node by node; phase 2 (3.23) element-by-element
-//! Neumann problems solved with degree `p + 3` polynomials. Element contributions
+//! `sigma_hat` by the standard EET technique ([`eet`] in 2D, [`solid`] in 3D): phase 1
+//! (3.20)-(3.22) equilibrated edge (2D) or face (3D) tractions from the prolongation condition,
+//! node by node; phase 2 (3.23) element-by-element Neumann problems solved with degree `p + 3`
+//! polynomials. Element contributions
 //! `theta_E^2 = ||sigma_hat - sigma_h||^2_{K^-1,E}`, `theta^2 = sum_E theta_E^2`.
 //!
 //! With contact (3.26): `e^2 = 1/2 sum_s ||sigma_hat^s - K eps(u_hat^s)||^2 + int_Ic [b(-w_hat,
@@ -36,8 +37,12 @@
 //! `theta(p+3) / theta(p+5)` = 0.97 (T3, Q4), 0.95 (T6), 0.86 (Q8)), and non-polynomial loads
 //! are integrated by quadrature ([`DomainEstimate::balance_defect`]). So `theta` is a *nearly*
 //! guaranteed bound; the measured efficiency indices (manufactured solutions: 1.17-1.27 Q4,
-//! 2.27-2.76 T3, 1.07-1.57 Q8, 2.14-2.64 T6) leave a margin, smallest for Q8, where raising
-//! [`CreOptions::extra_degree`] is advisable when a strict bound matters.
+//! 2.27-2.76 T3, 1.07-1.57 Q8, 2.14-2.64 T6; in 3D 1.16-1.40 Hex8, 2.85-4.02 Tet4, 2.33-2.92
+//! Tet10, `tests/manufactured3d.rs`) leave a margin, smallest for Q8 and Hex8, where raising
+//! [`CreOptions::extra_degree`] is advisable when a strict bound matters. In 3D
+//! `theta(p+3) / theta(p+4)` = 0.98 (Hex8), 0.98 (Tet4), 0.97 (Tet10) on a distorted 3 x 3 x 3
+//! mesh (`tests/admissibility3d.rs`); warped Hex8 faces make the face integrals quadratures
+//! (see [`solid`]).
 //! For an assembly, the bound additionally needs a **converged LATIN** solution: the
 //! substructure stresses are in equilibrium with the linear-stage forces `F_n` while the
 //! interface term uses the local-stage `(W_hat_(n-1), F_hat_n)`; only at convergence are these
@@ -47,11 +52,14 @@
 //! `n - 1` and `n`, so it is not a measure of the LATIN convergence error by itself.
 //!
 //! # Scope
-//! 2D (plane strain / plane stress); Tri3, Quad4, Tri6 and Quad8 cells with straight edges
-//! (curved quadratic edges are rejected with [`CreError::Invalid`], 3D cells with
-//! [`CreError::UnsupportedCell`] or `Invalid`); constraints along axes or skew (`fix_normal`).
-//! Missing: 3D (Tet4/Tet10/Hex8: faces instead of edges in phase 1, 3D local spaces in
-//! phase 2), curved edges, the "improved" technique (3.1.1.4 b).
+//! 2D (plane strain / plane stress): Tri3, Quad4, Tri6 and Quad8 cells with straight edges; 3D:
+//! Tet4, Tet10 (straight edges) and Hex8 (faces may be warped). Curved quadratic edges are
+//! rejected with [`CreError::Invalid`], other cells with [`CreError::UnsupportedCell`];
+//! constraints along axes or skew (`fix_normal`); isotropic materials (one per cell). The
+//! interface term is dimension-free (tangent line or plane). Missing: curved edges, the
+//! "improved" technique (3.1.1.4 b). Cost in 3D: one dense local problem of `3 n_s - 6`
+//! unknowns per cell (99 for Tet4/Hex8 at `p + 3`, 162 for Tet10), about three times a
+//! deterministic LATIN solve on the 3D benchmark (`BENCHMARKS.md`).
 
 mod data;
 mod domain;
@@ -63,11 +71,14 @@ mod linalg;
 pub mod poly;
 mod result;
 mod samples;
+pub mod solid;
 mod substructure;
 pub mod topology;
 
-pub use data::{LoadData, SideForces, TractionField, VectorField};
-pub use domain::{CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
+pub use data::{
+    FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
+};
+pub use domain::{Admissible, CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
 pub use error::CreError;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};

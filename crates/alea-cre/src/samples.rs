@@ -50,6 +50,23 @@ pub struct EnergySampler {
     offsets: Vec<usize>,
 }
 
+/// The 2D admissible stresses of an estimate with `cells` cells.
+fn plane_stresses(
+    estimate: &DomainEstimate,
+    cells: usize,
+) -> Result<&[crate::eet::phase2::ElementStress], CreError> {
+    let stresses = estimate.plane_stresses().ok_or_else(|| {
+        CreError::Invalid("energy samples of a 3D estimate are not implemented".into())
+    })?;
+    if stresses.len() != cells {
+        return Err(CreError::Invalid(format!(
+            "estimate of {} cells for a sampler of {cells}",
+            stresses.len()
+        )));
+    }
+    Ok(stresses)
+}
+
 /// Lower Cholesky factor of a symmetric positive definite 3 x 3 matrix.
 fn cholesky3(d: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
     let mut l = [[0.0; 3]; 3];
@@ -201,15 +218,9 @@ impl EnergySampler {
     /// # Errors
     /// [`CreError::Invalid`] if the estimate does not belong to this sampler's model and options.
     pub fn coefficients(&self, estimate: &DomainEstimate) -> Result<Vec<f64>, CreError> {
-        if estimate.stresses.len() != self.spaces.len() {
-            return Err(CreError::Invalid(format!(
-                "estimate of {} cells for a sampler of {}",
-                estimate.stresses.len(),
-                self.spaces.len()
-            )));
-        }
+        let stresses = plane_stresses(estimate, self.spaces.len())?;
         let mut out = Vec::with_capacity(self.coefficient_offsets[self.spaces.len()]);
-        for (c, st) in estimate.stresses.iter().enumerate() {
+        for (c, st) in stresses.iter().enumerate() {
             let n = self.coefficient_offsets[c + 1] - self.coefficient_offsets[c];
             if st.coeffs.len() != n {
                 return Err(CreError::Invalid(format!(
@@ -261,20 +272,9 @@ impl EnergySampler {
     /// # Errors
     /// [`CreError::Invalid`] if the estimate has another number of cells.
     pub fn admissible_stress(&self, estimate: &DomainEstimate) -> Result<Vec<f64>, CreError> {
-        if estimate.stresses.len() != self.points.len() {
-            return Err(CreError::Invalid(format!(
-                "estimate of {} cells for a sampler of {}",
-                estimate.stresses.len(),
-                self.points.len()
-            )));
-        }
+        let stresses = plane_stresses(estimate, self.points.len())?;
         let mut out = Vec::with_capacity(self.len());
-        for ((pts, st), l) in self
-            .points
-            .iter()
-            .zip(&estimate.stresses)
-            .zip(&self.factors)
-        {
+        for ((pts, st), l) in self.points.iter().zip(stresses).zip(&self.factors) {
             for (_, x, s) in pts {
                 let y = forward3(l, &st.stress(*x));
                 out.extend(y.iter().map(|v| s * v));

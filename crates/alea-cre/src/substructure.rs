@@ -26,11 +26,12 @@ use alea_fem::{DofMap, Model};
 use alea_latin::{Assembly, RunResult, interface::side_geometry};
 
 use crate::CreError;
-use crate::data::{FacetProjections, LoadData, SideForces};
+use crate::data::{FaceProjections, FacetProjections, LoadData, SideForces};
 use crate::domain::{CreOptions, estimate_with_sides};
 use crate::eet::phase1::facet_projections;
 use crate::interface::interface_term;
 use crate::result::CreResult;
+use crate::solid::sides::face_projections;
 
 /// Estimates the error of a LATIN run `run` of `assembly` (the same assembly the solver was
 /// built from); `loads[s]` are the loads of substructure `s` as functions (the ones its load
@@ -62,7 +63,14 @@ pub fn estimate_latin(
         .collect();
     let mut sides: Vec<Vec<SideForces>> = vec![Vec::new(); ns];
     for (spec, ir) in assembly.interfaces.iter().zip(&run.interfaces) {
-        let refs = interface_references(spec, ir, &models, run)?;
+        let solid = models.get(spec.sub1).is_some_and(|m| m.mesh.dim == 3);
+        let (refs, face_refs) = if solid {
+            let r = interface_face_references(spec, ir, &models, run)?;
+            ([None, None], [Some(r[0].clone()), Some(r[1].clone())])
+        } else {
+            let r = interface_references(spec, ir, &models, run)?;
+            ([Some(r[0].clone()), Some(r[1].clone())], [None, None])
+        };
         for s in 0..2 {
             let (sub, group) = if s == 0 {
                 (spec.sub1, &spec.group1)
@@ -117,7 +125,8 @@ pub fn estimate_latin(
                 group: group.clone(),
                 nodes: ir.nodes[s].clone(),
                 forces,
-                reference: Some(refs[s].clone()),
+                reference: refs[s].clone(),
+                face_reference: face_refs[s].clone(),
             });
         }
     }
@@ -193,6 +202,67 @@ fn interface_references(
         }
         if complete {
             r1.insert(*key, avg1);
+            r2.insert(key2, avg2);
+        }
+    }
+    Ok([r1, r2])
+}
+
+/// The 3D counterpart of [`interface_references`]: the average of the two sides' FE traction
+/// projections on each pair of matching faces (side 2's with the opposite sign, through the
+/// node pairing).
+fn interface_face_references(
+    spec: &alea_latin::InterfaceSpec,
+    ir: &alea_latin::InterfaceResult,
+    models: &[Model],
+    run: &RunResult,
+) -> Result<[FaceProjections; 2], CreError> {
+    let (s1, s2) = (spec.sub1, spec.sub2);
+    if s1 >= models.len() || s2 >= models.len() || ir.nodes[0].len() != ir.nodes[1].len() {
+        return Err(CreError::Invalid(format!(
+            "interface '{}': inconsistent substructures or node pairs",
+            spec.name
+        )));
+    }
+    let p1 = face_projections(&models[s1], &run.displacements[s1], &spec.group1)?;
+    let p2 = face_projections(&models[s2], &run.displacements[s2], &spec.group2)?;
+    let partner: HashMap<usize, usize> = ir.nodes[0]
+        .iter()
+        .copied()
+        .zip(ir.nodes[1].iter().copied())
+        .collect();
+    let mut r1 = p1.clone();
+    let mut r2 = p2.clone();
+    for (key, list1) in &p1 {
+        let Some(mut key2) = key
+            .iter()
+            .map(|n| partner.get(n).copied())
+            .collect::<Option<Vec<usize>>>()
+        else {
+            continue;
+        };
+        key2.sort_unstable();
+        let Some(list2) = p2.get(&key2) else {
+            continue;
+        };
+        let mut avg1 = Vec::with_capacity(list1.len());
+        let mut avg2 = Vec::with_capacity(list1.len());
+        let mut complete = true;
+        for &(n1, v1) in list1 {
+            let found = partner
+                .get(&n1)
+                .and_then(|n2| list2.iter().find(|(m, _)| m == n2).map(|&(m, v)| (m, v)));
+            match found {
+                Some((n2, v2)) => {
+                    let avg = [0, 1, 2].map(|c| 0.5 * (v1[c] - v2[c]));
+                    avg1.push((n1, avg));
+                    avg2.push((n2, avg.map(|v| -v)));
+                }
+                None => complete = false,
+            }
+        }
+        if complete {
+            r1.insert(key.clone(), avg1);
             r2.insert(key2, avg2);
         }
     }

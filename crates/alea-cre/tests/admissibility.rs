@@ -85,7 +85,7 @@ fn setup(kind: CellType, extra: usize) -> (Model, DomainEstimate) {
 
 /// Phase-1 element balance: max over elements of |resultant| / sum |contributions|.
 fn phase1_balance(m: &Model, est: &DomainEstimate) -> f64 {
-    let tr = &est.tractions;
+    let tr = est.edge_tractions().unwrap();
     let (x, w) = alea_fem::quadrature::gauss_legendre(6);
     let mut worst: f64 = 0.0;
     for c in 0..m.mesh.num_cells() {
@@ -128,12 +128,12 @@ fn phase1_balance(m: &Model, est: &DomainEstimate) -> f64 {
 /// Phase-2 residuals: (relative L2 traction mismatch over all element edges, relative
 /// h-weighted L2 norm of div sigma_hat + f).
 fn phase2_residuals(m: &Model, est: &DomainEstimate) -> (f64, f64) {
-    let tr = &est.tractions;
+    let tr = est.edge_tractions().unwrap();
     let (x, w) = alea_fem::quadrature::gauss_legendre(8);
     let (mut mis, mut tot) = (0.0, 0.0);
     let (mut div, mut sig) = (0.0, 0.0);
     for c in 0..m.mesh.num_cells() {
-        let st = &est.stresses[c];
+        let st = &est.plane_stresses().unwrap()[c];
         for &(e, eta) in &tr.topo.cell_edges[c] {
             let (n, len, [xa, xb]) = tr.topo.geometry(&m.mesh, e);
             for (xq, wq) in x.iter().zip(&w) {
@@ -186,7 +186,7 @@ fn check(kind: CellType) {
         thetas.push(est.theta);
         // Loaded edges: projections of the densities on the shape functions are those of the
         // prescribed traction (checked on the xmax group with a 6-point rule).
-        let tr = &est.tractions;
+        let tr = est.edge_tractions().unwrap();
         for f in m.mesh.facet_group("xmax").unwrap() {
             let e = tr.topo.find(f.nodes[0], f.nodes[1]).unwrap();
             let (n, len, [xa, xb]) = tr.topo.geometry(&m.mesh, e);
@@ -402,6 +402,7 @@ fn check_side(kind: CellType) {
         nodes: nodes.clone(),
         forces: forces.clone(),
         reference: None,
+        face_reference: None,
     };
     // Arbitrary targets: the split changes, the nodal forces must not.
     let b_bar: Vec<[[f64; 2]; 3]> = (0..topo.edges.len())

@@ -177,16 +177,15 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     }
     for it in &res.interfaces {
         let c = it.status_counts();
-        let r = it.resultant();
+        let dim = solver.model(it.subs[1]).mesh.dim;
         println!(
-            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({:.4e}, {:.4e}) {}; work of interface forces {:.4e}",
+            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({}) {}; work of interface forces {:e}",
             it.name,
             it.law,
             c[1],
             c[2],
             c[3],
-            r[0],
-            r[1],
+            resultant_text(it.resultant(), dim),
             u.force,
             it.work()
         );
@@ -209,3 +208,35 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
 #[derive(Debug, thiserror::Error)]
 #[error("the solve ended with status '{0}' (output written, see above)")]
 pub struct SolveFailed(pub &'static str);
+
+/// The components of a resultant force, labelled, at full precision (the shortest decimal that
+/// reads back to the same `f64`): `Fx = .., Fy = ..` in 2D, `.., Fz = ..` in 3D.
+fn resultant_text(r: [f64; 3], dim: usize) -> String {
+    ["Fx", "Fy", "Fz"]
+        .iter()
+        .zip(r)
+        .take(dim)
+        .map(|(label, v)| format!("{label} = {v:e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::resultant_text;
+
+    #[test]
+    fn resultants_are_labelled_and_read_back_exactly() {
+        let r = [1.0 / 3.0, -2.5e-7, 3846.153856573441];
+        let t3 = resultant_text(r, 3);
+        assert!(t3.starts_with("Fx = ") && t3.contains(", Fy = ") && t3.contains(", Fz = "));
+        let back: Vec<f64> = t3
+            .split(", ")
+            .map(|p| p.split(" = ").nth(1).unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(back, r.to_vec());
+        let t2 = resultant_text(r, 2);
+        assert!(!t2.contains("Fz"), "{t2}");
+        assert_eq!(t2.split(", ").count(), 2);
+    }
+}

@@ -206,3 +206,65 @@ mu = 0.5
     assert!(text.contains(", -3.0000e4), moment"), "{text}");
     assert!(out.join("pulled-out.vtm").exists());
 }
+
+#[test]
+fn three_d_contact_example_prints_every_resultant_component() {
+    let out = tmp("block3d");
+    let o = alea()
+        .args([
+            "solve",
+            root()
+                .join("examples/block-on-plane-3d.toml")
+                .to_str()
+                .unwrap(),
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{text}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(text.contains("converged in"), "{text}");
+    // "resultant on side 2 (Fx = .., Fy = .., Fz = ..) N", every value at full precision.
+    let line = text
+        .lines()
+        .find(|l| l.contains("interface") && l.contains("resultant on side 2"))
+        .expect("interface line");
+    let inner = line
+        .split("resultant on side 2 (")
+        .nth(1)
+        .and_then(|s| s.split(')').next())
+        .expect("resultant in parentheses");
+    let parts: Vec<(&str, f64)> = inner
+        .split(", ")
+        .map(|p| {
+            let (label, v) = p.split_once(" = ").expect("label = value");
+            let digits = v.split('e').next().unwrap().replace(['-', '.'], "");
+            assert!(digits.len() >= 12, "full precision expected: {v}");
+            (label, v.parse().expect("a number"))
+        })
+        .collect();
+    let labels: Vec<&str> = parts.iter().map(|p| p.0).collect();
+    assert_eq!(labels, ["Fx", "Fy", "Fz"], "{line}");
+    let f: Vec<f64> = parts.iter().map(|p| p.1).collect();
+    // Gross slip along (2, 1): Fz = p A = 20, (Fx, Fy) = -mu Fz (2, 1) / sqrt(5) up to the
+    // elastic part of the slip (see the example's header).
+    let (mu, fz) = (0.3, 20.0);
+    assert!((f[2] - fz).abs() < 1e-5 * fz, "Fz = {}", f[2]);
+    let want = [-mu * fz * 2.0 / 5f64.sqrt(), -mu * fz / 5f64.sqrt()];
+    let ft = (f[0] * f[0] + f[1] * f[1]).sqrt();
+    assert!((ft - mu * fz).abs() < 1e-4 * mu * fz, "|F_t| = {ft}");
+    for c in 0..2 {
+        assert!(
+            (f[c] - want[c]).abs() < 3e-3 * mu * fz,
+            "component {c}: {} vs {}",
+            f[c],
+            want[c]
+        );
+    }
+    assert!(out.join("block-on-plane-3d.vtm").exists());
+}

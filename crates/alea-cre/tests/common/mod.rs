@@ -6,6 +6,8 @@ use std::f64::consts::PI;
 use alea_fem::{Analysis, Material, Model, Quadrature, kinematics::point_geometry};
 use alea_mesh::{CellType, Mesh, generate};
 
+pub mod solid;
+
 pub const E: f64 = 1000.0;
 pub const NU: f64 = 0.3;
 

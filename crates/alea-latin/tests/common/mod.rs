@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod contact;
+pub mod contact3d;
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 use alea_latin::Substructure;
@@ -67,4 +68,22 @@ pub fn restrict(ref_mesh: &Mesh, reference: &[f64], mesh: &Mesh) -> Vec<f64> {
         out[n * d..n * d + d].copy_from_slice(&reference[m * d..m * d + d]);
     }
     out
+}
+
+/// Structured box `[x0, x0 + l] ` (per direction) of `Hex8`, `Tet4` or `Tet10` cells.
+pub fn cuboid(x0: [f64; 3], l: [f64; 3], n: [usize; 3], kind: CellType) -> Mesh {
+    let mut m = generate::box_mesh(l, n, kind).unwrap();
+    for x in m.coords.iter_mut() {
+        for d in 0..3 {
+            x[d] += x0[d];
+        }
+    }
+    m
+}
+
+/// A 3D solid model with one material.
+pub fn solid(mesh: Mesh, young: f64, poisson: f64) -> Model {
+    let mut m = Model::new(mesh, Analysis::Solid).unwrap();
+    m.set_material_all(Material::new(young, poisson, 0.0).unwrap());
+    m
 }

@@ -1,14 +1,16 @@
-//! Mesh generators: structured rectangles and boxes, multi-block mapped quads, ready-made shapes,
-//! extrusion.
+//! Mesh generators: structured rectangles and boxes, multi-block mapped quads, multi-block graded
+//! hexahedra, ready-made shapes, extrusion.
 
 mod blade_root;
 mod extrude;
+mod hexblock;
 mod multiblock;
 mod shapes;
 mod structured;
 
 pub use blade_root::{BladeRootParams, blade_root_simple};
 pub use extrude::extrude;
+pub use hexblock::{HexBlock, corner_refined_blocks, grading_for_first_cell, multiblock_hex};
 pub use multiblock::{Block, Curve, CurveFn, multiblock};
 pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};

@@ -1,0 +1,182 @@
+//! Interface sides of a 3D substructure: the discrete interface forces turned into face
+//! densities for phase 1 ([`interface_densities`]), and the FE traction projections on a facet
+//! group used as the targets of the split ([`face_projections`]). The 3D counterpart of
+//! [`crate::eet::sides`].
+
+use alea_fem::{Model, Quadrature};
+use alea_mesh::Mesh;
+
+use super::phase1::{NodeFrame3, fe_traction};
+use super::topology::{FaceTopology, face_mass};
+use crate::CreError;
+use crate::data::{FaceProjections, SideForces};
+use crate::linalg::cholesky_solve;
+
+/// A polynomial density on one face: `(face, values at the face's nodes)`.
+pub type FaceValues = (usize, Vec<[f64; 3]>);
+
+/// Densities of the faces' degree on the faces of an interface side whose consistent nodal
+/// forces equal the given discrete forces `g_i`.
+///
+/// Node by node, the projections `b_(i,Gamma) = int_Gamma F phi_i` on the side faces around
+/// node `i` are the closest to the targets `b_bar` with `sum_Gamma b_(i,Gamma) = g_i`:
+/// `b_(i,Gamma) = b_bar_(i,Gamma) + (g_i - sum b_bar) / n_i` (`n_i` faces around the node).
+/// Each face's density is then recovered from its projections through the face mass matrix
+/// (discontinuous across the face edges). `b_bar[f]` are the projections of face `f` (face
+/// order); entries of `side.face_reference` replace them. With node `frames` (constraint frames
+/// of the domain), the force is imposed only in each node's free directions. Returns, per face
+/// of the side, the nodal values.
+pub fn interface_densities(
+    mesh: &Mesh,
+    topo: &FaceTopology,
+    side: &SideForces,
+    b_bar: &[Vec<[f64; 3]>],
+    frames: Option<&[NodeFrame3]>,
+) -> Result<Vec<FaceValues>, CreError> {
+    let facets = mesh.facet_group(&side.group)?;
+    if side.forces.len() != side.nodes.len() {
+        return Err(CreError::Invalid(format!(
+            "side '{}': {} forces for {} nodes",
+            side.group,
+            side.forces.len(),
+            side.nodes.len()
+        )));
+    }
+    let force: std::collections::HashMap<usize, [f64; 3]> = side
+        .nodes
+        .iter()
+        .copied()
+        .zip(side.forces.iter().copied())
+        .collect();
+    let mut targets: Vec<(usize, Vec<[f64; 3]>)> = Vec::new();
+    let mut around: std::collections::BTreeMap<usize, Vec<(usize, usize)>> = Default::default();
+    for fc in facets {
+        let corners = &fc.nodes[..fc.kind.num_corners()];
+        let f = topo.find(corners).ok_or_else(|| {
+            CreError::Invalid(format!(
+                "facet {:?} of '{}' is not a mesh face",
+                fc.nodes, side.group
+            ))
+        })?;
+        let face = &topo.faces[f];
+        let mut t = b_bar
+            .get(f)
+            .cloned()
+            .ok_or_else(|| CreError::Invalid(format!("face {f} has no reference projection")))?;
+        if let Some(r) = side
+            .face_reference
+            .as_ref()
+            .and_then(|r| r.get(&face.key()))
+        {
+            for &(nd, v) in r {
+                if let Some(k) = face.slot(nd) {
+                    t[k] = v;
+                }
+            }
+        }
+        let k = targets.len();
+        for (slot, &nd) in face.nodes.iter().enumerate() {
+            if !force.contains_key(&nd) {
+                return Err(CreError::Invalid(format!(
+                    "facet {:?} of '{}' has node {nd} without interface force",
+                    fc.nodes, side.group
+                )));
+            }
+            around.entry(nd).or_default().push((k, slot));
+        }
+        targets.push((f, t));
+    }
+    let mut proj: Vec<Vec<[f64; 3]>> = targets.iter().map(|t| t.1.clone()).collect();
+    let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for (nd, list) in &around {
+        let g = force[nd];
+        let (basis, nfree) = frames.map_or((id, 3), |f| f[*nd]);
+        for r in basis.iter().take(nfree) {
+            let sum: f64 = list
+                .iter()
+                .map(|&(k, slot)| (0..3).map(|c| targets[k].1[slot][c] * r[c]).sum::<f64>())
+                .sum();
+            let gr: f64 = (0..3).map(|c| g[c] * r[c]).sum();
+            let corr = (gr - sum) / list.len() as f64;
+            for &(k, slot) in list {
+                for c in 0..3 {
+                    proj[k][slot][c] += corr * r[c];
+                }
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(targets.len());
+    for (k, (f, _)) in targets.iter().enumerate() {
+        let face = &topo.faces[*f];
+        let n = face.nodes.len();
+        let m = face_mass(mesh, face);
+        let mut v = vec![[0.0; 3]; n];
+        for c in 0..3 {
+            let mut a = m.clone();
+            let mut b: Vec<f64> = (0..n).map(|i| proj[k][i][c]).collect();
+            if !cholesky_solve(&mut a, &mut b, n) {
+                return Err(CreError::Invalid(format!("degenerate face {f}")));
+            }
+            for i in 0..n {
+                v[i][c] = b[i];
+            }
+        }
+        out.push((*f, v));
+    }
+    Ok(out)
+}
+
+/// Projections `int_facet (sigma_h n) phi_node dS` (`n` outward) of the FE traction of `u` on
+/// every facet of group `group` of a 3D model, keyed by the facet's sorted corner nodes.
+pub fn face_projections(
+    model: &Model,
+    u: &[f64],
+    group: &str,
+) -> Result<FaceProjections, CreError> {
+    let mesh = &model.mesh;
+    if mesh.dim != 3 || u.len() != 3 * mesh.num_nodes() {
+        return Err(CreError::Invalid(format!(
+            "face projections need a 3D mesh and 3 components per node (displacement of length {} for {} nodes)",
+            u.len(),
+            mesh.num_nodes()
+        )));
+    }
+    let mut out = FaceProjections::new();
+    for bf in mesh.attach_facets(mesh.facet_group(group)?, None)? {
+        let kind = bf.facet.kind;
+        let fnodes = &bf.facet.nodes;
+        let coords: Vec<[f64; 3]> = fnodes.iter().map(|&n| mesh.coords[n]).collect();
+        let cell_kind = mesh.cell_type(bf.cell);
+        let refs = alea_fem::reference::node_coords(cell_kind);
+        let loc = cell_kind.facets()[bf.local].1;
+        let lin = if kind == alea_mesh::CellType::Quad4 {
+            alea_mesh::CellType::Quad4
+        } else {
+            alea_mesh::CellType::Tri3
+        };
+        let rule = Quadrature::for_cell(kind, 2 * kind.order() + 3);
+        let mut proj = vec![[0.0; 3]; fnodes.len()];
+        let mut nl = [0.0; alea_fem::reference::MAX_NODES];
+        let mut dnl = [[0.0; 3]; alea_fem::reference::MAX_NODES];
+        for (rs, w) in rule.points.iter().zip(&rule.weights) {
+            let g = alea_fem::kinematics::facet_geometry(kind, &coords, *rs);
+            alea_fem::reference::shape(lin, *rs, &mut nl, &mut dnl);
+            let mut xi = [0.0; 3];
+            for a in 0..lin.num_nodes() {
+                for d in 0..3 {
+                    xi[d] += nl[a] * refs[loc[a]][d];
+                }
+            }
+            let t = fe_traction(model, bf.cell, u, xi, g.normal)?;
+            for (a, p) in proj.iter_mut().enumerate() {
+                for c in 0..3 {
+                    p[c] += w * g.jac * g.n[a] * t[c];
+                }
+            }
+        }
+        let mut key = fnodes[..kind.num_corners()].to_vec();
+        key.sort_unstable();
+        out.insert(key, fnodes.iter().copied().zip(proj).collect());
+    }
+    Ok(out)
+}
