@@ -75,7 +75,7 @@ fn erf_series(x: f64) -> f64 {
 
 /// Chebyshev fit of `exp(x^2) erfc(x)` in `t = 2/(2 + x)` (Numerical Recipes 3rd ed., 6.2.2,
 /// `Erf::erfccheb`, 28 coefficients, about 16 significant digits), for `x >= 0`.
-fn erfc_cheb(x: f64) -> f64 {
+fn erfcx_cheb_parts(x: f64) -> (f64, f64) {
     // Published coefficients kept verbatim.
     #[allow(clippy::excessive_precision)]
     const COF: [f64; 28] = [
@@ -116,7 +116,35 @@ fn erfc_cheb(x: f64) -> f64 {
         d = ty * d - dd + c;
         dd = tmp;
     }
-    t * (-x * x + 0.5 * (COF[0] + ty * d) - dd).exp()
+    // exp(x^2) erfc(x) = t exp(0.5 (c0 + ty d) - dd); the factor exp(-x^2) is applied by the
+    // caller (erfc) or left out (erfcx).
+    (t, 0.5 * (COF[0] + ty * d) - dd)
+}
+
+/// `erfc` from the Chebyshev fit, `x >= 0.75`.
+fn erfc_cheb(x: f64) -> f64 {
+    let (t, e) = erfcx_cheb_parts(x);
+    t * (-x * x + e).exp()
+}
+
+/// Scaled complementary error function `erfcx(x) = exp(x^2) erfc(x)`, finite for every
+/// `x >= 0` (it decays like `1/(x sqrt(pi))`); for `x < 0`, `2 exp(x^2) - erfcx(-x)`.
+pub fn erfcx(x: f64) -> f64 {
+    if x.is_nan() {
+        return f64::NAN;
+    }
+    if x < 0.0 {
+        return 2.0 * (x * x).exp() - erfcx(-x);
+    }
+    if x <= ERFC_SWITCH {
+        return (x * x).exp() * (1.0 - erf_series(x));
+    }
+    if x > 1e8 {
+        // Asymptotic series 1/(x sqrt(pi)) (1 - 1/(2x^2)), exact to rounding here.
+        return FRAC_1_SQRT_PI / x;
+    }
+    let (t, e) = erfcx_cheb_parts(x);
+    t * e.exp()
 }
 
 /// Laplace continued fraction of `erfc` (slow for small `x`; test reference only).
@@ -160,6 +188,53 @@ pub fn norm_cdf(x: f64) -> f64 {
 /// Standard normal survival function `1 - Phi(x)`, accurate for large `x`.
 pub fn norm_sf(x: f64) -> f64 {
     0.5 * erfc(x / SQRT_2)
+}
+
+/// `ln phi(x)`, finite for every finite `x`.
+pub fn ln_norm_pdf(x: f64) -> f64 {
+    -0.5 * x * x - 0.918_938_533_204_672_8 // ln sqrt(2 pi)
+}
+
+/// `ln(1 - Phi(x))`, accurate in the far upper tail (no underflow: `ln sf(40) = -804.6`), through
+/// `1 - Phi(x) = erfcx(x/sqrt 2) exp(-x^2/2) / 2`.
+pub fn ln_norm_sf(x: f64) -> f64 {
+    if x.is_nan() {
+        return f64::NAN;
+    }
+    if x == f64::INFINITY {
+        return f64::NEG_INFINITY;
+    }
+    if x < 1.0 {
+        return norm_sf(x).ln();
+    }
+    (0.5 * erfcx(x / SQRT_2)).ln() - 0.5 * x * x
+}
+
+/// The `x` with `ln(1 - Phi(x)) = ln_q` (`ln_q <= 0`), for probabilities far below the smallest
+/// double: Newton on `ln sf(x) - ln_q` (derivative `-phi(x)/sf(x)`, computed as
+/// `-exp(ln phi - ln sf)`), started from the Acklam value or, below `ln q = -700`, from the
+/// asymptotic `x0 = sqrt(-2 ln q - ln(-4 pi ln q))`.
+pub fn norm_isf_ln(ln_q: f64) -> f64 {
+    if ln_q.is_nan() || ln_q > 0.0 {
+        return f64::NAN;
+    }
+    if ln_q == f64::NEG_INFINITY {
+        return f64::INFINITY;
+    }
+    if ln_q > -700.0 {
+        return -norm_quantile(ln_q.exp());
+    }
+    let mut x = (-2.0 * ln_q - (-4.0 * PI * ln_q).ln()).sqrt();
+    for _ in 0..50 {
+        let f = ln_norm_sf(x) - ln_q;
+        let d = -(ln_norm_pdf(x) - ln_norm_sf(x)).exp();
+        let step = f / d;
+        x -= step;
+        if step.abs() <= 1e-15 * x.abs() {
+            break;
+        }
+    }
+    x
 }
 
 /// Inverse of the standard normal cdf. Returns `-inf`/`+inf` at 0/1 and NaN outside `[0, 1]`.
