@@ -142,11 +142,11 @@ impl TruncatedNormal {
             -norm_quantile((self.sf_b + q * self.z).clamp(0.0, 1.0))
         }
     }
-    fn to_x(&self, s: f64) -> f64 {
+    fn x_of(&self, s: f64) -> f64 {
         let t = if self.mirror { -s } else { s };
         (self.mu + self.sigma * t).clamp(self.lo, self.hi)
     }
-    fn to_s(&self, x: f64) -> f64 {
+    fn s_of(&self, x: f64) -> f64 {
         let t = (x - self.mu) / self.sigma;
         if self.mirror { -t } else { t }
     }
@@ -176,7 +176,7 @@ impl Marginal for TruncatedNormal {
         if x < self.lo || x > self.hi {
             0.0
         } else {
-            (ln_norm_pdf(self.to_s(x)) - self.ln_z).exp() / self.sigma
+            (ln_norm_pdf(self.s_of(x)) - self.ln_z).exp() / self.sigma
         }
     }
     fn cdf(&self, x: f64) -> f64 {
@@ -186,7 +186,7 @@ impl Marginal for TruncatedNormal {
         if x >= self.hi {
             return 1.0;
         }
-        let s = self.to_s(x);
+        let s = self.s_of(x);
         let v = if self.mirror { self.sv(s) } else { self.g(s) };
         v.clamp(0.0, 1.0)
     }
@@ -197,7 +197,7 @@ impl Marginal for TruncatedNormal {
         if x >= self.hi {
             return 0.0;
         }
-        let s = self.to_s(x);
+        let s = self.s_of(x);
         let v = if self.mirror { self.g(s) } else { self.sv(s) };
         v.clamp(0.0, 1.0)
     }
@@ -212,7 +212,7 @@ impl Marginal for TruncatedNormal {
             return self.hi;
         }
         let s = if self.mirror { self.qs(p) } else { self.qg(p) };
-        self.to_x(s)
+        self.x_of(s)
     }
     fn mean(&self) -> f64 {
         let (m, _) = self.std_moments();
