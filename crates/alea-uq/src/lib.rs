@@ -58,6 +58,7 @@
 pub mod basis;
 pub mod design;
 pub mod error;
+pub mod io;
 pub mod joint;
 pub mod kde;
 pub mod law;
