@@ -64,6 +64,7 @@ pub mod kde;
 pub mod law;
 mod linalg;
 pub mod quadrature;
+pub mod reliability;
 pub mod rng;
 pub mod samples;
 pub mod sobol;
