@@ -8,7 +8,7 @@
 
 use alea_uq::basis::PcBasis;
 use alea_uq::design::latin_hypercube;
-use alea_uq::joint::{Independent, JointLaw};
+use alea_uq::joint::Independent;
 use alea_uq::law::{Marginal, Normal};
 use alea_uq::quadrature::QuadratureRule;
 use alea_uq::reliability::*;
