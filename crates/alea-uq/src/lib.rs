@@ -71,5 +71,6 @@ pub mod sobol;
 pub mod special;
 pub mod stats;
 pub mod surrogate;
+pub mod validation;
 
 pub use error::{Result, UqError};

@@ -123,3 +123,48 @@ fn lars_options_are_checked_and_cap_the_basis() {
     let e = PcSurrogate::lars_with(basis, design.points(), &y, &bad).unwrap_err();
     assert!(e.to_string().contains("max_terms_fraction"), "{e}");
 }
+
+#[test]
+fn k_fold_with_one_run_per_fold_is_the_leave_one_out_error() {
+    use alea_uq::surrogate::MonomialSurface;
+    use alea_uq::validation::{k_fold, q2, q2_surrogate};
+    let m = uniforms(2, -1.0, 1.0);
+    let law = Independent::new(m.clone()).unwrap();
+    let f = |x: &[f64]| (2.0 * x[0]).sin() + x[1] * x[1] * x[0];
+    let design = latin_hypercube(&law, 40, 6);
+    let y = design.evaluate(f);
+    let basis = PcBasis::total_degree(&m, 4).unwrap();
+    let pc = PcSurrogate::regression(basis.clone(), design.points()).unwrap();
+    let loo = pc.loo_error(&y).unwrap();
+    let fit = |p: &[f64], _: &[f64]| PcSurrogate::regression(basis.clone(), p);
+    let kf = k_fold(2, design.points(), &y, 40, 3, fit).unwrap();
+    // e_LOO = (1/n) sum r^2 / (SST/(n-1)), the K-fold error is sum r^2 / SST.
+    assert!(
+        (kf.error - loo * 40.0 / 39.0).abs() < 1e-10 * kf.error,
+        "{} {loo}",
+        kf.error
+    );
+    let kf5 = k_fold(2, design.points(), &y, 5, 3, fit).unwrap();
+    assert_eq!(kf5.per_fold.len(), 5);
+    assert!(
+        kf5.error > 0.3 * kf.error && kf5.error < 10.0 * kf.error,
+        "{} {}",
+        kf5.error,
+        kf.error
+    );
+    // The monomial surface spans the same polynomials, so the same hat matrix and LOO error
+    // (its trace term, hence the corrected error, depends on the basis scaling).
+    let ms = MonomialSurface::fit(2, 4, design.points()).unwrap();
+    let (plain, corrected) = ms.loo_errors(&y).unwrap();
+    assert!((plain - loo).abs() < 1e-8 * loo && corrected > plain);
+    // Q2 on a test set against its definition.
+    let test = monte_carlo(&law, 2000, 8);
+    let yt = test.evaluate(f);
+    let q = q2_surrogate(&pc, &y, test.points(), &yt).unwrap();
+    let pred: Vec<f64> = test
+        .iter()
+        .map(|x| pc.expansion(&y).unwrap().eval(x))
+        .collect();
+    assert!((q - q2(&pred, &yt).unwrap()).abs() < 1e-12 && q > 0.99 && q < 1.0);
+    assert!(q2(&[1.0, 2.0], &[3.0, 3.0]).is_err());
+}
