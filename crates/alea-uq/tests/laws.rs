@@ -238,3 +238,55 @@ fn truncated_normal_far_tails_in_log_space() {
     let mills = a + 1.0 / a - 2.0 / a.powi(3) + 10.0 / a.powi(5);
     assert!((far.mean() - mills).abs() < 1e-12 * a, "{}", far.mean());
 }
+
+#[test]
+fn empirical_law_is_the_interpolated_sample_cdf() {
+    // Data 0, 1, 3: cdf through (0, 0), (1, 1/2), (3, 1); mass 1/2 uniform on each gap.
+    let e = Empirical::new(&[3.0, 0.0, 1.0]).unwrap();
+    assert!((e.cdf(0.5) - 0.25).abs() < 1e-15 && (e.cdf(2.0) - 0.75).abs() < 1e-15);
+    assert!((e.quantile(0.75) - 2.0).abs() < 1e-15 && (e.pdf(2.0) - 0.25).abs() < 1e-15);
+    assert!((e.mean() - 1.25).abs() < 1e-15);
+    assert!((e.std() - (7.0f64 / 3.0 - 1.5625).sqrt()).abs() < 1e-15);
+    // Ties are a point mass: the cdf jumps at 1.
+    let t = Empirical::new(&[0.0, 1.0, 1.0, 2.0]).unwrap();
+    assert!((t.cdf(1.0) - 2.0 / 3.0).abs() < 1e-15 && (t.cdf(0.999_999) - 1.0 / 3.0).abs() < 1e-6);
+    // The empirical law of 20 000 normal draws has the normal's moments and quantiles.
+    let mut rng = chunk_rng(9, 0);
+    let n = Normal::new(1.0, 2.0).unwrap();
+    let data: Vec<f64> = (0..20_000).map(|_| n.sample(&mut rng)).collect();
+    let e = Empirical::new(&data).unwrap();
+    assert!((e.mean() - 1.0).abs() < 4.5 * 2.0 / (20_000f64).sqrt());
+    assert!(
+        (e.std() - 2.0).abs() < 0.05 && (e.quantile(0.975) - (1.0 + 2.0 * 1.959_964)).abs() < 0.1
+    );
+    for i in 1..100 {
+        let p = i as f64 / 100.0;
+        assert!((e.cdf(e.quantile(p)) - p).abs() < 1e-12);
+    }
+    assert!(Empirical::new(&[1.0]).is_err() && Empirical::new(&[2.0, 2.0]).is_err());
+}
+
+#[test]
+fn kde_law_is_the_gaussian_mixture() {
+    use alea_uq::kde::{Bandwidth, Kde};
+    let k = KdeLaw::new(Kde::new(&[0.0, 1.0], Bandwidth::Fixed(0.5)).unwrap());
+    let phi = |t: f64| alea_uq::special::norm_cdf(t);
+    for &x in &[-1.0, 0.0, 0.3, 1.7] {
+        let exact = 0.5 * (phi(x / 0.5) + phi((x - 1.0) / 0.5));
+        assert!((k.cdf(x) - exact).abs() < 1e-15, "{x}");
+    }
+    assert!((k.mean() - 0.5).abs() < 1e-15 && (k.std() - 0.5f64.sqrt()).abs() < 1e-15);
+    for &p in &[1e-6, 0.1, 0.5, 0.77, 1.0 - 1e-9] {
+        assert!(
+            (k.cdf(k.quantile(p)) - p).abs() < 1e-12 * p.max(1e-3),
+            "p {p}"
+        );
+    }
+    let r = QuadratureRule::gauss_legendre_box(&[-5.0], &[6.0], 60).unwrap();
+    assert!((r.integrate(|x| k.pdf(x[0])) - 1.0).abs() < 1e-12);
+    // Sampling x_J + h Z: moments within their confidence interval.
+    let mut rng = chunk_rng(2, 0);
+    let xs: Vec<f64> = (0..40_000).map(|_| k.sample(&mut rng)).collect();
+    let m = xs.iter().sum::<f64>() / xs.len() as f64;
+    assert!((m - 0.5).abs() < 4.5 * k.std() / 200.0);
+}
