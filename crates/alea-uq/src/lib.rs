@@ -58,6 +58,7 @@
 pub mod basis;
 pub mod design;
 pub mod error;
+pub mod fit;
 pub mod io;
 pub mod joint;
 pub mod kde;
