@@ -56,6 +56,7 @@
 //! own ChaCha8 stream, so results do not depend on the number of rayon threads.
 
 pub mod basis;
+pub mod copula;
 pub mod design;
 pub mod error;
 pub mod fit;
