@@ -57,8 +57,8 @@ fn file_err(path: &Path, message: String) -> UqError {
 /// Write `names` and the row-major `values` as CSV.
 ///
 /// # Errors
-/// If `values.len()` is not a multiple of `names.len()`, a name contains a comma or newline,
-/// or the file cannot be written.
+/// If `values.len()` is not a multiple of `names.len()`, a value is not finite (never a NaN in
+/// a result file), a name contains a comma or newline, or the file cannot be written.
 pub fn write_csv(path: impl AsRef<Path>, names: &[&str], values: &[f64]) -> Result<()> {
     let path = path.as_ref();
     let n = names.len();
@@ -66,6 +66,17 @@ pub fn write_csv(path: impl AsRef<Path>, names: &[&str], values: &[f64]) -> Resu
         return Err(file_err(
             path,
             format!("{} values do not fill rows of {n} columns", values.len()),
+        ));
+    }
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(file_err(
+            path,
+            format!(
+                "row {}, column {:?}: value {} is not finite",
+                i / n + 1,
+                names[i % n],
+                values[i]
+            ),
         ));
     }
     if let Some(bad) = names.iter().find(|s| s.contains([',', '\n', '\r'])) {

@@ -30,7 +30,7 @@ use crate::linalg::least_squares_projector;
 use crate::quadrature::QuadratureRule;
 
 /// How the coefficients were obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum PcMethod {
     /// Least squares on a design.
     Regression,
@@ -41,17 +41,17 @@ pub enum PcMethod {
 /// A PC surrogate: basis plus the linear map from run values to coefficients.
 #[derive(Debug, Clone)]
 pub struct PcSurrogate {
-    basis: PcBasis,
+    pub(super) basis: PcBasis,
     /// `P x K` row-major.
-    a: Vec<f64>,
-    k: usize,
-    hat_diag: Option<Vec<f64>>,
+    pub(super) a: Vec<f64>,
+    pub(super) k: usize,
+    pub(super) hat_diag: Option<Vec<f64>>,
     /// Design matrix (`K x P`, regression only), for fitted values in the LOO error.
-    psi: Option<Vec<f64>>,
-    cond: f64,
-    method: PcMethod,
+    pub(super) psi: Option<Vec<f64>>,
+    pub(super) cond: f64,
+    pub(super) method: PcMethod,
     /// `tr((Psi^T Psi)^-1)` (regression only).
-    trace_inv_gram: f64,
+    pub(super) trace_inv_gram: f64,
 }
 
 impl PcSurrogate {
