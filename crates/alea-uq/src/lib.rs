@@ -15,7 +15,10 @@
 //!   projection), [`surrogate::MonomialSurface`] and [`surrogate::StochasticMesh`] (piecewise
 //!   multilinear on an adaptive mesh with hanging nodes);
 //! * [`stats`], [`kde::Kde`], [`sobol`]: Monte Carlo statistics, kernel density estimates, failure
-//!   probabilities and Sobol' indices.
+//!   probabilities and Sobol' indices;
+//! * [`reliability::LimitState`]: rare events on a model or surrogate (FORM, SORM, importance
+//!   and subset sampling, goal-oriented refinement); [`validation`]: Q2, K-fold; [`fit`],
+//!   [`copula`], [`io`]: laws from data, more copulas, CSV.
 //!
 //! ```
 //! use alea_uq::{basis::PcBasis, design::latin_hypercube, joint::Independent, law::*};
