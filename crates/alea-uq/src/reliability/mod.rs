@@ -18,7 +18,7 @@
 //!   (`u' = rho u + sqrt(1 - rho^2) xi`, accepted if it stays in the current failure domain;
 //!   it leaves `N(0, I)` invariant, Papaioannou et al. 2015), coefficient of variation from the
 //!   chain correlations (Au & Beck, eq. (29)-(30));
-//! * [`refine`]: goal-oriented placement of new runs of a linear surrogate near its limit state.
+//! * [`propose_runs`]: goal-oriented placement of new runs of a linear surrogate near its limit state.
 //!
 //! Every estimate carries its interval: importance sampling the CLT interval
 //! `P ± z sd / sqrt(N)`; subset simulation the log-normal interval
