@@ -136,6 +136,11 @@ fn importance_sampling_and_subset_simulation_cover_the_exact_value() {
     let g = |u: &[f64]| beta - (u[0] + u[1] - u[2] + u[3]) / 2.0;
     let ls = LimitState::new(&law, g);
     let f = form(&ls, &FormOptions::default()).unwrap();
+    eprintln!(
+        "FORM beta 4.265: {:.4e}, {} evaluations",
+        f.pf, f.evaluations
+    );
+    assert!((f.pf / exact - 1.0).abs() < 1e-6);
     let is = importance_sampling(
         &ls,
         &f,
