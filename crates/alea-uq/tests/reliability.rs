@@ -308,14 +308,25 @@ fn goal_oriented_refinement_of_a_chaos_for_a_small_failure_probability() {
     let mut vals = init.evaluate(q);
     let e0 = pf_of(&pts, &vals);
     let opts = RefineOptions::default();
+    let mut stated = Vec::new();
     for _round in 0..5 {
         let prop = propose_runs(&law, &pts, &vals, threshold, fit, &opts).unwrap();
         assert_eq!(prop.points.len(), 2 * opts.new_runs);
+        stated.push((prop.pf.p, prop.surrogate_error, prop.relative_error()));
         for x in prop.points.chunks_exact(2) {
             vals.push(q(x));
             pts.extend_from_slice(x);
         }
     }
+    let last = propose_runs(&law, &pts, &vals, threshold, fit, &opts).unwrap();
+    stated.push((last.pf.p, last.surrogate_error, last.relative_error()));
+    eprintln!("refinement rounds (P_f, surrogate error, stated relative error): {stated:.3?}");
+    // The stated error shrinks with the rounds and covers the true error at the end.
+    assert!(
+        stated[0].2 > 1.0 && last.surrogate_error < 0.05,
+        "{stated:?}"
+    );
+    assert!((last.pf.p / exact - 1.0).abs() < 3.0 * last.relative_error());
     let eg = pf_of(&pts, &vals);
     // Same number of runs (40) placed by a space-filling design instead.
     let lhs = latin_hypercube(&law, 40, 4);

@@ -11,6 +11,11 @@
 //!    `U(x) = |q~(x) - s| / sigma(x)`, small where the sign of `q~ - s` is uncertain; the
 //!    candidates of smallest `U` are taken greedily, each at least `min_distance` (standard
 //!    normal space) from the runs and from the points already proposed.
+//! 4. Stated error: the surrogate's `P_f` (subset simulation, coefficient of variation `cov`)
+//!    and the jackknife spread of the fold refits' `P_f` on common samples, `surrogate_error`
+//!    (see [`Proposal::pf_folds`]); a refinement loop
+//!    stops when `sqrt(cov^2 + surrogate_error^2)` ([`Proposal::relative_error`]) is small
+//!    enough.
 
 use super::LimitState;
 use super::subset::{SubsetOptions, run};
@@ -54,6 +59,23 @@ pub struct Proposal {
     pub scores: Vec<f64>,
     /// Failure probability of the current surrogate (subset simulation).
     pub pf: super::Estimate,
+    /// Failure probability of each fold refit, `P_f n_f / n`, with `n_f`, `n` the failures of
+    /// the fold refit and of the surrogate among the samples of the last subset level (common
+    /// random numbers; failures of a refit outside the surrogate's last intermediate domain
+    /// are not seen).
+    pub pf_folds: Vec<f64>,
+    /// Relative surrogate error of `P_f`: jackknife spread of `pf_folds`,
+    /// `sqrt((F - 1)/F sum_f (P_f - mean)^2) / P_f` (infinite when `P_f = 0`). With the
+    /// sampling coefficient of variation `pf.cov` it states the relative error of `P_f`:
+    /// `sqrt(cov^2 + surrogate_error^2)`.
+    pub surrogate_error: f64,
+}
+
+impl Proposal {
+    /// Stated relative error of the surrogate's `P_f`: `sqrt(cov^2 + surrogate_error^2)`.
+    pub fn relative_error(&self) -> f64 {
+        self.pf.cov.hypot(self.surrogate_error)
+    }
 }
 
 /// Propose runs that most change `P(q > threshold)` for a linear surrogate fitted by `fit`
@@ -97,7 +119,11 @@ pub fn propose_runs<S: LinearSurrogate>(
     let full = fit(points, values)?;
     let ls = LimitState::exceedance(law, |x| full.eval(x, values), threshold);
     let mut cand: Vec<f64> = Vec::new();
-    let (pf, _) = run(&ls, &opts.subset, |pop| cand.extend_from_slice(&pop.u))?;
+    let mut last: Vec<f64> = Vec::new();
+    let (pf, _) = run(&ls, &opts.subset, |pop| {
+        cand.extend_from_slice(&pop.u);
+        last.clone_from(&pop.u);
+    })?;
     let nc = cand.len() / d;
     // Folds: a seeded shuffle of the runs.
     let mut perm: Vec<usize> = (0..k).collect();
@@ -123,6 +149,37 @@ pub fn propose_runs<S: LinearSurrogate>(
         })
         .collect::<Result<Vec<_>>>()?;
     let ff = opts.folds as f64;
+    // Common random numbers: every fold model classifies the same last-level population (the
+    // samples of the full surrogate's last conditional level, or the i.i.d. sample if there is
+    // one level), so the ratio of failure counts isolates the surrogate's variability from the
+    // sampling noise.
+    let fails = |f: &(dyn Fn(&[f64]) -> f64 + Sync)| -> usize {
+        last.par_chunks_exact(d)
+            .filter(|u| {
+                let mut x = vec![0.0; d];
+                law.standard_normal_to_x(u, &mut x);
+                f(&x) > threshold
+            })
+            .count()
+    };
+    let n_full = fails(&|x| full.eval(x, values));
+    let pf_folds: Vec<f64> = fold_models
+        .iter()
+        .map(|(s, v)| {
+            if n_full == 0 {
+                0.0
+            } else {
+                pf.p * fails(&|x| s.eval(x, v)) as f64 / n_full as f64
+            }
+        })
+        .collect();
+    let mf = pf_folds.iter().sum::<f64>() / ff;
+    let spread = ((ff - 1.0) / ff * pf_folds.iter().map(|p| (p - mf).powi(2)).sum::<f64>()).sqrt();
+    let surrogate_error = if pf.p > 0.0 {
+        spread / pf.p
+    } else {
+        f64::INFINITY
+    };
     let scored: Vec<(f64, usize)> = (0..nc)
         .into_par_iter()
         .map(|c| {
@@ -169,5 +226,7 @@ pub fn propose_runs<S: LinearSurrogate>(
         points: out,
         scores,
         pf,
+        pf_folds,
+        surrogate_error,
     })
 }
