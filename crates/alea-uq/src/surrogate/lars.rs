@@ -28,6 +28,7 @@
 use super::pc::PcSurrogate;
 use crate::basis::PcBasis;
 use crate::error::{Result, UqError, check_len, invalid};
+use rayon::prelude::*;
 
 /// Options of [`PcSurrogate::lars_with`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,7 +124,6 @@ impl PcSurrogate {
         let max_terms = ((opts.max_terms_fraction * k as f64).floor() as usize)
             .clamp(1, k - 1)
             .min(p);
-        let order = lars_order(&psi, values, k, p, c0, max_terms - 1);
         let mean = values.iter().sum::<f64>() / k as f64;
         let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (k as f64 - 1.0);
         if !(var > 0.0) {
@@ -141,24 +141,27 @@ impl PcSurrogate {
         let mut path = Vec::new();
         let mut kept: Vec<usize> = Vec::new();
         let mut best: Option<(f64, f64, usize)> = None; // (corrected, plain, prefix length)
-        for &j in std::iter::once(&c0).chain(order.iter()) {
+        // Score each prefix as LARS brings its column in; stop the path with the scores.
+        let mut score = |j: usize| -> bool {
             let col: Vec<f64> = (0..k).map(|i| psi[i * p + j]).collect();
             if !fit.push(&col) {
-                continue; // numerically dependent on the columns already kept
+                return true; // numerically dependent on the columns already kept
             }
             kept.push(j);
             let Some((plain, corrected)) = fit.loo(var) else {
-                break; // a point with leverage 1: larger prefixes interpolate it too
+                return false; // a point with leverage 1: larger prefixes interpolate it too
             };
             path.push((kept.len(), corrected));
             match best {
-                Some((b, _, _)) if corrected >= b => {
-                    if corrected > opts.stop_factor * b {
-                        break;
-                    }
+                Some((b, _, _)) if corrected >= b => corrected <= opts.stop_factor * b,
+                _ => {
+                    best = Some((corrected, plain, kept.len()));
+                    true
                 }
-                _ => best = Some((corrected, plain, kept.len())),
             }
+        };
+        if score(c0) {
+            lars_order(&psi, values, k, p, c0, max_terms - 1, score);
         }
         let Some((corrected_loo, loo, n)) = best else {
             return Err(UqError::Singular {
@@ -291,8 +294,9 @@ pub fn corrected_loo_factor(k: usize, p: usize, trace_inv_gram: f64) -> f64 {
     k as f64 / (k - p) as f64 * (1.0 + trace_inv_gram)
 }
 
-/// Order in which LARS activates the columns of the `k x p` row-major matrix `psi` other than
-/// the constant column `c0` (handled by centring), at most `max_steps` of them.
+/// Run LARS on the columns of the `k x p` row-major matrix `psi` other than the constant column
+/// `c0` (handled by centring), calling `on_column(j)` as column `j` enters the active set; stops
+/// after `max_steps` columns or when `on_column` returns `false`.
 fn lars_order(
     psi: &[f64],
     y: &[f64],
@@ -300,7 +304,8 @@ fn lars_order(
     p: usize,
     c0: usize,
     max_steps: usize,
-) -> Vec<usize> {
+    mut on_column: impl FnMut(usize) -> bool,
+) {
     let ym = y.iter().sum::<f64>() / k as f64;
     let mut r: Vec<f64> = y.iter().map(|v| v - ym).collect();
     // Centred, normalised columns (column-major).
@@ -329,9 +334,9 @@ fn lars_order(
     let mut c = vec![0.0; p];
     let max_steps = max_steps.min(k.saturating_sub(2));
     while active.len() < max_steps {
-        for j in 0..p {
-            c[j] = if usable[j] { dot(col(j), &r) } else { 0.0 };
-        }
+        c.par_iter_mut().enumerate().for_each(|(j, cj)| {
+            *cj = if usable[j] { dot(col(j), &r) } else { 0.0 };
+        });
         // Bring in the inactive column of largest |correlation| that is not (numerically) in
         // the span of the active ones.
         let cmax = loop {
@@ -339,7 +344,7 @@ fn lars_order(
                 .filter(|&j| usable[j] && !in_active[j])
                 .max_by(|&a, &b| c[a].abs().total_cmp(&c[b].abs()))
             else {
-                return active;
+                return;
             };
             let g: Vec<f64> = active.iter().map(|&a| dot(col(a), col(jn))).collect();
             let mut l = vec![0.0; active.len() + 1];
@@ -356,6 +361,9 @@ fn lars_order(
             chol.push(l);
             active.push(jn);
             in_active[jn] = true;
+            if !on_column(jn) {
+                return;
+            }
             break c[jn].abs();
         };
         if cmax < 1e-14 * (1.0 + ym.abs()) {
@@ -385,11 +393,21 @@ fn lars_order(
             }
         }
         let mut gamma = cmax / aa;
+        let a: Vec<f64> = (0..p)
+            .into_par_iter()
+            .map(|j| {
+                if usable[j] && !in_active[j] {
+                    dot(col(j), &u)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         for j in 0..p {
             if !usable[j] || in_active[j] {
                 continue;
             }
-            let aj = dot(col(j), &u);
+            let aj = a[j];
             for cand in [(cmax - c[j]) / (aa - aj), (cmax + c[j]) / (aa + aj)] {
                 if cand > 1e-14 && cand < gamma {
                     gamma = cand;
@@ -400,5 +418,4 @@ fn lars_order(
             *ri -= gamma * ui;
         }
     }
-    active
 }
