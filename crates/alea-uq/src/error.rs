@@ -40,6 +40,15 @@ pub enum UqError {
         /// Length supplied.
         got: usize,
     },
+    /// Reading or writing a file failed, or its content is malformed (the message names the
+    /// line and column).
+    #[error("{path}: {message}")]
+    File {
+        /// File path.
+        path: String,
+        /// What went wrong, e.g. `line 3, column "x2": "abc" is not a number`.
+        message: String,
+    },
     /// A least-squares or factorisation problem is (numerically) singular.
     #[error("{what}: matrix is singular or rank deficient (pivot {pivot} of {size})")]
     Singular {

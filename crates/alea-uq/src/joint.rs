@@ -282,8 +282,18 @@ impl JointLaw for GaussianCopula {
         }
     }
     fn unit_to_x(&self, u: &[f64], x: &mut [f64]) {
-        let y: Vec<f64> = u.iter().map(|&p| norm_quantile(p)).collect();
-        self.standard_normal_to_x(&y, x);
+        let mut buf = [0.0; 16];
+        let mut heap;
+        let y: &mut [f64] = if u.len() <= 16 {
+            &mut buf[..u.len()]
+        } else {
+            heap = vec![0.0; u.len()];
+            &mut heap
+        };
+        for (yi, &p) in y.iter_mut().zip(u) {
+            *yi = norm_quantile(p);
+        }
+        self.standard_normal_to_x(y, x);
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         self.marginals.iter().map(|m| m.support()).unzip()

@@ -85,6 +85,11 @@ impl Kde {
         self.h
     }
 
+    /// The samples, sorted.
+    pub fn samples(&self) -> &[f64] {
+        &self.sorted
+    }
+
     /// Density estimate at `x` (direct sum over samples within `8h`).
     pub fn pdf(&self, x: f64) -> f64 {
         let a = self.sorted.partition_point(|&v| v < x - 8.0 * self.h);

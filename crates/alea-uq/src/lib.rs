@@ -15,7 +15,10 @@
 //!   projection), [`surrogate::MonomialSurface`] and [`surrogate::StochasticMesh`] (piecewise
 //!   multilinear on an adaptive mesh with hanging nodes);
 //! * [`stats`], [`kde::Kde`], [`sobol`]: Monte Carlo statistics, kernel density estimates, failure
-//!   probabilities and Sobol' indices.
+//!   probabilities and Sobol' indices;
+//! * [`reliability::LimitState`]: rare events on a model or surrogate (FORM, SORM, importance
+//!   and subset sampling, goal-oriented refinement); [`validation`]: Q2, K-fold; [`fit`],
+//!   [`copula`], [`io`]: laws from data, more copulas, CSV.
 //!
 //! ```
 //! use alea_uq::{basis::PcBasis, design::latin_hypercube, joint::Independent, law::*};
@@ -56,18 +59,23 @@
 //! own ChaCha8 stream, so results do not depend on the number of rayon threads.
 
 pub mod basis;
+pub mod copula;
 pub mod design;
 pub mod error;
+pub mod fit;
+pub mod io;
 pub mod joint;
 pub mod kde;
 pub mod law;
 mod linalg;
 pub mod quadrature;
+pub mod reliability;
 pub mod rng;
 pub mod samples;
 pub mod sobol;
 pub mod special;
 pub mod stats;
 pub mod surrogate;
+pub mod validation;
 
 pub use error::{Result, UqError};

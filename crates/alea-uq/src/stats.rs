@@ -165,10 +165,20 @@ pub fn failure_probability(q: &[f64], threshold: f64, level: f64) -> FailureProb
     let denom = 1.0 + z2 / nf;
     let centre = (p + z2 / (2.0 * nf)) / denom;
     let half = z * (p * (1.0 - p) / nf + z2 / (4.0 * nf * nf)).sqrt() / denom;
+    // The Wilson bounds are exactly 0 (1) when no (every) draw fails: centre = half there in
+    // exact arithmetic, not in floating point.
     FailureProbability {
         p,
-        lower: (centre - half).max(0.0),
-        upper: (centre + half).min(1.0),
+        lower: if failures == 0 {
+            0.0
+        } else {
+            (centre - half).max(0.0)
+        },
+        upper: if failures == n {
+            1.0
+        } else {
+            (centre + half).min(1.0)
+        },
         failures,
         n,
         cov: ((1.0 - p) / (nf * p)).sqrt(),

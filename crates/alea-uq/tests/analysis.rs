@@ -141,6 +141,14 @@ fn failure_probability_of_known_law_within_ci() {
     let fp = failure_probability(&q, 10.0, 0.95);
     assert_eq!(fp.failures, 0);
     assert!(fp.upper > 0.0 && fp.upper < 0.01);
+    // Exactly 0 (not a rounding residue); Wilson upper bound for zero failures is
+    // z^2 / (N + z^2).
+    assert_eq!(fp.lower, 0.0);
+    let z2 = 1.959_963_984_540_054f64.powi(2);
+    assert!((fp.upper - z2 / (1000.0 + z2)).abs() < 1e-15);
+    let all = failure_probability(&q, -10.0, 0.95);
+    assert_eq!((all.upper, all.failures), (1.0, 1000));
+    assert!((all.lower - 1000.0 / (1000.0 + z2)).abs() < 1e-15);
 }
 
 #[test]

@@ -89,6 +89,21 @@ fn ishigami_projection_statistics() {
         s[1]
     );
     assert!(s[2].abs() < 1e-10, "S3 {}", s[2]);
+    // Interaction indices: only S13 = b^2 pi^8 (1/18 - 1/50) / Var is non-zero.
+    let v13 = ish.b.powi(2) * PI.powi(8) * (1.0 / 18.0 - 1.0 / 50.0) / ish.variance();
+    assert!(
+        (e.sobol_index(&[0, 2]) - v13).abs() < 1e-5 * v13,
+        "S13 {}",
+        e.sobol_index(&[0, 2])
+    );
+    let s2 = e.sobol_second_order();
+    assert!(s2[1].abs() < 1e-10 && s2[5].abs() < 1e-10 && (s2[2] - s2[6]).abs() < 1e-15);
+    assert!(e.sobol_index(&[0, 1, 2]).abs() < 1e-10);
+    let groups: [&[usize]; 7] = [&[0], &[1], &[2], &[0, 1], &[0, 2], &[1, 2], &[0, 1, 2]];
+    let total: f64 = groups.iter().map(|g| e.sobol_index(g)).sum();
+    assert!((total - 1.0).abs() < 1e-12);
+    assert!((e.sobol_closed(&[0, 2]) - (s[0] + s[2] + v13)).abs() < 1e-5);
+    assert!((e.sobol_index(&[0]) - s[0]).abs() < 1e-15);
     for i in 0..3 {
         assert!(
             (st[i] - et[i]).abs() < 1e-5 * et[i],

@@ -30,7 +30,7 @@ use crate::law::{Marginal, PolyFamily};
 use crate::linalg::tridiagonal_eigen;
 
 /// Which family generated the recurrence.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum PolyKind {
     /// Probabilists' Hermite.
     Hermite,
@@ -45,7 +45,7 @@ pub enum PolyKind {
 }
 
 /// Orthonormal polynomials of a marginal law up to a maximal degree.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct OrthoPoly {
     kind: PolyKind,
     /// `a_0 .. a_{N-1}`.
@@ -214,6 +214,36 @@ impl OrthoPoly {
             shift: mean,
             scale: std,
         })
+    }
+
+    /// Check a recurrence read from a file: equal lengths (at least 1), finite `a_k`, `b_k > 0`,
+    /// finite shift and positive scale.
+    pub(crate) fn check(&self) -> Result<()> {
+        let bad = |m: String| UqError::Invalid {
+            what: "orthogonal polynomials",
+            message: m,
+        };
+        if self.a.is_empty() || self.a.len() != self.b.len() {
+            return Err(bad(format!(
+                "recurrence lengths {} and {}",
+                self.a.len(),
+                self.b.len()
+            )));
+        }
+        if self.a.iter().any(|v| !v.is_finite())
+            || self.b.iter().any(|v| !(*v > 0.0 && v.is_finite()))
+        {
+            return Err(bad(
+                "recurrence coefficients must be finite with b_k > 0".into()
+            ));
+        }
+        if !(self.shift.is_finite() && self.scale > 0.0 && self.scale.is_finite()) {
+            return Err(bad(format!(
+                "shift {} / scale {} invalid",
+                self.shift, self.scale
+            )));
+        }
+        Ok(())
     }
 
     /// Family that generated the polynomials.

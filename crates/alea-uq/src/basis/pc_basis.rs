@@ -31,6 +31,29 @@ impl PcBasis {
         Ok(Self { polys, set, npow })
     }
 
+    /// Rebuild a basis from its one-dimensional polynomials and multi-indices (as saved).
+    ///
+    /// # Errors
+    /// If the numbers of variables differ or a polynomial's recurrence is shorter than the
+    /// degrees used.
+    pub fn from_parts(polys: Vec<OrthoPoly>, set: MultiIndexSet) -> Result<Self> {
+        check_len("PC basis", "polynomials", set.dim(), polys.len())?;
+        let npow: Vec<usize> = (0..set.dim()).map(|j| set.max_degree(j) + 1).collect();
+        for (j, (p, &n)) in polys.iter().zip(&npow).enumerate() {
+            if p.max_degree() + 1 < n {
+                return Err(crate::UqError::Invalid {
+                    what: "PC basis",
+                    message: format!(
+                        "polynomial {j} has degree {} but the indices need {}",
+                        p.max_degree(),
+                        n - 1
+                    ),
+                });
+            }
+        }
+        Ok(Self { polys, set, npow })
+    }
+
     /// Total-degree basis of degree `p`.
     ///
     /// # Errors

@@ -15,8 +15,11 @@
 //! | [`Gamma`] | shape `k > 0`, scale `theta > 0`, location | Laguerre |
 //! | [`Triangular`] | `a <= c <= b`, `a < b` | generated |
 //! | [`Tabulated`] | nodes `x_i` and pdf values `f_i >= 0` (piecewise linear) | generated |
+//! | [`Empirical`] | data (linearly interpolated empirical cdf) | generated |
+//! | [`KdeLaw`] | a [`Kde`](crate::kde::Kde) (Gaussian mixture) | generated |
 
 mod beta;
+mod empirical;
 mod gamma;
 mod lognormal;
 mod normal;
@@ -26,6 +29,7 @@ mod truncated_normal;
 mod uniform;
 
 pub use beta::Beta;
+pub use empirical::{Empirical, KdeLaw};
 pub use gamma::Gamma;
 pub use lognormal::LogNormal;
 pub use normal::Normal;

@@ -17,13 +17,17 @@
 //! * [`StochasticMesh`]: piecewise multilinear interpolation on an adaptive mesh of the
 //!   parameter box (the thesis's stochastic finite elements), with hanging nodes.
 
+mod lars;
 mod monomial;
 mod multilinear;
 mod pc;
+mod saved;
 
+pub use lars::{LarsOptions, LarsReport, corrected_loo_factor};
 pub use monomial::MonomialSurface;
 pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, StochasticMesh};
-pub use pc::{PcExpansion, PcSurrogate};
+pub use pc::{PcExpansion, PcMethod, PcSurrogate};
+pub use saved::RunData;
 
 /// A surrogate `q~(xi) = sum_k w_k(xi) q_k` over `num_runs()` runs.
 ///

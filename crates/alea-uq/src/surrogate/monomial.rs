@@ -18,6 +18,12 @@ pub struct MonomialSurface {
     a: Vec<f64>,
     k: usize,
     cond: f64,
+    /// Leverages (diagonal of the hat matrix).
+    hat_diag: Vec<f64>,
+    /// `tr((M^T M)^-1)`.
+    trace_inv_gram: f64,
+    /// Design matrix `K x P` (row-major), for the fitted values.
+    design: Vec<f64>,
 }
 
 impl MonomialSurface {
@@ -52,6 +58,9 @@ impl MonomialSurface {
             a: Vec::new(),
             k,
             cond: 1.0,
+            hat_diag: Vec::new(),
+            trace_inv_gram: 0.0,
+            design: Vec::new(),
         };
         let p = s.set.len();
         let mut m = vec![0.0; k * p];
@@ -59,8 +68,11 @@ impl MonomialSurface {
             s.monomials(&points[i * dim..(i + 1) * dim], &mut m[i * p..(i + 1) * p]);
         }
         let proj = least_squares_projector("monomial response surface", &m, k, p)?;
+        s.trace_inv_gram = proj.a.iter().map(|v| v * v).sum();
         s.a = proj.a;
         s.cond = proj.cond_estimate;
+        s.hat_diag = proj.hat_diag;
+        s.design = m;
         Ok(s)
     }
 
@@ -94,6 +106,42 @@ impl MonomialSurface {
             .chunks_exact(self.k)
             .map(|r| r.iter().zip(values).map(|(a, b)| a * b).sum())
             .collect())
+    }
+
+    /// Normalised leave-one-out error `(1/K) sum ((q_k - q~(x_k)) / (1 - h_k))^2 / Var(q)`
+    /// from the hat matrix (no refit), and the corrected one `T(P, K) e_LOO`
+    /// ([`crate::surrogate::corrected_loo_factor`]).
+    ///
+    /// # Errors
+    /// If `values.len() != num_runs()`, fewer than 2 runs, or a leverage is 1.
+    pub fn loo_errors(&self, values: &[f64]) -> Result<(f64, f64)> {
+        let what = "monomial response surface";
+        check_len(what, "values", self.k, values.len())?;
+        let p = self.set.len();
+        let c = self.coefficients(values)?;
+        let mean = values.iter().sum::<f64>() / self.k as f64;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (self.k as f64 - 1.0);
+        let mut s = 0.0;
+        for (k, (&h, &q)) in self.hat_diag.iter().zip(values).enumerate() {
+            let d = 1.0 - h;
+            if !(d > 1e-12) {
+                return Err(UqError::Invalid {
+                    what,
+                    message: format!("run {k} has leverage 1: leave-one-out undefined"),
+                });
+            }
+            let fitted: f64 = self.design[k * p..(k + 1) * p]
+                .iter()
+                .zip(&c)
+                .map(|(a, b)| a * b)
+                .sum();
+            s += ((q - fitted) / d).powi(2);
+        }
+        let plain = s / self.k as f64 / var;
+        Ok((
+            plain,
+            plain * super::corrected_loo_factor(self.k, p, self.trace_inv_gram),
+        ))
     }
 
     /// Evaluate from coefficients (as returned by [`MonomialSurface::coefficients`]).

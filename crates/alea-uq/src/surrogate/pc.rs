@@ -17,7 +17,11 @@
 //! Leave-one-out error (regression, Blatman & Sudret 2010):
 //! `e_LOO = (1/K) sum_k ((q_k - q~(xi_k)) / (1 - h_k))^2 / Var_emp(q)` with `h_k` the diagonal of
 //! the hat matrix `Psi A`, without refitting.
-//! Sparse PC by least-angle regression: [`PcSurrogate::lars`] (hybrid LARS with LOO selection).
+//! Corrected LOO (Chapelle et al. 2002, Blatman & Sudret 2011): `e*_LOO = T e_LOO`,
+//! `T = K/(K - P) (1 + tr((Psi^T Psi)^-1))`, `tr((Psi^T Psi)^-1) = ||A||_F^2` since
+//! `A A^T = R^-1 R^-T` ([`PcSurrogate::corrected_loo_error`]).
+//! Sparse PC by least-angle regression: [`PcSurrogate::lars`] / [`PcSurrogate::lars_with`]
+//! (hybrid LARS selected by the corrected LOO error, file `lars.rs`).
 
 use super::LinearSurrogate;
 use crate::basis::PcBasis;
@@ -26,7 +30,7 @@ use crate::linalg::least_squares_projector;
 use crate::quadrature::QuadratureRule;
 
 /// How the coefficients were obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum PcMethod {
     /// Least squares on a design.
     Regression,
@@ -37,15 +41,17 @@ pub enum PcMethod {
 /// A PC surrogate: basis plus the linear map from run values to coefficients.
 #[derive(Debug, Clone)]
 pub struct PcSurrogate {
-    basis: PcBasis,
+    pub(super) basis: PcBasis,
     /// `P x K` row-major.
-    a: Vec<f64>,
-    k: usize,
-    hat_diag: Option<Vec<f64>>,
+    pub(super) a: Vec<f64>,
+    pub(super) k: usize,
+    pub(super) hat_diag: Option<Vec<f64>>,
     /// Design matrix (`K x P`, regression only), for fitted values in the LOO error.
-    psi: Option<Vec<f64>>,
-    cond: f64,
-    method: PcMethod,
+    pub(super) psi: Option<Vec<f64>>,
+    pub(super) cond: f64,
+    pub(super) method: PcMethod,
+    /// `tr((Psi^T Psi)^-1)` (regression only).
+    pub(super) trace_inv_gram: f64,
 }
 
 impl PcSurrogate {
@@ -58,6 +64,7 @@ impl PcSurrogate {
         let psi = basis.design_matrix(points)?;
         let k = points.len() / d;
         let proj = least_squares_projector("PC regression", &psi, k, basis.len())?;
+        let trace_inv_gram = proj.a.iter().map(|v| v * v).sum();
         Ok(Self {
             basis,
             a: proj.a,
@@ -66,6 +73,7 @@ impl PcSurrogate {
             psi: Some(psi),
             cond: proj.cond_estimate,
             method: PcMethod::Regression,
+            trace_inv_gram,
         })
     }
 
@@ -93,46 +101,7 @@ impl PcSurrogate {
             psi: None,
             cond: 1.0,
             method: PcMethod::Projection,
-        })
-    }
-
-    /// Sparse PC by hybrid least-angle regression (Blatman & Sudret 2011): LARS orders the
-    /// candidate basis functions of `basis` on the data `values`; for each step an OLS fit on the
-    /// active set is scored by its LOO error and the best set is kept (at most `K - 1` terms).
-    /// The returned surrogate is a regression on the selected basis, hence still linear in the
-    /// data for this selection.
-    ///
-    /// # Errors
-    /// As [`PcSurrogate::regression`].
-    pub fn lars(basis: PcBasis, points: &[f64], values: &[f64]) -> Result<Self> {
-        let psi = basis.design_matrix(points)?;
-        let k = points.len() / basis.dim();
-        check_len("PC LARS", "values", k, values.len())?;
-        let order = lars_path(&psi, values, k, basis.len());
-        let mut best: Option<(f64, Self)> = None;
-        let mut active: Vec<usize> = vec![0];
-        let mut steps = vec![active.clone()];
-        for &j in &order {
-            if j != 0 && !active.contains(&j) && active.len() + 1 < k {
-                active.push(j);
-                steps.push(active.clone());
-            }
-        }
-        for s in steps {
-            let mut keep = s.clone();
-            keep.sort_unstable();
-            let sub = basis.subset(&keep);
-            if let Ok(sur) = Self::regression(sub, points) {
-                let e = sur.loo_error(values)?;
-                if best.as_ref().is_none_or(|(b, _)| e < *b) {
-                    best = Some((e, sur));
-                }
-            }
-        }
-        best.map(|b| b.1).ok_or(UqError::Singular {
-            what: "PC LARS",
-            pivot: 0,
-            size: basis.len(),
+            trace_inv_gram: f64::NAN,
         })
     }
 
@@ -251,6 +220,16 @@ impl PcSurrogate {
         }
         Ok(s / self.k as f64 / var)
     }
+
+    /// Corrected leave-one-out error `T(P, K) e_LOO` (regression only), the error to report for
+    /// a fit whose basis was chosen on the same data.
+    ///
+    /// # Errors
+    /// As [`PcSurrogate::loo_error`].
+    pub fn corrected_loo_error(&self, values: &[f64]) -> Result<f64> {
+        let e = self.loo_error(values)?;
+        Ok(e * super::lars::corrected_loo_factor(self.k, self.basis.len(), self.trace_inv_gram))
+    }
 }
 
 impl LinearSurrogate for PcSurrogate {
@@ -355,6 +334,65 @@ impl PcExpansion {
             })
             .collect()
     }
+    /// Sobol' index of the exact group of variables `vars` (interaction index):
+    /// `S_u = sum_{alpha : supp(alpha) = u} s_alpha^2 / Var`, e.g. `sobol_index(&[0, 2])` is
+    /// `S_13`. The indices of all groups sum to 1.
+    pub fn sobol_index(&self, vars: &[usize]) -> f64 {
+        let v = self.variance();
+        let d = self.basis.dim();
+        let mut inside = vec![false; d];
+        for &i in vars {
+            if i < d {
+                inside[i] = true;
+            }
+        }
+        if vars.is_empty() || vars.iter().any(|&i| i >= d) {
+            return 0.0;
+        }
+        self.basis
+            .indices()
+            .iter()
+            .zip(&self.coeffs)
+            .filter(|(a, _)| a.iter().enumerate().all(|(j, &x)| (x > 0) == inside[j]))
+            .map(|(_, c)| c * c)
+            .sum::<f64>()
+            / v
+    }
+    /// Closed Sobol' index of the group `vars`: `sum` of the indices of all its non-empty
+    /// subgroups (`S_u^clo = sum_{alpha != 0 : supp(alpha) in u} s_alpha^2 / Var`).
+    pub fn sobol_closed(&self, vars: &[usize]) -> f64 {
+        let v = self.variance();
+        let d = self.basis.dim();
+        let mut inside = vec![false; d];
+        for &i in vars {
+            if i < d {
+                inside[i] = true;
+            }
+        }
+        self.basis
+            .indices()
+            .iter()
+            .zip(&self.coeffs)
+            .filter(|(a, _)| {
+                a.iter().any(|&x| x > 0) && a.iter().enumerate().all(|(j, &x)| x == 0 || inside[j])
+            })
+            .map(|(_, c)| c * c)
+            .sum::<f64>()
+            / v
+    }
+    /// Second-order interaction indices `S_ij` (symmetric `d x d`, row-major, zero diagonal).
+    pub fn sobol_second_order(&self) -> Vec<f64> {
+        let d = self.basis.dim();
+        let mut out = vec![0.0; d * d];
+        for i in 0..d {
+            for j in (i + 1)..d {
+                let s = self.sobol_index(&[i, j]);
+                out[i * d + j] = s;
+                out[j * d + i] = s;
+            }
+        }
+        out
+    }
     /// Value of the expansion at `xi` (`NaN` if `xi` has the wrong length).
     pub fn eval(&self, xi: &[f64]) -> f64 {
         let mut psi = vec![0.0; self.basis.len()];
@@ -363,98 +401,4 @@ impl PcExpansion {
         }
         psi.iter().zip(&self.coeffs).map(|(a, b)| a * b).sum()
     }
-}
-
-/// Order in which LARS activates the columns `1..p` of the `k x p` matrix `psi` (column 0, the
-/// constant, is handled by centring). Efron et al. 2004, equiangular steps.
-fn lars_path(psi: &[f64], y: &[f64], k: usize, p: usize) -> Vec<usize> {
-    let ym = y.iter().sum::<f64>() / k as f64;
-    let r0: Vec<f64> = y.iter().map(|v| v - ym).collect();
-    // Centred, normalised columns (column-major).
-    let mut x = vec![0.0; k * p];
-    let mut usable = vec![false; p];
-    for j in 1..p {
-        let m = (0..k).map(|i| psi[i * p + j]).sum::<f64>() / k as f64;
-        let col: Vec<f64> = (0..k).map(|i| psi[i * p + j] - m).collect();
-        let n = col.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if n > 1e-12 {
-            usable[j] = true;
-            for i in 0..k {
-                x[j * k + i] = col[i] / n;
-            }
-        }
-    }
-    let col = |j: usize| &x[j * k..(j + 1) * k];
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(u, v)| u * v).sum::<f64>();
-    let mut mu = vec![0.0; k];
-    let mut active: Vec<usize> = Vec::new();
-    let max_steps = (p - 1).min(k.saturating_sub(2));
-    while active.len() < max_steps {
-        let r: Vec<f64> = r0.iter().zip(&mu).map(|(a, b)| a - b).collect();
-        let c: Vec<f64> = (0..p)
-            .map(|j| if usable[j] { dot(col(j), &r) } else { 0.0 })
-            .collect();
-        let next = (1..p)
-            .filter(|j| usable[*j] && !active.contains(j))
-            .max_by(|&a, &b| c[a].abs().total_cmp(&c[b].abs()));
-        let Some(jn) = next else { break };
-        if active.is_empty() || c[jn].abs() > 0.0 {
-            active.push(jn);
-        }
-        let cmax = c[jn].abs();
-        if cmax < 1e-14 {
-            break;
-        }
-        let na = active.len();
-        let s: Vec<f64> = active.iter().map(|&j| c[j].signum()).collect();
-        let mut g = vec![0.0; na * na];
-        for a in 0..na {
-            for b in 0..na {
-                g[a * na + b] = s[a] * s[b] * dot(col(active[a]), col(active[b]));
-            }
-        }
-        let Ok(l) = crate::linalg::cholesky("LARS", &g, na) else {
-            break;
-        };
-        // Solve G w = 1.
-        let mut z = vec![0.0; na];
-        for i in 0..na {
-            let mut v = 1.0;
-            for t in 0..i {
-                v -= l[i * na + t] * z[t];
-            }
-            z[i] = v / l[i * na + i];
-        }
-        let mut w = vec![0.0; na];
-        for i in (0..na).rev() {
-            let mut v = z[i];
-            for t in (i + 1)..na {
-                v -= l[t * na + i] * w[t];
-            }
-            w[i] = v / l[i * na + i];
-        }
-        let aa = 1.0 / w.iter().sum::<f64>().sqrt();
-        let mut u = vec![0.0; k];
-        for (t, &j) in active.iter().enumerate() {
-            for (ui, xi) in u.iter_mut().zip(col(j)) {
-                *ui += aa * w[t] * s[t] * xi;
-            }
-        }
-        let mut gamma = cmax / aa;
-        for j in 1..p {
-            if !usable[j] || active.contains(&j) {
-                continue;
-            }
-            let aj = dot(col(j), &u);
-            for cand in [(cmax - c[j]) / (aa - aj), (cmax + c[j]) / (aa + aj)] {
-                if cand > 1e-14 && cand < gamma {
-                    gamma = cand;
-                }
-            }
-        }
-        for (m, ui) in mu.iter_mut().zip(&u) {
-            *m += gamma * ui;
-        }
-    }
-    active
 }

@@ -1,0 +1,421 @@
+//! Sparse polynomial chaos by hybrid least-angle regression (Blatman & Sudret, J. Comput. Phys.
+//! 230, 2011), selected and reported with the **corrected** leave-one-out error.
+//!
+//! 1. LARS (Efron et al., Ann. Stat. 32, 2004) orders the candidate basis functions: on the
+//!    centred, normalised columns `x_j` of the design matrix, with residual `r` and active set
+//!    `A`, the equiangular direction is `u = A_A X_A z`, `z = G_A^-1 s_A` (`G_A = X_A^T X_A`,
+//!    `s_A` the signs of the correlations `c_A = X_A^T r`, `A_A = (s_A^T z)^-1/2`); the step
+//!    `gamma = min+_{j not in A} {(C - c_j)/(A_A - a_j), (C + c_j)/(A_A + a_j)}`, `a = X^T u`,
+//!    brings the next column to equal correlation. `G_A` is factorised by Cholesky and extended
+//!    by one row per step (`O(K p)` per step for the correlations, `O(|A|^2)` for the solve).
+//! 2. Hybrid step: for each prefix of that order (constant first), the ordinary least-squares
+//!    fit on the prefix is scored by the corrected leave-one-out error
+//!    `e*_LOO = T(P, K) (1/K) sum_k ((q_k - q~(xi_k)) / (1 - h_k))^2 / Var(q)`, with the
+//!    Chapelle et al. (Mach. Learn. 46, 2002) / Blatman-Sudret correction
+//!    `T(P, K) = K / (K - P) (1 + tr((Psi_A^T Psi_A)^-1))` (= `K/(K-P) (1 + tr(C_emp^-1)/K)`,
+//!    `C_emp = Psi^T Psi / K`). The prefixes are fitted incrementally: modified Gram-Schmidt
+//!    (with one re-orthogonalisation) adds one column of `Q` and of `R^-1` per step, so the hat
+//!    diagonal `h_k = sum_j Q_kj^2`, the residual and `tr((Psi^T Psi)^-1) = ||R^-1||_F^2` cost
+//!    `O(K |A| + |A|^2)` per prefix.
+//! 3. The prefix of least corrected error is kept. The path is capped at
+//!    [`LarsOptions::max_terms_fraction`] `K` terms and stops early once the error exceeds
+//!    [`LarsOptions::stop_factor`] times the best one (OpenTURNS' `MaximumErrorFactor`, 2).
+//!
+//! The plain LOO error is biased low for a selected basis (4-75x on Ishigami at degree 12 with
+//! 200 points, reported 2.2e-9 against a true 1.6e-7): the factor `T` grows as `P -> K` and
+//! keeps the selection away from near-interpolating fits.
+
+use super::pc::PcSurrogate;
+use crate::basis::PcBasis;
+use crate::error::{Result, UqError, check_len, invalid};
+use rayon::prelude::*;
+
+/// Options of [`PcSurrogate::lars_with`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LarsOptions {
+    /// Largest number of terms (constant included) as a fraction of the number of points
+    /// (default 0.5; at most `K - 1` terms whatever the fraction).
+    pub max_terms_fraction: f64,
+    /// Stop the path when the corrected LOO error exceeds this factor times the best one so far
+    /// (default 2; `f64::INFINITY` runs the whole path).
+    pub stop_factor: f64,
+}
+
+impl Default for LarsOptions {
+    fn default() -> Self {
+        Self {
+            max_terms_fraction: 0.5,
+            stop_factor: 2.0,
+        }
+    }
+}
+
+/// What the LARS selection did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LarsReport {
+    /// Number of terms and corrected LOO error of each prefix examined.
+    pub path: Vec<(usize, f64)>,
+    /// Number of terms kept.
+    pub terms: usize,
+    /// Corrected LOO error of the kept basis (normalised by the sample variance).
+    pub corrected_loo: f64,
+    /// Plain LOO error of the kept basis (for comparison; biased low).
+    pub loo: f64,
+}
+
+impl PcSurrogate {
+    /// Sparse PC by hybrid LARS with the default [`LarsOptions`]; see [`PcSurrogate::lars_with`].
+    ///
+    /// # Errors
+    /// As [`PcSurrogate::lars_with`].
+    pub fn lars(basis: PcBasis, points: &[f64], values: &[f64]) -> Result<Self> {
+        Self::lars_with(basis, points, values, &LarsOptions::default()).map(|r| r.0)
+    }
+
+    /// Sparse PC by hybrid LARS (module [`crate::surrogate`] docs, file `lars.rs`): LARS orders
+    /// the candidates of `basis` on the data, each prefix is scored by its corrected LOO error
+    /// and the best one is refitted by least squares. The returned surrogate is a regression on
+    /// the selected basis (linear in the data for this selection).
+    ///
+    /// # Errors
+    /// If sizes disagree, the basis has no constant term, the options are out of range, or no
+    /// prefix can be fitted.
+    pub fn lars_with(
+        basis: PcBasis,
+        points: &[f64],
+        values: &[f64],
+        opts: &LarsOptions,
+    ) -> Result<(Self, LarsReport)> {
+        let what = "PC LARS";
+        if !(opts.max_terms_fraction > 0.0 && opts.max_terms_fraction <= 1.0) {
+            return Err(invalid(
+                what,
+                "max_terms_fraction",
+                "in (0, 1]",
+                opts.max_terms_fraction,
+            ));
+        }
+        if opts.stop_factor.is_nan() || opts.stop_factor < 1.0 {
+            return Err(invalid(what, "stop_factor", ">= 1", opts.stop_factor));
+        }
+        let psi = basis.design_matrix(points)?;
+        let k = points.len() / basis.dim();
+        check_len(what, "values", k, values.len())?;
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(invalid(what, "value", "finite", *v));
+        }
+        let p = basis.len();
+        let Some(c0) = basis
+            .indices()
+            .iter()
+            .position(|a| a.iter().all(|&v| v == 0))
+        else {
+            return Err(UqError::Invalid {
+                what,
+                message: "the candidate basis has no constant term".into(),
+            });
+        };
+        if k < 3 {
+            return Err(UqError::Invalid {
+                what,
+                message: format!("needs at least 3 points, got {k}"),
+            });
+        }
+        let max_terms = ((opts.max_terms_fraction * k as f64).floor() as usize)
+            .clamp(1, k - 1)
+            .min(p);
+        let mean = values.iter().sum::<f64>() / k as f64;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (k as f64 - 1.0);
+        if !(var > 0.0) {
+            // Constant data: the constant alone is exact.
+            let sur = Self::regression(basis.subset(&[c0]), points)?;
+            let report = LarsReport {
+                path: vec![(1, 0.0)],
+                terms: 1,
+                corrected_loo: 0.0,
+                loo: 0.0,
+            };
+            return Ok((sur, report));
+        }
+        let mut fit = IncrementalLs::new(values);
+        let mut path = Vec::new();
+        let mut kept: Vec<usize> = Vec::new();
+        let mut best: Option<(f64, f64, usize)> = None; // (corrected, plain, prefix length)
+        // Score each prefix as LARS brings its column in; stop the path with the scores.
+        let mut score = |j: usize| -> bool {
+            let col: Vec<f64> = (0..k).map(|i| psi[i * p + j]).collect();
+            if !fit.push(&col) {
+                return true; // numerically dependent on the columns already kept
+            }
+            kept.push(j);
+            let Some((plain, corrected)) = fit.loo(var) else {
+                return false; // a point with leverage 1: larger prefixes interpolate it too
+            };
+            path.push((kept.len(), corrected));
+            match best {
+                Some((b, _, _)) if corrected >= b => corrected <= opts.stop_factor * b,
+                _ => {
+                    best = Some((corrected, plain, kept.len()));
+                    true
+                }
+            }
+        };
+        if score(c0) {
+            lars_order(&psi, values, k, p, c0, max_terms - 1, score);
+        }
+        let Some((corrected_loo, loo, n)) = best else {
+            return Err(UqError::Singular {
+                what,
+                pivot: 0,
+                size: p,
+            });
+        };
+        let mut keep = kept[..n].to_vec();
+        keep.sort_unstable();
+        let sur = Self::regression(basis.subset(&keep), points)?;
+        Ok((
+            sur,
+            LarsReport {
+                path,
+                terms: n,
+                corrected_loo,
+                loo,
+            },
+        ))
+    }
+}
+
+/// Least squares on a growing set of columns by modified Gram-Schmidt.
+struct IncrementalLs<'a> {
+    y: &'a [f64],
+    k: usize,
+    /// Orthonormal columns, column-major.
+    q: Vec<f64>,
+    /// `R^-1`, upper triangular, column-major by growing columns (`rinv[j]` has `j + 1`
+    /// entries).
+    rinv: Vec<Vec<f64>>,
+    hat: Vec<f64>,
+    resid: Vec<f64>,
+    trace_inv_gram: f64,
+}
+
+impl<'a> IncrementalLs<'a> {
+    fn new(y: &'a [f64]) -> Self {
+        Self {
+            y,
+            k: y.len(),
+            q: Vec::new(),
+            rinv: Vec::new(),
+            hat: vec![0.0; y.len()],
+            resid: y.to_vec(),
+            trace_inv_gram: 0.0,
+        }
+    }
+
+    fn terms(&self) -> usize {
+        self.rinv.len()
+    }
+
+    /// Add a column; `false` (nothing changed) if it is numerically in the span.
+    fn push(&mut self, col: &[f64]) -> bool {
+        let k = self.k;
+        let t = self.terms();
+        let norm0 = col.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(norm0 > 0.0) {
+            return false;
+        }
+        let mut v = col.to_vec();
+        let mut r = vec![0.0; t];
+        for _pass in 0..2 {
+            for (j, rj) in r.iter_mut().enumerate() {
+                let qj = &self.q[j * k..(j + 1) * k];
+                let d: f64 = qj.iter().zip(&v).map(|(a, b)| a * b).sum();
+                *rj += d;
+                for (vi, qi) in v.iter_mut().zip(qj) {
+                    *vi -= d * qi;
+                }
+            }
+        }
+        let rho = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if rho <= 1e-10 * norm0 {
+            return false;
+        }
+        for x in v.iter_mut() {
+            *x /= rho;
+        }
+        // R_new = [[R, r], [0, rho]]  =>  R_new^-1 = [[R^-1, -R^-1 r / rho], [0, 1/rho]].
+        let mut newcol = vec![0.0; t + 1];
+        for (j, rj) in r.iter().enumerate() {
+            // (R^-1 r)_i = sum_j R^-1_ij r_j, column j of R^-1 has entries i <= j.
+            for (i, ri) in self.rinv[j].iter().enumerate() {
+                newcol[i] -= ri * rj / rho;
+            }
+        }
+        newcol[t] = 1.0 / rho;
+        self.trace_inv_gram += newcol.iter().map(|x| x * x).sum::<f64>();
+        self.rinv.push(newcol);
+        let qy: f64 = v.iter().zip(self.y).map(|(a, b)| a * b).sum();
+        for ((h, e), qi) in self.hat.iter_mut().zip(self.resid.iter_mut()).zip(&v) {
+            *h += qi * qi;
+            *e -= qy * qi;
+        }
+        self.q.extend_from_slice(&v);
+        true
+    }
+
+    /// Plain and corrected LOO errors normalised by `var`, `None` if a leverage reaches 1 or no
+    /// degree of freedom is left.
+    fn loo(&self, var: f64) -> Option<(f64, f64)> {
+        let k = self.k;
+        let p = self.terms();
+        if p >= k {
+            return None;
+        }
+        let mut s = 0.0;
+        for (e, h) in self.resid.iter().zip(&self.hat) {
+            let d = 1.0 - h;
+            if !(d > 1e-12) {
+                return None;
+            }
+            s += (e / d).powi(2);
+        }
+        let plain = s / k as f64 / var;
+        let t = corrected_loo_factor(k, p, self.trace_inv_gram);
+        Some((plain, plain * t))
+    }
+}
+
+/// Chapelle / Blatman-Sudret correction `T(P, K) = K/(K - P) (1 + tr((Psi^T Psi)^-1))` of the
+/// LOO error of a least-squares fit with `p` terms on `k` points (infinite for `p >= k`).
+pub fn corrected_loo_factor(k: usize, p: usize, trace_inv_gram: f64) -> f64 {
+    if p >= k {
+        return f64::INFINITY;
+    }
+    k as f64 / (k - p) as f64 * (1.0 + trace_inv_gram)
+}
+
+/// Run LARS on the columns of the `k x p` row-major matrix `psi` other than the constant column
+/// `c0` (handled by centring), calling `on_column(j)` as column `j` enters the active set; stops
+/// after `max_steps` columns or when `on_column` returns `false`.
+fn lars_order(
+    psi: &[f64],
+    y: &[f64],
+    k: usize,
+    p: usize,
+    c0: usize,
+    max_steps: usize,
+    mut on_column: impl FnMut(usize) -> bool,
+) {
+    let ym = y.iter().sum::<f64>() / k as f64;
+    let mut r: Vec<f64> = y.iter().map(|v| v - ym).collect();
+    // Centred, normalised columns (column-major).
+    let mut x = vec![0.0; k * p];
+    let mut usable = vec![false; p];
+    for j in (0..p).filter(|&j| j != c0) {
+        let m = (0..k).map(|i| psi[i * p + j]).sum::<f64>() / k as f64;
+        let col = &mut x[j * k..(j + 1) * k];
+        for (i, c) in col.iter_mut().enumerate() {
+            *c = psi[i * p + j] - m;
+        }
+        let n = col.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if n > 1e-12 {
+            usable[j] = true;
+            for c in col.iter_mut() {
+                *c /= n;
+            }
+        }
+    }
+    let col = |j: usize| &x[j * k..(j + 1) * k];
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(u, v)| u * v).sum::<f64>();
+    let mut active: Vec<usize> = Vec::new();
+    let mut in_active = vec![false; p];
+    // Cholesky factor of G_A = X_A^T X_A, row-major by rows of growing length.
+    let mut chol: Vec<Vec<f64>> = Vec::new();
+    let mut c = vec![0.0; p];
+    let max_steps = max_steps.min(k.saturating_sub(2));
+    while active.len() < max_steps {
+        c.par_iter_mut().enumerate().for_each(|(j, cj)| {
+            *cj = if usable[j] { dot(col(j), &r) } else { 0.0 };
+        });
+        // Bring in the inactive column of largest |correlation| that is not (numerically) in
+        // the span of the active ones.
+        let cmax = loop {
+            let Some(jn) = (0..p)
+                .filter(|&j| usable[j] && !in_active[j])
+                .max_by(|&a, &b| c[a].abs().total_cmp(&c[b].abs()))
+            else {
+                return;
+            };
+            let g: Vec<f64> = active.iter().map(|&a| dot(col(a), col(jn))).collect();
+            let mut l = vec![0.0; active.len() + 1];
+            for i in 0..active.len() {
+                let s: f64 = (0..i).map(|t| chol[i][t] * l[t]).sum();
+                l[i] = (g[i] - s) / chol[i][i];
+            }
+            let d2 = 1.0 - l[..active.len()].iter().map(|v| v * v).sum::<f64>();
+            if d2 <= 1e-10 {
+                usable[jn] = false;
+                continue;
+            }
+            l[active.len()] = d2.sqrt();
+            chol.push(l);
+            active.push(jn);
+            in_active[jn] = true;
+            if !on_column(jn) {
+                return;
+            }
+            break c[jn].abs();
+        };
+        if cmax < 1e-14 * (1.0 + ym.abs()) {
+            break;
+        }
+        let na = active.len();
+        let s: Vec<f64> = active.iter().map(|&j| c[j].signum()).collect();
+        // z = G^-1 s by forward and back substitution.
+        let mut z = vec![0.0; na];
+        for i in 0..na {
+            let v: f64 = s[i] - (0..i).map(|t| chol[i][t] * z[t]).sum::<f64>();
+            z[i] = v / chol[i][i];
+        }
+        for i in (0..na).rev() {
+            let v: f64 = z[i] - ((i + 1)..na).map(|t| chol[t][i] * z[t]).sum::<f64>();
+            z[i] = v / chol[i][i];
+        }
+        let sz: f64 = s.iter().zip(&z).map(|(a, b)| a * b).sum();
+        if !(sz > 0.0) {
+            break;
+        }
+        let aa = 1.0 / sz.sqrt();
+        let mut u = vec![0.0; k];
+        for (t, &j) in active.iter().enumerate() {
+            for (ui, xi) in u.iter_mut().zip(col(j)) {
+                *ui += aa * z[t] * xi;
+            }
+        }
+        let mut gamma = cmax / aa;
+        let a: Vec<f64> = (0..p)
+            .into_par_iter()
+            .map(|j| {
+                if usable[j] && !in_active[j] {
+                    dot(col(j), &u)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        for j in 0..p {
+            if !usable[j] || in_active[j] {
+                continue;
+            }
+            let aj = a[j];
+            for cand in [(cmax - c[j]) / (aa - aj), (cmax + c[j]) / (aa + aj)] {
+                if cand > 1e-14 && cand < gamma {
+                    gamma = cand;
+                }
+            }
+        }
+        for (ri, ui) in r.iter_mut().zip(&u) {
+            *ri -= gamma * ui;
+        }
+    }
+}
