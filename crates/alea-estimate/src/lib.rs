@@ -48,12 +48,17 @@
 //!
 //! # Interfaces (3.31, 4.4-4.5)
 //! Per interface point with weight `m_i` and normal `n_i`: `w~`, `F_2 = F~` (interpolated force)
-//! and `F_1` = the same normal force with the tangential force brought onto the Coulomb disk of
-//! the friction coefficient at `xi` (`F_t1 = F_t2` if `|F_t2| <= mu(xi) F_n`, else
-//! `mu(xi) F_n F_t2 / |F_t2|`): the force the law at `xi` allows, closest to the interpolated one.
-//! (The thesis writes `F_t1 = mu(xi) F_n t`; on a slipping point the two agree, on a sticking point
-//! ours leaves `F_1 = F_2` so that a run point, where the interpolated force satisfies the law, has
-//! no stochastic error.) The finite part of the bipotential density
+//! and `F_1` = the same normal force with the tangential force the law at `xi` allows given the
+//! interpolated normal force, `mu(xi)` and the gap: none where the interpolated jump opens the
+//! contact (`w~_n > 0`), else the tangential force brought onto the Coulomb disk
+//! (`F_t1 = F_t2` if `|F_t2| <= mu(xi) F_n`, else `mu(xi) F_n F_t2 / |F_t2|`), the allowed force
+//! closest to the interpolated one. (The thesis writes `F_t1 = mu(xi) F_n t`, the force of a
+//! slipping point; on a slipping point the two agree, on a sticking point ours leaves
+//! `F_1 = F_2`, so that at a run point, where the interpolated fields satisfy the law, the
+//! stochastic part vanishes.) The space part (4.4) takes the interpolated force as it is: where
+//! runs with different statuses are interpolated, `w~` and `F~` are not consistent and
+//! `rho(w~, F~) > 0` although every run is converged - part of the interpolation error lands in
+//! `I_geo` of the interfaces by the thesis's definition, and shrinks with the runs. The finite part of the bipotential density
 //! `rho(w, F) = mu F_n |w_t| + w_n F_n + w_t . F_t` is linear in `F`, hence
 //!
 //! ```text

@@ -1,5 +1,6 @@
 //! The `alea` command line. Thin: parsing arguments, calling `alea-study`, printing.
 
+mod estimate_out;
 mod report;
 mod solve;
 mod study_cmd;

@@ -150,14 +150,18 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         }
     }
     print_table(&study, &results);
-    write_summary(
+    let main_index = results.iter().position(|r| !r.qois.is_empty());
+    let t0 = Instant::now();
+    let (err_settings, estimates) =
+        crate::estimate_out::estimate_all(&study, &runs, &results, dir, main_index)?;
+    notes.extend(crate::estimate_out::print(
         &study,
-        dir,
-        &results,
-        &runs.records,
-        runs.computed,
-        runs.resumed,
-    )?;
+        &runs,
+        &err_settings,
+        &estimates,
+    ));
+    let estimate_seconds = t0.elapsed().as_secs_f64();
+    write_summary(&study, dir, &results, &runs, &estimates)?;
     if study.output.samples_csv.unwrap_or(true)
         && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
     {
@@ -195,6 +199,7 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
                 ("solver set-up".into(), runs.setup_seconds),
                 ("solves".into(), runs.solve_seconds),
                 ("surrogates + Monte Carlo".into(), analysis_seconds),
+                ("stochastic error estimates".into(), estimate_seconds),
             ],
         )?;
         let files = report::write_report(&dir.join("report"), &input)?;
@@ -250,11 +255,11 @@ fn write_summary(
     study: &Study,
     dir: &Path,
     results: &[MethodResult],
-    records: &[RunRecord],
-    computed: usize,
-    resumed: usize,
+    study_runs: &alea_study::runner::StudyRuns,
+    estimates: &[crate::estimate_out::MethodEstimate],
 ) -> Result<()> {
-    let _ = (computed, resumed); // timings and resume counts vary between invocations: not in the summary
+    // Timings and resume counts vary between invocations: not in the summary.
+    let records = &study_runs.records;
     let runs: Vec<serde_json::Value> = records
         .iter()
         .map(|r| {
@@ -266,12 +271,23 @@ fn write_summary(
         .collect();
     let methods: Vec<serde_json::Value> = results
         .iter()
-        .map(|r| {
-            serde_json::json!({
+        .enumerate()
+        .map(|(m, r)| {
+            let mut v = serde_json::json!({
                 "label": r.label, "description": r.description, "design_runs": r.design_runs,
                 "runs_used": r.runs_used, "left_out": r.left_out, "error": r.error,
                 "draws": r.draws, "qois": r.qois,
-            })
+            });
+            if let Some(e) = estimates.iter().find(|e| e.method == m) {
+                v["error_estimate"] = match &e.result {
+                    Ok(me) => crate::estimate_out::error_json(me),
+                    Err(why) => serde_json::json!({ "unavailable": why }),
+                };
+            }
+            if let Some(a) = study_runs.adaptive.iter().find(|a| a.method == m) {
+                v["adaptive"] = crate::estimate_out::adaptive_json(a);
+            }
+            v
         })
         .collect();
     let v = serde_json::json!({
