@@ -210,8 +210,29 @@ fn check_params(src: &Source, spec: &MeshSpec, allowed: &[&str]) -> Result<(), S
     Ok(())
 }
 
+/// The path of a mesh file named in a study file (relative to the study file).
+fn mesh_file_path(src: &Source, f: &Spanned<String>) -> std::path::PathBuf {
+    src.path.parent().unwrap_or(Path::new(".")).join(f.get_ref())
+}
+
+/// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes
+/// (a changed mesh file makes a different study).
+pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> {
+    match (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
+        (Some(f), "gmsh") => {
+            let path = mesh_file_path(src, f);
+            let bytes = std::fs::read(&path).map_err(|e| {
+                src.error(f.span(), "mesh.file", format!("{}: {e}", path.display()))
+            })?;
+            Ok(crate::store::study_hash(&src.text, &[&bytes]))
+        }
+        _ => Ok(crate::store::study_hash(&src.text, &[])),
+    }
+}
+
 /// Builds the mesh of a `[mesh]` table.
 pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+    crate::limits::check_mesh(src, spec)?;
     let kind = |default: CellType| -> Result<CellType, StudyError> {
         spec.kind
             .as_ref()
@@ -341,9 +362,10 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         "gmsh" => {
             check_params(src, spec, &[])?;
             let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
-            let base = src.path.parent().unwrap_or(Path::new("."));
-            let path = base.join(f.get_ref());
-            alea_mesh::read_msh(&path).map_err(StudyError::Mesh)
+            let path = mesh_file_path(src, f);
+            // Every Gmsh error (missing file, directory, truncated or malformed content) is an
+            // input error of this field; the message carries the mesh file's own line.
+            alea_mesh::read_msh(&path).map_err(|e| src.error(f.span(), "mesh.file", e.to_string()))
         }
         other => Err(src.error(
             spec.generator.span(),

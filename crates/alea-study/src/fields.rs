@@ -103,9 +103,15 @@ pub fn mean_std_fields(
             "no Monte Carlo draws for the field statistics".into(),
         ));
     }
-    // Weight moments, in fixed chunks summed in order (thread-count independent).
-    let parts: Vec<(Vec<f64>, Vec<f64>)> = draws
-        .par_chunks(d * 4096)
+    // Weight moments, in fixed chunks summed in order (thread-count independent); 16 chunks
+    // at a time, so that at most 16 `k x k` partial sums are alive (`limits::mean_fields_memory`).
+    let n = (draws.len() / d) as f64;
+    let mut ew = vec![0.0; k];
+    let mut ew2 = vec![0.0; k * k];
+    let chunks: Vec<&[f64]> = draws.chunks(d * 4096).collect();
+    for group in chunks.chunks(16) {
+    let parts: Vec<(Vec<f64>, Vec<f64>)> = group
+        .par_iter()
         .map(|block| {
             let mut e1 = vec![0.0; k];
             let mut e2 = vec![0.0; k * k];
@@ -122,9 +128,6 @@ pub fn mean_std_fields(
             (e1, e2)
         })
         .collect();
-    let n = (draws.len() / d) as f64;
-    let mut ew = vec![0.0; k];
-    let mut ew2 = vec![0.0; k * k];
     for (e1, e2) in &parts {
         for (a, b) in ew.iter_mut().zip(e1) {
             *a += b / n;
@@ -132,6 +135,7 @@ pub fn mean_std_fields(
         for (a, b) in ew2.iter_mut().zip(e2) {
             *a += b / n;
         }
+    }
     }
     let store = Store::open(dir, &study.hash, false)?;
     let solver = &runs.solver;

@@ -23,7 +23,8 @@ use rayon::prelude::*;
 use crate::method::{Method, build_methods};
 use crate::qoi::{Qoi, build_qois};
 use crate::spec::{ModelFile, OutputSpec};
-use crate::store::{RunRecord, Store, point_key, text_hash};
+use crate::lock::StudyLock;
+use crate::store::{RunRecord, Store, point_key};
 use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
 
 /// A loaded, validated study.
@@ -42,7 +43,7 @@ pub struct Study {
     pub methods: Vec<Method>,
     /// Seed of all random draws.
     pub seed: u64,
-    /// Hash of the study file's text.
+    /// Hash of the study's inputs (its file's text and its mesh file).
     pub hash: String,
     /// Outputs.
     pub output: OutputSpec,
@@ -64,6 +65,8 @@ pub trait Progress: Sync {
     fn finished(&self, _rec: &RunRecord) {}
     /// All runs are done.
     fn end(&self) {}
+    /// Something the user should know (e.g. a lock taken over from a dead process).
+    fn note(&self, _message: &str) {}
 }
 
 /// A progress observer that does nothing.
@@ -84,13 +87,14 @@ impl Study {
         if file.method.is_empty() {
             return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
         }
+        crate::limits::check_study_file(&source, &file, params.names.len())?;
         let model = build_model(&source, &file, &params)?;
         let qois = build_qois(&source, &file.quantity, &model)?;
         let seed = file.study.seed.unwrap_or(1);
         let methods = build_methods(&source, &file.method, &params, seed)?;
-        let hash = text_hash(&source.text);
+        let hash = crate::build::input_hash(&source, &file)?;
         let output = file.output.clone();
-        Ok(Study {
+        let study = Study {
             source,
             file,
             params,
@@ -100,7 +104,9 @@ impl Study {
             seed,
             hash,
             output,
-        })
+        };
+        crate::limits::check_built(&study)?;
+        Ok(study)
     }
 
     /// Loads a study file.
@@ -261,6 +267,9 @@ pub struct StudyRuns {
     pub solve_seconds: f64,
     /// The solver (for field output and further runs).
     pub solver: Arc<LatinSolver>,
+    /// The study directory's lock, held as long as these runs are (outputs are written under
+    /// it).
+    pub lock: StudyLock,
 }
 
 /// Runs (or resumes) every design point of `study` in the study directory `dir`.
@@ -270,7 +279,15 @@ pub fn run_study(
     restart: bool,
     progress: &dyn Progress,
 ) -> Result<StudyRuns, StudyError> {
+    let lock = StudyLock::acquire(dir, &format!("alea run {}", study.source.path.display()))?;
+    if let Some(previous) = lock.previous() {
+        progress.note(&format!(
+            "took over the lock of {} left by {previous}, which is no longer running",
+            dir.display()
+        ));
+    }
     let store = Store::open(dir, &study.hash, restart)?;
+    store.save_study(&study.source.path, &study.source.text)?;
     let points = study.all_points();
     let previous = store.runs()?;
     let mut by_key: std::collections::HashMap<String, RunRecord> = previous
@@ -418,5 +435,6 @@ pub fn run_study(
         setup_seconds: solver.setup_seconds,
         solve_seconds: t0.elapsed().as_secs_f64(),
         solver,
+        lock,
     })
 }

@@ -135,7 +135,7 @@ impl ReportInput {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
-        std::fs::write(path, text).map_err(|source| ReportError::Io {
+        alea_mesh::atomic::write_bytes_atomic(path, text.as_bytes()).map_err(|source| ReportError::Io {
             path: path.to_path_buf(),
             source,
         })
