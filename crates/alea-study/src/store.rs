@@ -260,6 +260,14 @@ impl Store {
         tx.commit().map_err(db_err(&self.dir))
     }
 
+    /// Sets SQLite's `synchronous` level (`OFF`, `NORMAL`, `FULL`) for this connection: only
+    /// for measuring what [`SYNCHRONOUS`] costs (`benches/store.rs`).
+    pub fn set_synchronous(&self, level: &str) -> Result<(), StudyError> {
+        self.conn
+            .pragma_update(None, "synchronous", level)
+            .map_err(db_err(&self.dir))
+    }
+
     /// The directory.
     pub fn dir(&self) -> &Path {
         &self.dir
@@ -383,4 +391,98 @@ pub fn study_hash(text: &str, extra: &[&[u8]]) -> String {
         feed(e);
     }
     format!("{h:016x}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("alea-store-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        d
+    }
+
+    fn record(p: f64) -> RunRecord {
+        RunRecord {
+            params: vec![p, 2.0 * p],
+            status: "converged".into(),
+            iterations: 7,
+            residual: 1e-7,
+            seconds: 0.1,
+            qois: vec![p * p],
+            history: vec![1.0, 0.1],
+            state: vec![0.5; 4],
+        }
+    }
+
+    #[test]
+    fn rows_and_field_files_of_another_study_are_never_used() {
+        let d = dir("hash");
+        let (a, b) = (study_hash("study A", &[]), study_hash("study B", &[]));
+        let store = Store::open(&d, &a, false).unwrap();
+        store.commit(&record(1.0), &[1.0, 2.0, 3.0]).unwrap();
+        assert_eq!(store.fields(&[1.0, 2.0]).unwrap(), vec![1.0, 2.0, 3.0]);
+        // A row of study B in the same table (what a second writer could leave).
+        store
+            .conn
+            .execute(
+                "INSERT INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
+                 SELECT 'other', params, status, iterations, residual, seconds, qois, history, state, ?1 FROM runs",
+                params![b],
+            )
+            .unwrap();
+        let runs = store.runs().unwrap();
+        assert_eq!(runs, vec![record(1.0)]);
+        // A field file written by study B at the same point.
+        let mut bytes = FIELD_MAGIC.to_vec();
+        bytes.extend_from_slice(b.as_bytes());
+        bytes.extend_from_slice(&to_blob(&[9.0, 9.0, 9.0]));
+        std::fs::write(store.field_path(&[1.0, 2.0]), bytes).unwrap();
+        let err = store.fields(&[1.0, 2.0]).unwrap_err().to_string();
+        assert!(err.contains("belongs to another study"), "{err}");
+        // Truncated file: refused, not misread.
+        let path = store.field_path(&[1.0, 2.0]);
+        std::fs::write(&path, &b"ALEAFLD1abc"[..]).unwrap();
+        assert!(store.fields(&[1.0, 2.0]).is_err());
+        drop(store);
+        // The study file changed: refused without --restart, emptied with it.
+        let e = Store::open(&d, &b, false).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{e}");
+        let s = Store::open(&d, &b, true).unwrap();
+        assert!(s.runs().unwrap().is_empty());
+    }
+
+    #[test]
+    fn a_directory_from_before_run_hashes_is_migrated() {
+        let d = dir("legacy");
+        std::fs::create_dir_all(d.join("fields")).unwrap();
+        let h = study_hash("legacy", &[]);
+        {
+            let c = Connection::open(d.join("study.db")).unwrap();
+            c.execute_batch(
+                "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+                 CREATE TABLE runs (key TEXT PRIMARY KEY, params BLOB NOT NULL, status TEXT NOT NULL,
+                   iterations INTEGER NOT NULL, residual REAL NOT NULL, seconds REAL NOT NULL,
+                   qois BLOB NOT NULL, history BLOB NOT NULL, state BLOB NOT NULL,
+                   finished_at TEXT NOT NULL DEFAULT CURRENT_TIMESTAMP);",
+            )
+            .unwrap();
+            c.execute("INSERT INTO meta VALUES ('study_hash', ?1)", params![h])
+                .unwrap();
+            let r = record(3.0);
+            c.execute(
+                "INSERT INTO runs (key, params, status, iterations, residual, seconds, qois, history, state)
+                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+                params![point_key(&r.params), to_blob(&r.params), r.status, 7i64, r.residual,
+                        r.seconds, to_blob(&r.qois), to_blob(&r.history), to_blob(&r.state)],
+            )
+            .unwrap();
+        }
+        let s = Store::open(&d, &h, false).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![record(3.0)]);
+        // Legacy field file without a header.
+        std::fs::write(s.field_path(&[3.0, 6.0]), to_blob(&[4.0, 5.0])).unwrap();
+        assert_eq!(s.fields(&[3.0, 6.0]).unwrap(), vec![4.0, 5.0]);
+    }
 }

@@ -17,7 +17,12 @@ pub fn demo(name: &str, out: &Path) -> Result<()> {
     let (file, text) = match name {
         "dovetail" => ("examples/dovetail-contact.toml", DEMO_DOVETAIL),
         "kirsch" => ("examples/kirsch.toml", DEMO_KIRSCH),
-        other => anyhow::bail!("unknown demo '{other}'; available: dovetail, kirsch"),
+        other => {
+            return Err(alea_study::StudyError::Usage(format!(
+                "unknown demo '{other}'; available: dovetail, kirsch"
+            ))
+            .into());
+        }
     };
     println!("demo '{name}' (the case file is {file})");
     solve_source(&Source::from_text(file, text), out)

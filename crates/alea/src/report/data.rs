@@ -141,7 +141,9 @@ impl ReportInput {
         })
     }
 
-    /// Loads an input saved by [`ReportInput::save_json`].
+    /// Loads an input saved by [`ReportInput::save_json`] (`alea report` rebuilds from the
+    /// study's store instead; kept for the round-trip test).
+    #[cfg(test)]
     pub fn load_json(path: &Path) -> Result<Self, ReportError> {
         let text = std::fs::read_to_string(path).map_err(|source| ReportError::Io {
             path: path.to_path_buf(),
