@@ -761,12 +761,14 @@ pub fn build_model(
             factor: positive(src, k, "solver.search_direction_factor")?,
         };
     }
-    Ok(BuiltModel {
+    let built = BuiltModel {
         mesh,
         assembly: Assembly { subs, interfaces },
         load_names,
         options,
         units: file.units.clone(),
         parametric,
-    })
+    };
+    crate::checks::check_interfaces(src, &file.interface, &built)?;
+    Ok(built)
 }

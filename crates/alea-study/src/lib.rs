@@ -5,6 +5,7 @@
 
 pub mod analysis;
 mod build;
+mod checks;
 mod error;
 pub mod expr;
 pub mod fields;

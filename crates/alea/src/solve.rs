@@ -177,5 +177,14 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         path.display(),
         t0.elapsed().as_secs_f64()
     );
+    if res.status != RunStatus::Converged {
+        return Err(alea_study::StudyError::Failed(format!(
+            "the solve did not converge ({} iterations, error indicator {last:.2e}, tolerance {:.1e}); \
+             the files hold the last iterate",
+            res.iterations,
+            solver.options().tolerance
+        ))
+        .into());
+    }
     Ok(())
 }
