@@ -14,10 +14,12 @@
 
 mod anderson;
 mod assembly;
+pub mod contact;
 mod error;
 pub mod interface;
 pub mod law;
 pub mod output;
+pub mod reactions;
 mod result;
 pub mod samples;
 mod solver;

@@ -359,6 +359,44 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
             };
             generate::blade_root_simple(&p, kind(CellType::Quad4)?).map_err(mesh_err)
         }
+        "stacked_blocks" | "block_on_incline" => {
+            let d = generate::StackedBlocks::default();
+            let incline = gen_name == "block_on_incline";
+            let mut keys = vec!["width", "h_lower", "h_upper", "n_x", "n_lower", "n_upper"];
+            if incline {
+                keys.push("angle_deg");
+            }
+            check_params(src, spec, &keys)?;
+            let p = generate::StackedBlocks {
+                width: param_f64(src, spec, "width", Some(d.width))?,
+                h_lower: param_f64(src, spec, "h_lower", Some(d.h_lower))?,
+                h_upper: param_f64(src, spec, "h_upper", Some(d.h_upper))?,
+                n_x: param_usize(src, spec, "n_x", Some(d.n_x))?,
+                n_lower: param_usize(src, spec, "n_lower", Some(d.n_lower))?,
+                n_upper: param_usize(src, spec, "n_upper", Some(d.n_upper))?,
+            };
+            let kind = kind(CellType::Quad4)?;
+            if incline {
+                let a = param_f64(src, spec, "angle_deg", None)?.to_radians();
+                generate::block_on_incline(&p, a, kind).map_err(mesh_err)
+            } else {
+                generate::stacked_blocks(&p, kind).map_err(mesh_err)
+            }
+        }
+        "concentric_rings" => {
+            let d = generate::ConcentricRings::default();
+            check_params(src, spec, &["r_in", "r_contact", "r_out", "angle_deg", "n_inner", "n_outer", "n_theta"])?;
+            let p = generate::ConcentricRings {
+                r_in: param_f64(src, spec, "r_in", Some(d.r_in))?,
+                r_contact: param_f64(src, spec, "r_contact", Some(d.r_contact))?,
+                r_out: param_f64(src, spec, "r_out", Some(d.r_out))?,
+                angle: param_f64(src, spec, "angle_deg", Some(d.angle.to_degrees()))?.to_radians(),
+                n_inner: param_usize(src, spec, "n_inner", Some(d.n_inner))?,
+                n_outer: param_usize(src, spec, "n_outer", Some(d.n_outer))?,
+                n_theta: param_usize(src, spec, "n_theta", Some(d.n_theta))?,
+            };
+            generate::concentric_rings(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
         "gmsh" => {
             check_params(src, spec, &[])?;
             let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
@@ -370,7 +408,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         other => Err(src.error(
             spec.generator.span(),
             "mesh.generator",
-            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple or gmsh"),
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, stacked_blocks, block_on_incline, concentric_rings or gmsh"),
         )),
     }
 }

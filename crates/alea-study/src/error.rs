@@ -70,7 +70,12 @@ impl StudyError {
         match self {
             StudyError::Input { .. } | StudyError::Usage(_) | StudyError::TooLarge(_) => 2,
             StudyError::Io { .. } => 3,
-            StudyError::Mesh(alea_mesh::MeshError::Io { .. }) => 3,
+            StudyError::Mesh(alea_mesh::MeshError::Io { .. })
+            | StudyError::Latin(alea_latin::LatinError::Io { .. })
+            | StudyError::Latin(alea_latin::LatinError::Mesh {
+                source: alea_mesh::MeshError::Io { .. },
+                ..
+            }) => 3,
             StudyError::Busy { .. } => 5,
             _ => 4,
         }

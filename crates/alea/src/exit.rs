@@ -30,10 +30,20 @@ pub fn code(e: &anyhow::Error) -> u8 {
     use alea_mesh::MeshError;
     for cause in e.chain() {
         if let Some(s) = cause.downcast_ref::<StudyError>() {
-            return match s {
-                StudyError::Input { .. } | StudyError::Usage(_) | StudyError::TooLarge(_) => INPUT,
-                StudyError::Io { .. } | StudyError::Mesh(MeshError::Io { .. }) => FILES,
-                StudyError::Busy { .. } => BUSY,
+            return match s.exit_code() {
+                2 => INPUT,
+                3 => FILES,
+                5 => BUSY,
+                _ => COMPUTATION,
+            };
+        }
+        if let Some(l) = cause.downcast_ref::<alea_latin::LatinError>() {
+            return match l {
+                alea_latin::LatinError::Io { .. }
+                | alea_latin::LatinError::Mesh {
+                    source: MeshError::Io { .. },
+                    ..
+                } => FILES,
                 _ => COMPUTATION,
             };
         }
@@ -52,9 +62,7 @@ pub fn code(e: &anyhow::Error) -> u8 {
         if cause.downcast_ref::<std::io::Error>().is_some() {
             return FILES;
         }
-        if cause.downcast_ref::<alea_latin::LatinError>().is_some()
-            || cause.downcast_ref::<alea_fem::FemError>().is_some()
-        {
+        if cause.downcast_ref::<alea_fem::FemError>().is_some() {
             return COMPUTATION;
         }
     }

@@ -154,27 +154,60 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             sub.name, u.stress
         );
     }
+    let dim = built.mesh.dim;
+    let comps = |v: [f64; 3], name: &str| -> String {
+        ["x", "y", "z"][..dim]
+            .iter()
+            .enumerate()
+            .map(|(c, axis)| format!("{name}{axis} = {:e}", v[c]))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     for it in &res.interfaces {
         let c = it.status_counts();
-        let r = it.resultant();
         println!(
-            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({:.4e}, {:.4e}) {}; work of interface forces {:.4e}",
+            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2: {} {}; work of interface forces {:e}",
             it.name,
             it.law,
             c[1],
             c[2],
             c[3],
-            r[0],
-            r[1],
+            comps(it.resultant(), "F"),
             u.force,
             it.work()
         );
     }
+    // Reactions on every constrained group (the forces the constraints exert).
+    let mut reactions = Vec::new();
+    for (s, sub) in built.assembly.subs.iter().enumerate() {
+        let mut loads = vec![0.0; sub.model.mesh.num_nodes() * dim];
+        for (case, factor) in sub.load_cases.iter().zip(&input.load_factors[s]) {
+            for (a, b) in loads.iter_mut().zip(case) {
+                *a += factor * b;
+            }
+        }
+        let r = alea_latin::reactions::nodal_reactions(&solver, &res, s, &loads)?;
+        for c in &file.substructure[s].constraint {
+            let g = c.group.get_ref();
+            let nodes = sub.model.mesh.group_nodes(g)?;
+            let sum = alea_latin::reactions::group_sum(&r, dim, &nodes);
+            println!(
+                "  reaction on {:>10} / {g}: {} {}",
+                sub.name,
+                comps(sum, "R"),
+                u.force
+            );
+        }
+        reactions.push(r);
+    }
     let path = out.join(format!("{stem}.vtm"));
-    alea_latin::output::write_run(&path, &solver, &res)?;
+    let written =
+        alea_latin::output::write_run_with_reactions(&path, &solver, &res, Some(&reactions))?;
     println!(
-        "wrote {} ({:.2} s in all)",
+        "wrote {} and {} file(s) in {} ({:.2} s in all)",
         path.display(),
+        written.len(),
+        out.join(&stem).display(),
         t0.elapsed().as_secs_f64()
     );
     if res.status != RunStatus::Converged {
