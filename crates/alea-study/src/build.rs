@@ -362,7 +362,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         "stacked_blocks" | "block_on_incline" => {
             let d = generate::StackedBlocks::default();
             let incline = gen_name == "block_on_incline";
-            let mut keys = vec!["width", "h_lower", "h_upper", "n_x", "n_lower", "n_upper"];
+            let mut keys = vec!["width", "h_lower", "h_upper", "n_x", "n_lower", "n_upper", "depth", "n_z"];
             if incline {
                 keys.push("angle_deg");
             }
@@ -375,12 +375,21 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
                 n_lower: param_usize(src, spec, "n_lower", Some(d.n_lower))?,
                 n_upper: param_usize(src, spec, "n_upper", Some(d.n_upper))?,
             };
+            // Hex8: the Quad4 blocks extruded over `depth` in `n_z` layers (3D).
             let kind = kind(CellType::Quad4)?;
-            if incline {
+            let plane = if kind == CellType::Hex8 { CellType::Quad4 } else { kind };
+            let mesh = if incline {
                 let a = param_f64(src, spec, "angle_deg", None)?.to_radians();
-                generate::block_on_incline(&p, a, kind).map_err(mesh_err)
+                generate::block_on_incline(&p, a, plane).map_err(mesh_err)?
             } else {
-                generate::stacked_blocks(&p, kind).map_err(mesh_err)
+                generate::stacked_blocks(&p, plane).map_err(mesh_err)?
+            };
+            if kind == CellType::Hex8 {
+                let depth = param_f64(src, spec, "depth", Some(p.width))?;
+                let n_z = param_usize(src, spec, "n_z", Some(p.n_x))?;
+                generate::extrude(&mesh, n_z, depth).map_err(mesh_err)
+            } else {
+                Ok(mesh)
             }
         }
         "concentric_rings" => {

@@ -154,12 +154,14 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
                 );
                 (2.0 * si * fl + ro * (fl + sh), 2, span_of(spec), "mesh.params")
             }
-            "stacked_blocks" | "block_on_incline" => (
-                num("n_x", 16.0) * (num("n_lower", 8.0) + num("n_upper", 8.0)),
-                2,
-                span_of(spec),
-                "mesh.params",
-            ),
+            "stacked_blocks" | "block_on_incline" => {
+                let plane = num("n_x", 16.0) * (num("n_lower", 8.0) + num("n_upper", 8.0));
+                if kind == "hex8" {
+                    (plane * num("n_z", num("n_x", 16.0)), 3, span_of(spec), "mesh.params")
+                } else {
+                    (plane, 2, span_of(spec), "mesh.params")
+                }
+            }
             "concentric_rings" => (
                 num("n_theta", 16.0) * (num("n_inner", 8.0) + num("n_outer", 8.0)),
                 2,
