@@ -54,6 +54,20 @@ pub struct Method {
     pub description: String,
 }
 
+impl Method {
+    /// The method of a study without random parameters: one deterministic run, whose
+    /// quantities are reported as they are (no surrogate, no sampling).
+    pub fn deterministic() -> Self {
+        Method {
+            label: "deterministic".into(),
+            kind: MethodKind::MonteCarlo,
+            points: vec![Vec::new()],
+            rule: None,
+            description: "one deterministic run (the study has no random parameter)".into(),
+        }
+    }
+}
+
 fn rows(d: &Design) -> Vec<Vec<f64>> {
     d.iter().map(|p| p.to_vec()).collect()
 }

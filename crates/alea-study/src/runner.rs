@@ -78,20 +78,26 @@ impl Study {
     pub fn from_source(source: Source) -> Result<Self, StudyError> {
         let file: ModelFile = source.parse()?;
         let params = build_params(&source, &file)?;
-        if params.names.is_empty() {
-            return Err(source.error(0..0, "parameter", "a study needs at least one [[parameter]] (use 'alea solve' for a deterministic case)"));
+        if params.names.is_empty()
+            && let Some(m) = file.method.first()
+        {
+            return Err(source.error(m.kind.span(), "method[0].type", "methods need random parameters: without [[parameter]], leave out [[method]] (the study is then one deterministic run)"));
         }
         if file.quantity.is_empty() {
             return Err(source.error(0..0, "quantity", "a study needs at least one [[quantity]]"));
         }
-        if file.method.is_empty() {
+        if file.method.is_empty() && !params.names.is_empty() {
             return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
         }
         crate::limits::check_study_file(&source, &file, params.names.len())?;
         let model = build_model(&source, &file, &params)?;
         let qois = build_qois(&source, &file.quantity, &model)?;
         let seed = file.study.seed.unwrap_or(1);
-        let methods = build_methods(&source, &file.method, &params, seed)?;
+        let methods = if params.names.is_empty() {
+            vec![crate::method::Method::deterministic()]
+        } else {
+            build_methods(&source, &file.method, &params, seed)?
+        };
         let hash = crate::build::input_hash(&source, &file)?;
         let output = file.output.clone();
         let study = Study {

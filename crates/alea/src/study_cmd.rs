@@ -242,6 +242,7 @@ fn write_outputs(
         write_samples(study, dir, main)?;
     }
     if study.output.mean_fields.unwrap_or(true)
+        && !study.params.names.is_empty()
         && let Some(m) = results
             .iter()
             .position(|r| !r.qois.is_empty() && !r.points.is_empty())
@@ -301,6 +302,17 @@ fn write_outputs(
 }
 
 fn print_table(study: &Study, results: &[MethodResult], confidence: f64) {
+    if study.params.names.is_empty() {
+        // One deterministic run: the values themselves, at full precision.
+        println!();
+        for (q, qoi) in study.qois.iter().enumerate() {
+            if let Some(s) = results.first().and_then(|r| r.qois.get(q)) {
+                println!("{} = {:e} {}", qoi.name, s.mean, qoi.unit);
+            }
+        }
+        println!();
+        return;
+    }
     for (q, qoi) in study.qois.iter().enumerate() {
         println!("\n{} [{}]", qoi.name, qoi.unit);
         println!(

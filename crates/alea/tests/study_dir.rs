@@ -166,3 +166,58 @@ fn a_changed_mesh_file_is_a_different_study() {
 fn text_of(o: &Output) -> String {
     text(o)
 }
+
+#[test]
+fn a_study_without_parameters_is_one_deterministic_run() {
+    let base = tmp("deterministic");
+    let text = std::fs::read_to_string(root().join("examples/full-slip.toml")).unwrap()
+        + r#"
+[[quantity]]
+name = "friction"
+kind = "interface_force"
+interface = "contact"
+component = 0
+unit = "N"
+
+[[quantity]]
+name = "dissipation"
+kind = "friction_dissipation"
+interface = "contact"
+
+[output]
+vtu = true
+"#;
+    let study = base.join("slip.toml");
+    std::fs::write(&study, &text).unwrap();
+    let dir = base.join("out");
+    let o = run(&study, &dir, &[]);
+    let t = text_of(&o);
+    assert!(o.status.success(), "{t}");
+    // The friction force of full slip, -mu N = -120 N, printed at full precision.
+    let v: f64 = t
+        .split("friction = ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("{t}"));
+    assert!((v + 120.0).abs() < 1e-6, "{v}");
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["runs"].as_array().unwrap().len(), 1);
+    assert_eq!(summary["runs"][0]["status"], "converged");
+    assert_eq!(summary["methods"][0]["label"], "deterministic");
+    assert!(dir.join("report/report.html").exists());
+    let vtu: Vec<_> = std::fs::read_dir(dir.join("vtu"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .collect();
+    assert_eq!(vtu.len(), 1);
+    assert!(vtu[0].join("interface_contact.csv").exists());
+    // Methods need parameters.
+    let bad = base.join("bad.toml");
+    std::fs::write(&bad, text + "\n[[method]]\ntype = \"monte_carlo\"\n").unwrap();
+    let o = run(&bad, &base.join("bad"), &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", text_of(&o));
+    assert!(text_of(&o).contains("method[0].type"), "{}", text_of(&o));
+}
