@@ -153,7 +153,13 @@ pub fn write_run_with_reactions(
         let safe: String = it
             .name
             .chars()
-            .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
             .collect();
         let csv = dir.join(format!("interface_{safe}.csv"));
         let dim = solver.model(it.subs[0]).mesh.dim;

@@ -13,7 +13,10 @@ fn main() {
     let base = std::env::temp_dir().join(format!("alea-bench-store-{}", std::process::id()));
     let n = 200;
     println!("{n} commits each, median of 3 repetitions");
-    println!("{:>8} {:>12} {:>14} {:>12}", "sync", "field values", "ms per commit", "commits/s");
+    println!(
+        "{:>8} {:>12} {:>14} {:>12}",
+        "sync", "field values", "ms per commit", "commits/s"
+    );
     for values in [0usize, 23_000] {
         let mut per_level = Vec::new();
         for level in ["NORMAL", "FULL"] {
@@ -44,7 +47,11 @@ fn main() {
             times.sort_by(f64::total_cmp);
             let t = times[1];
             per_level.push(t);
-            println!("{level:>8} {values:>12} {:>14.3} {:>12.0}", 1e3 * t, 1.0 / t);
+            println!(
+                "{level:>8} {values:>12} {:>14.3} {:>12.0}",
+                1e3 * t,
+                1.0 / t
+            );
         }
         println!(
             "   FULL / NORMAL = {:.2} (fields of {values} values)",

@@ -212,7 +212,10 @@ fn check_params(src: &Source, spec: &MeshSpec, allowed: &[&str]) -> Result<(), S
 
 /// The path of a mesh file named in a study file (relative to the study file).
 fn mesh_file_path(src: &Source, f: &Spanned<String>) -> std::path::PathBuf {
-    src.path.parent().unwrap_or(Path::new(".")).join(f.get_ref())
+    src.path
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join(f.get_ref())
 }
 
 /// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes

@@ -46,11 +46,9 @@ pub fn check_interfaces(
             (1, it.sub1, &it.group1, spec.side1.span()),
             (2, it.sub2, &it.group2, spec.side2.span()),
         ] {
-            let facets = subs[sub]
-                .model
-                .mesh
-                .facet_group(group)
-                .map_err(|e| src.error(span.clone(), format!("{field}.side{side}"), e.to_string()))?;
+            let facets = subs[sub].model.mesh.facet_group(group).map_err(|e| {
+                src.error(span.clone(), format!("{field}.side{side}"), e.to_string())
+            })?;
             for f in facets {
                 let mut key = f.nodes.clone();
                 key.sort_unstable();

@@ -441,7 +441,11 @@ mod tests {
             assert!(e.message.contains("nested more than"), "case {k}: {e}");
         }
         // Up to the limit, parse and evaluate on a small stack.
-        let ok = format!("{}x{}", "(".repeat(MAX_DEPTH / 2), ")".repeat(MAX_DEPTH / 2));
+        let ok = format!(
+            "{}x{}",
+            "(".repeat(MAX_DEPTH / 2),
+            ")".repeat(MAX_DEPTH / 2)
+        );
         let sum = vec!["x"; MAX_DEPTH - 1].join(" + ");
         let v = std::thread::Builder::new()
             .stack_size(256 * 1024)

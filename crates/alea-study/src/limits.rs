@@ -116,7 +116,11 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
         match spec.generator.get_ref().as_str() {
             "rectangle" | "box" => {
                 let Some(c) = &spec.cells else { return Ok(()) };
-                let dim = if spec.generator.get_ref() == "box" { 3 } else { 2 };
+                let dim = if spec.generator.get_ref() == "box" {
+                    3
+                } else {
+                    2
+                };
                 (
                     c.get_ref().iter().map(|&n| n as f64).product(),
                     dim,
@@ -124,8 +128,18 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
                     "mesh.cells",
                 )
             }
-            "plate_with_hole" => (num("n_arc", 16.0) * num("n_radial", 16.0), 2, span_of(spec), "mesh.params"),
-            "annulus_sector" => (num("n_radial", 8.0) * num("n_theta", 8.0), 2, span_of(spec), "mesh.params"),
+            "plate_with_hole" => (
+                num("n_arc", 16.0) * num("n_radial", 16.0),
+                2,
+                span_of(spec),
+                "mesh.params",
+            ),
+            "annulus_sector" => (
+                num("n_radial", 8.0) * num("n_theta", 8.0),
+                2,
+                span_of(spec),
+                "mesh.params",
+            ),
             "dovetail" => {
                 let d = alea_mesh::generate::DovetailParams::default();
                 let (fl, ro, sh, lo, wa, sl, be) = (
@@ -152,12 +166,22 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
                     num("n_root", d.n_root as f64),
                     num("n_shank", d.n_shank as f64),
                 );
-                (2.0 * si * fl + ro * (fl + sh), 2, span_of(spec), "mesh.params")
+                (
+                    2.0 * si * fl + ro * (fl + sh),
+                    2,
+                    span_of(spec),
+                    "mesh.params",
+                )
             }
             "stacked_blocks" | "block_on_incline" => {
                 let plane = num("n_x", 16.0) * (num("n_lower", 8.0) + num("n_upper", 8.0));
                 if kind == "hex8" {
-                    (plane * num("n_z", num("n_x", 16.0)), 3, span_of(spec), "mesh.params")
+                    (
+                        plane * num("n_z", num("n_x", 16.0)),
+                        3,
+                        span_of(spec),
+                        "mesh.params",
+                    )
                 } else {
                     (plane, 2, span_of(spec), "mesh.params")
                 }
@@ -231,12 +255,16 @@ pub fn check_method(src: &Source, i: usize, m: &MethodSpec, d: usize) -> Result<
     let (runs, span, field) = match (kind, design) {
         ("pc_projection", _) => (
             power(ppd.unwrap_or(degree + 1), d),
-            m.points_per_dim.as_ref().map_or(m.kind.span(), |v| v.span()),
+            m.points_per_dim
+                .as_ref()
+                .map_or(m.kind.span(), |v| v.span()),
             "points_per_dim",
         ),
         ("piecewise_linear", _) | (_, Some("grid")) | ("polynomial", None) => (
             power(ppd.unwrap_or(3), d),
-            m.points_per_dim.as_ref().map_or(m.kind.span(), |v| v.span()),
+            m.points_per_dim
+                .as_ref()
+                .map_or(m.kind.span(), |v| v.span()),
             "points_per_dim",
         ),
         (_, Some("corners_centre")) => (power(2, d) + 1.0, m.kind.span(), "design"),
@@ -286,7 +314,7 @@ pub fn check_study_file(src: &Source, file: &ModelFile, nparams: usize) -> Resul
         let per_draw = methods * (8.0 * nparams as f64 + 16.0 * nq + 8.0) + 40.0 * nq;
         let need = n as f64 * per_draw;
         let have = available_memory() as f64 / 2.0;
-        if n < 2 || n > MAX_SAMPLES || need > have {
+        if !(2..=MAX_SAMPLES).contains(&n) || need > have {
             return Err(src.error(
                 s.span(),
                 "statistics.samples",

@@ -212,7 +212,10 @@ mod tests {
         let lock = StudyLock::acquire(&d, "alea run c.toml").unwrap();
         assert_eq!(lock.previous(), Some(stale));
         let now = std::fs::read_to_string(lock.path()).unwrap();
-        assert!(now.starts_with(&format!("pid {} ", std::process::id())), "{now}");
+        assert!(
+            now.starts_with(&format!("pid {} ", std::process::id())),
+            "{now}"
+        );
         drop(lock);
         assert_eq!(std::fs::read_to_string(d.join(LOCK_FILE)).unwrap(), "");
     }
@@ -221,7 +224,10 @@ mod tests {
     fn utc_dates_are_civil_dates() {
         assert_eq!(utc_from_unix(0), "1970-01-01 00:00:00 UTC");
         assert_eq!(utc_from_unix(951_782_400), "2000-02-29 00:00:00 UTC");
-        assert_eq!(utc_from_unix(1_709_208_000 + 3_723), "2024-02-29 13:02:03 UTC");
+        assert_eq!(
+            utc_from_unix(1_709_208_000 + 3_723),
+            "2024-02-29 13:02:03 UTC"
+        );
         assert_eq!(utc_from_unix(4_102_444_799), "2099-12-31 23:59:59 UTC");
     }
 }

@@ -20,10 +20,10 @@ use std::time::Instant;
 use alea_latin::{LatinSolver, LocalState, RunStatus};
 use rayon::prelude::*;
 
+use crate::lock::StudyLock;
 use crate::method::{Method, build_methods};
 use crate::qoi::{Qoi, build_qois};
 use crate::spec::{ModelFile, OutputSpec};
-use crate::lock::StudyLock;
 use crate::store::{RunRecord, Store, point_key};
 use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
 

@@ -161,9 +161,7 @@ impl Store {
             .map_err(db_err(dir))?;
         // Directories written before runs carried their study's hash: their rows belong to
         // the hash in `meta`.
-        let has_column = conn
-            .prepare("SELECT study_hash FROM runs LIMIT 0")
-            .is_ok();
+        let has_column = conn.prepare("SELECT study_hash FROM runs LIMIT 0").is_ok();
         if !has_column {
             conn.execute("ALTER TABLE runs ADD COLUMN study_hash TEXT", [])
                 .map_err(db_err(dir))?;
@@ -240,7 +238,10 @@ impl Store {
 
     /// Keeps the study file (its path and text) in the store, for `alea report`.
     pub fn save_study(&self, path: &Path, text: &str) -> Result<(), StudyError> {
-        let tx = self.conn.unchecked_transaction().map_err(db_err(&self.dir))?;
+        let tx = self
+            .conn
+            .unchecked_transaction()
+            .map_err(db_err(&self.dir))?;
         for (k, v) in [
             (
                 "study_path",
@@ -317,11 +318,9 @@ impl Store {
         bytes.extend_from_slice(FIELD_MAGIC);
         bytes.extend_from_slice(self.hash.as_bytes());
         bytes.extend_from_slice(&to_blob(fields));
-        alea_mesh::atomic::write_bytes_atomic(&path, &bytes).map_err(|source| {
-            StudyError::Io {
-                path: path.clone(),
-                source,
-            }
+        alea_mesh::atomic::write_bytes_atomic(&path, &bytes).map_err(|source| StudyError::Io {
+            path: path.clone(),
+            source,
         })?;
         self.conn
             .execute(

@@ -23,7 +23,9 @@ use alea_study::spec::ModelFile;
 use alea_study::{BuiltModel, Source, build_model, build_params};
 
 fn example(name: &str) -> (BuiltModel, ModelFile) {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(name);
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name);
     let src = Source::read(&path).unwrap();
     let file: ModelFile = src.parse().unwrap();
     let params = build_params(&src, &file).unwrap();
@@ -108,7 +110,11 @@ fn full_slip_ratio_is_mu() {
     let (solver, res, loads) = solve(&built, &[]);
     assert_eq!(res.status, RunStatus::Converged);
     let it = &res.interfaces[0];
-    assert!(it.status.iter().all(|s| *s == PointStatus::Slip), "{:?}", it.status);
+    assert!(
+        it.status.iter().all(|s| *s == PointStatus::Slip),
+        "{:?}",
+        it.status
+    );
     let f = it.resultant();
     let (mu, n_expected) = (0.3, 10.0 * 40.0 * 1.0);
     assert!(close(f[1], n_expected, 1e-7), "N = {}", f[1]);
@@ -119,16 +125,27 @@ fn full_slip_ratio_is_mu() {
     for r in &rows {
         let t = r.traction_t;
         let tn = (t[0] * t[0] + t[1] * t[1]).sqrt();
-        assert!(r.pressure > 0.0 && close(tn, mu * r.pressure, 1e-6), "{r:?}");
+        assert!(
+            r.pressure > 0.0 && close(tn, mu * r.pressure, 1e-6),
+            "{r:?}"
+        );
         let s = r.slip;
-        assert!(t[0] * s[0] + t[1] * s[1] < 0.0, "slip opposes friction: {r:?}");
+        assert!(
+            t[0] * s[0] + t[1] * s[1] < 0.0,
+            "slip opposes friction: {r:?}"
+        );
         assert!(r.gap.abs() < 1e-9, "closed: {r:?}");
         for c in 0..3 {
             sum[c] += r.weight * (r.pressure * r.normal[c] + r.traction_t[c]);
         }
     }
     for c in 0..2 {
-        assert!(close(sum[c], f[c], 1e-12), "component {c}: {} vs {}", sum[c], f[c]);
+        assert!(
+            close(sum[c], f[c], 1e-12),
+            "component {c}: {} vs {}",
+            sum[c],
+            f[c]
+        );
     }
     // The CSV reads back bit for bit.
     let path = std::env::temp_dir().join(format!("alea-contact-{}.csv", std::process::id()));
@@ -151,7 +168,11 @@ fn full_slip_ratio_is_mu() {
     check_reactions(&built, &solver, &res, &loads);
     // The block's constraint pulls it along with the friction force.
     let r = nodal_reactions(&solver, &res, 1, &loads[1]).unwrap();
-    let top = built.assembly.subs[1].model.mesh.group_nodes("upper_top").unwrap();
+    let top = built.assembly.subs[1]
+        .model
+        .mesh
+        .group_nodes("upper_top")
+        .unwrap();
     let rt = group_sum(&r, 2, &top);
     assert!(close(rt[0], mu * n_expected, 1e-6), "{rt:?}");
 }
@@ -175,13 +196,21 @@ fn block_on_incline_follows_statics_up_to_the_cgs4_threshold() {
         // Force on the block from the incline: pushes it off the slope and holds it back.
         assert!(close(n, g * a.cos() + f * a.sin(), 1e-6), "N = {n}");
         assert!(close(-t, f * a.cos() - g * a.sin(), 1e-6), "T = {t}");
-        assert!(t.abs() < mu * n, "below the threshold: |T| = {t}, mu N = {}", mu * n);
+        assert!(
+            t.abs() < mu * n,
+            "below the threshold: |T| = {t}, mu N = {}",
+            mu * n
+        );
         check_reactions(&built, &solver, &res, &loads);
     }
     // Just above the threshold the block slides away: no static equilibrium.
     let f = 1.05 * threshold;
     let (_, res, _) = solve(&built, &[vec![], vec![1.0, f / f_nominal]]);
-    assert_ne!(res.status, RunStatus::Converged, "no equilibrium above the threshold");
+    assert_ne!(
+        res.status,
+        RunStatus::Converged,
+        "no equilibrium above the threshold"
+    );
 }
 
 #[test]
@@ -211,7 +240,12 @@ fn shrink_fit_pressure_is_lames() {
         } else {
             1e-3
         };
-        assert!(close(r.pressure, lame, tol), "{} vs {lame} at {:?}", r.pressure, r.x);
+        assert!(
+            close(r.pressure, lame, tol),
+            "{} vs {lame} at {:?}",
+            r.pressure,
+            r.x
+        );
     }
     check_reactions(&built, &solver, &res, &loads);
 }

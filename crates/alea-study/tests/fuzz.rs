@@ -23,9 +23,9 @@ fn config(cases: u32) -> ProptestConfig {
 }
 
 const TOKENS: &[&str] = &[
-    "1", "0", "2.5", "1e308", "1e-308", "3.", ".5", "1e", "x", "y", "a", "pi", "_b", "+", "-",
-    "*", "/", "^", "(", ")", ",", " ", "sin(", "exp(", "min(", "pow(", "atan2(", "ln(", "sqrt(",
-    "$", "é", "\n", "((((", "))))", "----", "^^", "1e999",
+    "1", "0", "2.5", "1e308", "1e-308", "3.", ".5", "1e", "x", "y", "a", "pi", "_b", "+", "-", "*",
+    "/", "^", "(", ")", ",", " ", "sin(", "exp(", "min(", "pow(", "atan2(", "ln(", "sqrt(", "$",
+    "é", "\n", "((((", "))))", "----", "^^", "1e999",
 ];
 
 fn token_soup() -> impl Strategy<Value = String> {
@@ -48,10 +48,34 @@ proptest! {
 const PLATE: &str = include_str!("../../../examples/plate-random-E.toml");
 
 const INSERTS: &[&str] = &[
-    "[", "]", "{", "}", "=", "\"", ",", "#", "\n", "[[method]]\n", "[[quantity]]\n",
-    "[statistics]\n", "-1", "0", "1e400", "nan", "inf", "true", "\"x\"", "9999999999999999999",
-    "[[parameter]]\nname = \"E\"\n", "[[substructure]]\n", "[[interface]]\n", "[0, 0]",
-    "((((((((((", "kind = \"tet10\"\n", "law = \"beta\"\n", "design = \"grid\"\n",
+    "[",
+    "]",
+    "{",
+    "}",
+    "=",
+    "\"",
+    ",",
+    "#",
+    "\n",
+    "[[method]]\n",
+    "[[quantity]]\n",
+    "[statistics]\n",
+    "-1",
+    "0",
+    "1e400",
+    "nan",
+    "inf",
+    "true",
+    "\"x\"",
+    "9999999999999999999",
+    "[[parameter]]\nname = \"E\"\n",
+    "[[substructure]]\n",
+    "[[interface]]\n",
+    "[0, 0]",
+    "((((((((((",
+    "kind = \"tet10\"\n",
+    "law = \"beta\"\n",
+    "design = \"grid\"\n",
 ];
 
 #[derive(Clone, Debug)]
@@ -137,7 +161,9 @@ fn deeply_nested_toml_is_an_error_not_a_stack_overflow() {
         for text in [arrays, tables] {
             let r = std::thread::Builder::new()
                 .stack_size(2 << 20)
-                .spawn(move || Study::from_source(Source::from_text("deep.toml", &text)).map(|_| ()))
+                .spawn(move || {
+                    Study::from_source(Source::from_text("deep.toml", &text)).map(|_| ())
+                })
                 .unwrap()
                 .join()
                 .expect("no stack overflow");

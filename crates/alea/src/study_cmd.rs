@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method, response_surface};
 use alea_study::StudyError;
+use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method, response_surface};
 use alea_study::runner::{Progress, Study, StudyRuns, run_study};
 use alea_study::store::RunRecord;
 use alea_uq::kde::Bandwidth;

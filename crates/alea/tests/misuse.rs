@@ -81,10 +81,9 @@ fn gmsh_errors_are_input_errors_at_the_mesh_file_field() {
     let dir = tmp("gmsh");
     let case = dir.join("case.toml");
     std::fs::write(&case, GMSH_CASE).unwrap();
-    let good = std::fs::read_to_string(
-        root().join("crates/alea-mesh/tests/fixtures/square_q4_ascii.msh"),
-    )
-    .unwrap();
+    let good =
+        std::fs::read_to_string(root().join("crates/alea-mesh/tests/fixtures/square_q4_ascii.msh"))
+            .unwrap();
     let solve = || {
         alea()
             .arg("solve")
@@ -107,7 +106,11 @@ fn gmsh_errors_are_input_errors_at_the_mesh_file_field() {
     bad_ref[last] = "999999";
     let cases: Vec<(&str, Option<Vec<u8>>, &str)> = vec![
         ("missing file", None, "m.msh"),
-        ("truncated", Some(good.as_bytes()[..good.len() / 2].to_vec()), "m.msh:"),
+        (
+            "truncated",
+            Some(good.as_bytes()[..good.len() / 2].to_vec()),
+            "m.msh:",
+        ),
         (
             "wrong node count",
             Some(
@@ -135,7 +138,11 @@ fn gmsh_errors_are_input_errors_at_the_mesh_file_field() {
         ),
         (
             "binary garbage",
-            Some((0..4096u32).map(|i| (i * 2_654_435_761 >> 13) as u8).collect()),
+            Some(
+                (0..4096u32)
+                    .map(|i| ((i * 2_654_435_761) >> 13) as u8)
+                    .collect(),
+            ),
             "m.msh:",
         ),
     ];
@@ -233,6 +240,9 @@ fn plate(dir: &Path, name: &str, edits: &[(&str, &str)], tail: &str) -> (PathBuf
     (p, t)
 }
 
+/// A misuse case: what, text edits, text appended, the field and the words of the message.
+type Case<'a> = (&'a str, Vec<(&'a str, &'a str)>, String, &'a str, &'a str);
+
 fn run(study: &Path, dir: &Path, extra: &[&str]) -> Output {
     alea()
         .arg("run")
@@ -250,7 +260,7 @@ fn duplicates_far_points_and_bad_statistics_are_refused() {
     let dir = tmp("dups");
     let quantity = "[[quantity]]\nname = \"tip\"";
     let deep = format!("young = \"{}E{}\"", "(".repeat(5000), ")".repeat(5000));
-    let cases: Vec<(&str, Vec<(&str, &str)>, String, &str, &str)> = vec![
+    let cases: Vec<Case> = vec![
         (
             "same quantity name",
             vec![],
@@ -276,10 +286,7 @@ fn duplicates_far_points_and_bad_statistics_are_refused() {
         ),
         (
             "deep expression",
-            vec![(
-                "young = \"E\"",
-                deep.as_str(),
-            )],
+            vec![("young = \"E\"", deep.as_str())],
             String::new(),
             "substructure[0].young",
             "nested more than",
@@ -299,7 +306,7 @@ fn duplicates_far_points_and_bad_statistics_are_refused() {
 fn sizes_beyond_the_limits_are_refused_before_any_run() {
     let dir = tmp("sizes");
     let many = format!("thresholds = [{}]", vec!["0.1"; 10_000].join(","));
-    let cases: Vec<(&str, Vec<(&str, &str)>, String, &str, &str)> = vec![
+    let cases: Vec<Case> = vec![
         (
             "cells 2^63-1 x 2",
             vec![("cells = [10, 2]", "cells = [9223372036854775807, 2]")],
@@ -333,10 +340,7 @@ fn sizes_beyond_the_limits_are_refused_before_any_run() {
         ),
         (
             "10^4 thresholds",
-            vec![(
-                "thresholds = [0.13]",
-                many.as_str(),
-            )],
+            vec![("thresholds = [0.13]", many.as_str())],
             String::new(),
             "quantity[0].thresholds",
             "at most 1000",
@@ -371,7 +375,10 @@ fn sizes_beyond_the_limits_are_refused_before_any_run() {
         let t = text(&o);
         assert_eq!(o.status.code(), Some(2), "{what}: {t}");
         assert!(t.contains(field) && t.contains(msg), "{what}: {t}");
-        assert!(!out.join("study.db").exists(), "{what}: refused before any run");
+        assert!(
+            !out.join("study.db").exists(),
+            "{what}: refused before any run"
+        );
         assert!(t0.elapsed().as_secs_f64() < 10.0, "{what}: refused quickly");
     }
     let (p, _) = plate(&dir, "threads", &[], "");

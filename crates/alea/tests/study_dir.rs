@@ -157,7 +157,11 @@ fn a_changed_mesh_file_is_a_different_study() {
     std::fs::write(base.join("m.msh"), m).unwrap();
     let o = run(&study, &dir, &[]);
     assert_eq!(o.status.code(), Some(2), "{}", text_of(&o));
-    assert!(text_of(&o).contains("mesh file counts too"), "{}", text_of(&o));
+    assert!(
+        text_of(&o).contains("mesh file counts too"),
+        "{}",
+        text_of(&o)
+    );
     let o = run(&study, &dir, &["--restart"]);
     assert!(o.status.success(), "{}", text_of(&o));
     assert!(text_of(&o).contains(" 0 resumed"), "{}", text_of(&o));

@@ -91,7 +91,11 @@ impl Default for StackedBlocks {
 /// # Errors
 /// [`MeshError::Invalid`] for non-positive sizes or counts, or a 3D `kind`.
 pub fn stacked_blocks(p: &StackedBlocks, kind: CellType) -> Result<Mesh, MeshError> {
-    for (name, v) in [("width", p.width), ("h_lower", p.h_lower), ("h_upper", p.h_upper)] {
+    for (name, v) in [
+        ("width", p.width),
+        ("h_lower", p.h_lower),
+        ("h_upper", p.h_upper),
+    ] {
         if !(v.is_finite() && v > 0.0) {
             return Err(MeshError::Invalid(format!(
                 "stacked blocks: {name} must be a finite length > 0, got {v}"
@@ -187,21 +191,29 @@ pub fn concentric_rings(p: &ConcentricRings, kind: CellType) -> Result<Mesh, Mes
             p.r_in, p.r_contact, p.r_out
         )));
     }
-    let ring = |r0: f64, r1: f64, n: usize, name: &'static str, lo: &'static str, hi: &'static str| {
-        let mut m = annulus_sector(r0, r1, p.angle, n, p.n_theta, kind)?;
-        rename_groups(&mut m, |g| {
-            Some(match g {
-                "domain" => name.to_string(),
-                "inner" => format!("{name}_{lo}"),
-                "outer" => format!("{name}_{hi}"),
-                "side0" => format!("{name}_side0"),
-                "side1" => format!("{name}_side1"),
-                _ => return None,
-            })
-        });
-        Ok::<Mesh, MeshError>(m)
-    };
+    let ring =
+        |r0: f64, r1: f64, n: usize, name: &'static str, lo: &'static str, hi: &'static str| {
+            let mut m = annulus_sector(r0, r1, p.angle, n, p.n_theta, kind)?;
+            rename_groups(&mut m, |g| {
+                Some(match g {
+                    "domain" => name.to_string(),
+                    "inner" => format!("{name}_{lo}"),
+                    "outer" => format!("{name}_{hi}"),
+                    "side0" => format!("{name}_side0"),
+                    "side1" => format!("{name}_side1"),
+                    _ => return None,
+                })
+            });
+            Ok::<Mesh, MeshError>(m)
+        };
     let mut mesh = ring(p.r_in, p.r_contact, p.n_inner, "inner", "inner", "contact")?;
-    mesh.append(&ring(p.r_contact, p.r_out, p.n_outer, "outer", "contact", "outer")?)?;
+    mesh.append(&ring(
+        p.r_contact,
+        p.r_out,
+        p.n_outer,
+        "outer",
+        "contact",
+        "outer",
+    )?)?;
     Ok(mesh)
 }

@@ -135,9 +135,11 @@ impl ReportInput {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
-        alea_mesh::atomic::write_bytes_atomic(path, text.as_bytes()).map_err(|source| ReportError::Io {
-            path: path.to_path_buf(),
-            source,
+        alea_mesh::atomic::write_bytes_atomic(path, text.as_bytes()).map_err(|source| {
+            ReportError::Io {
+                path: path.to_path_buf(),
+                source,
+            }
         })
     }
 

@@ -307,9 +307,11 @@ fn render(
         root.present().map_err(|e| plot_err(e.to_string()))?;
     }
     let svg_path = dir.join(format!("{stem}.svg"));
-    alea_mesh::atomic::write_bytes_atomic(&svg_path, svg.as_bytes()).map_err(|source| ReportError::Io {
-        path: svg_path.clone(),
-        source,
+    alea_mesh::atomic::write_bytes_atomic(&svg_path, svg.as_bytes()).map_err(|source| {
+        ReportError::Io {
+            path: svg_path.clone(),
+            source,
+        }
     })?;
     let png_path = dir.join(format!("{stem}.png"));
     write_png(&png_path, size, &rgb)?;
