@@ -409,6 +409,26 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
             };
             generate::concentric_rings(&p, kind(CellType::Quad4)?).map_err(mesh_err)
         }
+        "cylinder_on_block" => {
+            let d = generate::CylinderOnBlock::default();
+            check_params(src, spec, &["a", "l", "n", "m", "half"])?;
+            let half = match spec.params.as_ref().and_then(|p| p.get_ref().get("half")) {
+                None => d.half,
+                Some(toml::Value::Boolean(b)) => *b,
+                Some(_) => {
+                    let span = spec.params.as_ref().map_or(spec.generator.span(), |p| p.span());
+                    return Err(src.error(span, "mesh.params.half", "expected true or false"));
+                }
+            };
+            let p = generate::CylinderOnBlock {
+                a: param_f64(src, spec, "a", Some(d.a))?,
+                l: param_f64(src, spec, "l", Some(d.l))?,
+                n: param_usize(src, spec, "n", Some(d.n))?,
+                m: param_usize(src, spec, "m", Some(d.m))?,
+                half,
+            };
+            generate::cylinder_on_block(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
         "gmsh" => {
             check_params(src, spec, &[])?;
             let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
@@ -420,7 +440,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         other => Err(src.error(
             spec.generator.span(),
             "mesh.generator",
-            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, stacked_blocks, block_on_incline, concentric_rings or gmsh"),
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
         )),
     }
 }

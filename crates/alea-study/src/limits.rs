@@ -91,11 +91,11 @@ fn nodes_per_block_cell(kind: &str) -> f64 {
     }
 }
 
-/// Checks the size of the mesh a `[mesh]` table would generate, before generating it.
-///
-/// # Errors
-/// [`StudyError::Input`] naming the field, with the cell and memory estimates.
-pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
+/// The estimate of the mesh a `[mesh]` table would generate: `(nodes, block cells, dim,
+/// span, field)`; `None` for Gmsh files (their size bounds them) and tables missing the counts.
+pub fn mesh_estimate(
+    spec: &MeshSpec,
+) -> Option<(f64, f64, usize, std::ops::Range<usize>, &'static str)> {
     let num = |key: &str, default: f64| -> f64 {
         spec.params
             .as_ref()
@@ -107,15 +107,21 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
             })
             .unwrap_or(default)
     };
+    // The generators' default kinds (`build_mesh`).
+    let default_kind = match spec.generator.get_ref().as_str() {
+        "plate_with_hole" | "annulus_sector" => "quad8",
+        "box" => "hex8",
+        _ => "quad4",
+    };
     let kind = spec
         .kind
         .as_ref()
-        .map_or("", |k| k.get_ref().as_str())
+        .map_or(default_kind, |k| k.get_ref().as_str())
         .to_ascii_lowercase();
     let (block_cells, dim, span, field): (f64, usize, _, &str) =
         match spec.generator.get_ref().as_str() {
             "rectangle" | "box" => {
-                let Some(c) = &spec.cells else { return Ok(()) };
+                let c = spec.cells.as_ref()?;
                 let dim = if spec.generator.get_ref() == "box" {
                     3
                 } else {
@@ -192,10 +198,31 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
                 span_of(spec),
                 "mesh.params",
             ),
+            "cylinder_on_block" => {
+                let (n, m) = (num("n", 40.0), num("m", 30.0));
+                // Two bodies of n^2 + 2 n m cells, twice that for the full model.
+                (4.0 * (n * n + 2.0 * n * m), 2, span_of(spec), "mesh.params")
+            }
             // A Gmsh file's own size bounds its mesh; other generators check their counts.
-            _ => return Ok(()),
+            _ => return None,
         };
-    let nodes = block_cells * nodes_per_block_cell(&kind);
+    Some((
+        block_cells * nodes_per_block_cell(&kind),
+        block_cells,
+        dim,
+        span,
+        field,
+    ))
+}
+
+/// Checks the size of the mesh a `[mesh]` table would generate, before generating it.
+///
+/// # Errors
+/// [`StudyError::Input`] naming the field, with the cell and memory estimates.
+pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
+    let Some((nodes, block_cells, dim, span, field)) = mesh_estimate(spec) else {
+        return Ok(());
+    };
     let need = mesh_memory(nodes, dim);
     let have = available_memory() as f64;
     if need > have || !need.is_finite() {
@@ -439,6 +466,42 @@ mod tests {
     fn byte_counts_read_well() {
         assert_eq!(human_bytes(512.0), "512 bytes");
         assert_eq!(human_bytes(1.6e10), "16.0 GB");
+    }
+
+    #[test]
+    fn node_estimates_match_the_generated_meshes() {
+        #[derive(serde::Deserialize)]
+        struct F {
+            mesh: MeshSpec,
+        }
+        let cases = [
+            "generator = \"rectangle\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"rectangle\"\nkind = \"quad8\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"rectangle\"\nkind = \"tri6\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"box\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
+            "generator = \"box\"\nkind = \"tet10\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
+            "generator = \"plate_with_hole\"\nparams = { radius = 1.0, half_width = 5.0 }",
+            "generator = \"annulus_sector\"\nparams = { r_in = 1.0, r_out = 2.0, angle_deg = 90.0, n_theta = 20 }",
+            "generator = \"dovetail\"",
+            "generator = \"dovetail\"\nparams = { n_flank = 30, n_below = 2 }",
+            "generator = \"blade_root_simple\"",
+            "generator = \"stacked_blocks\"",
+            "generator = \"stacked_blocks\"\nkind = \"hex8\"\nparams = { n_z = 3 }",
+            "generator = \"concentric_rings\"",
+            "generator = \"cylinder_on_block\"\nparams = { n = 12, m = 9, half = false }",
+        ];
+        for text in cases {
+            let f: F = toml::from_str(&format!("[mesh]\n{text}\n")).unwrap();
+            let src = Source::from_text("t.toml", text);
+            let mesh = crate::build_mesh(&src, &f.mesh).unwrap();
+            let (nodes, ..) = mesh_estimate(&f.mesh).unwrap();
+            let ratio = nodes / mesh.num_nodes() as f64;
+            assert!(
+                (0.5..=2.0).contains(&ratio),
+                "{text}: estimate {nodes}, mesh {}",
+                mesh.num_nodes()
+            );
+        }
     }
 
     #[test]

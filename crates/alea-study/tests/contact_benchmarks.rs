@@ -1,12 +1,16 @@
 //! The shipped two-body contact benchmarks (`examples/full-slip.toml`,
-//! `examples/incline-cgs4.toml`, `examples/shrink-fit.toml`, meshed by the `stacked_blocks`,
-//! `block_on_incline` and `concentric_rings` generators) against their known answers, and the
+//! `examples/incline-cgs4.toml`, `examples/shrink-fit.toml`, `examples/hertz-line-contact.toml`,
+//! meshed by the `stacked_blocks`, `block_on_incline`, `concentric_rings` and
+//! `cylinder_on_block` generators) against their known answers, and the
 //! contact results users work with (per-point table and CSV, reactions) against invariants:
 //!
 //! - full slip: every point slips, `|T| = mu N` for the resultant and pointwise, `N = p w t`;
 //! - block on an incline (after NAFEMS CGS-4): the interface resultant equals the statics of the
 //!   block (`N = G cos a + F sin a`, `T = F cos a - G sin a`) below the threshold
 //!   `F/G = (tan a + mu) / (1 - mu tan a)`, and no static equilibrium is found above it;
+//! - Hertz line contact (`examples/hertz-line-contact.toml`, generator `cylinder_on_block`): the
+//!   contact half-width within one cell of Johnson's `b`, the peak pressure within 3 % of `p0`,
+//!   the contact force equal to the load;
 //! - shrink fit: the mean contact pressure is Lame's `E delta (b^2 - a^2)(c^2 - b^2) / (2 b^3
 //!   (c^2 - a^2))` (plane stress, one material) within the discretisation error, the gap is
 //!   closed everywhere;
@@ -247,5 +251,35 @@ fn shrink_fit_pressure_is_lames() {
             r.x
         );
     }
+    check_reactions(&built, &solver, &res, &loads);
+}
+
+#[test]
+fn hertz_line_contact_half_width_and_peak_pressure() {
+    let (built, _) = example("hertz-line-contact.toml");
+    let (solver, res, loads) = solve(&built, &[]);
+    assert_eq!(res.status, RunStatus::Converged);
+    let (e, nu, r, p) = (210e3f64, 0.3f64, 20.0f64, 1500.0f64);
+    let e_star = e / (2.0 * (1.0 - nu * nu));
+    let b = (4.0 * p * r / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * p / (std::f64::consts::PI * b);
+    let h = 1.22 / 50.0;
+    let mut rows = contact_rows(&res.interfaces[0]);
+    rows.sort_by(|u, v| u.x[0].total_cmp(&v.x[0]));
+    // Peak pressure at x = 0 and the edge of the contact zone (last closed point).
+    assert!(
+        close(rows[0].pressure, p0, 0.03),
+        "p(0) = {} vs {p0}",
+        rows[0].pressure
+    );
+    let edge = rows
+        .iter()
+        .filter(|q| q.status != PointStatus::Open)
+        .map(|q| q.x[0])
+        .fold(0.0, f64::max);
+    assert!(edge <= b && b < edge + h, "edge {edge}, b {b}, h {h}");
+    // Total contact force on the half model = P'/2.
+    let total: f64 = rows.iter().map(|q| q.weight * q.pressure).sum();
+    assert!(close(total, 0.5 * p, 1e-5), "{total}");
     check_reactions(&built, &solver, &res, &loads);
 }

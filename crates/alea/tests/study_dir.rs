@@ -119,6 +119,13 @@ fn report_rebuilds_every_output_from_the_store() {
         .filter(|n| n.contains(".tmp-"))
         .collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
+    // An output that cannot be written (here a directory where summary.json goes; a full disk
+    // gives the same kind of error): a file-system error, exit code 3.
+    std::fs::remove_file(dir.join("summary.json")).unwrap();
+    std::fs::create_dir(dir.join("summary.json")).unwrap();
+    let o = alea().arg("report").arg(&dir).output().unwrap();
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert!(text(&o).contains("summary.json"), "{}", text(&o));
     // Not a study directory: an input error naming it, not a crash.
     let empty = tmp("report-empty");
     let o = alea().arg("report").arg(&empty).output().unwrap();

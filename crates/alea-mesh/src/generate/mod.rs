@@ -14,5 +14,6 @@ pub use multiblock::{Block, Curve, CurveFn, multiblock};
 pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};
 pub use two_body::{
-    ConcentricRings, StackedBlocks, block_on_incline, concentric_rings, stacked_blocks,
+    ConcentricRings, CylinderOnBlock, StackedBlocks, block_on_incline, concentric_rings,
+    cylinder_on_block, stacked_blocks,
 };

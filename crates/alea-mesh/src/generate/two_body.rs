@@ -31,10 +31,17 @@
 //!   negative initial gap `-delta` on the contact it is the shrink fit of Lame's thick
 //!   cylinders.
 //!
-//! A cylinder on a block (Hertz) is meshed flat with the cylinder's profile as the interface's
-//! initial gap `g0(x) = x^2 / (2R)` (as the Hertz test of `alea-latin` does); no generator here.
+//! - [`cylinder_on_block`]: Hertz's line contact the way a node-to-node interface can take it:
+//!   both bodies meshed **flat** on `y = 0` with coincident nodes over `|x| <= a` (uniform
+//!   `n x n` cells in an `a x a` square at the contact, graded outward in `m` cells to the far
+//!   boundaries `|x| = l`, `y = -l` / `y = +l`), the cylinder's profile entering as the
+//!   interface's initial gap `g0(x) = R - sqrt(R^2 - x^2)` - exactly Hertz's half-space model,
+//!   valid for a contact half-width `b << R`. Cell groups `block` (`y <= 0`), `cylinder`
+//!   (`y >= 0`); facet and node groups `<body>_contact` (`|x| <= a` on `y = 0`), `<body>_free`
+//!   (the rest of `y = 0`), `<body>_far` (`y = -l` / `+l`), `<body>_far_side` (`|x| = l`) and,
+//!   for the half model `x >= 0`, `<body>_sym` (`x = 0`).
 
-use crate::generate::{annulus_sector, rectangle};
+use crate::generate::{Block, annulus_sector, multiblock, rectangle};
 use crate::{CellType, Mesh, MeshError};
 
 /// Renames every group of `mesh` through `rename` (groups it maps to `None` are dropped).
@@ -215,5 +222,104 @@ pub fn concentric_rings(p: &ConcentricRings, kind: CellType) -> Result<Mesh, Mes
         "contact",
         "outer",
     )?)?;
+    Ok(mesh)
+}
+
+/// Parameters of [`cylinder_on_block`] (lengths in the user's unit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CylinderOnBlock {
+    /// Half-length of the refined contact strip (and depth of the fine square); choose
+    /// `a ~ 2 b` for a Hertz half-width `b`.
+    pub a: f64,
+    /// Half-size of each body (`l >> b`, e.g. `25 b`).
+    pub l: f64,
+    /// Cells across the fine square (`h = a / n`).
+    pub n: usize,
+    /// Graded cells from the fine square to the far boundaries.
+    pub m: usize,
+    /// Half model `x >= 0` (with `<body>_sym` groups on `x = 0`).
+    pub half: bool,
+}
+
+impl Default for CylinderOnBlock {
+    fn default() -> Self {
+        CylinderOnBlock {
+            a: 2.0,
+            l: 25.0,
+            n: 40,
+            m: 30,
+            half: true,
+        }
+    }
+}
+
+/// Grading (last / first cell) of `m` cells over `len` whose first cell is `h`.
+fn grading_from_first(len: f64, h: f64, m: usize) -> f64 {
+    let m = m as i32;
+    // sum_{i<m} h r^i = len  <=>  h (r^m - 1) / (r - 1) = len; bisection on r > 1.
+    let (mut lo, mut hi) = (1.0 + 1e-12, 2.0f64);
+    while h * (hi.powi(m) - 1.0) / (hi - 1.0) < len {
+        hi *= 2.0;
+    }
+    for _ in 0..200 {
+        let r = 0.5 * (lo + hi);
+        if h * (r.powi(m) - 1.0) / (r - 1.0) < len {
+            lo = r;
+        } else {
+            hi = r;
+        }
+    }
+    (0.5 * (lo + hi)).powi(m - 1)
+}
+
+/// A cylinder on a block, meshed flat with coincident contact nodes (module doc).
+///
+/// # Errors
+/// [`MeshError::Invalid`] unless `0 < a`, `l > a + m h` (the outer cells are coarser than the
+/// fine ones) and the counts are positive.
+pub fn cylinder_on_block(p: &CylinderOnBlock, kind: CellType) -> Result<Mesh, MeshError> {
+    let (a, l, n, m) = (p.a, p.l, p.n, p.m);
+    if !(a > 0.0 && l.is_finite() && n > 0 && m > 0 && l - a > m as f64 * a / n as f64) {
+        return Err(MeshError::Invalid(format!(
+            "cylinder on block needs a > 0, n, m >= 1 and l - a > m a / n (outer cells coarser than the contact cells), got a = {a}, l = {l}, n = {n}, m = {m}"
+        )));
+    }
+    let g = grading_from_first(l - a, a / n as f64, m);
+    let body = |upper: bool| -> Result<Mesh, MeshError> {
+        let name = if upper { "cylinder" } else { "block" };
+        let group = |s: &str| format!("{name}_{s}");
+        let mut inner = Block::new([[0.0, -a], [a, -a], [a, 0.0], [0.0, 0.0]], [n, n])
+            .group(name)
+            .edge_group(2, &group("contact"));
+        let right = Block::new([[a, -a], [l, -l], [l, 0.0], [a, 0.0]], [m, n])
+            .grading(g, 1.0)
+            .group(name)
+            .edge_group(1, &group("far_side"))
+            .edge_group(2, &group("free"));
+        let mut below = Block::new([[0.0, -l], [l, -l], [a, -a], [0.0, -a]], [n, m])
+            .grading(1.0, 1.0 / g)
+            .group(name)
+            .edge_group(0, &group("far"));
+        if p.half {
+            inner = inner.edge_group(3, &group("sym"));
+            below = below.edge_group(3, &group("sym"));
+        }
+        let mut blocks = vec![inner, right, below];
+        let map = |b: &Block, f: &dyn Fn([f64; 2]) -> [f64; 2]| {
+            let mut out = b.clone();
+            out.corners = b.corners.map(f);
+            out
+        };
+        if !p.half {
+            let mirrored: Vec<Block> = blocks.iter().map(|b| map(b, &|q| [-q[0], q[1]])).collect();
+            blocks.extend(mirrored);
+        }
+        if upper {
+            blocks = blocks.iter().map(|b| map(b, &|q| [q[0], -q[1]])).collect();
+        }
+        multiblock(&blocks, kind)
+    };
+    let mut mesh = body(false)?;
+    mesh.append(&body(true)?)?;
     Ok(mesh)
 }
