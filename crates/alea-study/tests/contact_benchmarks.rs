@@ -169,6 +169,30 @@ fn full_slip_ratio_is_mu() {
         assert_eq!(v[16], "slip");
     }
     let _ = std::fs::remove_file(&path);
+    // The same fields in the run's ParaView files, and the CSV beside them.
+    let dir = std::env::temp_dir().join(format!("alea-contact-vtu-{}", std::process::id()));
+    let written = alea_latin::output::write_run(dir.join("run.vtm"), &solver, &res).unwrap();
+    assert!(
+        written
+            .iter()
+            .any(|p| p.ends_with("run/interface_contact.csv"))
+    );
+    let vtu = std::fs::read_to_string(dir.join("run/block.vtu")).unwrap();
+    for name in [
+        "contact_weight",
+        "contact_normal",
+        "contact_gap",
+        "contact_pressure",
+        "contact_traction_t",
+        "contact_slip",
+        "contact_status",
+    ] {
+        assert!(
+            vtu.contains(&format!("Name=\"{name}\"")),
+            "{name} in the VTU"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
     check_reactions(&built, &solver, &res, &loads);
     // The block's constraint pulls it along with the friction force.
     let r = nodal_reactions(&solver, &res, 1, &loads[1]).unwrap();

@@ -208,6 +208,41 @@ side2 = ["root", "flank_right_root"]"#;
             "already belong to interface[1] 'again'",
         ),
     ];
+    // Two bodies on the same cells: the contact nodes coincide but the sides face the same way.
+    let slip = std::fs::read_to_string(root().join("examples/full-slip.toml")).unwrap();
+    let overlap = slip
+        .replacen("cells = \"upper\"", "cells = \"lower\"", 1)
+        .replacen(
+            "constraint = [ { group = \"upper_top\", x = 0.05 } ]",
+            "constraint = [ { group = \"lower_bottom\", x = 0.0, y = 0.0 } ]",
+            1,
+        )
+        .replacen(
+            "load = [ { group = \"upper_top\"",
+            "load = [ { group = \"lower_top\"",
+            1,
+        )
+        .replacen(
+            "side2 = [\"block\", \"upper_bottom\"]",
+            "side2 = [\"block\", \"lower_top\"]",
+            1,
+        );
+    assert_eq!(
+        overlap.matches("lower").count(),
+        slip.matches("lower").count() + 4
+    );
+    let cases = [
+        cases[0].clone(),
+        cases[1].clone(),
+        cases[2].clone(),
+        (
+            "sides facing the same way",
+            overlap,
+            "side1 = [\"base\", \"lower_top\"]",
+            "interface[0]",
+            "do not face each other",
+        ),
+    ];
     for (i, (what, t, at, field, msg)) in cases.iter().enumerate() {
         let case = dir.join(format!("case{i}.toml"));
         std::fs::write(&case, t).unwrap();
