@@ -40,6 +40,15 @@ pub enum LatinError {
         /// Matching tolerance.
         tol: f64,
     },
+    /// An output file could not be written.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The error.
+        #[source]
+        source: std::io::Error,
+    },
     /// Inconsistent set-up or run input.
     #[error("{0}")]
     Invalid(String),

@@ -14,11 +14,13 @@
 
 mod anderson;
 mod assembly;
+pub mod contact;
 mod equilibrium;
 mod error;
 pub mod interface;
 pub mod law;
 pub mod output;
+pub mod reactions;
 mod result;
 pub mod samples;
 mod solver;

@@ -4,8 +4,14 @@
 //! `von_mises`, and on interface nodes `contact_status` (-1 off interfaces, then
 //! [`PointStatus::code`]: 0 perfect, 1 open, 2 stick, 3 slip), `contact_normal_force`
 //! (`F_hat . n` on this side, traction units), `contact_tangential_force` (`|F_hat_t|`) and
-//! `interface_jump` (`[W_hat] + g0 n`, vector; the same on both sides). Cell fields: one
-//! `group_<name>` indicator per cell group.
+//! `interface_jump` (`[W_hat] + g0 n`, vector; the same on both sides), and the fields of the
+//! contact CSV ([`crate::contact`], the same values on both sides of a point):
+//! `contact_weight`, `contact_normal` (side 1's outward normal), `contact_gap`,
+//! `contact_pressure` (`Phi.n >= 0` in compression), `contact_traction_t` (tangential traction on
+//! side 2), `contact_slip` (tangential jump of side 2 relative to side 1); with
+//! [`write_run_with_reactions`], `reaction` (nodal reaction forces, [`crate::reactions`]).
+//! Cell fields: one `group_<name>` indicator per cell group. Beside the `.vtu` files, one
+//! `interface_<name>.csv` per interface ([`crate::contact::write_interface_csv`]).
 
 use std::path::{Path, PathBuf};
 
@@ -23,13 +29,30 @@ struct SubFields {
     fnormal: Vec<f64>,
     ftangent: Vec<f64>,
     jump: Vec<f64>,
+    weight: Vec<f64>,
+    normal: Vec<f64>,
+    gap: Vec<f64>,
+    pressure: Vec<f64>,
+    traction_t: Vec<f64>,
+    slip: Vec<f64>,
 }
 
-/// Writes `path` (`.vtm`) and one `.vtu` per substructure beside it; returns the `.vtu` paths.
+/// Writes `path` (`.vtm`), one `.vtu` per substructure and one `interface_<name>.csv` per
+/// interface beside it; returns the `.vtu` and `.csv` paths.
 pub fn write_run(
     path: impl AsRef<Path>,
     solver: &LatinSolver,
     result: &RunResult,
+) -> Result<Vec<PathBuf>, LatinError> {
+    write_run_with_reactions(path, solver, result, None)
+}
+
+/// [`write_run`] with a `reaction` point field per substructure (node-major, `dim` per node).
+pub fn write_run_with_reactions(
+    path: impl AsRef<Path>,
+    solver: &LatinSolver,
+    result: &RunResult,
+    reactions: Option<&[Vec<f64>]>,
 ) -> Result<Vec<PathBuf>, LatinError> {
     let mut fields = Vec::new();
     for s in 0..solver.num_subs() {
@@ -54,6 +77,12 @@ pub fn write_run(
             fnormal: vec![0.0; nn],
             ftangent: vec![0.0; nn],
             jump: vec![0.0; nn * 3],
+            weight: vec![0.0; nn],
+            normal: vec![0.0; nn * 3],
+            gap: vec![0.0; nn],
+            pressure: vec![0.0; nn],
+            traction_t: vec![0.0; nn * 3],
+            slip: vec![0.0; nn * 3],
         });
     }
     for it in &result.interfaces {
@@ -68,6 +97,17 @@ pub fn write_run(
                 f.fnormal[node] = fnn;
                 f.ftangent[node] = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
                 f.jump[node * 3..node * 3 + 3].copy_from_slice(&it.jump(i));
+            }
+        }
+        for r in crate::contact::contact_rows(it) {
+            for (side, node) in [(it.subs[0], r.node1), (it.subs[1], r.node2)] {
+                let f = &mut fields[side];
+                f.weight[node] = r.weight;
+                f.gap[node] = r.gap;
+                f.pressure[node] = r.pressure;
+                f.normal[node * 3..node * 3 + 3].copy_from_slice(&r.normal);
+                f.traction_t[node * 3..node * 3 + 3].copy_from_slice(&r.traction_t);
+                f.slip[node * 3..node * 3 + 3].copy_from_slice(&r.slip);
             }
         }
     }
@@ -85,12 +125,49 @@ pub fn write_run(
                 .point_scalar("contact_status", &f.status)
                 .point_scalar("contact_normal_force", &f.fnormal)
                 .point_scalar("contact_tangential_force", &f.ftangent)
-                .point_vector("interface_jump", 3, &f.jump);
+                .point_vector("interface_jump", 3, &f.jump)
+                .point_scalar("contact_weight", &f.weight)
+                .point_vector("contact_normal", 3, &f.normal)
+                .point_scalar("contact_gap", &f.gap)
+                .point_scalar("contact_pressure", &f.pressure)
+                .point_vector("contact_traction_t", 3, &f.traction_t)
+                .point_vector("contact_slip", 3, &f.slip);
+            let w = match reactions.and_then(|r| r.get(s)) {
+                Some(r) => w.point_vector("reaction", m.mesh.dim, r),
+                None => w,
+            };
             (names[s].as_str(), w)
         })
         .collect();
-    write_vtm(path, &parts).map_err(|source| LatinError::Mesh {
+    let path = path.as_ref();
+    let mut written = write_vtm(path, &parts).map_err(|source| LatinError::Mesh {
         sub: "output".into(),
         source,
-    })
+    })?;
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "parts".into());
+    let dir = path.parent().unwrap_or(Path::new("")).join(stem);
+    for it in &result.interfaces {
+        let safe: String = it
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        let csv = dir.join(format!("interface_{safe}.csv"));
+        let dim = solver.model(it.subs[0]).mesh.dim;
+        crate::contact::write_interface_csv(&csv, it, dim).map_err(|source| LatinError::Io {
+            path: csv.clone(),
+            source,
+        })?;
+        written.push(csv);
+    }
+    Ok(written)
 }

@@ -11,9 +11,11 @@
 //!   map); [`Mesh::append`] joins meshes without merging nodes.
 //! - [`read_msh`]: Gmsh `.msh` 4.1 reader (ASCII and binary, physical groups become groups).
 //! - [`VtuWriter`] / [`write_vtm`]: ParaView output with point and cell fields.
+//! - [`atomic::write_atomic`]: every output file is written to a temporary and renamed.
 //! - [`Mesh::cell_measure`], [`Mesh::cell_min_jacobian`]: geometric checks (areas, volumes,
 //!   orientation).
 
+pub mod atomic;
 mod cell;
 mod error;
 mod extract;

@@ -299,7 +299,7 @@ impl<'a> VtuWriter<'a> {
     pub fn write(&self, path: impl AsRef<Path>) -> Result<(), MeshError> {
         let path = path.as_ref();
         let xml = self.to_xml()?;
-        std::fs::write(path, xml).map_err(|source| MeshError::Io {
+        crate::atomic::write_bytes_atomic(path, xml.as_bytes()).map_err(|source| MeshError::Io {
             path: path.to_path_buf(),
             source,
         })
@@ -466,7 +466,7 @@ pub fn write_vtm(
         );
     }
     xml.push_str("  </vtkMultiBlockDataSet>\n</VTKFile>\n");
-    std::fs::write(path, xml).map_err(io(path))?;
+    crate::atomic::write_bytes_atomic(path, xml.as_bytes()).map_err(io(path))?;
     Ok(written)
 }
 
@@ -495,7 +495,7 @@ pub fn write_pvd(path: impl AsRef<Path>, entries: &[(f64, &str)]) -> Result<(), 
         );
     }
     xml.push_str("  </Collection>\n</VTKFile>\n");
-    std::fs::write(path, xml).map_err(|source| MeshError::Io {
+    crate::atomic::write_bytes_atomic(path, xml.as_bytes()).map_err(|source| MeshError::Io {
         path: path.to_path_buf(),
         source,
     })

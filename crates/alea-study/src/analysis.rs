@@ -242,8 +242,10 @@ pub fn analyse_method(
     };
     if method.kind == MethodKind::MonteCarlo {
         out.draws = used_points.len();
-        if used_points.len() < 2 {
-            out.error = Some("fewer than 2 converged runs".into());
+        // Two runs at least, except the single run of a study without parameters.
+        let needed = if study.params.names.is_empty() { 1 } else { 2 };
+        if used_points.len() < needed {
+            out.error = Some(format!("fewer than {needed} converged runs"));
             return out;
         }
         out.qois = values

@@ -211,8 +211,32 @@ fn check_params(src: &Source, spec: &MeshSpec, allowed: &[&str]) -> Result<(), S
     Ok(())
 }
 
+/// The path of a mesh file named in a study file (relative to the study file).
+fn mesh_file_path(src: &Source, f: &Spanned<String>) -> std::path::PathBuf {
+    src.path
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join(f.get_ref())
+}
+
+/// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes
+/// (a changed mesh file makes a different study).
+pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> {
+    match (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
+        (Some(f), "gmsh") => {
+            let path = mesh_file_path(src, f);
+            let bytes = std::fs::read(&path).map_err(|e| {
+                src.error(f.span(), "mesh.file", format!("{}: {e}", path.display()))
+            })?;
+            Ok(crate::store::study_hash(&src.text, &[&bytes]))
+        }
+        _ => Ok(crate::store::study_hash(&src.text, &[])),
+    }
+}
+
 /// Builds the mesh of a `[mesh]` table.
 pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+    crate::limits::check_mesh(src, spec)?;
     let kind = |default: CellType| -> Result<CellType, StudyError> {
         spec.kind
             .as_ref()
@@ -339,17 +363,85 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
             };
             generate::blade_root_simple(&p, kind(CellType::Quad4)?).map_err(mesh_err)
         }
+        "stacked_blocks" | "block_on_incline" => {
+            let d = generate::StackedBlocks::default();
+            let incline = gen_name == "block_on_incline";
+            let mut keys = vec!["width", "h_lower", "h_upper", "n_x", "n_lower", "n_upper", "depth", "n_z"];
+            if incline {
+                keys.push("angle_deg");
+            }
+            check_params(src, spec, &keys)?;
+            let p = generate::StackedBlocks {
+                width: param_f64(src, spec, "width", Some(d.width))?,
+                h_lower: param_f64(src, spec, "h_lower", Some(d.h_lower))?,
+                h_upper: param_f64(src, spec, "h_upper", Some(d.h_upper))?,
+                n_x: param_usize(src, spec, "n_x", Some(d.n_x))?,
+                n_lower: param_usize(src, spec, "n_lower", Some(d.n_lower))?,
+                n_upper: param_usize(src, spec, "n_upper", Some(d.n_upper))?,
+            };
+            // Hex8: the Quad4 blocks extruded over `depth` in `n_z` layers (3D).
+            let kind = kind(CellType::Quad4)?;
+            let plane = if kind == CellType::Hex8 { CellType::Quad4 } else { kind };
+            let mesh = if incline {
+                let a = param_f64(src, spec, "angle_deg", None)?.to_radians();
+                generate::block_on_incline(&p, a, plane).map_err(mesh_err)?
+            } else {
+                generate::stacked_blocks(&p, plane).map_err(mesh_err)?
+            };
+            if kind == CellType::Hex8 {
+                let depth = param_f64(src, spec, "depth", Some(p.width))?;
+                let n_z = param_usize(src, spec, "n_z", Some(p.n_x))?;
+                generate::extrude(&mesh, n_z, depth).map_err(mesh_err)
+            } else {
+                Ok(mesh)
+            }
+        }
+        "concentric_rings" => {
+            let d = generate::ConcentricRings::default();
+            check_params(src, spec, &["r_in", "r_contact", "r_out", "angle_deg", "n_inner", "n_outer", "n_theta"])?;
+            let p = generate::ConcentricRings {
+                r_in: param_f64(src, spec, "r_in", Some(d.r_in))?,
+                r_contact: param_f64(src, spec, "r_contact", Some(d.r_contact))?,
+                r_out: param_f64(src, spec, "r_out", Some(d.r_out))?,
+                angle: param_f64(src, spec, "angle_deg", Some(d.angle.to_degrees()))?.to_radians(),
+                n_inner: param_usize(src, spec, "n_inner", Some(d.n_inner))?,
+                n_outer: param_usize(src, spec, "n_outer", Some(d.n_outer))?,
+                n_theta: param_usize(src, spec, "n_theta", Some(d.n_theta))?,
+            };
+            generate::concentric_rings(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "cylinder_on_block" => {
+            let d = generate::CylinderOnBlock::default();
+            check_params(src, spec, &["a", "l", "n", "m", "half"])?;
+            let half = match spec.params.as_ref().and_then(|p| p.get_ref().get("half")) {
+                None => d.half,
+                Some(toml::Value::Boolean(b)) => *b,
+                Some(_) => {
+                    let span = spec.params.as_ref().map_or(spec.generator.span(), |p| p.span());
+                    return Err(src.error(span, "mesh.params.half", "expected true or false"));
+                }
+            };
+            let p = generate::CylinderOnBlock {
+                a: param_f64(src, spec, "a", Some(d.a))?,
+                l: param_f64(src, spec, "l", Some(d.l))?,
+                n: param_usize(src, spec, "n", Some(d.n))?,
+                m: param_usize(src, spec, "m", Some(d.m))?,
+                half,
+            };
+            generate::cylinder_on_block(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
         "gmsh" => {
             check_params(src, spec, &[])?;
             let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
-            let base = src.path.parent().unwrap_or(Path::new("."));
-            let path = base.join(f.get_ref());
-            alea_mesh::read_msh(&path).map_err(StudyError::Mesh)
+            let path = mesh_file_path(src, f);
+            // Every Gmsh error (missing file, directory, truncated or malformed content) is an
+            // input error of this field; the message carries the mesh file's own line.
+            alea_mesh::read_msh(&path).map_err(|e| src.error(f.span(), "mesh.file", e.to_string()))
         }
         other => Err(src.error(
             spec.generator.span(),
             "mesh.generator",
-            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple or gmsh"),
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
         )),
     }
 }
@@ -746,12 +838,14 @@ pub fn build_model(
             factor: positive(src, k, "solver.search_direction_factor")?,
         };
     }
-    Ok(BuiltModel {
+    let built = BuiltModel {
         mesh,
         assembly: Assembly { subs, interfaces },
         load_names,
         options,
         units: file.units.clone(),
         parametric,
-    })
+    };
+    crate::checks::check_interfaces(src, &file.interface, &built)?;
+    Ok(built)
 }

@@ -35,18 +35,48 @@ pub enum StudyError {
     /// Solver error.
     #[error(transparent)]
     Latin(#[from] alea_latin::LatinError),
+    /// A command-line argument or study directory that cannot be used as asked.
+    #[error("{0}")]
+    Usage(String),
+    /// Another process holds the study directory's lock.
+    #[error(
+        "{} is in use by {holder}; wait for it to finish, stop it, or use another --dir",
+        dir.display()
+    )]
+    Busy {
+        /// The study directory.
+        dir: PathBuf,
+        /// Who holds it (pid, host, start time, command).
+        holder: String,
+    },
+    /// A size that cannot be handled (memory, run count, threads): the estimate is in the
+    /// message.
+    #[error("{0}")]
+    TooLarge(String),
+    /// The computation ran but gave no usable result (no run converged, no method produced
+    /// statistics).
+    #[error("{0}")]
+    Failed(String),
     /// Anything else, described.
     #[error("{0}")]
     Other(String),
 }
 
 impl StudyError {
-    /// Process exit code for this kind of error: 2 for input errors, 3 for I/O, 4 for
-    /// computation failures.
+    /// Process exit code for this kind of error (the table is in `docs/study-file.md`): 2 for
+    /// input errors (including sizes beyond the limits), 3 for file-system errors, 4 for
+    /// computation failures, 5 for a study directory in use by another process.
     pub fn exit_code(&self) -> i32 {
         match self {
-            StudyError::Input { .. } => 2,
+            StudyError::Input { .. } | StudyError::Usage(_) | StudyError::TooLarge(_) => 2,
             StudyError::Io { .. } => 3,
+            StudyError::Mesh(alea_mesh::MeshError::Io { .. })
+            | StudyError::Latin(alea_latin::LatinError::Io { .. })
+            | StudyError::Latin(alea_latin::LatinError::Mesh {
+                source: alea_mesh::MeshError::Io { .. },
+                ..
+            }) => 3,
+            StudyError::Busy { .. } => 5,
             _ => 4,
         }
     }

@@ -13,10 +13,16 @@
 //! Functions: `exp ln log10 sqrt abs sin cos tan atan tanh` (one argument), `min max pow
 //! atan2` (two). Constant: `pi`. Names are resolved at compile time against the variables the
 //! caller allows (parameter names, and `x y z` for profiles); an unknown name is an error that
-//! says which names exist. Written by hand: the crates that do this (meval, evalexpr) bring an
+//! says which names exist. Expressions nest at most [`MAX_DEPTH`] deep (parentheses, unary
+//! signs, powers, calls and chains of binary operators all count): parsing, evaluating and
+//! dropping a tree are recursive, and a deeper one is refused with an error instead of
+//! overflowing the stack. Written by hand: the crates that do this (meval, evalexpr) bring an
 //! interpreter with dynamic types and their own error model, for ~250 lines here.
 
 use std::fmt;
+
+/// Deepest expression tree accepted (far beyond any hand-written formula).
+pub const MAX_DEPTH: usize = 200;
 
 /// A compiled expression; variables are slots in the array passed to [`Expr::eval`].
 #[derive(Clone, Debug)]
@@ -54,7 +60,12 @@ struct Parser<'a> {
     s: &'a [u8],
     pos: usize,
     vars: &'a [&'a str],
+    /// Current recursion depth of the parser.
+    nesting: usize,
 }
+
+/// A node with the depth of its tree.
+type Sized = (Node, usize);
 
 fn func1(name: &str) -> Option<fn(f64) -> f64> {
     Some(match name {
@@ -98,47 +109,70 @@ impl<'a> Parser<'a> {
         self.skip();
         self.s.get(self.pos).copied()
     }
-    fn expr(&mut self) -> Result<Node, ExprError> {
+    /// A node over children of depths `depths`, refused beyond [`MAX_DEPTH`].
+    fn node(&self, n: Node, depths: &[usize]) -> Result<Sized, ExprError> {
+        let d = 1 + depths.iter().copied().max().unwrap_or(0);
+        if d > MAX_DEPTH {
+            return self.err(format!(
+                "expression nested more than {MAX_DEPTH} deep (parentheses, signs, powers, calls or a chain of operators); simplify it"
+            ));
+        }
+        Ok((n, d))
+    }
+    fn bin(&self, op: char, (a, da): Sized, (b, db): Sized) -> Result<Sized, ExprError> {
+        self.node(Node::Bin(op, Box::new(a), Box::new(b)), &[da, db])
+    }
+    fn expr(&mut self) -> Result<Sized, ExprError> {
         let mut a = self.term()?;
         while let Some(c @ (b'+' | b'-')) = self.peek() {
             self.pos += 1;
             let b = self.term()?;
-            a = Node::Bin(c as char, Box::new(a), Box::new(b));
+            a = self.bin(c as char, a, b)?;
         }
         Ok(a)
     }
-    fn term(&mut self) -> Result<Node, ExprError> {
+    fn term(&mut self) -> Result<Sized, ExprError> {
         let mut a = self.unary()?;
         while let Some(c @ (b'*' | b'/')) = self.peek() {
             self.pos += 1;
             let b = self.unary()?;
-            a = Node::Bin(c as char, Box::new(a), Box::new(b));
+            a = self.bin(c as char, a, b)?;
         }
         Ok(a)
     }
-    fn unary(&mut self) -> Result<Node, ExprError> {
-        match self.peek() {
+    /// Every recursive path of the grammar goes through here: the nesting is bounded here.
+    fn unary(&mut self) -> Result<Sized, ExprError> {
+        self.nesting += 1;
+        if self.nesting > MAX_DEPTH {
+            return self.err(format!(
+                "expression nested more than {MAX_DEPTH} deep (parentheses, signs, powers, calls or a chain of operators); simplify it"
+            ));
+        }
+        let r = match self.peek() {
             Some(b'-') => {
                 self.pos += 1;
-                Ok(Node::Neg(Box::new(self.unary()?)))
+                let (a, da) = self.unary()?;
+                self.node(Node::Neg(Box::new(a)), &[da])
             }
             Some(b'+') => {
                 self.pos += 1;
                 self.unary()
             }
             _ => self.power(),
-        }
+        };
+        self.nesting -= 1;
+        r
     }
-    fn power(&mut self) -> Result<Node, ExprError> {
+    fn power(&mut self) -> Result<Sized, ExprError> {
         let a = self.atom()?;
         if self.peek() == Some(b'^') {
             self.pos += 1;
             let b = self.unary()?;
-            return Ok(Node::Bin('^', Box::new(a), Box::new(b)));
+            return self.bin('^', a, b);
         }
         Ok(a)
     }
-    fn atom(&mut self) -> Result<Node, ExprError> {
+    fn atom(&mut self) -> Result<Sized, ExprError> {
         match self.peek() {
             None => self.err("unexpected end of expression"),
             Some(b'(') => {
@@ -175,7 +209,7 @@ impl<'a> Parser<'a> {
                 }
                 let text = std::str::from_utf8(&self.s[start..self.pos]).unwrap_or("");
                 match text.parse::<f64>() {
-                    Ok(v) => Ok(Node::Num(v)),
+                    Ok(v) => Ok((Node::Num(v), 1)),
                     Err(_) => {
                         self.pos = start;
                         self.err(format!("malformed number '{text}'"))
@@ -203,10 +237,14 @@ impl<'a> Parser<'a> {
                     self.pos += 1;
                     let mut args = args.into_iter();
                     return match (args.len(), func1(name), func2(name)) {
-                        (1, Some(f), _) => Ok(Node::Call1(f, Box::new(args.next().unwrap()))),
+                        (1, Some(f), _) => {
+                            let (a, da) = args.next().unwrap();
+                            self.node(Node::Call1(f, Box::new(a)), &[da])
+                        }
                         (2, _, Some(f)) => {
-                            let a = args.next().unwrap();
-                            Ok(Node::Call2(f, Box::new(a), Box::new(args.next().unwrap())))
+                            let (a, da) = args.next().unwrap();
+                            let (b, db) = args.next().unwrap();
+                            self.node(Node::Call2(f, Box::new(a), Box::new(b)), &[da, db])
                         }
                         (n, f1, f2) if f1.is_some() || f2.is_some() => {
                             self.pos = start;
@@ -222,10 +260,10 @@ impl<'a> Parser<'a> {
                     };
                 }
                 if name == "pi" {
-                    return Ok(Node::Num(std::f64::consts::PI));
+                    return Ok((Node::Num(std::f64::consts::PI), 1));
                 }
                 match self.vars.iter().position(|v| *v == name) {
-                    Some(i) => Ok(Node::Var(i)),
+                    Some(i) => Ok((Node::Var(i), 1)),
                     None => {
                         self.pos = start;
                         self.err(format!(
@@ -251,8 +289,9 @@ impl Expr {
             s: text.as_bytes(),
             pos: 0,
             vars,
+            nesting: 0,
         };
-        let node = p.expr()?;
+        let (node, _) = p.expr()?;
         if p.peek().is_some() {
             return p.err("unexpected text after the expression");
         }
@@ -375,5 +414,48 @@ mod tests {
                 .contains("end of expression")
         );
         assert!(Expr::parse("3 $", &v).is_err());
+    }
+
+    #[test]
+    fn deep_nesting_is_an_error_not_a_stack_overflow() {
+        let n = 10_000;
+        let cases = [
+            format!("{}1{}", "(".repeat(n), ")".repeat(n)),
+            format!("{}1", "-".repeat(n)),
+            format!("{}1", "+".repeat(n)),
+            vec!["2"; n].join("^"),
+            vec!["1"; n].join(" + "),
+            vec!["a"; n].join(" * "),
+            format!("{}1{}", "sin(".repeat(n), ")".repeat(n)),
+        ];
+        for (k, t) in cases.iter().enumerate() {
+            // On a small stack, as rayon workers have.
+            let t = t.clone();
+            let r = std::thread::Builder::new()
+                .stack_size(256 * 1024)
+                .spawn(move || Expr::parse(&t, &["a"]).map(|_| ()))
+                .unwrap()
+                .join()
+                .expect("no stack overflow");
+            let e = r.expect_err("refused");
+            assert!(e.message.contains("nested more than"), "case {k}: {e}");
+        }
+        // Up to the limit, parse and evaluate on a small stack.
+        let ok = format!(
+            "{}x{}",
+            "(".repeat(MAX_DEPTH / 2),
+            ")".repeat(MAX_DEPTH / 2)
+        );
+        let sum = vec!["x"; MAX_DEPTH - 1].join(" + ");
+        let v = std::thread::Builder::new()
+            .stack_size(256 * 1024)
+            .spawn(move || {
+                Expr::parse(&ok, &["x"]).unwrap().eval(&[2.0])
+                    + Expr::parse(&sum, &["x"]).unwrap().eval(&[1.0])
+            })
+            .unwrap()
+            .join()
+            .unwrap();
+        assert_eq!(v, 2.0 + (MAX_DEPTH - 1) as f64);
     }
 }

@@ -103,34 +103,38 @@ pub fn mean_std_fields(
             "no Monte Carlo draws for the field statistics".into(),
         ));
     }
-    // Weight moments, in fixed chunks summed in order (thread-count independent).
-    let parts: Vec<(Vec<f64>, Vec<f64>)> = draws
-        .par_chunks(d * 4096)
-        .map(|block| {
-            let mut e1 = vec![0.0; k];
-            let mut e2 = vec![0.0; k * k];
-            let (mut t, mut w) = (vec![0.0; d], Vec::new());
-            for x in block.chunks_exact(d) {
-                sur.weights(x, &mut t, &mut w);
-                for &(a, wa) in &w {
-                    e1[a] += wa;
-                    for &(b, wb) in &w {
-                        e2[a * k + b] += wa * wb;
-                    }
-                }
-            }
-            (e1, e2)
-        })
-        .collect();
+    // Weight moments, in fixed chunks summed in order (thread-count independent); 16 chunks
+    // at a time, so that at most 16 `k x k` partial sums are alive (`limits::mean_fields_memory`).
     let n = (draws.len() / d) as f64;
     let mut ew = vec![0.0; k];
     let mut ew2 = vec![0.0; k * k];
-    for (e1, e2) in &parts {
-        for (a, b) in ew.iter_mut().zip(e1) {
-            *a += b / n;
-        }
-        for (a, b) in ew2.iter_mut().zip(e2) {
-            *a += b / n;
+    let chunks: Vec<&[f64]> = draws.chunks(d * 4096).collect();
+    for group in chunks.chunks(16) {
+        let parts: Vec<(Vec<f64>, Vec<f64>)> = group
+            .par_iter()
+            .map(|block| {
+                let mut e1 = vec![0.0; k];
+                let mut e2 = vec![0.0; k * k];
+                let (mut t, mut w) = (vec![0.0; d], Vec::new());
+                for x in block.chunks_exact(d) {
+                    sur.weights(x, &mut t, &mut w);
+                    for &(a, wa) in &w {
+                        e1[a] += wa;
+                        for &(b, wb) in &w {
+                            e2[a * k + b] += wa * wb;
+                        }
+                    }
+                }
+                (e1, e2)
+            })
+            .collect();
+        for (e1, e2) in &parts {
+            for (a, b) in ew.iter_mut().zip(e1) {
+                *a += b / n;
+            }
+            for (a, b) in ew2.iter_mut().zip(e2) {
+                *a += b / n;
+            }
         }
     }
     let store = Store::open(dir, &study.hash, false)?;

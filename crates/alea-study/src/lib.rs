@@ -6,14 +6,18 @@
 pub mod adaptive;
 pub mod analysis;
 mod build;
+mod checks;
 pub mod cre;
 mod error;
 pub mod estimate;
 pub mod expr;
 pub mod fields;
+pub mod limits;
+pub mod lock;
 pub mod method;
 mod params;
 pub mod qoi;
+pub mod reopen;
 pub mod runner;
 mod source;
 pub mod spec;

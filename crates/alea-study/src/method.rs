@@ -88,6 +88,21 @@ pub struct Method {
     pub mesh: Option<StochasticMesh>,
 }
 
+impl Method {
+    /// The method of a study without random parameters: one deterministic run, whose
+    /// quantities are reported as they are (no surrogate, no sampling).
+    pub fn deterministic() -> Self {
+        Method {
+            label: "deterministic".into(),
+            kind: MethodKind::MonteCarlo,
+            points: vec![Vec::new()],
+            rule: None,
+            description: "one deterministic run (the study has no random parameter)".into(),
+            mesh: None,
+        }
+    }
+}
+
 fn rows(d: &Design) -> Vec<Vec<f64>> {
     d.iter().map(|p| p.to_vec()).collect()
 }
@@ -102,6 +117,7 @@ pub fn build_methods(
     let d = params.names.len();
     let mut out = Vec::new();
     for (i, m) in specs.iter().enumerate() {
+        crate::limits::check_method(src, i, m, d)?;
         let f = |k: &str| format!("method[{i}].{k}");
         let uq =
             |e: alea_uq::UqError| src.error(m.kind.span(), format!("method[{i}]"), e.to_string());
@@ -146,7 +162,7 @@ pub fn build_methods(
                 let basis_len = PcBasis::total_degree(&params.marginals, p)
                     .map_err(uq)?
                     .len();
-                let full = (p + 1).pow(d as u32);
+                let full = (p + 1).saturating_pow(d as u32);
                 let dflt = full.min((2 * basis_len).max(basis_len + 1));
                 let des = match design_name.unwrap_or("pc_collocation") {
                     "pc_collocation" => {

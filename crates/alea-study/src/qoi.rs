@@ -161,6 +161,7 @@ pub fn build_qois(
             thresholds: q.thresholds.clone(),
         });
     }
+    crate::checks::check_quantities(src, specs, model, &out)?;
     Ok(out)
 }
 

@@ -22,10 +22,11 @@ use alea_latin::{LatinSolver, LocalState, RunStatus};
 use rayon::prelude::*;
 
 use crate::cre::CreSetup;
+use crate::lock::StudyLock;
 use crate::method::{Method, MethodKind, build_methods};
 use crate::qoi::{Qoi, build_qois};
 use crate::spec::{ModelFile, OutputSpec};
-use crate::store::{RunRecord, Store, point_key, text_hash};
+use crate::store::{RunRecord, Store, point_key};
 use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
 
 /// A loaded, validated study.
@@ -44,7 +45,7 @@ pub struct Study {
     pub methods: Vec<Method>,
     /// Seed of all random draws.
     pub seed: u64,
-    /// Hash of the study file's text.
+    /// Hash of the study's inputs (its file's text and its mesh file).
     pub hash: String,
     /// Outputs.
     pub output: OutputSpec,
@@ -68,6 +69,8 @@ pub trait Progress: Sync {
     fn more(&self, _n: usize) {}
     /// All runs are done.
     fn end(&self) {}
+    /// Something the user should know (e.g. a lock taken over from a dead process).
+    fn note(&self, _message: &str) {}
 }
 
 /// A progress observer that does nothing.
@@ -79,22 +82,29 @@ impl Study {
     pub fn from_source(source: Source) -> Result<Self, StudyError> {
         let file: ModelFile = source.parse()?;
         let params = build_params(&source, &file)?;
-        if params.names.is_empty() {
-            return Err(source.error(0..0, "parameter", "a study needs at least one [[parameter]] (use 'alea solve' for a deterministic case)"));
+        if params.names.is_empty()
+            && let Some(m) = file.method.first()
+        {
+            return Err(source.error(m.kind.span(), "method[0].type", "methods need random parameters: without [[parameter]], leave out [[method]] (the study is then one deterministic run)"));
         }
         if file.quantity.is_empty() {
             return Err(source.error(0..0, "quantity", "a study needs at least one [[quantity]]"));
         }
-        if file.method.is_empty() {
+        if file.method.is_empty() && !params.names.is_empty() {
             return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
         }
+        crate::limits::check_study_file(&source, &file, params.names.len())?;
         let model = build_model(&source, &file, &params)?;
         let qois = build_qois(&source, &file.quantity, &model)?;
         let seed = file.study.seed.unwrap_or(1);
-        let methods = build_methods(&source, &file.method, &params, seed)?;
-        let hash = text_hash(&source.text);
+        let methods = if params.names.is_empty() {
+            vec![crate::method::Method::deterministic()]
+        } else {
+            build_methods(&source, &file.method, &params, seed)?
+        };
+        let hash = crate::build::input_hash(&source, &file)?;
         let output = file.output.clone();
-        Ok(Study {
+        let study = Study {
             source,
             file,
             params,
@@ -104,7 +114,9 @@ impl Study {
             seed,
             hash,
             output,
-        })
+        };
+        crate::limits::check_built(&study)?;
+        Ok(study)
     }
 
     /// Loads a study file.
@@ -275,6 +287,9 @@ pub struct StudyRuns {
     pub adaptive: Vec<crate::adaptive::AdaptiveOutcome>,
     /// Error estimation set-up, when the study estimates its error.
     pub cre: Option<Arc<CreSetup>>,
+    /// The study directory's lock, held as long as these runs are (outputs are written under
+    /// it).
+    pub lock: StudyLock,
 }
 
 /// Runs the deterministic solves of a study and keeps the state they share: the solver, the
@@ -289,6 +304,10 @@ pub(crate) struct Runner<'a> {
     sizes: Vec<usize>,
     progress: &'a dyn Progress,
     pub(crate) cre: Option<Arc<CreSetup>>,
+    /// Compute missing runs (`false`: replay from the store only, counting missing runs).
+    compute: bool,
+    /// Points without a run in the store (replay only).
+    pub(crate) missing: usize,
     pub(crate) computed: usize,
     pub(crate) resumed: usize,
     pub(crate) solve_seconds: f64,
@@ -330,12 +349,16 @@ impl<'a> Runner<'a> {
                         .map(|s| (study.normalise(p), Arc::new(s)))
                 })
                 .collect();
-            let pending: Vec<usize> = members
+            let mut pending: Vec<usize> = members
                 .iter()
                 .copied()
                 .filter(|&i| !self.by_key.contains_key(&point_key(&todo[i])))
                 .collect();
             self.resumed += members.len() - pending.len();
+            if !self.compute {
+                self.missing += pending.len();
+                pending.clear();
+            }
             let results: Vec<Result<(RunRecord, f64), StudyError>> = pending
                 .par_iter()
                 .map(|&i| self.solve(&todo[i], &normalised[i], &sources))
@@ -480,7 +503,29 @@ pub fn run_study(
     restart: bool,
     progress: &dyn Progress,
 ) -> Result<StudyRuns, StudyError> {
+    let lock = StudyLock::acquire(dir, &format!("alea run {}", study.source.path.display()))?;
+    if let Some(previous) = lock.previous() {
+        progress.note(&format!(
+            "took over the lock of {} left by {previous}, which is no longer running",
+            dir.display()
+        ));
+    }
+    execute(study, dir, restart, progress, lock, true).map(|(runs, _)| runs)
+}
+
+/// Runs a study (`compute`) or replays it from the store alone (`!compute`: runs missing from
+/// the store are counted, not computed, and an adaptive loop stops at the first missing run).
+/// Returns the runs and the number of missing ones.
+pub(crate) fn execute(
+    study: &Study,
+    dir: &Path,
+    restart: bool,
+    progress: &dyn Progress,
+    lock: StudyLock,
+    compute: bool,
+) -> Result<(StudyRuns, usize), StudyError> {
     let store = Store::open(dir, &study.hash, restart)?;
+    store.save_study(&study.source.path, &study.source.text)?;
     let previous = store.runs()?;
     let by_key: HashMap<String, RunRecord> = previous
         .into_iter()
@@ -527,6 +572,8 @@ pub fn run_study(
         finished: Vec::new(),
         progress,
         cre,
+        compute,
+        missing: 0,
         computed: 0,
         resumed: 0,
         solve_seconds: 0.0,
@@ -558,17 +605,15 @@ pub fn run_study(
             );
         }
     }
-    let records = order
+    let records: Vec<RunRecord> = order
         .iter()
-        .map(|p| {
-            runner
-                .by_key
-                .get(&point_key(p))
-                .cloned()
-                .ok_or_else(|| StudyError::Other("a run is missing".into()))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(StudyRuns {
+        .filter_map(|p| runner.by_key.get(&point_key(p)).cloned())
+        .collect();
+    if compute && records.len() != order.len() {
+        return Err(StudyError::Other("a run is missing".into()));
+    }
+    let missing = runner.missing;
+    Ok((StudyRuns {
         records,
         computed: runner.computed,
         resumed: runner.resumed,
@@ -579,5 +624,6 @@ pub fn run_study(
         methods,
         adaptive,
         cre: runner.cre.clone(),
-    })
+        lock,
+    }, missing))
 }

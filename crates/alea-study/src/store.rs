@@ -2,12 +2,23 @@
 //! row per finished run, and a compact binary file per run with its displacement fields.
 //!
 //! A run is committed atomically: its field file is written to a temporary name, synced and
-//! renamed, then its row is inserted in one transaction. A study killed at any point therefore
-//! resumes with every committed run intact (a field file without a row is simply rewritten).
-//! The study file's hash is kept in the database: a changed study file is refused unless the
-//! caller asks to start over.
+//! renamed (and the directory synced), then its row is inserted in one transaction. A study
+//! killed at any point therefore resumes with every committed run intact (a field file without
+//! a row is simply rewritten).
+//!
+//! **Which study.** The study's hash (of the study file's text and of the mesh file it reads)
+//! is kept in the database, and every run row and every field file carries it: a changed
+//! study is refused unless the caller asks to start over, rows of another hash are never
+//! returned, and a field file of another study is refused on reading. The study file's text is
+//! kept too, so that `alea report DIR` can rebuild every output from the directory alone.
+//!
+//! **Durability.** `synchronous = FULL` with the WAL journal: a commit returns only once the
+//! WAL is synced, so a finished run survives a kill, an OS crash and a power loss (given a disk
+//! that honours flushes). `NORMAL` would survive a kill but could lose the last commits on power
+//! loss; FULL costs one more fsync per run, measured in `BENCHMARKS.md` ("store commits").
+//! Field file format: 8 bytes `ALEAFLD1`, 16 ASCII hex digits of the study hash, then the
+//! values as f64 little-endian.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use rusqlite::{Connection, OptionalExtension, params};
@@ -62,10 +73,17 @@ fn from_blob(b: &[u8]) -> Vec<f64> {
         .collect()
 }
 
+/// Magic bytes at the start of a field file.
+const FIELD_MAGIC: &[u8; 8] = b"ALEAFLD1";
+
+/// The SQLite `synchronous` level of the store (see the module doc).
+pub const SYNCHRONOUS: &str = "FULL";
+
 /// The study directory.
 pub struct Store {
     conn: Connection,
     dir: PathBuf,
+    hash: String,
 }
 
 impl std::fmt::Debug for Store {
@@ -74,12 +92,37 @@ impl std::fmt::Debug for Store {
     }
 }
 
+/// A database error: a full disk or an I/O failure is a file-system error (exit code 3),
+/// anything else a store failure.
 fn db_err(dir: &Path) -> impl Fn(rusqlite::Error) -> StudyError + '_ {
-    move |e| StudyError::Other(format!("study database in {}: {e}", dir.display()))
+    move |e| {
+        use rusqlite::ErrorCode as C;
+        let io = matches!(
+            e.sqlite_error_code(),
+            Some(
+                C::DiskFull
+                    | C::SystemIoFailure
+                    | C::CannotOpen
+                    | C::ReadOnly
+                    | C::PermissionDenied
+                    | C::DatabaseBusy
+                    | C::DatabaseLocked
+            )
+        );
+        if io {
+            StudyError::Io {
+                path: dir.join("study.db"),
+                source: std::io::Error::other(e.to_string()),
+            }
+        } else {
+            StudyError::Other(format!("study database in {}: {e}", dir.display()))
+        }
+    }
 }
 
 impl Store {
-    /// Opens (or creates) the store in `dir` for a study whose file hashes to `hash`.
+    /// Opens (or creates) the store in `dir` for a study whose hash is `hash` (see
+    /// [`study_hash`]). With `restart`, every stored run is discarded.
     ///
     /// # Errors
     /// If the directory holds a different study (hash mismatch) and `restart` is false; on
@@ -94,7 +137,7 @@ impl Store {
         let mut conn = Connection::open(&db).map_err(db_err(dir))?;
         conn.pragma_update(None, "journal_mode", "WAL")
             .map_err(db_err(dir))?;
-        conn.pragma_update(None, "synchronous", "NORMAL")
+        conn.pragma_update(None, "synchronous", SYNCHRONOUS)
             .map_err(db_err(dir))?;
         conn.execute_batch(
             "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
@@ -117,12 +160,24 @@ impl Store {
             })
             .optional()
             .map_err(db_err(dir))?;
+        // Directories written before runs carried their study's hash: their rows belong to
+        // the hash in `meta`.
+        let has_column = conn.prepare("SELECT study_hash FROM runs LIMIT 0").is_ok();
+        if !has_column {
+            conn.execute("ALTER TABLE runs ADD COLUMN study_hash TEXT", [])
+                .map_err(db_err(dir))?;
+            if let Some(h) = &old {
+                conn.execute("UPDATE runs SET study_hash = ?1", params![h])
+                    .map_err(db_err(dir))?;
+            }
+        }
         match old {
             Some(h) if h != hash => {
                 if !restart {
-                    return Err(StudyError::Other(format!(
-                        "{} holds the results of a different version of this study file (hash {h}, now {hash}); \
-                         refusing to mix them. Run again with --restart to discard them, or use another --dir",
+                    return Err(StudyError::Usage(format!(
+                        "{} holds the results of a different study or version of the study file \
+                         (hash {h}, now {hash}; the mesh file counts too); refusing to mix them. \
+                         Run again with --restart to discard them, or use another --dir",
                         dir.display()
                     )));
                 }
@@ -154,7 +209,66 @@ impl Store {
         Ok(Store {
             conn,
             dir: dir.to_path_buf(),
+            hash: hash.to_string(),
         })
+    }
+
+    /// The study hash of a study directory and the study file it holds (path as given to
+    /// `alea run`, text), without opening it for writing; `None` if `dir` holds no study.
+    ///
+    /// # Errors
+    /// On database errors.
+    pub fn saved_study(dir: &Path) -> Result<Option<(String, PathBuf, String)>, StudyError> {
+        let db = dir.join("study.db");
+        if !db.is_file() {
+            return Ok(None);
+        }
+        let conn = Connection::open_with_flags(&db, rusqlite::OpenFlags::SQLITE_OPEN_READ_ONLY)
+            .map_err(db_err(dir))?;
+        let get = |k: &str| -> Result<Option<String>, StudyError> {
+            conn.query_row("SELECT value FROM meta WHERE key = ?1", params![k], |r| {
+                r.get(0)
+            })
+            .optional()
+            .map_err(db_err(dir))
+        };
+        match (get("study_hash")?, get("study_path")?, get("study_text")?) {
+            (Some(h), Some(p), Some(t)) => Ok(Some((h, PathBuf::from(p), t))),
+            _ => Ok(None),
+        }
+    }
+
+    /// Keeps the study file (its path and text) in the store, for `alea report`.
+    pub fn save_study(&self, path: &Path, text: &str) -> Result<(), StudyError> {
+        let tx = self
+            .conn
+            .unchecked_transaction()
+            .map_err(db_err(&self.dir))?;
+        for (k, v) in [
+            (
+                "study_path",
+                std::fs::canonicalize(path)
+                    .unwrap_or_else(|_| path.to_path_buf())
+                    .display()
+                    .to_string(),
+            ),
+            ("study_text", text.to_string()),
+        ] {
+            tx.execute(
+                "INSERT OR REPLACE INTO meta (key, value) VALUES (?1, ?2)",
+                params![k, v],
+            )
+            .map_err(db_err(&self.dir))?;
+        }
+        tx.commit().map_err(db_err(&self.dir))
+    }
+
+    /// Sets SQLite's `synchronous` level (`OFF`, `NORMAL`, `FULL`) for this connection: only
+    /// for measuring what [`SYNCHRONOUS`] costs (`benches/store.rs`).
+    pub fn set_synchronous(&self, level: &str) -> Result<(), StudyError> {
+        self.conn
+            .pragma_update(None, "synchronous", level)
+            .map_err(db_err(&self.dir))
     }
 
     /// The directory.
@@ -162,14 +276,15 @@ impl Store {
         &self.dir
     }
 
-    /// Every finished run, in insertion order.
+    /// Every finished run of this study (rows of another study hash are never returned), in
+    /// insertion order.
     pub fn runs(&self) -> Result<Vec<RunRecord>, StudyError> {
         let mut st = self
             .conn
-            .prepare("SELECT params, status, iterations, residual, seconds, qois, history, state FROM runs ORDER BY rowid")
+            .prepare("SELECT params, status, iterations, residual, seconds, qois, history, state FROM runs WHERE study_hash = ?1 ORDER BY rowid")
             .map_err(db_err(&self.dir))?;
         let rows = st
-            .query_map([], |r| {
+            .query_map(params![self.hash], |r| {
                 Ok(RunRecord {
                     params: from_blob(&r.get::<_, Vec<u8>>(0)?),
                     status: r.get(1)?,
@@ -204,42 +319,42 @@ impl Store {
         self.dir.join("cre").join(name)
     }
 
-    /// Writes `values` (f64 little-endian) to `path` through a synced temporary file renamed
-    /// into place.
-    fn write_atomic(path: &Path, values: &[f64]) -> Result<(), StudyError> {
-        let tmp = path.with_extension("tmp");
-        let io = |p: &Path| {
-            let p = p.to_path_buf();
-            move |source| StudyError::Io { path: p, source }
-        };
+    /// Writes `values` with the study-hash header (then f64 little-endian), synced and
+    /// atomically renamed into place.
+    fn write_tagged(&self, path: &Path, values: &[f64]) -> Result<(), StudyError> {
+        let mut bytes = Vec::with_capacity(24 + 8 * values.len());
+        bytes.extend_from_slice(FIELD_MAGIC);
+        bytes.extend_from_slice(self.hash.as_bytes());
+        bytes.extend_from_slice(&to_blob(values));
         if let Some(parent) = path.parent() {
-            std::fs::create_dir_all(parent).map_err(io(parent))?;
+            std::fs::create_dir_all(parent).map_err(|source| StudyError::Io {
+                path: parent.to_path_buf(),
+                source,
+            })?;
         }
-        {
-            let mut f = std::fs::File::create(&tmp).map_err(io(&tmp))?;
-            f.write_all(&to_blob(values)).map_err(io(&tmp))?;
-            f.sync_all().map_err(io(&tmp))?;
-        }
-        std::fs::rename(&tmp, path).map_err(io(path))
+        alea_mesh::atomic::write_bytes_atomic(path, &bytes).map_err(|source| StudyError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
     }
 
-    /// Commits a finished run: its fields and, if given, its error estimate (each f64
-    /// little-endian, atomically renamed into place), then its row. A committed row therefore
-    /// always has its files.
+    /// Commits a finished run: its fields and, if given, its error estimate (each with the
+    /// study-hash header, then f64 little-endian; synced and atomically renamed into place),
+    /// then its row. A committed row therefore always has its files.
     pub fn commit(
         &self,
         rec: &RunRecord,
         fields: &[f64],
         cre: Option<&[f64]>,
     ) -> Result<(), StudyError> {
-        Self::write_atomic(&self.field_path(&rec.params), fields)?;
+        self.write_tagged(&self.field_path(&rec.params), fields)?;
         if let Some(c) = cre {
-            Self::write_atomic(&self.cre_path(&rec.params), c)?;
+            self.write_tagged(&self.cre_path(&rec.params), c)?;
         }
         self.conn
             .execute(
-                "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state)
-                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+                "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
+                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
                 params![
                     point_key(&rec.params),
                     to_blob(&rec.params),
@@ -250,6 +365,7 @@ impl Store {
                     to_blob(&rec.qois),
                     to_blob(&rec.history),
                     to_blob(&rec.state),
+                    self.hash,
                 ],
             )
             .map_err(db_err(&self.dir))?;
@@ -260,25 +376,158 @@ impl Store {
     pub fn cre(&self, params: &[f64]) -> Result<Option<Vec<f64>>, StudyError> {
         let path = self.cre_path(params);
         match std::fs::read(&path) {
-            Ok(b) => Ok(Some(from_blob(&b))),
+            Ok(b) => self.untag(&path, &b).map(Some),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
             Err(source) => Err(StudyError::Io { path, source }),
         }
     }
 
     /// Reads a run's field file.
+    ///
+    /// # Errors
+    /// If it cannot be read, or belongs to another study.
     pub fn fields(&self, params: &[f64]) -> Result<Vec<f64>, StudyError> {
         let path = self.field_path(params);
-        let b = std::fs::read(&path).map_err(|source| StudyError::Io { path, source })?;
-        Ok(from_blob(&b))
+        let b = std::fs::read(&path).map_err(|source| StudyError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        match b.strip_prefix(FIELD_MAGIC) {
+            Some(_) => self.untag(&path, &b),
+            // Written before field files had a header (their rows were migrated above).
+            None => Ok(from_blob(&b)),
+        }
+    }
+
+    /// The values of a file written by `write_tagged`, checked against this study's hash.
+    fn untag(&self, path: &Path, b: &[u8]) -> Result<Vec<f64>, StudyError> {
+        match b.strip_prefix(FIELD_MAGIC) {
+            Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => {
+                if &rest[..16] != self.hash.as_bytes() {
+                    return Err(StudyError::Other(format!(
+                        "{} belongs to another study (hash {}, this study {}); run again with --restart",
+                        path.display(),
+                        String::from_utf8_lossy(&rest[..16]),
+                        self.hash
+                    )));
+                }
+                Ok(from_blob(&rest[16..]))
+            }
+            _ => Err(StudyError::Other(format!(
+                "{} is truncated or corrupt",
+                path.display()
+            ))),
+        }
     }
 }
 
-/// A stable 64-bit hash (FNV-1a) of a study file's text, as 16 hex digits.
-pub fn text_hash(text: &str) -> String {
+/// The hash of a study: its file's text and the bytes of every other input file it reads
+/// (`extra`, e.g. a Gmsh mesh), as 16 hex digits.
+pub fn study_hash(text: &str, extra: &[&[u8]]) -> String {
     let mut h: u64 = 0xcbf29ce484222325;
-    for b in text.bytes() {
-        h = (h ^ b as u64).wrapping_mul(0x100000001b3);
+    let mut feed = |bytes: &[u8]| {
+        for &b in bytes {
+            h = (h ^ b as u64).wrapping_mul(0x100000001b3);
+        }
+    };
+    feed(text.as_bytes());
+    for e in extra {
+        feed(&(e.len() as u64).to_le_bytes());
+        feed(e);
     }
     format!("{h:016x}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("alea-store-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        d
+    }
+
+    fn record(p: f64) -> RunRecord {
+        RunRecord {
+            params: vec![p, 2.0 * p],
+            status: "converged".into(),
+            iterations: 7,
+            residual: 1e-7,
+            seconds: 0.1,
+            qois: vec![p * p],
+            history: vec![1.0, 0.1],
+            state: vec![0.5; 4],
+        }
+    }
+
+    #[test]
+    fn rows_and_field_files_of_another_study_are_never_used() {
+        let d = dir("hash");
+        let (a, b) = (study_hash("study A", &[]), study_hash("study B", &[]));
+        let store = Store::open(&d, &a, false).unwrap();
+        store.commit(&record(1.0), &[1.0, 2.0, 3.0]).unwrap();
+        assert_eq!(store.fields(&[1.0, 2.0]).unwrap(), vec![1.0, 2.0, 3.0]);
+        // A row of study B in the same table (what a second writer could leave).
+        store
+            .conn
+            .execute(
+                "INSERT INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
+                 SELECT 'other', params, status, iterations, residual, seconds, qois, history, state, ?1 FROM runs",
+                params![b],
+            )
+            .unwrap();
+        let runs = store.runs().unwrap();
+        assert_eq!(runs, vec![record(1.0)]);
+        // A field file written by study B at the same point.
+        let mut bytes = FIELD_MAGIC.to_vec();
+        bytes.extend_from_slice(b.as_bytes());
+        bytes.extend_from_slice(&to_blob(&[9.0, 9.0, 9.0]));
+        std::fs::write(store.field_path(&[1.0, 2.0]), bytes).unwrap();
+        let err = store.fields(&[1.0, 2.0]).unwrap_err().to_string();
+        assert!(err.contains("belongs to another study"), "{err}");
+        // Truncated file: refused, not misread.
+        let path = store.field_path(&[1.0, 2.0]);
+        std::fs::write(&path, &b"ALEAFLD1abc"[..]).unwrap();
+        assert!(store.fields(&[1.0, 2.0]).is_err());
+        drop(store);
+        // The study file changed: refused without --restart, emptied with it.
+        let e = Store::open(&d, &b, false).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{e}");
+        let s = Store::open(&d, &b, true).unwrap();
+        assert!(s.runs().unwrap().is_empty());
+    }
+
+    #[test]
+    fn a_directory_from_before_run_hashes_is_migrated() {
+        let d = dir("legacy");
+        std::fs::create_dir_all(d.join("fields")).unwrap();
+        let h = study_hash("legacy", &[]);
+        {
+            let c = Connection::open(d.join("study.db")).unwrap();
+            c.execute_batch(
+                "CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+                 CREATE TABLE runs (key TEXT PRIMARY KEY, params BLOB NOT NULL, status TEXT NOT NULL,
+                   iterations INTEGER NOT NULL, residual REAL NOT NULL, seconds REAL NOT NULL,
+                   qois BLOB NOT NULL, history BLOB NOT NULL, state BLOB NOT NULL,
+                   finished_at TEXT NOT NULL DEFAULT CURRENT_TIMESTAMP);",
+            )
+            .unwrap();
+            c.execute("INSERT INTO meta VALUES ('study_hash', ?1)", params![h])
+                .unwrap();
+            let r = record(3.0);
+            c.execute(
+                "INSERT INTO runs (key, params, status, iterations, residual, seconds, qois, history, state)
+                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+                params![point_key(&r.params), to_blob(&r.params), r.status, 7i64, r.residual,
+                        r.seconds, to_blob(&r.qois), to_blob(&r.history), to_blob(&r.state)],
+            )
+            .unwrap();
+        }
+        let s = Store::open(&d, &h, false).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![record(3.0)]);
+        // Legacy field file without a header.
+        std::fs::write(s.field_path(&[3.0, 6.0]), to_blob(&[4.0, 5.0])).unwrap();
+        assert_eq!(s.fields(&[3.0, 6.0]).unwrap(), vec![4.0, 5.0]);
+    }
 }

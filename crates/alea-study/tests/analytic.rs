@@ -193,7 +193,13 @@ fn pc_and_monte_carlo_match_the_exact_law() {
             assert!(l1 < 0.03, "KDE L1 distance to the exact density {l1}");
         }
     }
-    // Resuming an identical study recomputes nothing.
+    // Resuming an identical study recomputes nothing (once the first invocation has released
+    // the study directory's lock: a second holder is refused, even in the same process).
+    match run_study(&study, &dir, false, &NoProgress) {
+        Err(busy) => assert_eq!(busy.exit_code(), 5, "{busy}"),
+        Ok(_) => panic!("a second holder of the study directory must be refused"),
+    }
+    drop(runs.lock);
     let again = run_study(&study, &dir, false, &NoProgress).unwrap();
     assert_eq!(again.computed, 0);
     assert_eq!(again.resumed, 440);

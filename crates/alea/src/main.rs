@@ -1,6 +1,7 @@
 //! The `alea` command line. Thin: parsing arguments, calling `alea-study`, printing.
 
 mod estimate_out;
+mod exit;
 mod report;
 mod solve;
 mod study_cmd;
@@ -12,7 +13,13 @@ use clap::{Parser, Subcommand};
 
 /// alea: design quantities of elastic assemblies with uncertain frictional contact.
 #[derive(Parser, Debug)]
-#[command(version, about, long_about = None)]
+#[command(
+    version,
+    about,
+    long_about = None,
+    after_help = "Exit codes: 0 success; 1 internal error; 2 input error (file:line:field named); \
+3 file-system error; 4 computation failed (no convergence, no statistics); 5 study directory in use."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -47,7 +54,8 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
-    /// Rebuild the HTML report and plots of a finished study directory from its saved data.
+    /// Rebuild every output of a study directory (statistics, summary.json, samples.csv, mean /
+    /// std fields, the HTML report) from its store, computing no run.
     Report {
         /// The study directory.
         dir: PathBuf,
@@ -76,27 +84,23 @@ fn main() -> ExitCode {
             restart,
             threads,
             quiet,
-        } => {
+        } => (|| {
             if let Some(n) = threads {
-                let _ = rayon::ThreadPoolBuilder::new()
-                    .num_threads(n.max(1))
-                    .build_global();
+                let n = alea_study::limits::check_threads(n)?;
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build_global()
+                    .map_err(|e| anyhow::anyhow!("cannot start {n} worker threads: {e}"))?;
             }
             let dir = dir.unwrap_or_else(|| study_cmd::default_dir(&study));
             study_cmd::run(&study, &dir, restart, quiet)
-        }
+        })(),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => ExitCode::from(exit::SUCCESS),
         Err(e) => {
             eprintln!("error: {e:#}");
-            let code = if e.downcast_ref::<solve::SolveFailed>().is_some() {
-                4
-            } else {
-                e.downcast_ref::<alea_study::StudyError>()
-                    .map_or(1, |s| s.exit_code())
-            };
-            ExitCode::from(code as u8)
+            ExitCode::from(exit::code(&e))
         }
     }
 }

@@ -17,7 +17,12 @@ pub fn demo(name: &str, out: &Path) -> Result<()> {
     let (file, text) = match name {
         "dovetail" => ("examples/dovetail-contact.toml", DEMO_DOVETAIL),
         "kirsch" => ("examples/kirsch.toml", DEMO_KIRSCH),
-        other => anyhow::bail!("unknown demo '{other}'; available: dovetail, kirsch"),
+        other => {
+            return Err(alea_study::StudyError::Usage(format!(
+                "unknown demo '{other}'; available: dovetail, kirsch"
+            ))
+            .into());
+        }
     };
     println!("demo '{name}' (the case file is {file})");
     solve_source(&Source::from_text(file, text), out)
@@ -175,6 +180,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             sub.name, u.stress
         );
     }
+    let dim = built.mesh.dim;
     for it in &res.interfaces {
         let c = it.status_counts();
         let dim = solver.model(it.subs[1]).mesh.dim;
@@ -185,57 +191,85 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             c[1],
             c[2],
             c[3],
-            resultant_text(it.resultant(), dim),
+            labelled(it.resultant(), dim, "F"),
             u.force,
             it.work()
         );
     }
+    // Reactions on every constrained group (the forces the constraints exert).
+    let mut reactions = Vec::new();
+    for (s, sub) in built.assembly.subs.iter().enumerate() {
+        let mut loads = vec![0.0; sub.model.mesh.num_nodes() * dim];
+        for (case, factor) in sub.load_cases.iter().zip(&input.load_factors[s]) {
+            for (a, b) in loads.iter_mut().zip(case) {
+                *a += factor * b;
+            }
+        }
+        let r = alea_latin::reactions::nodal_reactions(&solver, &res, s, &loads)?;
+        for c in &file.substructure[s].constraint {
+            let g = c.group.get_ref();
+            let nodes = sub.model.mesh.group_nodes(g)?;
+            let sum = alea_latin::reactions::group_sum(&r, dim, &nodes);
+            println!(
+                "  reaction on {:>10} / {g}: {} {}",
+                sub.name,
+                labelled(sum, dim, "R"),
+                u.force
+            );
+        }
+        reactions.push(r);
+    }
     let path = out.join(format!("{stem}.vtm"));
-    alea_latin::output::write_run(&path, &solver, &res)?;
+    let written =
+        alea_latin::output::write_run_with_reactions(&path, &solver, &res, Some(&reactions))?;
     println!(
-        "wrote {} ({:.2} s in all)",
+        "wrote {} and {} file(s) in {} ({:.2} s in all)",
         path.display(),
+        written.len(),
+        out.join(&stem).display(),
         t0.elapsed().as_secs_f64()
     );
     if res.status != RunStatus::Converged {
-        return Err(SolveFailed(res.status.label()).into());
+        return Err(alea_study::StudyError::Failed(format!(
+            "the solve ended with status '{}' after {} iterations (error indicator {last:.2e}, tolerance {:.1e}); \
+             the files hold the last iterate",
+            res.status.label(),
+            res.iterations,
+            solver.options().tolerance
+        ))
+        .into());
     }
     Ok(())
 }
 
-/// A deterministic solve that did not converge (its output is written all the same): the
-/// command exits with code 4.
-#[derive(Debug, thiserror::Error)]
-#[error("the solve ended with status '{0}' (output written, see above)")]
-pub struct SolveFailed(pub &'static str);
-
 /// The components of a resultant force, labelled, at full precision (the shortest decimal that
-/// reads back to the same `f64`): `Fx = .., Fy = ..` in 2D, `.., Fz = ..` in 3D.
-fn resultant_text(r: [f64; 3], dim: usize) -> String {
-    ["Fx", "Fy", "Fz"]
+/// reads back to the same `f64`): `Fx = .., Fy = ..` in 2D, `.., Fz = ..` in 3D (`prefix` "F"),
+/// `Rx = ..` for reactions.
+fn labelled(r: [f64; 3], dim: usize, prefix: &str) -> String {
+    ["x", "y", "z"]
         .iter()
         .zip(r)
         .take(dim)
-        .map(|(label, v)| format!("{label} = {v:e}"))
+        .map(|(axis, v)| format!("{prefix}{axis} = {v:e}"))
         .collect::<Vec<_>>()
         .join(", ")
 }
 
 #[cfg(test)]
 mod tests {
-    use super::resultant_text;
+    use super::labelled;
 
     #[test]
     fn resultants_are_labelled_and_read_back_exactly() {
         let r = [1.0 / 3.0, -2.5e-7, 3846.153856573441];
-        let t3 = resultant_text(r, 3);
+        let t3 = labelled(r, 3, "F");
         assert!(t3.starts_with("Fx = ") && t3.contains(", Fy = ") && t3.contains(", Fz = "));
         let back: Vec<f64> = t3
             .split(", ")
             .map(|p| p.split(" = ").nth(1).unwrap().parse().unwrap())
             .collect();
         assert_eq!(back, r.to_vec());
-        let t2 = resultant_text(r, 2);
+        let t2 = labelled(r, 2, "F");
         assert!(!t2.contains("Fz"), "{t2}");
         assert_eq!(t2.split(", ").count(), 2);
     }

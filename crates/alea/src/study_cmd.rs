@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use alea_study::analysis::{MethodResult, analyse_method, response_surface};
-use alea_study::runner::{Progress, Study, run_study};
+use alea_study::StudyError;
+use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method, response_surface};
+use alea_study::runner::{Progress, Study, StudyRuns, run_study};
 use alea_study::store::RunRecord;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -51,18 +52,44 @@ impl Progress for Bar {
     fn end(&self) {
         self.bar.finish();
     }
+    fn note(&self, message: &str) {
+        // A hidden bar (--quiet, no terminal) prints nothing: notes go to stderr then.
+        if self.bar.is_hidden() {
+            eprintln!("note: {message}");
+        } else {
+            self.bar.println(format!("note: {message}"));
+        }
+    }
 }
 
-/// `alea report`: rebuilds the report of a finished study from its saved input, without
-/// recomputing anything.
+/// `alea report`: rebuilds every output of a study directory (statistics, `summary.json`,
+/// `samples.csv`, mean / std fields, the report) from its store alone, computing no run - after
+/// a kill during the outputs, or for a study that ran with `report = false`.
 pub fn rebuild_report(dir: &Path) -> Result<()> {
-    let input = report::ReportInput::load_json(&dir.join("report").join("report-input.json"))?;
-    let files = report::write_report(&dir.join("report"), &input)?;
+    let t_all = Instant::now();
+    let re = alea_study::reopen::reopen(dir, "alea report")?;
+    let settings = alea_study::analysis::analysis_settings(&re.study)?;
+    let mut notes = Vec::new();
+    let total = re.runs.records.len() + re.missing;
     println!(
-        "report: {} ({} plots)",
-        files.html.display(),
-        files.plots.len()
+        "study '{}' in {}: {} of {total} runs finished",
+        re.study.title(),
+        dir.display(),
+        re.runs.records.len()
     );
+    if re.missing > 0 {
+        let msg = format!(
+            "{} of {total} runs are not in the study directory (the study was stopped before it finished): \
+             these results use the finished runs only; resume with `alea run {} --dir {}`",
+            re.missing,
+            re.study.source.path.display(),
+            dir.display()
+        );
+        eprintln!("warning: {msg}");
+        notes.push(msg);
+    }
+    write_outputs(&re.study, &re.runs, dir, &settings, notes, true)?;
+    println!("done in {:.2} s", t_all.elapsed().as_secs_f64());
     Ok(())
 }
 
@@ -108,7 +135,6 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         failures: AtomicUsize::new(0),
     };
     let runs = run_study(&study, dir, restart, &progress)?;
-    let failed: Vec<&RunRecord> = runs.records.iter().filter(|r| !r.converged()).collect();
     println!(
         "runs: {} computed, {} resumed; solver set-up {:.2} s, solves {:.2} s ({:.1} runs/s)",
         runs.computed,
@@ -117,7 +143,24 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         runs.solve_seconds,
         runs.computed as f64 / runs.solve_seconds.max(1e-9)
     );
-    let mut notes = Vec::new();
+    let report = study.output.report.unwrap_or(true);
+    write_outputs(&study, &runs, dir, &settings, Vec::new(), report)?;
+    println!("done in {:.2} s", t_all.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// Statistics and every output file of a study whose runs are in `runs`; `report`: write the
+/// HTML report too. Fails (exit code 4) after writing what it can if no run converged or no
+/// method produced statistics.
+fn write_outputs(
+    study: &Study,
+    runs: &StudyRuns,
+    dir: &Path,
+    settings: &AnalysisSettings,
+    mut notes: Vec<String>,
+    report: bool,
+) -> Result<()> {
+    let failed: Vec<&RunRecord> = runs.records.iter().filter(|r| !r.converged()).collect();
     if !failed.is_empty() {
         let msg = format!(
             "{} run(s) did not converge and are left out of the surrogates: {}",
@@ -139,7 +182,7 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
     let results: Vec<MethodResult> = runs
         .methods
         .iter()
-        .map(|m| analyse_method(&study, m, &runs.records, &settings))
+        .map(|m| analyse_method(study, m, &runs.records, settings))
         .collect();
     let analysis_seconds = t0.elapsed().as_secs_f64();
     for r in &results {
@@ -149,31 +192,32 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
             notes.push(msg);
         }
     }
-    print_table(&study, &results);
+    print_table(study, &results, settings.confidence);
     let main_index = results.iter().position(|r| !r.qois.is_empty());
     let t0 = Instant::now();
     let (err_settings, estimates) =
-        crate::estimate_out::estimate_all(&study, &runs, &results, dir, main_index)?;
+        crate::estimate_out::estimate_all(study, runs, &results, dir, main_index)?;
     notes.extend(crate::estimate_out::print(
-        &study,
-        &runs,
+        study,
+        runs,
         &err_settings,
         &estimates,
     ));
     let estimate_seconds = t0.elapsed().as_secs_f64();
-    write_summary(&study, dir, &results, &runs, &estimates)?;
+    write_summary(study, dir, &results, runs, &estimates, &notes)?;
     if study.output.samples_csv.unwrap_or(true)
         && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
     {
-        write_samples(&study, dir, main)?;
+        write_samples(study, dir, main)?;
     }
     if study.output.mean_fields.unwrap_or(true)
+        && !study.params.names.is_empty()
         && let Some(m) = results
             .iter()
             .position(|r| !r.qois.is_empty() && !r.points.is_empty())
     {
         let t0 = Instant::now();
-        match alea_study::fields::write_mean_std_fields(&study, &runs, dir, m, &results[m].points) {
+        match alea_study::fields::write_mean_std_fields(study, runs, dir, m, &results[m].points) {
             Ok(path) => println!(
                 "mean / std fields: {} ({}, {:.2} s)",
                 path.display(),
@@ -187,10 +231,10 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
             }
         }
     }
-    if study.output.report.unwrap_or(true) {
+    if report {
         let t0 = Instant::now();
         let input = report_input(
-            &study,
+            study,
             &runs.methods,
             &results,
             &runs.records,
@@ -211,11 +255,35 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
             t0.elapsed().as_secs_f64()
         );
     }
-    println!("done in {:.2} s", t_all.elapsed().as_secs_f64());
+    if !runs.records.iter().any(|r| r.converged()) {
+        return Err(StudyError::Failed(format!(
+            "no run converged ({} run(s); see summary.json for their status and error indicators): \
+             raise [solver] max_iterations or check the model",
+            runs.records.len()
+        ))
+        .into());
+    }
+    if results.iter().all(|r| r.qois.is_empty()) {
+        return Err(StudyError::Failed(
+            "no method produced statistics (the warnings above say why)".into(),
+        )
+        .into());
+    }
     Ok(())
 }
 
-fn print_table(study: &Study, results: &[MethodResult]) {
+fn print_table(study: &Study, results: &[MethodResult], confidence: f64) {
+    if study.params.names.is_empty() {
+        // One deterministic run: the values themselves, at full precision.
+        println!();
+        for (q, qoi) in study.qois.iter().enumerate() {
+            if let Some(s) = results.first().and_then(|r| r.qois.get(q)) {
+                println!("{} = {:e} {}", qoi.name, s.mean, qoi.unit);
+            }
+        }
+        println!();
+        return;
+    }
     for (q, qoi) in study.qois.iter().enumerate() {
         println!("\n{} [{}]", qoi.name, qoi.unit);
         println!(
@@ -241,7 +309,7 @@ fn print_table(study: &Study, results: &[MethodResult]) {
                     qoi.name,
                     f.threshold,
                     f.probability,
-                    100.0 * 0.95,
+                    100.0 * confidence,
                     f.ci_low,
                     f.ci_high
                 );
@@ -255,10 +323,10 @@ fn write_summary(
     study: &Study,
     dir: &Path,
     results: &[MethodResult],
-    study_runs: &alea_study::runner::StudyRuns,
+    study_runs: &StudyRuns,
     estimates: &[crate::estimate_out::MethodEstimate],
+    notes: &[String],
 ) -> Result<()> {
-    // Timings and resume counts vary between invocations: not in the summary.
     let records = &study_runs.records;
     let runs: Vec<serde_json::Value> = records
         .iter()
@@ -305,13 +373,15 @@ fn write_summary(
         })).collect::<Vec<_>>(),
         "methods": methods,
         "runs": runs,
+        "notes": notes,
     });
     let text = serde_json::to_string_pretty(&v)?;
     if text.contains("NaN") {
         anyhow::bail!("internal error: a non-finite value reached summary.json");
     }
     let path = dir.join("summary.json");
-    std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+    alea_mesh::atomic::write_bytes_atomic(&path, text.as_bytes())
+        .with_context(|| format!("writing {}", path.display()))?;
     println!("summary: {}", path.display());
     Ok(())
 }
@@ -321,8 +391,6 @@ fn write_samples(study: &Study, dir: &Path, r: &MethodResult) -> Result<()> {
         return Ok(());
     }
     let path = dir.join("samples.csv");
-    let f = std::fs::File::create(&path).with_context(|| format!("writing {}", path.display()))?;
-    let mut w = std::io::BufWriter::new(f);
     let d = study.params.names.len();
     let header: Vec<String> = study
         .params
@@ -331,21 +399,24 @@ fn write_samples(study: &Study, dir: &Path, r: &MethodResult) -> Result<()> {
         .cloned()
         .chain(study.qois.iter().map(|q| q.name.clone()))
         .collect();
-    writeln!(w, "{}", header.join(","))?;
-    for i in 0..r.draws {
-        let mut line = String::new();
-        for j in 0..d {
-            line.push_str(&format!("{:.10e},", r.points[i * d + j]));
+    alea_mesh::atomic::write_atomic(&path, |w| {
+        writeln!(w, "{}", header.join(","))?;
+        for i in 0..r.draws {
+            let mut line = String::new();
+            for j in 0..d {
+                line.push_str(&format!("{:.10e},", r.points[i * d + j]));
+            }
+            let vals: Vec<String> = r
+                .qois
+                .iter()
+                .map(|q| format!("{:.10e}", q.samples[i]))
+                .collect();
+            line.push_str(&vals.join(","));
+            writeln!(w, "{line}")?;
         }
-        let vals: Vec<String> = r
-            .qois
-            .iter()
-            .map(|q| format!("{:.10e}", q.samples[i]))
-            .collect();
-        line.push_str(&vals.join(","));
-        writeln!(w, "{line}")?;
-    }
-    w.flush()?;
+        Ok(())
+    })
+    .with_context(|| format!("writing {}", path.display()))?;
     println!(
         "samples: {} ({} draws on the {} surrogate)",
         path.display(),

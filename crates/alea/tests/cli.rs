@@ -268,3 +268,81 @@ fn three_d_contact_example_prints_every_resultant_component() {
     }
     assert!(out.join("block-on-plane-3d.vtm").exists());
 }
+
+#[test]
+fn three_d_resultants_and_reactions_print_every_component_at_full_precision() {
+    // The full-slip example extruded to 3D: hex8 blocks, 4 layers.
+    let text = std::fs::read_to_string(root().join("examples/full-slip.toml"))
+        .unwrap()
+        .replace("kind = \"quad4\"", "kind = \"hex8\"")
+        .replace("n_upper = 8 }", "n_upper = 4, depth = 10.0, n_z = 3 }")
+        .replace("n_lower = 8", "n_lower = 4")
+        .replace("n_x = 16", "n_x = 8")
+        .replace(
+            "type = \"plane_stress\"\nthickness = 1.0",
+            "type = \"solid\"",
+        )
+        .replace(
+            "{ group = \"lower_bottom\", x = 0.0, y = 0.0 }",
+            "{ group = \"lower_bottom\", x = 0.0, y = 0.0, z = 0.0 }",
+        )
+        .replace(
+            "{ group = \"upper_top\", x = 0.05 }",
+            "{ group = \"upper_top\", x = 0.05, z = 0.0 }",
+        )
+        .replace("traction = [0.0, -10.0]", "traction = [0.0, -10.0, 0.0]");
+    let dir = tmp("3d");
+    let case = dir.join("slip3d.toml");
+    std::fs::write(&case, &text).unwrap();
+    let o = alea()
+        .arg("solve")
+        .arg(&case)
+        .arg("--out")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{out}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let line = out
+        .lines()
+        .find(|l| l.contains("resultant on side 2"))
+        .expect("resultant printed");
+    let comp = |name: &str| -> f64 {
+        line.split(&format!("{name} = "))
+            .nth(1)
+            .and_then(|s| s.split([',', ' ', ')']).next())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{name} in {line}"))
+    };
+    let (fx, fy, fz) = (comp("Fx"), comp("Fy"), comp("Fz"));
+    // N = 10 MPa x 40 x 10 mm^2; full slip: |F_t| = 0.3 N pointwise, along x up to the small
+    // transverse tractions (which cancel in Fz); no force across z.
+    assert!((fy - 4000.0).abs() < 1e-6 * 4000.0, "{line}");
+    assert!(fx < 0.0 && (fx + 0.3 * fy).abs() < 1e-4 * fy, "{line}");
+    assert!(fz.abs() < 1e-6 * fy, "{line}");
+    // Full precision: more than the 5 significant digits printed before.
+    assert!(
+        line.split("Fy = ")
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .len()
+            > 10,
+        "{line}"
+    );
+    let reaction = out
+        .lines()
+        .find(|l| l.contains("reaction on") && l.contains("lower_bottom"))
+        .expect("reaction printed");
+    assert!(
+        reaction.contains("Rx = ") && reaction.contains("Ry = ") && reaction.contains("Rz = "),
+        "{reaction}"
+    );
+    assert!(dir.join("slip3d/interface_contact.csv").exists());
+}

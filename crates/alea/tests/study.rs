@@ -149,7 +149,7 @@ fn killed_study_resumes_to_the_same_summary() {
         .replace("seed = 2008", "seed = 2009");
     std::fs::write(&changed, t).unwrap();
     let o = run(&changed, &dir, &[]);
-    assert_eq!(o.status.code(), Some(4));
+    assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--restart"));
     let _ = std::fs::remove_dir_all(&base);
 }

@@ -1,5 +1,5 @@
 //! Mesh generators: structured rectangles and boxes, multi-block mapped quads, multi-block graded
-//! hexahedra, ready-made shapes, extrusion.
+//! hexahedra, ready-made shapes, two-body contact benchmarks, extrusion.
 
 mod blade_root;
 mod extrude;
@@ -7,6 +7,7 @@ mod hexblock;
 mod multiblock;
 mod shapes;
 mod structured;
+mod two_body;
 
 pub use blade_root::{BladeRootParams, blade_root_simple};
 pub use extrude::extrude;
@@ -14,3 +15,7 @@ pub use hexblock::{HexBlock, corner_refined_blocks, grading_for_first_cell, mult
 pub use multiblock::{Block, Curve, CurveFn, multiblock};
 pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};
+pub use two_body::{
+    ConcentricRings, CylinderOnBlock, StackedBlocks, block_on_incline, concentric_rings,
+    cylinder_on_block, stacked_blocks,
+};

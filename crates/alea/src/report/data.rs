@@ -135,13 +135,17 @@ impl ReportInput {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
-        std::fs::write(path, text).map_err(|source| ReportError::Io {
-            path: path.to_path_buf(),
-            source,
+        alea_mesh::atomic::write_bytes_atomic(path, text.as_bytes()).map_err(|source| {
+            ReportError::Io {
+                path: path.to_path_buf(),
+                source,
+            }
         })
     }
 
-    /// Loads an input saved by [`ReportInput::save_json`].
+    /// Loads an input saved by [`ReportInput::save_json`] (`alea report` rebuilds from the
+    /// study's store instead; kept for the round-trip test).
+    #[cfg(test)]
     pub fn load_json(path: &Path) -> Result<Self, ReportError> {
         let text = std::fs::read_to_string(path).map_err(|source| ReportError::Io {
             path: path.to_path_buf(),

@@ -69,9 +69,11 @@ pub fn write_report(dir: &Path, input: &ReportInput) -> Result<ReportFiles, Repo
     let figures = plots::draw_all(dir, input)?;
     let html_path = dir.join("report.html");
     let page = html::render(input, &figures);
-    std::fs::write(&html_path, page).map_err(|source| ReportError::Io {
-        path: html_path.clone(),
-        source,
+    alea_mesh::atomic::write_bytes_atomic(&html_path, page.as_bytes()).map_err(|source| {
+        ReportError::Io {
+            path: html_path.clone(),
+            source,
+        }
     })?;
     let plots = figures
         .iter()

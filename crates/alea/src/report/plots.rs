@@ -2,8 +2,6 @@
 //! generic code, with the bundled DejaVu Sans (plotters' `ab_glyph` font path: no system font
 //! library).
 
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -309,9 +307,11 @@ fn render(
         root.present().map_err(|e| plot_err(e.to_string()))?;
     }
     let svg_path = dir.join(format!("{stem}.svg"));
-    std::fs::write(&svg_path, &svg).map_err(|source| ReportError::Io {
-        path: svg_path.clone(),
-        source,
+    alea_mesh::atomic::write_bytes_atomic(&svg_path, svg.as_bytes()).map_err(|source| {
+        ReportError::Io {
+            path: svg_path.clone(),
+            source,
+        }
     })?;
     let png_path = dir.join(format!("{stem}.png"));
     write_png(&png_path, size, &rgb)?;
@@ -335,13 +335,16 @@ fn write_png(path: &Path, (w, h): (u32, u32), rgb: &[u8]) -> Result<(), ReportEr
             message: format!("PNG encoding: {other}"),
         },
     };
-    let file = File::create(path).map_err(io)?;
-    let mut encoder = png::Encoder::new(BufWriter::new(file), w, h);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().map_err(enc_err)?;
-    writer.write_image_data(rgb).map_err(enc_err)?;
-    writer.finish().map_err(enc_err)
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, w, h);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().map_err(enc_err)?;
+        writer.write_image_data(rgb).map_err(enc_err)?;
+        writer.finish().map_err(enc_err)?;
+    }
+    alea_mesh::atomic::write_bytes_atomic(path, &bytes).map_err(io)
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,0 +1,170 @@
+//! Consistency checks of a built model and its quantities, done when the file is loaded so
+//! that every mistake is an input error naming file, line and field (exit code 2), never a
+//! failure of the solver set-up:
+//!
+//! - interfaces: two sides on two different substructures; the sides' nodes pair one to one
+//!   (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]); paired nodes
+//!   have opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet belongs to
+//!   two interfaces;
+//! - quantities: unique names (they head the columns of `samples.csv`); a `displacement` point
+//!   lies within one cell size of its nearest node (else it is outside the substructure, and
+//!   the nearest node would silently be somewhere else).
+
+use std::collections::HashMap;
+
+use alea_latin::interface::{pair_nodes, side_geometry};
+
+use crate::qoi::{Qoi, QoiKind};
+use crate::spec::{InterfaceSpecToml, QuantitySpec};
+use crate::{BuiltModel, Source, StudyError};
+
+/// Checks the interfaces of a built model (module doc).
+///
+/// # Errors
+/// [`StudyError::Input`] at the offending interface.
+pub fn check_interfaces(
+    src: &Source,
+    specs: &[InterfaceSpecToml],
+    model: &BuiltModel,
+) -> Result<(), StudyError> {
+    let subs = &model.assembly.subs;
+    // (substructure, sorted facet nodes) -> interface index
+    let mut owner: HashMap<(usize, Vec<usize>), usize> = HashMap::new();
+    for (i, (spec, it)) in specs.iter().zip(&model.assembly.interfaces).enumerate() {
+        let field = format!("interface[{i}]");
+        if it.sub1 == it.sub2 {
+            return Err(src.error(
+                spec.side2.span(),
+                format!("{field}.side2"),
+                format!(
+                    "both sides are on substructure '{}'; an interface joins two different substructures",
+                    subs[it.sub1].name
+                ),
+            ));
+        }
+        for (side, sub, group, span) in [
+            (1, it.sub1, &it.group1, spec.side1.span()),
+            (2, it.sub2, &it.group2, spec.side2.span()),
+        ] {
+            let facets = subs[sub].model.mesh.facet_group(group).map_err(|e| {
+                src.error(span.clone(), format!("{field}.side{side}"), e.to_string())
+            })?;
+            for f in facets {
+                let mut key = f.nodes.clone();
+                key.sort_unstable();
+                if let Some(&j) = owner.get(&(sub, key.clone())) {
+                    if j != i {
+                        return Err(src.error(
+                            span,
+                            format!("{field}.side{side}"),
+                            format!(
+                                "facets of '{group}' on substructure '{}' already belong to interface[{j}] '{}'; a facet can be in one interface only",
+                                subs[sub].name, model.assembly.interfaces[j].name
+                            ),
+                        ));
+                    }
+                } else {
+                    owner.insert((sub, key), i);
+                }
+            }
+        }
+        let geom = |sub: usize, group: &str, span: std::ops::Range<usize>, side: usize| {
+            let m = &subs[sub].model;
+            side_geometry(&m.mesh, group, m.analysis.thickness())
+                .map_err(|e| src.error(span, format!("{field}.side{side}"), e.to_string()))
+        };
+        let g1 = geom(it.sub1, &it.group1, spec.side1.span(), 1)?;
+        let g2 = geom(it.sub2, &it.group2, spec.side2.span(), 2)?;
+        let x = |sub: usize, nodes: &[usize]| -> Vec<[f64; 3]> {
+            nodes
+                .iter()
+                .map(|&n| subs[sub].model.mesh.coords[n])
+                .collect()
+        };
+        let partner = pair_nodes(
+            &it.name,
+            &x(it.sub1, &g1.nodes),
+            &x(it.sub2, &g2.nodes),
+            it.match_tolerance,
+        )
+        .map_err(|e| src.error(spec.side1.span(), field.clone(), e.to_string()))?;
+        for (k, &j) in partner.iter().enumerate() {
+            let (a, b) = (g1.normals[k], g2.normals[j]);
+            let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            if c > -0.5 {
+                let p = subs[it.sub1].model.mesh.coords[g1.nodes[k]];
+                return Err(src.error(
+                    spec.side1.span(),
+                    field,
+                    format!(
+                        "the sides do not face each other: at ({:.6}, {:.6}, {:.6}) the outward normals of side 1 ({:.3}, {:.3}, {:.3}) and side 2 ({:.3}, {:.3}, {:.3}) are not opposite (the two bodies overlap, or a facet group is on the wrong face)",
+                        p[0], p[1], p[2], a[0], a[1], a[2], b[0], b[1], b[2]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks the quantities of interest (module doc).
+///
+/// # Errors
+/// [`StudyError::Input`] at the offending quantity.
+pub fn check_quantities(
+    src: &Source,
+    specs: &[QuantitySpec],
+    model: &BuiltModel,
+    qois: &[Qoi],
+) -> Result<(), StudyError> {
+    for (i, q) in specs.iter().enumerate() {
+        if let Some(j) = specs[..i]
+            .iter()
+            .position(|p| p.name.get_ref() == q.name.get_ref())
+        {
+            return Err(src.error(
+                q.name.span(),
+                format!("quantity[{i}].name"),
+                format!(
+                    "'{}' is already the name of quantity[{j}]; names head the columns of samples.csv and must be unique",
+                    q.name.get_ref()
+                ),
+            ));
+        }
+    }
+    for (i, (q, spec)) in qois.iter().zip(specs).enumerate() {
+        if let QoiKind::Displacement(s, x, _) = &q.kind {
+            let mesh = &model.assembly.subs[*s].model.mesh;
+            let d2 = |n: usize| -> f64 { (0..3).map(|k| (mesh.coords[n][k] - x[k]).powi(2)).sum() };
+            let Some(node) = (0..mesh.num_nodes()).min_by(|&a, &b| d2(a).total_cmp(&d2(b))) else {
+                continue;
+            };
+            let dist = d2(node).sqrt();
+            // Size of the cells around that node: the farthest node of any cell holding it.
+            let mut h = 0.0f64;
+            for c in 0..mesh.num_cells() {
+                let nodes = mesh.cell_nodes(c);
+                if nodes.contains(&node) {
+                    for &m in nodes {
+                        let e: f64 = (0..3)
+                            .map(|k| (mesh.coords[m][k] - mesh.coords[node][k]).powi(2))
+                            .sum();
+                        h = h.max(e.sqrt());
+                    }
+                }
+            }
+            if dist > h {
+                let p = mesh.coords[node];
+                return Err(src.error(
+                    spec.point.as_ref().map_or(spec.name.span(), |p| p.span()),
+                    format!("quantity[{i}].point"),
+                    format!(
+                        "no node of substructure '{}' near this point: the nearest, at ({:.6}, {:.6}, {:.6}), is {dist:.4e} away, more than the size of its cells ({h:.4e}); is the point outside the substructure?",
+                        model.assembly.subs[*s].name, p[0], p[1], p[2]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,515 @@
+//! Sizes checked up front, before anything is allocated or computed: a study that cannot
+//! finish is refused at load time with the estimate in the message, never after its runs.
+//!
+//! | what | limit |
+//! |---|---|
+//! | mesh | estimated memory of the factorisations <= available memory (estimate below) |
+//! | distinct runs of all methods | <= [`MAX_RUNS`] |
+//! | polynomial-chaos terms | <= [`MAX_PC_TERMS`] |
+//! | thresholds per quantity | <= [`MAX_THRESHOLDS`] |
+//! | Monte Carlo draws on a surrogate | <= [`MAX_SAMPLES`], and their memory <= half the available memory |
+//! | KDE curve points | 2 ..= [`MAX_KDE_POINTS`] |
+//! | LATIN iterations per run | <= [`MAX_ITERATIONS`] (each run stores its residual history) |
+//! | Anderson depth | <= [`MAX_ACCELERATION`] |
+//! | worker threads | 1 ..= 4 x the cores, at most [`MAX_THREADS`] |
+//! | mean / std fields | their weight-moment matrices <= half the available memory, else refused (set `mean_fields = false`) |
+//!
+//! **Memory of a mesh** (measured peak resident memory of `alea solve`, release build, METIS
+//! ordering; `BENCHMARKS.md`, "memory per node"): 2D 3.4-4.5 kB per node (Q4 and Q8, 40k-160k
+//! nodes); 3D 22-30 kB per node at 9k-30k nodes (Hex8, Tet10), growing like `n^(1/3)` (nested
+//! dissection fill). The estimate is `5 kB x nodes` in 2D and `30 kB x nodes x max(1,
+//! (nodes / 30 000)^(1/3))` in 3D. Nodes are counted from the generator's block counts before
+//! generating (exactly for `rectangle`, `box` and the shapes; a Gmsh file's size bounds it).
+//! Available memory is `MemAvailable` of `/proc/meminfo` (8 GiB assumed where it cannot be read).
+
+use crate::spec::{MeshSpec, MethodSpec, ModelFile};
+use crate::{Source, StudyError};
+
+/// Distinct runs of a study (each is a full LATIN solve and a row of the store).
+pub const MAX_RUNS: usize = 100_000;
+/// Terms of a polynomial-chaos basis.
+pub const MAX_PC_TERMS: usize = 20_000;
+/// Failure thresholds per quantity.
+pub const MAX_THRESHOLDS: usize = 1_000;
+/// Monte Carlo draws on a surrogate.
+pub const MAX_SAMPLES: usize = 100_000_000;
+/// Points of a KDE curve.
+pub const MAX_KDE_POINTS: usize = 100_000;
+/// LATIN iterations per run.
+pub const MAX_ITERATIONS: usize = 1_000_000;
+/// Anderson acceleration depth.
+pub const MAX_ACCELERATION: usize = 100;
+/// Worker threads.
+pub const MAX_THREADS: usize = 1024;
+
+/// Bytes of memory available to this process: `MemAvailable` (Linux), else 8 GiB.
+pub fn available_memory() -> u64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|v| v.parse::<u64>().ok())
+        })
+        .map_or(8 << 30, |kb| kb * 1024)
+}
+
+/// A byte count for messages: `1.5 GB`.
+pub fn human_bytes(b: f64) -> String {
+    let units = ["bytes", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let mut v = b;
+    let mut u = 0;
+    while v >= 1000.0 && u + 1 < units.len() {
+        v /= 1000.0;
+        u += 1;
+    }
+    if u == 0 {
+        format!("{v:.0} {}", units[0])
+    } else {
+        format!("{v:.1} {}", units[u])
+    }
+}
+
+/// Estimated peak memory (bytes) of the factorisations of a mesh of `nodes` nodes in `dim`
+/// dimensions (module doc).
+pub fn mesh_memory(nodes: f64, dim: usize) -> f64 {
+    if dim == 2 {
+        5e3 * nodes
+    } else {
+        30e3 * nodes * (nodes / 30_000.0).cbrt().max(1.0)
+    }
+}
+
+/// Nodes per structured block cell (a quad or hex of the generator's lattice) for a cell kind.
+fn nodes_per_block_cell(kind: &str) -> f64 {
+    match kind {
+        "quad8" => 3.0,
+        "tri6" => 4.0,
+        "tet10" => 8.0,
+        _ => 1.0,
+    }
+}
+
+/// The estimate of the mesh a `[mesh]` table would generate: `(nodes, block cells, dim,
+/// span, field)`; `None` for Gmsh files (their size bounds them) and tables missing the counts.
+pub fn mesh_estimate(
+    spec: &MeshSpec,
+) -> Option<(f64, f64, usize, std::ops::Range<usize>, &'static str)> {
+    let num = |key: &str, default: f64| -> f64 {
+        spec.params
+            .as_ref()
+            .and_then(|p| p.get_ref().get(key).cloned())
+            .and_then(|v| match v {
+                toml::Value::Integer(i) => Some(i as f64),
+                toml::Value::Float(f) => Some(f),
+                _ => None,
+            })
+            .unwrap_or(default)
+    };
+    // The generators' default kinds (`build_mesh`).
+    let default_kind = match spec.generator.get_ref().as_str() {
+        "plate_with_hole" | "annulus_sector" => "quad8",
+        "box" => "hex8",
+        _ => "quad4",
+    };
+    let kind = spec
+        .kind
+        .as_ref()
+        .map_or(default_kind, |k| k.get_ref().as_str())
+        .to_ascii_lowercase();
+    let (block_cells, dim, span, field): (f64, usize, _, &str) =
+        match spec.generator.get_ref().as_str() {
+            "rectangle" | "box" => {
+                let c = spec.cells.as_ref()?;
+                let dim = if spec.generator.get_ref() == "box" {
+                    3
+                } else {
+                    2
+                };
+                (
+                    c.get_ref().iter().map(|&n| n as f64).product(),
+                    dim,
+                    c.span(),
+                    "mesh.cells",
+                )
+            }
+            "plate_with_hole" => (
+                num("n_arc", 16.0) * num("n_radial", 16.0),
+                2,
+                span_of(spec),
+                "mesh.params",
+            ),
+            "annulus_sector" => (
+                num("n_radial", 8.0) * num("n_theta", 8.0),
+                2,
+                span_of(spec),
+                "mesh.params",
+            ),
+            "dovetail" => {
+                let d = alea_mesh::generate::DovetailParams::default();
+                let (fl, ro, sh, lo, wa, sl, be) = (
+                    num("n_flank", d.n_flank as f64),
+                    num("n_root", d.n_root as f64),
+                    num("n_shank", d.n_shank as f64),
+                    num("n_lobe", d.n_lobe as f64),
+                    num("n_wall", d.n_wall as f64),
+                    num("n_slot", d.n_slot as f64),
+                    num("n_below", d.n_below as f64),
+                );
+                (
+                    2.0 * (lo * fl + lo * wa + lo * be + sl * be + ro * fl + ro * sh),
+                    2,
+                    span_of(spec),
+                    "mesh.params",
+                )
+            }
+            "blade_root_simple" => {
+                let d = alea_mesh::generate::BladeRootParams::default();
+                let (fl, si, ro, sh) = (
+                    num("n_flank", d.n_flank as f64),
+                    num("n_side", d.n_side as f64),
+                    num("n_root", d.n_root as f64),
+                    num("n_shank", d.n_shank as f64),
+                );
+                (
+                    2.0 * si * fl + ro * (fl + sh),
+                    2,
+                    span_of(spec),
+                    "mesh.params",
+                )
+            }
+            "stacked_blocks" | "block_on_incline" => {
+                let plane = num("n_x", 16.0) * (num("n_lower", 8.0) + num("n_upper", 8.0));
+                if kind == "hex8" {
+                    (
+                        plane * num("n_z", num("n_x", 16.0)),
+                        3,
+                        span_of(spec),
+                        "mesh.params",
+                    )
+                } else {
+                    (plane, 2, span_of(spec), "mesh.params")
+                }
+            }
+            "concentric_rings" => (
+                num("n_theta", 16.0) * (num("n_inner", 8.0) + num("n_outer", 8.0)),
+                2,
+                span_of(spec),
+                "mesh.params",
+            ),
+            "cylinder_on_block" => {
+                let (n, m) = (num("n", 40.0), num("m", 30.0));
+                // Two bodies of n^2 + 2 n m cells, twice that for the full model.
+                (4.0 * (n * n + 2.0 * n * m), 2, span_of(spec), "mesh.params")
+            }
+            // A Gmsh file's own size bounds its mesh; other generators check their counts.
+            _ => return None,
+        };
+    Some((
+        block_cells * nodes_per_block_cell(&kind),
+        block_cells,
+        dim,
+        span,
+        field,
+    ))
+}
+
+/// Checks the size of the mesh a `[mesh]` table would generate, before generating it.
+///
+/// # Errors
+/// [`StudyError::Input`] naming the field, with the cell and memory estimates.
+pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
+    let Some((nodes, block_cells, dim, span, field)) = mesh_estimate(spec) else {
+        return Ok(());
+    };
+    let need = mesh_memory(nodes, dim);
+    let have = available_memory() as f64;
+    if need > have || !need.is_finite() {
+        return Err(src.error(
+            span,
+            field,
+            format!(
+                "this mesh would have about {:.3e} nodes ({:.3e} cells before splitting) and need about {} of memory; {} is available",
+                nodes,
+                block_cells,
+                human_bytes(need),
+                human_bytes(have)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn span_of(spec: &MeshSpec) -> std::ops::Range<usize> {
+    spec.params
+        .as_ref()
+        .map_or(spec.generator.span(), |p| p.span())
+}
+
+/// `n^d` without overflow (saturating in f64).
+fn power(n: usize, d: usize) -> f64 {
+    (n as f64).powi(d.min(i32::MAX as usize) as i32)
+}
+
+/// Number of terms of a total-degree polynomial basis, `C(p + d, d)`, in f64.
+pub fn total_degree_terms(p: usize, d: usize) -> f64 {
+    (1..=d).fold(1.0, |acc, k| acc * (p + k) as f64 / k as f64)
+}
+
+/// Checks the number of runs a `[[method]]` would ask for in `d` parameters, before its
+/// design is built.
+///
+/// # Errors
+/// [`StudyError::Input`] naming the field, with the count.
+pub fn check_method(src: &Source, i: usize, m: &MethodSpec, d: usize) -> Result<(), StudyError> {
+    let degree = m.degree.as_ref().map_or(2, |v| *v.get_ref());
+    let ppd = m.points_per_dim.as_ref().map(|v| *v.get_ref());
+    let kind = m.kind.get_ref().as_str();
+    let design = m.design.as_ref().map(|s| s.get_ref().as_str());
+    if kind.starts_with("pc_") || kind == "polynomial" {
+        let terms = total_degree_terms(degree, d);
+        if terms > MAX_PC_TERMS as f64 {
+            return Err(src.error(
+                m.degree.as_ref().map_or(m.kind.span(), |v| v.span()),
+                format!("method[{i}].degree"),
+                format!(
+                    "a total-degree basis of degree {degree} in {d} parameters has {terms:.3e} terms; at most {MAX_PC_TERMS} are allowed"
+                ),
+            ));
+        }
+    }
+    let (runs, span, field) = match (kind, design) {
+        ("pc_projection", _) => (
+            power(ppd.unwrap_or(degree + 1), d),
+            m.points_per_dim
+                .as_ref()
+                .map_or(m.kind.span(), |v| v.span()),
+            "points_per_dim",
+        ),
+        ("piecewise_linear", _) | (_, Some("grid")) | ("polynomial", None) => (
+            power(ppd.unwrap_or(3), d),
+            m.points_per_dim
+                .as_ref()
+                .map_or(m.kind.span(), |v| v.span()),
+            "points_per_dim",
+        ),
+        (_, Some("corners_centre")) => (power(2, d) + 1.0, m.kind.span(), "design"),
+        _ => (
+            m.runs.as_ref().map_or(0.0, |v| *v.get_ref() as f64),
+            m.runs.as_ref().map_or(m.kind.span(), |v| v.span()),
+            "runs",
+        ),
+    };
+    if runs > MAX_RUNS as f64 {
+        return Err(src.error(
+            span,
+            format!("method[{i}].{field}"),
+            format!(
+                "this design has {runs:.3e} runs (each a full LATIN solve); at most {MAX_RUNS} are allowed"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks the sizes of a study file that do not depend on the mesh: thresholds, statistics
+/// settings, solver settings, and the memory of the Monte Carlo analysis.
+///
+/// # Errors
+/// [`StudyError::Input`] naming the field, with the estimate.
+pub fn check_study_file(src: &Source, file: &ModelFile, nparams: usize) -> Result<(), StudyError> {
+    for (i, q) in file.quantity.iter().enumerate() {
+        if q.thresholds.len() > MAX_THRESHOLDS {
+            return Err(src.error(
+                q.name.span(),
+                format!("quantity[{i}].thresholds"),
+                format!(
+                    "{} thresholds; at most {MAX_THRESHOLDS} are allowed",
+                    q.thresholds.len()
+                ),
+            ));
+        }
+    }
+    let st = &file.statistics;
+    if let Some(s) = &st.samples {
+        let n = *s.get_ref();
+        let nq = file.quantity.len().max(1) as f64;
+        let methods = file.method.len().max(1) as f64;
+        // Per draw and method: the point, the surrogate values and the samples per quantity,
+        // a sorted copy; plus the report's copy and its JSON text.
+        let per_draw = methods * (8.0 * nparams as f64 + 16.0 * nq + 8.0) + 40.0 * nq;
+        let need = n as f64 * per_draw;
+        let have = available_memory() as f64 / 2.0;
+        if !(2..=MAX_SAMPLES).contains(&n) || need > have {
+            return Err(src.error(
+                s.span(),
+                "statistics.samples",
+                format!(
+                    "{n} draws: must be in 2 ..= {MAX_SAMPLES}, and the analysis would need about {} of memory ({} usable)",
+                    human_bytes(need),
+                    human_bytes(have)
+                ),
+            ));
+        }
+    }
+    if let Some(k) = &st.kde_points {
+        let n = *k.get_ref();
+        if !(2..=MAX_KDE_POINTS).contains(&n) {
+            return Err(src.error(
+                k.span(),
+                "statistics.kde_points",
+                format!("must be in 2 ..= {MAX_KDE_POINTS}, got {n}"),
+            ));
+        }
+    }
+    if let Some(m) = &file.solver.max_iterations {
+        let n = *m.get_ref();
+        if !(1..=MAX_ITERATIONS).contains(&n) {
+            return Err(src.error(
+                m.span(),
+                "solver.max_iterations",
+                format!(
+                    "must be in 1 ..= {MAX_ITERATIONS} (each run keeps its residual history), got {n}"
+                ),
+            ));
+        }
+    }
+    if let Some(a) = &file.solver.acceleration {
+        let n = *a.get_ref();
+        if n > MAX_ACCELERATION {
+            return Err(src.error(
+                a.span(),
+                "solver.acceleration",
+                format!("must be at most {MAX_ACCELERATION}, got {n}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Checks the distinct run count of a whole study (methods share points).
+///
+/// # Errors
+/// [`StudyError::TooLarge`].
+pub fn check_total_runs(runs: usize) -> Result<(), StudyError> {
+    if runs > MAX_RUNS {
+        return Err(StudyError::TooLarge(format!(
+            "the methods ask for {runs} distinct runs; at most {MAX_RUNS} are allowed"
+        )));
+    }
+    Ok(())
+}
+
+/// Checks the sizes of a built study: distinct runs, and the memory of the mean / std fields.
+///
+/// # Errors
+/// [`StudyError::TooLarge`] with the estimate.
+pub fn check_built(study: &crate::runner::Study) -> Result<(), StudyError> {
+    check_total_runs(study.all_points().len())?;
+    if study.output.mean_fields.unwrap_or(true)
+        && let Some(m) = study
+            .methods
+            .iter()
+            .find(|m| m.kind != crate::method::MethodKind::MonteCarlo)
+    {
+        let need = mean_fields_memory(m.points.len());
+        let have = available_memory() as f64 / 2.0;
+        if need > have {
+            return Err(StudyError::TooLarge(format!(
+                "the mean / std fields of method '{}' on {} runs would need about {} of memory ({} usable); \
+                 set mean_fields = false in [output]",
+                m.label,
+                m.points.len(),
+                human_bytes(need),
+                human_bytes(have)
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Memory (bytes) of the weight moments of the mean / std fields for `runs` surrogate runs
+/// (`fields.rs`: 16 blocks of draws at a time, each with a `runs x runs` matrix).
+pub fn mean_fields_memory(runs: usize) -> f64 {
+    16.0 * 8.0 * (runs as f64) * (runs as f64)
+}
+
+/// Checks a `--threads` value against the machine.
+///
+/// # Errors
+/// [`StudyError::Usage`] outside `1 ..= min(4 x cores, MAX_THREADS)`.
+pub fn check_threads(n: usize) -> Result<usize, StudyError> {
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    let max = (4 * cores).clamp(4, MAX_THREADS);
+    if n == 0 || n > max {
+        return Err(StudyError::Usage(format!(
+            "--threads {n}: must be in 1 ..= {max} (this machine has {cores} core(s); results do not depend on the thread count)"
+        )));
+    }
+    Ok(n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn total_degree_terms_are_binomials() {
+        assert_eq!(total_degree_terms(2, 2), 6.0);
+        assert_eq!(total_degree_terms(3, 4), 35.0);
+        assert_eq!(total_degree_terms(0, 7), 1.0);
+        assert!(total_degree_terms(1000, 100) > 1e100);
+    }
+
+    #[test]
+    fn byte_counts_read_well() {
+        assert_eq!(human_bytes(512.0), "512 bytes");
+        assert_eq!(human_bytes(1.6e10), "16.0 GB");
+    }
+
+    #[test]
+    fn node_estimates_match_the_generated_meshes() {
+        #[derive(serde::Deserialize)]
+        struct F {
+            mesh: MeshSpec,
+        }
+        let cases = [
+            "generator = \"rectangle\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"rectangle\"\nkind = \"quad8\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"rectangle\"\nkind = \"tri6\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"box\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
+            "generator = \"box\"\nkind = \"tet10\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
+            "generator = \"plate_with_hole\"\nparams = { radius = 1.0, half_width = 5.0 }",
+            "generator = \"annulus_sector\"\nparams = { r_in = 1.0, r_out = 2.0, angle_deg = 90.0, n_theta = 20 }",
+            "generator = \"dovetail\"",
+            "generator = \"dovetail\"\nparams = { n_flank = 30, n_below = 2 }",
+            "generator = \"blade_root_simple\"",
+            "generator = \"stacked_blocks\"",
+            "generator = \"stacked_blocks\"\nkind = \"hex8\"\nparams = { n_z = 3 }",
+            "generator = \"concentric_rings\"",
+            "generator = \"cylinder_on_block\"\nparams = { n = 12, m = 9, half = false }",
+        ];
+        for text in cases {
+            let f: F = toml::from_str(&format!("[mesh]\n{text}\n")).unwrap();
+            let src = Source::from_text("t.toml", text);
+            let mesh = crate::build_mesh(&src, &f.mesh).unwrap();
+            let (nodes, ..) = mesh_estimate(&f.mesh).unwrap();
+            let ratio = nodes / mesh.num_nodes() as f64;
+            assert!(
+                (0.5..=2.0).contains(&ratio),
+                "{text}: estimate {nodes}, mesh {}",
+                mesh.num_nodes()
+            );
+        }
+    }
+
+    #[test]
+    fn threads_beyond_the_machine_are_refused() {
+        assert!(check_threads(1).is_ok());
+        let e = check_threads(100_000).unwrap_err();
+        assert_eq!(e.exit_code(), 2);
+        assert!(e.to_string().contains("core"), "{e}");
+        assert!(check_threads(0).is_err());
+    }
+}
