@@ -282,20 +282,42 @@ pub struct QuantitySpec {
     /// Name.
     pub name: Spanned<String>,
     /// `interface_work` (int ([W] + g0 n) . F dS), `friction_dissipation`,
-    /// `interface_force` (resultant component), `max_von_mises`, `displacement`.
+    /// `interface_force` (resultant component), `max_von_mises`, `mean_von_mises`,
+    /// `displacement`, `contact_pressure`, `contact_slip`, `contact_status`.
     pub kind: Spanned<String>,
-    /// Interface (interface_work, friction_dissipation, interface_force).
+    /// Interface (interface_work, friction_dissipation, interface_force, contact_*).
     #[serde(default)]
     pub interface: Option<Spanned<String>>,
-    /// Substructure (max_von_mises, displacement).
+    /// Substructure (max_von_mises, mean_von_mises, displacement).
     #[serde(default)]
     pub substructure: Option<Spanned<String>>,
-    /// Cell group (max_von_mises; default all cells of the substructure).
+    /// max_von_mises: cell, facet or node group (default all nodes of the substructure);
+    /// mean_von_mises: cell group (default all cells).
     #[serde(default)]
     pub group: Option<Spanned<String>>,
-    /// Point (displacement: the nearest node).
+    /// Point (displacement: the nearest node; mean_von_mises: centre of the ball of radius
+    /// `radius`; contact_*: the nearest interface point, else the interface integral).
     #[serde(default)]
     pub point: Option<Spanned<Vec<f64>>>,
+    /// mean_von_mises: radius of the ball around `point` (length).
+    #[serde(default)]
+    pub radius: Option<Spanned<f64>>,
+    /// max_von_mises: groups whose nodes are left out.
+    #[serde(default)]
+    pub exclude_groups: Vec<Spanned<String>>,
+    /// max_von_mises: nodes left out (numbers of the substructure's own mesh, as in its
+    /// ParaView file).
+    #[serde(default)]
+    pub exclude_nodes: Option<Spanned<Vec<usize>>>,
+    /// max_von_mises: points around which the nodes within `exclude_radius` are left out.
+    #[serde(default)]
+    pub exclude_points: Option<Spanned<Vec<Vec<f64>>>>,
+    /// max_von_mises: radius around `exclude_points` (length).
+    #[serde(default)]
+    pub exclude_radius: Option<Spanned<f64>>,
+    /// contact_status: `open`, `stick`, `slip` or `closed` (default; stick or slip).
+    #[serde(default)]
+    pub status: Option<Spanned<String>>,
     /// Component 0, 1, 2 (displacement, interface_force).
     #[serde(default)]
     pub component: Option<Spanned<usize>>,

@@ -177,6 +177,11 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         eprintln!("warning: {msg}");
         notes.push(msg);
     }
+    for w in alea_study::qoi::warnings::corner_warnings(&study, &runs.records, dir)? {
+        let msg = w.to_string();
+        eprintln!("warning: {msg}");
+        notes.push(msg);
+    }
     let t0 = Instant::now();
     let results: Vec<MethodResult> = study
         .methods
