@@ -159,12 +159,27 @@ fn main() {
     blade_points.push(vec![210e3, 0.9]);
     blade_points.push(vec![270e3, 0.9]);
     blade_points.push(vec![240e3, 0.7]);
-    let cases = vec![Case {
-        name: "blade-root",
-        file: "examples/blade-root-simple.toml",
-        points: blade_points,
-        factors: vec![1.0, 2.0],
-    }];
+    let turbine_points = vec![
+        vec![0.0, 0.0],
+        vec![0.5, 0.5],
+        vec![1.0, 0.0],
+        vec![0.0, 1.0],
+        vec![1.0, 1.0],
+    ];
+    let cases = vec![
+        Case {
+            name: "blade-root",
+            file: "examples/blade-root-simple.toml",
+            points: blade_points,
+            factors: vec![1.0, 2.0],
+        },
+        Case {
+            name: "turbine",
+            file: "examples/turbine-2d-wear.toml",
+            points: turbine_points,
+            factors: vec![1.0, 2.0],
+        },
+    ];
     for c in &cases {
         if filter.as_ref().is_none_or(|f| c.name.contains(f.as_str())) {
             run_case(c);

@@ -36,8 +36,8 @@ pub struct UnitsSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
-    /// `rectangle`, `box`, `plate_with_hole`, `annulus_sector`, `dovetail`, `blade_root_simple`
-    /// or `gmsh`.
+    /// `rectangle`, `box`, `plate_with_hole`, `annulus_sector`, `dovetail`, `blade_root_simple`,
+    /// `turbine_2d` or `gmsh`.
     pub generator: Spanned<String>,
     /// Cell type: `tri3`, `tri6`, `quad4`, `quad8`, `tet4`, `tet10`, `hex8`.
     #[serde(default)]
@@ -52,8 +52,8 @@ pub struct MeshSpec {
     #[serde(default)]
     pub cells: Option<Spanned<Vec<usize>>>,
     /// Generator parameters by name (plate_with_hole: radius, half_width, n_arc, n_radial,
-    /// grading; annulus_sector: r_in, r_out, angle_deg, n_radial, n_theta; dovetail and
-    /// blade_root_simple: any field of their parameter sets).
+    /// grading; annulus_sector: r_in, r_out, angle_deg, n_radial, n_theta; dovetail,
+    /// blade_root_simple and turbine_2d: any field of their parameter sets, angles in degrees).
     #[serde(default)]
     pub params: Option<Spanned<toml::Table>>,
 }
