@@ -206,7 +206,12 @@ fn malformed_study_files_give_specific_errors() {
             "interface[0].side1",
             "no facet group 'G1_disc'",
         ),
-        ("mu = \"mu\"\ngap", "mu = -0.2\ngap", "interface[0].mu", ">= 0"),
+        (
+            "mu = \"mu\"\ngap",
+            "mu = -0.2\ngap",
+            "interface[0].mu",
+            ">= 0",
+        ),
         (
             "mu = \"mu\"\ngap",
             "mu = \"mu - 0.5\"\ngap",
