@@ -36,8 +36,8 @@ pub struct UnitsSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
-    /// `rectangle`, `box`, `plate_with_hole`, `annulus_sector`, `dovetail`, `blade_root_simple`
-    /// or `gmsh`.
+    /// `rectangle`, `box`, `plate_with_hole`, `annulus_sector`, `dovetail`, `blade_root_simple`,
+    /// `turbine_2d` or `gmsh`.
     pub generator: Spanned<String>,
     /// Cell type: `tri3`, `tri6`, `quad4`, `quad8`, `tet4`, `tet10`, `hex8`.
     #[serde(default)]
@@ -52,8 +52,8 @@ pub struct MeshSpec {
     #[serde(default)]
     pub cells: Option<Spanned<Vec<usize>>>,
     /// Generator parameters by name (plate_with_hole: radius, half_width, n_arc, n_radial,
-    /// grading; annulus_sector: r_in, r_out, angle_deg, n_radial, n_theta; dovetail and
-    /// blade_root_simple: any field of their parameter sets).
+    /// grading; annulus_sector: r_in, r_out, angle_deg, n_radial, n_theta; dovetail,
+    /// blade_root_simple and turbine_2d: any field of their parameter sets, angles in degrees).
     #[serde(default)]
     pub params: Option<Spanned<toml::Table>>,
 }
@@ -288,20 +288,42 @@ pub struct QuantitySpec {
     /// Name.
     pub name: Spanned<String>,
     /// `interface_work` (int ([W] + g0 n) . F dS), `friction_dissipation`,
-    /// `interface_force` (resultant component), `max_von_mises`, `displacement`.
+    /// `interface_force` (resultant component), `max_von_mises`, `mean_von_mises`,
+    /// `displacement`, `contact_pressure`, `contact_slip`, `contact_status`.
     pub kind: Spanned<String>,
-    /// Interface (interface_work, friction_dissipation, interface_force).
+    /// Interface (interface_work, friction_dissipation, interface_force, contact_*).
     #[serde(default)]
     pub interface: Option<Spanned<String>>,
-    /// Substructure (max_von_mises, displacement).
+    /// Substructure (max_von_mises, mean_von_mises, displacement).
     #[serde(default)]
     pub substructure: Option<Spanned<String>>,
-    /// Cell group (max_von_mises; default all cells of the substructure).
+    /// max_von_mises: cell, facet or node group (default all nodes of the substructure);
+    /// mean_von_mises: cell group (default all cells).
     #[serde(default)]
     pub group: Option<Spanned<String>>,
-    /// Point (displacement: the nearest node).
+    /// Point (displacement: the nearest node; mean_von_mises: centre of the ball of radius
+    /// `radius`; contact_*: the nearest interface point, else the interface integral).
     #[serde(default)]
     pub point: Option<Spanned<Vec<f64>>>,
+    /// mean_von_mises: radius of the ball around `point` (length).
+    #[serde(default)]
+    pub radius: Option<Spanned<f64>>,
+    /// max_von_mises: groups whose nodes are left out.
+    #[serde(default)]
+    pub exclude_groups: Vec<Spanned<String>>,
+    /// max_von_mises: nodes left out (numbers of the substructure's own mesh, as in its
+    /// ParaView file).
+    #[serde(default)]
+    pub exclude_nodes: Option<Spanned<Vec<usize>>>,
+    /// max_von_mises: points around which the nodes within `exclude_radius` are left out.
+    #[serde(default)]
+    pub exclude_points: Option<Spanned<Vec<Vec<f64>>>>,
+    /// max_von_mises: radius around `exclude_points` (length).
+    #[serde(default)]
+    pub exclude_radius: Option<Spanned<f64>>,
+    /// contact_status: `open`, `stick`, `slip` or `closed` (default; stick or slip).
+    #[serde(default)]
+    pub status: Option<Spanned<String>>,
     /// Component 0, 1, 2 (displacement, interface_force).
     #[serde(default)]
     pub component: Option<Spanned<usize>>,

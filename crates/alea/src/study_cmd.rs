@@ -178,6 +178,11 @@ fn write_outputs(
         eprintln!("warning: {msg}");
         notes.push(msg);
     }
+    for w in alea_study::qoi::warnings::corner_warnings(study, &runs.records, dir)? {
+        let msg = w.to_string();
+        eprintln!("warning: {msg}");
+        notes.push(msg);
+    }
     let t0 = Instant::now();
     let results: Vec<MethodResult> = runs
         .methods

@@ -29,8 +29,8 @@ fn coarse_study(dir: &Path) -> PathBuf {
     let text = std::fs::read_to_string(root().join("examples/blade-root-simple-comparison.toml"))
         .unwrap()
         .replace(
-            "params = { n_flank = 24, n_side = 30, n_root = 24, n_shank = 18 }",
-            "params = { n_flank = 8, n_side = 10, n_root = 8, n_shank = 6 }",
+            "n_flank = 36, n_side = 45, n_root = 36, n_shank = 27 }",
+            "n_flank = 12, n_side = 15, n_root = 12, n_shank = 9 }",
         )
         .replace("points_per_dim = 11", "points_per_dim = 7")
         .replace(
@@ -38,7 +38,7 @@ fn coarse_study(dir: &Path) -> PathBuf {
             "[statistics]\nsamples = 20000\n\n[[method]]\ntype = \"pc_regression\"",
         );
     assert!(
-        text.contains("n_flank = 8")
+        text.contains("n_flank = 12")
             && text.contains("points_per_dim = 7")
             && text.contains("samples = 20000")
     );
@@ -207,14 +207,14 @@ fn malformed_study_files_give_specific_errors() {
             "no facet group 'G1_disc'",
         ),
         (
-            "mu = \"mu\"\n\n[[interface]]\nname = \"G2\"",
-            "mu = -0.2\n\n[[interface]]\nname = \"G2\"",
+            "mu = \"mu\"\ngap",
+            "mu = -0.2\ngap",
             "interface[0].mu",
             ">= 0",
         ),
         (
-            "mu = \"mu\"\n\n[[interface]]\nname = \"G2\"",
-            "mu = \"mu - 0.5\"\n\n[[interface]]\nname = \"G2\"",
+            "mu = \"mu\"\ngap",
+            "mu = \"mu - 0.5\"\ngap",
             "interface[0].mu",
             ">= 0",
         ),
@@ -257,8 +257,33 @@ fn malformed_study_files_give_specific_errors() {
         (
             "type = \"pc_regression\"",
             "type = \"kriging\"",
-            "method[1].type",
+            "method[0].type",
             "unknown method 'kriging'",
+        ),
+        (
+            "status = \"stick\"",
+            "status = \"sticky\"",
+            "quantity[1].status",
+            "unknown status 'sticky'",
+        ),
+        (
+            "status = \"stick\"",
+            "status = \"stick\"\nexclude_groups = [\"S2_left\"]",
+            "quantity[1].exclude_groups",
+            "not used by a 'contact_status' quantity",
+        ),
+        ("radius = 1.0", "radius = -1.0", "quantity[2].radius", "> 0"),
+        (
+            "radius = 1.0",
+            "radius = 0.001",
+            "quantity[2].radius",
+            "no quadrature point",
+        ),
+        (
+            "point = [8.0, 10.0]\nradius = 1.0",
+            "point = [8.0, 10.0]",
+            "quantity[2].radius",
+            "missing",
         ),
     ];
     for (i, (from, to, field, phrase)) in cases.iter().enumerate() {

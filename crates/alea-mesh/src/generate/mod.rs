@@ -1,5 +1,6 @@
 //! Mesh generators: structured rectangles and boxes, multi-block mapped quads, multi-block graded
-//! hexahedra, ready-made shapes, two-body contact benchmarks, extrusion.
+//! hexahedra, ready-made shapes (including the thesis's two blade-root models), two-body contact
+//! benchmarks, extrusion.
 
 mod blade_root;
 mod extrude;
@@ -8,6 +9,7 @@ mod multiblock;
 mod shapes;
 mod structured;
 mod two_body;
+mod turbine;
 
 pub use blade_root::{BladeRootParams, blade_root_simple};
 pub use extrude::extrude;
@@ -19,3 +21,4 @@ pub use two_body::{
     ConcentricRings, CylinderOnBlock, StackedBlocks, block_on_incline, concentric_rings,
     cylinder_on_block, stacked_blocks,
 };
+pub use turbine::{TurbineParams, turbine_2d};

@@ -10,7 +10,7 @@ use std::sync::Arc;
 use super::multiblock::{Block, Curve, distribution, multiblock};
 use crate::{CellType, Mesh, MeshError};
 
-fn positive(name: &str, v: f64) -> Result<(), MeshError> {
+pub(super) fn positive(name: &str, v: f64) -> Result<(), MeshError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
@@ -168,8 +168,19 @@ pub fn annulus_sector(
     multiblock(&[block], kind)
 }
 
-/// Mirror image of a block in the plane x = 0 (the generator re-orders it counter-clockwise).
+/// Mirror image of a block in the plane x = 0 (the generator re-orders it counter-clockwise),
+/// with `_left` and `_right` swapped in its edge group names.
 fn mirror_x(b: &Block) -> Block {
+    mirror_x_renamed(b, &|n: &str| {
+        n.replace("_right", "\u{0}")
+            .replace("_left", "_right")
+            .replace('\u{0}', "_left")
+    })
+}
+
+/// Mirror image of a block in the plane x = 0, its cell and edge group names passed through
+/// `rename`.
+pub(super) fn mirror_x_renamed(b: &Block, rename: &dyn Fn(&str) -> String) -> Block {
     let m = |p: [f64; 2]| [-p[0], p[1]];
     let mut out = b.clone();
     out.corners = b.corners.map(m);
@@ -194,14 +205,8 @@ fn mirror_x(b: &Block) -> Block {
             }
         };
     }
-    let swap = |s: &Option<String>| {
-        s.as_ref().map(|n| {
-            n.replace("_right", "\u{0}")
-                .replace("_left", "_right")
-                .replace('\u{0}', "_left")
-        })
-    };
-    out.edge_groups = b.edge_groups.clone().map(|g| swap(&g));
+    out.edge_groups = b.edge_groups.clone().map(|g| g.map(|n| rename(&n)));
+    out.cell_group = b.cell_group.as_ref().map(|n| rename(n));
     out
 }
 

@@ -1,0 +1,492 @@
+//! Quantities of interest: what each run contributes to the statistics.
+//!
+//! - interface quantities: the work of the interface forces and the friction dissipation
+//!   (thesis 2.3.2), a resultant force component, and the contact pressure, slip and status at
+//!   a point or integrated over the interface ([`contact`]);
+//! - stress quantities of a substructure ([`stress`]): the maximum nodal von Mises stress over
+//!   a node set (with nodes, groups or the neighbourhood of points left out), and its
+//!   regularised alternative, the average of the von Mises stress over a region;
+//! - a displacement component at a node.
+//!
+//! A maximum taken on a node where two boundary groups meet is usually a singular value:
+//! [`warnings::corner_warnings`] reports it after a study.
+
+pub mod contact;
+pub mod stress;
+pub mod warnings;
+
+use alea_latin::{LatinSolver, RunResult};
+use toml::Spanned;
+
+use crate::spec::QuantitySpec;
+use crate::{BuiltModel, Source, StudyError};
+use contact::{ContactField, ContactQoi, StatusSel};
+use stress::{NodeSet, Region};
+
+/// What a quantity of interest measures.
+#[derive(Clone, Debug)]
+pub enum QoiKind {
+    /// `int ([W_hat] + g0 n) . F_hat_2 dS` on an interface (thesis 2.3.2; <= 0 for Coulomb).
+    InterfaceWork(usize),
+    /// `-int [W_hat]_t . F_t dS >= 0` on an interface.
+    FrictionDissipation(usize),
+    /// Component of the resultant force on side 2 of an interface.
+    InterfaceForce(usize, usize),
+    /// Maximum nodal von Mises stress over a node set of a substructure.
+    MaxVonMises {
+        /// Substructure.
+        sub: usize,
+        /// The nodes.
+        set: NodeSet,
+    },
+    /// Average von Mises stress over a region of a substructure.
+    MeanVonMises {
+        /// Substructure.
+        sub: usize,
+        /// The region's quadrature points.
+        region: Region,
+    },
+    /// Displacement component at the node nearest to a point.
+    Displacement(usize, [f64; 3], usize),
+    /// Contact pressure, slip or status on an interface.
+    Contact(ContactQoi),
+}
+
+/// A named quantity of interest.
+#[derive(Clone, Debug)]
+pub struct Qoi {
+    /// Name.
+    pub name: String,
+    /// Unit (for the report).
+    pub unit: String,
+    /// What it measures.
+    pub kind: QoiKind,
+    /// Failure thresholds.
+    pub thresholds: Vec<f64>,
+}
+
+const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip or contact_status";
+
+fn point3(
+    src: &Source,
+    p: &Spanned<Vec<f64>>,
+    dim: usize,
+    field: String,
+) -> Result<[f64; 3], StudyError> {
+    coords(src, p.span(), p.get_ref(), dim, field)
+}
+
+fn coords(
+    src: &Source,
+    span: std::ops::Range<usize>,
+    v: &[f64],
+    dim: usize,
+    field: String,
+) -> Result<[f64; 3], StudyError> {
+    if v.len() != dim || v.iter().any(|x| !x.is_finite()) {
+        return Err(src.error(span, field, format!("expected {dim} finite coordinates")));
+    }
+    let mut x = [0.0; 3];
+    x[..dim].copy_from_slice(v);
+    Ok(x)
+}
+
+fn positive(src: &Source, v: &Spanned<f64>, field: String) -> Result<f64, StudyError> {
+    let r = *v.get_ref();
+    if !(r.is_finite() && r > 0.0) {
+        return Err(src.error(v.span(), field, format!("must be > 0, got {r}")));
+    }
+    Ok(r)
+}
+
+fn dist2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum()
+}
+
+/// Refuses the fields that `kind` does not use (a misplaced key is an input error, not a
+/// silently ignored one).
+fn check_fields(src: &Source, q: &QuantitySpec, i: usize) -> Result<(), StudyError> {
+    let kind = q.kind.get_ref().as_str();
+    let is_max = kind == "max_von_mises";
+    let uses: [(&str, bool, bool, std::ops::Range<usize>); 5] = [
+        (
+            "exclude_groups",
+            !q.exclude_groups.is_empty(),
+            is_max,
+            q.exclude_groups.first().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "exclude_nodes",
+            q.exclude_nodes.is_some(),
+            is_max,
+            q.exclude_nodes.as_ref().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "exclude_points",
+            q.exclude_points.is_some() || q.exclude_radius.is_some(),
+            is_max,
+            q.exclude_points
+                .as_ref()
+                .map(|g| g.span())
+                .or(q.exclude_radius.as_ref().map(|g| g.span()))
+                .unwrap_or(0..0),
+        ),
+        (
+            "radius",
+            q.radius.is_some(),
+            kind == "mean_von_mises",
+            q.radius.as_ref().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "status",
+            q.status.is_some(),
+            kind == "contact_status",
+            q.status.as_ref().map_or(0..0, |g| g.span()),
+        ),
+    ];
+    for (name, given, allowed, span) in uses {
+        if given && !allowed {
+            return Err(src.error(
+                span,
+                format!("quantity[{i}].{name}"),
+                format!("not used by a '{kind}' quantity"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Builds the quantities of interest of a study file, checking every name.
+pub fn build_qois(
+    src: &Source,
+    specs: &[QuantitySpec],
+    model: &BuiltModel,
+) -> Result<Vec<Qoi>, StudyError> {
+    let subs: Vec<&str> = model
+        .assembly
+        .subs
+        .iter()
+        .map(|s| s.name.as_str())
+        .collect();
+    let ifaces: Vec<&str> = model
+        .assembly
+        .interfaces
+        .iter()
+        .map(|i| i.name.as_str())
+        .collect();
+    let mut out = Vec::new();
+    for (i, q) in specs.iter().enumerate() {
+        let f = |k: &str| format!("quantity[{i}].{k}");
+        check_fields(src, q, i)?;
+        let iface = || -> Result<usize, StudyError> {
+            let s = q.interface.as_ref().ok_or_else(|| {
+                src.error(
+                    q.kind.span(),
+                    f("interface"),
+                    "missing; this quantity needs an interface name",
+                )
+            })?;
+            ifaces.iter().position(|n| n == s.get_ref()).ok_or_else(|| {
+                src.error(
+                    s.span(),
+                    f("interface"),
+                    format!(
+                        "unknown interface '{}'; defined: {}",
+                        s.get_ref(),
+                        ifaces.join(", ")
+                    ),
+                )
+            })
+        };
+        let sub = || -> Result<usize, StudyError> {
+            let s = q.substructure.as_ref().ok_or_else(|| {
+                src.error(
+                    q.kind.span(),
+                    f("substructure"),
+                    "missing; this quantity needs a substructure name",
+                )
+            })?;
+            subs.iter().position(|n| n == s.get_ref()).ok_or_else(|| {
+                src.error(
+                    s.span(),
+                    f("substructure"),
+                    format!(
+                        "unknown substructure '{}'; defined: {}",
+                        s.get_ref(),
+                        subs.join(", ")
+                    ),
+                )
+            })
+        };
+        let comp = |dim: usize| -> Result<usize, StudyError> {
+            let c = q.component.as_ref().ok_or_else(|| {
+                src.error(q.kind.span(), f("component"), "missing; expected 0, 1 or 2")
+            })?;
+            if *c.get_ref() >= dim {
+                return Err(src.error(c.span(), f("component"), format!("must be < {dim}")));
+            }
+            Ok(*c.get_ref())
+        };
+        let dim = model.mesh.dim;
+        let contact = |field: ContactField| -> Result<QoiKind, StudyError> {
+            let k = iface()?;
+            let spec = &model.assembly.interfaces[k];
+            let node = match &q.point {
+                Some(p) => {
+                    let x = point3(src, p, dim, f("point"))?;
+                    let mesh = &model.assembly.subs[spec.sub1].model.mesh;
+                    let nodes = mesh
+                        .group_nodes(&spec.group1)
+                        .map_err(|e| src.error(q.kind.span(), f("interface"), e.to_string()))?;
+                    nodes
+                        .iter()
+                        .copied()
+                        .min_by(|&a, &b| {
+                            dist2(&mesh.coords[a], &x).total_cmp(&dist2(&mesh.coords[b], &x))
+                        })
+                        .map(Some)
+                        .ok_or_else(|| {
+                            src.error(p.span(), f("point"), "the interface has no point")
+                        })?
+                }
+                None => None,
+            };
+            Ok(QoiKind::Contact(ContactQoi {
+                iface: k,
+                field,
+                node,
+            }))
+        };
+        let kind = match q.kind.get_ref().as_str() {
+            "interface_work" => QoiKind::InterfaceWork(iface()?),
+            "friction_dissipation" => QoiKind::FrictionDissipation(iface()?),
+            "interface_force" => QoiKind::InterfaceForce(iface()?, comp(dim)?),
+            "max_von_mises" => {
+                let s = sub()?;
+                let mesh = &model.assembly.subs[s].model.mesh;
+                let group_nodes = |g: &Spanned<String>, key: &str| {
+                    mesh.group_nodes(g.get_ref()).map_err(|e| {
+                        src.error(g.span(), f(key), format!("substructure '{}': {e}", subs[s]))
+                    })
+                };
+                let mut nodes = match &q.group {
+                    Some(g) => group_nodes(g, "group")?,
+                    None => (0..mesh.num_nodes()).collect(),
+                };
+                let mut excluded = std::collections::BTreeSet::new();
+                for g in &q.exclude_groups {
+                    excluded.extend(group_nodes(g, "exclude_groups")?);
+                }
+                if let Some(ns) = &q.exclude_nodes {
+                    if let Some(bad) = ns.get_ref().iter().find(|&&n| n >= mesh.num_nodes()) {
+                        return Err(src.error(
+                            ns.span(),
+                            f("exclude_nodes"),
+                            format!(
+                                "node {bad} is not in substructure '{}' ({} nodes, numbered from 0)",
+                                subs[s],
+                                mesh.num_nodes()
+                            ),
+                        ));
+                    }
+                    excluded.extend(ns.get_ref().iter().copied());
+                }
+                match (&q.exclude_points, &q.exclude_radius) {
+                    (Some(ps), Some(r)) => {
+                        let r = positive(src, r, f("exclude_radius"))?;
+                        for p in ps.get_ref() {
+                            let x = coords(src, ps.span(), p, dim, f("exclude_points"))?;
+                            excluded.extend(
+                                nodes
+                                    .iter()
+                                    .copied()
+                                    .filter(|&n| dist2(&mesh.coords[n], &x) <= r * r),
+                            );
+                        }
+                    }
+                    (Some(ps), None) => {
+                        return Err(src.error(
+                            ps.span(),
+                            f("exclude_radius"),
+                            "missing; exclude_points needs a radius",
+                        ));
+                    }
+                    (None, Some(r)) => {
+                        return Err(src.error(
+                            r.span(),
+                            f("exclude_points"),
+                            "missing; exclude_radius needs points",
+                        ));
+                    }
+                    (None, None) => {}
+                }
+                nodes.retain(|n| !excluded.contains(n));
+                if nodes.is_empty() {
+                    return Err(src.error(
+                        q.kind.span(),
+                        f("group"),
+                        "no node left once the exclusions are removed",
+                    ));
+                }
+                QoiKind::MaxVonMises {
+                    sub: s,
+                    set: NodeSet::new(mesh, nodes),
+                }
+            }
+            "mean_von_mises" => {
+                let s = sub()?;
+                let m = &model.assembly.subs[s].model;
+                let cells: Vec<usize> = match &q.group {
+                    Some(g) => m
+                        .mesh
+                        .cell_group(g.get_ref())
+                        .map_err(|e| {
+                            src.error(
+                                g.span(),
+                                f("group"),
+                                format!(
+                                    "substructure '{}': {e} (a mean_von_mises region is a cell group and/or a ball given by point and radius)",
+                                    subs[s]
+                                ),
+                            )
+                        })?
+                        .to_vec(),
+                    None => (0..m.mesh.num_cells()).collect(),
+                };
+                let ball = match (&q.point, &q.radius) {
+                    (Some(p), Some(r)) => Some((
+                        point3(src, p, dim, f("point"))?,
+                        positive(src, r, f("radius"))?,
+                    )),
+                    (Some(p), None) => {
+                        return Err(src.error(
+                            p.span(),
+                            f("radius"),
+                            "missing; the region around point needs a radius",
+                        ));
+                    }
+                    (None, Some(r)) => {
+                        return Err(src.error(
+                            r.span(),
+                            f("point"),
+                            "missing; radius needs a centre point",
+                        ));
+                    }
+                    (None, None) => None,
+                };
+                let region = Region::new(m, &cells, ball);
+                if region.is_empty() {
+                    return Err(src.error(
+                        q.radius.as_ref().map_or(q.kind.span(), |r| r.span()),
+                        f("radius"),
+                        format!(
+                            "no quadrature point of substructure '{}' lies in the region; enlarge the radius or move the point",
+                            subs[s]
+                        ),
+                    ));
+                }
+                QoiKind::MeanVonMises { sub: s, region }
+            }
+            "displacement" => {
+                let s = sub()?;
+                let p = q.point.as_ref().ok_or_else(|| {
+                    src.error(q.kind.span(), f("point"), "missing; expected coordinates")
+                })?;
+                QoiKind::Displacement(s, point3(src, p, dim, f("point"))?, comp(dim)?)
+            }
+            "contact_pressure" => contact(ContactField::Pressure)?,
+            "contact_slip" => contact(ContactField::Slip)?,
+            "contact_status" => {
+                let sel = match &q.status {
+                    Some(st) => StatusSel::parse(st.get_ref()).ok_or_else(|| {
+                        src.error(
+                            st.span(),
+                            f("status"),
+                            format!(
+                                "unknown status '{}'; expected open, stick, slip or closed",
+                                st.get_ref()
+                            ),
+                        )
+                    })?,
+                    None => StatusSel::Closed,
+                };
+                contact(ContactField::Status(sel))?
+            }
+            other => {
+                return Err(src.error(
+                    q.kind.span(),
+                    f("kind"),
+                    format!("unknown quantity '{other}'; expected {KINDS}"),
+                ));
+            }
+        };
+        if q.thresholds.iter().any(|t| !t.is_finite()) {
+            return Err(src.error(q.name.span(), f("thresholds"), "thresholds must be finite"));
+        }
+        out.push(Qoi {
+            name: q.name.get_ref().clone(),
+            unit: q.unit.clone().unwrap_or_default(),
+            kind,
+            thresholds: q.thresholds.clone(),
+        });
+    }
+    crate::checks::check_quantities(src, specs, model, &out)?;
+    Ok(out)
+}
+
+/// Where a maximum was found: its value, the substructure node, and the boundary groups that
+/// meet there (if any).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaxLocation {
+    /// The maximum.
+    pub value: f64,
+    /// Substructure node where it is reached.
+    pub node: usize,
+    /// Boundary groups meeting at that node.
+    pub junction: Option<(String, String)>,
+}
+
+impl Qoi {
+    /// The value of this quantity for a run.
+    pub fn eval(&self, solver: &LatinSolver, res: &RunResult) -> Result<f64, StudyError> {
+        Ok(match &self.kind {
+            QoiKind::InterfaceWork(i) => res.interfaces[*i].work(),
+            QoiKind::FrictionDissipation(i) => res.interfaces[*i].friction_dissipation(),
+            QoiKind::InterfaceForce(i, c) => res.interfaces[*i].resultant()[*c],
+            QoiKind::MaxVonMises { sub, .. } => {
+                let model = res.scaled_model(solver.model(*sub), *sub);
+                self.max_location(&model, &res.displacements[*sub])?
+                    .map_or(f64::NAN, |m| m.value)
+            }
+            QoiKind::MeanVonMises { sub, region } => {
+                let model = res.scaled_model(solver.model(*sub), *sub);
+                region.mean_von_mises(&model, &res.displacements[*sub])?
+            }
+            QoiKind::Displacement(s, x, c) => res.displacement_at(solver.model(*s), *s, *x).0[*c],
+            QoiKind::Contact(c) => c.eval(&res.interfaces[c.iface]).ok_or_else(|| {
+                StudyError::Other(format!(
+                    "quantity '{}': its point is not on interface '{}'",
+                    self.name, res.interfaces[c.iface].name
+                ))
+            })?,
+        })
+    }
+
+    /// For a maximum-type quantity, the maximum for displacement `u` of its substructure
+    /// (`model` carrying the run's Young's modulus) and where it is reached; `None` for other
+    /// quantities.
+    pub fn max_location(
+        &self,
+        model: &alea_fem::Model,
+        u: &[f64],
+    ) -> Result<Option<MaxLocation>, StudyError> {
+        let QoiKind::MaxVonMises { set, .. } = &self.kind else {
+            return Ok(None);
+        };
+        Ok(set.max_von_mises(model, u)?.map(|(value, i)| MaxLocation {
+            value,
+            node: set.nodes[i],
+            junction: set.junction[i].clone(),
+        }))
+    }
+}
