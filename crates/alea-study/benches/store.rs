@@ -39,7 +39,7 @@ fn main() {
                         history: vec![1e-3; 100],
                         state: vec![0.1; 4 * 3 * 200],
                     };
-                    store.commit(&rec, &fields).unwrap();
+                    store.commit(&rec, &fields, None).unwrap();
                 }
                 times.push(t0.elapsed().as_secs_f64() / n as f64);
                 let _ = std::fs::remove_dir_all(&dir);

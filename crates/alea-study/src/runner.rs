@@ -613,17 +613,20 @@ pub(crate) fn execute(
         return Err(StudyError::Other("a run is missing".into()));
     }
     let missing = runner.missing;
-    Ok((StudyRuns {
-        records,
-        computed: runner.computed,
-        resumed: runner.resumed,
-        setup_seconds: runner.solver.setup_seconds,
-        solve_seconds: runner.solve_seconds,
-        estimate_seconds: runner.estimate_seconds,
-        solver: runner.solver.clone(),
-        methods,
-        adaptive,
-        cre: runner.cre.clone(),
-        lock,
-    }, missing))
+    Ok((
+        StudyRuns {
+            records,
+            computed: runner.computed,
+            resumed: runner.resumed,
+            setup_seconds: runner.solver.setup_seconds,
+            solve_seconds: runner.solve_seconds,
+            estimate_seconds: runner.estimate_seconds,
+            solver: runner.solver.clone(),
+            methods,
+            adaptive,
+            cre: runner.cre.clone(),
+            lock,
+        },
+        missing,
+    ))
 }

@@ -466,7 +466,7 @@ mod tests {
         let d = dir("hash");
         let (a, b) = (study_hash("study A", &[]), study_hash("study B", &[]));
         let store = Store::open(&d, &a, false).unwrap();
-        store.commit(&record(1.0), &[1.0, 2.0, 3.0]).unwrap();
+        store.commit(&record(1.0), &[1.0, 2.0, 3.0], None).unwrap();
         assert_eq!(store.fields(&[1.0, 2.0]).unwrap(), vec![1.0, 2.0, 3.0]);
         // A row of study B in the same table (what a second writer could leave).
         store

@@ -231,7 +231,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     );
     if res.status != RunStatus::Converged {
         return Err(alea_study::StudyError::Failed(format!(
-            "the solve ended with status '{}' after {} iterations (error indicator {last:.2e}, tolerance {:.1e}); \
+            "the solve did not converge (status '{}' after {} iterations, error indicator {last:.2e}, tolerance {:.1e}); \
              the files hold the last iterate",
             res.status.label(),
             res.iterations,

@@ -8,8 +8,8 @@ mod hexblock;
 mod multiblock;
 mod shapes;
 mod structured;
-mod two_body;
 mod turbine;
+mod two_body;
 
 pub use blade_root::{BladeRootParams, blade_root_simple};
 pub use extrude::extrude;
@@ -17,8 +17,8 @@ pub use hexblock::{HexBlock, corner_refined_blocks, grading_for_first_cell, mult
 pub use multiblock::{Block, Curve, CurveFn, multiblock};
 pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};
+pub use turbine::{TurbineParams, turbine_2d};
 pub use two_body::{
     ConcentricRings, CylinderOnBlock, StackedBlocks, block_on_incline, concentric_rings,
     cylinder_on_block, stacked_blocks,
 };
-pub use turbine::{TurbineParams, turbine_2d};
