@@ -320,3 +320,122 @@ fn malformed_study_files_give_specific_errors() {
     }
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// The simple blade root on a coarse mesh with an adaptive method (improved criterion, 9 to at
+/// most 18 runs) and the stochastic error estimate.
+fn adaptive_study(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/blade-root-simple.toml")).unwrap();
+    let text = text.replace(
+        "n_flank = 36, n_side = 45, n_root = 36, n_shank = 27 }",
+        "n_flank = 9, n_side = 11, n_root = 9, n_shank = 7 }",
+    );
+    let start = text.find("[[method]]").expect("methods");
+    let end = text.find("[solver]").expect("solver");
+    let text = format!(
+        "{}[[method]]\ntype = \"adaptive\"\ncriterion = \"improved\"\nmax_runs = 18\n\n[error]\n\n[statistics]\nsamples = 20000\n\n{}",
+        &text[..start],
+        &text[end..]
+    );
+    assert!(text.contains("n_flank = 9") && text.contains("type = \"adaptive\""));
+    let path = dir.join("adaptive.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// An adaptive study is deterministic (1 or 2 threads), resumes after a SIGKILL in the middle
+/// of its loop to the same summary without recomputing committed runs, and its outputs can be
+/// rebuilt from the store alone (`alea report` replays the loop).
+#[test]
+fn adaptive_study_is_deterministic_and_resumable() {
+    let base = tmp("adaptive");
+    let study = adaptive_study(&base);
+    let mut outs = Vec::new();
+    for t in ["1", "2"] {
+        let dir = base.join(format!("t{t}"));
+        let o = run(&study, &dir, &["--threads", t]);
+        assert!(
+            o.status.success(),
+            "{}{}",
+            String::from_utf8_lossy(&o.stdout),
+            String::from_utf8_lossy(&o.stderr)
+        );
+        outs.push(std::fs::read_to_string(dir.join("summary.json")).unwrap());
+    }
+    assert!(
+        outs[0] == outs[1],
+        "summaries differ between 1 and 2 threads"
+    );
+    let summary: serde_json::Value = serde_json::from_str(&outs[0]).unwrap();
+    let steps = summary["methods"][0]["adaptive"]["steps"]
+        .as_array()
+        .expect("adaptive steps in summary.json");
+    assert!(steps.len() >= 2, "{steps:?}");
+    let runs: Vec<u64> = steps.iter().map(|s| s["runs"].as_u64().unwrap()).collect();
+    assert_eq!(runs[0], 5, "corners and centre");
+    assert!(runs.windows(2).all(|w| w[1] > w[0]), "{runs:?}");
+    assert!(*runs.last().unwrap() <= 18);
+    // Reference done; now kill a run part-way through the adaptive loop.
+    let dir = base.join("killed");
+    let mut child = alea()
+        .arg("run")
+        .arg(&study)
+        .arg("--dir")
+        .arg(&dir)
+        .arg("-q")
+        .arg("--threads")
+        .arg("1")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    loop {
+        let n = std::fs::read_dir(dir.join("cre"))
+            .map(|d| d.count())
+            .unwrap_or(0);
+        if n >= 7 {
+            break;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(120), "no progress");
+        if let Ok(Some(_)) = child.try_wait() {
+            panic!("the study finished before it could be killed");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let o = run(&study, &dir, &[]);
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        o.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let resumed = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    if let Some((i, (a, b))) = outs[0]
+        .lines()
+        .zip(resumed.lines())
+        .enumerate()
+        .find(|(_, (a, b))| a != b)
+    {
+        panic!("resumed summary differs at line {}: {a:?} vs {b:?}", i + 1);
+    }
+    assert_eq!(resumed.len(), outs[0].len());
+    assert!(text.contains(" resumed"), "{text}");
+    // Nothing left to compute; the outputs rebuild from the store.
+    let o = run(&study, &dir, &[]);
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("runs: 0 computed"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    std::fs::remove_file(dir.join("summary.json")).unwrap();
+    let o = alea().arg("report").arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(dir.join("summary.json")).unwrap(),
+        outs[0],
+        "rebuilt summary"
+    );
+    let _ = std::fs::remove_dir_all(&base);
+}
