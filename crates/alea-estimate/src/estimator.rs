@@ -645,34 +645,7 @@ impl Estimator {
         weights: &dyn Weights,
         params: &dyn Parameters,
     ) -> Vec<SubstructureMoments> {
-        let ns = self.layout.subs.len();
-        let k = self.k;
-        let mut out: Vec<SubstructureMoments> = (0..ns)
-            .map(|_| SubstructureMoments {
-                inv_alpha: vec![0.0; k * k],
-                one: vec![0.0; k * k],
-                alpha: vec![0.0; k * k],
-            })
-            .collect();
-        let mut w = Vec::new();
-        let mut alpha = vec![1.0; ns];
-        for q in 0..rule.len() {
-            let xi = rule.point(q);
-            let om = rule.weight(q);
-            weights.weights(xi, &mut w);
-            params.young(xi, &mut alpha);
-            for (s, m) in out.iter_mut().enumerate() {
-                for &(i, wi) in &w {
-                    for &(j, wj) in &w {
-                        let v = om * wi * wj;
-                        m.inv_alpha[i * k + j] += v / alpha[s];
-                        m.one[i * k + j] += v;
-                        m.alpha[i * k + j] += v * alpha[s];
-                    }
-                }
-            }
-        }
-        out
+        weight_moments(rule, weights, params, self.layout.subs.len(), self.k)
     }
 
     /// The substructure terms from weight moments (exact when the moments are):
@@ -723,4 +696,95 @@ impl Estimator {
             })
             .collect())
     }
+}
+
+/// Per-cell expectations of one substructure's terms, `(E[geo_E^2], E[e_E^2])` for every cell
+/// `E` (the sums over the cells are the substructure's `geo2` and `e2` when the moments come
+/// from the same rule): `1/2 sum_kl M_{1/alpha,kl} d_k . d_l` on the cell for the space part
+/// (`d_k = y(sigma_hat_k) - y(sigma_h,k)`) and the crate doc's quadratic form for the total.
+/// `admissible[k]`, `fe[k]`: run `k`'s sample vectors; `young[k]`: its Young's factor;
+/// `cell_offsets`: the layout's. Entries of the moments below `1e-300` in absolute value are
+/// skipped (a piecewise-linear surrogate couples only neighbouring runs).
+///
+/// # Panics
+/// If the lengths do not match (`K` runs, `K x K` moments, samples covering the offsets).
+pub fn cell_terms(
+    admissible: &[&[f64]],
+    fe: &[&[f64]],
+    young: &[f64],
+    cell_offsets: &[usize],
+    moments: &SubstructureMoments,
+) -> Vec<(f64, f64)> {
+    let k = admissible.len();
+    assert!(fe.len() == k && young.len() == k && moments.one.len() == k * k);
+    let pairs: Vec<(usize, usize)> = (0..k)
+        .flat_map(|i| (0..k).map(move |j| (i, j)))
+        .filter(|&(i, j)| {
+            let ij = i * k + j;
+            moments.inv_alpha[ij].abs() > 1e-300
+                || moments.one[ij].abs() > 1e-300
+                || moments.alpha[ij].abs() > 1e-300
+        })
+        .collect();
+    let ncell = cell_offsets.len().saturating_sub(1);
+    (0..ncell)
+        .into_par_iter()
+        .map(|c| {
+            let r = cell_offsets[c]..cell_offsets[c + 1];
+            let (mut geo, mut e) = (0.0, 0.0);
+            for &(i, j) in &pairs {
+                let ij = i * k + j;
+                let (ai, aj) = (&admissible[i][r.clone()], &admissible[j][r.clone()]);
+                let (hi, hj) = (&fe[i][r.clone()], &fe[j][r.clone()]);
+                let (mut aa, mut ah, mut hh, mut dd) = (0.0, 0.0, 0.0, 0.0);
+                for q in 0..ai.len() {
+                    aa += ai[q] * aj[q];
+                    ah += ai[q] * hj[q];
+                    hh += hi[q] * hj[q];
+                    dd += (ai[q] - hi[q]) * (aj[q] - hj[q]);
+                }
+                geo += moments.inv_alpha[ij] * dd;
+                e += moments.inv_alpha[ij] * aa - 2.0 * moments.one[ij] * ah / young[j]
+                    + moments.alpha[ij] * hh / (young[i] * young[j]);
+            }
+            (0.5 * geo, 0.5 * e)
+        })
+        .collect()
+}
+
+/// Weight moments `M_f = E[f(xi) w w^T]` (`f = 1/alpha_s, 1, alpha_s`) of `num_subs`
+/// substructures for a surrogate of `k` runs, over `rule`.
+pub fn weight_moments(
+    rule: &Rule,
+    weights: &dyn Weights,
+    params: &dyn Parameters,
+    num_subs: usize,
+    k: usize,
+) -> Vec<SubstructureMoments> {
+    let mut out: Vec<SubstructureMoments> = (0..num_subs)
+        .map(|_| SubstructureMoments {
+            inv_alpha: vec![0.0; k * k],
+            one: vec![0.0; k * k],
+            alpha: vec![0.0; k * k],
+        })
+        .collect();
+    let mut w = Vec::new();
+    let mut alpha = vec![1.0; num_subs];
+    for q in 0..rule.len() {
+        let xi = rule.point(q);
+        let om = rule.weight(q);
+        weights.weights(xi, &mut w);
+        params.young(xi, &mut alpha);
+        for (s, m) in out.iter_mut().enumerate() {
+            for &(i, wi) in &w {
+                for &(j, wj) in &w {
+                    let v = om * wi * wj;
+                    m.inv_alpha[i * k + j] += v / alpha[s];
+                    m.one[i * k + j] += v;
+                    m.alpha[i * k + j] += v * alpha[s];
+                }
+            }
+        }
+    }
+    out
 }

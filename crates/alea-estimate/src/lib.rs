@@ -102,6 +102,6 @@ pub use data::{InterfaceKind, InterfaceLayout, Layout, RunData, SubLayout};
 pub use error::EstimateError;
 pub use estimator::{
     EntityEstimate, Estimate, Estimator, InterfacePoint, Options as EstimatorOptions, Parameters,
-    PointEstimate, SubPoint, SubstructureMoments, Weights,
+    PointEstimate, SubPoint, SubstructureMoments, Weights, cell_terms, weight_moments,
 };
 pub use rule::{CellBox, Rule};

@@ -119,6 +119,11 @@ fn marginals() -> Vec<Arc<dyn Marginal>> {
 
 /// PC of degree 2 by regression on a 3 x 3 grid.
 fn setup(params: &Params) -> (PcSurrogate, Estimator) {
+    let (sur, est, _) = setup_with_runs(params);
+    (sur, est)
+}
+
+fn setup_with_runs(params: &Params) -> (PcSurrogate, Estimator, Vec<RunData>) {
     let mut pts = Vec::new();
     for j in 0..3 {
         for i in 0..3 {
@@ -130,7 +135,7 @@ fn setup(params: &Params) -> (PcSurrogate, Estimator) {
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let runs: Vec<RunData> = pts.chunks(2).map(|x| run_at(x, params, &mut rng)).collect();
     let est = Estimator::new(layout(), &runs, EstimatorOptions::default()).unwrap();
-    (sur, est)
+    (sur, est, runs)
 }
 
 fn gauss(order: usize) -> Rule {
@@ -394,4 +399,31 @@ fn run_data_round_trips_through_bytes() {
     let mut bad = b.clone();
     bad[8] = 0xff; // an absurd count
     assert!(RunData::from_bytes(&bad).is_err());
+}
+
+#[test]
+fn cell_terms_add_up_to_the_substructure_expectations() {
+    let params = Params { random_young: true };
+    let (sur, est, runs) = setup_with_runs(&params);
+    let rule = gauss(8);
+    let q = est.expectation(&rule, &sur, &params);
+    let m = est.moments(&rule, &sur, &params);
+    let a: Vec<&[f64]> = runs.iter().map(|r| r.admissible[0].as_slice()).collect();
+    let h: Vec<&[f64]> = runs.iter().map(|r| r.fe[0].as_slice()).collect();
+    let y: Vec<f64> = runs.iter().map(|r| r.young[0]).collect();
+    let cells = alea_estimate::cell_terms(&a, &h, &y, &layout().subs[0].cell_offsets, &m[0]);
+    assert_eq!(cells.len(), N / 6);
+    let geo: f64 = cells.iter().map(|c| c.0).sum();
+    let e2: f64 = cells.iter().map(|c| c.1).sum();
+    assert!(
+        (geo - q.subs[0].geo2).abs() < 1e-10 * geo,
+        "{geo} vs {}",
+        q.subs[0].geo2
+    );
+    assert!(
+        (e2 - q.subs[0].e2).abs() < 1e-10 * e2,
+        "{e2} vs {}",
+        q.subs[0].e2
+    );
+    assert!(cells.iter().all(|c| c.0 >= 0.0));
 }

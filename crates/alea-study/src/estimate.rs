@@ -320,3 +320,111 @@ pub fn density_maps(
     )
     .map_err(|e| StudyError::Other(e.to_string()))
 }
+
+/// Writes the mean error density per cell of every substructure of a method for ParaView
+/// (`<dir>/paraview/error.vtm`, one `.vtu` per substructure): `space_error_density`
+/// `= E[geo_E^2] / |E|` (the thesis's `I_geo` per unit area: where to refine the space mesh),
+/// `error_density` `= E[e_E^2] / |E|`, and the per-cell values themselves. The moments of the
+/// weights come from the method's integration rule, so the cells add up to the estimate's
+/// substructure terms. Returns the path, or `None` when no substructure is estimated.
+///
+/// # Errors
+/// Store, sample or write errors.
+pub fn write_error_fields(
+    study: &Study,
+    setup: &CreSetup,
+    solver: &LatinSolver,
+    store: &Store,
+    method: &Method,
+    points: &[Vec<f64>],
+    sur: &Surrogate,
+    settings: &ErrorSettings,
+    dir: &std::path::Path,
+) -> Result<Option<std::path::PathBuf>, StudyError> {
+    use alea_mesh::vtu::{VtuWriter, write_vtm};
+    if !setup.substructures_estimated() {
+        return Ok(None);
+    }
+    let (_, rule) = integration_rule(study, method, settings)?;
+    let params = StudyParameters::new(&study.model.parametric, solver);
+    let moments =
+        alea_estimate::weight_moments(&rule, sur, &params, solver.num_subs(), points.len());
+    let mut records = Vec::with_capacity(points.len());
+    let mut fields = Vec::with_capacity(points.len());
+    for p in points {
+        let values = store.cre(p)?.ok_or_else(|| {
+            StudyError::Other(format!("the run at {p:?} has no stored error estimate"))
+        })?;
+        records.push(CreRecord::from_values(&values).ok_or_else(|| {
+            StudyError::Other(format!(
+                "the stored error estimate of the run at {p:?} is damaged"
+            ))
+        })?);
+        fields.push(store.fields(p)?);
+    }
+    let ns = solver.num_subs();
+    let mut cell_fields: Vec<[Vec<f64>; 4]> = Vec::with_capacity(ns);
+    for s in 0..ns {
+        let mut a = Vec::with_capacity(points.len());
+        let mut h = Vec::with_capacity(points.len());
+        let mut young = Vec::with_capacity(points.len());
+        for (r, f) in records.iter().zip(&fields) {
+            let (ya, yh) = setup.sub_samples(solver, s, r, f)?;
+            a.push(ya);
+            h.push(yh);
+            young.push(r.young[s]);
+        }
+        let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
+        let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
+        let terms = alea_estimate::cell_terms(
+            &ar,
+            &hr,
+            &young,
+            &setup.layout.subs[s].cell_offsets,
+            &moments[s],
+        );
+        let model = solver.model(s);
+        let th = model.analysis.thickness();
+        let area: Vec<f64> = (0..model.mesh.num_cells())
+            .map(|c| model.mesh.cell_measure(c) * th)
+            .collect();
+        let per = |v: &dyn Fn(&(f64, f64)) -> f64| -> Vec<f64> {
+            terms.iter().map(|t| v(t).max(0.0)).collect()
+        };
+        let geo = per(&|t| t.0);
+        let tot = per(&|t| t.1);
+        let geo_d = geo
+            .iter()
+            .zip(&area)
+            .map(|(g, a)| if *a > 0.0 { g / a } else { 0.0 })
+            .collect();
+        let tot_d = tot
+            .iter()
+            .zip(&area)
+            .map(|(g, a)| if *a > 0.0 { g / a } else { 0.0 })
+            .collect();
+        cell_fields.push([geo_d, tot_d, geo, tot]);
+    }
+    let names: Vec<String> = (0..ns).map(|s| solver.sub_name(s).to_string()).collect();
+    let parts: Vec<(&str, VtuWriter<'_>)> = (0..ns)
+        .map(|s| {
+            let mesh = &solver.model(s).mesh;
+            let [gd, td, g, t] = &cell_fields[s];
+            (
+                names[s].as_str(),
+                VtuWriter::new(mesh)
+                    .cell_scalar("space_error_density", gd)
+                    .cell_scalar("error_density", td)
+                    .cell_scalar("space_error", g)
+                    .cell_scalar("error", t),
+            )
+        })
+        .collect();
+    let path = dir.join("paraview").join("error.vtm");
+    std::fs::create_dir_all(dir.join("paraview")).map_err(|source| StudyError::Io {
+        path: dir.join("paraview"),
+        source,
+    })?;
+    write_vtm(&path, &parts)?;
+    Ok(Some(path))
+}

@@ -23,6 +23,8 @@ pub struct MethodEstimate {
     pub result: std::result::Result<MethodError, String>,
     /// Density maps (main method only).
     pub maps: Vec<PairMap>,
+    /// The ParaView file of the mean error density per cell (main method only).
+    pub vtu: Option<std::path::PathBuf>,
 }
 
 /// Estimates the error of every method with a surrogate; `main` (the method that answers) also
@@ -72,27 +74,41 @@ pub fn estimate_all(
                 .map_err(|e| e.to_string())?;
                 Ok((Some(est), merr))
             })();
-        let (result, maps) = match computed {
+        let (result, maps, vtu) = match computed {
             Ok((est, merr)) => {
-                let maps = match (Some(m) == main, est, study.params.names.len() >= 2) {
-                    (true, Some(est), true) => {
-                        let used = used_points(method, runs);
-                        match method.surrogate(&study.params, &used) {
-                            Ok(sur) => density_maps(study, &runs.solver, &est, &sur, &settings)
-                                .unwrap_or_default(),
-                            Err(_) => Vec::new(),
+                let (mut maps, mut vtu) = (Vec::new(), None);
+                if Some(m) == main {
+                    let used = used_points(method, runs);
+                    if let Ok(sur) = method.surrogate(&study.params, &used) {
+                        if let (Some(est), true) = (est, study.params.names.len() >= 2) {
+                            maps = density_maps(study, &runs.solver, &est, &sur, &settings)
+                                .unwrap_or_default();
                         }
+                        vtu = alea_study::estimate::write_error_fields(
+                            study,
+                            setup,
+                            &runs.solver,
+                            &store,
+                            method,
+                            &used,
+                            &sur,
+                            &settings,
+                            dir,
+                        )?;
                     }
-                    _ => Vec::new(),
-                };
-                (Ok(merr), maps)
+                }
+                (Ok(merr), maps, vtu)
             }
-            Err(e) => (Err(e), Vec::new()),
+            Err(e) => (Err(e), Vec::new(), None),
         };
+        if let Some(p) = &vtu {
+            println!("mean error density per cell: {}", p.display());
+        }
         out.push(MethodEstimate {
             method: m,
             result,
             maps,
+            vtu,
         });
     }
     Ok((settings, out))
@@ -312,5 +328,117 @@ pub fn adaptive_json(a: &AdaptiveOutcome) -> serde_json::Value {
     serde_json::json!({
         "stop": a.stop, "error": a.error, "steps": steps,
         "runs": (0..a.mesh.num_runs()).map(|r| a.mesh.run_point(r).to_vec()).collect::<Vec<_>>(),
+    })
+}
+
+/// The report's error section: indicators per method, the main method's entities, adaptive
+/// steps, the first density map.
+pub fn report_error(
+    study: &Study,
+    runs: &StudyRuns,
+    settings: &ErrorSettings,
+    estimates: &[MethodEstimate],
+) -> Option<crate::report::ErrorReport> {
+    use crate::report::{AdaptiveReport, EntityRow, ErrorReport, ErrorRow, StepRow, Surface};
+    if estimates.is_empty() {
+        return None;
+    }
+    let methods = estimates
+        .iter()
+        .filter_map(|me| {
+            let e = me.result.as_ref().ok()?;
+            let est = &e.estimate;
+            let (who, share) = dominant(est, |x| x.e2);
+            Some(ErrorRow {
+                method: runs.methods[me.method].label.clone(),
+                runs: e.runs,
+                relative: est.relative(),
+                i_geo: est.i_geo(),
+                i_sto: est.i_sto(),
+                dominant: format!("{who}: {:.0} %", 100.0 * share),
+                violation: est.violation_probability.clamp(0.0, 1.0),
+            })
+        })
+        .collect();
+    let main = estimates
+        .iter()
+        .find(|me| me.result.is_ok() && (!me.maps.is_empty() || me.vtu.is_some()))
+        .or_else(|| estimates.iter().find(|me| me.result.is_ok()));
+    let (main_label, entities, map, vtu) = match main {
+        Some(me) => {
+            let e = me.result.as_ref().ok()?;
+            let est = &e.estimate;
+            let entities = est
+                .subs
+                .iter()
+                .map(|x| (x, "substructure"))
+                .chain(est.interfaces.iter().map(|x| (x, "interface")))
+                .map(|(x, kind)| EntityRow {
+                    entity: x.name.clone(),
+                    kind: kind.into(),
+                    relative: est.relative_of(x.e2),
+                    i_geo: est.relative_of(x.geo2),
+                    i_sto: est.relative_of(x.sto2),
+                    mean_share: (kind == "substructure" && x.e2 > 0.0)
+                        .then(|| (x.mean2 / x.e2).clamp(0.0, 1.0)),
+                })
+                .collect();
+            let map = me.maps.iter().find(|m| m.axes == [0, 1]).map(|m| {
+                let method = &runs.methods[me.method];
+                let floor = m.sto.iter().copied().fold(f64::INFINITY, f64::min).max(0.0);
+                Surface {
+                    param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
+                    x: m.x.clone(),
+                    y: m.y.clone(),
+                    values: m.sto.iter().map(|v| v.max(0.0)).collect(),
+                    points: method.points.iter().map(|p| [p[0], p[1], floor]).collect(),
+                }
+            });
+            (
+                runs.methods[me.method].label.clone(),
+                entities,
+                map,
+                me.vtu.as_ref().map(|p| p.display().to_string()),
+            )
+        }
+        None => (String::new(), Vec::new(), None, None),
+    };
+    let qoi = study.qois.first();
+    let adaptive = runs
+        .adaptive
+        .iter()
+        .map(|a| AdaptiveReport {
+            method: runs.methods[a.method].label.clone(),
+            stop: a.stop.clone(),
+            qoi: qoi.map_or("-".to_string(), |q| q.name.clone()),
+            steps: a
+                .steps
+                .iter()
+                .map(|s| {
+                    let est = &s.error.estimate;
+                    let q = s.qois.first();
+                    StepRow {
+                        runs: s.runs,
+                        new_runs: s.new_runs,
+                        i_sto: est.i_sto(),
+                        i_geo: est.i_geo(),
+                        relative: est.relative(),
+                        mean: q.map_or(0.0, |q| q.mean),
+                        std: q.map_or(0.0, |q| q.std),
+                        failure: q.and_then(|q| q.failure.first().copied()),
+                        cost: s.thesis_cost,
+                    }
+                })
+                .collect(),
+        })
+        .collect();
+    Some(ErrorReport {
+        warn: settings.warn,
+        methods,
+        main: main_label,
+        entities,
+        adaptive,
+        map,
+        vtu,
     })
 }

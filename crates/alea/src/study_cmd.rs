@@ -238,7 +238,7 @@ fn write_outputs(
     }
     if report {
         let t0 = Instant::now();
-        let input = report_input(
+        let mut input = report_input(
             study,
             &runs.methods,
             &results,
@@ -251,6 +251,7 @@ fn write_outputs(
                 ("stochastic error estimates".into(), estimate_seconds),
             ],
         )?;
+        input.error = crate::estimate_out::report_error(study, runs, &err_settings, &estimates);
         let files = report::write_report(&dir.join("report"), &input)?;
         input.save_json(&dir.join("report").join("report-input.json"))?;
         println!(
@@ -574,6 +575,7 @@ fn report_input(
         comparison,
         timings: timings.to_vec(),
         notes: notes.to_vec(),
+        error: None,
     })
 }
 

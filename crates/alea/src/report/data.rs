@@ -36,6 +36,84 @@ pub struct ReportInput {
     pub timings: Vec<(String, f64)>,
     /// Warnings shown prominently at the top of the report.
     pub notes: Vec<String>,
+    /// The stochastic error estimate (thesis 3.2, 4.1-4.2), when the study has one.
+    #[serde(default)]
+    pub error: Option<ErrorReport>,
+}
+
+/// The stochastic error estimate of a study: per method, per entity of the main method, the
+/// adaptive steps, and the error-density map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ErrorReport {
+    /// The warning threshold of `i_geo` and `i_sto`.
+    pub warn: f64,
+    /// One row per method with a surrogate.
+    pub methods: Vec<ErrorRow>,
+    /// The method whose entities and map are shown.
+    pub main: String,
+    /// Entities of the main method.
+    pub entities: Vec<EntityRow>,
+    /// Adaptive methods' steps.
+    pub adaptive: Vec<AdaptiveReport>,
+    /// Density of the stochastic error over the first two parameters (others integrated), with
+    /// the runs as points.
+    pub map: Option<Surface>,
+    /// The ParaView file of the mean error density per cell, when written.
+    pub vtu: Option<String>,
+}
+
+/// The indicators of one method.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ErrorRow {
+    pub method: String,
+    pub runs: usize,
+    /// `e~` relative to the energy of the admissible stresses.
+    pub relative: f64,
+    pub i_geo: f64,
+    pub i_sto: f64,
+    /// The entity that carries most of `e~^2`, and its share.
+    pub dominant: String,
+    /// Probability of points where the interpolated interface fields are not admissible.
+    pub violation: f64,
+}
+
+/// The indicators of one entity (substructure or interface).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EntityRow {
+    pub entity: String,
+    pub kind: String,
+    pub relative: f64,
+    pub i_geo: f64,
+    pub i_sto: f64,
+    /// Substructures: shares of the mean and standard-deviation parts (3.32) in `e^2`.
+    pub mean_share: Option<f64>,
+}
+
+/// The steps of one adaptive method.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AdaptiveReport {
+    pub method: String,
+    /// Why it stopped.
+    pub stop: String,
+    /// The quantity whose statistics are listed per step.
+    pub qoi: String,
+    pub steps: Vec<StepRow>,
+}
+
+/// One adaptive step.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StepRow {
+    pub runs: usize,
+    pub new_runs: usize,
+    pub i_sto: f64,
+    pub i_geo: f64,
+    pub relative: f64,
+    pub mean: f64,
+    pub std: f64,
+    /// `P(q > threshold)` for the quantity's first threshold, if any.
+    pub failure: Option<f64>,
+    /// Cumulative cost in the thesis's units (run 1, estimate 1.5).
+    pub cost: f64,
 }
 
 /// One random parameter.

@@ -21,6 +21,7 @@ header.top { background: linear-gradient(120deg, #0b3d6b, #0b4f8a 60%, #136fae);
 header.top .inner { max-width:1040px; margin:0 auto; padding:0 24px; }
 header.top h1 { margin:0 0 4px; font-size: 28px; font-weight: 600; letter-spacing: .2px; }
 header.top .sub { opacity:.85; font-size:14px; }
+.bad { color:#b3261e; }
 section { background:#fff; border:1px solid var(--line); border-radius:8px; padding:20px 24px;
   margin: 0 0 20px; box-shadow: 0 1px 2px rgba(20,30,40,.05); }
 h2 { font-size: 20px; margin: 0 0 14px; color: var(--accent); font-weight: 600; }
@@ -172,6 +173,9 @@ pub fn render(input: &ReportInput, figures: &[Figure]) -> String {
     if let Some(c) = &input.comparison {
         comparison(&mut o, c, figures);
     }
+    if let Some(e) = &input.error {
+        error_section(&mut o, e, figures);
+    }
     if figure(figures, Kind::Convergence).is_some() {
         o.push_str("<section id=\"convergence\"><h2>Solver convergence</h2>\n");
         put_figure(
@@ -205,6 +209,9 @@ fn toc(input: &ReportInput, figures: &[Figure]) -> String {
     }
     if input.comparison.is_some() {
         links.push(("comparison".into(), "Comparison".into()));
+    }
+    if input.error.is_some() {
+        links.push(("error".into(), "Error estimate".into()));
     }
     if figure(figures, Kind::Convergence).is_some() {
         links.push(("convergence".into(), "Convergence".into()));
@@ -596,4 +603,117 @@ fn timings(o: &mut String, input: &ReportInput) {
         seconds(total)
     );
     o.push_str("</tbody></table></section>\n");
+}
+
+fn pct(v: f64) -> String {
+    format!("{:.2} %", 100.0 * v)
+}
+
+/// The stochastic error estimate: indicators per method and per entity, adaptive steps, the
+/// error-density map and the indicators against the runs.
+fn error_section(o: &mut String, e: &super::ErrorReport, figures: &[Figure]) {
+    o.push_str("<section id=\"error\"><h2>Error estimate</h2>\n");
+    let _ = writeln!(
+        o,
+        "<p>Constitutive-relation error of the stochastic solution (thesis 3.2), split into a \
+         space part <i>i</i><sub>geo</sub> (the finite-element mesh) and a stochastic part \
+         <i>i</i><sub>sto</sub> (the runs and the surrogate), <i>e</i>&#771;<sup>2</sup> = \
+         <i>I</i><sub>geo</sub><sup>2</sup> + <i>I</i><sub>sto</sub><sup>2</sup> (4.1-4.9), relative \
+         to the energy of the admissible stresses. Values above {} are flagged.</p>",
+        esc(&pct(e.warn))
+    );
+    let flag = |v: f64| {
+        if v > e.warn {
+            format!("<b class=\"bad\">{}</b>", esc(&pct(v)))
+        } else {
+            esc(&pct(v))
+        }
+    };
+    o.push_str(
+        "<table><thead><tr><th>Method</th><th>Runs</th><th>e&#771;</th><th>i<sub>geo</sub></th>\
+         <th>i<sub>sto</sub></th><th>Largest part of e&#771;<sup>2</sup></th>\
+         <th>P(not admissible)</th></tr></thead><tbody>\n",
+    );
+    for r in &e.methods {
+        let _ = writeln!(
+            o,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&r.method),
+            r.runs,
+            esc(&pct(r.relative)),
+            flag(r.i_geo),
+            flag(r.i_sto),
+            esc(&r.dominant),
+            num(r.violation, 3)
+        );
+    }
+    o.push_str("</tbody></table>\n");
+    if !e.entities.is_empty() {
+        let _ = writeln!(
+            o,
+            "<h3>Per entity ({})</h3><table><thead><tr><th>Entity</th><th>Kind</th><th>e&#771;</th>\
+             <th>i<sub>geo</sub></th><th>i<sub>sto</sub></th><th>Mean part of e<sup>2</sup> (3.32)</th></tr></thead><tbody>",
+            esc(&e.main)
+        );
+        for r in &e.entities {
+            let _ = writeln!(
+                o,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                esc(&r.entity),
+                esc(&r.kind),
+                esc(&pct(r.relative)),
+                esc(&pct(r.i_geo)),
+                esc(&pct(r.i_sto)),
+                r.mean_share.map_or("-".to_string(), |m| esc(&pct(m)))
+            );
+        }
+        o.push_str("</tbody></table>\n");
+    }
+    for a in &e.adaptive {
+        let _ = writeln!(
+            o,
+            "<h3>Adaptive steps: {}</h3><p>Stopped: {}. Cost in the thesis's units (tables 4.3-4.4): a run 1, an estimate 1.5.</p>\
+             <table><thead><tr><th>Step</th><th>Runs</th><th>New</th><th>i<sub>sto</sub></th><th>i<sub>geo</sub></th>\
+             <th>e&#771;</th><th>Mean {q}</th><th>Std {q}</th><th>P<sub>f</sub></th><th>Cost</th></tr></thead><tbody>",
+            esc(&a.method),
+            esc(&a.stop),
+            q = esc(&a.qoi)
+        );
+        for (k, s) in a.steps.iter().enumerate() {
+            let _ = writeln!(
+                o,
+                "<tr><td>{k}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                s.runs,
+                s.new_runs,
+                esc(&pct(s.i_sto)),
+                esc(&pct(s.i_geo)),
+                esc(&pct(s.relative)),
+                num(s.mean, 5),
+                num(s.std, 4),
+                s.failure.map_or("-".to_string(), |p| num(p, 3)),
+                num(s.cost, 3)
+            );
+        }
+        o.push_str("</tbody></table>\n");
+    }
+    put_figure(
+        o,
+        figures,
+        Kind::ErrorMap,
+        "Density of the stochastic error over the parameters (contribution to I_sto^2 per unit parameter area; other parameters integrated), with the runs",
+    );
+    put_figure(
+        o,
+        figures,
+        Kind::Indicators,
+        "i_sto (solid) and i_geo (dashed) after each adaptive step",
+    );
+    if let Some(v) = &e.vtu {
+        let _ = writeln!(
+            o,
+            "<p>Mean error density per cell for ParaView: <code>{}</code> (fields <code>space_error_density</code>, <code>error_density</code>).</p>",
+            esc(v)
+        );
+    }
+    o.push_str("</section>\n");
 }

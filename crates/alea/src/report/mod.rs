@@ -27,7 +27,8 @@ use std::path::{Path, PathBuf};
 // The whole input type family is public API for the study runner (and the tests).
 #[allow(unused_imports)]
 pub use data::{
-    Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReportInput, RunInfo, Surface,
+    AdaptiveReport, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow, FailureInfo,
+    ParamInfo, QoiReport, ReportInput, RunInfo, StepRow, Surface,
 };
 
 /// What went wrong while writing a report.
@@ -135,6 +136,41 @@ fn pdf_curve(field: &str, kde: &[(f64, f64)]) -> Result<(), ReportError> {
     Ok(())
 }
 
+/// Checks a surface: finite values, strictly increasing grids of at least 2 values, matching
+/// sizes.
+fn validate_surface(field: &str, s: &Surface) -> Result<(), ReportError> {
+    let f = |what: &str| format!("{field}.{what}");
+    all_finite(&f("x"), &s.x)?;
+    all_finite(&f("y"), &s.y)?;
+    all_finite(&f("values"), &s.values)?;
+    for (i, p) in s.points.iter().enumerate() {
+        all_finite(&f(&format!("points[{i}]")), p)?;
+    }
+    for (axis, g) in [("x", &s.x), ("y", &s.y)] {
+        if g.len() < 2 {
+            return Err(invalid(
+                f(axis),
+                format!("{} grid values (at least 2 needed)", g.len()),
+            ));
+        }
+        if g.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(invalid(f(axis), "grid values are not strictly increasing"));
+        }
+    }
+    if s.values.len() != s.x.len() * s.y.len() {
+        return Err(invalid(
+            f("values"),
+            format!(
+                "{} values for a {} x {} grid",
+                s.values.len(),
+                s.x.len(),
+                s.y.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Checks every number is finite and the shapes agree, naming the field at fault.
 pub fn validate(input: &ReportInput) -> Result<(), ReportError> {
     let np = input.parameters.len();
@@ -216,37 +252,47 @@ pub fn validate(input: &ReportInput) -> Result<(), ReportError> {
             }
         }
         if let Some(s) = &q.surface {
-            all_finite(&f("surface.x"), &s.x)?;
-            all_finite(&f("surface.y"), &s.y)?;
-            all_finite(&f("surface.values"), &s.values)?;
-            for (i, p) in s.points.iter().enumerate() {
-                all_finite(&f(&format!("surface.points[{i}]")), p)?;
+            validate_surface(&f("surface"), s)?;
+        }
+    }
+    if let Some(e) = &input.error {
+        finite(|| "error.warn".into(), e.warn)?;
+        for (k, r) in e.methods.iter().enumerate() {
+            let f = |what: &str| format!("error.methods[{k}] \"{}\".{what}", r.method);
+            finite(|| f("relative"), r.relative)?;
+            finite(|| f("i_geo"), r.i_geo)?;
+            finite(|| f("i_sto"), r.i_sto)?;
+            probability(|| f("violation"), r.violation)?;
+        }
+        for (k, r) in e.entities.iter().enumerate() {
+            let f = |what: &str| format!("error.entities[{k}] \"{}\".{what}", r.entity);
+            finite(|| f("relative"), r.relative)?;
+            finite(|| f("i_geo"), r.i_geo)?;
+            finite(|| f("i_sto"), r.i_sto)?;
+            if let Some(m) = r.mean_share {
+                finite(|| f("mean_share"), m)?;
             }
-            for (axis, g) in [("x", &s.x), ("y", &s.y)] {
-                if g.len() < 2 {
-                    return Err(invalid(
-                        f(&format!("surface.{axis}")),
-                        format!("{} grid values (at least 2 needed)", g.len()),
-                    ));
+        }
+        for (a, ad) in e.adaptive.iter().enumerate() {
+            for (k, s) in ad.steps.iter().enumerate() {
+                let f = |what: &str| format!("error.adaptive[{a}].steps[{k}].{what}");
+                for (name, v) in [
+                    ("i_sto", s.i_sto),
+                    ("i_geo", s.i_geo),
+                    ("relative", s.relative),
+                    ("mean", s.mean),
+                    ("std", s.std),
+                    ("cost", s.cost),
+                ] {
+                    finite(|| f(name), v)?;
                 }
-                if g.windows(2).any(|w| w[1] <= w[0]) {
-                    return Err(invalid(
-                        f(&format!("surface.{axis}")),
-                        "grid values are not strictly increasing",
-                    ));
+                if let Some(p) = s.failure {
+                    probability(|| f("failure"), p)?;
                 }
             }
-            if s.values.len() != s.x.len() * s.y.len() {
-                return Err(invalid(
-                    f("surface.values"),
-                    format!(
-                        "{} values for a {} x {} grid",
-                        s.values.len(),
-                        s.x.len(),
-                        s.y.len()
-                    ),
-                ));
-            }
+        }
+        if let Some(s) = &e.map {
+            validate_surface("error.map", s)?;
         }
     }
     if let Some(c) = &input.comparison {

@@ -11,7 +11,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::format::{count, num, slug};
-use super::{Comparison, QoiReport, ReportError, ReportInput, Surface};
+use super::{AdaptiveReport, Comparison, QoiReport, ReportError, ReportInput, Surface};
 
 /// DejaVu Sans (Bitstream Vera licence, see assets/fonts/DejaVu-LICENSE.txt).
 const FONT_TTF: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -60,6 +60,10 @@ pub enum Kind {
     Surface(usize),
     Convergence,
     Comparison,
+    /// The stochastic error density over two parameters.
+    ErrorMap,
+    /// `i_sto` and `i_geo` against the runs of the adaptive methods.
+    Indicators,
 }
 
 /// One plot, written as PNG and SVG; `svg` is the SVG text for inlining.
@@ -138,7 +142,8 @@ pub fn draw_all(dir: &Path, input: &ReportInput) -> Result<Vec<Figure>, ReportEr
             &cdf,
         )?);
         if let Some(s) = &q.surface {
-            let spec = Spec::Surface(q, s);
+            let title = format!("Response surface of {}", q.name);
+            let spec = Spec::Surface(&title, (&q.name, &q.unit), s);
             let stem = format!("surface_{stem}");
             figures.push(render(dir, &stem, SURFACE_SIZE, Kind::Surface(k), &spec)?);
         }
@@ -172,6 +177,23 @@ pub fn draw_all(dir: &Path, input: &ReportInput) -> Result<Vec<Figure>, ReportEr
         let spec = Spec::Comparison(c, unit);
         figures.push(render(dir, "comparison", SIZE, Kind::Comparison, &spec)?);
     }
+    if let Some(e) = &input.error {
+        if let Some(m) = &e.map {
+            let title = format!("Stochastic error density ({})", e.main);
+            let spec = Spec::Surface(&title, ("density of I_sto^2", ""), m);
+            figures.push(render(
+                dir,
+                "error_map",
+                SURFACE_SIZE,
+                Kind::ErrorMap,
+                &spec,
+            )?);
+        }
+        if e.adaptive.iter().any(|a| !a.steps.is_empty()) {
+            let spec = Spec::Indicators(&e.adaptive);
+            figures.push(render(dir, "indicators", SIZE, Kind::Indicators, &spec)?);
+        }
+    }
     Ok(figures)
 }
 
@@ -179,7 +201,9 @@ pub fn draw_all(dir: &Path, input: &ReportInput) -> Result<Vec<Figure>, ReportEr
 enum Spec<'a> {
     Pdf(&'a QoiReport, &'a [f64]),
     Cdf(&'a QoiReport, &'a [f64]),
-    Surface(&'a QoiReport, &'a Surface),
+    /// Title, colour-bar label (name, unit), surface.
+    Surface(&'a str, (&'a str, &'a str), &'a Surface),
+    Indicators(&'a [AdaptiveReport]),
     Convergence(&'a [(&'a str, Vec<(f64, f64)>)]),
     Comparison(&'a Comparison, &'a str),
 }
@@ -196,7 +220,8 @@ impl Spec<'_> {
         match *self {
             Spec::Pdf(q, sorted) => draw_pdf(root, q, sorted),
             Spec::Cdf(q, sorted) => draw_cdf(root, q, sorted),
-            Spec::Surface(q, s) => return draw_surface(root, q, s, vector),
+            Spec::Surface(title, label, s) => return draw_surface(root, title, label, s, vector),
+            Spec::Indicators(a) => draw_indicators(root, a),
             Spec::Convergence(h) => draw_convergence(root, h),
             Spec::Comparison(c, unit) => draw_comparison(root, c, unit),
         }?;
@@ -296,7 +321,7 @@ fn render(
         root.present().map_err(|e| plot_err(e.to_string()))?;
         raster
     };
-    if let (Some(r), Spec::Surface(_, s)) = (raster, spec) {
+    if let (Some(r), Spec::Surface(_, _, s)) = (raster, spec) {
         embed_raster(&mut svg, s, &r).map_err(plot_err)?;
     }
     let (w, h) = size;
@@ -769,7 +794,8 @@ fn bilinear(s: &Surface, x: f64, y: f64) -> f64 {
 
 fn draw_surface<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    q: &QoiReport,
+    title: &str,
+    (name, unit): (&str, &str),
     s: &Surface,
     vector: bool,
 ) -> Result<Option<Raster>, String> {
@@ -800,7 +826,7 @@ fn draw_surface<DB: DrawingBackend>(
     let left_w = w as i32 - 140;
     let (left, right) = root.split_horizontally(left_w);
     let mut chart = ChartBuilder::on(&left)
-        .caption(format!("Response surface of {}", q.name), font(24.0))
+        .caption(title, font(24.0))
         .margin(18)
         .margin_right(8)
         .x_label_area_size(54)
@@ -895,7 +921,7 @@ fn draw_surface<DB: DrawingBackend>(
         .set_tick_mark_size(LabelAreaPosition::Right, 5)
         .y_labels(8)
         .y_label_formatter(&ticks(vmin, vmax, 8))
-        .y_desc(axis_label(&q.name, &q.unit))
+        .y_desc(axis_label(name, unit))
         .axis_desc_style(font(15.0))
         .label_style(font(13.0))
         .draw()
@@ -1063,6 +1089,98 @@ fn draw_comparison<DB: DrawingBackend>(
                 .label(label)
                 .legend(line_legend(color, width));
         }
+    }
+    configure_legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// `i_sto` (solid) and `i_geo` (dashed) of each adaptive method against its number of runs
+/// (log scale), with the thesis's stopping rule `i_sto <= i_geo` where the lines cross.
+fn draw_indicators<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    adaptive: &[AdaptiveReport],
+) -> DrawResult {
+    let mut xr = None;
+    let mut yr = None;
+    for a in adaptive {
+        for s in &a.steps {
+            extend(&mut xr, s.runs as f64);
+            for v in [s.i_sto, s.i_geo] {
+                if v > 0.0 {
+                    extend(&mut yr, 100.0 * v);
+                }
+            }
+        }
+    }
+    let (x0, x1) = pad(xr.unwrap_or((0.0, 1.0)), 0.05);
+    let (y0, y1) = yr.unwrap_or((0.1, 100.0));
+    let (y0, y1) = if y1 > y0 {
+        (y0 / 1.5, y1 * 1.5)
+    } else {
+        (y0 / 10.0, y1 * 10.0)
+    };
+    let mut chart = ChartBuilder::on(root)
+        .caption("Error indicators of the adaptive steps", font(24.0))
+        .margin(18)
+        .x_label_area_size(54)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("runs")
+        .y_desc("indicator (% of the admissible energy)")
+        .x_labels(10)
+        .y_labels(10)
+        .x_label_formatter(&|v| {
+            if (v - v.round()).abs() < 1e-9 {
+                format!("{}", v.round() as i64)
+            } else {
+                String::new()
+            }
+        })
+        .y_label_formatter(&|v| num(*v, 2))
+        .axis_desc_style(font(17.0))
+        .label_style(font(15.0))
+        .bold_line_style(GRID_BOLD)
+        .light_line_style(GRID_LIGHT)
+        .draw()
+        .map_err(err)?;
+    for (k, a) in adaptive.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        let pts = |f: fn(&super::StepRow) -> f64| -> Vec<(f64, f64)> {
+            a.steps
+                .iter()
+                .filter(|s| f(s) > 0.0)
+                .map(|s| (s.runs as f64, 100.0 * f(s)))
+                .collect()
+        };
+        let sto = pts(|s| s.i_sto);
+        let geo = pts(|s| s.i_geo);
+        chart
+            .draw_series(LineSeries::new(sto.iter().copied(), color.stroke_width(2)))
+            .map_err(err)?
+            .label(format!("i_sto, {}", a.method))
+            .legend(line_legend(color, 2));
+        chart
+            .draw_series(sto.iter().map(|&p| Circle::new(p, 4, color.filled())))
+            .map_err(err)?;
+        chart
+            .draw_series(DashedLineSeries::new(
+                geo.iter().copied(),
+                8,
+                5,
+                color.stroke_width(2),
+            ))
+            .map_err(err)?
+            .label(format!("i_geo, {}", a.method))
+            .legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (8, 0)], color.stroke_width(2))
+                    + PathElement::new(vec![(12, 0), (20, 0)], color.stroke_width(2))
+            });
+        chart
+            .draw_series(geo.iter().map(|&p| Cross::new(p, 4, color.stroke_width(2))))
+            .map_err(err)?;
     }
     configure_legend(&mut chart, SeriesLabelPosition::UpperRight)
 }

@@ -208,6 +208,90 @@ fn synthetic() -> ReportInput {
             "1 run did not converge and was left out: run 10 (E2 = 225000, mu = 0.85)".into(),
             "<script>alert('x')</script> is text, not code".into(),
         ],
+        error: Some(error_section()),
+    }
+}
+
+/// A stochastic error estimate: two methods, three entities, an adaptive method's steps and a
+/// density map peaked in one corner.
+fn error_section() -> ErrorReport {
+    let x: Vec<f64> = (0..20).map(|i| 210e3 + 3e3 * i as f64).collect();
+    let y: Vec<f64> = (0..20).map(|j| 0.1 + 0.04 * j as f64).collect();
+    let values = y
+        .iter()
+        .flat_map(|&mu| {
+            x.iter()
+                .map(move |&e| ((e - 210e3) / 6e4 * mu).powi(2) * 1e-3)
+        })
+        .collect();
+    ErrorReport {
+        warn: 0.1,
+        methods: vec![
+            ErrorRow {
+                method: "adaptive (improved)".into(),
+                runs: 13,
+                relative: 0.12,
+                i_geo: 0.11,
+                i_sto: 0.05,
+                dominant: "interface 'G2': 60 %".into(),
+                violation: 0.0,
+            },
+            ErrorRow {
+                method: "chaos p=2".into(),
+                runs: 9,
+                relative: 0.2,
+                i_geo: 0.11,
+                i_sto: 0.17,
+                dominant: "substructure <S2>: 40 %".into(),
+                violation: 0.25,
+            },
+        ],
+        main: "adaptive (improved)".into(),
+        entities: vec![
+            EntityRow {
+                entity: "S2".into(),
+                kind: "substructure".into(),
+                relative: 0.08,
+                i_geo: 0.08,
+                i_sto: 0.0,
+                mean_share: Some(0.9),
+            },
+            EntityRow {
+                entity: "G2".into(),
+                kind: "interface".into(),
+                relative: 0.09,
+                i_geo: 0.07,
+                i_sto: 0.05,
+                mean_share: None,
+            },
+        ],
+        adaptive: vec![AdaptiveReport {
+            method: "adaptive (improved)".into(),
+            stop: "i_sto <= i_geo".into(),
+            qoi: "friction work".into(),
+            steps: [(5, 0.3, 0.2), (7, 0.2, 0.14), (13, 0.05, 0.11)]
+                .iter()
+                .map(|&(runs, sto, geo)| StepRow {
+                    runs,
+                    new_runs: 2,
+                    i_sto: sto,
+                    i_geo: geo,
+                    relative: (sto * sto + geo * geo).sqrt(),
+                    mean: 4.2e3,
+                    std: 900.0,
+                    failure: Some(0.02),
+                    cost: runs as f64 + 1.5,
+                })
+                .collect(),
+        }],
+        map: Some(Surface {
+            param_names: ["E2".into(), "mu".into()],
+            x,
+            y,
+            values,
+            points: vec![[210e3, 0.1, 0.0], [267e3, 0.86, 0.0], [240e3, 0.5, 0.0]],
+        }),
+        vtu: Some("out/study/paraview/error.vtm".into()),
     }
 }
 
@@ -279,8 +363,16 @@ fn full_report_is_written() {
         ("cdf_max", SIZE),
         ("convergence", SIZE),
         ("comparison", SIZE),
+        ("error_map", SURFACE_SIZE),
+        ("indicators", SIZE),
     ];
     assert_eq!(files.plots.len(), 2 * stems.len(), "{:?}", files.plots);
+    let html = std::fs::read_to_string(&files.html).unwrap();
+    assert!(html.contains("id=\"error\"") && html.contains("Adaptive steps"));
+    assert!(
+        html.contains("substructure &lt;S2&gt;"),
+        "escaped entity names"
+    );
     for (stem, size) in stems {
         let png = dir.join(format!("{stem}.png"));
         let svg = dir.join(format!("{stem}.svg"));
@@ -291,7 +383,9 @@ fn full_report_is_written() {
         check_png(&png, size);
         let elements: &[&str] = match stem {
             s if s.starts_with("pdf_friction") => &["rect", "polyline", "text", "line"],
-            s if s.starts_with("surface") => &["rect", "circle", "text", "image"],
+            s if s.starts_with("surface") || s == "error_map" => {
+                &["rect", "circle", "text", "image"]
+            }
             _ => &["polyline", "text"],
         };
         check_svg(&svg, size, elements);
@@ -463,6 +557,7 @@ fn degenerate_inputs_give_a_report() {
         }),
         timings: vec![],
         notes: vec![],
+        error: None,
     };
     let dir = out_dir("degenerate");
     let files = write_report(&dir, &input).unwrap();
