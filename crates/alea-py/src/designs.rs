@@ -98,6 +98,9 @@ pub fn pc_collocation<'py>(
     array2(py, design.points().to_vec(), n, m.len())
 }
 
+/// Quadrature nodes `(n, d)` and weights `(n,)`.
+type NodesWeights<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// A quadrature rule for the independent variables of `law`: `(nodes (n, d), weights (n,))`,
 /// weights summing to 1 (expectations under the law).
 ///
@@ -113,7 +116,7 @@ pub fn quadrature<'py>(
     order: Option<&Bound<'py, PyAny>>,
     level: Option<usize>,
     nested: bool,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<f64>>)> {
+) -> PyResult<NodesWeights<'py>> {
     let m = independent_marginals(law, "quadrature law")?;
     let rule = quadrature_rule(&m, order, level, nested)?;
     let (n, d) = (rule.len(), rule.dim());

@@ -310,10 +310,10 @@ pub fn fit<'py>(
         Some(list) => list
             .iter()
             .map(|f| {
-                if let Ok((name, a, b)) = f.extract::<(String, f64, f64)>() {
-                    if name == "beta" {
-                        return Ok(Family::Beta { a, b });
-                    }
+                if let Ok((name, a, b)) = f.extract::<(String, f64, f64)>()
+                    && name == "beta"
+                {
+                    return Ok(Family::Beta { a, b });
                 }
                 match f.extract::<String>()?.as_str() {
                     "normal" => Ok(Family::Normal),
@@ -371,7 +371,10 @@ pub struct JointPy {
     kind: &'static str,
 }
 
-fn marginals_of(list: &Bound<'_, PyAny>) -> PyResult<(Vec<Arc<dyn Marginal>>, Vec<Py<Law>>)> {
+/// Marginals and the Python objects they came from.
+type Marginals = (Vec<Arc<dyn Marginal>>, Vec<Py<Law>>);
+
+fn marginals_of(list: &Bound<'_, PyAny>) -> PyResult<Marginals> {
     let mut m = Vec::new();
     let mut objs = Vec::new();
     for item in list.try_iter()? {
@@ -573,7 +576,8 @@ impl JointPy {
         self.map_points(py, x, "to_unit points", |l, p, o| l.x_to_unit(p, o))
     }
     /// Map unit-cube points `u` to the law's space.
-    fn from_unit<'py>(
+    #[pyo3(name = "from_unit")]
+    fn unit_to_x<'py>(
         &self,
         py: Python<'py>,
         u: ArrayIn<'py>,
@@ -591,7 +595,8 @@ impl JointPy {
         })
     }
     /// Map independent standard normal points `y` to the law's space.
-    fn from_standard_normal<'py>(
+    #[pyo3(name = "from_standard_normal")]
+    fn standard_normal_to_x<'py>(
         &self,
         py: Python<'py>,
         y: ArrayIn<'py>,
