@@ -9,6 +9,7 @@ Monte Carlo standard errors (plus a small surrogate error for the chaos). Then t
 back, the study resumed (nothing solved again) and run with one thread (identical results).
 """
 
+import json
 import math
 import shutil
 from pathlib import Path
@@ -104,6 +105,18 @@ def test_store_read_back_and_resume(study, tmp_path):
     anonymous = alea.open_store(directory)
     assert anonymous.parameters == ["x1", "x2"] and anonymous.quantities == ["q1"]
     np.testing.assert_array_equal(anonymous.runs["q1"], stored.runs["tip"])
+    # Names from the command line's summary.json when it belongs to the same study version.
+    summary = {
+        "study_hash": res.study_hash,
+        "parameters": [{"name": "E"}, {"name": "P"}],
+        "methods": [{"qois": [{"name": "tip"}]}],
+    }
+    (directory / "summary.json").write_text(json.dumps(summary))
+    named = alea.open_store(directory)
+    assert named.parameters == ["E", "P"] and named.quantities == ["tip"]
+    (directory / "summary.json").write_text(json.dumps(dict(summary, study_hash="0")))
+    assert alea.open_store(directory).parameters == ["x1", "x2"]
+    (directory / "summary.json").unlink()
     # Another version of the study file is refused.
     changed = tmp_path / "plate.toml"
     changed.write_text((DATA / "plate.toml").read_text().replace("seed = 7", "seed = 8"))
