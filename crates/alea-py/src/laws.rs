@@ -114,7 +114,7 @@ fn law<M: Marginal + 'static>(r: alea_uq::Result<M>, repr: String) -> PyResult<L
 }
 
 /// Normal law `N(mean, std^2)`.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Normal")]
 pub struct NormalLaw;
 
 #[pymethods]
@@ -133,7 +133,7 @@ impl NormalLaw {
 }
 
 /// Uniform law on `[lo, hi]`.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Uniform")]
 pub struct UniformLaw;
 
 #[pymethods]
@@ -149,7 +149,7 @@ impl UniformLaw {
 
 /// Normal law `N(mean, std^2)` truncated to `[lo, hi]` (bounds may be infinite; far tails are
 /// handled in log space).
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "TruncatedNormal")]
 pub struct TruncatedNormalLaw;
 
 #[pymethods]
@@ -163,7 +163,7 @@ impl TruncatedNormalLaw {
 
 /// Lognormal law: `ln X ~ N(mu, sigma^2)`. `Lognormal.from_mean_std(mean, std)` gives the law
 /// with those moments.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Lognormal")]
 pub struct LognormalLaw;
 
 #[pymethods]
@@ -188,7 +188,7 @@ impl LognormalLaw {
 }
 
 /// Beta law with shapes `alpha`, `beta` on `[lo, hi]`.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Beta")]
 pub struct BetaLaw;
 
 #[pymethods]
@@ -202,7 +202,7 @@ impl BetaLaw {
 }
 
 /// Gamma law with shape `k`, scale `theta` and location `loc`.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Gamma")]
 pub struct GammaLaw;
 
 #[pymethods]
@@ -216,7 +216,7 @@ impl GammaLaw {
 }
 
 /// Triangular law on `[lo, hi]` with mode `mode`.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Triangular")]
 pub struct TriangularLaw;
 
 #[pymethods]
@@ -229,7 +229,7 @@ impl TriangularLaw {
 }
 
 /// Empirical law of data (linearly interpolated empirical distribution function).
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Empirical")]
 pub struct EmpiricalLaw;
 
 #[pymethods]
@@ -257,7 +257,7 @@ fn bandwidth(b: &Bound<'_, PyAny>) -> PyResult<Bandwidth> {
 
 /// A Gaussian kernel density estimate of data used as a law; `bandwidth` is `"isj"`
 /// (improved Sheather-Jones, the default), `"silverman"` or a number.
-#[pyclass(extends = Law, frozen, module = "alea")]
+#[pyclass(extends = Law, frozen, module = "alea", name = "Kde")]
 pub struct KdeLawPy {
     bandwidth: f64,
 }

@@ -173,3 +173,10 @@ def test_other_copulas_and_law_arguments():
         alea.monte_carlo("not a law", 10)
     with pytest.raises(ValueError, match="independent"):
         alea.PolynomialChaos.regression(c, 2, u[:50], u[:50, 0])
+
+
+def test_class_names_are_the_exported_names():
+    for name in ["Normal", "Uniform", "TruncatedNormal", "Lognormal", "Beta", "Gamma", "Triangular", "Empirical", "Kde", "Joint", "PolynomialChaos", "PiecewiseLinear", "Law"]:
+        cls = getattr(alea, name)
+        assert cls.__name__ == name and cls.__module__ == "alea"
+    assert "Normal law" in alea.Normal.__doc__
