@@ -286,6 +286,10 @@ def run(
 
     Writes only the store (``study.db`` and per-run field files); ``alea run`` also writes
     ``summary.json``, ``samples.csv``, mean fields and the HTML report.
+
+    The solves run without the interpreter lock, and Ctrl-C is only seen when the study
+    returns; every finished run is already committed to the store, so killing the process
+    (or restarting a notebook kernel) loses nothing and the next call resumes.
     """
     study = Path(study)
     if directory is None:
