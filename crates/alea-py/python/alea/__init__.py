@@ -1,0 +1,80 @@
+"""alea: uncertainty quantification for elastic assemblies with frictional contact.
+
+A thin Python layer over the Rust library (the extension module ``alea._core``): every number
+is computed by the Rust crates ``alea-uq`` and ``alea-study``; this package only arranges them
+as NumPy arrays and pandas DataFrames.
+
+Studies
+    ``run(study_file)`` runs (or resumes) a study file and returns a :class:`StudyResult`
+    (``.runs``, ``.statistics``, ``.failure``, ``.samples``); ``open_store(directory)`` reads
+    the runs of a study directory without running anything.
+Laws
+    ``Normal``, ``Uniform``, ``TruncatedNormal``, ``Lognormal``, ``Beta``, ``Gamma``,
+    ``Triangular``, ``Empirical``, ``Kde`` (all subclasses of ``Law``: ``pdf``, ``cdf``,
+    ``sf``, ``quantile``, ``sample``, ``mean``, ``std``); ``fit(data)``; ``Joint`` (independent
+    or Gaussian copula; ``Joint.student``, ``.clayton``, ``.gumbel``, ``.frank``).
+Designs
+    ``monte_carlo``, ``lhs``, ``sobol``, ``grid``, ``pc_collocation``, ``quadrature``: arrays
+    of shape ``(n, d)``.
+Surrogates
+    ``PolynomialChaos.regression / .projection / .lars / .load`` and ``PiecewiseLinear``:
+    ``predict(points)``, ``weights(points)``, ``mean``, ``variance``, Sobol' indices, corrected
+    leave-one-out error.
+
+Wherever a law is expected, a ``Joint``, a single ``Law`` or a list of ``Law`` objects
+(independent variables) may be given. Random routines take a ``seed`` and give the same result
+whatever the number of threads.
+"""
+
+from ._core import (
+    Beta,
+    Empirical,
+    Gamma,
+    Joint,
+    Kde,
+    Law,
+    Lognormal,
+    Normal,
+    PiecewiseLinear,
+    PolynomialChaos,
+    Triangular,
+    TruncatedNormal,
+    Uniform,
+    __version__,
+    fit,
+    grid,
+    lhs,
+    monte_carlo,
+    pc_collocation,
+    quadrature,
+    sobol,
+)
+from ._study import StoredRuns, StudyResult, open_store, run
+
+__all__ = [
+    "Beta",
+    "Empirical",
+    "Gamma",
+    "Joint",
+    "Kde",
+    "Law",
+    "Lognormal",
+    "Normal",
+    "PiecewiseLinear",
+    "PolynomialChaos",
+    "StoredRuns",
+    "StudyResult",
+    "Triangular",
+    "TruncatedNormal",
+    "Uniform",
+    "__version__",
+    "fit",
+    "grid",
+    "lhs",
+    "monte_carlo",
+    "open_store",
+    "pc_collocation",
+    "quadrature",
+    "run",
+    "sobol",
+]

@@ -1,0 +1,316 @@
+"""Study results as pandas DataFrames and NumPy arrays.
+
+The numbers come from ``alea._core.run_study_file`` / ``read_store`` (the Rust runner, store
+and analysis); this module only names and arranges them.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import pandas as pd
+
+from . import _core
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _runs_frame(raw_runs: dict, parameters: Sequence[str], quantities: Sequence[str]) -> pd.DataFrame:
+    """One row per run: parameters, status, converged, iterations, residual, seconds, quantities."""
+    data = {}
+    for j, name in enumerate(parameters):
+        data[name] = raw_runs["params"][:, j]
+    data["status"] = raw_runs["status"]
+    data["converged"] = np.array([s == "converged" for s in raw_runs["status"]], dtype=bool)
+    data["iterations"] = raw_runs["iterations"]
+    data["residual"] = raw_runs["residual"]
+    data["seconds"] = raw_runs["seconds"]
+    for q, name in enumerate(quantities):
+        data[name] = raw_runs["qois"][:, q]
+    return pd.DataFrame(data)
+
+
+@dataclass(frozen=True)
+class Method:
+    """One method of a study (design + surrogate, or Monte Carlo on the model).
+
+    ``error`` says why the method gave no statistics, if it did not; ``left_out`` lists the
+    runs it could not use (parameter point, status).
+    """
+
+    label: str
+    description: str
+    design_runs: int
+    runs_used: int
+    draws: int
+    error: Optional[str]
+    left_out: List[Tuple[List[float], str]]
+
+
+class StudyResult:
+    """The results of :func:`run`.
+
+    Attributes
+    ----------
+    runs : pandas.DataFrame
+        One row per distinct run: the parameters (one column each), ``status``, ``converged``,
+        ``iterations`` (LATIN), ``residual`` (final error indicator), ``seconds`` and the
+        quantities of interest (one column each; NaN where a run gave none).
+    statistics : pandas.DataFrame
+        Indexed by ``(method, quantity)``: ``mean``, ``std``, ``skewness``, ``min``, ``max``,
+        ``mean_ci_half_width`` (half width of the confidence interval of the mean, Monte Carlo
+        error), quantiles ``q0.01`` ... ``q0.99``, ``kde_bandwidth``, ``draws`` and
+        ``runs_used``. Methods that gave no statistics have no rows (see ``methods``).
+    failure : pandas.DataFrame
+        ``P(quantity > threshold)`` for every threshold of the study: columns ``method``,
+        ``quantity``, ``threshold``, ``probability``, ``ci_low``, ``ci_high`` (Wilson interval).
+    samples : numpy.ndarray
+        The main method's Monte Carlo draws, ``(draws, d + m)``: the parameter point of each
+        draw then the quantities' values there (columns named by ``sample_columns``). The main
+        method is the first one with statistics (the study's answer).
+    methods : list of Method
+    parameters, quantities : list of str
+    units : dict
+        Unit of each parameter and quantity.
+    computed, resumed : int
+        Runs solved by this call, and runs found already finished in the study directory.
+    """
+
+    def __init__(self, raw: dict):
+        self._raw = raw
+        self.title: str = raw["title"]
+        self.study_file: str = raw["study_file"]
+        self.study_hash: str = raw["study_hash"]
+        self.directory = Path(raw["directory"])
+        self.seed: int = raw["seed"]
+        self.parameters: List[str] = list(raw["parameters"])
+        self.quantities: List[str] = list(raw["quantities"])
+        self.units = dict(zip(self.parameters, raw["parameter_units"]))
+        self.units.update(zip(self.quantities, raw["quantity_units"]))
+        self.computed: int = raw["computed"]
+        self.resumed: int = raw["resumed"]
+        self.runs = _runs_frame(raw["runs"], self.parameters, self.quantities)
+        self.methods = [
+            Method(
+                label=m["label"],
+                description=m["description"],
+                design_runs=m["design_runs"],
+                runs_used=m["runs_used"],
+                draws=m["draws"],
+                error=m["error"],
+                left_out=[(list(p), s) for p, s in m["left_out"]],
+            )
+            for m in raw["methods"]
+        ]
+        self.statistics = self._statistics()
+        self.failure = self._failure()
+        main = next((m for m in raw["methods"] if m["statistics"]), None)
+        self.main_method: Optional[str] = main["label"] if main is not None else None
+        if main is None:
+            self.samples = np.empty((0, len(self.parameters) + len(self.quantities)))
+            self.sample_columns = self.parameters + self.quantities
+        else:
+            self.samples, self.sample_columns = self._samples(main)
+
+    def _statistics(self) -> pd.DataFrame:
+        rows = []
+        for m in self._raw["methods"]:
+            for s in m["statistics"]:
+                row = {
+                    "method": m["label"],
+                    "quantity": s["quantity"],
+                    "mean": s["mean"],
+                    "std": s["std"],
+                    "skewness": s["skewness"],
+                    "min": s["min"],
+                    "max": s["max"],
+                    "mean_ci_half_width": s["mean_ci_half_width"],
+                }
+                for p, v in s["quantiles"]:
+                    row[f"q{p:g}"] = v
+                row["kde_bandwidth"] = s["bandwidth"]
+                row["draws"] = m["draws"]
+                row["runs_used"] = m["runs_used"]
+                rows.append(row)
+        if not rows:
+            return pd.DataFrame(columns=["method", "quantity"]).set_index(["method", "quantity"])
+        return pd.DataFrame(rows).set_index(["method", "quantity"])
+
+    def _failure(self) -> pd.DataFrame:
+        rows = [
+            {
+                "method": m["label"],
+                "quantity": s["quantity"],
+                "threshold": t,
+                "probability": p,
+                "ci_low": lo,
+                "ci_high": hi,
+            }
+            for m in self._raw["methods"]
+            for s in m["statistics"]
+            for (t, p, lo, hi) in s["failure"]
+        ]
+        columns = ["method", "quantity", "threshold", "probability", "ci_low", "ci_high"]
+        return pd.DataFrame(rows, columns=columns)
+
+    def _samples(self, m: dict) -> Tuple[np.ndarray, List[str]]:
+        values = m["samples"]
+        if m["points"] is None:
+            return values, list(self.quantities)
+        return np.hstack([m["points"], values]), self.parameters + self.quantities
+
+    def _method(self, method: Union[None, int, str]) -> dict:
+        methods = self._raw["methods"]
+        if method is None:
+            method = self.main_method
+        if isinstance(method, int):
+            return methods[method]
+        for m in methods:
+            if m["label"] == method:
+                return m
+        raise KeyError(f"no method {method!r}; methods: {[m['label'] for m in methods]}")
+
+    def samples_of(self, method: Union[int, str]) -> Tuple[np.ndarray, List[str]]:
+        """Draws of another method (by label or index): ``(array, column names)``."""
+        m = self._method(method)
+        if m["samples"] is None:
+            raise ValueError(f"method {m['label']!r} gave no statistics: {m['error']}")
+        return self._samples(m)
+
+    def kde(self, quantity: str, method: Union[None, int, str] = None) -> Tuple[np.ndarray, np.ndarray]:
+        """Kernel density estimate of a quantity's PDF under a method (default: the main one):
+        ``(x, pdf)`` arrays."""
+        m = self._method(method)
+        for s in m["statistics"]:
+            if s["quantity"] == quantity:
+                return s["kde_x"], s["kde_pdf"]
+        raise KeyError(f"no statistics of {quantity!r} for method {m['label']!r}")
+
+    def __repr__(self) -> str:
+        return (
+            f"StudyResult({self.title!r}: {len(self.runs)} runs ({self.computed} computed, "
+            f"{self.resumed} resumed), methods {[m.label for m in self.methods]}, "
+            f"directory {str(self.directory)!r})"
+        )
+
+
+class StoredRuns:
+    """The runs found in a study directory by :func:`open_store`.
+
+    Attributes
+    ----------
+    runs : pandas.DataFrame
+        As :attr:`StudyResult.runs`, in the order the runs finished.
+    parameters, quantities : list of str
+        From the study file if given, else from the directory's ``summary.json`` (written by
+        ``alea run``) when it belongs to the same study version, else ``x1, x2, ...`` and
+        ``q1, q2, ...``.
+    study_hash : str
+        Hash of the study file's text the store belongs to.
+    """
+
+    def __init__(self, raw: dict):
+        self.directory = Path(raw["directory"])
+        self.study_hash: str = raw["study_hash"]
+        d = raw["runs"]["params"].shape[1]
+        m = raw["runs"]["qois"].shape[1]
+        if "parameters" in raw:
+            self.parameters = list(raw["parameters"])
+            self.quantities = list(raw["quantities"])
+        else:
+            self.parameters, self.quantities = _names_from_summary(self.directory, self.study_hash, d, m)
+        self.runs = _runs_frame(raw["runs"], self.parameters, self.quantities)
+
+    def __repr__(self) -> str:
+        return f"StoredRuns({str(self.directory)!r}: {len(self.runs)} runs)"
+
+
+def _names_from_summary(directory: Path, study_hash: str, d: int, m: int) -> Tuple[List[str], List[str]]:
+    fallback = ([f"x{j + 1}" for j in range(d)], [f"q{q + 1}" for q in range(m)])
+    try:
+        summary = json.loads((directory / "summary.json").read_text())
+    except (OSError, ValueError):
+        return fallback
+    if summary.get("study_hash") != study_hash:
+        return fallback
+    params = [p.get("name") for p in summary.get("parameters", [])]
+    quantities = []
+    for method in summary.get("methods", []):
+        if method.get("qois"):
+            quantities = [q.get("name") for q in method["qois"]]
+            break
+    if len(params) != d or len(quantities) != m or not all(params) or not all(quantities):
+        return fallback
+    return params, quantities
+
+
+def run(
+    study: PathLike,
+    directory: Optional[PathLike] = None,
+    restart: bool = False,
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], None]] = None,
+) -> StudyResult:
+    """Run (or resume) a study file and analyse every method, as ``alea run`` does.
+
+    Parameters
+    ----------
+    study : path
+        The study file (TOML; see docs/study-file.md).
+    directory : path, optional
+        The study directory holding the crash-safe store (default ``out/<file stem>``, as the
+        command line). Runs already there are not run again, so calling ``run`` on a finished
+        study only re-reads and re-analyses it.
+    restart : bool
+        Discard the runs in ``directory`` (needed when the study file changed).
+    threads : int, optional
+        Number of worker threads (default: all cores). Results do not depend on it.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each finished run (from a worker thread).
+
+    Returns
+    -------
+    StudyResult
+
+    Raises
+    ------
+    ValueError
+        A bad study file (the message names the file, line and field) or a failed computation.
+    OSError
+        The study file or directory cannot be read or written.
+
+    Writes only the store (``study.db`` and per-run field files); ``alea run`` also writes
+    ``summary.json``, ``samples.csv``, mean fields and the HTML report.
+
+    The solves run without the interpreter lock, and Ctrl-C is only seen when the study
+    returns; every finished run is already committed to the store, so killing the process
+    (or restarting a notebook kernel) loses nothing and the next call resumes.
+    """
+    study = Path(study)
+    if directory is None:
+        directory = Path("out") / study.stem
+    raw = _core.run_study_file(str(study), str(directory), restart, threads, progress)
+    return StudyResult(raw)
+
+
+def open_store(directory: PathLike, study: Optional[PathLike] = None) -> StoredRuns:
+    """Read the runs stored in a study directory, without running or recomputing anything.
+
+    With ``study`` (the study file), the store must belong to that version of the file and the
+    columns are named from it. To get the statistics of a finished study, call :func:`run` on
+    it: every run is found in the store and none is solved again.
+
+    Raises
+    ------
+    FileNotFoundError
+        ``directory`` holds no study store.
+    ValueError
+        The store belongs to another version of ``study``.
+    """
+    raw = _core.read_store(str(directory), None if study is None else str(study))
+    return StoredRuns(raw)

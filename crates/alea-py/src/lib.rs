@@ -1,0 +1,54 @@
+//! # alea-py: the Python front door of alea
+//!
+//! The extension module `alea._core` (PyO3, stable ABI for CPython >= 3.9) behind the Python
+//! package `alea` (`python/alea/`). It is a thin layer: it converts NumPy arrays to and from
+//! the row-major slices of `alea-uq` and `alea-study`, checks shapes and finiteness, releases
+//! the interpreter lock around long computations, and maps errors to Python exceptions. Every
+//! number comes from the Rust crates.
+//!
+//! * [`laws`]: `Law` and its subclasses (`Normal`, `Uniform`, `TruncatedNormal`, `Lognormal`,
+//!   `Beta`, `Gamma`, `Triangular`, `Empirical`, `Kde`), `fit`, and `Joint` (independent and
+//!   copulas);
+//! * [`designs`]: `monte_carlo`, `lhs`, `sobol`, `grid`, `pc_collocation`, `quadrature`;
+//! * [`surrogates`]: `PolynomialChaos` (regression, projection, LARS; statistics, Sobol'
+//!   indices, LOO errors, save/load) and `PiecewiseLinear`;
+//! * [`study`]: running a study file and reading a study directory's store.
+
+use pyo3::prelude::*;
+
+mod convert;
+mod designs;
+mod laws;
+mod study;
+mod surrogates;
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<laws::Law>()?;
+    m.add("Normal", m.py().get_type::<laws::NormalLaw>())?;
+    m.add("Uniform", m.py().get_type::<laws::UniformLaw>())?;
+    m.add(
+        "TruncatedNormal",
+        m.py().get_type::<laws::TruncatedNormalLaw>(),
+    )?;
+    m.add("Lognormal", m.py().get_type::<laws::LognormalLaw>())?;
+    m.add("Beta", m.py().get_type::<laws::BetaLaw>())?;
+    m.add("Gamma", m.py().get_type::<laws::GammaLaw>())?;
+    m.add("Triangular", m.py().get_type::<laws::TriangularLaw>())?;
+    m.add("Empirical", m.py().get_type::<laws::EmpiricalLaw>())?;
+    m.add("Kde", m.py().get_type::<laws::KdeLawPy>())?;
+    m.add_class::<laws::JointPy>()?;
+    m.add_function(wrap_pyfunction!(laws::fit, m)?)?;
+    m.add_function(wrap_pyfunction!(designs::monte_carlo, m)?)?;
+    m.add_function(wrap_pyfunction!(designs::lhs, m)?)?;
+    m.add_function(wrap_pyfunction!(designs::sobol, m)?)?;
+    m.add_function(wrap_pyfunction!(designs::grid, m)?)?;
+    m.add_function(wrap_pyfunction!(designs::pc_collocation, m)?)?;
+    m.add_function(wrap_pyfunction!(designs::quadrature, m)?)?;
+    m.add_class::<surrogates::PolynomialChaos>()?;
+    m.add_class::<surrogates::PiecewiseLinear>()?;
+    m.add_function(wrap_pyfunction!(study::run_study_file, m)?)?;
+    m.add_function(wrap_pyfunction!(study::read_store, m)?)?;
+    Ok(())
+}

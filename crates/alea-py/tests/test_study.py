@@ -1,0 +1,146 @@
+"""A study file run end to end from Python, against exact statistics.
+
+The plate of ``data/plate.toml`` (plane stress, nu = 0, traction s = 200 MPa scaled by
+``P ~ N(1, 0.1^2)``, ``E ~ U(a, b)``, length L = 100 mm) has the tip displacement
+``u = P s L / E`` exactly, so ``E[u] = s L E[P] ln(b/a) / (b - a)``,
+``E[u^2] = s^2 L^2 E[P^2] / (a b)`` and ``P(u > t) = int_a^b (1 - Phi((t E / (s L) - 1) / 0.1)) dE / (b - a)``.
+Each method's mean, standard deviation and failure probability must match within a few of its
+Monte Carlo standard errors (plus a small surrogate error for the chaos). Then the store is read
+back, the study resumed (nothing solved again) and run with one thread (identical results).
+"""
+
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import alea
+
+DATA = Path(__file__).parent / "data"
+A, B, S, L, T = 150e3, 250e3, 200.0, 100.0, 0.13
+MEAN = S * L * math.log(B / A) / (B - A)
+STD = math.sqrt(S * S * L * L * 1.01 / (A * B) - MEAN**2)
+
+
+def exact_pf():
+    t, w = np.polynomial.legendre.leggauss(200)
+    e = 0.5 * (B - A) * t + 0.5 * (B + A)
+    z = (T * e / (S * L) - 1.0) / 0.1
+    sf = np.array([0.5 * math.erfc(v / math.sqrt(2)) for v in z])
+    return 0.5 * np.dot(w, sf)
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory):
+    directory = tmp_path_factory.mktemp("plate") / "out"
+    calls = []
+    res = alea.run(DATA / "plate.toml", directory=directory, progress=lambda done, total: calls.append((done, total)))
+    return res, directory, calls
+
+
+def test_every_run_is_exact(study):
+    res, _, _ = study
+    runs = res.runs
+    assert len(runs) == 230 and runs["converged"].all()
+    assert list(runs.columns) == ["E", "P", "status", "converged", "iterations", "residual", "seconds", "tip"]
+    np.testing.assert_allclose(runs["tip"], runs["P"] * S * L / runs["E"], rtol=1e-9)
+    assert res.units == {"E": "", "P": "", "tip": "mm"}  # the file gives no parameter units
+
+
+def test_statistics_match_the_exact_law(study):
+    res, _, _ = study
+    pf = exact_pf()
+    stats = res.statistics
+    assert list(stats.index) == [("PC regression p=4", "tip"), ("Monte Carlo", "tip")]
+    for (method, _), row in stats.iterrows():
+        n = row["draws"]
+        slack = 1e-4 * MEAN if method.startswith("PC") else 0.0
+        assert abs(row["mean"] - MEAN) < 4 * STD / math.sqrt(n) + slack
+        assert abs(row["std"] - STD) < 4 * 1.2 * STD / math.sqrt(2 * n) + slack
+        assert row["q0.01"] < row["q0.5"] < row["q0.99"]
+    fail = res.failure.set_index("method")
+    for method, row in fail.iterrows():
+        n = stats.loc[(method, "tip"), "draws"]
+        assert row["threshold"] == T
+        assert abs(row["probability"] - pf) < 4 * math.sqrt(pf * (1 - pf) / n) + (2e-3 if method.startswith("PC") else 0)
+        assert row["ci_low"] <= row["probability"] <= row["ci_high"]
+
+
+def test_samples_are_the_main_methods_draws(study):
+    res, _, _ = study
+    assert res.main_method == "PC regression p=4"
+    assert res.sample_columns == ["E", "P", "tip"]
+    x = res.samples
+    assert x.shape == (100_000, 3)
+    assert x[:, 2].mean() == pytest.approx(res.statistics.loc[(res.main_method, "tip"), "mean"], rel=1e-12)
+    # The surrogate's values at the draws are the exact model's within the chaos error (largest
+    # in the normal load factor's tails).
+    rel = x[:, 2] / (x[:, 1] * S * L / x[:, 0]) - 1
+    assert np.sqrt(np.mean(rel**2)) < 5e-4 and np.abs(rel).max() < 0.05
+    # The Monte Carlo method's draws are its runs.
+    mc, cols = res.samples_of("Monte Carlo")
+    assert mc.shape == (200, 3) and cols == ["E", "P", "tip"]
+    np.testing.assert_allclose(mc[:, 2], mc[:, 1] * S * L / mc[:, 0], rtol=1e-9)
+    xs, pdf = res.kde("tip")
+    assert np.sum(pdf) * (xs[1] - xs[0]) == pytest.approx(1.0, abs=1e-3)
+
+
+def test_progress_reports_every_run(study):
+    _, _, calls = study
+    assert calls[0] == (0, 230) and calls[-1] == (230, 230) and len(calls) == 231
+
+
+def test_store_read_back_and_resume(study, tmp_path):
+    res, directory, _ = study
+    stored = alea.open_store(directory, study=DATA / "plate.toml")
+    assert stored.parameters == ["E", "P"] and stored.quantities == ["tip"]
+    a = stored.runs.sort_values(["E", "P"]).reset_index(drop=True)
+    b = res.runs.sort_values(["E", "P"]).reset_index(drop=True)
+    cols = ["E", "P", "status", "iterations", "residual", "tip"]
+    assert a[cols].equals(b[cols])
+    # Without the study file: generic names (no summary.json from the command line here).
+    anonymous = alea.open_store(directory)
+    assert anonymous.parameters == ["x1", "x2"] and anonymous.quantities == ["q1"]
+    np.testing.assert_array_equal(anonymous.runs["q1"], stored.runs["tip"])
+    # Names from the command line's summary.json when it belongs to the same study version.
+    summary = {
+        "study_hash": res.study_hash,
+        "parameters": [{"name": "E"}, {"name": "P"}],
+        "methods": [{"qois": [{"name": "tip"}]}],
+    }
+    (directory / "summary.json").write_text(json.dumps(summary))
+    named = alea.open_store(directory)
+    assert named.parameters == ["E", "P"] and named.quantities == ["tip"]
+    (directory / "summary.json").write_text(json.dumps(dict(summary, study_hash="0")))
+    assert alea.open_store(directory).parameters == ["x1", "x2"]
+    (directory / "summary.json").unlink()
+    # Another version of the study file is refused.
+    changed = tmp_path / "plate.toml"
+    changed.write_text((DATA / "plate.toml").read_text().replace("seed = 7", "seed = 8"))
+    with pytest.raises(ValueError, match="different version"):
+        alea.open_store(directory, study=changed)
+    with pytest.raises(FileNotFoundError):
+        alea.open_store(tmp_path / "nothing")
+    # Resuming solves nothing and gives the same statistics.
+    again = alea.run(DATA / "plate.toml", directory=directory)
+    assert (again.computed, again.resumed) == (0, 230)
+    assert again.statistics.equals(res.statistics)
+
+
+def test_one_thread_gives_identical_results(study, tmp_path):
+    res, _, _ = study
+    one = alea.run(DATA / "plate.toml", directory=tmp_path / "one", threads=1)
+    assert one.statistics.equals(res.statistics)
+    np.testing.assert_array_equal(one.samples, res.samples)
+
+
+def test_bad_study_file_names_file_line_and_field(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((DATA / "plate.toml").read_text().replace("std = 0.1", "std = -0.1"))
+    with pytest.raises(ValueError, match=r"bad\.toml:\d+: parameter"):
+        alea.run(bad, directory=tmp_path / "bad")
+    with pytest.raises(FileNotFoundError):
+        alea.run(tmp_path / "missing.toml", directory=tmp_path / "missing")
