@@ -16,6 +16,7 @@ mod params;
 pub mod qoi;
 pub mod runner;
 mod source;
+mod spatial;
 pub mod spec;
 pub mod store;
 

@@ -186,15 +186,11 @@ impl Store {
             .map_err(db_err(&self.dir))
     }
 
-    /// Path of the field file of a run.
+    /// Path of the field file of a run (`fields/<run_file_stem>.bin`).
     pub fn field_path(&self, params: &[f64]) -> PathBuf {
-        let key = point_key(params);
-        // FNV-1a of the key: a short, stable file name.
-        let mut h: u64 = 0xcbf29ce484222325;
-        for b in key.bytes() {
-            h = (h ^ b as u64).wrapping_mul(0x100000001b3);
-        }
-        self.dir.join("fields").join(format!("run_{h:016x}.bin"))
+        self.dir
+            .join("fields")
+            .join(format!("{}.bin", run_file_stem(params)))
     }
 
     /// Path of the error-estimate file of a run (`cre/run_<hash>.bin`, next to its fields).
@@ -272,6 +268,15 @@ impl Store {
         let b = std::fs::read(&path).map_err(|source| StudyError::Io { path, source })?;
         Ok(from_blob(&b))
     }
+}
+
+/// The file stem of a run's files: `run_<FNV-1a of its point key>` (short and stable).
+pub fn run_file_stem(params: &[f64]) -> String {
+    let mut h: u64 = 0xcbf29ce484222325;
+    for b in point_key(params).bytes() {
+        h = (h ^ b as u64).wrapping_mul(0x100000001b3);
+    }
+    format!("run_{h:016x}")
 }
 
 /// A stable 64-bit hash (FNV-1a) of a study file's text, as 16 hex digits.
