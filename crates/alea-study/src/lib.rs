@@ -7,6 +7,8 @@ pub mod adaptive;
 pub mod analysis;
 mod build;
 pub mod cre;
+#[cfg(feature = "mpi")]
+pub mod distributed;
 mod error;
 pub mod estimate;
 pub mod expr;

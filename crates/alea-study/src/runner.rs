@@ -29,9 +29,9 @@ use rayon::prelude::*;
 use crate::cre::CreSetup;
 use crate::method::{Method, MethodKind, build_methods};
 use crate::qoi::{Qoi, build_qois};
-use crate::spec::{ModelFile, OutputSpec};
-use crate::spatial::nn_order;
 use crate::spatial::KdTree;
+use crate::spatial::nn_order;
+use crate::spec::{ModelFile, OutputSpec};
 use crate::store::{RunRecord, Store, point_key, run_file_stem, text_hash};
 use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
 
@@ -429,10 +429,8 @@ impl BatchExecutor for LocalExecutor {
         jobs: &[RunJob],
         commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
     ) -> Result<(), StudyError> {
-        let results: Vec<Result<(), StudyError>> = jobs
-            .par_iter()
-            .map(|job| commit(ctx.solve(job)?))
-            .collect();
+        let results: Vec<Result<(), StudyError>> =
+            jobs.par_iter().map(|job| commit(ctx.solve(job)?)).collect();
         results.into_iter().collect()
     }
 }
@@ -511,7 +509,11 @@ impl<'a> Runner<'a> {
             .collect();
         let mut sources = KdTree::new(centre.len(), &refs);
         for (k, p) in self.finished.iter().enumerate() {
-            if self.by_key.get(&point_key(p)).is_some_and(|r| r.converged()) {
+            if self
+                .by_key
+                .get(&point_key(p))
+                .is_some_and(|r| r.converged())
+            {
                 sources.set_live(k, true);
             }
         }
@@ -572,7 +574,11 @@ impl<'a> Runner<'a> {
                 self.finished.push(todo[i].clone());
                 self.finished_keys.insert(point_key(&todo[i]));
                 self.states.push(None);
-                if self.by_key.get(&point_key(&todo[i])).is_some_and(|r| r.converged()) {
+                if self
+                    .by_key
+                    .get(&point_key(&todo[i]))
+                    .is_some_and(|r| r.converged())
+                {
                     sources.set_live(k, true);
                 }
             }

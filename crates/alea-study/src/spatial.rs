@@ -233,7 +233,11 @@ mod tests {
                 .map(|_| (0..d).map(|_| lcg(&mut s)).collect())
                 .collect();
             let origin = vec![0.5; d];
-            assert_eq!(nn_order(&pts, &origin), brute_order(&pts, &origin), "{n} {d}");
+            assert_eq!(
+                nn_order(&pts, &origin),
+                brute_order(&pts, &origin),
+                "{n} {d}"
+            );
         }
     }
 
