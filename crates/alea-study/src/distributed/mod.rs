@@ -3,8 +3,8 @@
 //! Every rank loads the study file and builds its solver (and the error estimator's set-up)
 //! once, in the same order as a single process does ([`RunSetup::build`]), so every rank holds
 //! bit-identical factorisations. Rank 0 (the *leader*) runs the study as a single process would
-//! - the store, the fixed batch schedule, the adaptive decisions, the analysis and every output
-//! are its alone - except that the runs of each batch go through [`MpiExecutor`]: they are handed
+//! (the store, the fixed batch schedule, the adaptive decisions, the analysis and every output
+//! are its alone) except that the runs of each batch go through [`MpiExecutor`]: they are handed
 //! out one at a time to whichever rank has a free solver thread (the other ranks first, rank 0
 //! last), each with the warm-start state it starts from. A rank sends back the run's store row,
 //! field file and error-estimate data; rank 0 commits them as they arrive.
