@@ -264,10 +264,17 @@ impl Store {
 
     /// Reads a run's field file.
     pub fn fields(&self, params: &[f64]) -> Result<Vec<f64>, StudyError> {
-        let path = self.field_path(params);
-        let b = std::fs::read(&path).map_err(|source| StudyError::Io { path, source })?;
-        Ok(from_blob(&b))
+        read_values(&self.field_path(params))
     }
+}
+
+/// Reads a file of `f64` little-endian values (a field or error-estimate file).
+pub fn read_values(path: &Path) -> Result<Vec<f64>, StudyError> {
+    let b = std::fs::read(path).map_err(|source| StudyError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(from_blob(&b))
 }
 
 /// The file stem of a run's files: `run_<FNV-1a of its point key>` (short and stable).
