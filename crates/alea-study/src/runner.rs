@@ -239,6 +239,31 @@ fn schedule(n: usize) -> Vec<std::ops::Range<usize>> {
     out
 }
 
+/// The plan of a fresh study over `points` (all runs assumed to converge): the points in run
+/// order with, for each, the position in that order of the run it warm-starts from. What
+/// [`run_study`] computes before and between its batches, without solving anything (for
+/// benchmarks and checks).
+pub fn warm_start_plan(study: &Study, points: &[Vec<f64>]) -> Vec<(usize, Option<usize>)> {
+    let normalised: Vec<Vec<f64>> = points.iter().map(|p| study.normalise(p)).collect();
+    let centre = study.normalise(&study.params.nominal);
+    let order = nn_order(&normalised, &centre);
+    let refs: Vec<&[f64]> = order.iter().map(|&i| normalised[i].as_slice()).collect();
+    let mut sources = KdTree::new(centre.len(), &refs);
+    let mut plan = Vec::with_capacity(order.len());
+    for batch in schedule(order.len()) {
+        for j in batch.clone() {
+            plan.push((
+                order[j],
+                sources.nearest(&normalised[order[j]]).map(|(_, k)| k),
+            ));
+        }
+        for j in batch {
+            sources.set_live(j, true);
+        }
+    }
+    plan
+}
+
 /// What [`run_study`] returns.
 pub struct StudyRuns {
     /// Every run's record: the fixed designs' points in [`Study::all_points`] order, then the
