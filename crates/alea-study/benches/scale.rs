@@ -136,13 +136,15 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
         .sum();
     let points = study.methods[0].points.clone();
     let store = Store::open(dir, &study.hash, false)?;
+    let paths: Vec<std::path::PathBuf> = points.iter().map(|p| store.field_path(p)).collect();
+    drop(store);
     let t0 = Instant::now();
-    points.par_iter().for_each(|p| {
+    points.par_iter().zip(&paths).for_each(|(p, path)| {
         let bytes: Vec<u8> = synthetic(p, width)
             .iter()
             .flat_map(|v| v.to_le_bytes())
             .collect();
-        std::fs::write(store.field_path(p), bytes).expect("field file");
+        std::fs::write(path, bytes).expect("field file");
     });
     let write = secs(t0);
     let records: Vec<RunRecord> = points
@@ -248,9 +250,41 @@ fn moments_1e6() -> Result<(), StudyError> {
     Ok(())
 }
 
+/// Rank 0's serial work per run: committing it (field file synced and renamed, then its row).
+fn commit_cost(values: usize, dir: &Path) -> Result<(), StudyError> {
+    let _ = std::fs::remove_dir_all(dir);
+    let store = Store::open(dir, "bench", false)?;
+    let fields: Vec<f64> = (0..values).map(|i| i as f64).collect();
+    let n = 200;
+    let t0 = Instant::now();
+    for r in 0..n {
+        let rec = RunRecord {
+            params: vec![r as f64, 0.5],
+            status: "converged".into(),
+            iterations: 40,
+            residual: 1e-7,
+            seconds: 0.01,
+            qois: vec![1.0, 2.0],
+            history: vec![1.0; 40],
+            state: vec![0.0; 400],
+        };
+        store.commit(&rec, &fields, None)?;
+    }
+    println!(
+        "commit of a run with {values} field values: {:.2} ms",
+        1e3 * secs(t0) / n as f64
+    );
+    let _ = std::fs::remove_dir_all(dir);
+    Ok(())
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "quick");
     println!("threads: {}", rayon::current_num_threads());
+    let cdir = std::env::temp_dir().join(format!("alea-bench-commit-{}", std::process::id()));
+    for values in [3_000, 40_000] {
+        commit_cost(values, &cdir).expect("commit");
+    }
     let ns: &[usize] = if quick {
         &[1_000, 10_000]
     } else {
