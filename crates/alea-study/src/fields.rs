@@ -263,7 +263,7 @@ impl WeightMoments {
         }
         // Assemble in the order of the sorted supports, then sort the entries (stable) and add
         // duplicates in that order.
-        let mut supports: Vec<(Vec<usize>, (Vec<f64>, Vec<f64>))> = total.into_iter().collect();
+        let mut supports: Vec<_> = total.into_iter().collect();
         supports.sort_unstable_by(|a, b| a.0.cmp(&b.0));
         let inv = 1.0 / n as f64;
         let mut mean = vec![0.0; k];
@@ -277,7 +277,7 @@ impl WeightMoments {
                 }
             }
         }
-        entries.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)));
+        entries.sort_by_key(|x| (x.0, x.1));
         let mut row_start = vec![0; k + 1];
         let mut cols: Vec<usize> = Vec::new();
         let mut vals: Vec<f64> = Vec::new();
