@@ -8,6 +8,8 @@ pub mod analysis;
 mod build;
 mod checks;
 pub mod cre;
+#[cfg(feature = "mpi")]
+pub mod distributed;
 mod error;
 pub mod estimate;
 pub mod expr;
@@ -20,6 +22,7 @@ pub mod qoi;
 pub mod reopen;
 pub mod runner;
 mod source;
+mod spatial;
 pub mod spec;
 pub mod store;
 

@@ -5,15 +5,20 @@
 //! shared) in **batches of a fixed schedule** (sizes 1, 2, 4, then 8): the runs of a batch are
 //! solved in parallel, each warm-started from the nearest converged run of the earlier batches
 //! (distance in the parameter box scaled to the unit cube). The schedule depends only on the
-//! design, never on the thread count or on what a previous, interrupted invocation finished,
-//! so results are identical with 1 or 2 threads and after a resume. Points are ordered by a
-//! greedy nearest-neighbour walk from the nominal point, so each batch starts near finished runs.
+//! design, never on the thread count, the number of MPI ranks or on what a previous,
+//! interrupted invocation finished, so results are identical with 1 or 2 threads, 1 or 3 ranks
+//! and after a resume. Points are ordered by a greedy nearest-neighbour walk from the nominal
+//! point, so each batch starts near finished runs. The walk and the warm-start lookup use a
+//! kd-tree ([`crate::spatial`]): `O(n log n)` for `n` runs, with exactly the brute-force
+//! answers (ties to the earliest point).
 //!
-//! Each finished run is committed to the [`Store`] at once; `run_study` on a directory that
-//! already holds runs skips them (a resume) and loads their local-stage states for the warm
-//! starts.
+//! A batch's runs are independent of each other, so a [`BatchExecutor`] may solve them
+//! anywhere: [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
+//! `crate::distributed`) on other ranks. Each finished run is committed to the [`Store`] at
+//! once, by this process only; `run_study` on a directory that already holds runs skips them (a
+//! resume) and loads their local-stage states for the warm starts.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -25,8 +30,10 @@ use crate::cre::CreSetup;
 use crate::lock::StudyLock;
 use crate::method::{Method, MethodKind, build_methods};
 use crate::qoi::{Qoi, build_qois};
+use crate::spatial::KdTree;
+use crate::spatial::nn_order;
 use crate::spec::{ModelFile, OutputSpec};
-use crate::store::{RunRecord, Store, point_key};
+use crate::store::{RunRecord, Store, point_key, run_file_stem};
 use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
 
 /// A loaded, validated study.
@@ -244,23 +251,29 @@ fn schedule(n: usize) -> Vec<std::ops::Range<usize>> {
     out
 }
 
-/// Greedy nearest-neighbour walk from the point nearest to `origin` (deterministic).
-fn nn_order(points: &[Vec<f64>], origin: &[f64]) -> Vec<usize> {
-    let d2 = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
-    let mut left: Vec<usize> = (0..points.len()).collect();
-    let mut order = Vec::with_capacity(points.len());
-    let mut cur = origin.to_vec();
-    while !left.is_empty() {
-        let (k, _) = left
-            .iter()
-            .enumerate()
-            .map(|(k, &i)| (k, d2(&points[i], &cur)))
-            .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
-        let i = left.remove(k);
-        cur = points[i].clone();
-        order.push(i);
+/// The plan of a fresh study over `points` (all runs assumed to converge): the points in run
+/// order with, for each, the position in that order of the run it warm-starts from. What
+/// [`run_study`] computes before and between its batches, without solving anything (for
+/// benchmarks and checks).
+pub fn warm_start_plan(study: &Study, points: &[Vec<f64>]) -> Vec<(usize, Option<usize>)> {
+    let normalised: Vec<Vec<f64>> = points.iter().map(|p| study.normalise(p)).collect();
+    let centre = study.normalise(&study.params.nominal);
+    let order = nn_order(&normalised, &centre);
+    let refs: Vec<&[f64]> = order.iter().map(|&i| normalised[i].as_slice()).collect();
+    let mut sources = KdTree::new(centre.len(), &refs);
+    let mut plan = Vec::with_capacity(order.len());
+    for batch in schedule(order.len()) {
+        for j in batch.clone() {
+            plan.push((
+                order[j],
+                sources.nearest(&normalised[order[j]]).map(|(_, k)| k),
+            ));
+        }
+        for j in batch {
+            sources.set_live(j, true);
+        }
     }
-    order
+    plan
 }
 
 /// What [`run_study`] returns.
@@ -292,114 +305,79 @@ pub struct StudyRuns {
     pub lock: StudyLock,
 }
 
-/// Runs the deterministic solves of a study and keeps the state they share: the solver, the
-/// store, the finished runs (warm-start sources, in completion order of the fixed schedule).
-pub(crate) struct Runner<'a> {
-    pub(crate) study: &'a Study,
-    pub(crate) dir: &'a Path,
-    store: Mutex<Store>,
-    pub(crate) solver: Arc<LatinSolver>,
-    pub(crate) by_key: HashMap<String, RunRecord>,
-    finished: Vec<Vec<f64>>,
-    sizes: Vec<usize>,
-    progress: &'a dyn Progress,
-    pub(crate) cre: Option<Arc<CreSetup>>,
-    /// Compute missing runs (`false`: replay from the store only, counting missing runs).
-    compute: bool,
-    /// Points without a run in the store (replay only).
-    pub(crate) missing: usize,
-    pub(crate) computed: usize,
-    pub(crate) resumed: usize,
-    pub(crate) solve_seconds: f64,
-    pub(crate) estimate_seconds: f64,
+/// One pending run: its physical point and the converged state it starts from.
+#[derive(Clone, Debug)]
+pub struct RunJob {
+    /// Parameter point (physical values).
+    pub theta: Vec<f64>,
+    /// Local-stage state of the nearest converged run of the earlier batches (`None`: cold
+    /// start).
+    pub start: Option<Arc<LocalState>>,
 }
 
-impl<'a> Runner<'a> {
-    /// Runs (or finds in the store) every point of `points` that is not finished yet, in
-    /// batches of the fixed schedule, each warm-started from the nearest converged run of the
-    /// earlier batches.
-    pub(crate) fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError> {
-        let study = self.study;
-        let mut seen = std::collections::HashSet::new();
-        let todo: Vec<Vec<f64>> = points
-            .iter()
-            .filter(|p| seen.insert(point_key(p)))
-            .filter(|p| !self.finished.iter().any(|f| point_key(f) == point_key(p)))
-            .cloned()
-            .collect();
-        for p in &todo {
-            study.check_point(&self.solver, p)?;
-        }
-        let normalised: Vec<Vec<f64>> = todo.iter().map(|p| study.normalise(p)).collect();
-        let centre = study.normalise(&study.params.nominal);
-        let order = nn_order(&normalised, &centre);
-        let t0 = Instant::now();
-        for batch in schedule(order.len()) {
-            let members: Vec<usize> = order[batch].to_vec();
-            // Warm-start sources: converged runs of earlier batches only.
-            let sources: Vec<(Vec<f64>, Arc<LocalState>)> = self
-                .finished
-                .iter()
-                .filter_map(|p| {
-                    let r = self.by_key.get(&point_key(p))?;
-                    if !r.converged() {
-                        return None;
-                    }
-                    LocalState::from_slice(&self.sizes, &r.state)
-                        .map(|s| (study.normalise(p), Arc::new(s)))
-                })
-                .collect();
-            let mut pending: Vec<usize> = members
-                .iter()
-                .copied()
-                .filter(|&i| !self.by_key.contains_key(&point_key(&todo[i])))
-                .collect();
-            self.resumed += members.len() - pending.len();
-            if !self.compute {
-                self.missing += pending.len();
-                pending.clear();
-            }
-            let results: Vec<Result<(RunRecord, f64), StudyError>> = pending
-                .par_iter()
-                .map(|&i| self.solve(&todo[i], &normalised[i], &sources))
-                .collect();
-            for r in results {
-                let (rec, est) = r?;
-                self.computed += 1;
-                self.estimate_seconds += est;
-                self.by_key.insert(point_key(&rec.params), rec);
-            }
-            self.finished
-                .extend(members.iter().map(|&i| todo[i].clone()));
-        }
-        self.solve_seconds += t0.elapsed().as_secs_f64();
-        Ok(())
-    }
+/// A finished run before it is committed to the store.
+#[derive(Clone, Debug)]
+pub struct RunOutcome {
+    /// The store row.
+    pub rec: RunRecord,
+    /// Displacements of every substructure, concatenated (the run's field file).
+    pub fields: Vec<f64>,
+    /// Compact per-run error-estimate data, when the study estimates its error.
+    pub cre: Option<Vec<f64>>,
+    /// Seconds of the run's error estimate.
+    pub estimate_seconds: f64,
+}
 
-    /// One solve (and its error estimate when the study has one), committed to the store.
-    /// Returns the record and the seconds of the estimate.
-    fn solve(
-        &self,
-        theta: &[f64],
-        normalised: &[f64],
-        sources: &[(Vec<f64>, Arc<LocalState>)],
-    ) -> Result<(RunRecord, f64), StudyError> {
+/// The solver and error-estimator set-up of a study: built once per process (per MPI rank),
+/// always in this order so that every process holds bit-identical factorisations.
+pub struct RunSetup {
+    /// The multiresolution solver.
+    pub solver: Arc<LatinSolver>,
+    /// Error estimation set-up, when the study estimates its error.
+    pub cre: Option<Arc<CreSetup>>,
+}
+
+impl RunSetup {
+    /// Builds the solver (and factorises), then the error estimator's set-up if the study has
+    /// one.
+    pub fn build(study: &Study) -> Result<Self, StudyError> {
+        let solver = Arc::new(LatinSolver::new(
+            study.model.assembly.clone(),
+            study.model.options.clone(),
+        )?);
+        let cre = if estimates_error(study) {
+            Some(Arc::new(CreSetup::new(study, &solver)?))
+        } else {
+            None
+        };
+        Ok(RunSetup { solver, cre })
+    }
+}
+
+/// Everything needed to solve one run: the study, its set-up and the study directory (where
+/// per-run ParaView files go when `[output] vtu = true`).
+#[derive(Clone, Copy)]
+pub struct RunContext<'a> {
+    /// The study.
+    pub study: &'a Study,
+    /// The solver.
+    pub solver: &'a LatinSolver,
+    /// Error estimation set-up, when the study estimates its error.
+    pub cre: Option<&'a CreSetup>,
+    /// The study directory.
+    pub dir: &'a Path,
+}
+
+impl RunContext<'_> {
+    /// Solves one run (and its error estimate when the study has one), writes its ParaView
+    /// files if asked; commits nothing. A pure function of the job: the same on every thread and
+    /// every MPI rank.
+    pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
         let study = self.study;
-        let solver = &self.solver;
+        let solver = self.solver;
+        let theta = job.theta.as_slice();
         let mut input = study.model.parametric.run_input(theta, vec![]);
-        input.initial = sources
-            .iter()
-            .enumerate()
-            .map(|(k, (p, s))| {
-                let d: f64 = p
-                    .iter()
-                    .zip(normalised)
-                    .map(|(a, b)| (a - b) * (a - b))
-                    .sum();
-                (d, k, s)
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)))
-            .map(|(_, _, s)| s.clone());
+        input.initial = job.start.clone();
         let res = solver.run_shared(&input)?;
         let qois = study
             .qois
@@ -441,7 +419,7 @@ impl<'a> Runner<'a> {
                 "a quantity of interest is not finite at {theta:?}"
             )));
         }
-        let (cre, est_seconds) = match (&self.cre, rec.converged()) {
+        let (cre, estimate_seconds) = match (self.cre, rec.converged()) {
             (Some(setup), true) => {
                 let c = setup.estimate_run(study, solver, theta, &res)?;
                 let s = c.seconds;
@@ -450,22 +428,223 @@ impl<'a> Runner<'a> {
             _ => (None, 0.0),
         };
         let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
-        let store = || {
-            self.store
-                .lock()
-                .map_err(|_| StudyError::Other("store lock poisoned".into()))
-        };
         if study.output.vtu.unwrap_or(false) {
-            let stem = store()?
-                .field_path(theta)
-                .file_stem()
-                .map_or("run".into(), |s| s.to_string_lossy().into_owned());
-            let path = self.dir.join("vtu").join(format!("{stem}.vtm"));
+            let path = self
+                .dir
+                .join("vtu")
+                .join(format!("{}.vtm", run_file_stem(theta)));
             alea_latin::output::write_run(&path, solver, &res)?;
         }
-        store()?.commit(&rec, &fields, cre.as_deref())?;
-        self.progress.finished(&rec);
-        Ok((rec, est_seconds))
+        Ok(RunOutcome {
+            rec,
+            fields,
+            cre,
+            estimate_seconds,
+        })
+    }
+}
+
+/// Solves the pending runs of one batch. Every run of a batch is independent of the others
+/// (they start from runs of earlier batches only), so an executor may solve them in any order,
+/// on any thread or process: the outcomes do not change.
+pub trait BatchExecutor: Sync {
+    /// Solves every job and hands each outcome to `commit` (from any thread, in any order).
+    /// Returns the first error (in job order for the local executor); runs that finished
+    /// before an error are committed all the same.
+    fn execute(
+        &self,
+        ctx: &RunContext<'_>,
+        jobs: &[RunJob],
+        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+    ) -> Result<(), StudyError>;
+}
+
+/// The single-process executor: the runs of a batch in parallel on the rayon pool.
+pub struct LocalExecutor;
+
+impl BatchExecutor for LocalExecutor {
+    fn execute(
+        &self,
+        ctx: &RunContext<'_>,
+        jobs: &[RunJob],
+        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+    ) -> Result<(), StudyError> {
+        let results: Vec<Result<(), StudyError>> =
+            jobs.par_iter().map(|job| commit(ctx.solve(job)?)).collect();
+        results.into_iter().collect()
+    }
+}
+
+static EXECUTOR: std::sync::OnceLock<Box<dyn BatchExecutor + Send>> = std::sync::OnceLock::new();
+
+/// Installs the executor [`run_study`] uses in this process (the binary installs the MPI one
+/// when it runs under `mpirun`). Returns false if one was installed already.
+pub fn install_executor(exec: Box<dyn BatchExecutor + Send>) -> bool {
+    EXECUTOR.set(exec).is_ok()
+}
+
+/// The executor of this process: the installed one, else [`LocalExecutor`].
+fn executor() -> &'static dyn BatchExecutor {
+    match EXECUTOR.get() {
+        Some(e) => e.as_ref(),
+        None => &LocalExecutor,
+    }
+}
+
+/// Runs the deterministic solves of a study and keeps the state they share: the solver, the
+/// store, the finished runs (warm-start sources, in completion order of the fixed schedule).
+pub(crate) struct Runner<'a> {
+    pub(crate) study: &'a Study,
+    pub(crate) dir: &'a Path,
+    store: Mutex<Store>,
+    pub(crate) solver: Arc<LatinSolver>,
+    pub(crate) by_key: HashMap<String, RunRecord>,
+    /// Points finished by this invocation (run or found in the store), in schedule order.
+    finished: Vec<Vec<f64>>,
+    finished_keys: HashSet<String>,
+    /// Warm-start states of the finished runs (decoded once, on first use).
+    states: Vec<Option<Arc<LocalState>>>,
+    sizes: Vec<usize>,
+    progress: &'a dyn Progress,
+    exec: &'a dyn BatchExecutor,
+    pub(crate) cre: Option<Arc<CreSetup>>,
+    /// Compute missing runs (`false`: replay from the store only, counting missing runs).
+    compute: bool,
+    /// Points without a run in the store (replay only).
+    pub(crate) missing: usize,
+    pub(crate) computed: usize,
+    pub(crate) resumed: usize,
+    pub(crate) solve_seconds: f64,
+    pub(crate) estimate_seconds: f64,
+}
+
+impl<'a> Runner<'a> {
+    /// Runs (or finds in the store) every point of `points` that is not finished yet, in
+    /// batches of the fixed schedule, each warm-started from the nearest converged run of the
+    /// earlier batches.
+    pub(crate) fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError> {
+        let study = self.study;
+        let mut seen = HashSet::new();
+        let todo: Vec<Vec<f64>> = points
+            .iter()
+            .filter(|p| {
+                let k = point_key(p);
+                !self.finished_keys.contains(&k) && seen.insert(k)
+            })
+            .cloned()
+            .collect();
+        let check: Vec<Result<(), StudyError>> = todo
+            .par_iter()
+            .map(|p| study.check_point(&self.solver, p))
+            .collect();
+        check.into_iter().collect::<Result<(), _>>()?;
+        let normalised: Vec<Vec<f64>> = todo.iter().map(|p| study.normalise(p)).collect();
+        let centre = study.normalise(&study.params.nominal);
+        let order = nn_order(&normalised, &centre);
+        // Warm-start sources: the finished runs so far, then this call's in schedule order (tree
+        // index = position in `finished`, so ties go to the earliest finished, as before);
+        // a source is live once its batch is over and it converged.
+        let prior = self.finished.len();
+        let prior_norm: Vec<Vec<f64>> = self.finished.iter().map(|p| study.normalise(p)).collect();
+        let refs: Vec<&[f64]> = prior_norm
+            .iter()
+            .map(|p| p.as_slice())
+            .chain(order.iter().map(|&i| normalised[i].as_slice()))
+            .collect();
+        let mut sources = KdTree::new(centre.len(), &refs);
+        for (k, p) in self.finished.iter().enumerate() {
+            if self
+                .by_key
+                .get(&point_key(p))
+                .is_some_and(|r| r.converged())
+            {
+                sources.set_live(k, true);
+            }
+        }
+        let t0 = Instant::now();
+        let (solver, cre) = (self.solver.clone(), self.cre.clone());
+        let ctx = RunContext {
+            study,
+            solver: &solver,
+            cre: cre.as_deref(),
+            dir: self.dir,
+        };
+        for batch in schedule(order.len()) {
+            let members: Vec<usize> = order[batch.clone()].to_vec();
+            let mut pending: Vec<usize> = members
+                .iter()
+                .copied()
+                .filter(|&i| !self.by_key.contains_key(&point_key(&todo[i])))
+                .collect();
+            self.resumed += members.len() - pending.len();
+            if !self.compute {
+                self.missing += pending.len();
+                pending.clear();
+            }
+            let mut jobs = Vec::with_capacity(pending.len());
+            for &i in &pending {
+                let start = match sources.nearest(&normalised[i]) {
+                    Some((_, k)) => self.state_of(k)?,
+                    None => None,
+                };
+                jobs.push(RunJob {
+                    theta: todo[i].clone(),
+                    start,
+                });
+            }
+            let done: Mutex<Vec<(RunRecord, f64)>> = Mutex::new(Vec::with_capacity(jobs.len()));
+            let store = &self.store;
+            let progress = self.progress;
+            let commit = |out: RunOutcome| -> Result<(), StudyError> {
+                store
+                    .lock()
+                    .map_err(|_| StudyError::Other("store lock poisoned".into()))?
+                    .commit(&out.rec, &out.fields, out.cre.as_deref())?;
+                progress.finished(&out.rec);
+                done.lock()
+                    .map_err(|_| StudyError::Other("run list lock poisoned".into()))?
+                    .push((out.rec, out.estimate_seconds));
+                Ok(())
+            };
+            let result = self.exec.execute(&ctx, &jobs, &commit);
+            // Whatever finished is committed: keep it even when a run failed.
+            for (rec, est) in done
+                .into_inner()
+                .map_err(|_| StudyError::Other("run list lock poisoned".into()))?
+            {
+                self.computed += 1;
+                self.estimate_seconds += est;
+                self.by_key.insert(point_key(&rec.params), rec);
+            }
+            result?;
+            for (j, &i) in members.iter().enumerate() {
+                let k = prior + batch.start + j;
+                self.finished.push(todo[i].clone());
+                self.finished_keys.insert(point_key(&todo[i]));
+                self.states.push(None);
+                if self
+                    .by_key
+                    .get(&point_key(&todo[i]))
+                    .is_some_and(|r| r.converged())
+                {
+                    sources.set_live(k, true);
+                }
+            }
+        }
+        self.solve_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// The warm-start state of the `k`-th finished run (decoded from its record once).
+    fn state_of(&mut self, k: usize) -> Result<Option<Arc<LocalState>>, StudyError> {
+        if self.states[k].is_none() {
+            let rec = self
+                .by_key
+                .get(&point_key(&self.finished[k]))
+                .ok_or_else(|| StudyError::Other("a finished run is missing".into()))?;
+            self.states[k] = LocalState::from_slice(&self.sizes, &rec.state).map(Arc::new);
+        }
+        Ok(self.states[k].clone())
     }
 
     /// The store (locked).
@@ -531,15 +710,7 @@ pub(crate) fn execute(
         .into_iter()
         .map(|r| (point_key(&r.params), r))
         .collect();
-    let solver = Arc::new(LatinSolver::new(
-        study.model.assembly.clone(),
-        study.model.options.clone(),
-    )?);
-    let cre = if estimates_error(study) {
-        Some(Arc::new(CreSetup::new(study, &solver)?))
-    } else {
-        None
-    };
+    let RunSetup { solver, cre } = RunSetup::build(study)?;
     let fixed: Vec<Vec<f64>> = {
         let mut seen = std::collections::HashSet::new();
         study
@@ -570,7 +741,10 @@ pub(crate) fn execute(
         solver,
         by_key,
         finished: Vec::new(),
+        finished_keys: HashSet::new(),
+        states: Vec::new(),
         progress,
+        exec: executor(),
         cre,
         compute,
         missing: 0,

@@ -301,15 +301,11 @@ impl Store {
             .map_err(db_err(&self.dir))
     }
 
-    /// Path of the field file of a run.
+    /// Path of the field file of a run (`fields/<run_file_stem>.bin`).
     pub fn field_path(&self, params: &[f64]) -> PathBuf {
-        let key = point_key(params);
-        // FNV-1a of the key: a short, stable file name.
-        let mut h: u64 = 0xcbf29ce484222325;
-        for b in key.bytes() {
-            h = (h ^ b as u64).wrapping_mul(0x100000001b3);
-        }
-        self.dir.join("fields").join(format!("run_{h:016x}.bin"))
+        self.dir
+            .join("fields")
+            .join(format!("{}.bin", run_file_stem(params)))
     }
 
     /// Path of the error-estimate file of a run (`cre/run_<hash>.bin`, next to its fields).
@@ -419,6 +415,32 @@ impl Store {
             ))),
         }
     }
+}
+
+/// Reads a file of `f64` little-endian values written by the store (a field or error-estimate
+/// file): the study-hash header, if any, is skipped (the store's own readers check it).
+pub fn read_values(path: &Path) -> Result<Vec<f64>, StudyError> {
+    let b = std::fs::read(path).map_err(|source| StudyError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match b.strip_prefix(FIELD_MAGIC) {
+        Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => Ok(from_blob(&rest[16..])),
+        Some(_) => Err(StudyError::Other(format!(
+            "{} is truncated or corrupt",
+            path.display()
+        ))),
+        None => Ok(from_blob(&b)),
+    }
+}
+
+/// The file stem of a run's files: `run_<FNV-1a of its point key>` (short and stable).
+pub fn run_file_stem(params: &[f64]) -> String {
+    let mut h: u64 = 0xcbf29ce484222325;
+    for b in point_key(params).bytes() {
+        h = (h ^ b as u64).wrapping_mul(0x100000001b3);
+    }
+    format!("run_{h:016x}")
 }
 
 /// The hash of a study: its file's text and the bytes of every other input file it reads

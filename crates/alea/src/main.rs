@@ -72,6 +72,59 @@ enum Command {
     },
 }
 
+/// `alea run` in one process.
+fn run_single(
+    study: &std::path::Path,
+    dir: &std::path::Path,
+    restart: bool,
+    quiet: bool,
+    threads: Option<usize>,
+) -> anyhow::Result<()> {
+    if let Some(n) = threads {
+        let n = alea_study::limits::check_threads(n)?;
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+            .map_err(|e| anyhow::anyhow!("cannot start {n} worker threads: {e}"))?;
+    }
+    study_cmd::run(study, dir, restart, quiet)
+}
+
+/// `alea run` under an MPI launcher (feature `mpi`): rank 0 runs the study with the MPI
+/// executor, the other ranks solve the runs it sends. `None` when not started by a launcher or
+/// with one rank (then the study runs in one process).
+#[cfg(feature = "mpi")]
+fn run_distributed(
+    study: &std::path::Path,
+    dir: &std::path::Path,
+    restart: bool,
+    quiet: bool,
+    threads: Option<usize>,
+) -> Option<anyhow::Result<()>> {
+    use alea_study::distributed::{Role, start};
+    match start(threads) {
+        Err(e) => Some(Err(e.into())),
+        Ok(Role::Single) => None,
+        Ok(Role::Worker(w)) => {
+            let rank = w.rank();
+            Some(
+                w.serve(study, dir)
+                    .map_err(|e| anyhow::anyhow!("rank {rank}: {e}")),
+            )
+        }
+        Ok(Role::Leader(leader)) => {
+            alea_study::runner::install_executor(leader.executor());
+            let result = study_cmd::run(study, dir, restart, quiet);
+            match leader.finish() {
+                Ok(stats) if stats.batches > 0 => println!("{}", stats.summary()),
+                Ok(_) => {}
+                Err(e) => eprintln!("warning: {e}"),
+            }
+            Some(result)
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -84,17 +137,18 @@ fn main() -> ExitCode {
             restart,
             threads,
             quiet,
-        } => (|| {
-            if let Some(n) = threads {
-                let n = alea_study::limits::check_threads(n)?;
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
-                    .build_global()
-                    .map_err(|e| anyhow::anyhow!("cannot start {n} worker threads: {e}"))?;
-            }
+        } => {
             let dir = dir.unwrap_or_else(|| study_cmd::default_dir(&study));
-            study_cmd::run(&study, &dir, restart, quiet)
-        })(),
+            #[cfg(feature = "mpi")]
+            {
+                match run_distributed(&study, &dir, restart, quiet, threads) {
+                    Some(r) => r,
+                    None => run_single(&study, &dir, restart, quiet, threads),
+                }
+            }
+            #[cfg(not(feature = "mpi"))]
+            run_single(&study, &dir, restart, quiet, threads)
+        }
     };
     match result {
         Ok(()) => ExitCode::from(exit::SUCCESS),

@@ -1,0 +1,693 @@
+//! Studies over MPI ranks (feature `mpi`): `mpirun -np N alea run study.toml`.
+//!
+//! Every rank loads the study file and builds its solver (and the error estimator's set-up)
+//! once, in the same order as a single process does ([`RunSetup::build`]), so every rank holds
+//! bit-identical factorisations. Rank 0 (the *leader*) runs the study as a single process would
+//! (the store, the fixed batch schedule, the adaptive decisions, the analysis and every output
+//! are its alone) except that the runs of each batch go through [`MpiExecutor`]: they are handed
+//! out one at a time to whichever rank has a free solver thread (the other ranks first, rank 0
+//! last), each with the warm-start state it starts from. A rank sends back the run's store row,
+//! field file and error-estimate data; rank 0 commits them as they arrive.
+//!
+//! **Same results for every rank count.** A run is a pure function of its point and its
+//! warm-start state (the nearest converged run of the *earlier* batches), and the batches and
+//! their warm starts depend only on the design ([`crate::runner`]). Which rank solves a run, and
+//! when, changes nothing: `summary.json` is byte-identical to a single-process run's.
+//!
+//! **Warm starts travel with the work.** A job carries its start state (`12 x` interface points
+//! `f64`s); the alternative - every rank keeping every converged state - costs `N - 1` copies of
+//! every state instead of one per remote run, and the state is small beside the run's fields
+//! that come back anyway (measured in `BENCHMARKS.md`).
+//!
+//! **Failures.** A run that fails (or panics) on a rank is reported as `rank r failed on the
+//! run at a = .., b = ..: <why>`; the runs in flight on the other ranks are finished and
+//! committed first, so running the same command again resumes, with any rank count. A rank that
+//! dies makes `mpirun` stop the job and name the rank; `<dir>/mpi-dispatch.log` lists which runs
+//! each rank was given in each batch. Committed runs are never lost (see [`crate::store`]).
+//!
+//! **No busy waiting.** MPI is initialised with `Threading::Funneled`: only the main thread of a
+//! rank calls MPI; its solver threads take jobs from a channel. The main thread polls with
+//! non-blocking probes and sleeps between polls (20 us doubling to 1 ms), so an idle rank leaves
+//! its core to the solver threads of the ranks it shares a node with. Sends are non-blocking and
+//! drain incoming messages until they complete, so two ranks sending large messages to each
+//! other never deadlock.
+//!
+//! Threads per rank: `--threads` if given, else the node's cores divided by the ranks on the
+//! node (from `MPI_Comm_split_type(SHARED)`).
+
+mod wire;
+
+use std::collections::VecDeque;
+use std::io::Write;
+use std::path::Path;
+use std::sync::{Arc, Mutex, mpsc};
+use std::time::Duration;
+
+use mpi::Threading;
+use mpi::point_to_point::MatchedReceiveVec;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::*;
+
+use crate::StudyError;
+use crate::runner::{BatchExecutor, RunContext, RunJob, RunOutcome, RunSetup, Study};
+use crate::store::run_file_stem;
+
+const TAG_READY: i32 = 11;
+const TAG_JOB: i32 = 12;
+const TAG_RESULT: i32 = 13;
+const TAG_STOP: i32 = 14;
+
+/// What this process is in an MPI job.
+pub enum Role {
+    /// Not started by an MPI launcher, or a job of one rank: run as usual.
+    Single,
+    /// Rank 0 of a job of several ranks.
+    Leader(Leader),
+    /// Any other rank.
+    Worker(Worker),
+}
+
+/// True if an MPI launcher started this process (OpenMPI's `mpirun`, Hydra's `mpiexec`, Slurm's
+/// `srun` with PMI or PMIx).
+fn launched_by_mpi() -> bool {
+    ["OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"]
+        .iter()
+        .any(|v| std::env::var_os(v).is_some())
+}
+
+/// Initialises MPI if an MPI launcher started this process, sizes the rayon pool of this rank
+/// (`threads`, else the node's cores over the ranks on the node) and says what this process is.
+pub fn start(threads: Option<usize>) -> Result<Role, StudyError> {
+    if !launched_by_mpi() {
+        return Ok(Role::Single);
+    }
+    let (universe, provided) = mpi::initialize_with_threading(Threading::Funneled)
+        .ok_or_else(|| StudyError::Other("MPI was initialised twice".into()))?;
+    if provided == Threading::Single {
+        return Err(StudyError::Other(
+            "the MPI library does not support threads (MPI_THREAD_FUNNELED needed)".into(),
+        ));
+    }
+    let world = universe.world();
+    let (rank, size) = (world.rank(), world.size());
+    let on_node = world.split_shared(rank).size().max(1) as usize;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = threads.unwrap_or((cores / on_node).max(1)).max(1);
+    let _ = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build_global();
+    if size == 1 {
+        return Ok(Role::Single);
+    }
+    let comm = World {
+        comm: world,
+        thread: std::thread::current().id(),
+    };
+    if rank == 0 {
+        Ok(Role::Leader(Leader {
+            inner: Arc::new(LeaderInner {
+                world: comm,
+                size: size as usize,
+                state: Mutex::new(LeaderState {
+                    ready: None,
+                    capacity: vec![threads; size as usize],
+                    stats: Stats {
+                        ranks: size as usize,
+                        threads: vec![threads; size as usize],
+                        runs: vec![0; size as usize],
+                        ..Stats::default()
+                    },
+                    next_id: 0,
+                    batches: 0,
+                    log: None,
+                }),
+            }),
+            _universe: universe,
+        }))
+    } else {
+        Ok(Role::Worker(Worker {
+            world: comm,
+            rank: rank as usize,
+            threads,
+            _universe: universe,
+        }))
+    }
+}
+
+/// The world communicator, used only from the thread that initialised MPI.
+struct World {
+    comm: SimpleCommunicator,
+    thread: std::thread::ThreadId,
+}
+
+// SAFETY: MPI is initialised with `Threading::Funneled` and every use of the communicator goes
+// through `World::get`, which refuses any thread but the one that initialised MPI: the handle is
+// never used from two threads, nor from a thread MPI does not allow.
+unsafe impl Send for World {}
+unsafe impl Sync for World {}
+
+impl World {
+    fn get(&self) -> Result<&SimpleCommunicator, StudyError> {
+        if std::thread::current().id() == self.thread {
+            Ok(&self.comm)
+        } else {
+            Err(StudyError::Other(
+                "MPI used from a thread other than the one that initialised it".into(),
+            ))
+        }
+    }
+}
+
+/// Sleeps between polls: 20 us, doubling to 1 ms while nothing happens.
+struct Nap(Duration);
+
+impl Nap {
+    fn new() -> Self {
+        Nap(Duration::from_micros(20))
+    }
+    fn reset(&mut self) {
+        self.0 = Duration::from_micros(20);
+    }
+    fn sleep(&mut self) {
+        std::thread::sleep(self.0);
+        self.0 = (self.0 * 2).min(Duration::from_millis(1));
+    }
+}
+
+/// A received message: source rank, tag, bytes.
+type Incoming = (usize, i32, Vec<u8>);
+
+/// Receives one message with `tag` (any tag if `None`) from `from` (any rank if `None`) if one
+/// has arrived.
+fn try_receive(
+    world: &SimpleCommunicator,
+    from: Option<usize>,
+    tag: Option<i32>,
+) -> Option<Incoming> {
+    let probe = match (from, tag) {
+        (Some(r), Some(t)) => world
+            .process_at_rank(r as i32)
+            .immediate_matched_probe_with_tag(t),
+        (Some(r), None) => world.process_at_rank(r as i32).immediate_matched_probe(),
+        (None, Some(t)) => world.any_process().immediate_matched_probe_with_tag(t),
+        (None, None) => world.any_process().immediate_matched_probe(),
+    }?;
+    let (bytes, status) = probe.matched_receive_vec::<u8>();
+    Some((status.source_rank() as usize, status.tag(), bytes))
+}
+
+/// Sends `bytes` to `dest` without blocking the exchange: while the send is under way, messages
+/// with `expect` from any rank are received and returned (so two ranks sending to each other at
+/// once cannot deadlock).
+fn send(
+    world: &SimpleCommunicator,
+    dest: usize,
+    tag: i32,
+    bytes: &[u8],
+    expect: Option<i32>,
+) -> Vec<Incoming> {
+    let mut got = Vec::new();
+    let mut nap = Nap::new();
+    mpi::request::scope(|scope| {
+        let mut req = world
+            .process_at_rank(dest as i32)
+            .immediate_send_with_tag(scope, bytes, tag);
+        loop {
+            match req.test() {
+                Ok(_) => break,
+                Err(r) => req = r,
+            }
+            match try_receive(world, None, expect) {
+                Some(m) => {
+                    got.push(m);
+                    nap.reset();
+                }
+                None => nap.sleep(),
+            }
+        }
+    });
+    got
+}
+
+/// Solves a run, turning an error or a panic into a message.
+fn solve_caught(ctx: &RunContext<'_>, job: &RunJob) -> Result<RunOutcome, String> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| ctx.solve(job))) {
+        Ok(Ok(out)) => Ok(out),
+        Ok(Err(e)) => Err(e.to_string()),
+        Err(p) => Err(format!(
+            "panicked: {}",
+            p.downcast_ref::<String>()
+                .map(String::as_str)
+                .or_else(|| p.downcast_ref::<&str>().copied())
+                .unwrap_or("(no message)")
+        )),
+    }
+}
+
+/// A solver thread of a rank: takes jobs from `rx` until it closes, sends each outcome to `tx`.
+fn solver_thread(
+    ctx: &RunContext<'_>,
+    rx: &Mutex<mpsc::Receiver<(u64, RunJob)>>,
+    tx: mpsc::Sender<(u64, Result<RunOutcome, String>)>,
+) {
+    loop {
+        let next = match rx.lock() {
+            Ok(r) => r.recv(),
+            Err(_) => return,
+        };
+        let Ok((id, job)) = next else { return };
+        if tx.send((id, solve_caught(ctx, &job))).is_err() {
+            return;
+        }
+    }
+}
+
+/// Traffic and work of an MPI job, as seen by rank 0.
+#[derive(Clone, Debug, Default)]
+pub struct Stats {
+    /// Ranks.
+    pub ranks: usize,
+    /// Solver threads of each rank.
+    pub threads: Vec<usize>,
+    /// Runs solved by each rank.
+    pub runs: Vec<usize>,
+    /// Bytes of the jobs sent to other ranks.
+    pub job_bytes: u64,
+    /// Of which warm-start states.
+    pub state_bytes: u64,
+    /// Bytes of the results received from other ranks.
+    pub result_bytes: u64,
+    /// Batches that went through the executor.
+    pub batches: usize,
+}
+
+impl Stats {
+    /// Runs solved on ranks other than 0.
+    pub fn remote_runs(&self) -> usize {
+        self.runs.iter().skip(1).sum()
+    }
+
+    /// One line for the log: ranks, runs per rank, bytes per remote run each way.
+    pub fn summary(&self) -> String {
+        let per = |b: u64| b as f64 / self.remote_runs().max(1) as f64;
+        format!(
+            "MPI: {} ranks x {:?} solver threads, runs per rank {:?}, {} batches; per remote run: \
+             {:.0} bytes sent (warm-start state {:.0}), {:.0} bytes back (a state kept on every \
+             rank instead would cost {:.0} bytes per run)",
+            self.ranks,
+            self.threads,
+            self.runs,
+            self.batches,
+            per(self.job_bytes),
+            per(self.state_bytes),
+            per(self.result_bytes),
+            per(self.state_bytes) * (self.ranks.saturating_sub(1)) as f64,
+        )
+    }
+}
+
+struct LeaderState {
+    /// `None` until every rank reported; then `Ok` or the set-up errors of the ranks.
+    ready: Option<Result<(), String>>,
+    capacity: Vec<usize>,
+    stats: Stats,
+    next_id: u64,
+    batches: usize,
+    log: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+struct LeaderInner {
+    world: World,
+    size: usize,
+    state: Mutex<LeaderState>,
+}
+
+/// Rank 0 of a job: install [`Leader::executor`], run the study as usual, then
+/// [`Leader::finish`].
+pub struct Leader {
+    inner: Arc<LeaderInner>,
+    _universe: mpi::environment::Universe,
+}
+
+/// The executor of rank 0: the runs of a batch over every rank.
+pub struct MpiExecutor(Arc<LeaderInner>);
+
+impl Leader {
+    /// The executor to install with [`crate::runner::install_executor`].
+    pub fn executor(&self) -> Box<MpiExecutor> {
+        Box::new(MpiExecutor(self.inner.clone()))
+    }
+
+    /// Stops the other ranks (after they reported their set-up) and returns the job's traffic.
+    pub fn finish(self) -> Result<Stats, StudyError> {
+        let inner = &self.inner;
+        let world = inner.world.get()?;
+        let mut st = inner
+            .state
+            .lock()
+            .map_err(|_| StudyError::Other("MPI state lock poisoned".into()))?;
+        if st.ready.is_none() {
+            let _ = wait_ready(world, inner.size, &mut st);
+        }
+        for r in 1..inner.size {
+            send(world, r, TAG_STOP, &[], None);
+        }
+        if let Some(log) = st.log.as_mut() {
+            let _ = log.flush();
+        }
+        st.stats.batches = st.batches;
+        Ok(st.stats.clone())
+    }
+}
+
+/// Receives every worker's set-up report.
+fn wait_ready(world: &SimpleCommunicator, size: usize, st: &mut LeaderState) -> Result<(), String> {
+    let mut errors = Vec::new();
+    let mut nap = Nap::new();
+    let mut left = size - 1;
+    while left > 0 {
+        match try_receive(world, None, Some(TAG_READY)) {
+            Some((r, _, bytes)) => {
+                left -= 1;
+                nap.reset();
+                let mut rd = wire::Reader::new(&bytes);
+                let threads = rd.u64().unwrap_or(1).max(1) as usize;
+                st.capacity[r] = threads;
+                st.stats.threads[r] = threads;
+                match rd.u64() {
+                    Ok(1) => {}
+                    _ => errors.push(format!(
+                        "rank {r} could not set up the study: {}",
+                        rd.str().unwrap_or_else(|e| e.0)
+                    )),
+                }
+            }
+            None => nap.sleep(),
+        }
+    }
+    errors.sort();
+    let res = if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(errors.join("; "))
+    };
+    st.ready = Some(res.clone());
+    res
+}
+
+/// `a = 0.25, b = 1` for error messages.
+fn describe(study: &Study, theta: &[f64]) -> String {
+    study
+        .params
+        .names
+        .iter()
+        .zip(theta)
+        .map(|(n, v)| format!("{n} = {v}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+impl BatchExecutor for MpiExecutor {
+    fn execute(
+        &self,
+        ctx: &RunContext<'_>,
+        jobs: &[RunJob],
+        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+    ) -> Result<(), StudyError> {
+        let inner = &*self.0;
+        let world = inner.world.get()?;
+        let mut guard = inner
+            .state
+            .lock()
+            .map_err(|_| StudyError::Other("MPI state lock poisoned".into()))?;
+        let st = &mut *guard;
+        if st.ready.is_none() {
+            let _ = wait_ready(world, inner.size, st);
+        }
+        if let Some(Err(e)) = &st.ready {
+            return Err(StudyError::Other(e.clone()));
+        }
+        if jobs.is_empty() {
+            return Ok(());
+        }
+        st.batches += 1;
+        if st.log.is_none() {
+            let path = ctx.dir.join("mpi-dispatch.log");
+            let file = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(&path)
+                .map_err(|source| StudyError::Io { path, source })?;
+            let mut w = std::io::BufWriter::new(file);
+            let _ = writeln!(w, "# job of {} ranks: batch, rank <- run", inner.size);
+            st.log = Some(w);
+        }
+        let size = inner.size;
+        let mut queue: VecDeque<usize> = (0..jobs.len()).collect();
+        // In flight per rank: (job id, index in `jobs`).
+        let mut inflight: Vec<Vec<(u64, usize)>> = vec![Vec::new(); size];
+        let mut first_err: Option<StudyError> = None;
+        let study = ctx.study;
+        let fail = |r: usize, i: usize, why: &str| {
+            StudyError::Other(format!(
+                "rank {r} failed on the run at {}: {why} (the runs that finished are committed: \
+                 run the same command again, with any number of ranks, to resume)",
+                describe(study, &jobs[i].theta)
+            ))
+        };
+        let (job_tx, job_rx) = mpsc::channel::<(u64, RunJob)>();
+        let job_rx = Mutex::new(job_rx);
+        std::thread::scope(|s| -> Result<(), StudyError> {
+            let (res_tx, res_rx) = mpsc::channel::<(u64, Result<RunOutcome, String>)>();
+            for _ in 0..st.capacity[0] {
+                let (rx, tx) = (&job_rx, res_tx.clone());
+                s.spawn(move || solver_thread(ctx, rx, tx));
+            }
+            drop(res_tx);
+            let handle = |r: usize,
+                          id: u64,
+                          out: Result<RunOutcome, String>,
+                          inflight: &mut Vec<Vec<(u64, usize)>>,
+                          first_err: &mut Option<StudyError>,
+                          stats: &mut Stats|
+             -> Result<(), StudyError> {
+                let k = inflight[r]
+                    .iter()
+                    .position(|&(x, _)| x == id)
+                    .ok_or_else(|| {
+                        StudyError::Other(format!("rank {r} returned a run it was not given"))
+                    })?;
+                let (_, i) = inflight[r].swap_remove(k);
+                match out {
+                    Ok(o) => {
+                        if o.rec.params != jobs[i].theta {
+                            return Err(fail(r, i, "its result is for another point"));
+                        }
+                        stats.runs[r] += 1;
+                        if let Err(e) = commit(o) {
+                            first_err.get_or_insert(e);
+                        }
+                    }
+                    Err(why) => {
+                        first_err.get_or_insert(fail(r, i, &why));
+                    }
+                }
+                Ok(())
+            };
+            let mut nap = Nap::new();
+            let result = loop {
+                // Hand out work: other ranks first, rank 0 (which also commits) last.
+                let mut arrived: Vec<Incoming> = Vec::new();
+                if first_err.is_none() {
+                    for r in (1..size).chain([0]) {
+                        while inflight[r].len() < st.capacity[r] {
+                            let Some(i) = queue.pop_front() else { break };
+                            let id = st.next_id;
+                            st.next_id += 1;
+                            if let Some(log) = st.log.as_mut() {
+                                let _ = writeln!(
+                                    log,
+                                    "{} {r} <- {} ({})",
+                                    st.batches,
+                                    run_file_stem(&jobs[i].theta),
+                                    describe(study, &jobs[i].theta)
+                                );
+                            }
+                            if r == 0 {
+                                job_tx.send((id, jobs[i].clone())).map_err(|_| {
+                                    StudyError::Other("rank 0's solver threads stopped".into())
+                                })?;
+                            } else {
+                                let (bytes, state) = wire::encode_job(id, &jobs[i]);
+                                st.stats.job_bytes += bytes.len() as u64;
+                                st.stats.state_bytes += state as u64;
+                                arrived.extend(send(world, r, TAG_JOB, &bytes, Some(TAG_RESULT)));
+                            }
+                            inflight[r].push((id, i));
+                        }
+                    }
+                    if let Some(log) = st.log.as_mut() {
+                        let _ = log.flush();
+                    }
+                }
+                let mut busy = !arrived.is_empty();
+                while let Some(m) = try_receive(world, None, Some(TAG_RESULT)) {
+                    arrived.push(m);
+                    busy = true;
+                }
+                for (r, _, bytes) in arrived {
+                    st.stats.result_bytes += bytes.len() as u64;
+                    let (id, out) = wire::decode_result(&bytes).map_err(|e| {
+                        StudyError::Other(format!(
+                            "a result from rank {r} does not decode: {}",
+                            e.0
+                        ))
+                    })?;
+                    handle(r, id, out, &mut inflight, &mut first_err, &mut st.stats)?;
+                }
+                while let Ok((id, out)) = res_rx.try_recv() {
+                    busy = true;
+                    handle(0, id, out, &mut inflight, &mut first_err, &mut st.stats)?;
+                }
+                if inflight.iter().all(Vec::is_empty) && (queue.is_empty() || first_err.is_some()) {
+                    break Ok(());
+                }
+                if busy {
+                    nap.reset();
+                } else {
+                    nap.sleep();
+                }
+            };
+            drop(job_tx);
+            result
+        })?;
+        match first_err {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+}
+
+/// A rank other than 0: builds its solver, then solves the runs rank 0 sends until told to
+/// stop.
+pub struct Worker {
+    world: World,
+    rank: usize,
+    threads: usize,
+    _universe: mpi::environment::Universe,
+}
+
+impl Worker {
+    /// This rank.
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    /// Loads the study at `path`, builds its solver, reports to rank 0, and solves the runs it
+    /// is sent (per-run ParaView files, if the study asks for them, go to `dir`) until rank 0
+    /// says stop. Set-up errors are reported to rank 0, which prints them; the error returned
+    /// here is a failure of the exchange itself.
+    pub fn serve(self, path: &Path, dir: &Path) -> Result<(), StudyError> {
+        let world = self.world.get()?;
+        let setup = Study::load(path).and_then(|study| {
+            let s = RunSetup::build(&study)?;
+            Ok((study, s))
+        });
+        let mut w = wire::Writer::default();
+        w.u64(self.threads as u64);
+        match &setup {
+            Ok(_) => w.u64(1),
+            Err(e) => w.u64(0).str(&e.to_string()),
+        };
+        let mut stash: VecDeque<Incoming> =
+            send(world, 0, TAG_READY, &w.buf, Some(TAG_STOP)).into();
+        let Ok((study, s)) = setup else {
+            // Wait for rank 0 to stop the job (it reports the error).
+            let mut nap = Nap::new();
+            while stash.is_empty() {
+                match try_receive(world, Some(0), Some(TAG_STOP)) {
+                    Some(m) => stash.push_back(m),
+                    None => nap.sleep(),
+                }
+            }
+            return Ok(());
+        };
+        let ctx = RunContext {
+            study: &study,
+            solver: &s.solver,
+            cre: s.cre.as_deref(),
+            dir,
+        };
+        let sizes = s.solver.interface_sizes();
+        let (job_tx, job_rx) = mpsc::channel::<(u64, RunJob)>();
+        let job_rx = Mutex::new(job_rx);
+        std::thread::scope(|sc| -> Result<(), StudyError> {
+            let (res_tx, res_rx) = mpsc::channel::<(u64, Result<RunOutcome, String>)>();
+            for _ in 0..self.threads {
+                let (rx, tx) = (&job_rx, res_tx.clone());
+                let ctx = &ctx;
+                sc.spawn(move || solver_thread(ctx, rx, tx));
+            }
+            drop(res_tx);
+            let mut in_flight = 0usize;
+            let mut stop = false;
+            let mut nap = Nap::new();
+            let result = 'serve: loop {
+                let mut busy = false;
+                while let Some(m) = stash
+                    .pop_front()
+                    .or_else(|| try_receive(world, Some(0), None))
+                {
+                    busy = true;
+                    match m.1 {
+                        TAG_STOP => stop = true,
+                        TAG_JOB => {
+                            let job = match wire::decode_job(&m.2, &sizes) {
+                                Ok(j) => j,
+                                Err(e) => {
+                                    // Answer for the id if it can be read, so rank 0 names the run.
+                                    let id = wire::Reader::new(&m.2).u64().unwrap_or(u64::MAX);
+                                    let bytes = wire::encode_result(
+                                        id,
+                                        &Err(format!("its job does not decode: {}", e.0)),
+                                    );
+                                    stash.extend(send(world, 0, TAG_RESULT, &bytes, None));
+                                    continue;
+                                }
+                            };
+                            in_flight += 1;
+                            if job_tx.send(job).is_err() {
+                                break 'serve Err(StudyError::Other(format!(
+                                    "rank {}: its solver threads stopped",
+                                    self.rank
+                                )));
+                            }
+                        }
+                        other => {
+                            break 'serve Err(StudyError::Other(format!(
+                                "rank {}: unexpected message tag {other} from rank 0",
+                                self.rank
+                            )));
+                        }
+                    }
+                }
+                while let Ok((id, out)) = res_rx.try_recv() {
+                    busy = true;
+                    in_flight -= 1;
+                    let bytes = wire::encode_result(id, &out);
+                    stash.extend(send(world, 0, TAG_RESULT, &bytes, None));
+                }
+                if stop && in_flight == 0 {
+                    break Ok(());
+                }
+                if busy {
+                    nap.reset();
+                } else {
+                    nap.sleep();
+                }
+            };
+            drop(job_tx);
+            result
+        })
+    }
+}

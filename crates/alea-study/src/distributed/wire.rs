@@ -1,0 +1,263 @@
+//! The messages between ranks as bytes: little-endian `u64` and `f64`, lengths before vectors
+//! and strings. Hand-written (about a page): every `f64` must travel bit for bit, which a text
+//! format does not promise, and the messages are four flat records.
+
+use std::sync::Arc;
+
+use alea_latin::LocalState;
+
+use crate::runner::{RunJob, RunOutcome};
+use crate::store::RunRecord;
+
+/// A message that does not decode (a bug or a mismatched build on another rank).
+#[derive(Debug)]
+pub(crate) struct WireError(pub(crate) String);
+
+/// Appends values to a byte buffer.
+#[derive(Default)]
+pub(crate) struct Writer {
+    pub(crate) buf: Vec<u8>,
+}
+
+impl Writer {
+    pub(crate) fn u64(&mut self, v: u64) -> &mut Self {
+        self.buf.extend_from_slice(&v.to_le_bytes());
+        self
+    }
+    pub(crate) fn f64(&mut self, v: f64) -> &mut Self {
+        self.buf.extend_from_slice(&v.to_le_bytes());
+        self
+    }
+    pub(crate) fn f64s(&mut self, v: &[f64]) -> &mut Self {
+        self.u64(v.len() as u64);
+        self.buf.reserve(8 * v.len());
+        for x in v {
+            self.buf.extend_from_slice(&x.to_le_bytes());
+        }
+        self
+    }
+    pub(crate) fn str(&mut self, s: &str) -> &mut Self {
+        self.u64(s.len() as u64);
+        self.buf.extend_from_slice(s.as_bytes());
+        self
+    }
+}
+
+/// Reads values back in the order they were written.
+pub(crate) struct Reader<'a> {
+    buf: &'a [u8],
+    at: usize,
+}
+
+impl<'a> Reader<'a> {
+    pub(crate) fn new(buf: &'a [u8]) -> Self {
+        Reader { buf, at: 0 }
+    }
+    fn take(&mut self, n: usize) -> Result<&'a [u8], WireError> {
+        if self.buf.len() - self.at < n {
+            return Err(WireError(format!(
+                "message of {} bytes ends at byte {} while {n} more were expected",
+                self.buf.len(),
+                self.at
+            )));
+        }
+        let s = &self.buf[self.at..self.at + n];
+        self.at += n;
+        Ok(s)
+    }
+    pub(crate) fn u64(&mut self) -> Result<u64, WireError> {
+        let b = self.take(8)?;
+        Ok(u64::from_le_bytes(
+            b.try_into().map_err(|_| WireError("u64".into()))?,
+        ))
+    }
+    pub(crate) fn f64(&mut self) -> Result<f64, WireError> {
+        Ok(f64::from_bits(self.u64()?))
+    }
+    fn len(&mut self, width: usize) -> Result<usize, WireError> {
+        let n = self.u64()? as usize;
+        if n.checked_mul(width)
+            .is_none_or(|b| b > self.buf.len() - self.at)
+        {
+            return Err(WireError(format!("length {n} exceeds the message")));
+        }
+        Ok(n)
+    }
+    pub(crate) fn f64s(&mut self) -> Result<Vec<f64>, WireError> {
+        let n = self.len(8)?;
+        let b = self.take(8 * n)?;
+        Ok(b.chunks_exact(8)
+            .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+            .collect())
+    }
+    pub(crate) fn str(&mut self) -> Result<String, WireError> {
+        let n = self.len(1)?;
+        let b = self.take(n)?;
+        String::from_utf8(b.to_vec()).map_err(|e| WireError(e.to_string()))
+    }
+    pub(crate) fn end(&self) -> Result<(), WireError> {
+        if self.at == self.buf.len() {
+            Ok(())
+        } else {
+            Err(WireError(format!(
+                "{} trailing bytes in a message",
+                self.buf.len() - self.at
+            )))
+        }
+    }
+}
+
+/// A job: its id, its point and its warm-start state (empty: cold start). Returns the bytes and
+/// how many of them are the state.
+pub(crate) fn encode_job(id: u64, job: &RunJob) -> (Vec<u8>, usize) {
+    let mut w = Writer::default();
+    w.u64(id).f64s(&job.theta);
+    let before = w.buf.len();
+    match &job.start {
+        Some(s) => w.u64(1).f64s(&s.to_vec()),
+        None => w.u64(0),
+    };
+    let state = w.buf.len() - before;
+    (w.buf, state)
+}
+
+/// Decodes a job; `sizes` are the interface point counts of this rank's solver.
+pub(crate) fn decode_job(buf: &[u8], sizes: &[usize]) -> Result<(u64, RunJob), WireError> {
+    let mut r = Reader::new(buf);
+    let id = r.u64()?;
+    let theta = r.f64s()?;
+    let start = match r.u64()? {
+        0 => None,
+        _ => {
+            let v = r.f64s()?;
+            Some(Arc::new(LocalState::from_slice(sizes, &v).ok_or_else(
+                || {
+                    WireError(format!(
+                        "a warm-start state of {} values does not fit this rank's interfaces",
+                        v.len()
+                    ))
+                },
+            )?))
+        }
+    };
+    r.end()?;
+    Ok((id, RunJob { theta, start }))
+}
+
+/// A result: the job id, then either the outcome or the error message of the failed run.
+pub(crate) fn encode_result(id: u64, out: &Result<RunOutcome, String>) -> Vec<u8> {
+    let mut w = Writer::default();
+    w.u64(id);
+    match out {
+        Ok(o) => {
+            let r = &o.rec;
+            w.u64(1)
+                .f64s(&r.params)
+                .str(&r.status)
+                .u64(r.iterations as u64)
+                .f64(r.residual)
+                .f64(r.seconds)
+                .f64s(&r.qois)
+                .f64s(&r.history)
+                .f64s(&r.state)
+                .f64s(&o.fields)
+                .f64(o.estimate_seconds);
+            match &o.cre {
+                Some(c) => w.u64(1).f64s(c),
+                None => w.u64(0),
+            };
+        }
+        Err(msg) => {
+            w.u64(0).str(msg);
+        }
+    }
+    w.buf
+}
+
+/// Decodes a result.
+pub(crate) fn decode_result(buf: &[u8]) -> Result<(u64, Result<RunOutcome, String>), WireError> {
+    let mut r = Reader::new(buf);
+    let id = r.u64()?;
+    let out = match r.u64()? {
+        0 => Err(r.str()?),
+        _ => {
+            let rec = RunRecord {
+                params: r.f64s()?,
+                status: r.str()?,
+                iterations: r.u64()? as usize,
+                residual: r.f64()?,
+                seconds: r.f64()?,
+                qois: r.f64s()?,
+                history: r.f64s()?,
+                state: r.f64s()?,
+            };
+            let fields = r.f64s()?;
+            let estimate_seconds = r.f64()?;
+            let cre = match r.u64()? {
+                0 => None,
+                _ => Some(r.f64s()?),
+            };
+            Ok(RunOutcome {
+                rec,
+                fields,
+                cre,
+                estimate_seconds,
+            })
+        }
+    };
+    r.end()?;
+    Ok((id, out))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn results_and_jobs_round_trip_bit_for_bit() {
+        let out = RunOutcome {
+            rec: RunRecord {
+                params: vec![0.1, -0.0, f64::MIN_POSITIVE / 3.0],
+                status: "no equilibrium: \u{e9}".into(),
+                iterations: 17,
+                residual: f64::MAX,
+                seconds: 0.25,
+                qois: vec![f64::NAN, 1e300],
+                history: vec![1.0, 0.5],
+                state: vec![3.0; 12],
+            },
+            fields: (0..100).map(|i| (i as f64).sin()).collect(),
+            cre: Some(vec![1.5, 2.5]),
+            estimate_seconds: 0.125,
+        };
+        let b = encode_result(9, &Ok(out.clone()));
+        let (id, back) = decode_result(&b).unwrap();
+        assert_eq!(id, 9);
+        let back = back.unwrap();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&back.rec.params), bits(&out.rec.params));
+        assert_eq!(bits(&back.rec.qois), bits(&out.rec.qois));
+        assert_eq!(back.rec.status, out.rec.status);
+        assert_eq!(back.fields, out.fields);
+        assert_eq!(back.cre, out.cre);
+        let (id, e) = decode_result(&encode_result(3, &Err("boom".into()))).unwrap();
+        assert_eq!((id, e.unwrap_err()), (3, "boom".to_string()));
+        // A truncated message is an error, never a panic.
+        for cut in [0, 5, 8, 40, b.len() - 1] {
+            assert!(decode_result(&b[..cut]).is_err());
+        }
+        let sizes = [1usize];
+        let state = LocalState::from_slice(&sizes, &[0.5; 12]).unwrap();
+        let job = RunJob {
+            theta: vec![1.0, 2.0],
+            start: Some(Arc::new(state.clone())),
+        };
+        let (b, state_bytes) = encode_job(4, &job);
+        assert_eq!(state_bytes, 8 + 8 + 12 * 8);
+        let (id, back) = decode_job(&b, &sizes).unwrap();
+        assert_eq!(id, 4);
+        assert_eq!(back.theta, job.theta);
+        assert_eq!(back.start.as_deref(), Some(&state));
+        assert!(decode_job(&b, &[2]).is_err());
+    }
+}
