@@ -4,7 +4,9 @@
 //! `von_mises`, and on interface nodes `contact_status` (-1 off interfaces, then
 //! [`PointStatus::code`]: 0 perfect, 1 open, 2 stick, 3 slip), `contact_normal_force`
 //! (`F_hat . n` on this side, traction units), `contact_tangential_force` (`|F_hat_t|`) and
-//! `interface_jump` (`[W_hat] + g0 n`, vector; the same on both sides). Cell fields: one
+//! `interface_jump` (`[W_hat] + g0 n`, vector; the same on both sides). On a mortar side that is
+//! not the identity (side 2) the nodal values are averages of the point values weighted by
+//! `m_p Pi(p, a)`, and the status is that of the point that weighs most. Cell fields: one
 //! `group_<name>` indicator per cell group.
 
 use std::path::{Path, PathBuf};
@@ -23,6 +25,28 @@ struct SubFields {
     fnormal: Vec<f64>,
     ftangent: Vec<f64>,
     jump: Vec<f64>,
+}
+
+/// Weighted sums of point values at one node of a mortar side.
+#[derive(Default)]
+struct NodeAverage {
+    weight: f64,
+    force: [f64; 3],
+    normal: [f64; 3],
+    jump: [f64; 3],
+    best: (f64, f64),
+}
+
+impl SubFields {
+    /// Sets the interface fields of `node` from its status code, normal, traction and jump.
+    fn set(&mut self, node: usize, status: f64, n: &[f64; 3], fh: &[f64; 3], jump: &[f64; 3]) {
+        let fnn = fh[0] * n[0] + fh[1] * n[1] + fh[2] * n[2];
+        let ft = [fh[0] - fnn * n[0], fh[1] - fnn * n[1], fh[2] - fnn * n[2]];
+        self.status[node] = status;
+        self.fnormal[node] = fnn;
+        self.ftangent[node] = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
+        self.jump[node * 3..node * 3 + 3].copy_from_slice(jump);
+    }
 }
 
 /// Writes `path` (`.vtm`) and one `.vtu` per substructure beside it; returns the `.vtu` paths.
@@ -59,15 +83,46 @@ pub fn write_run(
     for it in &result.interfaces {
         for side in 0..2 {
             let f = &mut fields[it.subs[side]];
-            for (i, &node) in it.nodes[side].iter().enumerate() {
-                let n = it.points[i].normal;
-                let fh = it.fhat[side][i];
-                let fnn = fh[0] * n[0] + fh[1] * n[1] + fh[2] * n[2];
-                let ft = [fh[0] - fnn * n[0], fh[1] - fnn * n[1], fh[2] - fnn * n[2]];
-                f.status[node] = it.status[i].code() as f64;
-                f.fnormal[node] = fnn;
-                f.ftangent[node] = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
-                f.jump[node * 3..node * 3 + 3].copy_from_slice(&it.jump(i));
+            let proj = &it.pairing.sides[side];
+            if proj.is_identity() {
+                for (i, &node) in it.nodes[side].iter().enumerate() {
+                    let n = it.points[i].normal;
+                    let fh = it.fhat[side][i];
+                    f.set(node, it.status[i].code() as f64, &n, &fh, &it.jump(i));
+                }
+                continue;
+            }
+            // Mortar side: nodal averages of the point values weighted by m_p Pi(p, a) (their
+            // sum is the node's share of the interface measure); the status of the point that
+            // weighs most.
+            let mut acc: std::collections::BTreeMap<usize, NodeAverage> = Default::default();
+            for p in 0..proj.len() {
+                let m = proj.weights[p];
+                for (node, c) in proj.row(p) {
+                    let a = acc.entry(node).or_default();
+                    let w = m * c;
+                    a.weight += w;
+                    for k in 0..3 {
+                        a.force[k] += w * it.fhat[side][p][k];
+                        a.normal[k] += w * it.points[p].normal[k];
+                        a.jump[k] += w * it.jump(p)[k];
+                    }
+                    if w > a.best.0 {
+                        a.best = (w, it.status[p].code() as f64);
+                    }
+                }
+            }
+            for (node, a) in acc {
+                if a.weight <= 0.0 {
+                    continue;
+                }
+                let l = (a.normal.iter().map(|v| v * v).sum::<f64>())
+                    .sqrt()
+                    .max(1e-300);
+                let n = a.normal.map(|v| v / l);
+                let t = a.force.map(|v| v / a.weight);
+                let j = a.jump.map(|v| v / a.weight);
+                f.set(node, a.best.1, &n, &t, &j);
             }
         }
     }

@@ -44,7 +44,10 @@ use rayon::prelude::*;
 
 use crate::anderson::Anderson;
 use crate::equilibrium::{RigidModes, SubEquilibrium};
-use crate::interface::{pair_nodes, side_geometry};
+use crate::interface::{
+    InterfacePairing, Pairing, SideProjection, pair_node_to_node, side_geometry,
+};
+use crate::mortar::pair_mortar;
 use crate::{
     Assembly, InterfaceLaw, InterfaceResult, LatinError, PointData, PointField, PointStatus,
     RunResult, RunStatus, RunTimings,
@@ -177,13 +180,13 @@ impl LocalState {
     }
 }
 
-/// Interface nodes of one substructure on one side of one interface, in interface point order.
+/// One side of one interface seen from its substructure: the projection of the side's nodal
+/// displacements to the interface points (module `interface`, identity for node-to-node).
 #[derive(Clone, Debug)]
 struct Link {
     iface: usize,
     side: usize,
-    nodes: Vec<usize>,
-    weights: Vec<f64>,
+    proj: Arc<SideProjection>,
     k0: f64,
 }
 
@@ -207,6 +210,7 @@ struct InterfaceOperator {
     weights: Vec<f64>,
     mu: PointField,
     gap: PointField,
+    pairing: Arc<InterfacePairing>,
 }
 
 struct SubState {
@@ -306,15 +310,39 @@ impl LatinSolver {
             }
             let s1 = &subs[spec.sub1];
             let s2 = &subs[spec.sub2];
+            s1.model
+                .mesh
+                .facet_group(&spec.group1)
+                .map_err(mesh_err(&s1.name))?;
+            s2.model
+                .mesh
+                .facet_group(&spec.group2)
+                .map_err(mesh_err(&s2.name))?;
+            let sides = [
+                (
+                    &s1.model.mesh,
+                    spec.group1.as_str(),
+                    s1.model.analysis.thickness(),
+                ),
+                (
+                    &s2.model.mesh,
+                    spec.group2.as_str(),
+                    s2.model.analysis.thickness(),
+                ),
+            ];
+            let mortar =
+                || pair_mortar(&spec.name, sides, spec.search_distance, spec.law.uses_gap());
+            let pairing = match spec.pairing {
+                Pairing::NodeToNode => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
+                Pairing::Mortar => mortar()?,
+                Pairing::Auto => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
+                    Ok(p) => p,
+                    Err(LatinError::Unmatched { .. }) => mortar()?,
+                    Err(e) => return Err(e),
+                },
+            };
             let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
                 .map_err(mesh_err(&s1.name))?;
-            let g2 = side_geometry(&s2.model.mesh, &spec.group2, s2.model.analysis.thickness())
-                .map_err(mesh_err(&s2.name))?;
-            let x1: Vec<V3> = g1.nodes.iter().map(|&n| s1.model.mesh.coords[n]).collect();
-            let x2: Vec<V3> = g2.nodes.iter().map(|&n| s2.model.mesh.coords[n]).collect();
-            let partner = pair_nodes(&spec.name, &x1, &x2, spec.match_tolerance)?;
-            let nodes2: Vec<usize> = partner.iter().map(|&j| g2.nodes[j]).collect();
-            let weights2: Vec<f64> = partner.iter().map(|&j| g2.weights[j]).collect();
             // Characteristic length and side moduli for the default search direction.
             let total: f64 = g1.weights.iter().sum();
             let len = if s1.model.mesh.dim == 2 {
@@ -342,30 +370,31 @@ impl LatinSolver {
                     spec.name
                 )));
             }
-            let points: Vec<PointData> = x1
+            let points: Vec<PointData> = pairing
+                .x
                 .iter()
-                .zip(&g1.normals)
-                .map(|(&x, &normal)| PointData {
+                .zip(&pairing.normals)
+                .zip(&pairing.geometric_gap)
+                .map(|((&x, &normal), &g)| PointData {
                     x,
                     normal,
                     mu: (spec.mu)(x),
-                    gap: (spec.gap)(x),
+                    gap: (spec.gap)(x) + g,
                 })
                 .collect();
             let l1 = links[spec.sub1].len();
+            let [side1, side2] = pairing.sides.clone();
             links[spec.sub1].push(Link {
                 iface: i,
                 side: 0,
-                nodes: g1.nodes.clone(),
-                weights: g1.weights.clone(),
+                proj: Arc::new(side1),
                 k0: k0[0],
             });
             let l2 = links[spec.sub2].len();
             links[spec.sub2].push(Link {
                 iface: i,
                 side: 1,
-                nodes: nodes2,
-                weights: weights2,
+                proj: Arc::new(side2),
                 k0: k0[1],
             });
             ifaces.push(InterfaceOperator {
@@ -374,9 +403,10 @@ impl LatinSolver {
                 sub: [spec.sub1, spec.sub2],
                 link: [l1, l2],
                 points,
-                weights: g1.weights,
+                weights: pairing.weights.clone(),
                 mu: spec.mu.clone(),
                 gap: spec.gap.clone(),
+                pairing: Arc::new(pairing),
             });
         }
         let ordering = options.ordering;
@@ -553,9 +583,9 @@ impl LatinSolver {
                 .flatten()
                 .unwrap_or_else(|| op.gap.clone());
             let mut pts = op.points.clone();
-            for p in pts.iter_mut() {
+            for (p, g) in pts.iter_mut().zip(&op.pairing.geometric_gap) {
                 p.mu = mu(p.x);
-                p.gap = gap(p.x);
+                p.gap = gap(p.x) + g;
                 if !(p.mu.is_finite() && p.mu >= 0.0) {
                     return Err(LatinError::Invalid(format!(
                         "interface '{}': friction coefficient must be finite and >= 0, got {} at ({}, {}, {})",
@@ -657,12 +687,12 @@ impl LatinSolver {
                 w: op
                     .links
                     .iter()
-                    .map(|l| vec![[0.0; 3]; l.nodes.len()])
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
                     .collect(),
                 f: op
                     .links
                     .iter()
-                    .map(|l| vec![[0.0; 3]; l.nodes.len()])
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
                     .collect(),
             })
             .collect();
@@ -834,10 +864,11 @@ impl LatinSolver {
                     name: op.name.clone(),
                     law: op.law.name(),
                     subs: op.sub,
-                    nodes: [
-                        self.subs[op.sub[0]].links[op.link[0]].nodes.clone(),
-                        self.subs[op.sub[1]].links[op.link[1]].nodes.clone(),
-                    ],
+                    nodes: [0, 1].map(|s| {
+                        let proj = &op.pairing.sides[s];
+                        (0..proj.len()).map(|p| proj.main_node(p)).collect()
+                    }),
+                    pairing: op.pairing.clone(),
                     points: pts,
                     weights: op.weights.clone(),
                     w: [side(0).w[op.link[0]].clone(), side(1).w[op.link[1]].clone()],
@@ -945,9 +976,12 @@ impl LatinSolver {
                 let (mut g, mut scale) = rm.applied(load_factors.get(s).map(|v| v.as_slice()));
                 for l in &op.links {
                     let fhat = &istate[l.iface].fhat[l.side];
-                    for ((&n, &m), f) in l.nodes.iter().zip(&l.weights).zip(fhat) {
-                        let mf = [m * f[0], m * f[1], m * f[2]];
-                        rm.add_force(&coords[n], &mf, &mut g, &mut scale);
+                    for (p, (&m, f)) in l.proj.weights.iter().zip(fhat).enumerate() {
+                        for (n, c) in l.proj.row(p) {
+                            let mc = m * c;
+                            let mf = [mc * f[0], mc * f[1], mc * f[2]];
+                            rm.add_force(&coords[n], &mf, &mut g, &mut scale);
+                        }
                     }
                 }
                 let u = op.dofs.expand(&st.rhs);
@@ -998,17 +1032,36 @@ fn build_operator(
     let model = sub.model;
     let dofs = DofMap::for_mesh(&model.mesh, &sub.constraints).map_err(fem_err(&name))?;
     let asm = assemble_stiffness(&model, &dofs).map_err(fem_err(&name))?;
-    let mut a0: SymCsc = asm.k;
+    let mut a0: SymCsc = with_interface_couplings(asm.k, &dofs, &links);
     let mut r_presc = asm.f_prescribed;
     let dim = model.mesh.dim;
     for l in &links {
-        for (&n, &m) in l.nodes.iter().zip(&l.weights) {
-            dofs.add_node_diagonal(n, l.k0 * m, &mut a0);
-            // -T^T (k0 M) u_p for prescribed interface nodes.
-            let up = dofs.prescribed(n);
+        // k0 Pi^T M Pi: node blocks k0 m_p c_pa c_pb.
+        for (p, &m) in l.proj.weights.iter().enumerate() {
+            let km = l.k0 * m;
+            for (a, ca) in l.proj.row(p) {
+                for (b, cb) in l.proj.row(p) {
+                    if a == b {
+                        dofs.add_node_diagonal(a, km * ca * cb, &mut a0);
+                    } else if a < b {
+                        dofs.add_node_coupling(a, b, km * ca * cb, &mut a0);
+                    }
+                }
+            }
+            // -T^T (k0 Pi^T M Pi) u_p for prescribed interface nodes.
+            let mut up = [0.0; 3];
+            for (b, cb) in l.proj.row(p) {
+                let u = dofs.prescribed(b);
+                for c in 0..3 {
+                    up[c] += cb * u[c];
+                }
+            }
             if up.iter().any(|&v| v != 0.0) {
-                let v = [-l.k0 * m * up[0], -l.k0 * m * up[1], -l.k0 * m * up[2]];
-                dofs.add_node_force(n, &v, &mut r_presc);
+                for (a, ca) in l.proj.row(p) {
+                    let s = -(km * ca);
+                    let v = [s * up[0], s * up[1], s * up[2]];
+                    dofs.add_node_force(a, &v, &mut r_presc);
+                }
             }
         }
     }
@@ -1042,6 +1095,52 @@ fn build_operator(
     })
 }
 
+/// The stiffness matrix on a pattern that also couples the nodes of every interface point
+/// (mortar rows join nodes of different cells); unchanged when they are already coupled (always
+/// for node-to-node interfaces).
+fn with_interface_couplings(k: SymCsc, dofs: &DofMap, links: &[Link]) -> SymCsc {
+    let mut extra: Vec<(usize, usize)> = Vec::new();
+    for l in links {
+        for p in 0..l.proj.len() {
+            for (a, _) in l.proj.row(p) {
+                for (b, _) in l.proj.row(p) {
+                    let (ra, rb) = (dofs.node_dofs(a), dofs.node_dofs(b));
+                    if a < b
+                        && !ra.is_empty()
+                        && !rb.is_empty()
+                        && k.position(ra.start, rb.start).is_none()
+                    {
+                        extra.push((a, b));
+                    }
+                }
+            }
+        }
+    }
+    if extra.is_empty() {
+        return k;
+    }
+    let mut adj: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+    for &(a, b) in &extra {
+        adj.entry(a).or_default().push(b);
+        adj.entry(b).or_default().push(a);
+    }
+    let node_of = dofs.node_of_dof();
+    let mut out = SymCsc::from_couplings(k.n, |j, buf| {
+        buf.extend_from_slice(&k.row_idx[k.col_ptr[j]..k.col_ptr[j + 1]]);
+        if let Some(list) = adj.get(&node_of[j]) {
+            for &m in list {
+                buf.extend(dofs.node_dofs(m));
+            }
+        }
+    });
+    for j in 0..k.n {
+        for q in k.col_ptr[j]..k.col_ptr[j + 1] {
+            out.add(k.row_idx[q], j, k.values[q]);
+        }
+    }
+    out
+}
+
 /// Diagonal of the bounding box of a set of points (0 for none).
 fn bounding_diagonal<'a>(points: impl Iterator<Item = &'a [f64; 3]>) -> f64 {
     let mut lo = [f64::INFINITY; 3];
@@ -1072,15 +1171,18 @@ fn linear_stage(
     for l in &op.links {
         let is = &istate[l.iface];
         let k = alpha * l.k0;
-        for (i, (&n, &m)) in l.nodes.iter().zip(&l.weights).enumerate() {
-            let fh = is.fhat[l.side][i];
-            let wh = is.what[l.side][i];
+        for (p, &m) in l.proj.weights.iter().enumerate() {
+            let fh = is.fhat[l.side][p];
+            let wh = is.what[l.side][p];
             let v = [
                 m * (fh[0] + k * wh[0]) / alpha,
                 m * (fh[1] + k * wh[1]) / alpha,
                 m * (fh[2] + k * wh[2]) / alpha,
             ];
-            op.dofs.add_node_force(n, &v, &mut st.rhs);
+            for (n, c) in l.proj.row(p) {
+                let cv = [c * v[0], c * v[1], c * v[2]];
+                op.dofs.add_node_force(n, &cv, &mut st.rhs);
+            }
         }
     }
     let t0 = Instant::now();
@@ -1090,16 +1192,22 @@ fn linear_stage(
     for (li, l) in op.links.iter().enumerate() {
         let is = &istate[l.iface];
         let k = alpha * l.k0;
-        for (i, &n) in l.nodes.iter().enumerate() {
-            let w = op.dofs.node_displacement(n, &st.rhs);
-            let wh = is.what[l.side][i];
-            let fh = is.fhat[l.side][i];
-            let wo = st.w[li][i];
-            let fo = st.f[li][i];
+        for p in 0..l.proj.len() {
+            let mut w = [0.0; 3];
+            for (n, c) in l.proj.row(p) {
+                let u = op.dofs.node_displacement(n, &st.rhs);
+                for d in 0..3 {
+                    w[d] += c * u[d];
+                }
+            }
+            let wh = is.what[l.side][p];
+            let fh = is.fhat[l.side][p];
+            let wo = st.w[li][p];
+            let fo = st.f[li][p];
             for c in 0..3 {
                 let f = fh[c] - k * (w[c] - wh[c]);
-                st.w[li][i][c] = r * w[c] + (1.0 - r) * wo[c];
-                st.f[li][i][c] = r * f + (1.0 - r) * fo[c];
+                st.w[li][p][c] = r * w[c] + (1.0 - r) * wo[c];
+                st.f[li][p][c] = r * f + (1.0 - r) * fo[c];
             }
         }
     }
