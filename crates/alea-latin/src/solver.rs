@@ -330,8 +330,18 @@ impl LatinSolver {
                     s2.model.analysis.thickness(),
                 ),
             ];
-            let mortar =
-                || pair_mortar(&spec.name, sides, spec.search_distance, spec.law.uses_gap());
+            let held =
+                DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem_err(&s1.name))?;
+            let fixed = |n: usize| held.node_dofs(n).is_empty();
+            let mortar = || {
+                pair_mortar(
+                    &spec.name,
+                    sides,
+                    spec.search_distance,
+                    spec.law.uses_gap(),
+                    &fixed,
+                )
+            };
             let pairing = match spec.pairing {
                 Pairing::NodeToNode => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
                 Pairing::Mortar => mortar()?,

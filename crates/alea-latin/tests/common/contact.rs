@@ -108,6 +108,20 @@ impl Layout {
     pub fn upper(&self) -> Mesh {
         multiblock(&self.blocks(true), CellType::Quad4).unwrap()
     }
+
+    /// The upper body with its true curved bottom: the cylinder of radius `r` touching `y = 0`
+    /// at `x = 0`. The nodes of [`Layout::upper`] are moved up by
+    /// `g(x) (1 - y / l)`, `g(x) = r - sqrt(r^2 - x^2)`, so the bottom nodes lie on the circle,
+    /// the top `y = l` stays flat and the cells shear by at most `g'(l) = l / sqrt(r^2 - l^2)`.
+    pub fn upper_curved(&self, r: f64) -> Mesh {
+        assert!(self.l < r, "the body must be narrower than the cylinder");
+        let mut m = self.upper();
+        for x in m.coords.iter_mut() {
+            let g = r - (r * r - x[0] * x[0]).sqrt();
+            x[1] += g * (1.0 - x[1] / self.l);
+        }
+        m
+    }
 }
 
 /// A straight-edged block with its corners mapped by a reflection (the generator re-orders
