@@ -1,10 +1,19 @@
-//! Interface geometry: node-to-node pairing of the two sides, lumped interface weights and
-//! nodal normals.
+//! Interface geometry: the interface points of a paired interface and how each side sees them
+//! ([`InterfacePairing`], [`SideProjection`]); node-to-node pairing of matching sides, lumped
+//! interface weights and nodal normals. Non-matching sides are paired by [`crate::mortar`].
 //!
-//! Side nodes come from a facet group of each substructure's mesh. Each side-1 node is paired
-//! with the nearest side-2 node; the pairing must be one-to-one and every distance within the
-//! tolerance (default `1e-6` times the interface's bounding-box diagonal), otherwise
-//! [`LatinError::Unmatched`] names the interface and the worst distance.
+//! An interface carries its fields `(W_s, F_s, W_hat_s, F_hat_s)` at points `p` with weights
+//! `m_p`. Side `s` sees them through a projection: `W_s(p) = sum_a Pi_s(p, a) u_a`, its nodes
+//! are loaded by `f_a = sum_p m_p Pi_s(p, a) F_s(p)` (`Pi^T M F`), and the LATIN linear stage's
+//! operator receives `k Pi^T M Pi` (module `solver`). Node to node is the special case of
+//! identity rows, one node per point and side (the fast path: same operator and right-hand side
+//! as a diagonal interface mass).
+//!
+//! **Node-to-node pairing.** Side nodes come from a facet group of each substructure's mesh.
+//! Each side-1 node is paired with the nearest side-2 node; the pairing must be one-to-one and
+//! every distance within the tolerance (default `1e-6` times the interface's bounding-box
+//! diagonal), otherwise [`LatinError::Unmatched`] names the interface and the worst distance
+//! ([`Pairing::Auto`] then falls back to the mortar pairing).
 //!
 //! The interface mass `M_Gamma,ij = int N_i N_j dS` (times the thickness in 2D) is lumped with
 //! the HRZ rule (diagonal proportional to the consistent diagonal, scaled to the facet measure),

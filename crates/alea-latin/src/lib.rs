@@ -3,9 +3,12 @@
 //! An [`Assembly`] holds linear-elastic [`Substructure`]s (each an `alea_fem::Model` with its
 //! constraints and load cases) and [`InterfaceSpec`]s joining facet groups of two of them, with
 //! a pointwise [`InterfaceLaw`] ([`Perfect`] or [`CoulombContact`] with a friction field
-//! `mu(x)` and an initial-gap / shape-defect field `g0(x)`). [`LatinSolver`] factorises each
-//! substructure operator once and runs the LATIN iteration (thesis chapter 2.1; conventions and
-//! closed-form local stage in [`law`]) for any number of parameter points, each warm-started
+//! `mu(x)` and an initial-gap / shape-defect field `g0(x)`). Sides are paired node to node
+//! when they match and by a dual mortar method otherwise ([`mortar`]: meshes made
+//! independently, curved bodies on flat ones, sides of different extent). [`LatinSolver`]
+//! factorises each substructure operator once and runs the LATIN iteration (thesis chapter
+//! 2.1; conventions and closed-form local stage in [`law`]) for any number of parameter points,
+//! each warm-started
 //! from the nearest finished one (multiresolution, thesis 5.1.3). A [`RunResult`] carries the
 //! displacement of every substructure, the interface fields of both stages, the contact status
 //! per point, the residual history and the quantities of interest.

@@ -541,8 +541,7 @@ fn facet_contributions(
     } else {
         None
     };
-    let mut acc: Vec<(f64, BTreeMap<usize, f64>, BTreeMap<usize, f64>)> =
-        vec![(0.0, BTreeMap::new(), BTreeMap::new()); nm];
+    let mut acc: Vec<NodeAcc> = vec![NodeAcc::default(); nm];
     let mut phi = [0.0; MAX_NODES];
     let mut dphi = [[0.0; 3]; MAX_NODES];
     let mut n1 = [0.0; MAX_NODES];
@@ -569,31 +568,31 @@ fn facet_contributions(
         for i in 0..nm {
             let wp = ip.w * psi[i];
             let a = &mut acc[i];
-            a.0 += wp;
+            a.m += wp;
             for (b, &node) in f1.nodes.iter().enumerate() {
-                *a.1.entry(node).or_insert(0.0) += wp * n1[b];
+                *a.row1.entry(node).or_insert(0.0) += wp * n1[b];
             }
             for (b, &node) in f2.nodes.iter().enumerate() {
-                *a.2.entry(node).or_insert(0.0) += wp * n2[b];
+                *a.row2.entry(node).or_insert(0.0) += wp * n2[b];
             }
         }
     }
     acc.into_iter()
         .enumerate()
         .filter(|(i, _)| !removed[*i])
-        .map(|(i, (m, r1, r2))| {
+        .map(|(i, a)| {
             (
                 f1.nodes[i],
-                m,
-                r1.into_iter().collect(),
-                r2.into_iter().collect(),
+                a.m,
+                a.row1.into_iter().collect(),
+                a.row2.into_iter().collect(),
             )
         })
         .collect()
 }
 
 /// Accumulated weight and rows of one multiplier node.
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct NodeAcc {
     m: f64,
     row1: BTreeMap<usize, f64>,

@@ -478,6 +478,11 @@ impl LatinSolver {
         &self.ifaces[i].points
     }
 
+    /// The pairing of interface `i` (node to node or mortar, point weights, projections).
+    pub fn interface_pairing(&self, i: usize) -> &InterfacePairing {
+        &self.ifaces[i].pairing
+    }
+
     /// Name of interface `i`.
     pub fn interface_name(&self, i: usize) -> &str {
         &self.ifaces[i].name

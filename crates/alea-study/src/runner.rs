@@ -277,10 +277,7 @@ pub fn run_study(
         .into_iter()
         .map(|r| (point_key(&r.params), r))
         .collect();
-    let solver = Arc::new(LatinSolver::new(
-        study.model.assembly.clone(),
-        study.model.options.clone(),
-    )?);
+    let solver = Arc::new(study.model.solver()?);
     for p in &points {
         study.check_point(&solver, p)?;
     }

@@ -179,6 +179,18 @@ pub struct InterfaceSpecToml {
     /// expression of the parameters and the position. Default 0.
     #[serde(default)]
     pub gap: Option<Spanned<NumOrExpr>>,
+    /// Pairing of the sides: `auto` (node to node when they match, mortar otherwise; the
+    /// default), `node` (node to node only) or `mortar`.
+    #[serde(default)]
+    pub pairing: Option<Spanned<String>>,
+    /// Node-to-node matching tolerance (length): largest distance between paired nodes.
+    /// Default 1e-6 x the interface size.
+    #[serde(default)]
+    pub tolerance: Option<Spanned<f64>>,
+    /// Mortar search distance (length): largest normal distance between the sides at which
+    /// they are paired. Default 5 % of the interface size.
+    #[serde(default)]
+    pub search_distance: Option<Spanned<f64>>,
 }
 
 /// `[solver]`.
