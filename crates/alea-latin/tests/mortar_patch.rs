@@ -360,3 +360,87 @@ fn linear_lateral_expansion_crosses_non_matching_interfaces() {
         );
     }
 }
+
+/// Sides of different extent: a block of width 1 pressed (uniform pressure `p`, frictionless
+/// contact, `nu = 0`) on the middle of a wider block of width 2, meshed independently.
+/// With the narrow block as side 1 every point is covered; with the wide block as side 1 the
+/// points beyond the narrow one are left out and the facets under its edges are partially
+/// covered. Both give the applied resultant exactly (equilibrium of the floating block), no
+/// force outside the narrow block, and the same top displacement of the narrow block (the two
+/// discretisations of the contact differ at the edges only: within 1 %).
+#[test]
+fn sides_of_different_extent() {
+    let mut tops = Vec::new();
+    for narrow_is_side1 in [true, false] {
+        let lower = model(rect(-1.0, 0.0, 2.0, H, 10, 4, CellType::Quad4), E1, 0.0);
+        let upper = model(rect(-0.5, H, 1.0, H, 8, 4, CellType::Quad4), E2, 0.0);
+        let mut cl = Constraints::new();
+        cl.clamp(&lower.mesh, "ymin").unwrap();
+        let mut cu = Constraints::new();
+        // The narrow block slides freely in x only through the (frictionless) contact: hold
+        // its x at one node of the axis.
+        let axis = upper
+            .mesh
+            .coords
+            .iter()
+            .position(|x| x[0].abs() < 1e-12 && (x[1] - 2.0 * H).abs() < 1e-12)
+            .unwrap();
+        cu.fix_direction(axis, [1.0, 0.0, 0.0], 0.0);
+        let subs = vec![
+            sub("lower", lower, cl),
+            with_load(sub("upper", upper, cu), |m, l| {
+                l.pressure(m, "ymax", P).unwrap();
+            }),
+        ];
+        let iface = if narrow_is_side1 {
+            InterfaceSpec::coulomb("contact", 1, "ymin", 0, "ymax", 0.0)
+        } else {
+            InterfaceSpec::coulomb("contact", 0, "ymax", 1, "ymin", 0.0)
+        };
+        let mut solver = LatinSolver::new(
+            Assembly {
+                subs,
+                interfaces: vec![iface],
+            },
+            LatinOptions {
+                tolerance: 1e-10,
+                max_iterations: 5000,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let r = solver.run(&RunInput::default()).unwrap();
+        assert_eq!(r.status, RunStatus::Converged);
+        let it = &r.interfaces[0];
+        assert_eq!(it.pairing.kind, PairingKind::Mortar);
+        // Resultant on the narrow block = p x 1 (in +y).
+        let on_upper = if narrow_is_side1 { -1.0 } else { 1.0 };
+        let fy = on_upper * it.resultant()[1];
+        assert!((fy - P).abs() < 1e-8 * P, "resultant {fy}");
+        // Points: every node of the narrow bottom (9), or the wide top's nodes within the
+        // narrow block's span and those whose facets it partially covers.
+        let xs: Vec<f64> = it.points.iter().map(|p| p.x[0]).collect();
+        eprintln!(
+            "narrow side 1: {narrow_is_side1}: {} points, x in [{:.3}, {:.3}], {} iterations",
+            xs.len(),
+            xs.iter().cloned().fold(f64::INFINITY, f64::min),
+            xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+            r.iterations
+        );
+        if narrow_is_side1 {
+            assert_eq!(xs.len(), 9);
+        } else {
+            assert!(xs.iter().all(|x| x.abs() < 0.5 + 0.2 + 1e-9));
+        }
+        for (i, p) in it.points.iter().enumerate() {
+            if p.x[0].abs() > 0.5 + 1e-9 {
+                let (fn_, _) = it.normal_tangential(i);
+                assert!(fn_.abs() < 1e-8 * P, "force {fn_} at x = {}", p.x[0]);
+            }
+        }
+        let (u, _) = r.displacement_at(solver.model(1), 1, [0.0, 2.0 * H, 0.0]);
+        tops.push(u[1]);
+    }
+    eprintln!("top displacement of the narrow block: {tops:?}");
+    assert!((tops[0] - tops[1]).abs() < 0.01 * tops[0].abs(), "{tops:?}");
+}
