@@ -30,7 +30,24 @@ fn assembly(refine: usize) -> Assembly {
 }
 
 fn options() -> LatinOptions {
-    alea_latin::samples::four_part_dovetail_options()
+    let mut o = alea_latin::samples::four_part_dovetail_options();
+    if let Some(v) = env_usize("LATIN_BENCH_COARSE") {
+        o.coarse = v != 0;
+    }
+    if let Some(v) = env_usize("LATIN_BENCH_ACC") {
+        o.acceleration = v;
+    }
+    if let Some(v) = std::env::var("LATIN_BENCH_RELAX")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        o.relaxation = v;
+    }
+    o
+}
+
+fn env_usize(name: &str) -> Option<usize> {
+    std::env::var(name).ok().and_then(|v| v.parse().ok())
 }
 
 /// The 5 x 5 grid in snake order (each point next to the previous one) with its normalised
@@ -85,6 +102,47 @@ fn series(asm: &Assembly, mode: &str) -> Series {
     s
 }
 
+/// Hertz at three mesh sizes: iterations and time per run, plain and accelerated, with and
+/// without the coarse problem.
+fn hertz_scaling() {
+    let ns: Vec<usize> = std::env::var("LATIN_BENCH_HERTZ_N")
+        .ok()
+        .map(|v| v.split(',').filter_map(|t| t.parse().ok()).collect())
+        .unwrap_or_else(|| vec![25, 50, 100]);
+    for curved in [false, true] {
+        for &n in &ns {
+            let case = alea_latin::samples::hertz_cylinder_on_block(n, curved).unwrap();
+            let ndof: usize = case
+                .assembly
+                .subs
+                .iter()
+                .map(|s| 2 * s.model.mesh.num_nodes())
+                .sum();
+            for acc in [0, 5] {
+                for coarse in [false, true] {
+                    let opts = LatinOptions {
+                        tolerance: 1e-7,
+                        max_iterations: 20000,
+                        acceleration: acc,
+                        coarse,
+                        ..Default::default()
+                    };
+                    let mut solver = LatinSolver::new(case.assembly.clone(), opts).unwrap();
+                    let r = solver.run(&RunInput::default()).unwrap();
+                    println!(
+                        "hertz {} n {n} ({ndof} dof): acceleration {acc}, coarse {coarse}: {:?} in {} iterations, {:.3} s (set-up {:.3} s)",
+                        if curved { "curved/mortar" } else { "flat/node" },
+                        r.status,
+                        r.iterations,
+                        r.timings.total,
+                        solver.setup_seconds
+                    );
+                }
+            }
+        }
+    }
+}
+
 fn main() {
     let refine: usize = std::env::var("LATIN_BENCH_REFINE")
         .ok()
@@ -102,6 +160,10 @@ fn main() {
         "dovetail refined x{refine}: {ndof} dof in 4 substructures {sizes:?} (meshing {:.2}s)",
         t.elapsed().as_secs_f64()
     );
+    if std::env::var("LATIN_BENCH_HERTZ").is_ok() {
+        hertz_scaling();
+        return;
+    }
     if std::env::var("LATIN_BENCH_HIST").is_ok() {
         let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
         let show = |name: &str, r: &RunResult| {

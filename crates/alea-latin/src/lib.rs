@@ -17,6 +17,7 @@
 
 mod anderson;
 mod assembly;
+mod coarse;
 mod equilibrium;
 mod error;
 pub mod interface;

@@ -43,6 +43,7 @@ use alea_fem::{Cholesky, DofMap, Ordering, SolveScratch, SymCsc, assemble_stiffn
 use rayon::prelude::*;
 
 use crate::anderson::Anderson;
+use crate::coarse::{InterfaceModes, MacroLink, SubMacro, macro_inverse};
 use crate::equilibrium::{RigidModes, SubEquilibrium};
 use crate::interface::{
     InterfacePairing, Pairing, SideProjection, pair_node_to_node, side_geometry,
@@ -87,6 +88,9 @@ pub struct LatinOptions {
     pub ordering: Ordering,
     /// Anderson acceleration depth (0: off; default 5): see the `anderson` module.
     pub acceleration: usize,
+    /// Two-scale LATIN: the coarse problem on the interface resultants and moments (module
+    /// `coarse`; default off).
+    pub coarse: bool,
     /// Largest relative imbalance of a substructure under its loads and the local-stage
     /// interface forces for a run to be called converged (module `equilibrium`; default 1e-4).
     pub equilibrium_tolerance: f64,
@@ -109,6 +113,7 @@ impl Default for LatinOptions {
             search_direction: SearchDirection::Auto { factor: 1.0 },
             ordering: Ordering::Metis,
             acceleration: 5,
+            coarse: false,
             equilibrium_tolerance: 1e-4,
             max_rigid_motion: 10.0,
         }
@@ -216,8 +221,12 @@ struct InterfaceOperator {
 struct SubState {
     rhs: Vec<f64>,
     scratch: SolveScratch,
+    /// Linear-stage `W`, `F` per link (relaxed).
     w: Vec<Vec<V3>>,
     f: Vec<Vec<V3>>,
+    /// This iteration's `W`, `F` before the relaxation.
+    w_new: Vec<Vec<V3>>,
+    f_new: Vec<Vec<V3>>,
 }
 
 #[derive(Clone)]
@@ -246,8 +255,18 @@ pub struct LatinSolver {
     store: Mutex<Vec<StoredRun>>,
     /// Diagonal of the assembly's bounding box (the scale of the rigid-motion bound).
     model_size: f64,
+    /// The coarse problem (`LatinOptions::coarse`).
+    coarse: Option<Coarse>,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
+}
+
+/// The macro space and the substructures' responses (module `coarse`).
+struct Coarse {
+    /// Number of macro unknowns.
+    n: usize,
+    modes: Vec<InterfaceModes>,
+    subs: Vec<SubMacro>,
 }
 
 fn fem_err(sub: &str) -> impl Fn(alea_fem::FemError) -> LatinError + '_ {
@@ -330,16 +349,19 @@ impl LatinSolver {
                     s2.model.analysis.thickness(),
                 ),
             ];
-            let held =
+            let held1 =
                 DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem_err(&s1.name))?;
-            let fixed = |n: usize| held.node_dofs(n).is_empty();
+            let held2 =
+                DofMap::for_mesh(&s2.model.mesh, &s2.constraints).map_err(fem_err(&s2.name))?;
+            let fixed1 = |n: usize| held1.node_dofs(n).is_empty();
+            let fixed2 = |n: usize| held2.node_dofs(n).is_empty();
             let mortar = || {
                 pair_mortar(
                     &spec.name,
                     sides,
                     spec.search_distance,
                     spec.law.uses_gap(),
-                    &fixed,
+                    [&fixed1, &fixed2],
                 )
             };
             let pairing = match spec.pairing {
@@ -425,12 +447,46 @@ impl LatinSolver {
             .zip(links.into_par_iter())
             .map(|(sub, links)| build_operator(sub, links, ordering))
             .collect::<Result<_, _>>()?;
+        let coarse = options.coarse.then(|| {
+            let dim = ops.first().map_or(2, |o| o.model.mesh.dim);
+            let mut offset = 0;
+            let modes: Vec<InterfaceModes> = ifaces
+                .iter()
+                .map(|op| {
+                    let m =
+                        InterfaceModes::new(dim, &op.pairing.x, &op.pairing.weights, offset, false);
+                    offset += m.len();
+                    m
+                })
+                .collect();
+            let subs: Vec<SubMacro> = ops
+                .par_iter()
+                .map(|op| {
+                    let links: Vec<MacroLink<'_>> = op
+                        .links
+                        .iter()
+                        .map(|l| MacroLink {
+                            proj: &l.proj,
+                            k0: l.k0,
+                            modes: &modes[l.iface],
+                        })
+                        .collect();
+                    SubMacro::new(&op.dofs, &op.chol, &links, &op.rigid, &op.model.mesh.coords)
+                })
+                .collect();
+            Coarse {
+                n: offset,
+                modes,
+                subs,
+            }
+        });
         Ok(LatinSolver {
             subs: ops,
             ifaces,
             options,
             store: Mutex::new(Vec::new()),
             model_size,
+            coarse,
             setup_seconds: t0.elapsed().as_secs_f64(),
         })
     }
@@ -709,6 +765,16 @@ impl LatinSolver {
                     .iter()
                     .map(|l| vec![[0.0; 3]; l.proj.len()])
                     .collect(),
+                w_new: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
+                    .collect(),
+                f_new: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
+                    .collect(),
             })
             .collect();
         let mut residuals = Vec::new();
@@ -756,6 +822,10 @@ impl LatinSolver {
                 }
             }
         };
+        let macro_inv = self
+            .coarse
+            .as_ref()
+            .map(|cs| macro_inverse(cs.n, &cs.subs, &alpha));
         let mut anderson = Anderson::new(self.options.acceleration);
         let mut best_eta = f64::INFINITY;
         // The accelerated state is applied at the start of the next iteration only, so that
@@ -781,8 +851,33 @@ impl LatinSolver {
                 .par_iter()
                 .zip(sstate.par_iter_mut())
                 .enumerate()
-                .map(|(s, (op, st))| linear_stage(op, st, &istate, &base[s], alpha[s], rho, first))
+                .map(|(s, (op, st))| linear_stage(op, st, &istate, &base[s], alpha[s]))
                 .sum();
+            if let (Some(cs), Some(inv)) = (&self.coarse, &macro_inv) {
+                // Macro imbalance of the plain linear stage, macro unknowns, correction.
+                let n = cs.n;
+                let mut b = vec![0.0; n];
+                for (i, op) in self.ifaces.iter().enumerate() {
+                    for side in 0..2 {
+                        let (s, l) = (op.sub[side], op.link[side]);
+                        let w = &self.subs[s].links[l].proj.weights;
+                        cs.modes[i].add_resultants(w, &sstate[s].f_new[l], &mut b);
+                    }
+                }
+                let lambda: Vec<f64> = (0..n)
+                    .map(|r| (0..n).map(|c| inv[r * n + c] * b[c]).sum())
+                    .collect();
+                self.subs
+                    .par_iter()
+                    .zip(sstate.par_iter_mut())
+                    .zip(cs.subs.par_iter())
+                    .enumerate()
+                    .for_each(|(s, ((op, st), sm))| {
+                        coarse_correction(op, sm, &cs.modes, st, &lambda, alpha[s])
+                    });
+            }
+            let r = if first { 1.0 } else { rho };
+            sstate.par_iter_mut().for_each(|st| relax(st, r));
             timings.linear += t0.elapsed().as_secs_f64();
             timings.triangular_solves += solve_time;
             first = false;
@@ -1172,15 +1267,15 @@ fn bounding_diagonal<'a>(points: impl Iterator<Item = &'a [f64; 3]>) -> f64 {
     (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
 }
 
-/// One linear stage of one substructure; returns the seconds spent in the triangular solve.
+/// One plain linear stage of one substructure (without the coarse correction and the
+/// relaxation): `u`, and `W`, `F` into `w_new`, `f_new`; returns the seconds spent in the
+/// triangular solve.
 fn linear_stage(
     op: &SubOperator,
     st: &mut SubState,
     istate: &[InterfaceState],
     base: &[f64],
     alpha: f64,
-    rho: f64,
-    first: bool,
 ) -> f64 {
     st.rhs.copy_from_slice(base);
     for l in &op.links {
@@ -1203,7 +1298,6 @@ fn linear_stage(
     let t0 = Instant::now();
     op.chol.solve_with(&mut st.rhs, &mut st.scratch);
     let t = t0.elapsed().as_secs_f64();
-    let r = if first { 1.0 } else { rho };
     for (li, l) in op.links.iter().enumerate() {
         let is = &istate[l.iface];
         let k = alpha * l.k0;
@@ -1217,16 +1311,74 @@ fn linear_stage(
             }
             let wh = is.what[l.side][p];
             let fh = is.fhat[l.side][p];
-            let wo = st.w[li][p];
-            let fo = st.f[li][p];
             for c in 0..3 {
-                let f = fh[c] - k * (w[c] - wh[c]);
-                st.w[li][p][c] = r * w[c] + (1.0 - r) * wo[c];
-                st.f[li][p][c] = r * f + (1.0 - r) * fo[c];
+                st.w_new[li][p][c] = w[c];
+                st.f_new[li][p][c] = fh[c] - k * (w[c] - wh[c]);
             }
         }
     }
     t
+}
+
+/// The coarse correction of one substructure's linear stage (module `coarse`):
+/// `F -= k (sum lambda Pi u^(Gj) + E lambda_G)`, `u += sum lambda u_d^(Gj)`,
+/// `W += sum lambda Pi u_d^(Gj)` (`u_d`: the response without its free rigid part).
+fn coarse_correction(
+    op: &SubOperator,
+    sm: &SubMacro,
+    modes: &[InterfaceModes],
+    st: &mut SubState,
+    lambda: &[f64],
+    alpha: f64,
+) {
+    // Forces from the whole response (admissible with the corrected displacement: a rigid
+    // motion in the free modes does no work), displacements without the free rigid part.
+    for (li, l) in op.links.iter().enumerate() {
+        let k = alpha * l.k0;
+        let im = &modes[l.iface];
+        let lam = &lambda[im.offset..im.offset + im.len()];
+        for p in 0..l.proj.len() {
+            let mut e = [0.0; 3];
+            for (j, mode) in im.modes.iter().enumerate() {
+                for c in 0..3 {
+                    e[c] += lam[j] * mode[p][c];
+                }
+            }
+            for c in 0..3 {
+                st.f_new[li][p][c] -= k * e[c];
+            }
+        }
+    }
+    for col in &sm.columns {
+        let a = lambda[col.index];
+        if a == 0.0 {
+            continue;
+        }
+        for (u, v) in st.rhs.iter_mut().zip(&col.u) {
+            *u += a * v;
+        }
+        for (li, l) in op.links.iter().enumerate() {
+            let k = alpha * l.k0;
+            for p in 0..l.proj.len() {
+                for c in 0..3 {
+                    st.w_new[li][p][c] += a * col.w[li][p][c];
+                    st.f_new[li][p][c] -= k * a * col.w_full[li][p][c];
+                }
+            }
+        }
+    }
+}
+
+/// Relaxation of the linear stage: `(W, F) <- r (W, F)_new + (1 - r) (W, F)_previous`.
+fn relax(st: &mut SubState, r: f64) {
+    for li in 0..st.w.len() {
+        for p in 0..st.w[li].len() {
+            for c in 0..3 {
+                st.w[li][p][c] = r * st.w_new[li][p][c] + (1.0 - r) * st.w[li][p][c];
+                st.f[li][p][c] = r * st.f_new[li][p][c] + (1.0 - r) * st.f[li][p][c];
+            }
+        }
+    }
 }
 
 /// Local stage on one interface; returns the interface's parts of `||s - s_hat||^2`,

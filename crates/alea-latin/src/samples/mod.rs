@@ -1,5 +1,5 @@
 //! Ready-made assemblies shared by benchmarks (and usable as examples): a four-substructure
-//! dovetail blade root in its disk sector.
+//! dovetail blade root in its disk sector, and Hertz's cylinder on a block ([`hertz`]).
 //!
 //! ```text
 //!          root_left | root_right          root: floating, blade pull + bending on its top
@@ -10,6 +10,10 @@
 //! The mesh is `alea_mesh::generate::dovetail_root_and_disk(DovetailParams::default()
 //! .refined(refine), Quad4)` with the root and the disk each cut in halves at x = 0
 //! (`refine = 6`: 23 240 dof). Plane strain, E = 200 GPa, nu = 0.3, rho = 7.8e-9 t/mm^3.
+
+mod hertz;
+
+pub use hertz::{ContactLayout, HertzCase, hertz_cylinder_on_block};
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 use alea_mesh::generate::{DovetailParams, dovetail_root_and_disk};
