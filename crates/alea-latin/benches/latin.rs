@@ -43,6 +43,12 @@ fn options() -> LatinOptions {
     {
         o.relaxation = v;
     }
+    if let Some(v) = std::env::var("LATIN_BENCH_K")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        o.search_direction = SearchDirection::Auto { factor: v };
+    }
     o
 }
 
@@ -118,7 +124,11 @@ fn hertz_scaling() {
                 .iter()
                 .map(|s| 2 * s.model.mesh.num_nodes())
                 .sum();
-            for acc in [0, 5] {
+            let accs: Vec<usize> = std::env::var("LATIN_BENCH_HERTZ_ACC")
+                .ok()
+                .map(|v| v.split(',').filter_map(|t| t.parse().ok()).collect())
+                .unwrap_or_else(|| vec![0, 5]);
+            for &acc in &accs {
                 for coarse in [false, true] {
                     let opts = LatinOptions {
                         tolerance: 1e-7,

@@ -34,9 +34,35 @@
 //! assembled per run from per-substructure blocks (times the Young's-modulus factors
 //! `alpha_s`), solved by its eigendecomposition (a pseudo-inverse: a group of substructures
 //! that floats as a whole leaves a null direction, which is left alone), and applied after each
-//! plain linear stage: `u_s += sum lambda u^(Gj)`, `W_s += sum lambda Pi u^(Gj)`, then `F_s` from
-//! the corrected search direction. Per iteration this costs one dense product of the order of
-//! the number of macro unknowns and a few vector updates per substructure.
+//! plain linear stage: `F_s -= k (sum lambda Pi u^(Gj) + E lambda_G)`, `u_s += sum lambda
+//! u^(Gj)`, `W_s += sum lambda Pi u^(Gj)`. Per iteration this costs one dense product of the
+//! order of the number of macro unknowns and a few vector updates per substructure.
+//!
+//! # Floating substructures
+//! For a substructure with free rigid modes `r`, the response to its interfaces' rigid modes is
+//! (close to) a rigid motion, `u^(Gj) ~ -r_j`: the macro correction moves it rigidly by
+//! `-lambda`. With the same search direction in both stages this rigid move overshoots: on a
+//! floating block pressed on a clamped one the block's position is reflected about the solution
+//! at every iteration (an iteration eigenvalue `-1`, measured: the run never converges), which
+//! the literature damps by relaxing the whole linear stage (`mu = 0.8`; Ladeveze, Loiseau and
+//! Dureisseix 2001). Here only the rigid part of the *displacement* correction is damped: the
+//! displacement correction is `u_d + RIGID_SHARE (u - u_d)` with `u_d` the response without its
+//! least-squares rigid part in the free modes (module `equilibrium`), `RIGID_SHARE = 1/2` (the
+//! exact share in the two-body case); the forces use the whole response, so the linear stage
+//! stays admissible (a rigid motion in free modes does no work) and the fixed point (where
+//! `lambda = 0`) is unchanged. Measured (plane-strain chain of `N` unit squares, perfect
+//! interfaces, clamped at one end, Anderson depth 5, `k = 3 E / L`): 11, 10, 9, 10 iterations
+//! for `N = 2, 4, 8, 16` against 18, 108, > 400 without the coarse problem; with the whole
+//! rigid move (`RIGID_SHARE = 1`) the runs with `N >= 4` never converge. Without Anderson
+//! acceleration the remaining oscillation needs some relaxation: the solver then relaxes the
+//! linear stage by at most 0.8 (`LatinOptions::coarse`).
+//!
+//! # Search direction
+//! A large search direction `k` makes the micro (short-wavelength) interface modes converge in
+//! a mesh-independent number of iterations but leaves the long-wavelength (macro) ones to a
+//! slow exchange between neighbours; the coarse problem removes the latter, which is why the
+//! two-scale iteration works with a larger `k` than the single-scale one (default factor 3;
+//! measured on Hertz's cylinder, see `BENCHMARKS.md`).
 
 use faer::{Mat, Side};
 
@@ -55,11 +81,10 @@ pub(crate) struct InterfaceModes {
 }
 
 impl InterfaceModes {
-    /// Rigid modes (`dim` = 2: 3 modes, 3: 6) at points `x` with weights `m`, followed, if
-    /// `linear`, by the other affine fields `u = B (x - c) / R` (strains and the like);
-    /// orthonormalised in the weighted inner product `sum_p m_p e_i(p) . e_j(p)`, modes that
-    /// depend on earlier ones (e.g. gradients across a straight or flat interface) dropped.
-    pub fn new(dim: usize, x: &[V3], m: &[f64], offset: usize, linear: bool) -> Self {
+    /// Rigid modes (`dim` = 2: 3 modes, 3: 6) at points `x` with weights `m`, orthonormalised
+    /// in the weighted inner product `sum_p m_p e_i(p) . e_j(p)` (a mode that depends on the
+    /// earlier ones, e.g. the rotation about the line of a straight 3D interface, is dropped).
+    pub fn new(dim: usize, x: &[V3], m: &[f64], offset: usize) -> Self {
         let total: f64 = m.iter().sum();
         let mut c = [0.0; 3];
         for (xp, mp) in x.iter().zip(m) {
@@ -100,22 +125,6 @@ impl InterfaceModes {
                     })
                     .collect(),
             );
-        }
-        if linear {
-            // u_a = (x_b - c_b) / R for every component a and direction b.
-            for a in 0..dim {
-                for b in 0..dim {
-                    cands.push(
-                        x.iter()
-                            .map(|p| {
-                                let mut e = [0.0; 3];
-                                e[a] = r(p)[b];
-                                e
-                            })
-                            .collect(),
-                    );
-                }
-            }
         }
         let dot = |u: &[V3], v: &[V3]| -> f64 {
             u.iter()
@@ -165,14 +174,18 @@ impl InterfaceModes {
     }
 }
 
+/// Share of the rigid part (in the free rigid modes) of a substructure's macro response that
+/// moves its displacement (module doc, "Floating substructures").
+pub(crate) const RIGID_SHARE: f64 = 0.5;
+
 /// The response of one substructure to one macro unknown of one of its interfaces.
 pub(crate) struct MacroColumn {
     /// Index in the macro vector.
     pub index: usize,
-    /// Displacement correction (free unknowns) per unit macro unknown, without its rigid part
-    /// in the substructure's free rigid modes.
+    /// Displacement correction (free unknowns) per unit macro unknown, with `RIGID_SHARE` of
+    /// its rigid part in the substructure's free rigid modes.
     pub u: Vec<f64>,
-    /// Its interface displacement `Pi u` at the points of every link of the substructure.
+    /// `Pi u` of that correction at the points of every link of the substructure.
     pub w: Vec<Vec<V3>>,
     /// `Pi u^(Gj)` of the whole response (rigid part included), for the forces.
     pub w_full: Vec<Vec<V3>>,
@@ -244,10 +257,13 @@ impl SubMacro {
                     .iter()
                     .map(|ml| interpolate_homogeneous(dofs, ml.proj, &u))
                     .collect();
-                let (u, w) = if rigid.num_free() > 0 && std::env::var("COARSE_KEEP_RIGID").is_err()
-                {
+                let (u, w) = if rigid.num_free() > 0 {
                     let mut full = homogeneous(dofs, &u);
-                    rigid.remove_rigid_part(coords, &mut full);
+                    let mut def = full.clone();
+                    rigid.remove_rigid_part(coords, &mut def);
+                    for (f, d) in full.iter_mut().zip(&def) {
+                        *f = d + RIGID_SHARE * (*f - d);
+                    }
                     let u = dofs.reduce(&full);
                     let w = links
                         .iter()

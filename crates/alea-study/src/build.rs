@@ -827,6 +827,9 @@ pub fn build_model(
     if let Some(a) = &sv.acceleration {
         options.acceleration = *a.get_ref();
     }
+    if let Some(c) = &sv.coarse {
+        options.coarse = *c.get_ref();
+    }
     if let Some(t) = &sv.equilibrium_tolerance {
         options.equilibrium_tolerance = positive(src, t, "solver.equilibrium_tolerance")?;
     }

@@ -206,12 +206,15 @@ pub struct SolverSpec {
     /// Relaxation in (0, 1]. Default 1.
     #[serde(default)]
     pub relaxation: Option<Spanned<f64>>,
-    /// Search direction factor (k = factor E / L). Default 1.
+    /// Search direction factor (k = factor E / L). Default 3.
     #[serde(default)]
     pub search_direction_factor: Option<Spanned<f64>>,
     /// Anderson acceleration depth (0: off). Default 5.
     #[serde(default)]
     pub acceleration: Option<Spanned<usize>>,
+    /// Coarse problem on the interface resultants and moments (two-scale LATIN). Default true.
+    #[serde(default)]
+    pub coarse: Option<Spanned<bool>>,
     /// Largest relative imbalance of a substructure for a run to be converged. Default 1e-4.
     #[serde(default)]
     pub equilibrium_tolerance: Option<Spanned<f64>>,
