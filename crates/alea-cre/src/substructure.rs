@@ -2,11 +2,12 @@
 //! by the interface forces its last linear-stage FE solution is in equilibrium with.
 //!
 //! The linear stage solves `(K + k M_Gamma) u = f + M_Gamma (F_hat + k W_hat)` with the
-//! **lumped** interface mass `M_Gamma = diag(m_i)`, i.e. `K u = f + M_Gamma F` with
-//! `F = F_hat - k (W - W_hat)` (`InterfaceResult::f`). The discrete interface forces on the
-//! substructure are therefore `m_i F_i` (side 1: the run's weights; side 2: the HRZ weights of
-//! side 2's own facet group, recomputed with `alea_latin::interface::side_geometry`, as the solver
-//! does). Phase 1 turns them into edge densities of degree `p` whose consistent nodal forces are
+//! **lumped** interface mass `M_Gamma = diag(m_i)` and the side's projection `Pi` (identity for
+//! node-to-node interfaces, dual mortar otherwise; `alea_latin::mortar`), i.e.
+//! `K u = f + Pi^T M_Gamma F` with `F = F_hat - k (W - W_hat)` (`InterfaceResult::f`). The
+//! discrete interface forces on the substructure are therefore `Pi^T M_Gamma F`
+//! (`InterfaceResult::linear_nodal_forces`; node to node: `m_i F_i` with each side's own lumped
+//! weights). Phase 1 turns them into edge densities of degree `p` whose consistent nodal forces are
 //! exactly `m_i F_i` ([`crate::eet::phase1::interface_densities`]: at each node the force is split
 //! between the side edges around it as close as possible to the average of the two sides' FE
 //! traction projections, so that both sides get opposite densities once `F_1 = -F_2`; in the
@@ -23,7 +24,7 @@
 use std::collections::HashMap;
 
 use alea_fem::{DofMap, Model};
-use alea_latin::{Assembly, RunResult, interface::side_geometry};
+use alea_latin::{Assembly, PairingKind, RunResult};
 
 use crate::CreError;
 use crate::data::{FaceProjections, FacetProjections, LoadData, SideForces};
@@ -84,46 +85,41 @@ pub fn estimate_latin(
                 )));
             }
             let model = &assembly.subs[sub].model;
-            let weights: Vec<f64> = if s == 0 {
-                ir.weights.clone()
-            } else {
-                let g = side_geometry(&model.mesh, group, model.analysis.thickness())?;
-                let pos: HashMap<usize, f64> = g
-                    .nodes
-                    .iter()
-                    .copied()
-                    .zip(g.weights.iter().copied())
-                    .collect();
-                ir.nodes[1]
-                    .iter()
-                    .map(|n| {
-                        pos.get(n).copied().ok_or_else(|| {
-                            CreError::Invalid(format!(
-                                "interface '{}': node {n} not in group '{group}'",
-                                spec.name
-                            ))
-                        })
-                    })
-                    .collect::<Result<_, _>>()?
-            };
-            if weights.len() != ir.nodes[s].len() || ir.f[s].len() != ir.nodes[s].len() {
+            // Nodal forces Pi_s^T M F_s of the run on every node of the side's facet group
+            // (zero on nodes the interface points do not reach).
+            let proj = &ir.pairing.sides[s];
+            if ir.f[s].len() != proj.len() {
                 return Err(CreError::Invalid(format!(
-                    "interface '{}' side {}: {} nodes, {} weights, {} forces",
+                    "interface '{}' side {}: {} points, {} forces",
                     spec.name,
                     s + 1,
-                    ir.nodes[s].len(),
-                    weights.len(),
+                    proj.len(),
                     ir.f[s].len()
                 )));
             }
-            let forces = ir.f[s]
+            let reached = proj.side_nodes();
+            let nodal = proj.nodal_forces(&ir.f[s]);
+            let mut nodes: Vec<usize> = model
+                .mesh
+                .facet_group(group)?
                 .iter()
-                .zip(&weights)
-                .map(|(f, m)| [m * f[0], m * f[1], m * f[2]])
+                .flat_map(|f| f.nodes.iter().copied())
+                .collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            if let Some(n) = reached.iter().find(|n| nodes.binary_search(n).is_err()) {
+                return Err(CreError::Invalid(format!(
+                    "interface '{}': node {n} not in group '{group}'",
+                    spec.name
+                )));
+            }
+            let forces = nodes
+                .iter()
+                .map(|n| reached.binary_search(n).map_or([0.0; 3], |i| nodal[i]))
                 .collect();
             sides[sub].push(SideForces {
                 group: group.clone(),
-                nodes: ir.nodes[s].clone(),
+                nodes,
                 forces,
                 reference: refs[s].clone(),
                 face_reference: face_refs[s].clone(),
@@ -169,6 +165,10 @@ fn interface_references(
     }
     let p1 = facet_projections(&models[s1], &run.displacements[s1], &spec.group1)?;
     let p2 = facet_projections(&models[s2], &run.displacements[s2], &spec.group2)?;
+    if ir.pairing.kind != PairingKind::NodeToNode {
+        // Mortar: the facets of the two sides do not correspond; each side keeps its own.
+        return Ok([p1, p2]);
+    }
     let partner: HashMap<usize, usize> = ir.nodes[0]
         .iter()
         .copied()

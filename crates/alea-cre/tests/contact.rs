@@ -13,7 +13,8 @@
 //! ```
 //! Reference: the same problem on meshes refined 3 times (8x finer, nested), solved by LATIN
 //! to 1e-9; the true error is approximated by `(sum_s ||u_ref - u_h||^2_K)^(1/2)`, integrated on
-//! the fine cells. Checks: efficiency `theta / ||u_ref - u_h|| >= 1` on two coarse meshes;
+//! the fine cells. Checks: efficiency `theta / ||u_ref - u_h|| >= 1` on two coarse meshes and on
+//! two non-matching pairs (plane and block with different cell counts: mortar interface);
 //! along the LATIN iterations (runs stopped after 2, 3, ... iterations) the interface density
 //! is `>= 0` at every point, there is no admissibility violation, the interface term is visible
 //! in the first iterations and zero (to round-off) once converged.
@@ -23,7 +24,8 @@ mod common;
 use alea_cre::{CreOptions, LoadData, estimate_latin};
 use alea_fem::{Analysis, Constraints, Loads, Material, Model, kinematics::point_geometry};
 use alea_latin::{
-    Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunResult, Substructure,
+    Assembly, InterfaceSpec, LatinOptions, LatinSolver, PairingKind, RunInput, RunResult,
+    Substructure,
 };
 use alea_mesh::{CellType, generate};
 
@@ -48,10 +50,16 @@ fn rect_model(y0: f64, nx: usize, ny: usize) -> Model {
 }
 
 fn problem(nx: usize, ny: usize) -> (Assembly, Vec<LoadData>) {
-    let plane = rect_model(-1.0, nx, ny);
+    problem_with(nx, nx, ny)
+}
+
+/// The plane with `nx_plane` cells across, the block with `nx_block` (different counts: a
+/// mortar interface).
+fn problem_with(nx_plane: usize, nx_block: usize, ny: usize) -> (Assembly, Vec<LoadData>) {
+    let plane = rect_model(-1.0, nx_plane, ny);
     let mut c = Constraints::new();
     c.clamp(&plane.mesh, "ymin").unwrap();
-    let block = rect_model(0.0, nx, ny);
+    let block = rect_model(0.0, nx_block, ny);
     let mut loads = Loads::new(&block);
     loads.traction(&block, "ymax", top).unwrap();
     let subs = vec![
@@ -149,9 +157,12 @@ fn block_on_plane_with_friction() {
         counts[2] > 0 && counts[3] > 0,
         "stick and slip both present: {counts:?}"
     );
-    for (nx, ny) in [(8, 4), (16, 8)] {
-        let (asm, data) = problem(nx, ny);
+    // Matching meshes, then non-matching ones (mortar interface, both ways round).
+    for (nxs, ny) in [([8, 8], 4), ([16, 16], 8), ([16, 8], 8), ([8, 16], 8)] {
+        let (asm, data) = problem_with(nxs[0], nxs[1], ny);
         let run = solve(&asm, 1e-9);
+        let kind = run.interfaces[0].pairing.kind;
+        assert_eq!(kind == PairingKind::Mortar, nxs[0] != nxs[1]);
         let est = estimate_latin(&asm, &data, &run, &CreOptions::default()).unwrap();
         let err = (0..2)
             .map(|s| {
@@ -160,12 +171,13 @@ fn block_on_plane_with_friction() {
                     &reference.displacements[s],
                     &asm.subs[s].model,
                     &run.displacements[s],
-                    nx,
+                    nxs[s],
                     ny,
                 )
             })
             .sum::<f64>()
             .sqrt();
+        let nx = format!("{kind:?} {}|{}", nxs[0], nxs[1]);
         let it = &est.interfaces[0];
         println!(
             "{nx}x{ny}: theta={:.4e} subs={:?} iface term={:.3e} err_ref={err:.4e} eff={:.3} compat={:.1e} rel={:.3e} status {:?}",
@@ -180,6 +192,11 @@ fn block_on_plane_with_friction() {
         assert!(est.theta / err >= 1.0, "efficiency {}", est.theta / err);
         assert!(est.compatibility_defect() < 1e-6);
         assert_eq!(it.violations, 0);
+        assert!(
+            it.density
+                .iter()
+                .all(|&e| e >= -1e-9 * est.theta * est.theta)
+        );
     }
     // Interface term along the LATIN iterations: stop after 2, 3, ... iterations, then at
     // convergence. The pointwise density vanishes wherever the status (open / stick / slip and

@@ -4,7 +4,11 @@
 //! strict-admissibility checks (3.27).
 
 use alea_cre::interface_term;
-use alea_latin::{InterfaceResult, PointData, PointStatus};
+use std::sync::Arc;
+
+use alea_latin::{
+    InterfacePairing, InterfaceResult, PairingKind, PointData, PointStatus, SideProjection,
+};
 
 fn result(points: Vec<(f64, f64, [f64; 2], [f64; 2])>, law: &'static str) -> InterfaceResult {
     // Tilted normal to catch component mix-ups: n = (sin a, cos a), t = (cos a, -sin a).
@@ -17,6 +21,17 @@ fn result(points: Vec<(f64, f64, [f64; 2], [f64; 2])>, law: &'static str) -> Int
         law,
         subs: [0, 1],
         nodes: [(0..np).collect(), (0..np).collect()],
+        pairing: Arc::new(InterfacePairing {
+            kind: PairingKind::NodeToNode,
+            x: vec![],
+            normals: vec![],
+            weights: vec![],
+            geometric_gap: vec![],
+            sides: [
+                SideProjection::identity(vec![], vec![]),
+                SideProjection::identity(vec![], vec![]),
+            ],
+        }),
         points: vec![],
         weights: vec![],
         w: [vec![[0.0; 3]; np], vec![[0.0; 3]; np]],

@@ -373,6 +373,32 @@ impl DofMap {
         }
     }
 
+    /// Adds `s T_a^T T_b` (an isotropic coupling block between two distinct nodes, e.g. a mortar
+    /// interface stiffness `k m_p N_a N_b`) to `a`; the matrix is symmetric, so this also sets
+    /// the `(b, a)` block. Both nodes' unknowns must be coupled in the pattern.
+    ///
+    /// # Panics
+    /// If `node_a == node_b` (use [`DofMap::add_node_diagonal`]) or an entry is not in the
+    /// pattern.
+    pub fn add_node_coupling(&self, node_a: usize, node_b: usize, s: f64, a: &mut crate::SymCsc) {
+        assert_ne!(node_a, node_b, "coupling block of a node with itself");
+        let frame = |n: usize| -> [[f64; 3]; 3] {
+            match &self.basis[n] {
+                None => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                Some(b) => *b,
+            }
+        };
+        let (ba, bb) = (frame(node_a), frame(node_b));
+        for (i, ga) in self.node_dofs(node_a).enumerate() {
+            for (j, gb) in self.node_dofs(node_b).enumerate() {
+                let v = (0..self.dim).map(|c| ba[i][c] * bb[j][c]).sum::<f64>();
+                if v != 0.0 {
+                    a.add(ga, gb, s * v);
+                }
+            }
+        }
+    }
+
     /// Free-unknown vector `T^T f` of a full node-major vector (loads, not displacements).
     pub fn reduce(&self, full: &[f64]) -> Vec<f64> {
         let d = self.dim;

@@ -1,26 +1,33 @@
 //! LATIN benchmark: a 2D four-substructure frictional assembly (dovetail blade root in a disk
 //! sector, both split in halves on x = 0: two Coulomb contact interfaces on the flanks, two
-//! perfect interfaces on x = 0), ~22 000 dof.
+//! perfect interfaces on x = 0), ~23 000 dof, and Hertz's cylinder on a block at three mesh
+//! sizes.
 //!
-//! Measures, with 1 and 2 threads:
-//! - set-up (assembly + factorisation of the four operators);
+//! Measures, for the two-scale LATIN (coarse problem, `k = 3 E / L`, the defaults) and the
+//! single-scale one it replaces (no coarse problem, `k = 0.5 E / L`, the dovetail's best):
+//! - set-up (assembly + factorisation of the four operators, + the macro responses);
 //! - iterations to tolerance 1e-6 at the nominal point, and the time per iteration against the
 //!   raw triangular solves of that iteration (`RunTimings`);
 //! - a 5 x 5 parameter series (mu in [0.1, 0.9] x root Young's-modulus factor in
 //!   [0.875, 1.125]): cold runs (a new solver per run: set-up + iterations from zero, the
 //!   thesis's "restart a code per run"), cold iterations only (one solver, no warm start) and
-//!   warm runs (one solver, each run started from the nearest finished one).
+//!   warm runs (one solver, each run started from the nearest finished one);
+//! - Hertz (`alea_latin::samples::hertz_cylinder_on_block`, flat faces with node-to-node pairing
+//!   and the true curved cylinder with mortar pairing) at n = 25, 50, 100 cells across the
+//!   contact strip: iterations and time per run for the single-scale LATIN (k = E / L, plain
+//!   and accelerated) and the two-scale one (k = 3 and 10 E / L).
 //!
 //! Run: `CARGO_TARGET_DIR=/work/target-latin cargo bench -p alea-latin --bench latin`
-//! (results in `crates/alea-latin/BENCHMARKS.md`). Diagnostics instead of the benchmark:
-//! `LATIN_BENCH_SCAN=1` (iterations vs the search-direction factor), `LATIN_BENCH_SCAN2=1`
-//! (separate factors for contact and perfect interfaces), `LATIN_BENCH_HIST=1` (residual
-//! histories of cold and warm runs, and of the all-perfect assembly); `LATIN_BENCH_REFINE=n`
-//! changes the mesh density (default 6).
+//! (results in `crates/alea-latin/BENCHMARKS.md`). `LATIN_BENCH_THREADS` (default `1,2`),
+//! `LATIN_BENCH_HERTZ_N` (default `25,50,100`), `LATIN_BENCH_PART` (`dovetail` or `hertz`:
+//! one part only), `LATIN_BENCH_REFINE=n` (dovetail mesh density, default 6). Diagnostics
+//! instead: `LATIN_BENCH_SCAN=1` (iterations vs the search-direction factor, with and without
+//! the coarse problem), `LATIN_BENCH_HIST=1` (residual histories of cold and warm runs, and of
+//! the all-perfect assembly).
 
 use std::time::Instant;
 
-use alea_latin::samples::YOUNG as E;
+use alea_latin::samples::{four_part_dovetail_options, four_part_dovetail_single_scale_options};
 use alea_latin::{
     Assembly, LatinOptions, LatinSolver, RunInput, RunResult, RunStatus, SearchDirection, constant,
 };
@@ -29,8 +36,11 @@ fn assembly(refine: usize) -> Assembly {
     alea_latin::samples::four_part_dovetail(refine).expect("the sample assembly builds")
 }
 
-fn options() -> LatinOptions {
-    alea_latin::samples::four_part_dovetail_options()
+fn env_list(name: &str, default: &[usize]) -> Vec<usize> {
+    std::env::var(name)
+        .ok()
+        .map(|v| v.split(',').filter_map(|t| t.trim().parse().ok()).collect())
+        .unwrap_or_else(|| default.to_vec())
 }
 
 /// The 5 x 5 grid in snake order (each point next to the previous one) with its normalised
@@ -64,16 +74,16 @@ struct Series {
     results: Vec<RunResult>,
 }
 
-fn series(asm: &Assembly, mode: &str) -> Series {
+fn series(asm: &Assembly, opts: &LatinOptions, mode: &str) -> Series {
     let mut s = Series::default();
-    let mut shared = (mode != "cold").then(|| LatinSolver::new(asm.clone(), options()).unwrap());
+    let mut shared = (mode != "cold").then(|| LatinSolver::new(asm.clone(), opts.clone()).unwrap());
     let t0 = Instant::now();
     for (mu, ef, params) in grid() {
         let params = if mode == "warm" { params } else { vec![] };
         let r = match shared.as_mut() {
             Some(solver) => solver.run(&input(mu, ef, params)).unwrap(),
             None => {
-                let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
+                let mut solver = LatinSolver::new(asm.clone(), opts.clone()).unwrap();
                 solver.run(&input(mu, ef, params)).unwrap()
             }
         };
@@ -85,34 +95,199 @@ fn series(asm: &Assembly, mode: &str) -> Series {
     s
 }
 
+fn dovetail(asm: &Assembly, label: &str, opts: &LatinOptions) {
+    println!("\n### {label}");
+    let mut solver = LatinSolver::new(asm.clone(), opts.clone()).unwrap();
+    let setup = solver.setup_seconds;
+    let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+    assert_eq!(r.status, RunStatus::Converged);
+    let it = r.iterations as f64;
+    let tm = r.timings;
+    let counts: Vec<[usize; 4]> = r.interfaces.iter().map(|i| i.status_counts()).collect();
+    println!("set-up: {setup:.3} s");
+    println!(
+        "nominal run (mu 0.5, E factor 1): {} iterations to 1e-6, run {:.3} s; statuses [perfect, open, stick, slip] {counts:?}",
+        r.iterations, tm.total
+    );
+    println!(
+        "per iteration: total {:.3} ms = linear {:.3} ms (of which triangular solves {:.3} ms, summed over substructures) + local {:.3} ms; (linear + local) / solves = {:.2}",
+        1e3 * tm.total / it,
+        1e3 * tm.linear / it,
+        1e3 * tm.triangular_solves / it,
+        1e3 * tm.local / it,
+        (tm.linear + tm.local) / tm.triangular_solves
+    );
+    let cold = series(asm, opts, "cold");
+    let iters = series(asm, opts, "iters");
+    let warm = series(asm, opts, "warm");
+    // Same answers (to the tolerance): friction work of both flanks.
+    let mut worst = 0.0f64;
+    for (a, b) in warm.results.iter().zip(&iters.results) {
+        for k in 0..2 {
+            let (wa, wb) = (a.interfaces[k].work(), b.interfaces[k].work());
+            let scale = a.interfaces[k]
+                .resultant()
+                .iter()
+                .map(|v| v.abs())
+                .fold(0.0, f64::max);
+            worst = worst.max((wa - wb).abs() / (scale * 1e-3 + wb.abs()));
+        }
+    }
+    println!(
+        "25 runs: cold (new solver per run) {:.3} s ({} iterations); cold iterations only {:.3} s ({} iterations); warm {:.3} s ({} iterations)",
+        cold.seconds,
+        cold.iterations,
+        iters.seconds,
+        iters.iterations,
+        warm.seconds,
+        warm.iterations
+    );
+    println!(
+        "warm vs cold: {:.2}x; warm vs cold iterations only: {:.2}x; worst relative difference of the friction work warm vs cold: {worst:.1e}",
+        cold.seconds / warm.seconds,
+        iters.seconds / warm.seconds
+    );
+}
+
+/// Hertz at several mesh sizes: iterations and time per run.
+fn hertz_scaling() {
+    let ns = env_list("LATIN_BENCH_HERTZ_N", &[25, 50, 100]);
+    let configs: [(&str, bool, f64, usize); 6] = [
+        ("single-scale k=1 plain", false, 1.0, 0),
+        ("single-scale k=1 Anderson", false, 1.0, 5),
+        ("two-scale k=3 plain", true, 3.0, 0),
+        ("two-scale k=3 Anderson", true, 3.0, 5),
+        ("two-scale k=10 plain", true, 10.0, 0),
+        ("two-scale k=10 Anderson", true, 10.0, 5),
+    ];
+    for curved in [false, true] {
+        println!(
+            "\n### Hertz, {}",
+            if curved {
+                "true curved cylinder, mortar pairing"
+            } else {
+                "flat faces, curvature in g0, node-to-node pairing"
+            }
+        );
+        for &n in &ns {
+            let case = alea_latin::samples::hertz_cylinder_on_block(n, curved).unwrap();
+            let ndof: usize = case
+                .assembly
+                .subs
+                .iter()
+                .map(|s| 2 * s.model.mesh.num_nodes())
+                .sum();
+            let mut line = format!("n {n} ({ndof} dof):");
+            for (label, coarse, factor, acc) in configs {
+                let opts = LatinOptions {
+                    tolerance: 1e-7,
+                    max_iterations: 5000,
+                    acceleration: acc,
+                    coarse,
+                    search_direction: SearchDirection::Auto { factor },
+                    ..Default::default()
+                };
+                let mut solver = LatinSolver::new(case.assembly.clone(), opts).unwrap();
+                let r = solver.run(&RunInput::default()).unwrap();
+                let mark = if r.status == RunStatus::Converged {
+                    ""
+                } else {
+                    " (not converged)"
+                };
+                line += &format!(
+                    " | {label}: {}{mark} it, {:.3} s (+ set-up {:.3} s)",
+                    r.iterations, r.timings.total, solver.setup_seconds
+                );
+            }
+            println!("{line}");
+        }
+    }
+}
+
 fn main() {
     let refine: usize = std::env::var("LATIN_BENCH_REFINE")
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(6);
-    let t = Instant::now();
-    let asm = assembly(refine);
-    let ndof: usize = asm.subs.iter().map(|s| 2 * s.model.mesh.num_nodes()).sum();
-    let sizes: Vec<usize> = asm
-        .subs
-        .iter()
-        .map(|s| 2 * s.model.mesh.num_nodes())
-        .collect();
-    println!(
-        "dovetail refined x{refine}: {ndof} dof in 4 substructures {sizes:?} (meshing {:.2}s)",
-        t.elapsed().as_secs_f64()
-    );
-    if std::env::var("LATIN_BENCH_HIST").is_ok() {
-        let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
+    let part = std::env::var("LATIN_BENCH_PART").unwrap_or_default();
+    if std::env::var("LATIN_BENCH_HIST").is_ok() || std::env::var("LATIN_BENCH_SCAN").is_ok() {
+        let asm = assembly(refine);
+        diagnostics(&asm);
+        return;
+    }
+    if part != "hertz" {
+        let t = Instant::now();
+        let asm = assembly(refine);
+        let sizes: Vec<usize> = asm
+            .subs
+            .iter()
+            .map(|s| 2 * s.model.mesh.num_nodes())
+            .collect();
+        println!(
+            "dovetail refined x{refine}: {} dof in 4 substructures {sizes:?} (meshing {:.2}s)",
+            sizes.iter().sum::<usize>(),
+            t.elapsed().as_secs_f64()
+        );
+        for threads in env_list("LATIN_BENCH_THREADS", &[1, 2]) {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                println!("\n## {threads} thread(s)");
+                dovetail(
+                    &asm,
+                    "two-scale (coarse problem, k = 3 E / L)",
+                    &four_part_dovetail_options(),
+                );
+                dovetail(
+                    &asm,
+                    "single-scale (no coarse problem, k = 0.5 E / L)",
+                    &four_part_dovetail_single_scale_options(),
+                );
+            });
+        }
+    }
+    if part != "dovetail" {
+        hertz_scaling();
+    }
+}
+
+/// Residual histories (`LATIN_BENCH_HIST`) or a search-direction scan (`LATIN_BENCH_SCAN`).
+fn diagnostics(asm: &Assembly) {
+    for (label, base) in [
+        ("two-scale", four_part_dovetail_options()),
+        ("single-scale", four_part_dovetail_single_scale_options()),
+    ] {
+        if std::env::var("LATIN_BENCH_SCAN").is_ok() {
+            for factor in [0.3, 0.5, 1.0, 3.0, 10.0] {
+                let opts = LatinOptions {
+                    search_direction: SearchDirection::Auto { factor },
+                    ..base.clone()
+                };
+                let mut solver = LatinSolver::new(asm.clone(), opts).unwrap();
+                let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+                println!(
+                    "{label}, k factor {factor}: {:?} after {} iterations ({:.2} s)",
+                    r.status, r.iterations, r.timings.total
+                );
+            }
+            continue;
+        }
+        let mut solver = LatinSolver::new(asm.clone(), base.clone()).unwrap();
         let show = |name: &str, r: &RunResult| {
             let h: Vec<String> = r
                 .residuals
                 .iter()
                 .enumerate()
-                .filter(|(i, _)| i % 50 == 0)
+                .filter(|(i, _)| i % 10 == 0)
                 .map(|(i, v)| format!("{i}:{v:.1e}"))
                 .collect();
-            println!("{name}: {} iterations; {}", r.iterations, h.join(" "));
+            println!(
+                "{label} {name}: {} iterations; {}",
+                r.iterations,
+                h.join(" ")
+            );
         };
         let r = solver.run(&input(0.3, 1.0, vec![0.25, 0.5])).unwrap();
         show("cold mu 0.3", &r);
@@ -120,134 +295,12 @@ fn main() {
         show("warm mu 0.5 from 0.3", &r);
         let r = solver.run(&input(0.5, 1.0625, vec![0.5, 0.75])).unwrap();
         show("warm E 1.0625 from 1", &r);
-        let r = solver.run(&input(0.5, 1.0, vec![0.5, 0.5])).unwrap();
-        show("warm same point", &r);
         let mut asm2 = asm.clone();
         for i in asm2.interfaces.iter_mut() {
             i.law = std::sync::Arc::new(alea_latin::Perfect);
         }
-        let mut s2 = LatinSolver::new(asm2, options()).unwrap();
+        let mut s2 = LatinSolver::new(asm2, base.clone()).unwrap();
         let r = s2.run(&input(0.5, 1.0, vec![])).unwrap();
         show("all perfect", &r);
-        return;
-    }
-    if std::env::var("LATIN_BENCH_SCAN2").is_ok() {
-        // Separate factors for the contact and the perfect interfaces.
-        let lens: Vec<f64> = asm
-            .interfaces
-            .iter()
-            .map(|i| {
-                let m = &asm.subs[i.sub1].model.mesh;
-                alea_latin::interface::side_geometry(m, &i.group1, 1.0)
-                    .unwrap()
-                    .weights
-                    .iter()
-                    .sum::<f64>()
-            })
-            .collect();
-        println!("interface lengths {lens:?}");
-        for (fc, fp) in [
-            (0.5, 0.5),
-            (0.5, 2.0),
-            (0.5, 5.0),
-            (0.5, 0.2),
-            (1.0, 2.0),
-            (0.2, 2.0),
-        ] {
-            let k: Vec<[f64; 2]> = lens
-                .iter()
-                .enumerate()
-                .map(|(i, l)| {
-                    let f = if i < 2 { fc } else { fp };
-                    [f * E / l, f * E / l]
-                })
-                .collect();
-            let mut opts = options();
-            opts.search_direction = SearchDirection::Fixed(k);
-            let mut solver = LatinSolver::new(asm.clone(), opts).unwrap();
-            let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
-            println!(
-                "contact {fc}, perfect {fp}: {:?} after {} iterations ({:.2} s)",
-                r.status, r.iterations, r.timings.total
-            );
-        }
-        return;
-    }
-    if std::env::var("LATIN_BENCH_SCAN").is_ok() {
-        // Search-direction scan at the nominal point (iterations only).
-        for factor in [0.1, 0.2, 0.3, 0.5, 1.0, 3.0] {
-            let mut opts = options();
-            opts.search_direction = SearchDirection::Auto { factor };
-            let mut solver = LatinSolver::new(asm.clone(), opts).unwrap();
-            let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
-            println!(
-                "k factor {factor}: {:?} after {} iterations ({:.2} s)",
-                r.status, r.iterations, r.timings.total
-            );
-        }
-        return;
-    }
-    for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
-            println!("\n## {threads} thread(s)");
-            // Nominal point: set-up, iterations, per-iteration cost.
-            let mut solver = LatinSolver::new(asm.clone(), options()).unwrap();
-            let setup = solver.setup_seconds;
-            let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
-            assert_eq!(r.status, RunStatus::Converged);
-            let it = r.iterations as f64;
-            let tm = r.timings;
-            let counts: Vec<[usize; 4]> =
-                r.interfaces.iter().map(|i| i.status_counts()).collect();
-            println!("set-up (assembly + factorisation): {:.3} s", setup);
-            println!(
-                "nominal run (mu 0.5, E factor 1): {} iterations to 1e-6, run {:.3} s; statuses [perfect, open, stick, slip] {counts:?}",
-                r.iterations, tm.total
-            );
-            println!(
-                "per iteration: total {:.3} ms = linear {:.3} ms (of which triangular solves {:.3} ms, summed over substructures) + local {:.3} ms; (linear + local) / solves = {:.2}",
-                1e3 * tm.total / it,
-                1e3 * tm.linear / it,
-                1e3 * tm.triangular_solves / it,
-                1e3 * tm.local / it,
-                (tm.linear + tm.local) / tm.triangular_solves
-            );
-            let cold = series(&asm, "cold");
-            let iters = series(&asm, "iters");
-            let warm = series(&asm, "warm");
-            // Same answers (to the tolerance): friction work of both flanks.
-            let mut worst = 0.0f64;
-            for (a, b) in warm.results.iter().zip(&iters.results) {
-                for k in 0..2 {
-                    let (wa, wb) = (a.interfaces[k].work(), b.interfaces[k].work());
-                    let scale = a.interfaces[k]
-                        .resultant()
-                        .iter()
-                        .map(|v| v.abs())
-                        .fold(0.0, f64::max);
-                    worst = worst.max((wa - wb).abs() / (scale * 1e-3 + wb.abs()));
-                }
-            }
-            println!(
-                "25 runs: cold (new solver per run) {:.3} s ({} iterations, {:.3} s/run); cold iterations only {:.3} s ({} iterations); warm {:.3} s ({} iterations, {:.3} s/run)",
-                cold.seconds,
-                cold.iterations,
-                cold.seconds / 25.0,
-                iters.seconds,
-                iters.iterations,
-                warm.seconds,
-                warm.iterations,
-                warm.seconds / 25.0
-            );
-            println!(
-                "speed-up warm vs cold: {:.2}x; warm vs cold iterations only: {:.2}x; worst relative difference of the friction work warm vs cold: {worst:.1e}",
-                cold.seconds / warm.seconds,
-                iters.seconds / warm.seconds
-            );
-        });
     }
 }

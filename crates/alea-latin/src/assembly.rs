@@ -5,6 +5,7 @@ use std::sync::Arc;
 use alea_fem::{Constraints, Model};
 
 use crate::InterfaceLaw;
+use crate::interface::Pairing;
 
 /// A scalar field along an interface: `x -> value` (friction coefficient, initial gap, ...).
 pub type PointField = Arc<dyn Fn([f64; 3]) -> f64 + Send + Sync>;
@@ -49,8 +50,14 @@ pub struct InterfaceSpec {
     pub mu: PointField,
     /// Default initial normal gap / shape defect `g0(x)` (runs may override it).
     pub gap: PointField,
-    /// Node matching tolerance (default: 1e-6 x the interface size).
+    /// How the sides are paired (default: node to node when they match, mortar otherwise).
+    pub pairing: Pairing,
+    /// Node matching tolerance: the largest distance between paired nodes (default: 1e-6 x the
+    /// interface size).
     pub match_tolerance: Option<f64>,
+    /// Mortar search distance: the largest normal distance between the sides at which they are
+    /// paired (default: 5 % of the interface size; see [`crate::mortar`]).
+    pub search_distance: Option<f64>,
 }
 
 impl std::fmt::Debug for InterfaceSpec {
@@ -60,6 +67,7 @@ impl std::fmt::Debug for InterfaceSpec {
             .field("side1", &(self.sub1, &self.group1))
             .field("side2", &(self.sub2, &self.group2))
             .field("law", &self.law.name())
+            .field("pairing", &self.pairing)
             .finish()
     }
 }
@@ -76,7 +84,9 @@ impl InterfaceSpec {
             law: Arc::new(crate::Perfect),
             mu: constant(0.0),
             gap: constant(0.0),
+            pairing: Pairing::Auto,
             match_tolerance: None,
+            search_distance: None,
         }
     }
 

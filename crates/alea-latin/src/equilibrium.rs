@@ -289,6 +289,34 @@ impl RigidModes {
                 relative_rigid_motion: 0.0,
             };
         }
+        let mode = self.rigid_fit(coords, u);
+        let mut r = [[0.0; 3]; 6];
+        let mut rigid = 0.0f64;
+        for x in coords {
+            self.at(x, &mut r);
+            let mut v = [0.0; 3];
+            for j in 0..m {
+                for c in 0..3 {
+                    v[c] += mode[j] * r[j][c];
+                }
+            }
+            rigid = rigid.max((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+        }
+        SubEquilibrium {
+            free_modes: nf,
+            force,
+            moment,
+            relative_imbalance,
+            relative_rigid_motion: finite(rigid / model_size),
+        }
+    }
+
+    /// The least-squares rigid part of a full node-major displacement `u` in the free modes,
+    /// in mode coordinates (`modes` entries; zero if no mode is free):
+    /// `a = argmin sum_n |u_n - R_n V a|^2`, returned as `V a`.
+    pub(crate) fn rigid_fit(&self, coords: &[[f64; 3]], u: &[f64]) -> Vec<f64> {
+        let (m, nf) = (self.modes, self.num_free);
+        let col = |k: usize| &self.free[k * m..(k + 1) * m];
         // Least-squares rigid part in the free modes: (V^T A V) a = V^T b,
         // A = sum_n R_n^T R_n, b = sum_n R_n^T u_n.
         let d = self.dim;
@@ -333,23 +361,23 @@ impl RigidModes {
                 *a += c * v;
             }
         }
-        let mut rigid = 0.0f64;
-        for x in coords {
-            self.at(x, &mut r);
-            let mut v = [0.0; 3];
-            for j in 0..m {
-                for c in 0..3 {
-                    v[c] += mode[j] * r[j][c];
-                }
-            }
-            rigid = rigid.max((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+        mode
+    }
+
+    /// Subtracts from the full node-major displacement `u` its rigid part in the free modes
+    /// ([`RigidModes::rigid_fit`]).
+    pub(crate) fn remove_rigid_part(&self, coords: &[[f64; 3]], u: &mut [f64]) {
+        if self.num_free == 0 {
+            return;
         }
-        SubEquilibrium {
-            free_modes: nf,
-            force,
-            moment,
-            relative_imbalance,
-            relative_rigid_motion: finite(rigid / model_size),
+        let mode = self.rigid_fit(coords, u);
+        let d = self.dim;
+        let mut r = [[0.0; 3]; 6];
+        for (node, x) in coords.iter().enumerate() {
+            self.at(x, &mut r);
+            for c in 0..d {
+                u[node * d + c] -= (0..self.modes).map(|j| mode[j] * r[j][c]).sum::<f64>();
+            }
         }
     }
 }

@@ -49,6 +49,15 @@ pub enum LatinError {
         #[source]
         source: std::io::Error,
     },
+    /// The two sides of an interface cannot be paired by the mortar method (no part of side 2
+    /// faces side 1 within the search distance, unsupported facets, overlapping layers).
+    #[error("interface '{interface}': {message}")]
+    Pairing {
+        /// Interface name.
+        interface: String,
+        /// What is wrong.
+        message: String,
+    },
     /// Inconsistent set-up or run input.
     #[error("{0}")]
     Invalid(String),

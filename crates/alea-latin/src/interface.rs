@@ -1,10 +1,19 @@
-//! Interface geometry: node-to-node pairing of the two sides, lumped interface weights and
-//! nodal normals.
+//! Interface geometry: the interface points of a paired interface and how each side sees them
+//! ([`InterfacePairing`], [`SideProjection`]); node-to-node pairing of matching sides, lumped
+//! interface weights and nodal normals. Non-matching sides are paired by [`crate::mortar`].
 //!
-//! Side nodes come from a facet group of each substructure's mesh. Each side-1 node is paired
-//! with the nearest side-2 node; the pairing must be one-to-one and every distance within the
-//! tolerance (default `1e-6` times the interface's bounding-box diagonal), otherwise
-//! [`LatinError::Unmatched`] names the interface and the worst distance.
+//! An interface carries its fields `(W_s, F_s, W_hat_s, F_hat_s)` at points `p` with weights
+//! `m_p`. Side `s` sees them through a projection: `W_s(p) = sum_a Pi_s(p, a) u_a`, its nodes
+//! are loaded by `f_a = sum_p m_p Pi_s(p, a) F_s(p)` (`Pi^T M F`), and the LATIN linear stage's
+//! operator receives `k Pi^T M Pi` (module `solver`). Node to node is the special case of
+//! identity rows, one node per point and side (the fast path: same operator and right-hand side
+//! as a diagonal interface mass).
+//!
+//! **Node-to-node pairing.** Side nodes come from a facet group of each substructure's mesh.
+//! Each side-1 node is paired with the nearest side-2 node; the pairing must be one-to-one and
+//! every distance within the tolerance (default `1e-6` times the interface's bounding-box
+//! diagonal), otherwise [`LatinError::Unmatched`] names the interface and the worst distance
+//! ([`Pairing::Auto`] then falls back to the mortar pairing).
 //!
 //! The interface mass `M_Gamma,ij = int N_i N_j dS` (times the thickness in 2D) is lumped with
 //! the HRZ rule (diagonal proportional to the consistent diagonal, scaled to the facet measure),
@@ -155,4 +164,193 @@ pub fn pair_nodes(
         });
     }
     Ok(partner)
+}
+
+/// How an interface's points are found from its two sides.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Pairing {
+    /// Node to node when the sides match (same node count, every side-1 node within the match
+    /// tolerance of a distinct side-2 node), mortar otherwise.
+    #[default]
+    Auto,
+    /// Node to node only; sides that do not match are an error ([`LatinError::Unmatched`]).
+    NodeToNode,
+    /// Mortar (module [`crate::mortar`]) even if the sides match.
+    Mortar,
+}
+
+/// The pairing actually used for an interface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PairingKind {
+    /// One point per pair of coincident nodes, identity projections.
+    NodeToNode,
+    /// One point per side-1 multiplier node, dual-mortar projections (module [`crate::mortar`]).
+    Mortar,
+}
+
+/// How the values of one side at the interface points come from that side's nodal
+/// displacements, and how the point forces go back to its nodes.
+///
+/// Row `p` (entries `ptr[p]..ptr[p + 1]` of `nodes` and `coef`) gives
+/// `W(p) = sum_a coef_pa u_a` (mesh nodes `a` of the side's substructure); the interface forces
+/// `F(p)` load the side's nodes with `f_a = sum_p weights_p coef_pa F(p)` (`Pi^T M F`), and the
+/// linear stage's operator receives `k Pi^T M Pi`. Every row sums to 1 (rigid motions are
+/// transmitted exactly). A node-to-node side has one entry of coefficient 1 per row.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SideProjection {
+    /// Weight `m_p` of each point in this side's forces (length in 2D x thickness, area in 3D).
+    pub weights: Vec<f64>,
+    /// Row pointers (`points + 1`).
+    pub ptr: Vec<usize>,
+    /// Mesh nodes of the entries.
+    pub nodes: Vec<usize>,
+    /// Coefficients of the entries.
+    pub coef: Vec<f64>,
+}
+
+impl SideProjection {
+    /// One node per point with coefficient 1.
+    pub fn identity(nodes: Vec<usize>, weights: Vec<f64>) -> Self {
+        SideProjection {
+            ptr: (0..=nodes.len()).collect(),
+            coef: vec![1.0; nodes.len()],
+            nodes,
+            weights,
+        }
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.weights.len()
+    }
+
+    /// True if there is no point.
+    pub fn is_empty(&self) -> bool {
+        self.weights.is_empty()
+    }
+
+    /// Entries `(node, coefficient)` of point `p`.
+    pub fn row(&self, p: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let r = self.ptr[p]..self.ptr[p + 1];
+        self.nodes[r.clone()]
+            .iter()
+            .copied()
+            .zip(self.coef[r].iter().copied())
+    }
+
+    /// True if every row is a single node with coefficient 1.
+    pub fn is_identity(&self) -> bool {
+        self.ptr.windows(2).all(|w| w[1] == w[0] + 1) && self.coef.iter().all(|&c| c == 1.0)
+    }
+
+    /// The node with the largest coefficient in row `p` (the node of a node-to-node point).
+    pub fn main_node(&self, p: usize) -> usize {
+        self.row(p)
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map_or(usize::MAX, |e| e.0)
+    }
+
+    /// The distinct nodes of the side (sorted).
+    pub fn side_nodes(&self) -> Vec<usize> {
+        let mut n = self.nodes.clone();
+        n.sort_unstable();
+        n.dedup();
+        n
+    }
+
+    /// Nodal forces `f_a = sum_p m_p coef_pa F(p)` of point values `f` (one per point), on the
+    /// nodes of [`SideProjection::side_nodes`] (same order).
+    pub fn nodal_forces(&self, f: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        let nodes = self.side_nodes();
+        let mut out = vec![[0.0; 3]; nodes.len()];
+        for (p, fp) in f.iter().enumerate().take(self.len()) {
+            let m = self.weights[p];
+            for (a, c) in self.row(p) {
+                let i = nodes.binary_search(&a).expect("node of the side");
+                for k in 0..3 {
+                    out[i][k] += m * c * fp[k];
+                }
+            }
+        }
+        out
+    }
+
+    /// Point values `W(p) = sum_a coef_pa u_a` of a node-major displacement `u` of dimension
+    /// `dim`.
+    pub fn interpolate(&self, u: &[f64], dim: usize) -> Vec<[f64; 3]> {
+        (0..self.len())
+            .map(|p| {
+                let mut w = [0.0; 3];
+                for (a, c) in self.row(p) {
+                    for k in 0..dim {
+                        w[k] += c * u[a * dim + k];
+                    }
+                }
+                w
+            })
+            .collect()
+    }
+}
+
+/// The interface points of a paired interface and both sides' projections.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InterfacePairing {
+    /// Node to node or mortar.
+    pub kind: PairingKind,
+    /// Position of each point (a side-1 node).
+    pub x: Vec<[f64; 3]>,
+    /// Unit normal at each point (outward of side 1).
+    pub normals: Vec<[f64; 3]>,
+    /// Weight of each point (side 1's `m_p`): the integration weight of interface integrals.
+    pub weights: Vec<f64>,
+    /// Normal distance from side 1 to side 2 at each point in the nominal geometry (mortar
+    /// contact interfaces; 0 for node-to-node and perfect interfaces), added to the gap field.
+    pub geometric_gap: Vec<f64>,
+    /// Projections of side 1 and side 2.
+    pub sides: [SideProjection; 2],
+}
+
+impl InterfacePairing {
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// True if there is no point.
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+}
+
+/// Node-to-node pairing of two facet groups (see [`pair_nodes`]).
+pub fn pair_node_to_node(
+    name: &str,
+    sides: [(&Mesh, &str, f64); 2],
+    tol: Option<f64>,
+) -> Result<InterfacePairing, LatinError> {
+    let mesh_err = |s: usize| {
+        move |e: alea_mesh::MeshError| LatinError::Pairing {
+            interface: name.to_string(),
+            message: format!("side {}: {e}", s + 1),
+        }
+    };
+    let g1 = side_geometry(sides[0].0, sides[0].1, sides[0].2).map_err(mesh_err(0))?;
+    let g2 = side_geometry(sides[1].0, sides[1].1, sides[1].2).map_err(mesh_err(1))?;
+    let x1: Vec<[f64; 3]> = g1.nodes.iter().map(|&n| sides[0].0.coords[n]).collect();
+    let x2: Vec<[f64; 3]> = g2.nodes.iter().map(|&n| sides[1].0.coords[n]).collect();
+    let partner = pair_nodes(name, &x1, &x2, tol)?;
+    let nodes2: Vec<usize> = partner.iter().map(|&j| g2.nodes[j]).collect();
+    let weights2: Vec<f64> = partner.iter().map(|&j| g2.weights[j]).collect();
+    let n = x1.len();
+    Ok(InterfacePairing {
+        kind: PairingKind::NodeToNode,
+        x: x1,
+        normals: g1.normals,
+        weights: g1.weights.clone(),
+        geometric_gap: vec![0.0; n],
+        sides: [
+            SideProjection::identity(g1.nodes, g1.weights),
+            SideProjection::identity(nodes2, weights2),
+        ],
+    })
 }

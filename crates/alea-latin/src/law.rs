@@ -87,6 +87,12 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     /// Given `R` and `kappa` (module doc), returns `(Phi, [W_hat], status)` satisfying both
     /// the law and `Phi = R + kappa [W_hat]`.
     fn local_stage(&self, p: &PointData, r: [f64; 3], kappa: f64) -> LocalSolution;
+
+    /// True if the law uses the normal gap (then a mortar pairing adds the nominal distance
+    /// between the sides to the gap field). Default true.
+    fn uses_gap(&self) -> bool {
+        true
+    }
 }
 
 /// Perfect (bonded) interface.
@@ -96,6 +102,9 @@ pub struct Perfect;
 impl InterfaceLaw for Perfect {
     fn name(&self) -> &'static str {
         "perfect"
+    }
+    fn uses_gap(&self) -> bool {
+        false
     }
     fn local_stage(&self, _p: &PointData, r: [f64; 3], _kappa: f64) -> LocalSolution {
         LocalSolution {

@@ -3,9 +3,12 @@
 //! An [`Assembly`] holds linear-elastic [`Substructure`]s (each an `alea_fem::Model` with its
 //! constraints and load cases) and [`InterfaceSpec`]s joining facet groups of two of them, with
 //! a pointwise [`InterfaceLaw`] ([`Perfect`] or [`CoulombContact`] with a friction field
-//! `mu(x)` and an initial-gap / shape-defect field `g0(x)`). [`LatinSolver`] factorises each
-//! substructure operator once and runs the LATIN iteration (thesis chapter 2.1; conventions and
-//! closed-form local stage in [`law`]) for any number of parameter points, each warm-started
+//! `mu(x)` and an initial-gap / shape-defect field `g0(x)`). Sides are paired node to node
+//! when they match and by a dual mortar method otherwise ([`mortar`]: meshes made
+//! independently, curved bodies on flat ones, sides of different extent). [`LatinSolver`]
+//! factorises each substructure operator once and runs the LATIN iteration (thesis chapter
+//! 2.1; conventions and closed-form local stage in [`law`]) for any number of parameter points,
+//! each warm-started
 //! from the nearest finished one (multiresolution, thesis 5.1.3). A [`RunResult`] carries the
 //! displacement of every substructure, the interface fields of both stages, the contact status
 //! per point, the residual history and the quantities of interest.
@@ -14,11 +17,13 @@
 
 mod anderson;
 mod assembly;
+mod coarse;
 pub mod contact;
 mod equilibrium;
 mod error;
 pub mod interface;
 pub mod law;
+pub mod mortar;
 pub mod output;
 pub mod reactions;
 mod result;
@@ -28,6 +33,7 @@ mod solver;
 pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
 pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
+pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};
 pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
 pub use solver::{LatinOptions, LatinSolver, LocalState, RunInput, SearchDirection};

@@ -4,14 +4,17 @@
 //! `von_mises`, and on interface nodes `contact_status` (-1 off interfaces, then
 //! [`PointStatus::code`]: 0 perfect, 1 open, 2 stick, 3 slip), `contact_normal_force`
 //! (`F_hat . n` on this side, traction units), `contact_tangential_force` (`|F_hat_t|`) and
-//! `interface_jump` (`[W_hat] + g0 n`, vector; the same on both sides), and the fields of the
-//! contact CSV ([`crate::contact`], the same values on both sides of a point):
-//! `contact_weight`, `contact_normal` (side 1's outward normal), `contact_gap`,
-//! `contact_pressure` (`Phi.n >= 0` in compression), `contact_traction_t` (tangential traction on
-//! side 2), `contact_slip` (tangential jump of side 2 relative to side 1); with
-//! [`write_run_with_reactions`], `reaction` (nodal reaction forces, [`crate::reactions`]).
-//! Cell fields: one `group_<name>` indicator per cell group. Beside the `.vtu` files, one
-//! `interface_<name>.csv` per interface ([`crate::contact::write_interface_csv`]).
+//! `interface_jump` (`[W_hat] + g0 n`, vector; the same on both sides). On a mortar side that is
+//! not the identity (side 2) these nodal values are averages of the point values weighted by
+//! `m_p Pi(p, a)`, and the status is that of the point that weighs most. Then the fields of the
+//! contact CSV ([`crate::contact`], the same values on both sides of a node-to-node point; on
+//! side 1 only for a mortar interface): `contact_weight`, `contact_normal` (side 1's outward
+//! normal), `contact_gap`, `contact_pressure` (`Phi.n >= 0` in compression),
+//! `contact_traction_t` (tangential traction on side 2), `contact_slip` (tangential jump of
+//! side 2 relative to side 1); with [`write_run_with_reactions`], `reaction` (nodal reaction
+//! forces, [`crate::reactions`]). Cell fields: one `group_<name>` indicator per cell group.
+//! Beside the `.vtu` files, one `interface_<name>.csv` per interface
+//! ([`crate::contact::write_interface_csv`]).
 
 use std::path::{Path, PathBuf};
 
@@ -35,6 +38,28 @@ struct SubFields {
     pressure: Vec<f64>,
     traction_t: Vec<f64>,
     slip: Vec<f64>,
+}
+
+/// Weighted sums of point values at one node of a mortar side.
+#[derive(Default)]
+struct NodeAverage {
+    weight: f64,
+    force: [f64; 3],
+    normal: [f64; 3],
+    jump: [f64; 3],
+    best: (f64, f64),
+}
+
+impl SubFields {
+    /// Sets the interface fields of `node` from its status code, normal, traction and jump.
+    fn set(&mut self, node: usize, status: f64, n: &[f64; 3], fh: &[f64; 3], jump: &[f64; 3]) {
+        let fnn = fh[0] * n[0] + fh[1] * n[1] + fh[2] * n[2];
+        let ft = [fh[0] - fnn * n[0], fh[1] - fnn * n[1], fh[2] - fnn * n[2]];
+        self.status[node] = status;
+        self.fnormal[node] = fnn;
+        self.ftangent[node] = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
+        self.jump[node * 3..node * 3 + 3].copy_from_slice(jump);
+    }
 }
 
 /// Writes `path` (`.vtm`), one `.vtu` per substructure and one `interface_<name>.csv` per
@@ -88,19 +113,52 @@ pub fn write_run_with_reactions(
     for it in &result.interfaces {
         for side in 0..2 {
             let f = &mut fields[it.subs[side]];
-            for (i, &node) in it.nodes[side].iter().enumerate() {
-                let n = it.points[i].normal;
-                let fh = it.fhat[side][i];
-                let fnn = fh[0] * n[0] + fh[1] * n[1] + fh[2] * n[2];
-                let ft = [fh[0] - fnn * n[0], fh[1] - fnn * n[1], fh[2] - fnn * n[2]];
-                f.status[node] = it.status[i].code() as f64;
-                f.fnormal[node] = fnn;
-                f.ftangent[node] = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
-                f.jump[node * 3..node * 3 + 3].copy_from_slice(&it.jump(i));
+            let proj = &it.pairing.sides[side];
+            if proj.is_identity() {
+                for (i, &node) in it.nodes[side].iter().enumerate() {
+                    let n = it.points[i].normal;
+                    let fh = it.fhat[side][i];
+                    f.set(node, it.status[i].code() as f64, &n, &fh, &it.jump(i));
+                }
+                continue;
+            }
+            // Mortar side: nodal averages of the point values weighted by m_p Pi(p, a) (their
+            // sum is the node's share of the interface measure); the status of the point that
+            // weighs most.
+            let mut acc: std::collections::BTreeMap<usize, NodeAverage> = Default::default();
+            for p in 0..proj.len() {
+                let m = proj.weights[p];
+                for (node, c) in proj.row(p) {
+                    let a = acc.entry(node).or_default();
+                    let w = m * c;
+                    a.weight += w;
+                    for k in 0..3 {
+                        a.force[k] += w * it.fhat[side][p][k];
+                        a.normal[k] += w * it.points[p].normal[k];
+                        a.jump[k] += w * it.jump(p)[k];
+                    }
+                    if w > a.best.0 {
+                        a.best = (w, it.status[p].code() as f64);
+                    }
+                }
+            }
+            for (node, a) in acc {
+                if a.weight <= 0.0 {
+                    continue;
+                }
+                let l = (a.normal.iter().map(|v| v * v).sum::<f64>())
+                    .sqrt()
+                    .max(1e-300);
+                let n = a.normal.map(|v| v / l);
+                let t = a.force.map(|v| v / a.weight);
+                let j = a.jump.map(|v| v / a.weight);
+                f.set(node, a.best.1, &n, &t, &j);
             }
         }
+        let node_to_node = it.pairing.sides[1].is_identity();
         for r in crate::contact::contact_rows(it) {
-            for (side, node) in [(it.subs[0], r.node1), (it.subs[1], r.node2)] {
+            let sides = [(it.subs[0], r.node1), (it.subs[1], r.node2)];
+            for &(side, node) in &sides[..if node_to_node { 2 } else { 1 }] {
                 let f = &mut fields[side];
                 f.weight[node] = r.weight;
                 f.gap[node] = r.gap;

@@ -2,8 +2,11 @@
 
 use alea_fem::{Model, post};
 
+use std::sync::Arc;
+
 use crate::PointStatus;
 use crate::equilibrium::SubEquilibrium;
+use crate::interface::InterfacePairing;
 
 /// Outcome of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,7 +55,8 @@ pub struct RunTimings {
     pub total: f64,
 }
 
-/// Interface fields of a run, per interface point (pairs of nodes, in side-1 order).
+/// Interface fields of a run, per interface point (side-1 nodes: every node of a node-to-node
+/// interface, the multiplier nodes of a mortar one; see [`crate::mortar`]).
 #[derive(Clone, Debug)]
 pub struct InterfaceResult {
     /// Interface name.
@@ -61,11 +65,17 @@ pub struct InterfaceResult {
     pub law: &'static str,
     /// Substructures of sides 1 and 2.
     pub subs: [usize; 2],
-    /// Mesh nodes of each side, paired by index.
+    /// Mesh node of each point on each side: for a node-to-node interface the paired nodes;
+    /// for a mortar interface the node of largest coefficient of each side's projection row
+    /// (side 1: the point's own node). The exact relation is in [`InterfaceResult::pairing`].
     pub nodes: [Vec<usize>; 2],
-    /// Point data used in this run (position, normal, mu, gap).
+    /// The pairing: point weights and both sides' projections (node to node or mortar).
+    pub pairing: Arc<InterfacePairing>,
+    /// Point data used in this run (position, normal, mu, gap; a mortar contact interface's
+    /// gap includes the nominal distance between the sides).
     pub points: Vec<crate::PointData>,
-    /// Lumped interface weight of each point (side 1).
+    /// Interface weight of each point (side 1's lumped weight; the dual-mortar weight
+    /// `int psi_p dS` of a mortar interface): the integration weight of interface integrals.
     pub weights: Vec<f64>,
     /// Linear-stage displacements `W_s`.
     pub w: [Vec<[f64; 3]>; 2],
@@ -139,6 +149,19 @@ impl InterfaceResult {
         let fn_ = dot(&f, &n);
         let ft = [f[0] - fn_ * n[0], f[1] - fn_ * n[1], f[2] - fn_ * n[2]];
         (fn_, dot(&ft, &ft).sqrt())
+    }
+
+    /// Nodal forces on side `s` of the linear-stage tractions `F_s` (`Pi_s^T M F_s`, the
+    /// interface loads of its last FE solve), on the nodes of
+    /// `pairing.sides[s].side_nodes()`.
+    pub fn linear_nodal_forces(&self, s: usize) -> Vec<[f64; 3]> {
+        self.pairing.sides[s].nodal_forces(&self.f[s])
+    }
+
+    /// Nodal forces on side `s` of the local-stage tractions `F_hat_s`, on the nodes of
+    /// `pairing.sides[s].side_nodes()`.
+    pub fn local_nodal_forces(&self, s: usize) -> Vec<[f64; 3]> {
+        self.pairing.sides[s].nodal_forces(&self.fhat[s])
     }
 
     /// Number of points in each status `[perfect, open, stick, slip]`.

@@ -148,7 +148,7 @@ fn stick_zone_half_width_follows_cattaneo_mindlin() {
     let b_th = (4.0 * P * R / (std::f64::consts::PI * e_star)).sqrt();
     let l = lay.l;
     let block = {
-        let m = model(lay.lower(), E, NU);
+        let m = model(lay.lower().unwrap(), E, NU);
         let mut c = Constraints::new();
         c.clamp(&m.mesh, "far").unwrap();
         sub("block", m, c)
@@ -156,7 +156,7 @@ fn stick_zone_half_width_follows_cattaneo_mindlin() {
     // Case 0: the normal load P'. Case 1: the tangential load mu P' (through the contact centre).
     let q = MU * P;
     let cylinder = {
-        let m = model(lay.upper(), E, NU);
+        let m = model(lay.upper().unwrap(), E, NU);
         let s = sub("cylinder", m, Constraints::new());
         let s = with_load(s, |m, ld: &mut Loads| {
             ld.traction(m, "far", move |_, _| [0.0, -P / (2.0 * l), 0.0])

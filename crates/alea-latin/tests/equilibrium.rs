@@ -33,7 +33,7 @@ mod common;
 
 use alea_fem::{Constraints, DofMap, Loads};
 use alea_latin::{
-    Assembly, InterfaceSpec, LatinError, LatinOptions, LatinSolver, PointStatus, RunInput,
+    Assembly, InterfaceSpec, LatinError, LatinOptions, LatinSolver, Pairing, PointStatus, RunInput,
     RunStatus, Substructure, constant,
 };
 use alea_mesh::CellType;
@@ -234,6 +234,7 @@ fn mismatched_sides_name_the_interface_and_the_worst_distance() {
     let m = model(rect(0.0, 0.0, 2.0, 0.5, 14, 4, CellType::Quad4), E, 0.3);
     asm.subs[1] = sub("block", m, Constraints::new());
     asm.interfaces.truncate(1);
+    asm.interfaces[0].pairing = Pairing::NodeToNode;
     let x1: Vec<f64> = (0..=16).map(|i| i as f64 / 8.0).collect();
     let x2: Vec<f64> = (0..=14).map(|i| i as f64 / 7.0).collect();
     // Worst distance from a plane node to its nearest block node.
@@ -268,6 +269,7 @@ fn mismatched_sides_name_the_interface_and_the_worst_distance() {
     let m = model(rect(0.01, 0.0, 2.0, 0.5, 16, 4, CellType::Quad4), E, 0.3);
     asm.subs[1] = sub("block", m, Constraints::new());
     asm.interfaces.truncate(1);
+    asm.interfaces[0].pairing = Pairing::NodeToNode;
     match err_of(LatinSolver::new(asm, LatinOptions::default())) {
         LatinError::Unmatched {
             interface, worst, ..

@@ -51,8 +51,8 @@ mod common;
 
 use alea_fem::{Constraints, Loads};
 use alea_latin::{
-    Assembly, InterfaceSpec, LatinOptions, LatinSolver, PointStatus, RunInput, RunStatus,
-    Substructure,
+    Assembly, InterfaceSpec, LatinOptions, LatinSolver, PairingKind, PointStatus, RunInput,
+    RunStatus, Substructure,
 };
 use common::contact::{Layout, linear_fit};
 use common::*;
@@ -65,6 +65,10 @@ struct Case {
     radius: f64,
     load: f64,
     layout: Layout,
+    /// True geometry: the cylinder meshed with its curved bottom and this many cells across
+    /// the fine strip (non-matching, mortar pairing); `None`: flat faces with coincident nodes
+    /// and the curvature in `g0`.
+    curved: Option<usize>,
 }
 
 impl Case {
@@ -92,6 +96,7 @@ fn hertz_steel_block_aluminium_cylinder() {
             m: 35,
             full: false,
         },
+        curved: None,
     });
 }
 
@@ -111,6 +116,50 @@ fn hertz_identical_materials() {
             m: 35,
             full: false,
         },
+        curved: None,
+    });
+}
+
+#[test]
+fn hertz_true_geometry_non_matching() {
+    // The cylinder (aluminium, R = 50 mm) meshed as a curved body, 40 cells across the strip,
+    // on the steel block with 50: no node of the cylinder's bottom faces a node of the block;
+    // the interface points are on the coarser side, the cylinder.
+    let (e1, nu1, e2, nu2, r) = (210e3, 0.3, 70e3, 0.33, 50.0);
+    let e_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+    check(Case {
+        block: (e1, nu1),
+        cylinder: (e2, nu2),
+        radius: r,
+        load: std::f64::consts::PI * e_star / (4.0 * r),
+        layout: Layout {
+            a: 2.1,
+            l: 25.0,
+            n: 50,
+            m: 35,
+            full: false,
+        },
+        curved: Some(40),
+    });
+}
+
+#[test]
+fn hertz_true_geometry_identical_materials() {
+    // Steel on steel, R = 20 mm; the cylinder finer (60 cells) than the block (50): the
+    // points are on the block.
+    check(Case {
+        block: (210e3, 0.3),
+        cylinder: (210e3, 0.3),
+        radius: 20.0,
+        load: 1500.0,
+        layout: Layout {
+            a: 1.22,
+            l: 14.0,
+            n: 50,
+            m: 35,
+            full: false,
+        },
+        curved: Some(60),
     });
 }
 
@@ -121,9 +170,8 @@ fn check(case: Case) {
     let rad = case.radius;
     let b_th = (4.0 * p_total * rad / (std::f64::consts::PI * case.e_star())).sqrt();
     let p0_th = 2.0 * p_total / (std::f64::consts::PI * b_th);
-    let h = lay.h();
     let block = {
-        let m = model(lay.lower(), case.block.0, case.block.1);
+        let m = model(lay.lower().unwrap(), case.block.0, case.block.1);
         let mut c = Constraints::new();
         c.fix_component(&m.mesh, "sym", 0, 0.0).unwrap();
         c.clamp(&m.mesh, "far").unwrap();
@@ -131,7 +179,11 @@ fn check(case: Case) {
     };
     let load = 0.5 * p_total / lay.l;
     let cylinder: Substructure = {
-        let m = model(lay.upper(), case.cylinder.0, case.cylinder.1);
+        let mesh = match case.curved {
+            Some(n) => Layout { n, ..lay }.upper_curved(rad).unwrap(),
+            None => lay.upper().unwrap(),
+        };
+        let m = model(mesh, case.cylinder.0, case.cylinder.1);
         let mut c = Constraints::new();
         c.fix_component(&m.mesh, "sym", 0, 0.0).unwrap();
         with_load(sub("cylinder", m, c), |m, l: &mut Loads| {
@@ -139,7 +191,9 @@ fn check(case: Case) {
         })
     };
     let mut iface = InterfaceSpec::coulomb("contact", 0, "contact", 1, "contact", 0.0);
-    iface.gap = Arc::new(move |x: [f64; 3]| rad - (rad * rad - x[0] * x[0]).sqrt());
+    if case.curved.is_none() {
+        iface.gap = Arc::new(move |x: [f64; 3]| rad - (rad * rad - x[0] * x[0]).sqrt());
+    }
     let tol = 1e-7;
     let mut solver = LatinSolver::new(
         Assembly {
@@ -165,6 +219,12 @@ fn check(case: Case) {
     );
     assert_eq!(r.status, RunStatus::Converged, "{:?}", r.residuals.last());
     let it = &r.interfaces[0];
+    let want = if case.curved.is_some() {
+        PairingKind::Mortar
+    } else {
+        PairingKind::NodeToNode
+    };
+    assert_eq!(it.pairing.kind, want);
 
     // Total force on the cylinder (side 2): linear stage exactly, local stage to tolerance.
     let half = 0.5 * p_total;
@@ -187,6 +247,14 @@ fn check(case: Case) {
         .map(|i| (it.points[i].x[0], it.normal_tangential(i).0, it.status[i]))
         .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Point spacing: the fine cells of the side carrying the points (the block's with coincident
+    // nodes, the coarser cylinder's with the mortar pairing).
+    let h = pts[1].0 - pts[0].0;
+    let coarser = case.curved.map_or(lay.n, |n| n.min(lay.n));
+    assert!(
+        (h - lay.a / coarser as f64).abs() < 1e-9 * h,
+        "points on the coarser side"
+    );
     // Contact zone from the status: closed up to x_c, open from x_o = x_c + h.
     let last_closed = pts
         .iter()
@@ -244,8 +312,10 @@ fn check(case: Case) {
         err_p_center.abs() < 0.03,
         "centre pressure error {err_p_center}"
     );
-    // No interpenetration in the local stage.
+    // No interpenetration in the local stage: the separation along the normal is >= 0.
     for i in 0..it.points.len() {
-        assert!(it.jump(i)[1] >= -1e-12 * b_th, "gap {}", it.jump(i)[1]);
+        let (j, n) = (it.jump(i), it.points[i].normal);
+        let g = j[0] * n[0] + j[1] * n[1];
+        assert!(g >= -1e-12 * b_th, "gap {g}");
     }
 }

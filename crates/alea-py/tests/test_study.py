@@ -120,7 +120,7 @@ def test_store_read_back_and_resume(study, tmp_path):
     # Another version of the study file is refused.
     changed = tmp_path / "plate.toml"
     changed.write_text((DATA / "plate.toml").read_text().replace("seed = 7", "seed = 8"))
-    with pytest.raises(ValueError, match="different version"):
+    with pytest.raises(ValueError, match="different study or version"):
         alea.open_store(directory, study=changed)
     with pytest.raises(FileNotFoundError):
         alea.open_store(tmp_path / "nothing")

@@ -8,7 +8,8 @@ use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 use std::sync::Arc;
 
 use alea_latin::{
-    Assembly, InterfaceSpec, LatinOptions, PointField, RunInput, SearchDirection, Substructure,
+    Assembly, InterfaceSpec, LatinOptions, Pairing, PointField, RunInput, SearchDirection,
+    Substructure,
 };
 use alea_mesh::{CellType, Mesh, generate};
 use toml::Spanned;
@@ -102,6 +103,60 @@ pub struct BuiltModel {
     pub units: crate::spec::UnitsSpec,
     /// How the parameters enter the model.
     pub parametric: Parametric,
+    /// Where each `[[interface]]` entry is in the model file (for pairing errors).
+    pub interface_sites: Vec<InterfaceSite>,
+}
+
+/// The file and lines of one `[[interface]]` entry.
+#[derive(Clone, Debug)]
+pub struct InterfaceSite {
+    /// The model file.
+    pub file: std::path::PathBuf,
+    /// Line of `side2`.
+    pub side2: usize,
+    /// Line of `tolerance` (of `side2` if not given).
+    pub tolerance: usize,
+    /// Line of `search_distance` (of `side2` if not given).
+    pub search_distance: usize,
+}
+
+impl BuiltModel {
+    /// Sets up the LATIN solver of the model. An interface whose sides cannot be paired
+    /// (node-to-node sides that do not match, no part of side 2 within the mortar search
+    /// distance, ...) is an input error naming the file, the `[[interface]]` entry's line and
+    /// the field.
+    pub fn solver(&self) -> Result<alea_latin::LatinSolver, StudyError> {
+        alea_latin::LatinSolver::new(self.assembly.clone(), self.options.clone()).map_err(|e| {
+            let (name, unmatched) = match &e {
+                alea_latin::LatinError::Unmatched { interface, .. } => (interface, true),
+                alea_latin::LatinError::Pairing { interface, .. } => (interface, false),
+                _ => return StudyError::Latin(e),
+            };
+            let found = self
+                .assembly
+                .interfaces
+                .iter()
+                .position(|i| &i.name == name);
+            match found.and_then(|i| Some((i, self.interface_sites.get(i)?))) {
+                Some((i, site)) => {
+                    let (field, line) = if unmatched {
+                        ("tolerance", site.tolerance)
+                    } else if self.assembly.interfaces[i].search_distance.is_some() {
+                        ("search_distance", site.search_distance)
+                    } else {
+                        ("side2", site.side2)
+                    };
+                    StudyError::Input {
+                        file: site.file.clone(),
+                        line,
+                        field: format!("interface[{i}].{field}"),
+                        message: e.to_string(),
+                    }
+                }
+                None => StudyError::Latin(e),
+            }
+        })
+    }
 }
 
 /// Compiles a number-or-expression against `vars`.
@@ -772,6 +827,7 @@ pub fn build_model(
         defines,
     };
     let mut interfaces = Vec::new();
+    let mut interface_sites = Vec::new();
     for (i, it) in file.interface.iter().enumerate() {
         let f = |k: &str| format!("interface[{i}].{k}");
         let side = |v: &Spanned<[String; 2]>, key: &str| -> Result<(usize, String), StudyError> {
@@ -829,6 +885,43 @@ pub fn build_model(
             Some(g) => compile(src, g, &profile_vars, &f("gap"))?,
             None => Expr::constant(0.0),
         };
+        if let Some(p) = &it.pairing {
+            spec.pairing = match p.get_ref().as_str() {
+                "auto" => Pairing::Auto,
+                "node" => Pairing::NodeToNode,
+                "mortar" => Pairing::Mortar,
+                other => {
+                    return Err(src.error(
+                        p.span(),
+                        f("pairing"),
+                        format!("unknown pairing '{other}'; expected auto, node or mortar"),
+                    ));
+                }
+            };
+        }
+        if let Some(t) = &it.tolerance {
+            spec.match_tolerance = Some(positive(src, t, &f("tolerance"))?);
+        }
+        if let Some(d) = &it.search_distance {
+            let v = *d.get_ref();
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(src.error(
+                    d.span(),
+                    f("search_distance"),
+                    format!("must be finite and >= 0, got {v}"),
+                ));
+            }
+            spec.search_distance = Some(v);
+        }
+        let side2_line = src.line_of(it.side2.span().start);
+        let line_or =
+            |v: Option<std::ops::Range<usize>>| v.map_or(side2_line, |r| src.line_of(r.start));
+        interface_sites.push(InterfaceSite {
+            file: src.path.clone(),
+            side2: side2_line,
+            tolerance: line_or(it.tolerance.as_ref().map(|t| t.span())),
+            search_distance: line_or(it.search_distance.as_ref().map(|t| t.span())),
+        });
         spec.mu = parametric.profile(&mu, &params.nominal);
         spec.gap = parametric.profile(&gap, &params.nominal);
         parametric.mu.push(mu);
@@ -857,6 +950,9 @@ pub fn build_model(
     if let Some(a) = &sv.acceleration {
         options.acceleration = *a.get_ref();
     }
+    if let Some(c) = &sv.coarse {
+        options.coarse = *c.get_ref();
+    }
     if let Some(t) = &sv.equilibrium_tolerance {
         options.equilibrium_tolerance = positive(src, t, "solver.equilibrium_tolerance")?;
     }
@@ -875,6 +971,7 @@ pub fn build_model(
         options,
         units: file.units.clone(),
         parametric,
+        interface_sites,
     };
     crate::checks::check_interfaces(src, &file.interface, &built)?;
     Ok(built)

@@ -2,10 +2,11 @@
 //! that every mistake is an input error naming file, line and field (exit code 2), never a
 //! failure of the solver set-up:
 //!
-//! - interfaces: two sides on two different substructures; the sides' nodes pair one to one
-//!   (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]); paired nodes
-//!   have opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet belongs to
-//!   two interfaces;
+//! - interfaces: two sides on two different substructures; when the sides' nodes pair one to
+//!   one (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]), paired
+//!   nodes have opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet
+//!   belongs to two interfaces (sides that do not match are paired by the mortar method, whose
+//!   errors are reported when the solver is built, [`crate::BuiltModel::solver`]);
 //! - quantities: unique names (they head the columns of `samples.csv`); a `displacement` point
 //!   lies within one cell size of its nearest node (else it is outside the substructure, and
 //!   the nearest node would silently be somewhere else).
@@ -81,13 +82,17 @@ pub fn check_interfaces(
                 .map(|&n| subs[sub].model.mesh.coords[n])
                 .collect()
         };
-        let partner = pair_nodes(
+        // Sides that do not match node to node are paired by the mortar method or rejected
+        // when the solver is built (`BuiltModel::solver`, naming the tolerance or search
+        // distance field); the facing check below is for coincident nodes.
+        let Ok(partner) = pair_nodes(
             &it.name,
             &x(it.sub1, &g1.nodes),
             &x(it.sub2, &g2.nodes),
             it.match_tolerance,
-        )
-        .map_err(|e| src.error(spec.side1.span(), field.clone(), e.to_string()))?;
+        ) else {
+            continue;
+        };
         for (k, &j) in partner.iter().enumerate() {
             let (a, b) = (g1.normals[k], g2.normals[j]);
             let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

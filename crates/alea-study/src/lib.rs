@@ -26,7 +26,7 @@ mod spatial;
 pub mod spec;
 pub mod store;
 
-pub use build::{BuiltModel, Parametric, build_mesh, build_model};
+pub use build::{BuiltModel, InterfaceSite, Parametric, build_mesh, build_model};
 pub use error::StudyError;
 pub use params::{ParamSpace, build_params};
 pub use source::Source;

@@ -341,10 +341,7 @@ impl RunSetup {
     /// Builds the solver (and factorises), then the error estimator's set-up if the study has
     /// one.
     pub fn build(study: &Study) -> Result<Self, StudyError> {
-        let solver = Arc::new(LatinSolver::new(
-            study.model.assembly.clone(),
-            study.model.options.clone(),
-        )?);
+        let solver = Arc::new(study.model.solver()?);
         let cre = if estimates_error(study) {
             Some(Arc::new(CreSetup::new(study, &solver)?))
         } else {

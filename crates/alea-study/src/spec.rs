@@ -179,6 +179,18 @@ pub struct InterfaceSpecToml {
     /// expression of the parameters and the position. Default 0.
     #[serde(default)]
     pub gap: Option<Spanned<NumOrExpr>>,
+    /// Pairing of the sides: `auto` (node to node when they match, mortar otherwise; the
+    /// default), `node` (node to node only) or `mortar`.
+    #[serde(default)]
+    pub pairing: Option<Spanned<String>>,
+    /// Node-to-node matching tolerance (length): largest distance between paired nodes.
+    /// Default 1e-6 x the interface size.
+    #[serde(default)]
+    pub tolerance: Option<Spanned<f64>>,
+    /// Mortar search distance (length): largest normal distance between the sides at which
+    /// they are paired. Default 5 % of the interface size.
+    #[serde(default)]
+    pub search_distance: Option<Spanned<f64>>,
 }
 
 /// `[solver]`.
@@ -194,12 +206,15 @@ pub struct SolverSpec {
     /// Relaxation in (0, 1]. Default 1.
     #[serde(default)]
     pub relaxation: Option<Spanned<f64>>,
-    /// Search direction factor (k = factor E / L). Default 1.
+    /// Search direction factor (k = factor E / L). Default 3.
     #[serde(default)]
     pub search_direction_factor: Option<Spanned<f64>>,
     /// Anderson acceleration depth (0: off). Default 5.
     #[serde(default)]
     pub acceleration: Option<Spanned<usize>>,
+    /// Coarse problem on the interface resultants and moments (two-scale LATIN). Default true.
+    #[serde(default)]
+    pub coarse: Option<Spanned<bool>>,
     /// Largest relative imbalance of a substructure for a run to be converged. Default 1e-4.
     #[serde(default)]
     pub equilibrium_tolerance: Option<Spanned<f64>>,

@@ -4,7 +4,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use alea_fem::{Loads, post, solve_elastic, von_mises};
-use alea_latin::{LatinSolver, RunStatus};
+use alea_latin::RunStatus;
 use alea_mesh::vtu::VtuWriter;
 use alea_study::{Source, build_model, build_params, spec::ModelFile};
 use anyhow::{Context, Result};
@@ -126,7 +126,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         );
         return Ok(());
     }
-    let mut solver = LatinSolver::new(built.assembly.clone(), built.options.clone())?;
+    let mut solver = built.solver()?;
     println!(
         "LATIN set-up (assembly + factorisations): {:.3} s",
         solver.setup_seconds

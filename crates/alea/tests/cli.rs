@@ -346,3 +346,71 @@ fn three_d_resultants_and_reactions_print_every_component_at_full_precision() {
     );
     assert!(dir.join("slip3d/interface_contact.csv").exists());
 }
+
+/// Interface pairing errors (sides that do not match node to node, nothing to pair within the
+/// mortar search distance) are input errors: exit code 2, naming the file, the line and the
+/// field of the `[[interface]]` entry.
+#[test]
+fn interface_pairing_errors_name_file_line_and_field() {
+    let base = std::fs::read_to_string(root().join("examples/dovetail-contact.toml")).unwrap();
+    let side2 = "side2 = [\"root\", \"flank_right_root\"]";
+    assert!(base.contains(side2));
+    let far = "side2 = [\"root\", \"root_top\"]";
+    let cases: &[(&str, &str, &str)] = &[
+        // Node to node only: the root's top does not match the disk's flank.
+        (
+            "pairing = \"node\"\n",
+            "interface[1].tolerance",
+            "do not match node to node",
+        ),
+        // Mortar (auto falls back to it): nothing of the root's top faces the flank closely.
+        ("", "interface[1].side2", "no part of side 2 faces side 1"),
+        (
+            "search_distance = 0.5\n",
+            "interface[1].search_distance",
+            "no part of side 2 faces side 1",
+        ),
+    ];
+    let dir = tmp("pairing");
+    for (i, (extra, field, needle)) in cases.iter().enumerate() {
+        let text = base.replacen(side2, &format!("{extra}{far}"), 1);
+        let path = dir.join(format!("pairing{i}.toml"));
+        std::fs::write(&path, &text).unwrap();
+        let o = alea()
+            .arg("solve")
+            .arg(&path)
+            .arg("--out")
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "case {i}: {err}");
+        assert!(!err.contains("panicked"), "case {i}: {err}");
+        assert!(err.contains(field), "case {i}: field '{field}': {err}");
+        assert!(err.contains(needle), "case {i}: '{needle}': {err}");
+        assert!(err.contains("'flank_right'"), "case {i}: {err}");
+        // The line of the field in the entry (of side2 when the field is not given).
+        let start = text
+            .lines()
+            .position(|l| l.contains("name = \"flank_right\""))
+            .unwrap();
+        let entry: Vec<(usize, &str)> = text
+            .lines()
+            .enumerate()
+            .skip(start)
+            .take_while(|(k, l)| *k == start || !l.starts_with('['))
+            .collect();
+        let key = field.rsplit('.').next().unwrap();
+        let find = |key: &str| {
+            entry
+                .iter()
+                .find(|(_, l)| l.starts_with(&format!("{key} =")))
+                .map(|(k, _)| k + 1)
+        };
+        let line = find(key).or_else(|| find("side2")).unwrap();
+        assert!(
+            err.contains(&format!("pairing{i}.toml:{line}:")),
+            "case {i}: line {line} expected in: {err}"
+        );
+    }
+}

@@ -183,15 +183,21 @@ side2 = ["root", "flank_right_root"]"#;
             "two different substructures",
         ),
         (
-            "sides not facing",
+            "sides not facing (left flank of the disk with the right flank of the root)",
             base.replacen(
                 "side2 = [\"root\", \"flank_left_root\"]",
-                "side2 = [\"root\", \"flank_right_root\"]",
+                "side2 = [\"root\", \"SWAPPED\"]",
                 1,
-            ),
-            "side1 = [\"disk\", \"flank_left_disk\"]",
-            "interface[0]",
-            "do not match",
+            )
+            .replacen(
+                "side2 = [\"root\", \"flank_right_root\"]",
+                "side2 = [\"root\", \"flank_left_root\"]",
+                1,
+            )
+            .replacen("SWAPPED", "flank_right_root", 1),
+            "side2 = [\"root\", \"flank_right_root\"]",
+            "interface[0].side2",
+            "faces side 1",
         ),
         (
             "facets in two interfaces",

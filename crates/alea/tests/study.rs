@@ -439,3 +439,43 @@ fn adaptive_study_is_deterministic_and_resumable() {
     );
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// The shipped mortar example (two parts meshed separately in Gmsh) runs end to end with every
+/// output: per-run ParaView files, mean / std fields, samples, summary and report.
+#[test]
+fn mortar_example_runs_with_every_output() {
+    let dir = tmp("mortar");
+    let text = std::fs::read_to_string(root().join("examples/punch-on-base.toml")).unwrap()
+        + "\n[output]\nvtu = true\n\n[statistics]\nsamples = 20000\n";
+    // The mesh path is relative to the study file: copy the mesh beside the copy.
+    let input = tmp("mortar-input");
+    std::fs::create_dir_all(input.join("meshes")).unwrap();
+    std::fs::copy(
+        root().join("examples/meshes/punch-on-base.msh"),
+        input.join("meshes/punch-on-base.msh"),
+    )
+    .unwrap();
+    let study = input.join("study.toml");
+    std::fs::write(&study, text).unwrap();
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let vtm = std::fs::read_dir(dir.join("vtu"))
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "vtm")
+        })
+        .count();
+    assert_eq!(vtm, 16);
+    for f in [
+        "summary.json",
+        "samples.csv",
+        "paraview/mean_std.vtm",
+        "report/report.html",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+}
