@@ -65,6 +65,7 @@ mod data;
 mod domain;
 pub mod eet;
 mod error;
+pub mod estimator;
 mod fe;
 pub mod interface;
 mod linalg;
@@ -76,11 +77,12 @@ mod substructure;
 pub mod topology;
 
 pub use data::{
-    FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
+    AffineBody, FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
 };
 pub use domain::{Admissible, CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
 pub use error::CreError;
+pub use estimator::DomainEstimator;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};
 pub use samples::EnergySampler;
-pub use substructure::estimate_latin;
+pub use substructure::{LatinEstimator, estimate_latin, estimate_latin_direct};
