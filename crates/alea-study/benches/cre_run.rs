@@ -7,10 +7,12 @@
 //! Cases:
 //! - `blade`: the simple blade root study (`examples/blade-root-simple.toml`, Q4, 11.5k dof),
 //!   E2 = 240 GPa, mu = 0.5 -> E2 = 245 GPa, mu = 0.55, estimated as a study does
-//!   (`CreSetup::estimate_run`: `estimate_latin` plus the phase-2 coefficients of every cell).
+//!   (`CreSetup::estimate_run`: the study's `LatinEstimator` plus the phase-2 coefficients of
+//!   every cell); the direct path (`estimate_latin_direct`) is timed for comparison.
 //! - `dovetail`: the four-part dovetail of `alea_latin::samples` (refinement 6, Q4, 23k dof):
 //!   factors 1 -> Young's factors [1.1, 1.1, 0.95, 0.95] and load factor 1.2 on the root
-//!   halves, estimated with `alea_cre::estimate_latin` (loads scaled by the factor).
+//!   halves, estimated with a `LatinEstimator` built once (loads scaled by the factor); the
+//!   direct path is timed for comparison.
 //!
 //! Run: `cargo bench -p alea-study --bench cre_run` (both cases, 1 and 2 threads);
 //! `cargo bench -p alea-study --bench cre_run -- blade` for one case. Prints the best of
@@ -20,7 +22,7 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-use alea_cre::{CreOptions, LoadData, estimate_latin};
+use alea_cre::{CreOptions, LatinEstimator, LoadData, estimate_latin_direct};
 use alea_latin::samples::{PULL, SHEAR};
 use alea_latin::{LatinSolver, LocalState, RunInput, RunResult, RunStatus};
 use alea_study::Source;
@@ -60,6 +62,18 @@ fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, f64, T) {
     (wall, cpu, last.expect("at least one repetition"))
 }
 
+/// Prints the context's set-up time and size and the direct path's time for one run.
+fn extra(setup: f64, bytes: usize, cells: usize, direct: (f64, f64), est: f64) {
+    println!(
+        "    context set-up {setup:.3} s, cache {:.1} MB ({} bytes per cell); direct path {:.4} s ({:.4} CPU): context {:.1}x faster",
+        bytes as f64 / 1e6,
+        bytes / cells.max(1),
+        direct.0,
+        direct.1,
+        direct.0 / est
+    );
+}
+
 fn report(name: &str, threads: usize, iterations: usize, solve: (f64, f64), est: (f64, f64)) {
     println!(
         "| {name} | {threads} | {iterations} | {:.4} s ({:.4} CPU) | {:.4} s ({:.4} CPU) | {:.2} | {:.2} |",
@@ -79,7 +93,9 @@ fn blade(reps: usize, threads: usize) {
         .expect("study builds");
     let solver = LatinSolver::new(study.model.assembly.clone(), study.model.options.clone())
         .expect("solver set-up");
+    let t0 = Instant::now();
     let setup = CreSetup::new(&study, &solver).expect("estimator set-up");
+    let setup_seconds = t0.elapsed().as_secs_f64();
     let (a, b) = ([240e3, 0.5], [245e3, 0.55]);
     let first = solver
         .run_shared(&study.model.parametric.run_input(&a, vec![]))
@@ -105,6 +121,33 @@ fn blade(reps: usize, threads: usize) {
         "    theta = {:.6e}, relative {:.4e}, cold run {} iterations",
         rec.theta, rec.relative, first.iterations
     );
+    // The same estimate through the direct path (loads of the study: no load factors here).
+    let ctx = LatinEstimator::new(&study.model.assembly, &setup.options).expect("context");
+    let asm = &study.model.assembly;
+    let loads = blade_loads(&study);
+    let (dw, dc, direct) = best_of(reps.min(3), || {
+        estimate_latin_direct(asm, &loads, &res, &setup.options).expect("direct")
+    });
+    let mine = ctx.estimate(&loads, &res).expect("context estimate");
+    assert!((mine.theta - direct.theta).abs() <= 1e-9 * direct.theta);
+    assert!((rec.theta - direct.theta).abs() <= 1e-9 * direct.theta);
+    let cells: usize = asm.subs.iter().map(|s| s.model.mesh.num_cells()).sum();
+    extra(setup_seconds, ctx.cache_bytes(), cells, (dw, dc), ew);
+}
+
+/// The blade root's loads as the estimator takes them: the pressures of the root S2.
+fn blade_loads(study: &Study) -> Vec<LoadData> {
+    let mut out = Vec::new();
+    for sub in &study.file.substructure {
+        let mut d = LoadData::new();
+        for l in &sub.load {
+            let group = l.group.as_ref().expect("load group").get_ref().clone();
+            let p = *l.pressure.as_ref().expect("pressure load").get_ref();
+            d = d.traction(&group, move |_, n| [-p * n[0], -p * n[1], -p * n[2]]);
+        }
+        out.push(d);
+    }
+    out
 }
 
 fn dovetail_loads(factor: f64) -> Vec<LoadData> {
@@ -133,9 +176,10 @@ fn dovetail(reps: usize, threads: usize) {
     assert_eq!(res.status, RunStatus::Converged);
     let loads = dovetail_loads(lf);
     let options = CreOptions::default();
-    let (ew, ec, est) = best_of(reps, || {
-        estimate_latin(&asm, &loads, &res, &options).expect("estimate")
-    });
+    let t0 = Instant::now();
+    let ctx = LatinEstimator::new(&asm, &options).expect("context");
+    let setup_seconds = t0.elapsed().as_secs_f64();
+    let (ew, ec, est) = best_of(reps, || ctx.estimate(&loads, &res).expect("estimate"));
     report(
         "four-part dovetail (23k dof)",
         threads,
@@ -147,6 +191,12 @@ fn dovetail(reps: usize, threads: usize) {
         "    theta = {:.6e}, relative {:.4e}, cold run {} iterations",
         est.theta, est.relative, first.iterations
     );
+    let (dw, dc, direct) = best_of(reps.min(3), || {
+        estimate_latin_direct(&asm, &loads, &res, &options).expect("direct")
+    });
+    assert!((est.theta - direct.theta).abs() <= 1e-9 * direct.theta);
+    let cells: usize = asm.subs.iter().map(|s| s.model.mesh.num_cells()).sum();
+    extra(setup_seconds, ctx.cache_bytes(), cells, (dw, dc), ew);
 }
 
 fn main() {

@@ -3,9 +3,10 @@
 //! `alea-estimate`) needs from the model.
 //!
 //! For each converged run: the loads of every substructure as functions (the study's
-//! tractions, pressures, body forces and centrifugal inertia, times the run's load factors),
-//! the CRE of the LATIN solution ([`alea_cre::estimate_latin`]: EET admissible stresses per
-//! substructure, de Saxce interface term), and a [`CreRecord`]: per substructure the phase-2
+//! tractions, pressures, body forces and centrifugal inertia - an affine body force - times the
+//! run's load factors), the CRE of the LATIN solution (the study's
+//! [`alea_cre::LatinEstimator`], built once: EET admissible stresses per substructure, de Saxce
+//! interface term), and a [`CreRecord`]: per substructure the phase-2
 //! coefficients of the admissible stress (27 numbers per Q4 or T3 cell, the compact form of
 //! `sigma_hat`; its samples are rebuilt with [`alea_cre::EnergySampler`]), per interface point the
 //! jump `w_hat` (gap included, local stage `n - 1`) and the force `F_hat` (local stage `n`),
@@ -16,9 +17,7 @@
 //! 3D substructures (no EET construction yet) contribute their interface terms only; the
 //! estimate says so ([`CreSetup::substructures_estimated`]).
 
-use std::sync::Arc;
-
-use alea_cre::{CreOptions, EnergySampler, LoadData, estimate_latin};
+use alea_cre::{AffineBody, CreOptions, EnergySampler, LatinEstimator, LoadData};
 use alea_estimate::{InterfaceKind, InterfaceLayout, Layout, Parameters, SubLayout};
 use alea_latin::{LatinSolver, RunResult};
 
@@ -48,6 +47,8 @@ pub struct CreSetup {
     /// Estimator options.
     pub options: CreOptions,
     samplers: Vec<Option<EnergySampler>>,
+    /// The multiresolution estimator (2D substructures only).
+    estimator: Option<LatinEstimator>,
     loads: Vec<Vec<LoadTerm>>,
     /// The entities as the stochastic estimator sees them.
     pub layout: Layout,
@@ -288,9 +289,18 @@ impl CreSetup {
                     .collect(),
             })
             .collect();
+        let estimator = if samplers.iter().all(|s| s.is_some()) {
+            Some(
+                LatinEstimator::new(&study.model.assembly, &options)
+                    .map_err(|e| StudyError::Other(format!("error estimator set-up: {e}")))?,
+            )
+        } else {
+            None
+        };
         Ok(CreSetup {
             options,
             samplers,
+            estimator,
             loads,
             layout: Layout { subs, interfaces },
         })
@@ -320,33 +330,35 @@ impl CreSetup {
             }
         }
         if !bodies.is_empty() {
-            let bodies = Arc::new(bodies);
-            data = data.body(move |x| {
-                let mut b = [0.0; 3];
-                for (f, t) in bodies.iter() {
-                    let v = match t {
-                        LoadTerm::Body(v) => *v,
-                        LoadTerm::Centrifugal {
-                            rho_omega2,
-                            point,
-                            axis,
-                        } => {
-                            let r = [x[0] - point[0], x[1] - point[1], x[2] - point[2]];
-                            let s = r[0] * axis[0] + r[1] * axis[1] + r[2] * axis[2];
-                            [
-                                rho_omega2 * (r[0] - s * axis[0]),
-                                rho_omega2 * (r[1] - s * axis[1]),
-                                rho_omega2 * (r[2] - s * axis[2]),
-                            ]
+            // Constant and centrifugal body forces sum to an affine one.
+            let mut b = AffineBody::default();
+            for (f, t) in bodies {
+                match t {
+                    LoadTerm::Body(v) => {
+                        for c in 0..3 {
+                            b.constant[c] += f * v[c];
                         }
-                        _ => [0.0; 3],
-                    };
-                    for c in 0..3 {
-                        b[c] += f * v[c];
                     }
+                    LoadTerm::Centrifugal {
+                        rho_omega2,
+                        point,
+                        axis,
+                    } => {
+                        // rho omega^2 (I - a a^T)(x - x_0).
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                let pij = f
+                                    * rho_omega2
+                                    * (if i == j { 1.0 } else { 0.0 } - axis[i] * axis[j]);
+                                b.gradient[i][j] += pij;
+                                b.constant[i] -= pij * point[j];
+                            }
+                        }
+                    }
+                    _ => {}
                 }
-                b
-            });
+            }
+            data = data.affine_body(b);
         }
         data
     }
@@ -376,9 +388,8 @@ impl CreSetup {
         let err = |e: alea_cre::CreError| {
             StudyError::Other(format!("error estimate of the run at {theta:?}: {e}"))
         };
-        let (coefficients, theta_run, relative) = if self.substructures_estimated() {
-            let cre =
-                estimate_latin(&study.model.assembly, &loads, res, &self.options).map_err(err)?;
+        let (coefficients, theta_run, relative) = if let Some(estimator) = &self.estimator {
+            let cre = estimator.estimate(&loads, res).map_err(err)?;
             let coefficients = self
                 .samplers
                 .iter()

@@ -4,22 +4,27 @@
 //! Phase 1 ([`super::phase1`]) is linear in the run's data once the mesh, the constraints and the
 //! reference materials are fixed. With a Young's factor `alpha` (`D = alpha D0`), cached:
 //!
-//! - per cell the FE stiffness `K0_e` (packed), so that `Q_E(i) = alpha (K0_e u_e)_i / t -
-//!   int f phi_i`; for an affine body force the moments `int phi_i`, `int x phi_i`,
-//!   `int y phi_i` (on the FE load rule, computed on first use), a general one is integrated
-//!   on that rule as in the direct path;
-//! - per edge and adjacent cell the operator that maps `u_e` to the cell's FE traction
-//!   projections `int (sigma_h n) phi_k` on the edge (times the averaging share), so that
-//!   `b_bar = alpha sum_cells B_bar u_e`;
 //! - per node and direction the system's matrix `A` and the operator `P = A^T (A A^T)^+` of the
-//!   least-change solution, so that `y = y_bar + P (c - A y_bar)`.
+//!   least-change solution, so that `y = y_bar + P (c - A y_bar)` (the direct path's cost: an
+//!   eigendecomposition per node and direction);
+//! - per cell type the reference shape-function gradients at the points of the FE stiffness
+//!   rule and at the edge points of the traction projections: the element residuals
+//!   `Q_E(i) = alpha int B_i^T D0 B u_e - int f phi_i` and the averaged FE traction projections
+//!   `b_bar = alpha sum_cells int (D0 B u_e) n phi_k` are evaluated per run from them (a
+//!   Jacobian per point; storing `K0_e` and the projection operators instead would cost
+//!   ~1.3 KB per Q4 cell for ~0.5 us per cell saved);
+//! - for an affine body force the moments `int phi_i`, `int x phi_i`, `int y phi_i` (on the FE
+//!   load rule, computed on first use); a general one is integrated on that rule as in the
+//!   direct path.
 //!
 //! Prescribed tractions and interface sides (boundary edges, run-dependent functions and forces)
 //! are handled as in the direct path ([`super::phase1::EdgeLoads`]).
 
 use std::sync::{Arc, OnceLock};
 
+use alea_fem::reference::{MAX_NODES, shape};
 use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
+use alea_mesh::CellType;
 use rayon::prelude::*;
 
 use super::phase1::{EdgeLoads, EdgeTractions, NodeFrame, NodeSystem, node_frames};
@@ -29,26 +34,92 @@ use crate::fe::{facet_point, gauss01, hooke, mul3, traction_of};
 use crate::linalg::least_change_operator;
 use crate::topology::Topology;
 
-/// Index of the packed lower triangle entry `(i, j)`, `j <= i`.
+/// Reference shape-function gradients of one cell type at the points of the FE stiffness rule
+/// (with their weights) and, per local facet, at the 4 Gauss points of the traction
+/// projections (in the facet's own direction).
+#[derive(Clone, Debug)]
+struct KindTable {
+    stiffness: Vec<(f64, Vec<[f64; 2]>)>,
+    facets: Vec<Vec<Vec<[f64; 2]>>>,
+}
+
+impl KindTable {
+    fn new(kind: CellType, edge_rule: &[(f64, f64)]) -> Self {
+        let nn = kind.num_nodes();
+        let grads = |xi: [f64; 3]| -> Vec<[f64; 2]> {
+            let mut n = [0.0; MAX_NODES];
+            let mut dn = [[0.0; 3]; MAX_NODES];
+            shape(kind, xi, &mut n, &mut dn);
+            dn[..nn].iter().map(|d| [d[0], d[1]]).collect()
+        };
+        let rule = Quadrature::stiffness(kind);
+        KindTable {
+            stiffness: rule
+                .points
+                .iter()
+                .zip(&rule.weights)
+                .map(|(xi, w)| (*w, grads(*xi)))
+                .collect(),
+            facets: (0..kind.facets().len())
+                .map(|l| {
+                    edge_rule
+                        .iter()
+                        .map(|&(s, _)| grads(facet_point(kind, l, s)))
+                        .collect()
+                })
+                .collect(),
+        }
+    }
+}
+
+/// FE strain `[e_xx, e_yy, g_xy]`, physical gradients and Jacobian determinant at a point with
+/// reference gradients `dn` (the operations of `alea_fem::kinematics::point_geometry`).
 #[inline]
-fn tri(i: usize, j: usize) -> usize {
-    i * (i + 1) / 2 + j
+fn strain_at(
+    dn: &[[f64; 2]],
+    coords: &[[f64; 3]],
+    ue: &[f64],
+    grad: &mut [[f64; 2]; MAX_NODES],
+) -> ([f64; 3], f64) {
+    let mut j = [[0.0; 2]; 2];
+    for (d, x) in dn.iter().zip(coords) {
+        for k in 0..2 {
+            for l in 0..2 {
+                j[k][l] += d[k] * x[l];
+            }
+        }
+    }
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let inv = [
+        [j[1][1] / det, -j[0][1] / det],
+        [-j[1][0] / det, j[0][0] / det],
+    ];
+    let mut e = [0.0; 3];
+    for (a, d) in dn.iter().enumerate() {
+        let gx = inv[0][0] * d[0] + inv[0][1] * d[1];
+        let gy = inv[1][0] * d[0] + inv[1][1] * d[1];
+        grad[a] = [gx, gy];
+        let (ux, uy) = (ue[2 * a], ue[2 * a + 1]);
+        e[0] += gx * ux;
+        e[1] += gy * uy;
+        e[2] += gy * ux + gx * uy;
+    }
+    (e, det)
 }
 
-/// A node system with its least-change operator.
-#[derive(Clone, Debug)]
-struct CachedSystem {
-    sys: NodeSystem,
-    /// `P = A^T (A A^T)^+` (`unknowns x rows`).
-    p: Vec<f64>,
-}
-
-/// The systems of one node: `dirs[d]` indexes `systems` (both directions share one system
-/// when they have the same unknowns).
-#[derive(Clone, Debug)]
-struct NodeCache {
-    systems: Vec<CachedSystem>,
-    dirs: [u8; 2],
+/// One node system: the unknowns and the least-change data in the shared pools.
+#[derive(Clone, Copy, Debug)]
+struct FlatSystem {
+    /// Rows (cells around the node) and unknowns.
+    m: u16,
+    nu: u16,
+    /// Offset of the unknowns `(edge, slot)` in `unknowns`.
+    unknowns: u32,
+    /// Offset of `[sqrt(L) (nu), A (m x nu), P (nu x m)]` in `values`.
+    values: u32,
+    /// Offset and number of the known projections in `known`.
+    known: u32,
+    nknown: u16,
 }
 
 /// Phase-1 cache of one 2D domain.
@@ -58,21 +129,19 @@ pub(crate) struct Phase1Cache {
     pub frames: Vec<NodeFrame>,
     /// Offset of each cell's first node in node-indexed per-cell arrays (`num_cells + 1`).
     cell_nodes: Vec<usize>,
-    /// Packed FE stiffness of each cell (thickness included), from `stiffness_offsets[c]`.
-    stiffness: Vec<f64>,
-    stiffness_offsets: Vec<usize>,
-    /// Per edge, per adjacent cell: `(slots x 2) x 2 nn` operator (row-major), from
-    /// `bbar_offsets[e]`, cells in the edge's order.
-    bbar: Vec<f64>,
-    bbar_offsets: Vec<usize>,
-    nodes: Vec<Option<NodeCache>>,
+    /// Shape tables by cell type (`CellType as usize`).
+    tables: Vec<Option<KindTable>>,
+    /// Edge rule of the traction projections.
+    edge_rule: Vec<(f64, f64)>,
+    /// Per node: its systems of directions 0 and 1 (`u32::MAX`: none), indices in `systems`.
+    node_systems: Vec<[u32; 2]>,
+    systems: Vec<FlatSystem>,
+    unknowns: Vec<(u32, u32)>,
+    values: Vec<f64>,
+    /// Known projections `(row, edge, slot, eta)`.
+    known: Vec<(u16, u32, u16, f64)>,
     /// Affine body moments per cell node (`[int N, int x N, int y N]`), on first use.
     body: OnceLock<Vec<[f64; 3]>>,
-}
-
-/// Number of projection slots of an edge (ends, and the mid node of a quadratic edge).
-fn slots(topo: &Topology, e: usize) -> usize {
-    2 + topo.edges[e].mid.is_some() as usize
 }
 
 impl Phase1Cache {
@@ -87,137 +156,106 @@ impl Phase1Cache {
         for c in 0..ncell {
             cell_nodes.push(cell_nodes[c] + mesh.cell_nodes(c).len());
         }
-        let per_cell: Vec<Vec<f64>> = (0..ncell)
-            .into_par_iter()
-            .map(|c| -> Result<Vec<f64>, CreError> {
-                let mut ke = Vec::new();
-                alea_fem::assembly::element_stiffness(model, c, &mut ke)?;
-                let m = 2 * mesh.cell_nodes(c).len();
-                let mut packed = Vec::with_capacity(m * (m + 1) / 2);
-                for i in 0..m {
-                    packed.extend_from_slice(&ke[i * m..i * m + i + 1]);
-                }
-                Ok(packed)
-            })
-            .collect::<Result<_, _>>()?;
-        let mut stiffness_offsets = Vec::with_capacity(ncell + 1);
-        stiffness_offsets.push(0);
-        for k in &per_cell {
-            stiffness_offsets.push(stiffness_offsets.last().copied().unwrap_or(0) + k.len());
+        let edge_rule = gauss01(4);
+        let mut tables: Vec<Option<KindTable>> = Vec::new();
+        for c in 0..ncell {
+            let kind = mesh.cell_type(c);
+            let i = kind as usize;
+            if tables.len() <= i {
+                tables.resize(i + 1, None);
+            }
+            if tables[i].is_none() {
+                tables[i] = Some(KindTable::new(kind, &edge_rule));
+            }
         }
-        let stiffness = per_cell.concat();
-
-        let rule = gauss01(4);
-        let per_edge: Vec<Vec<f64>> = topo
-            .edges
-            .par_iter()
-            .enumerate()
-            .map(|(e, edge)| -> Result<Vec<f64>, CreError> {
-                let (n, len, _) = topo.geometry(mesh, e);
-                let share = 1.0 / edge.cells.len() as f64;
-                let ns = slots(topo, e);
-                let mut out = Vec::new();
-                for (k, &(c, l)) in edge.cells.iter().enumerate() {
-                    let kind = mesh.cell_type(c);
-                    let coords = model.cell_coords(c);
-                    let m = 2 * coords.len();
-                    let d = hooke(model.material(c)?, model.analysis);
-                    let mut op = vec![0.0; 2 * ns * m];
-                    for &(s, w) in &rule {
-                        let s_cell = if k == 0 { s } else { 1.0 - s };
-                        let g = point_geometry(kind, &coords, facet_point(kind, l, s_cell));
-                        let sh = edge.shape(s);
-                        for a in 0..coords.len() {
-                            let [gx, gy, _] = g.grad[a];
-                            for (j, eps) in [[gx, 0.0, gy], [0.0, gy, gx]].iter().enumerate() {
-                                let t = traction_of(&mul3(&d, eps), n);
-                                for kk in 0..ns {
-                                    for c2 in 0..2 {
-                                        op[(2 * kk + c2) * m + 2 * a + j] +=
-                                            share * w * len * sh[kk] * t[c2];
-                                    }
-                                }
-                            }
-                        }
-                    }
-                    out.extend_from_slice(&op);
-                }
-                Ok(out)
-            })
-            .collect::<Result<_, _>>()?;
-        let mut bbar_offsets = Vec::with_capacity(per_edge.len() + 1);
-        bbar_offsets.push(0);
-        for b in &per_edge {
-            bbar_offsets.push(bbar_offsets.last().copied().unwrap_or(0) + b.len());
-        }
-        let bbar = per_edge.concat();
-
-        let nodes: Vec<Option<NodeCache>> = (0..nn)
+        // Node systems and their least-change operators.
+        let per_node: Vec<Vec<(NodeSystem, Vec<f64>)>> = (0..nn)
             .into_par_iter()
             .map(|i| {
-                let s0 = NodeSystem::new(mesh, topo, &frames, i, 0)?;
-                let s1 = NodeSystem::new(mesh, topo, &frames, i, 1)?;
-                let cached = |sys: NodeSystem| {
-                    let p = least_change_operator(&sys.a, sys.num_rows(), sys.num_unknowns());
-                    CachedSystem { sys, p }
+                let mut out = Vec::new();
+                let Some(s0) = NodeSystem::new(mesh, topo, &frames, i, 0) else {
+                    return out;
                 };
-                Some(if s0 == s1 {
-                    NodeCache {
-                        systems: vec![cached(s0)],
-                        dirs: [0, 0],
-                    }
-                } else {
-                    NodeCache {
-                        systems: vec![cached(s0), cached(s1)],
-                        dirs: [0, 1],
-                    }
-                })
+                let s1 = NodeSystem::new(mesh, topo, &frames, i, 1);
+                for sys in std::iter::once(s0.clone()).chain(s1.filter(|s1| *s1 != s0)) {
+                    let p = least_change_operator(&sys.a, sys.num_rows(), sys.num_unknowns());
+                    out.push((sys, p));
+                }
+                out
             })
             .collect();
+        let mut node_systems = Vec::with_capacity(nn);
+        let mut systems = Vec::new();
+        let mut unknowns = Vec::new();
+        let mut values = Vec::new();
+        let mut known = Vec::new();
+        let too_big = || CreError::Invalid("node system too large for the estimator cache".into());
+        for list in per_node {
+            let first = systems.len() as u32;
+            let mut dirs = [u32::MAX; 2];
+            if !list.is_empty() {
+                dirs = [first, first + (list.len() as u32 - 1)];
+            }
+            for (sys, p) in list {
+                systems.push(FlatSystem {
+                    m: u16::try_from(sys.num_rows()).map_err(|_| too_big())?,
+                    nu: u16::try_from(sys.num_unknowns()).map_err(|_| too_big())?,
+                    unknowns: u32::try_from(unknowns.len()).map_err(|_| too_big())?,
+                    values: u32::try_from(values.len()).map_err(|_| too_big())?,
+                    known: u32::try_from(known.len()).map_err(|_| too_big())?,
+                    nknown: u16::try_from(sys.known.len()).map_err(|_| too_big())?,
+                });
+                unknowns.extend_from_slice(&sys.unknown);
+                values.extend_from_slice(&sys.sqrt_len);
+                values.extend_from_slice(&sys.a);
+                values.extend_from_slice(&p);
+                for &(row, e, slot, eta) in &sys.known {
+                    known.push((row as u16, e, slot as u16, eta));
+                }
+            }
+            node_systems.push(dirs);
+        }
+        u32::try_from(values.len()).map_err(|_| too_big())?;
         Ok(Phase1Cache {
             frames,
             cell_nodes,
-            stiffness,
-            stiffness_offsets,
-            bbar,
-            bbar_offsets,
-            nodes,
+            tables,
+            edge_rule,
+            node_systems,
+            systems,
+            unknowns,
+            values,
+            known,
             body: OnceLock::new(),
         })
     }
 
     /// Bytes held by the cache (affine-body moments included once computed).
     pub fn bytes(&self) -> usize {
-        let sys: usize = self
-            .nodes
+        let tables: usize = self
+            .tables
             .iter()
             .flatten()
-            .map(|n| {
-                std::mem::size_of::<NodeCache>()
-                    + n.systems
+            .map(|t| {
+                t.stiffness
+                    .iter()
+                    .map(|s| 16 * s.1.len() + 32)
+                    .sum::<usize>()
+                    + t.facets
                         .iter()
-                        .map(|c| {
-                            let s = &c.sys;
-                            std::mem::size_of::<CachedSystem>()
-                                + 8 * (s.rows.len()
-                                    + s.unknown.len()
-                                    + s.sqrt_len.len()
-                                    + s.a.len()
-                                    + s.around.len()
-                                    + c.p.len())
-                                + 24 * s.known.len()
-                        })
+                        .flatten()
+                        .map(|g| 16 * g.len() + 24)
                         .sum::<usize>()
             })
             .sum();
-        8 * (self.cell_nodes.len()
-            + self.stiffness.len()
-            + self.stiffness_offsets.len()
-            + self.bbar.len()
-            + self.bbar_offsets.len()
-            + self.nodes.len())
+        8 * self.cell_nodes.len()
             + std::mem::size_of_val(&self.frames[..])
-            + sys
+            + std::mem::size_of_val(&self.node_systems[..])
+            + std::mem::size_of_val(&self.systems[..])
+            + std::mem::size_of_val(&self.unknowns[..])
+            + 8 * self.values.len()
+            + std::mem::size_of_val(&self.known[..])
+            + tables
             + self.body.get().map_or(0, |b| 24 * b.len())
     }
 
@@ -247,6 +285,12 @@ impl Phase1Cache {
         })
     }
 
+    fn table(&self, kind: CellType) -> &KindTable {
+        self.tables[kind as usize]
+            .as_ref()
+            .expect("a shape table for every cell type of the mesh")
+    }
+
     /// Phase 1 for a run: `model` with its reference materials, `alpha` the Young's factor,
     /// `u` the FE displacement (node-major).
     #[allow(clippy::too_many_arguments)]
@@ -270,29 +314,27 @@ impl Phase1Cache {
         // Element residuals Q_E(i) per unit thickness, by cell node.
         let q_res: Vec<Vec<[f64; 2]>> = (0..mesh.num_cells())
             .into_par_iter()
-            .map(|c| {
+            .map(|c| -> Result<Vec<[f64; 2]>, CreError> {
                 let nodes = mesh.cell_nodes(c);
-                let m = 2 * nodes.len();
-                let k = &self.stiffness[self.stiffness_offsets[c]..self.stiffness_offsets[c + 1]];
-                let mut ue = [0.0; 16];
+                let kind = mesh.cell_type(c);
+                let coords = model.cell_coords(c);
+                let mut ue = [0.0; 2 * MAX_NODES];
                 for (a, &nd) in nodes.iter().enumerate() {
                     ue[2 * a] = u[2 * nd];
                     ue[2 * a + 1] = u[2 * nd + 1];
                 }
-                let mut ku = [0.0; 16];
-                for i in 0..m {
-                    let row = &k[tri(i, 0)..tri(i, 0) + i + 1];
-                    let mut s = row[i] * ue[i];
-                    for j in 0..i {
-                        s += row[j] * ue[j];
-                        ku[j] += row[j] * ue[i];
+                let d = hooke(model.material(c)?, model.analysis);
+                let mut q = vec![[0.0; 2]; nodes.len()];
+                let mut grad = [[0.0; 2]; MAX_NODES];
+                for (w, dn) in &self.table(kind).stiffness {
+                    let (e, det) = strain_at(dn, &coords, &ue, &mut grad);
+                    let sg = mul3(&d, &e);
+                    let f = alpha * w * det;
+                    for (qa, g) in q.iter_mut().zip(&grad) {
+                        qa[0] += f * (g[0] * sg[0] + g[1] * sg[2]);
+                        qa[1] += f * (g[1] * sg[1] + g[0] * sg[2]);
                     }
-                    ku[i] += s;
                 }
-                let scale = alpha / th;
-                let mut q: Vec<[f64; 2]> = (0..nodes.len())
-                    .map(|a| [scale * ku[2 * a], scale * ku[2 * a + 1]])
-                    .collect();
                 if let (Some(b), Some(mom)) = (affine, affine_moments) {
                     let mom = &mom[self.cell_nodes[c]..self.cell_nodes[c + 1]];
                     for (qa, ma) in q.iter_mut().zip(mom) {
@@ -303,8 +345,6 @@ impl Phase1Cache {
                         }
                     }
                 } else if let Some(body) = body {
-                    let kind = mesh.cell_type(c);
-                    let coords = model.cell_coords(c);
                     let rule = Quadrature::for_cell(kind, 2 * kind.order() + 2);
                     for (xi, w) in rule.points.iter().zip(&rule.weights) {
                         let g = point_geometry(kind, &coords, *xi);
@@ -316,86 +356,126 @@ impl Phase1Cache {
                         }
                     }
                 }
-                q
+                Ok(q)
             })
-            .collect();
-        // b_bar.
+            .collect::<Result<_, _>>()?;
+        // b_bar: averaged FE traction projections (the second cell runs along the edge in the
+        // opposite direction: point k of its facet is point n - 1 - k of the edge).
+        let np = self.edge_rule.len();
         let b_bar: Vec<[[f64; 2]; 3]> = topo
             .edges
             .par_iter()
             .enumerate()
-            .map(|(e, edge)| {
-                let ns = slots(topo, e);
+            .map(|(e, edge)| -> Result<[[f64; 2]; 3], CreError> {
+                let (n, len, _) = topo.geometry(mesh, e);
+                let share = 1.0 / edge.cells.len() as f64;
                 let mut bb = [[0.0; 2]; 3];
-                let mut off = self.bbar_offsets[e];
-                for &(c, _) in &edge.cells {
+                let mut grad = [[0.0; 2]; MAX_NODES];
+                for (k, &(c, l)) in edge.cells.iter().enumerate() {
+                    let kind = mesh.cell_type(c);
                     let nodes = mesh.cell_nodes(c);
-                    let m = 2 * nodes.len();
-                    let op = &self.bbar[off..off + 2 * ns * m];
-                    off += 2 * ns * m;
-                    for kk in 0..ns {
-                        for c2 in 0..2 {
-                            let row = &op[(2 * kk + c2) * m..(2 * kk + c2 + 1) * m];
-                            let mut s = 0.0;
-                            for (a, &nd) in nodes.iter().enumerate() {
-                                s += row[2 * a] * u[2 * nd] + row[2 * a + 1] * u[2 * nd + 1];
+                    let coords = model.cell_coords(c);
+                    let mut ue = [0.0; 2 * MAX_NODES];
+                    for (a, &nd) in nodes.iter().enumerate() {
+                        ue[2 * a] = u[2 * nd];
+                        ue[2 * a + 1] = u[2 * nd + 1];
+                    }
+                    let d = hooke(model.material(c)?, model.analysis);
+                    let d = d.map(|row| row.map(|v| alpha * v));
+                    let facet = &self.table(kind).facets[l];
+                    for (p, &(s, w)) in self.edge_rule.iter().enumerate() {
+                        let dn = &facet[if k == 0 { p } else { np - 1 - p }];
+                        let (eps, _) = strain_at(dn, &coords, &ue, &mut grad);
+                        let t = traction_of(&mul3(&d, &eps), n);
+                        let sh = edge.shape(s);
+                        for kk in 0..3 {
+                            for c2 in 0..2 {
+                                bb[kk][c2] += share * w * len * sh[kk] * t[c2];
                             }
-                            bb[kk][c2] += alpha * s;
                         }
                     }
                 }
-                bb
+                Ok(bb)
             })
-            .collect();
+            .collect::<Result<_, _>>()?;
         loads.add_sides(mesh, topo, &self.frames, sides, th, &b_bar)?;
         // Node systems.
         type NodeOut = (Vec<(usize, usize, [f64; 2])>, f64, f64);
         let per_node: Vec<NodeOut> = self
-            .nodes
+            .node_systems
             .par_iter()
             .enumerate()
             .map_init(
                 || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
-                |(rhs, y_bar, t, y), (i, nc)| {
+                |(rhs, y_bar, t, y), (i, dirs)| {
                     let mut out = Vec::new();
                     let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
-                    let Some(nc) = nc else {
+                    if dirs[0] == u32::MAX {
                         return (out, 0.0, 0.0);
-                    };
-                    for d in 0..2 {
-                        let cs = &nc.systems[nc.dirs[d] as usize];
-                        let sys = &cs.sys;
+                    }
+                    for (d, &sid) in dirs.iter().enumerate() {
+                        let sys = &self.systems[sid as usize];
+                        let (m, nu) = (sys.m as usize, sys.nu as usize);
                         let r = self.frames[i].0[d];
-                        let (scale, known_scale) =
-                            sys.rhs(r, |c, a| q_res[c][a], &loads.b_known, rhs);
-                        sys.targets(r, &b_bar, y_bar);
-                        let (m, nu) = (sys.num_rows(), sys.num_unknowns());
+                        let unknown = &self.unknowns[sys.unknowns as usize..][..nu];
+                        let vals = &self.values[sys.values as usize..][..nu + 2 * m * nu];
+                        let (sqrt_len, rest) = vals.split_at(nu);
+                        let (a, p) = rest.split_at(m * nu);
+                        // Right-hand side and scales (as `NodeSystem::rhs`).
+                        rhs.clear();
+                        let mut scale = 0.0;
+                        for &c in &topo.node_cells[i] {
+                            let a_loc = mesh
+                                .cell_nodes(c)
+                                .iter()
+                                .position(|&nd| nd == i)
+                                .unwrap_or(0);
+                            let qv = q_res[c][a_loc];
+                            let v = qv[0] * r[0] + qv[1] * r[1];
+                            scale += v.abs();
+                            rhs.push(v);
+                        }
+                        let known = &self.known[sys.known as usize..][..sys.nknown as usize];
+                        for &(row, e, slot, eta) in known {
+                            let bk = loads.b_known[e as usize][slot as usize];
+                            rhs[row as usize] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
+                        }
+                        let known_scale: f64 = topo.node_edges[i]
+                            .iter()
+                            .map(|&e| {
+                                let bk = loads.b_known[e][topo.edges[e].slot(i).unwrap_or(0)];
+                                (bk[0] * r[0] + bk[1] * r[1]).abs()
+                            })
+                            .sum();
+                        y_bar.clear();
+                        for (&(e, slot), sq) in unknown.iter().zip(sqrt_len) {
+                            let bb = b_bar[e as usize][slot as usize];
+                            y_bar.push((bb[0] * r[0] + bb[1] * r[1]) / sq);
+                        }
                         // t = c - A y_bar; y = y_bar + P t; residual c - A y.
                         t.clear();
                         t.extend((0..m).map(|row| {
                             rhs[row]
                                 - (0..nu)
-                                    .map(|col| sys.a[row * nu + col] * y_bar[col])
+                                    .map(|col| a[row * nu + col] * y_bar[col])
                                     .sum::<f64>()
                         }));
                         y.clear();
                         y.extend((0..nu).map(|col| {
-                            y_bar[col] + (0..m).map(|row| cs.p[col * m + row] * t[row]).sum::<f64>()
+                            y_bar[col] + (0..m).map(|row| p[col * m + row] * t[row]).sum::<f64>()
                         }));
                         let res = (0..m)
                             .map(|row| {
                                 let v = rhs[row]
-                                    - (0..nu)
-                                        .map(|col| sys.a[row * nu + col] * y[col])
-                                        .sum::<f64>();
+                                    - (0..nu).map(|col| a[row * nu + col] * y[col]).sum::<f64>();
                                 v * v
                             })
                             .sum::<f64>()
                             .sqrt();
                         max_res = max_res.max(res);
                         max_scale = max_scale.max(scale + known_scale);
-                        for (col, &(e, slot)) in sys.unknown.iter().enumerate() {
-                            let x = y[col] * sys.sqrt_len[col];
+                        for (col, &(e, slot)) in unknown.iter().enumerate() {
+                            let x = y[col] * sqrt_len[col];
                             out.push((e as usize, slot as usize, [x * r[0], x * r[1]]));
                         }
                     }
