@@ -16,8 +16,9 @@
 //! `theta_E`, every phase-2 coefficient and the admissible stress at every cell node, every edge
 //! density, the compatibility defects and the interface terms. Round-off is amplified by the
 //! condition numbers of the local problems (measured up to 5e7 for the degree-5 problems of
-//! distorted T6 cells, 1e4 for Q8, 1e3 for Q4): the paths agree to ~1e-11 on `theta_E` there,
-//! ~1e-13 elsewhere. The balance defects are defined with other quadratures of the absolute
+//! distorted T6 cells, 1e4 for Q8, 1e3 for Q4): measured, every `theta_E` agrees within 1e-13
+//! of itself on the Q4 and Q8 cells and 6e-12 on the T6 cells, the coefficients within 2e-9 and
+//! the nodal stresses within 2e-10 on the T6 cells (1e-12 elsewhere). The balance defects are defined with other quadratures of the absolute
 //! loads (a normalisation) and are only checked to be small in both.
 
 mod common;
@@ -71,8 +72,17 @@ fn assert_same(ctx: &CreResult, direct: &CreResult, asm: &Assembly, what: &str) 
             1e-10,
             &format!("theta of substructure {s}"),
         );
-        let d = rel_diff(&a.element_theta, &b.element_theta);
-        assert!(d < 1e-8, "{what}: element theta of {s} differ by {d:e}");
+        let d_theta = a
+            .element_theta
+            .iter()
+            .zip(&b.element_theta)
+            .fold(0.0f64, |m, (x, y)| {
+                m.max((x - y).abs() / y.max(f64::MIN_POSITIVE))
+            });
+        assert!(
+            d_theta < 1e-9,
+            "{what}: element theta of {s} differ by {d_theta:e} (relative to each)"
+        );
         let (sa, sb) = (a.plane_stresses().unwrap(), b.plane_stresses().unwrap());
         let (mut worst_c, mut worst_s) = (0.0f64, 0.0f64);
         for (c, (x, y)) in sa.iter().zip(sb).enumerate() {
@@ -99,7 +109,7 @@ fn assert_same(ctx: &CreResult, direct: &CreResult, asm: &Assembly, what: &str) 
             assert!(dh < 1e-14, "{what}: Hooke matrix of cell {c}");
         }
         println!(
-            "  {what}, substructure {s}: coefficients within {worst_c:.1e}, stresses within {worst_s:.1e}"
+            "  {what}, substructure {s}: theta_E within {d_theta:.1e}, coefficients within {worst_c:.1e}, stresses within {worst_s:.1e}"
         );
         let (ta, tb) = (a.edge_tractions().unwrap(), b.edge_tractions().unwrap());
         let flat = |t: &alea_cre::eet::phase1::EdgeTractions| -> Vec<f64> {

@@ -129,6 +129,15 @@ fn blade(reps: usize, threads: usize) {
         estimate_latin_direct(asm, &loads, &res, &setup.options).expect("direct")
     });
     let mine = ctx.estimate(&loads, &res).expect("context estimate");
+    println!(
+        "    substructures {:?}, interface terms {:?}, compatibility defect {:.1e}, balance defect {:.1e}",
+        mine.substructure_theta(),
+        mine.interfaces.iter().map(|i| i.term).collect::<Vec<_>>(),
+        mine.compatibility_defect(),
+        mine.substructures
+            .iter()
+            .fold(0.0f64, |m, d| m.max(d.balance_defect))
+    );
     assert!((mine.theta - direct.theta).abs() <= 1e-9 * direct.theta);
     assert!((rec.theta - direct.theta).abs() <= 1e-9 * direct.theta);
     let cells: usize = asm.subs.iter().map(|s| s.model.mesh.num_cells()).sum();

@@ -22,6 +22,12 @@
 //! the direct path to round-off (`R` is the energy of the part of `eps_h` outside the local space,
 //! zero for affine cells).
 //!
+//! `Z` and `R` vanish on the rigid modes of the cell, so they are stored on `2 nn - 3`
+//! deformation coordinates `q` of `u_e` ([`deformation`]: node displacements relative to node 0,
+//! the rotation measured along edge `x_0 x_1` removed): `Z u_e = Z_q q`, `u_e^T R u_e = q^T R_q q`
+//! (27 x 5 and 15 numbers for a Q4 cell instead of 27 x 8 and 36), which also keeps a large rigid
+//! motion of a floating substructure out of the products.
+//!
 //! The load vector `l`: the polynomial densities of the edges are integrated with the Gauss rule
 //! exact for them (`ceil((p + k + p_edge + 1) / 2)` points: 3 for Q4/T3); edges carrying
 //! prescribed-traction data (arbitrary functions) keep the direct path's `p + k + 4` points. An
@@ -57,8 +63,8 @@ struct CellData {
     /// Offset of the cell's `L` (packed, `n (n + 1) / 2`), `Z` (`n x 2 nn`, row-major) and `R`
     /// (packed, `2 nn (2 nn + 1) / 2`) in the shared buffer.
     offset: usize,
-    /// Number of FE dofs `2 nn`.
-    ndof: usize,
+    /// Number of deformation coordinates `2 nn - 3`.
+    ndef: usize,
 }
 
 /// The moments an affine body force needs, per cell (cached on first use).
@@ -108,7 +114,7 @@ impl Phase2Cache {
             cells.push(CellData {
                 space,
                 offset: data.len(),
-                ndof: 2 * mesh.cell_nodes(c).len(),
+                ndef: 2 * mesh.cell_nodes(c).len() - 3,
             });
             data.extend_from_slice(&values);
         }
@@ -156,7 +162,7 @@ impl Phase2Cache {
         let cd = &self.cells[c];
         let space = &cd.space;
         let n = space.len();
-        let m = cd.ndof;
+        let m = cd.ndef;
         let rule = self.rule(kind);
         let degree = rule.degree;
         let th = model.analysis.thickness();
@@ -274,10 +280,11 @@ impl Phase2Cache {
         let zoff = cd.offset + n * (n + 1) / 2;
         let z = &self.data[zoff..zoff + n * m];
         let r = &self.data[zoff + n * m..zoff + n * m + m * (m + 1) / 2];
-        ue.clear();
-        for &nd in mesh.cell_nodes(c) {
-            ue.extend_from_slice(&u[2 * nd..2 * nd + 2]);
-        }
+        deformation(
+            &model.cell_coords(c),
+            |a, k| u[2 * mesh.cell_nodes(c)[a] + k],
+            ue,
+        );
         zu.clear();
         zu.extend(
             z.chunks_exact(m)
@@ -322,7 +329,55 @@ impl Phase2Cache {
     }
 }
 
-/// The cached data of cell `c`: its space and `[L (packed), Z, R (packed)]`.
+/// The deformation coordinates `q` (`2 nn - 3` values, into `out`) of the nodal displacements
+/// `u(a, k)` of a cell with node coordinates `coords`: with `d_a = u_a - u_0`, `e` the unit
+/// vector of `x_1 - x_0`, `e_perp = (-e_y, e_x)` and the rotation `w = d_1 . e_perp / |x_1 - x_0|`:
+/// `q = [d_1 . e, d_2 - w J (x_2 - x_0), ..., d_(nn-1) - w J (x_(nn-1) - x_0)]` (`J` the rotation
+/// by a right angle). `u_e = rigid + T q` with `T` mapping `q_0` to `e` at node 1 and `q_a` to
+/// node `a`: an operator that vanishes on rigid modes acts on `u_e` as its restriction `A T` on
+/// `q`.
+pub(crate) fn deformation(
+    coords: &[[f64; 3]],
+    u: impl Fn(usize, usize) -> f64,
+    out: &mut Vec<f64>,
+) {
+    let (x0, x1) = (coords[0], coords[1]);
+    let t = [x1[0] - x0[0], x1[1] - x0[1]];
+    let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    let e = [t[0] / len, t[1] / len];
+    let u0 = [u(0, 0), u(0, 1)];
+    let d1 = [u(1, 0) - u0[0], u(1, 1) - u0[1]];
+    let w = (-e[1] * d1[0] + e[0] * d1[1]) / len;
+    out.clear();
+    out.push(d1[0] * e[0] + d1[1] * e[1]);
+    for (a, x) in coords.iter().enumerate().skip(2) {
+        let r = [x[0] - x0[0], x[1] - x0[1]];
+        out.push(u(a, 0) - u0[0] + w * r[1]);
+        out.push(u(a, 1) - u0[1] - w * r[0]);
+    }
+}
+
+/// The columns of `T` ([`deformation`]): for each `q` entry, the nodal displacement vector
+/// (`2 nn`) it stands for.
+fn deformation_basis(coords: &[[f64; 3]]) -> Vec<Vec<f64>> {
+    let nn = coords.len();
+    let (x0, x1) = (coords[0], coords[1]);
+    let t = [x1[0] - x0[0], x1[1] - x0[1]];
+    let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    let mut cols = Vec::with_capacity(2 * nn - 3);
+    let mut c0 = vec![0.0; 2 * nn];
+    c0[2] = t[0] / len;
+    c0[3] = t[1] / len;
+    cols.push(c0);
+    for k in 4..2 * nn {
+        let mut c = vec![0.0; 2 * nn];
+        c[k] = 1.0;
+        cols.push(c);
+    }
+    cols
+}
+
+/// The cached data of cell `c`: its space and `[L (packed), Z_q, R_q (packed)]`.
 fn cell_data(
     model: &Model,
     c: usize,
@@ -447,9 +502,29 @@ fn cell_data(
             }
         }
     }
+    // Restriction to the deformation coordinates: Z_q = Z T, R_q = T^T R T.
+    let basis = deformation_basis(&coords);
+    let md = basis.len();
+    let full = |i: usize, j: usize| if i >= j { r[tri(i, j)] } else { r[tri(j, i)] };
     let mut out = lp;
-    out.extend_from_slice(&z);
-    out.extend_from_slice(&r);
+    for i in 0..n {
+        let row = &z[i * m..(i + 1) * m];
+        for col in &basis {
+            out.push(row.iter().zip(col).map(|(a, b)| a * b).sum());
+        }
+    }
+    for (i, ci) in basis.iter().enumerate() {
+        for cj in &basis[..=i] {
+            let mut v = 0.0;
+            for (a, &x) in ci.iter().enumerate() {
+                if x != 0.0 {
+                    v += x * (0..m).map(|b| full(a, b) * cj[b]).sum::<f64>();
+                }
+            }
+            out.push(v);
+        }
+    }
+    debug_assert_eq!(md, m - 3);
     Ok((space, out))
 }
 
