@@ -62,6 +62,14 @@ fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, f64, T) {
     (wall, cpu, last.expect("at least one repetition"))
 }
 
+/// Phase 1 and phase 2 seconds of an estimate (summed over the substructures).
+fn phases(est: &alea_cre::CreResult) -> (f64, f64) {
+    (
+        est.substructures.iter().map(|d| d.seconds[0]).sum(),
+        est.substructures.iter().map(|d| d.seconds[1]).sum(),
+    )
+}
+
 /// Prints the context's set-up time and size and the direct path's time for one run.
 fn extra(setup: f64, bytes: usize, cells: usize, direct: (f64, f64), est: f64) {
     println!(
@@ -128,7 +136,11 @@ fn blade(reps: usize, threads: usize) {
     let (dw, dc, direct) = best_of(reps.min(3), || {
         estimate_latin_direct(asm, &loads, &res, &setup.options).expect("direct")
     });
-    let mine = ctx.estimate(&loads, &res).expect("context estimate");
+    let (_, _, mine) = best_of(reps, || {
+        ctx.estimate(&loads, &res).expect("context estimate")
+    });
+    let (p1, p2) = phases(&mine);
+    println!("    context estimate: phase 1 {p1:.4} s, phase 2 {p2:.4} s (last repetition)");
     println!(
         "    substructures {:?}, interface terms {:?}, compatibility defect {:.1e}, balance defect {:.1e}",
         mine.substructure_theta(),
@@ -200,6 +212,8 @@ fn dovetail(reps: usize, threads: usize) {
         "    theta = {:.6e}, relative {:.4e}, cold run {} iterations",
         est.theta, est.relative, first.iterations
     );
+    let (p1, p2) = phases(&est);
+    println!("    context estimate: phase 1 {p1:.4} s, phase 2 {p2:.4} s (last repetition)");
     let (dw, dc, direct) = best_of(reps.min(3), || {
         estimate_latin_direct(&asm, &loads, &res, &options).expect("direct")
     });

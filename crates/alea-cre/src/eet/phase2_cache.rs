@@ -39,6 +39,7 @@
 
 use std::sync::OnceLock;
 
+use alea_fem::reference::MAX_NODES;
 use alea_fem::{Model, kinematics::point_geometry};
 use alea_mesh::CellType;
 use rayon::prelude::*;
@@ -91,6 +92,8 @@ pub(crate) struct Scratch {
 #[derive(Debug)]
 pub(crate) struct Phase2Cache {
     rules: [Phase2Rules; 2],
+    /// Gauss rules on `[0, 1]` by number of points (index 0 empty).
+    line_rules: Vec<Vec<(f64, f64)>>,
     cells: Vec<CellData>,
     data: Vec<f64>,
     body: OnceLock<BodyMoments>,
@@ -118,8 +121,12 @@ impl Phase2Cache {
             });
             data.extend_from_slice(&values);
         }
+        let line_rules = (0..=2 + extra_degree + 4)
+            .map(|n| if n == 0 { Vec::new() } else { gauss01(n) })
+            .collect();
         Ok(Phase2Cache {
             rules,
+            line_rules,
             cells,
             data,
             body: OnceLock::new(),
@@ -188,7 +195,7 @@ impl Phase2Cache {
                 let p_edge = 1 + edge.mid.is_some() as usize;
                 (degree + p_edge + 2) / 2
             };
-            for (s, w) in gauss01(npts) {
+            for &(s, w) in &self.line_rules[npts] {
                 let x = [
                     (1.0 - s) * xa[0] + s * xb[0],
                     (1.0 - s) * xa[1] + s * xb[1],
@@ -280,11 +287,12 @@ impl Phase2Cache {
         let zoff = cd.offset + n * (n + 1) / 2;
         let z = &self.data[zoff..zoff + n * m];
         let r = &self.data[zoff + n * m..zoff + n * m + m * (m + 1) / 2];
-        deformation(
-            &model.cell_coords(c),
-            |a, k| u[2 * mesh.cell_nodes(c)[a] + k],
-            ue,
-        );
+        let nodes = mesh.cell_nodes(c);
+        let mut coords = [[0.0; 3]; MAX_NODES];
+        for (x, &nd) in coords.iter_mut().zip(nodes) {
+            *x = mesh.coords[nd];
+        }
+        deformation(&coords[..nodes.len()], |a, k| u[2 * nodes[a] + k], ue);
         zu.clear();
         zu.extend(
             z.chunks_exact(m)
