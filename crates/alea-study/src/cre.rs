@@ -520,3 +520,73 @@ impl Parameters for StudyParameters<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The body and centrifugal loads of a substructure, with load factors, become one affine
+    /// body force equal to the sum of the terms (`rho omega^2 (x - x_0)_perp` about any axis).
+    #[test]
+    fn body_loads_sum_to_an_affine_body_force() {
+        let axis = {
+            let a: [f64; 3] = [0.3, -0.2, 1.0];
+            let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            a.map(|v| v / n)
+        };
+        let terms = vec![
+            LoadTerm::Body([1.0, 2.0, -0.5]),
+            LoadTerm::Pressure("top".into(), 7.0),
+            LoadTerm::Centrifugal {
+                rho_omega2: 3.0,
+                point: [1.0, -2.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            LoadTerm::Centrifugal {
+                rho_omega2: 0.7,
+                point: [-4.0, 0.5, 2.0],
+                axis,
+            },
+        ];
+        let setup = CreSetup {
+            options: CreOptions::default(),
+            samplers: vec![None],
+            estimator: None,
+            loads: vec![terms.clone()],
+            layout: Layout {
+                subs: vec![],
+                interfaces: vec![],
+            },
+        };
+        let factors = [2.0, 1.0, 0.5, 1.5];
+        let data = setup.load_data(0, &factors);
+        assert!(data.affine().is_some());
+        assert_eq!(data.tractions.len(), 1);
+        let body = data.body.as_ref().unwrap();
+        for x in [[0.0, 0.0, 0.0], [3.0, -1.0, 0.5], [-2.5, 4.0, -1.0]] {
+            let mut want = [0.0; 3];
+            for (t, f) in terms.iter().zip(factors) {
+                let v = match t {
+                    LoadTerm::Body(v) => *v,
+                    LoadTerm::Centrifugal {
+                        rho_omega2,
+                        point,
+                        axis,
+                    } => {
+                        let r = [0, 1, 2].map(|i| x[i] - point[i]);
+                        let s: f64 = (0..3).map(|i| r[i] * axis[i]).sum();
+                        [0, 1, 2].map(|i| rho_omega2 * (r[i] - s * axis[i]))
+                    }
+                    _ => [0.0; 3],
+                };
+                for c in 0..3 {
+                    want[c] += f * v[c];
+                }
+            }
+            let got = body(x);
+            for c in 0..3 {
+                assert!((got[c] - want[c]).abs() < 1e-13, "{got:?} vs {want:?}");
+            }
+        }
+    }
+}
