@@ -73,7 +73,7 @@ fn phases(est: &alea_cre::CreResult) -> (f64, f64) {
 /// Prints the context's set-up time and size and the direct path's time for one run.
 fn extra(setup: f64, bytes: usize, cells: usize, direct: (f64, f64), est: f64) {
     println!(
-        "    context set-up {setup:.3} s, cache {:.1} MB ({} bytes per cell); direct path {:.4} s ({:.4} CPU): context {:.1}x faster",
+        "    context set-up {setup:.3} s, cache {:.1} MB ({} bytes per cell, {cells} cells); direct path {:.4} s ({:.4} CPU): context {:.1}x faster",
         bytes as f64 / 1e6,
         bytes / cells.max(1),
         direct.0,
