@@ -18,7 +18,7 @@
 //!   direct path.
 //!
 //! Prescribed tractions and interface sides (boundary edges, run-dependent functions and forces)
-//! are handled as in the direct path ([`super::phase1::EdgeLoads`]).
+//! are handled as in the direct path (`super::phase1::EdgeLoads`).
 
 use std::sync::{Arc, OnceLock};
 

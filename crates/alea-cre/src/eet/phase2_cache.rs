@@ -23,7 +23,7 @@
 //! zero for affine cells).
 //!
 //! `Z` and `R` vanish on the rigid modes of the cell, so they are stored on `2 nn - 3`
-//! deformation coordinates `q` of `u_e` ([`deformation`]: node displacements relative to node 0,
+//! deformation coordinates `q` of `u_e` (`deformation`: node displacements relative to node 0,
 //! the rotation measured along edge `x_0 x_1` removed): `Z u_e = Z_q q`, `u_e^T R u_e = q^T R_q q`
 //! (27 x 5 and 15 numbers for a Q4 cell instead of 27 x 8 and 36), which also keeps a large rigid
 //! motion of a floating substructure out of the products.
@@ -385,6 +385,9 @@ fn deformation_basis(coords: &[[f64; 3]]) -> Vec<Vec<f64>> {
     cols
 }
 
+/// A quadrature point of the set-up: weight, strains of the local basis and of the FE basis.
+type StrainPoint = (f64, Vec<[f64; 3]>, Vec<[f64; 3]>);
+
 /// The cached data of cell `c`: its space and `[L (packed), Z_q, R_q (packed)]`.
 fn cell_data(
     model: &Model,
@@ -409,7 +412,7 @@ fn cell_data(
     let mut p = PolyPoint::default();
     let mut db = vec![[0.0; 3]; n];
     // Per point: weight, strains of the local basis and of the FE basis (second pass).
-    let mut points: Vec<(f64, Vec<[f64; 3]>, Vec<[f64; 3]>)> = Vec::with_capacity(rule.len());
+    let mut points: Vec<StrainPoint> = Vec::with_capacity(rule.len());
     for (xi, w) in rule.points.iter().zip(&rule.weights) {
         let geo = point_geometry(kind, &coords, *xi);
         if geo.det <= 0.0 {
