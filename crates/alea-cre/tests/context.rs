@@ -12,6 +12,8 @@
 //!   `AffineBody` (cached moments) and as a general closure (quadrature), estimates of other
 //!   runs in between, against the direct path.
 //!
+//! The context's estimate is bit-identical with 1 and 2 threads.
+//!
 //! Compared: theta, relative error, energy norm, per-substructure theta, every element's
 //! `theta_E`, every phase-2 coefficient and the admissible stress at every cell node, every edge
 //! density, the compatibility defects and the interface terms. Round-off is amplified by the
@@ -226,6 +228,21 @@ fn contact_runs_match_the_direct_path() {
         );
         assert!(a.compatibility_defect() < 1e-6);
         assert_same(&a, &b, &asm, what);
+    }
+    // Bit-identical with 1 and 2 threads.
+    let with = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| ctx.estimate(&data(1.4), &run2).unwrap())
+    };
+    let (one, two) = (with(1), with(2));
+    assert_eq!(one.theta.to_bits(), two.theta.to_bits());
+    for (a, b) in one.substructures.iter().zip(&two.substructures) {
+        assert_eq!(a.element_theta, b.element_theta);
+        let (sa, sb) = (a.plane_stresses().unwrap(), b.plane_stresses().unwrap());
+        assert!(sa.iter().zip(sb).all(|(x, y)| x.coeffs == y.coeffs));
     }
     // The one-run entry point is the context.
     let c = estimate_latin(&asm, &data(1.4), &run2, &opts).unwrap();
