@@ -1,9 +1,12 @@
 //! CRE benchmark: one estimate on the LATIN benchmark assembly (dovetail blade root in a disk
 //! sector, each split in halves on x = 0: four substructures, two Coulomb contact interfaces on
 //! the flanks, two perfect interfaces on x = 0, Q4, ~22 000 dof; built as in
-//! `crates/alea-latin/benches/latin.rs`) against one deterministic LATIN solve (set-up +
+//! `crates/alea-latin/benches/latin.rs`) against one cold deterministic LATIN solve (set-up +
 //! iterations to 1e-6) of the same assembly, with 1 and 2 threads. The thesis quotes an
-//! estimate at 1.5x a deterministic run.
+//! estimate at 1.5x a deterministic run. "CRE estimate" is the one-run entry point
+//! `estimate_latin` (it builds the multiresolution context, then estimates); the per-run cost
+//! in a study (context built once, warm-started runs) is measured by
+//! `cargo bench -p alea-study --bench cre_run`.
 //!
 //! Run: `CARGO_TARGET_DIR=/work/target-cre cargo bench -p alea-cre --bench cre`
 //! (results in `crates/alea-cre/BENCHMARKS.md`). `CRE_BENCH_REFINE` changes the refinement

@@ -10,21 +10,54 @@ pub type VectorField = Arc<dyn Fn([f64; 3]) -> [f64; 3] + Send + Sync>;
 /// A traction `t(x, n)` (force per area) on a facet group; `n` is the outward unit normal.
 pub type TractionField = Arc<dyn Fn([f64; 3], [f64; 3]) -> [f64; 3] + Send + Sync>;
 
+/// An affine body force `b(x) = constant + gradient x` (`gradient[i][j] = d b_i / d x_j`):
+/// constant and centrifugal loads (`rho omega^2 (I - a a^T)(x - x_0)` about an axis `a`
+/// through `x_0`) are affine.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AffineBody {
+    /// `b(0)`.
+    pub constant: [f64; 3],
+    /// `d b_i / d x_j`.
+    pub gradient: [[f64; 3]; 3],
+}
+
+impl AffineBody {
+    /// `b(x)`.
+    pub fn eval(&self, x: [f64; 3]) -> [f64; 3] {
+        let (c, g) = (&self.constant, &self.gradient);
+        [0, 1, 2].map(|i| c[i] + g[i][0] * x[0] + g[i][1] * x[1] + g[i][2] * x[2])
+    }
+
+    /// True if every entry is finite.
+    pub fn is_finite(&self) -> bool {
+        self.constant
+            .iter()
+            .chain(self.gradient.iter().flatten())
+            .all(|v| v.is_finite())
+    }
+}
+
 /// The prescribed loads of one (sub)domain, as given to `alea_fem::Loads` (`body_force` with
 /// the same function, `traction` on the same groups). Boundary edges in no traction group and
 /// not constrained are free (zero traction).
 #[derive(Clone, Default)]
 pub struct LoadData {
-    /// Body force (none: zero).
+    /// Body force (none: zero). Set it with [`LoadData::body`] or [`LoadData::affine_body`]:
+    /// after [`LoadData::affine_body`] the estimator contexts ([`crate::LatinEstimator`],
+    /// [`crate::DomainEstimator`]) integrate the affine form exactly from cached moments and do
+    /// not call this function, so it must not be replaced by another one afterwards.
     pub body: Option<VectorField>,
     /// Tractions on facet groups.
     pub tractions: Vec<(String, TractionField)>,
+    /// The affine form of `body`, if it was given as one.
+    affine: Option<AffineBody>,
 }
 
 impl std::fmt::Debug for LoadData {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("LoadData")
             .field("body", &self.body.is_some())
+            .field("affine", &self.affine)
             .field(
                 "tractions",
                 &self.tractions.iter().map(|t| &t.0).collect::<Vec<_>>(),
@@ -39,10 +72,25 @@ impl LoadData {
         Self::default()
     }
 
-    /// Sets the body force.
+    /// Sets the body force (a general function: integrated by quadrature).
     pub fn body(mut self, b: impl Fn([f64; 3]) -> [f64; 3] + Send + Sync + 'static) -> Self {
         self.body = Some(Arc::new(b));
+        self.affine = None;
         self
+    }
+
+    /// Sets an affine body force `b(x) = constant + gradient x` (see [`AffineBody`]): the same
+    /// function as [`LoadData::body`] for the direct estimators, integrated exactly from cached
+    /// moments by the estimator contexts.
+    pub fn affine_body(mut self, b: AffineBody) -> Self {
+        self.body = Some(Arc::new(move |x| b.eval(x)));
+        self.affine = Some(b);
+        self
+    }
+
+    /// The body force's affine form, if it was set with [`LoadData::affine_body`].
+    pub fn affine(&self) -> Option<&AffineBody> {
+        self.affine.as_ref()
     }
 
     /// Adds a traction on facet group `group`.

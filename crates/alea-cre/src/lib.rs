@@ -16,7 +16,7 @@
 //!
 //! With contact (3.26): `e^2 = 1/2 sum_s ||sigma_hat^s - K eps(u_hat^s)||^2 + int_Ic [b(-w_hat,
 //! F_hat) + w_hat . F_hat] dS`, hence here `theta^2 = sum_s theta_s^2 + 2 sum_I term_I`.
-//! Substructure fields ([`estimate_latin`]): each substructure is isolated and loaded by the
+//! Substructure fields ([`estimate_latin`], [`LatinEstimator`]): each substructure is isolated and loaded by the
 //! interface forces its last linear-stage solution is in equilibrium with (lumped interface
 //! mass: nodal forces `m_i F_i`, reproduced exactly by the interface edge densities), then EET.
 //! Interface fields ([`interface`]): `w_hat` = jump (gap included) of local stage `n - 1`,
@@ -51,6 +51,23 @@
 //! vanishes wherever the point's status (open/stick/slip, slip direction) is the same at stages
 //! `n - 1` and `n`, so it is not a measure of the LATIN convergence error by itself.
 //!
+//! # Multiresolution
+//! A study estimates every run of one assembly: [`LatinEstimator`] (per substructure a
+//! [`DomainEstimator`]) computes once everything that does not depend on the run - topology,
+//! constraint frames, the phase-1 node systems with their least-change operators, per-cell-type
+//! shape tables, the Cholesky factor of every phase-2 local matrix `K0` (reference materials,
+//! `K = alpha K0` for a Young's factor `alpha`), `Z = L^-1 int eps(phi)^T D0 B` and the FE
+//! energy outside the local space on `2 nn - 3` deformation coordinates, the moments of an
+//! [`AffineBody`] force - and a run costs what depends on its displacements, interface forces,
+//! loads and Young's factors ([`estimator`], [`eet::phase1_cache`], [`eet::phase2_cache`]). The
+//! result is the direct path's ([`estimate_latin_direct`], every matrix rebuilt) to round-off
+//! (`tests/context.rs`). Measured (`BENCHMARKS.md`): 8-11x faster per run than the direct path,
+//! 0.3-0.5x a warm-started accelerated LATIN solve on the simple blade root and the four-part
+//! dovetail (the thesis: 1.5x); the context holds ~5.1 KB per Q4 cell (57 MB for the 23k-dof
+//! dovetail, 3.0 KB of it the Cholesky factors) and takes 1.5x the direct path's time to build,
+//! so [`estimate_latin`] (one run: builds a context) is that much slower than the direct path.
+//! 3D substructures keep the direct path.
+//!
 //! # Scope
 //! 2D (plane strain / plane stress): Tri3, Quad4, Tri6 and Quad8 cells with straight edges; 3D:
 //! Tet4, Tet10 (straight edges) and Hex8 (faces may be warped). Curved quadratic edges are
@@ -65,6 +82,7 @@ mod data;
 mod domain;
 pub mod eet;
 mod error;
+pub mod estimator;
 mod fe;
 pub mod interface;
 mod linalg;
@@ -76,11 +94,12 @@ mod substructure;
 pub mod topology;
 
 pub use data::{
-    FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
+    AffineBody, FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
 };
 pub use domain::{Admissible, CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
 pub use error::CreError;
+pub use estimator::DomainEstimator;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};
 pub use samples::EnergySampler;
-pub use substructure::estimate_latin;
+pub use substructure::{LatinEstimator, estimate_latin, estimate_latin_direct};

@@ -11,6 +11,21 @@
 //! `>= 2`; at degree 1 only `(xi, 0)`, `(0, eta)` and the symmetric `(eta, xi)` (the constants and
 //! the infinitesimal rotation `(-eta, xi)` are left out). Dimension `(k + 1)(k + 2) - 3`.
 
+use std::sync::{Arc, OnceLock};
+
+/// Values of the 1D Legendre polynomials `P_0..=P_k` at `x`.
+fn legendre_values(k: usize, x: f64, p: &mut [f64]) {
+    p[0] = 1.0;
+    if k == 0 {
+        return;
+    }
+    p[1] = x;
+    for n in 1..k {
+        let nf = n as f64;
+        p[n + 1] = ((2.0 * nf + 1.0) * x * p[n] - nf * p[n - 1]) / (nf + 1.0);
+    }
+}
+
 /// Values, first and second derivatives of the 1D Legendre polynomials `P_0..=P_k` at `x`.
 fn legendre(k: usize, x: f64, p: &mut [f64], dp: &mut [f64], ddp: &mut [f64]) {
     p[0] = 1.0;
@@ -30,11 +45,56 @@ fn legendre(k: usize, x: f64, p: &mut [f64], dp: &mut [f64], ddp: &mut [f64]) {
     }
 }
 
-/// One vector basis function: up to two terms `coef * phi_(a,b)` in component `comp`.
+/// One vector basis function: up to two terms `coef * phi_(a,b)` in component `comp`, with
+/// the scalar function's index in [`PolySpace::scalars`] order.
 #[derive(Clone, Copy, Debug)]
 struct VecFn {
     terms: [(usize, usize, usize, f64); 2],
+    scalar: [usize; 2],
     nterms: usize,
+}
+
+/// Index of the scalar function `P_a(xi) P_b(eta)` in [`PolySpace::scalars`] order (by total
+/// degree, then decreasing `a`).
+fn scalar_index(a: usize, b: usize) -> usize {
+    let d = a + b;
+    d * (d + 1) / 2 + (d - a)
+}
+
+/// Largest supported degree (the Legendre buffers hold 16 values).
+pub const MAX_DEGREE: usize = 15;
+
+/// The vector basis of degree `degree` (it does not depend on the element: built once per
+/// degree and shared by every space).
+fn basis(degree: usize) -> Arc<[VecFn]> {
+    static BASES: [OnceLock<Arc<[VecFn]>>; MAX_DEGREE + 1] =
+        [const { OnceLock::new() }; MAX_DEGREE + 1];
+    BASES[degree]
+        .get_or_init(|| {
+            let one = |c: usize, a: usize, b: usize| VecFn {
+                terms: [(c, a, b, 1.0), (0, 0, 0, 0.0)],
+                scalar: [scalar_index(a, b), 0],
+                nterms: 1,
+            };
+            let mut funcs = vec![
+                one(0, 1, 0),
+                one(1, 0, 1),
+                VecFn {
+                    terms: [(0, 0, 1, 1.0), (1, 1, 0, 1.0)],
+                    scalar: [scalar_index(0, 1), scalar_index(1, 0)],
+                    nterms: 2,
+                },
+            ];
+            for deg in 2..=degree {
+                for a in (0..=deg).rev() {
+                    let b = deg - a;
+                    funcs.push(one(0, a, b));
+                    funcs.push(one(1, a, b));
+                }
+            }
+            funcs.into()
+        })
+        .clone()
 }
 
 /// The displacement space of one element.
@@ -46,7 +106,7 @@ pub struct PolySpace {
     pub center: [f64; 2],
     /// Scale length.
     pub scale: f64,
-    funcs: Vec<VecFn>,
+    funcs: Arc<[VecFn]>,
 }
 
 /// Values and derivatives of the basis at one point.
@@ -61,8 +121,16 @@ pub struct PolyPoint {
 }
 
 impl PolySpace {
-    /// The space of degree `degree >= 1` on the element with corner coordinates `coords`.
+    /// The space of degree `degree` (`1..=`[`MAX_DEGREE`]) on the element with corner
+    /// coordinates `coords`.
+    ///
+    /// # Panics
+    /// If `degree` is 0 or above [`MAX_DEGREE`].
     pub fn new(degree: usize, coords: &[[f64; 3]]) -> Self {
+        assert!(
+            (1..=MAX_DEGREE).contains(&degree),
+            "polynomial degree {degree} out of 1..={MAX_DEGREE}"
+        );
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for x in coords {
             for d in 0..2 {
@@ -72,29 +140,11 @@ impl PolySpace {
         }
         let center = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
         let scale = 0.5 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
-        let mut funcs = Vec::new();
-        let one = |c: usize, a: usize, b: usize| VecFn {
-            terms: [(c, a, b, 1.0), (0, 0, 0, 0.0)],
-            nterms: 1,
-        };
-        funcs.push(one(0, 1, 0));
-        funcs.push(one(1, 0, 1));
-        funcs.push(VecFn {
-            terms: [(0, 0, 1, 1.0), (1, 1, 0, 1.0)],
-            nterms: 2,
-        });
-        for deg in 2..=degree {
-            for a in (0..=deg).rev() {
-                let b = deg - a;
-                funcs.push(one(0, a, b));
-                funcs.push(one(1, a, b));
-            }
-        }
         PolySpace {
             degree,
             center,
             scale,
-            funcs,
+            funcs: basis(degree),
         }
     }
 
@@ -106,6 +156,43 @@ impl PolySpace {
     /// True if empty (never, for degree >= 1).
     pub fn is_empty(&self) -> bool {
         self.funcs.is_empty()
+    }
+
+    /// Number of scalar functions `P_a(xi) P_b(eta)`, `a + b <= degree`.
+    pub fn num_scalars(&self) -> usize {
+        (self.degree + 1) * (self.degree + 2) / 2
+    }
+
+    /// Values of the scalar functions `P_a(xi) P_b(eta)` at physical point `x`, by total degree
+    /// then decreasing `a` (`out.len() >= num_scalars()`).
+    pub fn scalars(&self, x: [f64; 2], out: &mut [f64]) {
+        let k = self.degree;
+        let h = self.scale;
+        let mut px = [0.0; 16];
+        let mut py = [0.0; 16];
+        legendre_values(k, (x[0] - self.center[0]) / h, &mut px);
+        legendre_values(k, (x[1] - self.center[1]) / h, &mut py);
+        let mut i = 0;
+        for d in 0..=k {
+            for a in (0..=d).rev() {
+                out[i] = px[a] * py[d - a];
+                i += 1;
+            }
+        }
+    }
+
+    /// Adds to `l[j]` the integral weight of the vector basis function `j` against a vector
+    /// given through its scalar parts: `l[j] += sum_terms coef * value(component, scalar)`,
+    /// e.g. `value(c, s) = w t_c psi_s(x)` for a point load `w t` at `x` (`t . phi_j(x)`).
+    #[inline]
+    pub fn accumulate(&self, l: &mut [f64], value: impl Fn(usize, usize) -> f64) {
+        for (lj, f) in l.iter_mut().zip(self.funcs.iter()) {
+            let mut v = f.terms[0].3 * value(f.terms[0].0, f.scalar[0]);
+            if f.nterms == 2 {
+                v += f.terms[1].3 * value(f.terms[1].0, f.scalar[1]);
+            }
+            *lj += v;
+        }
     }
 
     /// Evaluates the basis at physical point `x` (second derivatives if `hessian`).

@@ -298,7 +298,7 @@ fn exact_local(kind: CellType) {
         })
         .collect();
     let tr = alea_cre::eet::phase1::EdgeTractions {
-        topo,
+        topo: Arc::new(topo),
         density,
         fields: vec![],
         compatibility_defect: 0.0,

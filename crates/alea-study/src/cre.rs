@@ -3,9 +3,10 @@
 //! `alea-estimate`) needs from the model.
 //!
 //! For each converged run: the loads of every substructure as functions (the study's
-//! tractions, pressures, body forces and centrifugal inertia, times the run's load factors),
-//! the CRE of the LATIN solution ([`alea_cre::estimate_latin`]: EET admissible stresses per
-//! substructure, de Saxce interface term), and a [`CreRecord`]: per substructure the phase-2
+//! tractions, pressures, body forces and centrifugal inertia - an affine body force - times the
+//! run's load factors), the CRE of the LATIN solution (the study's
+//! [`alea_cre::LatinEstimator`], built once: EET admissible stresses per substructure, de Saxce
+//! interface term), and a [`CreRecord`]: per substructure the phase-2
 //! coefficients of the admissible stress (27 numbers per Q4 or T3 cell, the compact form of
 //! `sigma_hat`; its samples are rebuilt with [`alea_cre::EnergySampler`]), per interface point the
 //! jump `w_hat` (gap included, local stage `n - 1`) and the force `F_hat` (local stage `n`),
@@ -16,9 +17,7 @@
 //! 3D substructures (no EET construction yet) contribute their interface terms only; the
 //! estimate says so ([`CreSetup::substructures_estimated`]).
 
-use std::sync::Arc;
-
-use alea_cre::{CreOptions, EnergySampler, LoadData, estimate_latin};
+use alea_cre::{AffineBody, CreOptions, EnergySampler, LatinEstimator, LoadData};
 use alea_estimate::{InterfaceKind, InterfaceLayout, Layout, Parameters, SubLayout};
 use alea_latin::{LatinSolver, RunResult};
 
@@ -48,6 +47,8 @@ pub struct CreSetup {
     /// Estimator options.
     pub options: CreOptions,
     samplers: Vec<Option<EnergySampler>>,
+    /// The multiresolution estimator (2D substructures only).
+    estimator: Option<LatinEstimator>,
     loads: Vec<Vec<LoadTerm>>,
     /// The entities as the stochastic estimator sees them.
     pub layout: Layout,
@@ -288,9 +289,18 @@ impl CreSetup {
                     .collect(),
             })
             .collect();
+        let estimator = if samplers.iter().all(|s| s.is_some()) {
+            Some(
+                LatinEstimator::new(&study.model.assembly, &options)
+                    .map_err(|e| StudyError::Other(format!("error estimator set-up: {e}")))?,
+            )
+        } else {
+            None
+        };
         Ok(CreSetup {
             options,
             samplers,
+            estimator,
             loads,
             layout: Layout { subs, interfaces },
         })
@@ -320,33 +330,35 @@ impl CreSetup {
             }
         }
         if !bodies.is_empty() {
-            let bodies = Arc::new(bodies);
-            data = data.body(move |x| {
-                let mut b = [0.0; 3];
-                for (f, t) in bodies.iter() {
-                    let v = match t {
-                        LoadTerm::Body(v) => *v,
-                        LoadTerm::Centrifugal {
-                            rho_omega2,
-                            point,
-                            axis,
-                        } => {
-                            let r = [x[0] - point[0], x[1] - point[1], x[2] - point[2]];
-                            let s = r[0] * axis[0] + r[1] * axis[1] + r[2] * axis[2];
-                            [
-                                rho_omega2 * (r[0] - s * axis[0]),
-                                rho_omega2 * (r[1] - s * axis[1]),
-                                rho_omega2 * (r[2] - s * axis[2]),
-                            ]
+            // Constant and centrifugal body forces sum to an affine one.
+            let mut b = AffineBody::default();
+            for (f, t) in bodies {
+                match t {
+                    LoadTerm::Body(v) => {
+                        for c in 0..3 {
+                            b.constant[c] += f * v[c];
                         }
-                        _ => [0.0; 3],
-                    };
-                    for c in 0..3 {
-                        b[c] += f * v[c];
                     }
+                    LoadTerm::Centrifugal {
+                        rho_omega2,
+                        point,
+                        axis,
+                    } => {
+                        // rho omega^2 (I - a a^T)(x - x_0).
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                let pij = f
+                                    * rho_omega2
+                                    * (if i == j { 1.0 } else { 0.0 } - axis[i] * axis[j]);
+                                b.gradient[i][j] += pij;
+                                b.constant[i] -= pij * point[j];
+                            }
+                        }
+                    }
+                    _ => {}
                 }
-                b
-            });
+            }
+            data = data.affine_body(b);
         }
         data
     }
@@ -376,9 +388,8 @@ impl CreSetup {
         let err = |e: alea_cre::CreError| {
             StudyError::Other(format!("error estimate of the run at {theta:?}: {e}"))
         };
-        let (coefficients, theta_run, relative) = if self.substructures_estimated() {
-            let cre =
-                estimate_latin(&study.model.assembly, &loads, res, &self.options).map_err(err)?;
+        let (coefficients, theta_run, relative) = if let Some(estimator) = &self.estimator {
+            let cre = estimator.estimate(&loads, res).map_err(err)?;
             let coefficients = self
                 .samplers
                 .iter()
@@ -506,6 +517,76 @@ impl Parameters for StudyParameters<'_> {
         let f = self.parametric.profile(&self.parametric.mu[interface], xi);
         for (o, x) in out.iter_mut().zip(&self.points[interface]) {
             *o = f(*x);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The body and centrifugal loads of a substructure, with load factors, become one affine
+    /// body force equal to the sum of the terms (`rho omega^2 (x - x_0)_perp` about any axis).
+    #[test]
+    fn body_loads_sum_to_an_affine_body_force() {
+        let axis = {
+            let a: [f64; 3] = [0.3, -0.2, 1.0];
+            let n = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+            a.map(|v| v / n)
+        };
+        let terms = vec![
+            LoadTerm::Body([1.0, 2.0, -0.5]),
+            LoadTerm::Pressure("top".into(), 7.0),
+            LoadTerm::Centrifugal {
+                rho_omega2: 3.0,
+                point: [1.0, -2.0, 0.0],
+                axis: [0.0, 0.0, 1.0],
+            },
+            LoadTerm::Centrifugal {
+                rho_omega2: 0.7,
+                point: [-4.0, 0.5, 2.0],
+                axis,
+            },
+        ];
+        let setup = CreSetup {
+            options: CreOptions::default(),
+            samplers: vec![None],
+            estimator: None,
+            loads: vec![terms.clone()],
+            layout: Layout {
+                subs: vec![],
+                interfaces: vec![],
+            },
+        };
+        let factors = [2.0, 1.0, 0.5, 1.5];
+        let data = setup.load_data(0, &factors);
+        assert!(data.affine().is_some());
+        assert_eq!(data.tractions.len(), 1);
+        let body = data.body.as_ref().unwrap();
+        for x in [[0.0, 0.0, 0.0], [3.0, -1.0, 0.5], [-2.5, 4.0, -1.0]] {
+            let mut want = [0.0; 3];
+            for (t, f) in terms.iter().zip(factors) {
+                let v = match t {
+                    LoadTerm::Body(v) => *v,
+                    LoadTerm::Centrifugal {
+                        rho_omega2,
+                        point,
+                        axis,
+                    } => {
+                        let r = [0, 1, 2].map(|i| x[i] - point[i]);
+                        let s: f64 = (0..3).map(|i| r[i] * axis[i]).sum();
+                        [0, 1, 2].map(|i| rho_omega2 * (r[i] - s * axis[i]))
+                    }
+                    _ => [0.0; 3],
+                };
+                for c in 0..3 {
+                    want[c] += f * v[c];
+                }
+            }
+            let got = body(x);
+            for c in 0..3 {
+                assert!((got[c] - want[c]).abs() < 1e-13, "{got:?} vs {want:?}");
+            }
         }
     }
 }

@@ -24,7 +24,10 @@
 //! edge mass matrix: `F_a = (2 / L) (2 b_a - b_b)` on a 2-node edge. Everything is per unit
 //! thickness.
 
+use std::sync::Arc;
+
 use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
+use alea_mesh::Mesh;
 use rayon::prelude::*;
 
 use crate::CreError;
@@ -58,8 +61,8 @@ pub struct EdgeDensity {
 /// Result of phase 1.
 #[derive(Clone)]
 pub struct EdgeTractions {
-    /// Mesh edges.
-    pub topo: Topology,
+    /// Mesh edges (shared with the estimator context that built them).
+    pub topo: Arc<Topology>,
     /// Density of each edge.
     pub density: Vec<EdgeDensity>,
     /// Prescribed traction fields (indexed by [`EdgeData::field`]).
@@ -121,7 +124,7 @@ pub type NodeFrame = ([[f64; 2]; 2], usize);
 
 /// Per node: orthonormal frame (rows) and the number of free directions (the rest are
 /// constrained).
-fn node_frames(dofs: &DofMap, nn: usize) -> Vec<NodeFrame> {
+pub(crate) fn node_frames(dofs: &DofMap, nn: usize) -> Vec<NodeFrame> {
     let mut scratch = vec![0.0; dofs.num_free()];
     (0..nn)
         .map(|n| {
@@ -160,6 +163,327 @@ fn constrained(f: &([[f64; 2]; 2], usize), d: [f64; 2]) -> bool {
     free_part < 1e-12
 }
 
+/// Projector `P = I - sum q q^T` of a boundary edge over the directions `q` constrained at all
+/// its nodes (the traction there is a reaction, not data).
+pub(crate) fn edge_projector(topo: &Topology, frames: &[NodeFrame], e: usize) -> [[f64; 2]; 2] {
+    let a = topo.edges[e].nodes[0];
+    let mut p = [[1.0, 0.0], [0.0, 1.0]];
+    let fa = &frames[a];
+    for k in fa.1..2 {
+        let q = fa.0[k];
+        if topo.edges[e]
+            .all_nodes()
+            .all(|nd| constrained(&frames[nd], q))
+        {
+            for i in 0..2 {
+                for j in 0..2 {
+                    p[i][j] -= q[i] * q[j];
+                }
+            }
+        }
+    }
+    p
+}
+
+/// Known edge projections `b_known[e][slot]` (per unit thickness) and the densities being built.
+pub(crate) struct EdgeLoads {
+    /// Density of each edge (polynomial part and prescribed-traction data).
+    pub density: Vec<EdgeDensity>,
+    /// Known projections on boundary edges (prescribed tractions, interface densities).
+    pub b_known: Vec<[[f64; 2]; 3]>,
+}
+
+impl EdgeLoads {
+    /// No load on `ne` edges.
+    pub fn new(ne: usize) -> Self {
+        EdgeLoads {
+            density: vec![EdgeDensity::default(); ne],
+            b_known: vec![[[0.0; 2]; 3]; ne],
+        }
+    }
+
+    /// Adds the prescribed tractions (projected on the unconstrained directions) as data
+    /// densities and their projections, integrated with the rule of `alea_fem::Loads::traction`
+    /// so that they are those of the FE load vector.
+    pub fn add_tractions(
+        &mut self,
+        mesh: &Mesh,
+        topo: &Topology,
+        frames: &[NodeFrame],
+        tractions: &[(String, TractionField)],
+    ) -> Result<(), CreError> {
+        for (fi, (group, field)) in tractions.iter().enumerate() {
+            for f in mesh.facet_group(group)? {
+                let e = topo.find(f.nodes[0], f.nodes[1]).ok_or_else(|| {
+                    CreError::Invalid(format!(
+                        "facet {:?} of '{group}' is not a mesh edge",
+                        f.nodes
+                    ))
+                })?;
+                if !topo.edges[e].is_boundary() {
+                    return Err(CreError::Invalid(format!(
+                        "traction group '{group}' contains the interior edge {:?}",
+                        f.nodes
+                    )));
+                }
+                let projector = edge_projector(topo, frames, e);
+                self.density[e].data.push(EdgeData {
+                    field: fi,
+                    projector,
+                });
+                let (n, len, [xa, xb]) = topo.geometry(mesh, e);
+                let edge = &topo.edges[e];
+                let line_rule = Quadrature::for_cell(
+                    alea_mesh::CellType::Line2,
+                    2 * (1 + edge.mid.is_some() as usize) + 2,
+                );
+                for (xi, w) in line_rule.points.iter().zip(&line_rule.weights) {
+                    let s = 0.5 * (xi[0] + 1.0);
+                    let x = [
+                        (1.0 - s) * xa[0] + s * xb[0],
+                        (1.0 - s) * xa[1] + s * xb[1],
+                        0.0,
+                    ];
+                    let v = field(x, [n[0], n[1], 0.0]);
+                    let pv = [
+                        projector[0][0] * v[0] + projector[0][1] * v[1],
+                        projector[1][0] * v[0] + projector[1][1] * v[1],
+                    ];
+                    let dl = 0.5 * w * len;
+                    let sh = edge.shape(s);
+                    for k in 0..3 {
+                        for c in 0..2 {
+                            self.b_known[e][k][c] += dl * sh[k] * pv[c];
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the interface sides' densities ([`interface_densities`], split targets `b_bar`) as
+    /// known polynomial densities of their boundary edges.
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_sides(
+        &mut self,
+        mesh: &Mesh,
+        topo: &Topology,
+        frames: &[NodeFrame],
+        sides: &[SideForces],
+        thickness: f64,
+        b_bar: &[[[f64; 2]; 3]],
+    ) -> Result<(), CreError> {
+        for side in sides {
+            for (e, t) in interface_densities(mesh, topo, side, thickness, b_bar, Some(frames))? {
+                if !topo.edges[e].is_boundary() {
+                    return Err(CreError::Invalid(format!(
+                        "interface side '{}' contains an interior edge",
+                        side.group
+                    )));
+                }
+                let p = edge_projector(topo, frames, e);
+                let (_, len, _) = topo.geometry(mesh, e);
+                let m = edge_mass(topo.edges[e].mid.is_some(), len);
+                let mut pt = [[0.0; 2]; 3];
+                for k in 0..3 {
+                    pt[k] = [
+                        p[0][0] * t[k][0] + p[0][1] * t[k][1],
+                        p[1][0] * t[k][0] + p[1][1] * t[k][1],
+                    ];
+                }
+                for k in 0..3 {
+                    for c in 0..2 {
+                        self.density[e].lin[k][c] += pt[k][c];
+                        self.b_known[e][k][c] += (0..3).map(|j| m[k][j] * pt[j][c]).sum::<f64>();
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the densities of the node systems' solutions: each edge's degree-`p` density
+    /// recovered from its projections `b_unknown[e][slot]` through the edge mass matrix.
+    pub fn add_unknown(
+        &mut self,
+        mesh: &Mesh,
+        topo: &Topology,
+        b_unknown: &[[[f64; 2]; 3]],
+    ) -> Result<(), CreError> {
+        for (e, bu) in b_unknown.iter().enumerate() {
+            let (_, len, _) = topo.geometry(mesh, e);
+            if topo.edges[e].mid.is_some() {
+                let m = edge_mass(true, len);
+                for c in 0..2 {
+                    let mut a: Vec<f64> = m.iter().flatten().copied().collect();
+                    let mut b = vec![bu[0][c], bu[1][c], bu[2][c]];
+                    if !cholesky_solve(&mut a, &mut b, 3) {
+                        return Err(CreError::Invalid(format!("degenerate edge {e}")));
+                    }
+                    for k in 0..3 {
+                        self.density[e].lin[k][c] += b[k];
+                    }
+                }
+            } else {
+                for c in 0..2 {
+                    self.density[e].lin[0][c] += 2.0 / len * (2.0 * bu[0][c] - bu[1][c]);
+                    self.density[e].lin[1][c] += 2.0 / len * (2.0 * bu[1][c] - bu[0][c]);
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The system (3.22) of one node in one direction `r` of its frame: one row per cell around the
+/// node, one unknown per edge around it whose projection is not data (interior edges, and
+/// boundary edges in a direction constrained at all their nodes). The unknowns are weighted,
+/// `x = sqrt(L) y` (the Ladeveze-Leguillon minimisation `sum (x - x_bar)^2 / L`), so the
+/// matrix holds `eta sqrt(L)`.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct NodeSystem {
+    /// Rows: `(cell, local index of the node in the cell)`.
+    pub rows: Vec<(u32, u32)>,
+    /// Unknown projections `(edge, slot of the node on the edge)`.
+    pub unknown: Vec<(u32, u32)>,
+    /// `sqrt(L)` of each unknown edge.
+    pub sqrt_len: Vec<f64>,
+    /// Weighted matrix (`rows x unknowns`, row-major).
+    pub a: Vec<f64>,
+    /// Known projections entering the rows: `(row, edge, slot, eta)`.
+    pub known: Vec<(u32, u32, u32, f64)>,
+    /// Every edge around the node with the node's slot (scale of the known data).
+    pub around: Vec<(u32, u32)>,
+}
+
+impl NodeSystem {
+    /// The system of node `i` in direction `d` of its frame (`None` for a node without cell).
+    /// Both directions of a node have the same rows; they differ only where `d` is a constrained
+    /// direction (boundary edges become unknown).
+    pub fn new(
+        mesh: &Mesh,
+        topo: &Topology,
+        frames: &[NodeFrame],
+        i: usize,
+        d: usize,
+    ) -> Option<NodeSystem> {
+        let cells = &topo.node_cells[i];
+        if cells.is_empty() {
+            return None;
+        }
+        let edges = &topo.node_edges[i];
+        let frame = &frames[i];
+        let slot = |e: usize| topo.edges[e].slot(i).unwrap_or(0);
+        let r = frame.0[d];
+        let is_constrained_dir = d >= frame.1;
+        let unknown: Vec<usize> = edges
+            .iter()
+            .copied()
+            .filter(|&e| {
+                let ed = &topo.edges[e];
+                !ed.is_boundary()
+                    || (is_constrained_dir && ed.all_nodes().all(|nd| constrained(&frames[nd], r)))
+            })
+            .collect();
+        let m = cells.len();
+        let nu = unknown.len();
+        let sqrt_len: Vec<f64> = unknown
+            .iter()
+            .map(|&e| topo.geometry(mesh, e).1.sqrt())
+            .collect();
+        let mut a = vec![0.0; m * nu];
+        let mut rows = Vec::with_capacity(m);
+        let mut known = Vec::new();
+        for (row, &c) in cells.iter().enumerate() {
+            let a_loc = mesh
+                .cell_nodes(c)
+                .iter()
+                .position(|&nd| nd == i)
+                .unwrap_or(0);
+            rows.push((c as u32, a_loc as u32));
+            for &(e, eta) in &topo.cell_edges[c] {
+                if topo.edges[e].slot(i).is_none() {
+                    continue;
+                }
+                if let Some(col) = unknown.iter().position(|&u| u == e) {
+                    a[row * nu + col] += eta;
+                } else {
+                    known.push((row as u32, e as u32, slot(e) as u32, eta));
+                }
+            }
+        }
+        for row in 0..m {
+            for col in 0..nu {
+                a[row * nu + col] *= sqrt_len[col];
+            }
+        }
+        Some(NodeSystem {
+            rows,
+            unknown: unknown
+                .iter()
+                .map(|&e| (e as u32, slot(e) as u32))
+                .collect(),
+            sqrt_len,
+            a,
+            known,
+            around: edges.iter().map(|&e| (e as u32, slot(e) as u32)).collect(),
+        })
+    }
+
+    /// Number of rows.
+    pub fn num_rows(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// Number of unknowns.
+    pub fn num_unknowns(&self) -> usize {
+        self.unknown.len()
+    }
+
+    /// Right-hand side `Q_E(i) . r - sum_known eta b_known . r` into `rhs`, and the scale of the
+    /// node's data `(sum |Q_E(i) . r|, sum_around |b_known . r|)`. `q(cell, local node)` is the
+    /// element residual, `r` the system's direction.
+    pub fn rhs(
+        &self,
+        r: [f64; 2],
+        q: impl Fn(usize, usize) -> [f64; 2],
+        b_known: &[[[f64; 2]; 3]],
+        rhs: &mut Vec<f64>,
+    ) -> (f64, f64) {
+        rhs.clear();
+        let mut scale = 0.0;
+        for &(c, a_loc) in &self.rows {
+            let qv = q(c as usize, a_loc as usize);
+            let v = qv[0] * r[0] + qv[1] * r[1];
+            scale += v.abs();
+            rhs.push(v);
+        }
+        for &(row, e, slot, eta) in &self.known {
+            let bk = b_known[e as usize][slot as usize];
+            rhs[row as usize] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
+        }
+        let known_scale: f64 = self
+            .around
+            .iter()
+            .map(|&(e, slot)| {
+                let bk = b_known[e as usize][slot as usize];
+                (bk[0] * r[0] + bk[1] * r[1]).abs()
+            })
+            .sum();
+        (scale, known_scale)
+    }
+
+    /// Weighted targets `y_bar = (b_bar . r) / sqrt(L)` of the unknowns into `y_bar`.
+    pub fn targets(&self, r: [f64; 2], b_bar: &[[[f64; 2]; 3]], y_bar: &mut Vec<f64>) {
+        y_bar.clear();
+        for (&(e, slot), s) in self.unknown.iter().zip(&self.sqrt_len) {
+            let bb = b_bar[e as usize][slot as usize];
+            y_bar.push((bb[0] * r[0] + bb[1] * r[1]) / s);
+        }
+    }
+}
+
 /// Runs phase 1 on one domain.
 pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
     let model = inp.model;
@@ -178,81 +502,8 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
     let th = model.analysis.thickness();
     let frames = node_frames(inp.dofs, nn);
     let ne = topo.edges.len();
-    let mut density = vec![EdgeDensity::default(); ne];
-
-    // Edge-constrained projector of boundary edges: P = I - sum q q^T over the directions
-    // constrained at both nodes.
-    let edge_projector = |e: usize| -> [[f64; 2]; 2] {
-        let a = topo.edges[e].nodes[0];
-        let mut p = [[1.0, 0.0], [0.0, 1.0]];
-        let fa = &frames[a];
-        for k in fa.1..2 {
-            let q = fa.0[k];
-            if topo.edges[e]
-                .all_nodes()
-                .all(|nd| constrained(&frames[nd], q))
-            {
-                for i in 0..2 {
-                    for j in 0..2 {
-                        p[i][j] -= q[i] * q[j];
-                    }
-                }
-            }
-        }
-        p
-    };
-
-    // Known projections b on boundary edges: b_known[e][node] (vector).
-    let mut b_known = vec![[[0.0; 2]; 3]; ne];
-    for (fi, (group, field)) in inp.tractions.iter().enumerate() {
-        for f in mesh.facet_group(group)? {
-            let e = topo.find(f.nodes[0], f.nodes[1]).ok_or_else(|| {
-                CreError::Invalid(format!(
-                    "facet {:?} of '{group}' is not a mesh edge",
-                    f.nodes
-                ))
-            })?;
-            if !topo.edges[e].is_boundary() {
-                return Err(CreError::Invalid(format!(
-                    "traction group '{group}' contains the interior edge {:?}",
-                    f.nodes
-                )));
-            }
-            let projector = edge_projector(e);
-            density[e].data.push(EdgeData {
-                field: fi,
-                projector,
-            });
-            let (n, len, [xa, xb]) = topo.geometry(mesh, e);
-            let edge = &topo.edges[e];
-            // The rule of `alea_fem::Loads::traction`, so that the projections are those of the
-            // FE load vector.
-            let line_rule = Quadrature::for_cell(
-                alea_mesh::CellType::Line2,
-                2 * (1 + edge.mid.is_some() as usize) + 2,
-            );
-            for (xi, w) in line_rule.points.iter().zip(&line_rule.weights) {
-                let s = 0.5 * (xi[0] + 1.0);
-                let x = [
-                    (1.0 - s) * xa[0] + s * xb[0],
-                    (1.0 - s) * xa[1] + s * xb[1],
-                    0.0,
-                ];
-                let v = field(x, [n[0], n[1], 0.0]);
-                let pv = [
-                    projector[0][0] * v[0] + projector[0][1] * v[1],
-                    projector[1][0] * v[0] + projector[1][1] * v[1],
-                ];
-                let dl = 0.5 * w * len;
-                let sh = edge.shape(s);
-                for k in 0..3 {
-                    for c in 0..2 {
-                        b_known[e][k][c] += dl * sh[k] * pv[c];
-                    }
-                }
-            }
-        }
-    }
+    let mut loads = EdgeLoads::new(ne);
+    loads.add_tractions(mesh, &topo, &frames, inp.tractions)?;
     // Element residuals Q_E(i) (per unit thickness) and FE stresses along the edges.
     let ncell = mesh.num_cells();
     let q_res: Vec<Vec<[f64; 2]>> = (0..ncell)
@@ -327,32 +578,7 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
         .collect::<Result<_, _>>()?;
 
     // Interface sides (after b_bar, which they use as the minimisation target).
-    for side in inp.sides {
-        for (e, t) in interface_densities(mesh, &topo, side, th, &b_bar, Some(&frames))? {
-            if !topo.edges[e].is_boundary() {
-                return Err(CreError::Invalid(format!(
-                    "interface side '{}' contains an interior edge",
-                    side.group
-                )));
-            }
-            let p = edge_projector(e);
-            let (_, len, _) = topo.geometry(mesh, e);
-            let m = edge_mass(topo.edges[e].mid.is_some(), len);
-            let mut pt = [[0.0; 2]; 3];
-            for k in 0..3 {
-                pt[k] = [
-                    p[0][0] * t[k][0] + p[0][1] * t[k][1],
-                    p[1][0] * t[k][0] + p[1][1] * t[k][1],
-                ];
-            }
-            for k in 0..3 {
-                for c in 0..2 {
-                    density[e].lin[k][c] += pt[k][c];
-                    b_known[e][k][c] += (0..3).map(|j| m[k][j] * pt[j][c]).sum::<f64>();
-                }
-            }
-        }
-    }
+    loads.add_sides(mesh, &topo, &frames, inp.sides, th, &b_bar)?;
 
     // Node systems.
     type NodeOut = (Vec<(usize, usize, [f64; 2])>, f64, f64);
@@ -361,87 +587,23 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
         .map(|i| {
             let mut out: Vec<(usize, usize, [f64; 2])> = Vec::new();
             let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
-            let cells = &topo.node_cells[i];
-            if cells.is_empty() {
-                return (out, 0.0, 0.0);
-            }
-            let edges = &topo.node_edges[i];
-            let frame = &frames[i];
-            let slot = |e: usize| topo.edges[e].slot(i).unwrap_or(0);
+            let (mut rhs, mut y_bar) = (Vec::new(), Vec::new());
             for d in 0..2 {
-                let r = frame.0[d];
-                let is_constrained_dir = d >= frame.1;
-                // Unknown edges in this direction.
-                let unknown: Vec<usize> = edges
-                    .iter()
-                    .copied()
-                    .filter(|&e| {
-                        let ed = &topo.edges[e];
-                        !ed.is_boundary()
-                            || (is_constrained_dir
-                                && ed.all_nodes().all(|nd| constrained(&frames[nd], r)))
-                    })
-                    .collect();
-                let m = cells.len();
-                let nu = unknown.len();
-                let mut a = vec![0.0; m * nu];
-                let mut rhs = vec![0.0; m];
-                let mut scale = 0.0;
-                for (row, &c) in cells.iter().enumerate() {
-                    let a_loc = mesh
-                        .cell_nodes(c)
-                        .iter()
-                        .position(|&nd| nd == i)
-                        .unwrap_or(0);
-                    let qv = q_res[c][a_loc];
-                    rhs[row] = qv[0] * r[0] + qv[1] * r[1];
-                    scale += rhs[row].abs();
-                    for &(e, eta) in &topo.cell_edges[c] {
-                        if topo.edges[e].slot(i).is_none() {
-                            continue;
-                        }
-                        if let Some(col) = unknown.iter().position(|&u| u == e) {
-                            a[row * nu + col] += eta;
-                        } else {
-                            let bk = b_known[e][slot(e)];
-                            rhs[row] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
-                        }
-                    }
-                }
-                let x_bar: Vec<f64> = unknown
-                    .iter()
-                    .map(|&e| {
-                        let bb = b_bar[e][slot(e)];
-                        bb[0] * r[0] + bb[1] * r[1]
-                    })
-                    .collect();
-                // Weighted minimisation sum_Gamma (x - x_bar)^2 / L_Gamma: substitute
-                // x = sqrt(L) y and minimise |y - y_bar|^2.
-                let sq: Vec<f64> = unknown
-                    .iter()
-                    .map(|&e| topo.geometry(mesh, e).1.sqrt())
-                    .collect();
-                for row in 0..m {
-                    for col in 0..nu {
-                        a[row * nu + col] *= sq[col];
-                    }
-                }
-                let y_bar: Vec<f64> = x_bar.iter().zip(&sq).map(|(x, s)| x / s).collect();
-                let (mut x, res) = least_change(&a, m, nu, &rhs, &y_bar);
-                for (v, s) in x.iter_mut().zip(&sq) {
+                let Some(sys) = NodeSystem::new(mesh, &topo, &frames, i, d) else {
+                    break;
+                };
+                let r = frames[i].0[d];
+                let (scale, known_scale) = sys.rhs(r, |c, a| q_res[c][a], &loads.b_known, &mut rhs);
+                sys.targets(r, &b_bar, &mut y_bar);
+                let (m, nu) = (sys.num_rows(), sys.num_unknowns());
+                let (mut x, res) = least_change(&sys.a, m, nu, &rhs, &y_bar);
+                for (v, s) in x.iter_mut().zip(&sys.sqrt_len) {
                     *v *= s;
                 }
-                let known_scale: f64 = edges
-                    .iter()
-                    .map(|&e| {
-                        let bk = b_known[e][slot(e)];
-                        (bk[0] * r[0] + bk[1] * r[1]).abs()
-                    })
-                    .sum();
                 max_res = max_res.max(res);
                 max_scale = max_scale.max(scale + known_scale);
-                for (col, &e) in unknown.iter().enumerate() {
-                    out.push((e, slot(e), [x[col] * r[0], x[col] * r[1]]));
+                for (col, &(e, slot)) in sys.unknown.iter().enumerate() {
+                    out.push((e as usize, slot as usize, [x[col] * r[0], x[col] * r[1]]));
                 }
             }
             (out, max_res, max_scale)
@@ -457,30 +619,10 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
             b_unknown[e][slot][1] += v[1];
         }
     }
-    for (e, bu) in b_unknown.iter().enumerate() {
-        let (_, len, _) = topo.geometry(mesh, e);
-        if topo.edges[e].mid.is_some() {
-            let m = edge_mass(true, len);
-            for c in 0..2 {
-                let mut a: Vec<f64> = m.iter().flatten().copied().collect();
-                let mut b = vec![bu[0][c], bu[1][c], bu[2][c]];
-                if !cholesky_solve(&mut a, &mut b, 3) {
-                    return Err(CreError::Invalid(format!("degenerate edge {e}")));
-                }
-                for k in 0..3 {
-                    density[e].lin[k][c] += b[k];
-                }
-            }
-        } else {
-            for c in 0..2 {
-                density[e].lin[0][c] += 2.0 / len * (2.0 * bu[0][c] - bu[1][c]);
-                density[e].lin[1][c] += 2.0 / len * (2.0 * bu[1][c] - bu[0][c]);
-            }
-        }
-    }
+    loads.add_unknown(mesh, &topo, &b_unknown)?;
     Ok(EdgeTractions {
-        topo,
-        density,
+        topo: Arc::new(topo),
+        density: loads.density,
         fields: inp.tractions.iter().map(|t| t.1.clone()).collect(),
         compatibility_defect: if max_scale > 0.0 {
             max_res / max_scale

@@ -85,8 +85,8 @@ pub struct ElementResult {
 pub struct Phase2Rules {
     /// Local polynomial degree.
     pub degree: usize,
-    tri: Quadrature,
-    quad: Quadrature,
+    pub(crate) tri: Quadrature,
+    pub(crate) quad: Quadrature,
     edge: Vec<(f64, f64)>,
 }
 
