@@ -4,14 +4,15 @@
 //! - **maximum error** (4.2.2.1): one new run at the point of largest stochastic error density
 //!   `rho_sto(xi) = sto(xi) f(xi)`, searched over the centres of the `2^(d depth)` sub-cells of
 //!   every leaf (dyadic points, so that `StochasticMesh::refine_at_point` can complete the
-//!   structured mesh around the run with interpolated nodes), then a new estimate;
+//!   structured mesh around the run with interpolated nodes; shallower in leaves near the
+//!   mesh's finest level `MAX_LEVEL`), then a new estimate;
 //! - **improved** (4.2.2.2): the stochastic error integrated over each leaf,
 //!   `int_cell sto(xi) f(xi) dxi` (the per-cell sums of [`crate::Estimate::cells`]); every leaf
 //!   whose contribution is at least `fraction` (the thesis: 50 %) of the largest is refined at its
 //!   centre (`StochasticMesh::refine_centred`), several runs per estimate.
 
 use alea_uq::joint::JointLaw;
-use alea_uq::surrogate::StochasticMesh;
+use alea_uq::surrogate::{MAX_LEVEL, StochasticMesh};
 use rayon::prelude::*;
 
 use crate::{EstimateError, Estimator, Parameters, Weights};
@@ -57,7 +58,14 @@ pub fn max_error_point(
     let d = mesh.dim();
     let mut cands = Vec::new();
     for c in mesh.leaves() {
-        cands.extend(mesh.sub_cell_centres(c, depth)?);
+        // Leaves refined close to the mesh's finest level get shallower candidates (a leaf at
+        // the finest level none): a loop that keeps refining one spot ends by choosing
+        // elsewhere instead of failing.
+        let room = MAX_LEVEL.saturating_sub(mesh.level(c) + 1);
+        if mesh.level(c) >= MAX_LEVEL {
+            continue;
+        }
+        cands.extend(mesh.sub_cell_centres(c, depth.min(room))?);
     }
     let vals: Vec<f64> = cands
         .par_chunks(d)

@@ -490,3 +490,32 @@ fn cell_terms_add_up_to_the_substructure_expectations() {
     );
     assert!(cells.iter().all(|c| c.0 >= 0.0));
 }
+
+#[test]
+fn the_maximum_error_search_copes_with_leaves_at_the_finest_level() {
+    // A stochastic mesh refined at its centre, again and again, around one point down to the
+    // finest level: the candidates of the deepest leaves must stay within the mesh's levels
+    // (shallower sub-cells), and the chosen point must be one the mesh can refine at.
+    use alea_uq::surrogate::MAX_LEVEL;
+    let params = Params { random_young: true };
+    let mut mesh = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[1, 1]).unwrap();
+    let target = [0.3, 0.3];
+    loop {
+        let leaf = mesh.locate(&target).unwrap();
+        if mesh.level(leaf) >= MAX_LEVEL - 1 {
+            break;
+        }
+        mesh.refine_centred(&[leaf]).unwrap();
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let runs: Vec<RunData> = (0..mesh.num_runs())
+        .map(|k| run_at(mesh.run_point(k), &params, &mut rng))
+        .collect();
+    let est = Estimator::new(layout(), &runs, EstimatorOptions::default()).unwrap();
+    let law = Independent::new(marginals()).unwrap();
+    let best = alea_estimate::refine::max_error_point(&mesh, &est, &mesh, &params, &law, 3)
+        .expect("no level error")
+        .expect("a positive density somewhere");
+    mesh.refine_at_point(&best.0)
+        .expect("a point the mesh can refine at");
+}
