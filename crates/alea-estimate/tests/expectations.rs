@@ -495,7 +495,7 @@ fn cell_terms_add_up_to_the_substructure_expectations() {
 fn the_maximum_error_search_copes_with_leaves_at_the_finest_level() {
     // A stochastic mesh refined at its centre, again and again, around one point down to the
     // finest level: the candidates of the deepest leaves must stay within the mesh's levels
-    // (shallower sub-cells), and the chosen point must be one the mesh can refine at.
+    // (shallower sub-cells), and the chosen point's leaf must be one the mesh can refine.
     use alea_uq::surrogate::MAX_LEVEL;
     let params = Params { random_young: true };
     let mut mesh = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[1, 1]).unwrap();
@@ -516,6 +516,16 @@ fn the_maximum_error_search_copes_with_leaves_at_the_finest_level() {
     let best = alea_estimate::refine::max_error_point(&mesh, &est, &mesh, &params, &law, 3)
         .expect("no level error")
         .expect("a positive density somewhere");
-    mesh.refine_at_point(&best.0)
-        .expect("a point the mesh can refine at");
+    match best.enrich {
+        alea_estimate::refine::Enrich::Centre(cell) => {
+            let (lo, hi) = mesh.cell_bounds(cell);
+            assert!((0..2).all(|j| best.point[j] > lo[j] && best.point[j] < hi[j]));
+            mesh.refine_centred(&[cell])
+                .expect("a leaf the mesh can refine");
+        }
+        alea_estimate::refine::Enrich::Node => {
+            mesh.promote(&best.point)
+                .expect("a node the mesh can promote");
+        }
+    }
 }
