@@ -449,10 +449,10 @@ impl Estimator {
                     let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
                     let wtn = dot(&wtan, &wtan).sqrt();
                     let ftn = dot(&ftan, &ftan).sqrt();
-                    // The tangential force the law allows at xi: none where the interpolated
-                    // jump opens the contact, else within the disk of radius mu(xi) F_n.
-                    let open = wn > tol * w_scale;
-                    let radius = if open { 0.0 } else { mu[p] * fn_.max(0.0) };
+                    // The tangential force the law allows at xi given the interpolated normal
+                    // force: within the disk of radius mu(xi) F_n (crate doc: continuous in xi,
+                    // so the stochastic part vanishes as xi approaches a run).
+                    let radius = mu[p] * fn_.max(0.0);
                     // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
                     let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
                     let sto = if ftn > radius {

@@ -38,17 +38,13 @@ impl Gram {
             a.iter().chain(h).all(|v| v.len() == n),
             "sample vectors of one length"
         );
+        let mut sum = CrossGram::zeros(k, k);
         if k == 0 || n == 0 {
-            return Gram {
-                k,
-                aa: vec![0.0; k * k],
-                ah: vec![0.0; k * k],
-                hh: vec![0.0; k * k],
-            };
+            return sum.into_gram();
         }
         let block = (n / 16).max(4096).min(n);
         let starts: Vec<usize> = (0..n).step_by(block).collect();
-        let parts: Vec<[Mat<f64>; 3]> = starts
+        let parts: Vec<CrossGram> = starts
             .par_iter()
             .map(|&r0| {
                 let r1 = (r0 + block).min(n);
@@ -60,28 +56,105 @@ impl Gram {
                     }
                     buf
                 };
-                let (ba, bh) = (gather(a), gather(h));
-                let ya = MatRef::from_column_major_slice(&ba, m, k);
-                let yh = MatRef::from_column_major_slice(&bh, m, k);
-                let mut out = [Mat::zeros(k, k), Mat::zeros(k, k), Mat::zeros(k, k)];
-                for (dst, (l, r)) in out.iter_mut().zip([(ya, ya), (ya, yh), (yh, yh)]) {
-                    matmul(dst, Accum::Replace, l.transpose(), r, 1.0, Par::Seq);
-                }
-                out
+                let mut g = CrossGram::zeros(k, k);
+                g.add_block(m, &gather(a), &gather(h));
+                g
             })
             .collect();
-        let mut sum = [vec![0.0; k * k], vec![0.0; k * k], vec![0.0; k * k]];
         for p in &parts {
-            for (s, m) in sum.iter_mut().zip(p) {
-                for i in 0..k {
-                    for j in 0..k {
-                        s[i * k + j] += m[(i, j)];
-                    }
+            sum.add(p);
+        }
+        sum.into_gram()
+    }
+}
+
+/// The Gram blocks of two families of sample vectors `a_1..a_ka` and `b_1..b_kb` of one
+/// length, accumulated over blocks of sample rows (so that neither family need be held whole):
+/// `aa = A^T A` (`ka x ka`), `ab = A^T B` (`ka x kb`), `bb = B^T B` (`kb x kb`), dense
+/// row-major. [`Gram`] is the case `ka = kb` with the admissible and FE samples; the reference
+/// distance of [`crate::reference`] uses a reference solution's runs against a surrogate's.
+/// Blocks are multiplied by faer's matmul (sequential); adding them in a fixed order gives
+/// results independent of the thread count.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CrossGram {
+    /// Vectors of the first family.
+    pub ka: usize,
+    /// Vectors of the second family.
+    pub kb: usize,
+    /// `A^T A`.
+    pub aa: Vec<f64>,
+    /// `A^T B`.
+    pub ab: Vec<f64>,
+    /// `B^T B`.
+    pub bb: Vec<f64>,
+}
+
+impl CrossGram {
+    /// All zero.
+    pub fn zeros(ka: usize, kb: usize) -> Self {
+        CrossGram {
+            ka,
+            kb,
+            aa: vec![0.0; ka * ka],
+            ab: vec![0.0; ka * kb],
+            bb: vec![0.0; kb * kb],
+        }
+    }
+
+    /// Adds the products of `m` sample rows: `a` column-major `m x ka` (vector `k`'s rows at
+    /// `a[k * m..(k + 1) * m]`), `b` column-major `m x kb`.
+    ///
+    /// # Panics
+    /// If the lengths are not `m * ka` and `m * kb`.
+    pub fn add_block(&mut self, m: usize, a: &[f64], b: &[f64]) {
+        let (ka, kb) = (self.ka, self.kb);
+        assert!(a.len() == m * ka && b.len() == m * kb, "block sizes");
+        if m == 0 {
+            return;
+        }
+        let ya = MatRef::from_column_major_slice(a, m, ka);
+        let yb = MatRef::from_column_major_slice(b, m, kb);
+        let mut out = [Mat::zeros(ka, ka), Mat::zeros(ka, kb), Mat::zeros(kb, kb)];
+        for (dst, (l, r)) in out.iter_mut().zip([(ya, ya), (ya, yb), (yb, yb)]) {
+            matmul(dst, Accum::Replace, l.transpose(), r, 1.0, Par::Seq);
+        }
+        for (acc, mat) in [&mut self.aa, &mut self.ab, &mut self.bb]
+            .into_iter()
+            .zip(&out)
+        {
+            let cols = mat.ncols();
+            for i in 0..mat.nrows() {
+                for j in 0..cols {
+                    acc[i * cols + j] += mat[(i, j)];
                 }
             }
         }
-        let [aa, ah, hh] = sum;
-        Gram { k, aa, ah, hh }
+    }
+
+    /// Adds another accumulation of the same families.
+    ///
+    /// # Panics
+    /// If the sizes differ.
+    pub fn add(&mut self, other: &CrossGram) {
+        assert!(self.ka == other.ka && self.kb == other.kb, "Gram sizes");
+        for (s, o) in [
+            (&mut self.aa, &other.aa),
+            (&mut self.ab, &other.ab),
+            (&mut self.bb, &other.bb),
+        ] {
+            for (x, y) in s.iter_mut().zip(o) {
+                *x += y;
+            }
+        }
+    }
+
+    fn into_gram(self) -> Gram {
+        Gram {
+            k: self.ka,
+            aa: self.aa,
+            ah: self.ab,
+            hh: self.bb,
+        }
     }
 }
 

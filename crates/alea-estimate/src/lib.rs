@@ -49,13 +49,17 @@
 //! # Interfaces (3.31, 4.4-4.5)
 //! Per interface point with weight `m_i` and normal `n_i`: `w~`, `F_2 = F~` (interpolated force)
 //! and `F_1` = the same normal force with the tangential force the law at `xi` allows given the
-//! interpolated normal force, `mu(xi)` and the gap: none where the interpolated jump opens the
-//! contact (`w~_n > 0`), else the tangential force brought onto the Coulomb disk
+//! interpolated normal force and `mu(xi)`: the tangential force brought onto the Coulomb disk
 //! (`F_t1 = F_t2` if `|F_t2| <= mu(xi) F_n`, else `mu(xi) F_n F_t2 / |F_t2|`), the allowed force
 //! closest to the interpolated one. (The thesis writes `F_t1 = mu(xi) F_n t`, the force of a
 //! slipping point; on a slipping point the two agree, on a sticking point ours leaves
 //! `F_1 = F_2`, so that at a run point, where the interpolated fields satisfy the law, the
-//! stochastic part vanishes.) The space part (4.4) takes the interpolated force as it is: where
+//! stochastic part vanishes.) `F_1` depends continuously on `xi`, so the stochastic part tends
+//! to 0 as `xi` approaches a run, also next to a run whose neighbour opens the contact at that
+//! point: there `w~_n > 0` while `F~_n > 0`, and zeroing `F_t1` on the opening jump (as a
+//! previous version did) made the density jump to `|w_t . F_t|` of the closed run right beside
+//! it, a sawtooth that sent the maximum-error criterion chasing the run (runs converging to
+//! one point). The space part (4.4) takes the interpolated force as it is: where
 //! runs with different statuses are interpolated, `w~` and `F~` are not consistent and
 //! `rho(w~, F~) > 0` although every run is converged - part of the interpolation error lands in
 //! `I_geo` of the interfaces by the thesis's definition, and shrinks with the runs. The finite part of the bipotential density
@@ -89,12 +93,18 @@
 //! density) is evaluated on it and on a regular grid for maps ([`density`]); the refinement
 //! criteria ([`refine`]) integrate it per cell (improved criterion) or search its maximum
 //! (maximum-error criterion).
+//!
+//! # Against a reference
+//! [`reference`] computes the true error of the surrogate's interpolated-displacement stress
+//! against a reference solution (finer space mesh and stochastic grid) with the same Gram and
+//! rule machinery, for the efficiency index of 3.3.3.
 
 pub mod data;
 pub mod density;
 mod error;
 pub mod estimator;
 pub mod gram;
+pub mod reference;
 pub mod refine;
 pub mod rule;
 

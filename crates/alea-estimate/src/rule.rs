@@ -173,6 +173,57 @@ impl Rule {
         Ok(out)
     }
 
+    /// The cells of the tensor partition whose breakpoints in direction `j` are `breaks[j]`
+    /// (sorted, duplicates within `1e-12` of the range merged), first direction fastest: e.g.
+    /// the union of two regular grids' nodes, so that a rule on these cells follows the kinks of
+    /// both grids' piecewise-linear weights.
+    ///
+    /// # Errors
+    /// [`EstimateError::Invalid`] for a direction with fewer than two distinct breakpoints or a
+    /// non-finite one; [`EstimateError::TooLarge`] beyond [`MAX_POINTS`] cells.
+    pub fn product_cells(breaks: &[Vec<f64>]) -> Result<Vec<CellBox>, EstimateError> {
+        let d = breaks.len();
+        let mut axes = Vec::with_capacity(d);
+        for (j, b) in breaks.iter().enumerate() {
+            let mut v: Vec<f64> = b.clone();
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(EstimateError::Invalid(format!(
+                    "non-finite breakpoint in direction {j}"
+                )));
+            }
+            v.sort_by(f64::total_cmp);
+            let range = v.last().copied().unwrap_or(0.0) - v.first().copied().unwrap_or(0.0);
+            v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * range);
+            if v.len() < 2 || !(range > 0.0) {
+                return Err(EstimateError::Invalid(format!(
+                    "direction {j} needs two distinct breakpoints, got {b:?}"
+                )));
+            }
+            axes.push(v);
+        }
+        let count = axes.iter().map(|a| (a.len() - 1) as u128).product::<u128>();
+        if d == 0 || count > MAX_POINTS as u128 {
+            return Err(EstimateError::TooLarge(format!(
+                "{count} cells of a tensor partition in {d} directions (at most {MAX_POINTS})"
+            )));
+        }
+        let mut out = Vec::with_capacity(count as usize);
+        let mut idx = vec![0usize; d];
+        for _ in 0..count {
+            let a: Vec<f64> = (0..d).map(|j| axes[j][idx[j]]).collect();
+            let b: Vec<f64> = (0..d).map(|j| axes[j][idx[j] + 1]).collect();
+            out.push((a, b));
+            for (j, v) in idx.iter_mut().enumerate() {
+                *v += 1;
+                if *v < axes[j].len() - 1 {
+                    break;
+                }
+                *v = 0;
+            }
+        }
+        Ok(out)
+    }
+
     /// A rule from a quadrature rule of the stochastic toolkit (probability weights; one cell).
     ///
     /// # Errors

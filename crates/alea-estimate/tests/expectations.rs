@@ -322,6 +322,69 @@ fn the_law_holds_at_the_runs_of_an_interpolating_surrogate() {
 }
 
 #[test]
+fn the_interface_stochastic_density_vanishes_continuously_at_a_run_whose_neighbour_opens() {
+    // Two runs of a one-point contact interface: at xi = 0 the point is closed and slips
+    // (F_t = -mu F_n, slip against it), at xi = 1 it is open (positive normal jump, no force).
+    // Between them the interpolated jump is open while the interpolated force still presses:
+    // the stochastic part must go to 0 as xi -> 0 (the fields tend to the run's, which
+    // satisfies the law), not jump to |w_t . F_t| of the closed run.
+    struct Linear;
+    impl alea_estimate::Weights for Linear {
+        fn weights(&self, xi: &[f64], w: &mut Vec<(usize, f64)>) {
+            w.clear();
+            w.extend([(0, 1.0 - xi[0]), (1, xi[0])]);
+        }
+    }
+    struct Mu;
+    impl Parameters for Mu {
+        fn young(&self, _xi: &[f64], out: &mut [f64]) {
+            out.fill(1.0);
+        }
+        fn friction(&self, xi: &[f64], _i: usize, out: &mut [f64]) {
+            out.fill(0.3 - 0.2 * xi[0]);
+        }
+    }
+    let layout = Layout {
+        subs: vec![],
+        interfaces: vec![InterfaceLayout {
+            name: "I".into(),
+            kind: InterfaceKind::Contact,
+            weights: vec![1.0],
+            normals: vec![[0.0, 1.0, 0.0]],
+        }],
+    };
+    let run = |jump: [f64; 3], force: [f64; 3]| RunData {
+        young: vec![],
+        admissible: vec![],
+        fe: vec![],
+        jump: vec![vec![jump]],
+        force: vec![vec![force]],
+    };
+    let (fnormal, slip) = (2.0, 0.4);
+    let runs = [
+        run([-slip, 0.0, 0.0], [0.3 * fnormal, fnormal, 0.0]),
+        run([-0.1, 0.05, 0.0], [0.0; 3]),
+    ];
+    let est = Estimator::new(layout, &runs, EstimatorOptions::default()).unwrap();
+    let sto = |x: f64| {
+        let mut w = Vec::new();
+        alea_estimate::Weights::weights(&Linear, &[x], &mut w);
+        est.at(&[x], &w, &Mu).sto2()
+    };
+    let jump_size = slip * 0.3 * fnormal;
+    assert!(sto(0.0).abs() < 1e-14 && sto(1.0).abs() < 1e-14);
+    // mu falls with xi: the interpolated tangential force leaves the disk and the stochastic
+    // part is (1 - mu(xi) F_n / |F_t|) |w_t . F_t| = O(xi).
+    for x in [1e-1, 1e-2, 1e-3, 1e-4, 1e-6] {
+        let s = sto(x);
+        assert!(
+            s > 0.0 && s < x * jump_size,
+            "sto({x}) = {s}: does not vanish like xi (|w_t . F_t| = {jump_size})"
+        );
+    }
+}
+
+#[test]
 fn stochastic_error_of_a_response_in_one_over_e_converges_at_the_interpolation_rate() {
     // One substructure, random Young's factor alpha = xi in [1, 2], traction loads: the stress
     // does not depend on E, the displacement goes as 1/E. With sigma_h,k = s0 and
@@ -426,4 +489,43 @@ fn cell_terms_add_up_to_the_substructure_expectations() {
         q.subs[0].e2
     );
     assert!(cells.iter().all(|c| c.0 >= 0.0));
+}
+
+#[test]
+fn the_maximum_error_search_copes_with_leaves_at_the_finest_level() {
+    // A stochastic mesh refined at its centre, again and again, around one point down to the
+    // finest level: the candidates of the deepest leaves must stay within the mesh's levels
+    // (shallower sub-cells), and the chosen point's leaf must be one the mesh can refine.
+    use alea_uq::surrogate::MAX_LEVEL;
+    let params = Params { random_young: true };
+    let mut mesh = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[1, 1]).unwrap();
+    let target = [0.3, 0.3];
+    loop {
+        let leaf = mesh.locate(&target).unwrap();
+        if mesh.level(leaf) >= MAX_LEVEL - 1 {
+            break;
+        }
+        mesh.refine_centred(&[leaf]).unwrap();
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let runs: Vec<RunData> = (0..mesh.num_runs())
+        .map(|k| run_at(mesh.run_point(k), &params, &mut rng))
+        .collect();
+    let est = Estimator::new(layout(), &runs, EstimatorOptions::default()).unwrap();
+    let law = Independent::new(marginals()).unwrap();
+    let best = alea_estimate::refine::max_error_point(&mesh, &est, &mesh, &params, &law, 3)
+        .expect("no level error")
+        .expect("a positive density somewhere");
+    match best.enrich {
+        alea_estimate::refine::Enrich::Centre(cell) => {
+            let (lo, hi) = mesh.cell_bounds(cell);
+            assert!((0..2).all(|j| best.point[j] > lo[j] && best.point[j] < hi[j]));
+            mesh.refine_centred(&[cell])
+                .expect("a leaf the mesh can refine");
+        }
+        alea_estimate::refine::Enrich::Node => {
+            mesh.promote(&best.point)
+                .expect("a node the mesh can promote");
+        }
+    }
 }

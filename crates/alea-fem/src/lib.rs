@@ -6,7 +6,8 @@
 //! [`SymCsc`] on the free unknowns of a [`DofMap`] (constraints, including skew ones),
 //! [`Loads`] (nodal, traction/pressure, body, centrifugal), the sparse [`Cholesky`] solver, and
 //! [`post`] (stresses, nodal recovery, von Mises, reactions, energy). [`solve_elastic`] chains
-//! them for a one-shot solve.
+//! them for a one-shot solve. [`locate`] finds the cell and reference coordinates of physical
+//! points (2D), to evaluate one mesh's fields at another's points.
 //!
 //! Supported cells: T3, T6, Q4, Q8 (plane strain / plane stress with thickness), Tet4, Tet10,
 //! Hex8.
@@ -16,6 +17,7 @@ mod dofs;
 mod error;
 pub mod kinematics;
 mod loads;
+pub mod locate;
 mod material;
 mod model;
 pub mod post;
@@ -29,6 +31,7 @@ pub use assembly::{Assembled, assemble_stiffness};
 pub use dofs::{Constraints, DofMap};
 pub use error::FemError;
 pub use loads::Loads;
+pub use locate::{Location, PointLocator};
 pub use material::{Analysis, Material, von_mises};
 pub use model::Model;
 pub use problem::{ElasticSolution, Timings, solve_elastic};

@@ -12,8 +12,10 @@
 //!    carries stochastic error.
 //! 5. Mark and refine: the improved criterion refines every cell whose integrated stochastic
 //!    error is at least `fraction` of the largest at its centre (one run per cell; the other new
-//!    nodes interpolated), the maximum-error criterion places one run at the sub-cell centre of
-//!    largest stochastic error density. Then back to 2.
+//!    nodes interpolated), the maximum-error criterion searches the point of largest
+//!    stochastic error density over the sub-cell centres of every cell and the interpolated
+//!    nodes, and adds one run: the node itself, or the centre of the cell that holds the
+//!    sub-cell centre (`alea_estimate::refine` says why). Then back to 2.
 //!
 //! Every step is a pure function of the runs' results, so a resumed loop replays the same steps
 //! and recomputes no run. Cost in the thesis's units (tables 4.3-4.4): a run counts 1, an
@@ -216,11 +218,19 @@ pub(crate) fn run_adaptive(
                 let best =
                     refine::max_error_point(&mesh, &est, &sur, &sp, params.joint.as_ref(), depth)
                         .map_err(|e| StudyError::Other(e.to_string()))?;
-                let Some((point, _)) = best else {
+                let Some(best) = best else {
                     break ("no point carries stochastic error".to_string(), None);
                 };
-                mesh.refine_at_point(&point)
-                    .map_err(|e| StudyError::Other(e.to_string()))?;
+                match best.enrich {
+                    refine::Enrich::Centre(cell) => {
+                        mesh.refine_centred(&[cell])
+                            .map_err(|e| StudyError::Other(e.to_string()))?;
+                    }
+                    refine::Enrich::Node => {
+                        mesh.promote(&best.point)
+                            .map_err(|e| StudyError::Other(e.to_string()))?;
+                    }
+                }
                 1
             }
         };

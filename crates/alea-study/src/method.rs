@@ -52,10 +52,11 @@ pub enum Criterion {
         /// Fraction of the largest cell contribution (the thesis: 0.5).
         fraction: f64,
     },
-    /// One run at the point of largest stochastic error density, searched over the centres of
-    /// the `2^(d depth)` sub-cells of every cell.
+    /// One run per estimate where the stochastic error density is largest (searched over the
+    /// centres of the `2^(d depth)` sub-cells of every cell and the interpolated nodes): at
+    /// that node, or at the centre of the cell that holds the sub-cell centre.
     MaxError {
-        /// Sub-cell depth of the candidate points.
+        /// Sub-cell depth of the candidate points of the search.
         depth: u32,
     },
 }

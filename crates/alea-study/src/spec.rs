@@ -387,8 +387,8 @@ pub struct MethodSpec {
     /// this fraction of the largest (default 0.5).
     #[serde(default)]
     pub fraction: Option<Spanned<f64>>,
-    /// `adaptive`, maximum-error criterion: the candidate points are the centres of the
-    /// `2^(d depth)` sub-cells of each cell (default 3).
+    /// `adaptive`, maximum-error criterion: the density maximum is searched over the centres of
+    /// the `2^(d depth)` sub-cells of each cell (default 3) and the interpolated nodes.
     #[serde(default)]
     pub depth: Option<Spanned<u32>>,
 }

@@ -156,3 +156,65 @@ fn a_run_at_one_point_refines_towards_it_with_interpolated_nodes() {
     assert!(mesh.refine_at_point(&[0.5, 1.0]).is_err());
     assert!(mesh.refine_at_point(&[0.3, 1.0]).is_err());
 }
+
+#[test]
+fn an_interpolated_node_becomes_a_run_and_the_surrogate_stays_continuous() {
+    // Corners + centre, then the four quarters refined at their centres: the edge midpoints and
+    // the quarter corners are interpolated for good. Promoting one of them makes it a run: the
+    // surrogate then takes the run's value there, stays continuous, still reproduces bilinear
+    // functions, and changes only on the leaves around the node.
+    let (lo, hi) = (vec![0.0, 0.0], vec![2.0, 1.0]);
+    let mut mesh = StochasticMesh::new(&lo, &hi, &[1, 1]).unwrap();
+    mesh.refine_centred(&mesh.leaves()).unwrap();
+    mesh.refine_centred(&mesh.leaves()).unwrap();
+    assert_eq!(mesh.num_runs(), 9);
+    let nodes = mesh.interpolated_nodes();
+    // The 5 x 5 grid of quarter-cell corners less the 9 runs, all corners of every leaf
+    // around them.
+    assert_eq!(nodes.len(), 16, "{nodes:?}");
+    assert!(nodes.iter().all(|n| n.1.is_none()));
+    let f = |x: &[f64]| (x[0] - 0.3).abs() + x[1] * x[1];
+    let before = mesh.clone();
+    let vb = values(&before, f);
+    let node = [1.0, 0.0];
+    assert!(nodes.iter().any(|p| p.0 == node));
+    let new = mesh.promote(&node).unwrap();
+    assert_eq!((new.run, new.point.as_slice()), (9, &node[..]));
+    assert!(mesh.promote(&node).is_err(), "already a run");
+    assert!(mesh.promote(&[0.7, 0.3]).is_err(), "not a node");
+    let v = values(&mesh, f);
+    assert_eq!(mesh.eval(&node, &v), f(&node));
+    let mut seed = 7;
+    assert_continuous(&mesh, &v, &lo, &hi, &mut seed);
+    let bilinear = |x: &[f64]| 1.0 + 2.0 * x[0] - x[1] + 0.5 * x[0] * x[1];
+    let vbil = values(&mesh, bilinear);
+    for _ in 0..200 {
+        let x = [2.0 * lcg(&mut seed), lcg(&mut seed)];
+        assert!((mesh.eval(&x, &vbil) - bilinear(&x)).abs() < 1e-12);
+        // The quarters below y = 0.5 interpolate their own nodes from their corners, (1, 0)
+        // among them; above, nothing changed.
+        if x[1] > 0.5 {
+            assert!(
+                (mesh.eval(&x, &v) - before.eval(&x, &vb)).abs() < 1e-12,
+                "{x:?}"
+            );
+        }
+    }
+    // A node on the edge of a coarser leaf follows that leaf's interpolant: it names the leaf
+    // and cannot become a run before that leaf is refined.
+    let mut mesh = StochasticMesh::new(&lo, &hi, &[1, 1]).unwrap();
+    mesh.refine_centred(&mesh.leaves()).unwrap();
+    let first = mesh.leaves()[0];
+    mesh.refine_centred(&[first]).unwrap();
+    let (a, b) = mesh.cell_bounds(first);
+    let on_edge = vec![b[0], 0.5 * (a[1] + b[1])];
+    let nodes = mesh.interpolated_nodes();
+    let master = nodes.iter().find(|n| n.0 == on_edge).expect("a node").1;
+    let master = master.expect("on the edge of the unrefined neighbour");
+    assert!(mesh.is_leaf(master) && master != first);
+    assert!(mesh.promote(&on_edge).is_err());
+    mesh.refine_centred(&[master]).unwrap();
+    mesh.promote(&on_edge).unwrap();
+    let v = values(&mesh, f);
+    assert_continuous(&mesh, &v, &lo, &hi, &mut seed);
+}

@@ -695,6 +695,66 @@ impl StochasticMesh {
         })
     }
 
+    /// Every node that is not a run (interpolated for good by a centred refinement, or hanging
+    /// on a coarser leaf), in increasing key order (deterministic), with the coarsest leaf that
+    /// holds it without having it as a corner: `None` when [`StochasticMesh::promote`] can make
+    /// it a run now, else the leaf to refine first (its value follows that leaf's interpolant,
+    /// which a run there would break).
+    pub fn interpolated_nodes(&self) -> Vec<(Vec<f64>, Option<CellId>)> {
+        let mut keys: Vec<Key> = self
+            .nodes
+            .iter()
+            .filter(|(_, kind)| !matches!(kind, NodeKind::Run(_)))
+            .map(|(key, _)| *key)
+            .collect();
+        keys.sort_unstable();
+        keys.iter()
+            .map(|k| (self.key_point(k), self.master_of(k)))
+            .collect()
+    }
+
+    /// Makes the interpolated node at `xi` (one of [`StochasticMesh::interpolated_nodes`]
+    /// without a leaf to refine first) a run: the maximum-error criterion's new run where the
+    /// density peaks on a node whose value a centred refinement froze. The surrogate changes
+    /// only on the leaves around it (and wherever an interpolated value resolves through it); it
+    /// stays continuous.
+    ///
+    /// # Errors
+    /// If `xi` is not such a node.
+    pub fn promote(&mut self, xi: &[f64]) -> Result<NewRun> {
+        let d = self.d;
+        let mut key = [0u64; MAX_DIM];
+        for j in 0..d.min(xi.len()) {
+            let span = ((self.roots[j] as u64) << MAX_LEVEL) as f64;
+            let t = (xi[j] - self.lo[j]) / (self.hi[j] - self.lo[j]) * span;
+            if !(t >= 0.0 && t <= span) {
+                return Err(invalid("stochastic mesh", "point", "inside the box", xi[j]));
+            }
+            key[j] = t.round() as u64;
+        }
+        let ok = xi.len() == d
+            && matches!(
+                self.nodes.get(&key),
+                Some(NodeKind::Fixed(_) | NodeKind::Hanging(_))
+            )
+            && self.master_of(&key).is_none()
+            && (0..d).all(|j| {
+                (self.key_point(&key)[j] - xi[j]).abs() <= 1e-9 * (self.hi[j] - self.lo[j])
+            });
+        if !ok {
+            return Err(UqError::Invalid {
+                what: "stochastic mesh",
+                message: format!("{xi:?} is not an interpolated node that can become a run"),
+            });
+        }
+        let run = self.add_run(key);
+        self.rebuild()?;
+        Ok(NewRun {
+            run,
+            point: self.run_point(run).to_vec(),
+        })
+    }
+
     /// Centres of the `2^(d depth)` sub-cells of `cell` at relative depth `depth` (the candidate
     /// points of the maximum-error criterion), row-major `n x d`.
     ///
