@@ -234,6 +234,62 @@ pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> 
     }
 }
 
+/// Geometry and in-plane counts of the turbine generators (`mesh.params`).
+const TURBINE_KEYS: &[&str] = &[
+    "r_inner",
+    "r_rim",
+    "half_angle_deg",
+    "neck_half_width",
+    "flank_angle_deg",
+    "contact_length",
+    "runout",
+    "fillet_radius",
+    "shank_height",
+    "n_flank",
+    "n_runout",
+    "n_fillet",
+    "n_lobe",
+    "n_slot",
+    "n_below",
+    "n_root",
+    "n_shank",
+    "lobe_grading",
+    "below_grading",
+];
+
+/// The [`generate::TurbineParams`] of a `[mesh]` table (defaults for the missing keys).
+fn turbine_params(src: &Source, spec: &MeshSpec) -> Result<generate::TurbineParams, StudyError> {
+    let d = generate::TurbineParams::default();
+    Ok(generate::TurbineParams {
+        r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
+        r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
+        half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?
+            .to_radians(),
+        neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+        flank_angle: param_f64(
+            src,
+            spec,
+            "flank_angle_deg",
+            Some(d.flank_angle.to_degrees()),
+        )?
+        .to_radians(),
+        contact_length: param_f64(src, spec, "contact_length", Some(d.contact_length))?,
+        runout: param_f64(src, spec, "runout", Some(d.runout))?,
+        fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
+        shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+        n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+        n_runout: param_usize(src, spec, "n_runout", Some(d.n_runout))?,
+        n_fillet: param_usize(src, spec, "n_fillet", Some(d.n_fillet))?,
+        n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
+        n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
+        n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
+        n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+        n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+        lobe_grading: param_f64(src, spec, "lobe_grading", Some(d.lobe_grading))?,
+        below_grading: param_f64(src, spec, "below_grading", Some(d.below_grading))?,
+    })
+}
+
 /// Builds the mesh of a `[mesh]` table.
 pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
     crate::limits::check_mesh(src, spec)?;
@@ -431,34 +487,19 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
             generate::cylinder_on_block(&p, kind(CellType::Quad4)?).map_err(mesh_err)
         }
         "turbine_2d" => {
-            let d = generate::TurbineParams::default();
-            check_params(src, spec, &[
-                "r_inner", "r_rim", "half_angle_deg", "neck_half_width", "flank_angle_deg", "contact_length",
-                "runout", "fillet_radius", "shank_height", "n_flank", "n_runout", "n_fillet", "n_lobe", "n_slot",
-                "n_below", "n_root", "n_shank", "lobe_grading", "below_grading",
-            ])?;
-            let p = generate::TurbineParams {
-                r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
-                r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
-                half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?.to_radians(),
-                neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
-                flank_angle: param_f64(src, spec, "flank_angle_deg", Some(d.flank_angle.to_degrees()))?.to_radians(),
-                contact_length: param_f64(src, spec, "contact_length", Some(d.contact_length))?,
-                runout: param_f64(src, spec, "runout", Some(d.runout))?,
-                fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
-                shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
-                n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
-                n_runout: param_usize(src, spec, "n_runout", Some(d.n_runout))?,
-                n_fillet: param_usize(src, spec, "n_fillet", Some(d.n_fillet))?,
-                n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
-                n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
-                n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
-                n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
-                n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
-                lobe_grading: param_f64(src, spec, "lobe_grading", Some(d.lobe_grading))?,
-                below_grading: param_f64(src, spec, "below_grading", Some(d.below_grading))?,
-            };
-            generate::turbine_2d(&p, kind(CellType::Quad8)?).map_err(mesh_err)
+            check_params(src, spec, TURBINE_KEYS)?;
+            generate::turbine_2d(&turbine_params(src, spec)?, kind(CellType::Quad8)?).map_err(mesh_err)
+        }
+        "turbine_3d" => {
+            let keys: Vec<&str> = TURBINE_KEYS.iter().copied().chain(["depth", "n_z"]).collect();
+            check_params(src, spec, &keys)?;
+            if kind(CellType::Hex8)? != CellType::Hex8 {
+                let span = spec.kind.as_ref().map_or(spec.generator.span(), |k| k.span());
+                return Err(src.error(span, "mesh.kind", "turbine_3d makes HEX8 cells (the Quad4 model extruded)"));
+            }
+            let depth = param_f64(src, spec, "depth", Some(20.0))?;
+            let n_z = param_usize(src, spec, "n_z", Some(10))?;
+            generate::turbine_3d(&turbine_params(src, spec)?, depth, n_z).map_err(mesh_err)
         }
         "gmsh" => {
             check_params(src, spec, &[])?;
@@ -471,7 +512,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         other => Err(src.error(
             spec.generator.span(),
             "mesh.generator",
-            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, turbine_2d, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, turbine_2d, turbine_3d, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
         )),
     }
 }
