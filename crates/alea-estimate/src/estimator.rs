@@ -41,7 +41,8 @@ pub struct SubPoint {
     pub e2: f64,
     /// `geo_s^2 = 1/2 ||sigma~ - sigma_h2||^2` (4.2 integrand).
     pub geo2: f64,
-    /// `||sigma~||^2_{K^-1}` (4.8 denominator integrand).
+    /// `||sigma~||^2_{K^-1}` (4.8 denominator integrand); `||sigma_h1||^2_{K^-1}` for a
+    /// substructure with FE samples only.
     pub norm2: f64,
 }
 
@@ -196,7 +197,7 @@ pub struct Estimator {
     k: usize,
     /// Per substructure, per run: Young's factor.
     young: Vec<Vec<f64>>,
-    /// Per substructure (`None` when not estimated).
+    /// Per substructure (`None` when left out; `C` only without admissible samples).
     grams: Vec<Option<Gram>>,
     /// Per interface, point-major: `jump[p * K + k]`.
     jump: Vec<Vec<[f64; 3]>>,
@@ -244,9 +245,14 @@ impl Estimator {
             .enumerate()
             .map(|(s, sub)| {
                 (!sub.is_empty()).then(|| {
-                    let a: Vec<&[f64]> = runs.iter().map(|r| r.admissible[s].as_slice()).collect();
                     let h: Vec<&[f64]> = runs.iter().map(|r| r.fe[s].as_slice()).collect();
-                    Gram::new(&a, &h)
+                    if sub.admissible {
+                        let a: Vec<&[f64]> =
+                            runs.iter().map(|r| r.admissible[s].as_slice()).collect();
+                        Gram::new(&a, &h)
+                    } else {
+                        Gram::fe_only(&h)
+                    }
                 })
             })
             .collect();
@@ -257,7 +263,8 @@ impl Estimator {
 
     /// Builds the estimator from Gram matrices computed elsewhere (e.g. substructure by
     /// substructure, to bound memory) and the runs' interface fields: `young[s][k]`,
-    /// `grams[s]` (`None`: substructure part not estimated), `jump[k][i][p]`, `force[k][i][p]`.
+    /// `grams[s]` (`None`: substructure left out; [`Gram::fe_only`] for a substructure without
+    /// admissible samples), `jump[k][i][p]`, `force[k][i][p]`.
     ///
     /// # Errors
     /// [`EstimateError::Invalid`] on inconsistent counts or non-finite data.
@@ -292,15 +299,26 @@ impl Estimator {
             )));
         }
         for (s, g) in grams.iter().enumerate() {
-            if g.is_some() == layout.subs[s].is_empty() {
+            let sub = &layout.subs[s];
+            if g.is_some() == sub.is_empty() {
                 return Err(EstimateError::Invalid(format!(
-                    "substructure '{}': Gram matrices {} but the layout says it is {}estimated",
-                    layout.subs[s].name,
+                    "substructure '{}': Gram matrices {} but the layout says it is {}left out",
+                    sub.name,
                     if g.is_some() { "given" } else { "missing" },
-                    if layout.subs[s].is_empty() {
-                        "not "
+                    if sub.is_empty() { "" } else { "not " }
+                )));
+            }
+            if let Some(g) = g
+                && g.has_admissible() != sub.admissible
+            {
+                return Err(EstimateError::Invalid(format!(
+                    "substructure '{}': Gram matrices {} admissible samples, the layout {}",
+                    sub.name,
+                    if g.has_admissible() { "with" } else { "without" },
+                    if sub.admissible {
+                        "has them"
                     } else {
-                        ""
+                        "has FE samples only"
                     }
                 )));
             }
@@ -364,7 +382,7 @@ impl Estimator {
         self.k
     }
 
-    /// The Gram matrices of substructure `s` (`None` when its part is not estimated).
+    /// The Gram matrices of substructure `s` (`None` when it is left out).
     pub fn gram(&self, s: usize) -> Option<&Gram> {
         self.grams[s].as_ref()
     }
@@ -385,6 +403,14 @@ impl Estimator {
                     .iter()
                     .map(|&(r, wr)| (r, wr * (a / self.young[s][r])))
                     .collect();
+                if !g.has_admissible() {
+                    // FE samples only: no error term; `||sigma_h1||^2 = d^T C d / alpha`.
+                    return SubPoint {
+                        e2: 0.0,
+                        geo2: 0.0,
+                        norm2: form(&g.hh, k, &d, &d) / a,
+                    };
+                }
                 let caac = form(&g.aa, k, w, w);
                 let e2 = 0.5 * (caac - 2.0 * form(&g.ah, k, w, &d) + form(&g.hh, k, &d, &d)) / a;
                 let geo2 = 0.5 * (caac - 2.0 * form(&g.ah, k, w, w) + form(&g.hh, k, w, w)) / a;
@@ -591,7 +617,7 @@ impl Estimator {
             .map(|s| {
                 let [e2, geo2, _] = subs[s];
                 let mean2 = match &self.grams[s] {
-                    Some(g) => {
+                    Some(g) if g.has_admissible() => {
                         let pv: Vec<(usize, f64)> = p[s].iter().copied().enumerate().collect();
                         let qv: Vec<(usize, f64)> = q[s]
                             .iter()
@@ -601,7 +627,7 @@ impl Estimator {
                         0.5 * (form(&g.aa, k, &pv, &pv) - 2.0 * form(&g.ah, k, &pv, &qv)
                             + form(&g.hh, k, &qv, &qv))
                     }
-                    None => 0.0,
+                    _ => 0.0,
                 };
                 EntityEstimate {
                     name: self.layout.subs[s].name.clone(),
@@ -651,8 +677,8 @@ impl Estimator {
     /// The substructure terms from weight moments (exact when the moments are):
     /// `E[e_s^2] = 1/2 [tr(M_{1/alpha} A) - 2 tr(M_1 B D) + tr(M_alpha D C D)]`,
     /// `E[geo_s^2] = 1/2 tr(M_{1/alpha} (A - B - B^T + C))`, `E[||sigma~||^2] =
-    /// tr(M_{1/alpha} A)`; returns `[e2, geo2, norm2]` per substructure (zeros when not
-    /// estimated).
+    /// tr(M_{1/alpha} A)`; returns `[e2, geo2, norm2]` per substructure (zeros when left
+    /// out; `[0, 0, tr(M_alpha D C D)]`, the FE energy, without admissible samples).
     ///
     /// # Errors
     /// [`EstimateError::Invalid`] if the moments do not match the runs.
@@ -682,6 +708,16 @@ impl Estimator {
                     return [0.0; 3];
                 };
                 let y = &self.young[s];
+                if !g.has_admissible() {
+                    let mut c = 0.0;
+                    for i in 0..k {
+                        for j in 0..k {
+                            let ij = i * k + j;
+                            c += m.alpha[ij] * g.hh[ij] / (y[i] * y[j]);
+                        }
+                    }
+                    return [0.0, 0.0, c];
+                }
                 let (mut a, mut b, mut c, mut geo) = (0.0, 0.0, 0.0, 0.0);
                 for i in 0..k {
                     for j in 0..k {

@@ -11,20 +11,52 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 
-/// The three Gram matrices of one substructure, dense row-major `K x K`.
+/// The three Gram matrices of one substructure, dense row-major `K x K` (only `C` for a
+/// substructure with FE samples only: [`Gram::fe_only`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Gram {
     /// Number of runs.
     pub k: usize,
-    /// `A_kl = a_k . a_l` (admissible with admissible).
+    /// `A_kl = a_k . a_l` (admissible with admissible; empty without admissible samples).
     pub aa: Vec<f64>,
-    /// `B_kl = a_k . h_l` (admissible with FE; not symmetric).
+    /// `B_kl = a_k . h_l` (admissible with FE; not symmetric; empty without admissible
+    /// samples).
     pub ah: Vec<f64>,
     /// `C_kl = h_k . h_l` (FE with FE).
     pub hh: Vec<f64>,
 }
 
 impl Gram {
+    /// `C` alone, for a substructure with FE samples `h[k]` only (no admissible stress): `aa`
+    /// and `ah` are left empty.
+    ///
+    /// # Panics
+    /// If the vectors do not all have the same length.
+    pub fn fe_only(h: &[&[f64]]) -> Self {
+        let k = h.len();
+        let n = h.first().map_or(0, |v| v.len());
+        assert!(
+            h.iter().all(|v| v.len() == n),
+            "sample vectors of one length"
+        );
+        let hh = if k == 0 || n == 0 {
+            vec![0.0; k * k]
+        } else {
+            products(h, h, n, k, false)[2].clone()
+        };
+        Gram {
+            k,
+            aa: Vec::new(),
+            ah: Vec::new(),
+            hh,
+        }
+    }
+
+    /// True when `A` and `B` are present (the runs gave admissible samples).
+    pub fn has_admissible(&self) -> bool {
+        self.aa.len() == self.k * self.k && self.ah.len() == self.k * self.k
+    }
+
     /// The Gram matrices of sample vectors `a[k]` (admissible) and `h[k]` (FE), all of one
     /// length.
     ///
@@ -46,43 +78,60 @@ impl Gram {
                 hh: vec![0.0; k * k],
             };
         }
-        let block = (n / 16).max(4096).min(n);
-        let starts: Vec<usize> = (0..n).step_by(block).collect();
-        let parts: Vec<[Mat<f64>; 3]> = starts
-            .par_iter()
-            .map(|&r0| {
-                let r1 = (r0 + block).min(n);
-                let m = r1 - r0;
-                let gather = |v: &[&[f64]]| -> Vec<f64> {
-                    let mut buf = Vec::with_capacity(m * k);
-                    for col in v {
-                        buf.extend_from_slice(&col[r0..r1]);
-                    }
-                    buf
-                };
-                let (ba, bh) = (gather(a), gather(h));
+        let [aa, ah, hh] = products(a, h, n, k, true);
+        Gram { k, aa, ah, hh }
+    }
+}
+
+/// `[A, B, C]` (row-major `K x K`) of `a` and `h` (`K` vectors of length `n > 0`); with
+/// `all = false` only `C` is computed (the others are left zero).
+fn products(a: &[&[f64]], h: &[&[f64]], n: usize, k: usize, all: bool) -> [Vec<f64>; 3] {
+    let block = (n / 16).max(4096).min(n);
+    let starts: Vec<usize> = (0..n).step_by(block).collect();
+    let parts: Vec<[Mat<f64>; 3]> = starts
+        .par_iter()
+        .map(|&r0| {
+            let r1 = (r0 + block).min(n);
+            let m = r1 - r0;
+            let gather = |v: &[&[f64]]| -> Vec<f64> {
+                let mut buf = Vec::with_capacity(m * k);
+                for col in v {
+                    buf.extend_from_slice(&col[r0..r1]);
+                }
+                buf
+            };
+            let bh = gather(h);
+            let ba = if all { gather(a) } else { Vec::new() };
+            let yh = MatRef::from_column_major_slice(&bh, m, k);
+            let mut out = [Mat::zeros(k, k), Mat::zeros(k, k), Mat::zeros(k, k)];
+            if all {
                 let ya = MatRef::from_column_major_slice(&ba, m, k);
-                let yh = MatRef::from_column_major_slice(&bh, m, k);
-                let mut out = [Mat::zeros(k, k), Mat::zeros(k, k), Mat::zeros(k, k)];
-                for (dst, (l, r)) in out.iter_mut().zip([(ya, ya), (ya, yh), (yh, yh)]) {
+                for (dst, (l, r)) in out.iter_mut().zip([(ya, ya), (ya, yh)]) {
                     matmul(dst, Accum::Replace, l.transpose(), r, 1.0, Par::Seq);
                 }
-                out
-            })
-            .collect();
-        let mut sum = [vec![0.0; k * k], vec![0.0; k * k], vec![0.0; k * k]];
-        for p in &parts {
-            for (s, m) in sum.iter_mut().zip(p) {
-                for i in 0..k {
-                    for j in 0..k {
-                        s[i * k + j] += m[(i, j)];
-                    }
+            }
+            matmul(
+                &mut out[2],
+                Accum::Replace,
+                yh.transpose(),
+                yh,
+                1.0,
+                Par::Seq,
+            );
+            out
+        })
+        .collect();
+    let mut sum = [vec![0.0; k * k], vec![0.0; k * k], vec![0.0; k * k]];
+    for p in &parts {
+        for (s, m) in sum.iter_mut().zip(p) {
+            for i in 0..k {
+                for j in 0..k {
+                    s[i * k + j] += m[(i, j)];
                 }
             }
         }
-        let [aa, ah, hh] = sum;
-        Gram { k, aa, ah, hh }
     }
+    sum
 }
 
 #[cfg(test)]
