@@ -66,6 +66,7 @@ mod domain;
 pub mod eet;
 mod error;
 mod fe;
+mod fe_samples;
 pub mod interface;
 mod linalg;
 pub mod poly;
@@ -80,6 +81,7 @@ pub use data::{
 };
 pub use domain::{Admissible, CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
 pub use error::CreError;
+pub use fe_samples::FeEnergySampler;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};
 pub use samples::EnergySampler;
