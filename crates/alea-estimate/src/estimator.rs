@@ -314,7 +314,11 @@ impl Estimator {
                 return Err(EstimateError::Invalid(format!(
                     "substructure '{}': Gram matrices {} admissible samples, the layout {}",
                     sub.name,
-                    if g.has_admissible() { "with" } else { "without" },
+                    if g.has_admissible() {
+                        "with"
+                    } else {
+                        "without"
+                    },
                     if sub.admissible {
                         "has them"
                     } else {
@@ -421,75 +425,12 @@ impl Estimator {
                 }
             })
             .collect();
-        let tol = self.options.admissibility_tolerance;
         let mut violation: f64 = 0.0;
         let mut mu = Vec::new();
-        let interfaces = self
-            .layout
-            .interfaces
-            .iter()
-            .enumerate()
-            .map(|(i, it)| {
-                let np = it.weights.len();
-                let contact = it.kind == InterfaceKind::Contact;
-                if contact {
-                    mu.clear();
-                    mu.resize(np, 0.0);
-                    params.friction(xi, i, &mut mu);
-                }
-                // Interpolated fields, then the scales of the admissibility checks.
-                let mut wf: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(np);
-                let (mut w_scale, mut f_scale): (f64, f64) = (0.0, 0.0);
-                for p in 0..np {
-                    let mut wt = [0.0; 3];
-                    let mut ft = [0.0; 3];
-                    for &(r, wr) in w {
-                        let (j, f) = (&self.jump[i][p * k + r], &self.force[i][p * k + r]);
-                        for c in 0..3 {
-                            wt[c] += wr * j[c];
-                            ft[c] += wr * f[c];
-                        }
-                    }
-                    w_scale = w_scale.max(dot(&wt, &wt).sqrt());
-                    f_scale = f_scale.max(dot(&ft, &ft).sqrt());
-                    wf.push((wt, ft));
-                }
-                let mut out = InterfacePoint::default();
-                for (p, (wt, ft)) in wf.iter().enumerate() {
-                    let m = it.weights[p];
-                    if !contact {
-                        let v = m * dot(wt, ft);
-                        out.e += v;
-                        out.geo += v;
-                        continue;
-                    }
-                    let n = it.normals[p];
-                    let (wn, fn_) = (dot(wt, &n), dot(ft, &n));
-                    if w_scale > 0.0 && wn < -tol * w_scale {
-                        violation = violation.max(-wn / w_scale);
-                    }
-                    if f_scale > 0.0 && fn_ < -tol * f_scale {
-                        violation = violation.max(-fn_ / f_scale);
-                    }
-                    let wtan = [wt[0] - wn * n[0], wt[1] - wn * n[1], wt[2] - wn * n[2]];
-                    let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
-                    let wtn = dot(&wtan, &wtan).sqrt();
-                    let ftn = dot(&ftan, &ftan).sqrt();
-                    // The tangential force the law allows at xi: none where the interpolated
-                    // jump opens the contact, else within the disk of radius mu(xi) F_n.
-                    let open = wn > tol * w_scale;
-                    let radius = if open { 0.0 } else { mu[p] * fn_.max(0.0) };
-                    // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
-                    let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
-                    let sto = if ftn > radius {
-                        let s = radius / ftn - 1.0;
-                        s * dot(&wtan, &ftan)
-                    } else {
-                        0.0
-                    };
-                    out.geo += m * geo;
-                    out.e += m * (geo + sto);
-                }
+        let interfaces = (0..self.layout.interfaces.len())
+            .map(|i| {
+                let (out, v) = self.interface_at(i, xi, w, params, &mut mu, None);
+                violation = violation.max(v);
                 out
             })
             .collect();
@@ -498,6 +439,140 @@ impl Estimator {
             interfaces,
             violation,
         }
+    }
+
+    /// The terms of interface `i` at `xi` (weights `w`) and the largest relative violation of
+    /// the admissibility there; `per_point[p]` (if given) receives `[m_p rho(w~, F_1),
+    /// m_p rho(w~, F_2)]` of each point. `mu` is scratch space.
+    fn interface_at(
+        &self,
+        i: usize,
+        xi: &[f64],
+        w: &[(usize, f64)],
+        params: &dyn Parameters,
+        mu: &mut Vec<f64>,
+        mut per_point: Option<&mut [[f64; 2]]>,
+    ) -> (InterfacePoint, f64) {
+        let k = self.k;
+        let tol = self.options.admissibility_tolerance;
+        let mut violation: f64 = 0.0;
+        let it = &self.layout.interfaces[i];
+        let np = it.weights.len();
+        let contact = it.kind == InterfaceKind::Contact;
+        if contact {
+            mu.clear();
+            mu.resize(np, 0.0);
+            params.friction(xi, i, mu);
+        }
+        // Interpolated fields, then the scales of the admissibility checks.
+        let mut wf: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(np);
+        let (mut w_scale, mut f_scale): (f64, f64) = (0.0, 0.0);
+        for p in 0..np {
+            let mut wt = [0.0; 3];
+            let mut ft = [0.0; 3];
+            for &(r, wr) in w {
+                let (j, f) = (&self.jump[i][p * k + r], &self.force[i][p * k + r]);
+                for c in 0..3 {
+                    wt[c] += wr * j[c];
+                    ft[c] += wr * f[c];
+                }
+            }
+            w_scale = w_scale.max(dot(&wt, &wt).sqrt());
+            f_scale = f_scale.max(dot(&ft, &ft).sqrt());
+            wf.push((wt, ft));
+        }
+        let mut out = InterfacePoint::default();
+        for (p, (wt, ft)) in wf.iter().enumerate() {
+            let m = it.weights[p];
+            let (e, geo) = if contact {
+                let n = it.normals[p];
+                let (wn, fn_) = (dot(wt, &n), dot(ft, &n));
+                if w_scale > 0.0 && wn < -tol * w_scale {
+                    violation = violation.max(-wn / w_scale);
+                }
+                if f_scale > 0.0 && fn_ < -tol * f_scale {
+                    violation = violation.max(-fn_ / f_scale);
+                }
+                let wtan = [wt[0] - wn * n[0], wt[1] - wn * n[1], wt[2] - wn * n[2]];
+                let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
+                let wtn = dot(&wtan, &wtan).sqrt();
+                let ftn = dot(&ftan, &ftan).sqrt();
+                // The tangential force the law allows at xi: none where the interpolated
+                // jump opens the contact, else within the disk of radius mu(xi) F_n.
+                let open = wn > tol * w_scale;
+                let radius = if open { 0.0 } else { mu[p] * fn_.max(0.0) };
+                // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
+                let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
+                let sto = if ftn > radius {
+                    let s = radius / ftn - 1.0;
+                    s * dot(&wtan, &ftan)
+                } else {
+                    0.0
+                };
+                (m * (geo + sto), m * geo)
+            } else {
+                let v = m * dot(wt, ft);
+                (v, v)
+            };
+            out.e += e;
+            out.geo += geo;
+            if let Some(pp) = per_point.as_deref_mut() {
+                pp[p] = [e, geo];
+            }
+        }
+        (out, violation)
+    }
+
+    /// Per interface and point: `[E[m_p rho(w~, F_1)], E[m_p rho(w~, F_2)]]` over `rule` (the
+    /// terms of (3.31) and (4.4) point by point; per interface they add up to its `e2` and
+    /// `geo2` of [`Estimator::expectation`] on the same rule). Divided by `m_p`: the error
+    /// densities per unit interface measure, for maps.
+    pub fn interface_point_terms(
+        &self,
+        rule: &Rule,
+        weights: &dyn Weights,
+        params: &dyn Parameters,
+    ) -> Vec<Vec<[f64; 2]>> {
+        let zero = || -> Vec<Vec<[f64; 2]>> {
+            self.layout
+                .interfaces
+                .iter()
+                .map(|it| vec![[0.0; 2]; it.weights.len()])
+                .collect()
+        };
+        // Fixed chunks summed in order: independent of the thread count.
+        const CHUNK: usize = 512;
+        let starts: Vec<usize> = (0..rule.len()).step_by(CHUNK).collect();
+        let parts: Vec<Vec<Vec<[f64; 2]>>> = starts
+            .par_iter()
+            .map(|&q0| {
+                let mut acc = zero();
+                let mut scratch = zero();
+                let (mut w, mut mu) = (Vec::new(), Vec::new());
+                for q in q0..(q0 + CHUNK).min(rule.len()) {
+                    let (xi, om) = (rule.point(q), rule.weight(q));
+                    weights.weights(xi, &mut w);
+                    for (i, (a, sc)) in acc.iter_mut().zip(&mut scratch).enumerate() {
+                        self.interface_at(i, xi, &w, params, &mut mu, Some(sc));
+                        for (x, v) in a.iter_mut().zip(sc.iter()) {
+                            x[0] += om * v[0];
+                            x[1] += om * v[1];
+                        }
+                    }
+                }
+                acc
+            })
+            .collect();
+        let mut out = zero();
+        for part in &parts {
+            for (o, p) in out.iter_mut().zip(part) {
+                for (x, v) in o.iter_mut().zip(p) {
+                    x[0] += v[0];
+                    x[1] += v[1];
+                }
+            }
+        }
+        out
     }
 
     /// [`Estimator::at`] at every point of a row-major list, in parallel (results in order).

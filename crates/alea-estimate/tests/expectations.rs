@@ -456,7 +456,10 @@ fn fe_samples_only_give_no_substructure_term_and_the_fe_energy_as_the_norm() {
     let rule = gauss(8);
     let q = est.expectation(&rule, &sur, &params);
     let qf = full.expectation(&rule, &sur, &params);
-    assert_eq!((q.subs[0].e2, q.subs[0].geo2, q.subs[0].mean2), (0.0, 0.0, 0.0));
+    assert_eq!(
+        (q.subs[0].e2, q.subs[0].geo2, q.subs[0].mean2),
+        (0.0, 0.0, 0.0)
+    );
     assert_eq!(q.interfaces, qf.interfaces);
     assert_eq!(q.e2, qf.interfaces[0].e2);
     // Direct sum of the FE energy of the interpolated displacement over the rule.
@@ -474,7 +477,11 @@ fn fe_samples_only_give_no_substructure_term_and_the_fe_energy_as_the_norm() {
         }
         direct += rule.weight(p) * a * y.iter().map(|v| v * v).sum::<f64>();
     }
-    assert!((q.norm2 - direct).abs() < 1e-12 * direct, "{} vs {direct}", q.norm2);
+    assert!(
+        (q.norm2 - direct).abs() < 1e-12 * direct,
+        "{} vs {direct}",
+        q.norm2
+    );
     let mo = est
         .substructure_moments(&est.moments(&rule, &sur, &params))
         .unwrap()[0];
@@ -485,4 +492,24 @@ fn fe_samples_only_give_no_substructure_term_and_the_fe_energy_as_the_norm() {
     assert!(rel > 0.0 && rel < 0.2, "{rel}");
     let expect = (qf.interfaces[0].e2 / direct).sqrt();
     assert!((q.relative() - expect).abs() < 1e-12 * expect && expect > 0.0);
+}
+
+/// The interface terms point by point add up to the interface expectations on the same rule,
+/// and every point's stochastic part `e - geo` is what the interface's `sto2` sums.
+#[test]
+fn interface_point_terms_add_up_to_the_interface_expectations() {
+    let params = Params { random_young: true };
+    let (sur, est) = setup(&params);
+    let rule = gauss(6);
+    let q = est.expectation(&rule, &sur, &params);
+    let pts = est.interface_point_terms(&rule, &sur, &params);
+    assert_eq!(pts.len(), 1);
+    assert_eq!(pts[0].len(), NP);
+    let e: f64 = pts[0].iter().map(|v| v[0]).sum();
+    let g: f64 = pts[0].iter().map(|v| v[1]).sum();
+    let it = &q.interfaces[0];
+    assert!((e - it.e2).abs() < 1e-12 * it.e2.abs(), "{e} vs {}", it.e2);
+    assert!((g - it.geo2).abs() < 1e-12 * it.geo2.abs().max(it.e2.abs()));
+    assert!(it.sto2.abs() > 0.0);
+    assert!(pts[0].iter().any(|v| v[0] != v[1]));
 }
