@@ -443,6 +443,19 @@ impl LatinSolver {
         &self.ifaces[i].name
     }
 
+    /// Substructures `[side 1, side 2]` of interface `i` and the nodes of each side (in its
+    /// substructure's mesh), in interface point order.
+    pub fn interface_nodes(&self, i: usize) -> ([usize; 2], [&[usize]; 2]) {
+        let op = &self.ifaces[i];
+        (
+            op.sub,
+            [
+                &self.subs[op.sub[0]].links[op.link[0]].nodes,
+                &self.subs[op.sub[1]].links[op.link[1]].nodes,
+            ],
+        )
+    }
+
     /// Lumped integration weight of each point of interface `i` (side 1).
     pub fn interface_weights(&self, i: usize) -> &[f64] {
         &self.ifaces[i].weights
