@@ -84,6 +84,7 @@ pub mod eet;
 mod error;
 pub mod estimator;
 mod fe;
+mod fe_samples;
 pub mod interface;
 mod linalg;
 pub mod poly;
@@ -99,6 +100,7 @@ pub use data::{
 pub use domain::{Admissible, CreOptions, DomainEstimate, estimate_domain, estimate_with_sides};
 pub use error::CreError;
 pub use estimator::DomainEstimator;
+pub use fe_samples::FeEnergySampler;
 pub use interface::{InterfaceEstimate, interface_term};
 pub use result::{CreResult, write_error_vtu};
 pub use samples::EnergySampler;

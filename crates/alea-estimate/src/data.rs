@@ -9,23 +9,38 @@ pub struct SubLayout {
     /// Name (for messages and outputs).
     pub name: String,
     /// Offset of each cell's samples (`num_cells + 1` entries; the last is the vector length).
-    /// Empty when the substructure part is not estimated (e.g. cells without an admissible
-    /// stress construction): the substructure then contributes nothing.
+    /// Empty when the substructure is left out entirely: it then contributes nothing.
     pub cell_offsets: Vec<usize>,
+    /// True when the runs give admissible samples: the substructure has its error terms.
+    /// False for a substructure with FE samples only (e.g. 3D cells whose admissible stress is
+    /// not built): no error term, but its FE energy `||sigma_h1||^2` still enters the
+    /// normalisation of the relative indicators (crate doc, "Substructures without admissible
+    /// stress").
+    pub admissible: bool,
 }
 
 impl SubLayout {
-    /// Length of a sample vector (0 when the substructure part is not estimated).
+    /// Length of a sample vector (0 when the substructure is left out).
     pub fn len(&self) -> usize {
         self.cell_offsets.last().copied().unwrap_or(0)
     }
 
-    /// True if the substructure part is not estimated.
+    /// True if the substructure is left out (no samples at all).
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
-    /// Number of cells (0 when not estimated).
+    /// True if the substructure has its error terms (admissible and FE samples).
+    pub fn is_estimated(&self) -> bool {
+        self.admissible && !self.is_empty()
+    }
+
+    /// Length of the admissible sample vectors of a run (0 without admissible samples).
+    pub fn admissible_len(&self) -> usize {
+        if self.admissible { self.len() } else { 0 }
+    }
+
+    /// Number of cells (0 when left out).
     pub fn num_cells(&self) -> usize {
         self.cell_offsets.len().saturating_sub(1)
     }
@@ -67,8 +82,8 @@ pub struct Layout {
 pub struct RunData {
     /// Young's-modulus factor of each substructure in this run.
     pub young: Vec<f64>,
-    /// Per substructure: samples of the admissible stress `sigma_hat` (empty when not
-    /// estimated).
+    /// Per substructure: samples of the admissible stress `sigma_hat` (empty when the layout
+    /// has none for it).
     pub admissible: Vec<Vec<f64>>,
     /// Per substructure: samples of the FE stress `sigma_h` (same layout).
     pub fe: Vec<Vec<f64>>,
@@ -109,13 +124,15 @@ impl Layout {
                     sub.name
                 )));
             }
-            for (what, v) in [("admissible", &run.admissible[s]), ("FE", &run.fe[s])] {
-                if v.len() != sub.len() {
+            for (what, v, len) in [
+                ("admissible", &run.admissible[s], sub.admissible_len()),
+                ("FE", &run.fe[s], sub.len()),
+            ] {
+                if v.len() != len {
                     return Err(EstimateError::Invalid(format!(
-                        "substructure '{}': {what} samples of length {}, expected {}",
+                        "substructure '{}': {what} samples of length {}, expected {len}",
                         sub.name,
                         v.len(),
-                        sub.len()
                     )));
                 }
                 if v.iter().any(|x| !x.is_finite()) {

@@ -41,7 +41,8 @@ pub struct SubPoint {
     pub e2: f64,
     /// `geo_s^2 = 1/2 ||sigma~ - sigma_h2||^2` (4.2 integrand).
     pub geo2: f64,
-    /// `||sigma~||^2_{K^-1}` (4.8 denominator integrand).
+    /// `||sigma~||^2_{K^-1}` (4.8 denominator integrand); `||sigma_h1||^2_{K^-1}` for a
+    /// substructure with FE samples only.
     pub norm2: f64,
 }
 
@@ -196,7 +197,7 @@ pub struct Estimator {
     k: usize,
     /// Per substructure, per run: Young's factor.
     young: Vec<Vec<f64>>,
-    /// Per substructure (`None` when not estimated).
+    /// Per substructure (`None` when left out; `C` only without admissible samples).
     grams: Vec<Option<Gram>>,
     /// Per interface, point-major: `jump[p * K + k]`.
     jump: Vec<Vec<[f64; 3]>>,
@@ -244,9 +245,14 @@ impl Estimator {
             .enumerate()
             .map(|(s, sub)| {
                 (!sub.is_empty()).then(|| {
-                    let a: Vec<&[f64]> = runs.iter().map(|r| r.admissible[s].as_slice()).collect();
                     let h: Vec<&[f64]> = runs.iter().map(|r| r.fe[s].as_slice()).collect();
-                    Gram::new(&a, &h)
+                    if sub.admissible {
+                        let a: Vec<&[f64]> =
+                            runs.iter().map(|r| r.admissible[s].as_slice()).collect();
+                        Gram::new(&a, &h)
+                    } else {
+                        Gram::fe_only(&h)
+                    }
                 })
             })
             .collect();
@@ -257,7 +263,8 @@ impl Estimator {
 
     /// Builds the estimator from Gram matrices computed elsewhere (e.g. substructure by
     /// substructure, to bound memory) and the runs' interface fields: `young[s][k]`,
-    /// `grams[s]` (`None`: substructure part not estimated), `jump[k][i][p]`, `force[k][i][p]`.
+    /// `grams[s]` (`None`: substructure left out; [`Gram::fe_only`] for a substructure without
+    /// admissible samples), `jump[k][i][p]`, `force[k][i][p]`.
     ///
     /// # Errors
     /// [`EstimateError::Invalid`] on inconsistent counts or non-finite data.
@@ -292,15 +299,30 @@ impl Estimator {
             )));
         }
         for (s, g) in grams.iter().enumerate() {
-            if g.is_some() == layout.subs[s].is_empty() {
+            let sub = &layout.subs[s];
+            if g.is_some() == sub.is_empty() {
                 return Err(EstimateError::Invalid(format!(
-                    "substructure '{}': Gram matrices {} but the layout says it is {}estimated",
-                    layout.subs[s].name,
+                    "substructure '{}': Gram matrices {} but the layout says it is {}left out",
+                    sub.name,
                     if g.is_some() { "given" } else { "missing" },
-                    if layout.subs[s].is_empty() {
-                        "not "
+                    if sub.is_empty() { "" } else { "not " }
+                )));
+            }
+            if let Some(g) = g
+                && g.has_admissible() != sub.admissible
+            {
+                return Err(EstimateError::Invalid(format!(
+                    "substructure '{}': Gram matrices {} admissible samples, the layout {}",
+                    sub.name,
+                    if g.has_admissible() {
+                        "with"
                     } else {
-                        ""
+                        "without"
+                    },
+                    if sub.admissible {
+                        "has them"
+                    } else {
+                        "has FE samples only"
                     }
                 )));
             }
@@ -364,7 +386,7 @@ impl Estimator {
         self.k
     }
 
-    /// The Gram matrices of substructure `s` (`None` when its part is not estimated).
+    /// The Gram matrices of substructure `s` (`None` when it is left out).
     pub fn gram(&self, s: usize) -> Option<&Gram> {
         self.grams[s].as_ref()
     }
@@ -385,6 +407,14 @@ impl Estimator {
                     .iter()
                     .map(|&(r, wr)| (r, wr * (a / self.young[s][r])))
                     .collect();
+                if !g.has_admissible() {
+                    // FE samples only: no error term; `||sigma_h1||^2 = d^T C d / alpha`.
+                    return SubPoint {
+                        e2: 0.0,
+                        geo2: 0.0,
+                        norm2: form(&g.hh, k, &d, &d) / a,
+                    };
+                }
                 let caac = form(&g.aa, k, w, w);
                 let e2 = 0.5 * (caac - 2.0 * form(&g.ah, k, w, &d) + form(&g.hh, k, &d, &d)) / a;
                 let geo2 = 0.5 * (caac - 2.0 * form(&g.ah, k, w, w) + form(&g.hh, k, w, w)) / a;
@@ -395,75 +425,12 @@ impl Estimator {
                 }
             })
             .collect();
-        let tol = self.options.admissibility_tolerance;
         let mut violation: f64 = 0.0;
         let mut mu = Vec::new();
-        let interfaces = self
-            .layout
-            .interfaces
-            .iter()
-            .enumerate()
-            .map(|(i, it)| {
-                let np = it.weights.len();
-                let contact = it.kind == InterfaceKind::Contact;
-                if contact {
-                    mu.clear();
-                    mu.resize(np, 0.0);
-                    params.friction(xi, i, &mut mu);
-                }
-                // Interpolated fields, then the scales of the admissibility checks.
-                let mut wf: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(np);
-                let (mut w_scale, mut f_scale): (f64, f64) = (0.0, 0.0);
-                for p in 0..np {
-                    let mut wt = [0.0; 3];
-                    let mut ft = [0.0; 3];
-                    for &(r, wr) in w {
-                        let (j, f) = (&self.jump[i][p * k + r], &self.force[i][p * k + r]);
-                        for c in 0..3 {
-                            wt[c] += wr * j[c];
-                            ft[c] += wr * f[c];
-                        }
-                    }
-                    w_scale = w_scale.max(dot(&wt, &wt).sqrt());
-                    f_scale = f_scale.max(dot(&ft, &ft).sqrt());
-                    wf.push((wt, ft));
-                }
-                let mut out = InterfacePoint::default();
-                for (p, (wt, ft)) in wf.iter().enumerate() {
-                    let m = it.weights[p];
-                    if !contact {
-                        let v = m * dot(wt, ft);
-                        out.e += v;
-                        out.geo += v;
-                        continue;
-                    }
-                    let n = it.normals[p];
-                    let (wn, fn_) = (dot(wt, &n), dot(ft, &n));
-                    if w_scale > 0.0 && wn < -tol * w_scale {
-                        violation = violation.max(-wn / w_scale);
-                    }
-                    if f_scale > 0.0 && fn_ < -tol * f_scale {
-                        violation = violation.max(-fn_ / f_scale);
-                    }
-                    let wtan = [wt[0] - wn * n[0], wt[1] - wn * n[1], wt[2] - wn * n[2]];
-                    let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
-                    let wtn = dot(&wtan, &wtan).sqrt();
-                    let ftn = dot(&ftan, &ftan).sqrt();
-                    // The tangential force the law allows at xi given the interpolated normal
-                    // force: within the disk of radius mu(xi) F_n (crate doc: continuous in xi,
-                    // so the stochastic part vanishes as xi approaches a run).
-                    let radius = mu[p] * fn_.max(0.0);
-                    // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
-                    let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
-                    let sto = if ftn > radius {
-                        let s = radius / ftn - 1.0;
-                        s * dot(&wtan, &ftan)
-                    } else {
-                        0.0
-                    };
-                    out.geo += m * geo;
-                    out.e += m * (geo + sto);
-                }
+        let interfaces = (0..self.layout.interfaces.len())
+            .map(|i| {
+                let (out, v) = self.interface_at(i, xi, w, params, &mut mu, None);
+                violation = violation.max(v);
                 out
             })
             .collect();
@@ -472,6 +439,140 @@ impl Estimator {
             interfaces,
             violation,
         }
+    }
+
+    /// The terms of interface `i` at `xi` (weights `w`) and the largest relative violation of
+    /// the admissibility there; `per_point[p]` (if given) receives `[m_p rho(w~, F_1),
+    /// m_p rho(w~, F_2)]` of each point. `mu` is scratch space.
+    fn interface_at(
+        &self,
+        i: usize,
+        xi: &[f64],
+        w: &[(usize, f64)],
+        params: &dyn Parameters,
+        mu: &mut Vec<f64>,
+        mut per_point: Option<&mut [[f64; 2]]>,
+    ) -> (InterfacePoint, f64) {
+        let k = self.k;
+        let tol = self.options.admissibility_tolerance;
+        let mut violation: f64 = 0.0;
+        let it = &self.layout.interfaces[i];
+        let np = it.weights.len();
+        let contact = it.kind == InterfaceKind::Contact;
+        if contact {
+            mu.clear();
+            mu.resize(np, 0.0);
+            params.friction(xi, i, mu);
+        }
+        // Interpolated fields, then the scales of the admissibility checks.
+        let mut wf: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(np);
+        let (mut w_scale, mut f_scale): (f64, f64) = (0.0, 0.0);
+        for p in 0..np {
+            let mut wt = [0.0; 3];
+            let mut ft = [0.0; 3];
+            for &(r, wr) in w {
+                let (j, f) = (&self.jump[i][p * k + r], &self.force[i][p * k + r]);
+                for c in 0..3 {
+                    wt[c] += wr * j[c];
+                    ft[c] += wr * f[c];
+                }
+            }
+            w_scale = w_scale.max(dot(&wt, &wt).sqrt());
+            f_scale = f_scale.max(dot(&ft, &ft).sqrt());
+            wf.push((wt, ft));
+        }
+        let mut out = InterfacePoint::default();
+        for (p, (wt, ft)) in wf.iter().enumerate() {
+            let m = it.weights[p];
+            let (e, geo) = if contact {
+                let n = it.normals[p];
+                let (wn, fn_) = (dot(wt, &n), dot(ft, &n));
+                if w_scale > 0.0 && wn < -tol * w_scale {
+                    violation = violation.max(-wn / w_scale);
+                }
+                if f_scale > 0.0 && fn_ < -tol * f_scale {
+                    violation = violation.max(-fn_ / f_scale);
+                }
+                let wtan = [wt[0] - wn * n[0], wt[1] - wn * n[1], wt[2] - wn * n[2]];
+                let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
+                let wtn = dot(&wtan, &wtan).sqrt();
+                let ftn = dot(&ftan, &ftan).sqrt();
+                // The tangential force the law allows at xi given the interpolated normal
+                // force: within the disk of radius mu(xi) F_n (crate doc: continuous in xi,
+                // so the stochastic part vanishes as xi approaches a run).
+                let radius = mu[p] * fn_.max(0.0);
+                // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
+                let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
+                let sto = if ftn > radius {
+                    let s = radius / ftn - 1.0;
+                    s * dot(&wtan, &ftan)
+                } else {
+                    0.0
+                };
+                (m * (geo + sto), m * geo)
+            } else {
+                let v = m * dot(wt, ft);
+                (v, v)
+            };
+            out.e += e;
+            out.geo += geo;
+            if let Some(pp) = per_point.as_deref_mut() {
+                pp[p] = [e, geo];
+            }
+        }
+        (out, violation)
+    }
+
+    /// Per interface and point: `[E[m_p rho(w~, F_1)], E[m_p rho(w~, F_2)]]` over `rule` (the
+    /// terms of (3.31) and (4.4) point by point; per interface they add up to its `e2` and
+    /// `geo2` of [`Estimator::expectation`] on the same rule). Divided by `m_p`: the error
+    /// densities per unit interface measure, for maps.
+    pub fn interface_point_terms(
+        &self,
+        rule: &Rule,
+        weights: &dyn Weights,
+        params: &dyn Parameters,
+    ) -> Vec<Vec<[f64; 2]>> {
+        let zero = || -> Vec<Vec<[f64; 2]>> {
+            self.layout
+                .interfaces
+                .iter()
+                .map(|it| vec![[0.0; 2]; it.weights.len()])
+                .collect()
+        };
+        // Fixed chunks summed in order: independent of the thread count.
+        const CHUNK: usize = 512;
+        let starts: Vec<usize> = (0..rule.len()).step_by(CHUNK).collect();
+        let parts: Vec<Vec<Vec<[f64; 2]>>> = starts
+            .par_iter()
+            .map(|&q0| {
+                let mut acc = zero();
+                let mut scratch = zero();
+                let (mut w, mut mu) = (Vec::new(), Vec::new());
+                for q in q0..(q0 + CHUNK).min(rule.len()) {
+                    let (xi, om) = (rule.point(q), rule.weight(q));
+                    weights.weights(xi, &mut w);
+                    for (i, (a, sc)) in acc.iter_mut().zip(&mut scratch).enumerate() {
+                        self.interface_at(i, xi, &w, params, &mut mu, Some(sc));
+                        for (x, v) in a.iter_mut().zip(sc.iter()) {
+                            x[0] += om * v[0];
+                            x[1] += om * v[1];
+                        }
+                    }
+                }
+                acc
+            })
+            .collect();
+        let mut out = zero();
+        for part in &parts {
+            for (o, p) in out.iter_mut().zip(part) {
+                for (x, v) in o.iter_mut().zip(p) {
+                    x[0] += v[0];
+                    x[1] += v[1];
+                }
+            }
+        }
+        out
     }
 
     /// [`Estimator::at`] at every point of a row-major list, in parallel (results in order).
@@ -591,7 +692,7 @@ impl Estimator {
             .map(|s| {
                 let [e2, geo2, _] = subs[s];
                 let mean2 = match &self.grams[s] {
-                    Some(g) => {
+                    Some(g) if g.has_admissible() => {
                         let pv: Vec<(usize, f64)> = p[s].iter().copied().enumerate().collect();
                         let qv: Vec<(usize, f64)> = q[s]
                             .iter()
@@ -601,7 +702,7 @@ impl Estimator {
                         0.5 * (form(&g.aa, k, &pv, &pv) - 2.0 * form(&g.ah, k, &pv, &qv)
                             + form(&g.hh, k, &qv, &qv))
                     }
-                    None => 0.0,
+                    _ => 0.0,
                 };
                 EntityEstimate {
                     name: self.layout.subs[s].name.clone(),
@@ -651,8 +752,8 @@ impl Estimator {
     /// The substructure terms from weight moments (exact when the moments are):
     /// `E[e_s^2] = 1/2 [tr(M_{1/alpha} A) - 2 tr(M_1 B D) + tr(M_alpha D C D)]`,
     /// `E[geo_s^2] = 1/2 tr(M_{1/alpha} (A - B - B^T + C))`, `E[||sigma~||^2] =
-    /// tr(M_{1/alpha} A)`; returns `[e2, geo2, norm2]` per substructure (zeros when not
-    /// estimated).
+    /// tr(M_{1/alpha} A)`; returns `[e2, geo2, norm2]` per substructure (zeros when left
+    /// out; `[0, 0, tr(M_alpha D C D)]`, the FE energy, without admissible samples).
     ///
     /// # Errors
     /// [`EstimateError::Invalid`] if the moments do not match the runs.
@@ -682,6 +783,16 @@ impl Estimator {
                     return [0.0; 3];
                 };
                 let y = &self.young[s];
+                if !g.has_admissible() {
+                    let mut c = 0.0;
+                    for i in 0..k {
+                        for j in 0..k {
+                            let ij = i * k + j;
+                            c += m.alpha[ij] * g.hh[ij] / (y[i] * y[j]);
+                        }
+                    }
+                    return [0.0, 0.0, c];
+                }
                 let (mut a, mut b, mut c, mut geo) = (0.0, 0.0, 0.0, 0.0);
                 for i in 0..k {
                     for j in 0..k {

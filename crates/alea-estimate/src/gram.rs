@@ -11,20 +11,47 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par};
 use rayon::prelude::*;
 
-/// The three Gram matrices of one substructure, dense row-major `K x K`.
+/// The three Gram matrices of one substructure, dense row-major `K x K` (only `C` for a
+/// substructure with FE samples only: [`Gram::fe_only`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Gram {
     /// Number of runs.
     pub k: usize,
-    /// `A_kl = a_k . a_l` (admissible with admissible).
+    /// `A_kl = a_k . a_l` (admissible with admissible; empty without admissible samples).
     pub aa: Vec<f64>,
-    /// `B_kl = a_k . h_l` (admissible with FE; not symmetric).
+    /// `B_kl = a_k . h_l` (admissible with FE; not symmetric; empty without admissible
+    /// samples).
     pub ah: Vec<f64>,
     /// `C_kl = h_k . h_l` (FE with FE).
     pub hh: Vec<f64>,
 }
 
 impl Gram {
+    /// `C` alone, for a substructure with FE samples `h[k]` only (no admissible stress): `aa`
+    /// and `ah` are left empty.
+    ///
+    /// # Panics
+    /// If the vectors do not all have the same length.
+    pub fn fe_only(h: &[&[f64]]) -> Self {
+        let k = h.len();
+        let n = h.first().map_or(0, |v| v.len());
+        assert!(
+            h.iter().all(|v| v.len() == n),
+            "sample vectors of one length"
+        );
+        Gram {
+            k,
+            aa: Vec::new(),
+            ah: Vec::new(),
+            hh: cross_gram(&[], h, n).bb,
+        }
+    }
+
+    /// True when `A` and `B` are present (the runs gave admissible samples).
+    pub fn has_admissible(&self) -> bool {
+        self.aa.len() == self.k * self.k && self.ah.len() == self.k * self.k
+    }
+
     /// The Gram matrices of sample vectors `a[k]` (admissible) and `h[k]` (FE), all of one
     /// length.
     ///
@@ -38,34 +65,41 @@ impl Gram {
             a.iter().chain(h).all(|v| v.len() == n),
             "sample vectors of one length"
         );
-        let mut sum = CrossGram::zeros(k, k);
-        if k == 0 || n == 0 {
-            return sum.into_gram();
-        }
-        let block = (n / 16).max(4096).min(n);
-        let starts: Vec<usize> = (0..n).step_by(block).collect();
-        let parts: Vec<CrossGram> = starts
-            .par_iter()
-            .map(|&r0| {
-                let r1 = (r0 + block).min(n);
-                let m = r1 - r0;
-                let gather = |v: &[&[f64]]| -> Vec<f64> {
-                    let mut buf = Vec::with_capacity(m * k);
-                    for col in v {
-                        buf.extend_from_slice(&col[r0..r1]);
-                    }
-                    buf
-                };
-                let mut g = CrossGram::zeros(k, k);
-                g.add_block(m, &gather(a), &gather(h));
-                g
-            })
-            .collect();
-        for p in &parts {
-            sum.add(p);
-        }
-        sum.into_gram()
+        cross_gram(a, h, n).into_gram()
     }
+}
+
+/// The Gram blocks of `a` and `b` (vectors of length `n`), accumulated over blocks of rows in
+/// parallel and added in block order (independent of the thread count).
+fn cross_gram(a: &[&[f64]], b: &[&[f64]], n: usize) -> CrossGram {
+    let (ka, kb) = (a.len(), b.len());
+    let mut sum = CrossGram::zeros(ka, kb);
+    if n == 0 || ka + kb == 0 {
+        return sum;
+    }
+    let block = (n / 16).max(4096).min(n);
+    let starts: Vec<usize> = (0..n).step_by(block).collect();
+    let parts: Vec<CrossGram> = starts
+        .par_iter()
+        .map(|&r0| {
+            let r1 = (r0 + block).min(n);
+            let m = r1 - r0;
+            let gather = |v: &[&[f64]]| -> Vec<f64> {
+                let mut buf = Vec::with_capacity(m * v.len());
+                for col in v {
+                    buf.extend_from_slice(&col[r0..r1]);
+                }
+                buf
+            };
+            let mut g = CrossGram::zeros(ka, kb);
+            g.add_block(m, &gather(a), &gather(b));
+            g
+        })
+        .collect();
+    for p in &parts {
+        sum.add(p);
+    }
+    sum
 }
 
 /// The Gram blocks of two families of sample vectors `a_1..a_ka` and `b_1..b_kb` of one

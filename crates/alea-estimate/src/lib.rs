@@ -46,6 +46,20 @@
 //! `delta = (y(sigma~) - y(sigma_h1)) / sqrt(alpha)`: mean part `1/2 |E delta|^2`, std part the
 //! rest.
 //!
+//! # Substructures without admissible stress
+//! A substructure may come with FE samples only ([`SubLayout::admissible`] false: e.g. 3D cells
+//! in a study that estimates, as the thesis's 3D turbine (5.2.6), only the interface part). It
+//! then has no error term (`e_s^2 = geo_s^2 = 0`), but its FE energy
+//! `||sigma_h1(xi)||^2_{K(xi)^-1} = ||u~(xi)||^2_{K(xi)} = d^T C d / alpha` (the energy of the
+//! interpolated displacement, `C` alone: [`gram::Gram::fe_only`]) takes the place of
+//! `||sigma~||^2` in the normalisation of the relative indicators, so that they stay relative
+//! to the energy of the solution. What this means for the bound: `e~` then lacks the
+//! substructures' (non-negative) terms and is **not** an upper bound of the total error, only of
+//! the interfaces' share; `I_sto` is unaffected when the Young's moduli are deterministic (the
+//! substructure part is then pure space error, see above), so a stochastic refinement driven by
+//! `I_sto` loses nothing; `I_geo` holds the interfaces' space error only. The two
+//! normalisations agree to first order (`||sigma~||^2 - ||sigma_h1||^2 = O(e~ ||sigma~||)`).
+//!
 //! # Interfaces (3.31, 4.4-4.5)
 //! Per interface point with weight `m_i` and normal `n_i`: `w~`, `F_2 = F~` (interpolated force)
 //! and `F_1` = the same normal force with the tangential force the law at `xi` allows given the
@@ -79,7 +93,8 @@
 //! # Totals (4.6-4.9)
 //! `e~^2 = E[sum_s e_s^2 + sum_I e_I]` (3.28), `I_geo^2`, `I_sto^2 = e~^2 - I_geo^2` (so
 //! `e~^2 = I_geo^2 + I_sto^2` by construction), relative values divided by
-//! `(E[sum_s ||sigma~_s||^2_{K^-1}])^(1/2)`. A part may come out slightly negative (the split of a
+//! `(E[sum_s ||sigma~_s||^2_{K^-1}])^(1/2)` (with `||sigma_h1||^2` for substructures without
+//! admissible samples). A part may come out slightly negative (the split of a
 //! square into two terms is not a sum of squares): such a part is reported as 0 in the relative
 //! indicators and with its sign in the squared ones.
 //!

@@ -57,6 +57,7 @@ fn layout() -> Layout {
         subs: vec![SubLayout {
             name: "S".into(),
             cell_offsets: (0..=N / 6).map(|c| 6 * c).collect(),
+            admissible: true,
         }],
         interfaces: vec![InterfaceLayout {
             name: "I".into(),
@@ -404,6 +405,7 @@ fn stochastic_error_of_a_response_in_one_over_e_converges_at_the_interpolation_r
         subs: vec![SubLayout {
             name: "S".into(),
             cell_offsets: vec![0, 4],
+            admissible: true,
         }],
         interfaces: vec![],
     };
@@ -528,4 +530,88 @@ fn the_maximum_error_search_copes_with_leaves_at_the_finest_level() {
                 .expect("a node the mesh can promote");
         }
     }
+}
+
+/// The same runs with the substructure's admissible samples withheld: no substructure error
+/// term, the interface terms unchanged, and the normalisation the FE energy of the interpolated
+/// displacement, `E[||sigma_h1||^2] = E[alpha |sum_k w_k y(sigma_h,k) / alpha_k|^2]`, checked
+/// against a direct sum over the rule and against the weight moments.
+#[test]
+fn fe_samples_only_give_no_substructure_term_and_the_fe_energy_as_the_norm() {
+    let params = Params { random_young: true };
+    let (sur, full, runs) = setup_with_runs(&params);
+    let mut lay = layout();
+    lay.subs[0].admissible = false;
+    let fe_runs: Vec<RunData> = runs
+        .iter()
+        .map(|r| RunData {
+            admissible: vec![Vec::new()],
+            ..r.clone()
+        })
+        .collect();
+    // Admissible samples given for a substructure the layout says has none: refused.
+    assert!(Estimator::new(lay.clone(), &runs, EstimatorOptions::default()).is_err());
+    let est = Estimator::new(lay, &fe_runs, EstimatorOptions::default()).unwrap();
+    let g = est.gram(0).unwrap();
+    assert!(!g.has_admissible() && full.gram(0).unwrap().has_admissible());
+    assert_eq!(g.hh, full.gram(0).unwrap().hh);
+    let rule = gauss(8);
+    let q = est.expectation(&rule, &sur, &params);
+    let qf = full.expectation(&rule, &sur, &params);
+    assert_eq!(
+        (q.subs[0].e2, q.subs[0].geo2, q.subs[0].mean2),
+        (0.0, 0.0, 0.0)
+    );
+    assert_eq!(q.interfaces, qf.interfaces);
+    assert_eq!(q.e2, qf.interfaces[0].e2);
+    // Direct sum of the FE energy of the interpolated displacement over the rule.
+    let mut w = Vec::new();
+    let mut direct = 0.0;
+    for p in 0..rule.len() {
+        let xi = rule.point(p);
+        LinearSurrogate::weights(&sur, xi, &mut w);
+        let a = params.alpha(xi);
+        let mut y = vec![0.0; N];
+        for &(k, wk) in &w {
+            for (yi, h) in y.iter_mut().zip(&runs[k].fe[0]) {
+                *yi += wk * h / runs[k].young[0];
+            }
+        }
+        direct += rule.weight(p) * a * y.iter().map(|v| v * v).sum::<f64>();
+    }
+    assert!(
+        (q.norm2 - direct).abs() < 1e-12 * direct,
+        "{} vs {direct}",
+        q.norm2
+    );
+    let mo = est
+        .substructure_moments(&est.moments(&rule, &sur, &params))
+        .unwrap()[0];
+    assert_eq!((mo[0], mo[1]), (0.0, 0.0));
+    assert!((mo[2] - direct).abs() < 1e-12 * direct);
+    // The two normalisations agree to the size of the admissible-minus-FE difference.
+    let rel = (q.norm2 - qf.norm2).abs() / qf.norm2;
+    assert!(rel > 0.0 && rel < 0.2, "{rel}");
+    let expect = (qf.interfaces[0].e2 / direct).sqrt();
+    assert!((q.relative() - expect).abs() < 1e-12 * expect && expect > 0.0);
+}
+
+/// The interface terms point by point add up to the interface expectations on the same rule,
+/// and every point's stochastic part `e - geo` is what the interface's `sto2` sums.
+#[test]
+fn interface_point_terms_add_up_to_the_interface_expectations() {
+    let params = Params { random_young: true };
+    let (sur, est) = setup(&params);
+    let rule = gauss(6);
+    let q = est.expectation(&rule, &sur, &params);
+    let pts = est.interface_point_terms(&rule, &sur, &params);
+    assert_eq!(pts.len(), 1);
+    assert_eq!(pts[0].len(), NP);
+    let e: f64 = pts[0].iter().map(|v| v[0]).sum();
+    let g: f64 = pts[0].iter().map(|v| v[1]).sum();
+    let it = &q.interfaces[0];
+    assert!((e - it.e2).abs() < 1e-12 * it.e2.abs(), "{e} vs {}", it.e2);
+    assert!((g - it.geo2).abs() < 1e-12 * it.geo2.abs().max(it.e2.abs()));
+    assert!(it.sto2.abs() > 0.0);
+    assert!(pts[0].iter().any(|v| v[0] != v[1]));
 }

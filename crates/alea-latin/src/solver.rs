@@ -553,6 +553,20 @@ impl LatinSolver {
         &self.ifaces[i].name
     }
 
+    /// Substructures `[side 1, side 2]` of interface `i` and, for each side, the mesh node of
+    /// each interface point (in its substructure's mesh, point order): the paired nodes of a
+    /// node-to-node interface; for a mortar interface the node of largest coefficient in the
+    /// point's projection row (side 1: the point's own node), as in
+    /// [`crate::InterfaceResult::nodes`].
+    pub fn interface_nodes(&self, i: usize) -> ([usize; 2], [Vec<usize>; 2]) {
+        let op = &self.ifaces[i];
+        let nodes = |s: usize| {
+            let proj = &op.pairing.sides[s];
+            (0..proj.len()).map(|p| proj.main_node(p)).collect()
+        };
+        (op.sub, [nodes(0), nodes(1)])
+    }
+
     /// Lumped integration weight of each point of interface `i` (side 1).
     pub fn interface_weights(&self, i: usize) -> &[f64] {
         &self.ifaces[i].weights

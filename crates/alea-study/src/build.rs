@@ -57,6 +57,31 @@ impl Parametric {
         })
     }
 
+    /// `e` (an interface profile expression) at `theta` at every point of `xs`, into `out`:
+    /// the values of [`Parametric::profile`], with one buffer for all points and only the
+    /// defines `e` needs (directly or through later defines) evaluated - what the error
+    /// estimate calls for every interface at every parameter point of its rules and maps.
+    pub(crate) fn eval_profile(&self, e: &Expr, theta: &[f64], xs: &[[f64; 3]], out: &mut [f64]) {
+        let first = theta.len() + 3;
+        let nd = self.defines.len();
+        let mut needed = vec![false; nd];
+        for j in (0..nd).rev() {
+            needed[j] = e.uses(first + j)
+                || (j + 1..nd).any(|k| needed[k] && self.defines[k].uses(first + j));
+        }
+        let mut v = Vec::with_capacity(first + nd);
+        v.extend_from_slice(theta);
+        for (o, x) in out.iter_mut().zip(xs) {
+            v.truncate(theta.len());
+            v.extend_from_slice(x);
+            for (d, &need) in self.defines.iter().zip(&needed) {
+                let val = if need { d.eval(&v) } else { 0.0 };
+                v.push(val);
+            }
+            *o = e.eval(&v);
+        }
+    }
+
     /// The solver input for parameter point `theta`; `params` is the normalised point used
     /// to find the nearest finished run.
     pub fn run_input(&self, theta: &[f64], params: Vec<f64>) -> RunInput {
@@ -289,6 +314,62 @@ pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> 
     }
 }
 
+/// Geometry and in-plane counts of the turbine generators (`mesh.params`).
+const TURBINE_KEYS: &[&str] = &[
+    "r_inner",
+    "r_rim",
+    "half_angle_deg",
+    "neck_half_width",
+    "flank_angle_deg",
+    "contact_length",
+    "runout",
+    "fillet_radius",
+    "shank_height",
+    "n_flank",
+    "n_runout",
+    "n_fillet",
+    "n_lobe",
+    "n_slot",
+    "n_below",
+    "n_root",
+    "n_shank",
+    "lobe_grading",
+    "below_grading",
+];
+
+/// The [`generate::TurbineParams`] of a `[mesh]` table (defaults for the missing keys).
+fn turbine_params(src: &Source, spec: &MeshSpec) -> Result<generate::TurbineParams, StudyError> {
+    let d = generate::TurbineParams::default();
+    Ok(generate::TurbineParams {
+        r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
+        r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
+        half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?
+            .to_radians(),
+        neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+        flank_angle: param_f64(
+            src,
+            spec,
+            "flank_angle_deg",
+            Some(d.flank_angle.to_degrees()),
+        )?
+        .to_radians(),
+        contact_length: param_f64(src, spec, "contact_length", Some(d.contact_length))?,
+        runout: param_f64(src, spec, "runout", Some(d.runout))?,
+        fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
+        shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+        n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+        n_runout: param_usize(src, spec, "n_runout", Some(d.n_runout))?,
+        n_fillet: param_usize(src, spec, "n_fillet", Some(d.n_fillet))?,
+        n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
+        n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
+        n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
+        n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+        n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+        lobe_grading: param_f64(src, spec, "lobe_grading", Some(d.lobe_grading))?,
+        below_grading: param_f64(src, spec, "below_grading", Some(d.below_grading))?,
+    })
+}
+
 /// Builds the mesh of a `[mesh]` table.
 pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
     crate::limits::check_mesh(src, spec)?;
@@ -486,34 +567,19 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
             generate::cylinder_on_block(&p, kind(CellType::Quad4)?).map_err(mesh_err)
         }
         "turbine_2d" => {
-            let d = generate::TurbineParams::default();
-            check_params(src, spec, &[
-                "r_inner", "r_rim", "half_angle_deg", "neck_half_width", "flank_angle_deg", "contact_length",
-                "runout", "fillet_radius", "shank_height", "n_flank", "n_runout", "n_fillet", "n_lobe", "n_slot",
-                "n_below", "n_root", "n_shank", "lobe_grading", "below_grading",
-            ])?;
-            let p = generate::TurbineParams {
-                r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
-                r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
-                half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?.to_radians(),
-                neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
-                flank_angle: param_f64(src, spec, "flank_angle_deg", Some(d.flank_angle.to_degrees()))?.to_radians(),
-                contact_length: param_f64(src, spec, "contact_length", Some(d.contact_length))?,
-                runout: param_f64(src, spec, "runout", Some(d.runout))?,
-                fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
-                shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
-                n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
-                n_runout: param_usize(src, spec, "n_runout", Some(d.n_runout))?,
-                n_fillet: param_usize(src, spec, "n_fillet", Some(d.n_fillet))?,
-                n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
-                n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
-                n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
-                n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
-                n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
-                lobe_grading: param_f64(src, spec, "lobe_grading", Some(d.lobe_grading))?,
-                below_grading: param_f64(src, spec, "below_grading", Some(d.below_grading))?,
-            };
-            generate::turbine_2d(&p, kind(CellType::Quad8)?).map_err(mesh_err)
+            check_params(src, spec, TURBINE_KEYS)?;
+            generate::turbine_2d(&turbine_params(src, spec)?, kind(CellType::Quad8)?).map_err(mesh_err)
+        }
+        "turbine_3d" => {
+            let keys: Vec<&str> = TURBINE_KEYS.iter().copied().chain(["depth", "n_z"]).collect();
+            check_params(src, spec, &keys)?;
+            if kind(CellType::Hex8)? != CellType::Hex8 {
+                let span = spec.kind.as_ref().map_or(spec.generator.span(), |k| k.span());
+                return Err(src.error(span, "mesh.kind", "turbine_3d makes HEX8 cells (the Quad4 model extruded)"));
+            }
+            let depth = param_f64(src, spec, "depth", Some(20.0))?;
+            let n_z = param_usize(src, spec, "n_z", Some(10))?;
+            generate::turbine_3d(&turbine_params(src, spec)?, depth, n_z).map_err(mesh_err)
         }
         "gmsh" => {
             check_params(src, spec, &[])?;
@@ -526,7 +592,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         other => Err(src.error(
             spec.generator.span(),
             "mesh.generator",
-            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, turbine_2d, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, turbine_2d, turbine_3d, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
         )),
     }
 }
@@ -975,4 +1041,51 @@ pub fn build_model(
     };
     crate::checks::check_interfaces(src, &file.interface, &built)?;
     Ok(built)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `eval_profile` skips the defines a profile does not need and gives the values of
+    /// `profile`, bit for bit.
+    #[test]
+    fn profiles_evaluated_in_bulk_are_the_pointwise_ones() {
+        let vars = ["a", "b", "x", "y", "z", "s", "xr", "xl", "zw"];
+        let e = |t: &str, n: usize| Expr::parse(t, &vars[..n]).unwrap();
+        let defines = vec![
+            e("(199.84 - y) / 6.55", 5),
+            e("0.7 + 0.8 * s", 6),
+            e("1.5 - 0.8 * s", 7),
+            e("a * (0.075 * z^2 - 0.55 * z + 1) + b * z", 8),
+        ];
+        let mu = e(
+            "0.2 + 0.6 * (a * exp(-(xr - 0.7)^2 / 0.13) + b * exp(-(xr - 1.5)^2 / 0.13)) * zw",
+            9,
+        );
+        let p = Parametric {
+            nparams: 2,
+            young: vec![],
+            young_nominal: vec![],
+            load_factors: vec![],
+            mu: vec![mu.clone()],
+            gap: vec![],
+            defines,
+        };
+        let xs: Vec<[f64; 3]> = (0..50)
+            .map(|i| {
+                let t = i as f64 / 49.0;
+                [3.0 + t, 199.8 - 6.5 * t, 20.0 * t * t]
+            })
+            .collect();
+        for theta in [[0.0, 1.0], [0.3, 0.8], [1.0, 0.0]] {
+            let mut out = vec![0.0; xs.len()];
+            p.eval_profile(&mu, &theta, &xs, &mut out);
+            let f = p.profile(&mu, &theta);
+            for (x, o) in xs.iter().zip(&out) {
+                assert_eq!(f(*x).to_bits(), o.to_bits(), "{x:?}");
+            }
+            assert!(out.iter().all(|v| v.is_finite()));
+        }
+    }
 }

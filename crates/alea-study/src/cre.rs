@@ -14,10 +14,15 @@
 //! displacement. Nodal (point) forces have no finite stress energy and are refused; so are body
 //! loads restricted to part of a substructure.
 //!
-//! 3D substructures (no EET construction yet) contribute their interface terms only; the
-//! estimate says so ([`CreSetup::substructures_estimated`]).
+//! 3D substructures: only the interface part is estimated, as in the thesis's 3D study (5.2.6):
+//! the 3D EET exists (`alea_cre::solid`) but costs about twice a LATIN solve per run on the 3D
+//! turbine (`BENCHMARKS.md`). They give FE-stress samples only
+//! ([`alea_cre::FeEnergySampler`], the stiffness rule), whose energy normalises the relative
+//! indicators (crate `alea-estimate`, "Substructures without admissible stress": `e~` is then
+//! not a bound of the total error; `I_sto` is complete when the Young's moduli are
+//! deterministic). The estimate says so ([`CreSetup::substructures_estimated`]).
 
-use alea_cre::{AffineBody, CreOptions, EnergySampler, LatinEstimator, LoadData};
+use alea_cre::{AffineBody, CreOptions, EnergySampler, FeEnergySampler, LatinEstimator, LoadData};
 use alea_estimate::{InterfaceKind, InterfaceLayout, Layout, Parameters, SubLayout};
 use alea_latin::{LatinSolver, RunResult};
 
@@ -49,6 +54,8 @@ pub struct CreSetup {
     samplers: Vec<Option<EnergySampler>>,
     /// The multiresolution estimator (2D substructures only).
     estimator: Option<LatinEstimator>,
+    /// FE-only samplers of the substructures without admissible stress (3D).
+    norm_samplers: Vec<Option<FeEnergySampler>>,
     loads: Vec<Vec<LoadTerm>>,
     /// The entities as the stochastic estimator sees them.
     pub layout: Layout,
@@ -247,6 +254,7 @@ impl CreSetup {
         let ns = solver.num_subs();
         let mut loads = Vec::with_capacity(ns);
         let mut samplers = Vec::with_capacity(ns);
+        let mut norm_samplers = Vec::with_capacity(ns);
         let mut subs = Vec::with_capacity(ns);
         for s in 0..ns {
             let model = solver.model(s);
@@ -265,13 +273,18 @@ impl CreSetup {
             } else {
                 None
             };
+            let norm_sampler = norm_sampler(solver, s, sampler.is_none())?;
             subs.push(SubLayout {
                 name: solver.sub_name(s).to_string(),
-                cell_offsets: sampler
-                    .as_ref()
-                    .map_or_else(Vec::new, |sm| sm.cell_offsets().to_vec()),
+                cell_offsets: match (&sampler, &norm_sampler) {
+                    (Some(sm), _) => sm.cell_offsets().to_vec(),
+                    (None, Some(sm)) => sm.cell_offsets().to_vec(),
+                    (None, None) => Vec::new(),
+                },
+                admissible: sampler.is_some(),
             });
             samplers.push(sampler);
+            norm_samplers.push(norm_sampler);
         }
         let interfaces = (0..solver.num_interfaces())
             .map(|i| InterfaceLayout {
@@ -301,6 +314,7 @@ impl CreSetup {
             options,
             samplers,
             estimator,
+            norm_samplers,
             loads,
             layout: Layout { subs, interfaces },
         })
@@ -439,8 +453,8 @@ impl CreSetup {
 
     /// The stress samples of substructure `s` of a stored run: admissible samples from the
     /// record's coefficients, FE samples from its displacement (`fields`: every substructure's
-    /// node-major displacement, concatenated as in the store). Empty when the substructure part
-    /// is not estimated.
+    /// node-major displacement, concatenated as in the store). Without admissible stress (3D):
+    /// no admissible samples, FE samples on the stiffness rule.
     ///
     /// # Errors
     /// [`StudyError::Other`] if the record or the fields do not match the model.
@@ -458,9 +472,6 @@ impl CreSetup {
                     .into(),
             ));
         }
-        let Some(sm) = &self.samplers[s] else {
-            return Ok((Vec::new(), Vec::new()));
-        };
         let off: usize = (0..s)
             .map(|t| solver.model(t).mesh.num_nodes() * solver.model(t).mesh.dim)
             .sum();
@@ -469,6 +480,16 @@ impl CreSetup {
         let u = fields.get(off..off + n).ok_or_else(|| {
             StudyError::Other("a stored displacement field is shorter than the model".into())
         })?;
+        let Some(sm) = &self.samplers[s] else {
+            return match &self.norm_samplers[s] {
+                Some(fe) => Ok((
+                    Vec::new(),
+                    fe.fe_stress(model, u, record.young[s])
+                        .map_err(|e| StudyError::Other(e.to_string()))?,
+                )),
+                None => Ok((Vec::new(), Vec::new())),
+            };
+        };
         let c = &record.coefficients[s];
         if c.len() != *sm.coefficient_offsets().last().unwrap_or(&0) {
             return Err(StudyError::Other(format!(
@@ -481,6 +502,20 @@ impl CreSetup {
         sm.admissible_from_coefficients(c, alpha, 0..model.mesh.num_cells(), &mut a);
         Ok((a, sm.fe_stress(model, u, alpha)))
     }
+}
+
+/// The FE-only sampler of substructure `s` when it has no admissible stress (`needed`).
+fn norm_sampler(
+    solver: &LatinSolver,
+    s: usize,
+    needed: bool,
+) -> Result<Option<FeEnergySampler>, StudyError> {
+    if !needed {
+        return Ok(None);
+    }
+    FeEnergySampler::new(solver.model(s))
+        .map(Some)
+        .map_err(|e| StudyError::Other(format!("substructure '{}': {e}", solver.sub_name(s))))
 }
 
 /// The study's parameters as the estimator sees them: Young's factors and friction profiles
@@ -514,10 +549,8 @@ impl Parameters for StudyParameters<'_> {
     }
 
     fn friction(&self, xi: &[f64], interface: usize, out: &mut [f64]) {
-        let f = self.parametric.profile(&self.parametric.mu[interface], xi);
-        for (o, x) in out.iter_mut().zip(&self.points[interface]) {
-            *o = f(*x);
-        }
+        let p = self.parametric;
+        p.eval_profile(&p.mu[interface], xi, &self.points[interface], out);
     }
 }
 
@@ -552,6 +585,7 @@ mod tests {
             options: CreOptions::default(),
             samplers: vec![None],
             estimator: None,
+            norm_samplers: vec![None],
             loads: vec![terms.clone()],
             layout: Layout {
                 subs: vec![],

@@ -187,7 +187,11 @@ pub fn build_estimator(
         }
         let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
         let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
-        grams.push(Some(alea_estimate::gram::Gram::new(&ar, &hr)));
+        grams.push(Some(if setup.layout.subs[s].admissible {
+            alea_estimate::gram::Gram::new(&ar, &hr)
+        } else {
+            alea_estimate::gram::Gram::fe_only(&hr)
+        }));
     }
     let jump = records.iter().map(|r| r.jump.clone()).collect();
     let force = records.iter().map(|r| r.force.clone()).collect();
@@ -321,15 +325,21 @@ pub fn density_maps(
     .map_err(|e| StudyError::Other(e.to_string()))
 }
 
-/// Writes the mean error density per cell of every substructure of a method for ParaView
-/// (`<dir>/paraview/error.vtm`, one `.vtu` per substructure): `space_error_density`
-/// `= E[geo_E^2] / |E|` (the thesis's `I_geo` per unit area: where to refine the space mesh),
-/// `error_density` `= E[e_E^2] / |E|`, and the per-cell values themselves. The moments of the
-/// weights come from the method's integration rule, so the cells add up to the estimate's
-/// substructure terms. Returns the path, or `None` when no substructure is estimated.
+/// Writes the mean error density of a method for ParaView (`<dir>/paraview/error.vtm`, one
+/// `.vtu` per substructure). Per cell of every substructure with admissible stresses:
+/// `space_error_density` `= E[geo_E^2] / |E|` (the thesis's `I_geo` per unit area: where to
+/// refine the space mesh), `error_density` `= E[e_E^2] / |E|`, and the per-cell values
+/// themselves (the moments of the weights come from the method's integration rule, so the cells
+/// add up to the estimate's substructure terms). On the interface nodes of both sides, per unit
+/// interface measure: `interface_error_density` `= E[m_p rho(w~, F_1)] / m_p`,
+/// `interface_space_error_density` (with `F_2`, (4.4)) and `interface_stochastic_error_density`
+/// (their difference, (4.5)) - the only error fields of substructures without admissible
+/// stresses (3D: interface part only). `est`: the method's estimator if at hand (else it is
+/// rebuilt from the store). Returns the path, or `None` when there is nothing to map.
 ///
 /// # Errors
 /// Store, sample or write errors.
+#[allow(clippy::too_many_arguments)]
 pub fn write_error_fields(
     study: &Study,
     setup: &CreSetup,
@@ -339,85 +349,119 @@ pub fn write_error_fields(
     points: &[Vec<f64>],
     sur: &Surrogate,
     settings: &ErrorSettings,
+    est: Option<&Estimator>,
     dir: &std::path::Path,
 ) -> Result<Option<std::path::PathBuf>, StudyError> {
     use alea_mesh::vtu::{VtuWriter, write_vtm};
-    if !setup.substructures_estimated() {
+    let ns = solver.num_subs();
+    let estimated: Vec<bool> = setup.layout.subs.iter().map(|l| l.is_estimated()).collect();
+    if !estimated.contains(&true) && solver.num_interfaces() == 0 {
         return Ok(None);
     }
     let (_, rule) = integration_rule(study, method, settings)?;
     let params = StudyParameters::new(&study.model.parametric, solver);
-    let moments =
-        alea_estimate::weight_moments(&rule, sur, &params, solver.num_subs(), points.len());
-    let mut records = Vec::with_capacity(points.len());
-    let mut fields = Vec::with_capacity(points.len());
-    for p in points {
-        let values = store.cre(p)?.ok_or_else(|| {
-            StudyError::Other(format!("the run at {p:?} has no stored error estimate"))
-        })?;
-        records.push(CreRecord::from_values(&values).ok_or_else(|| {
-            StudyError::Other(format!(
-                "the stored error estimate of the run at {p:?} is damaged"
-            ))
-        })?);
-        fields.push(store.fields(p)?);
-    }
-    let ns = solver.num_subs();
-    let mut cell_fields: Vec<[Vec<f64>; 4]> = Vec::with_capacity(ns);
-    for s in 0..ns {
-        let mut a = Vec::with_capacity(points.len());
-        let mut h = Vec::with_capacity(points.len());
-        let mut young = Vec::with_capacity(points.len());
-        for (r, f) in records.iter().zip(&fields) {
-            let (ya, yh) = setup.sub_samples(solver, s, r, f)?;
-            a.push(ya);
-            h.push(yh);
-            young.push(r.young[s]);
+    let mut cell_fields: Vec<Option<[Vec<f64>; 4]>> = vec![None; ns];
+    if estimated.contains(&true) {
+        let moments = alea_estimate::weight_moments(&rule, sur, &params, ns, points.len());
+        let mut records = Vec::with_capacity(points.len());
+        let mut fields = Vec::with_capacity(points.len());
+        for p in points {
+            let values = store.cre(p)?.ok_or_else(|| {
+                StudyError::Other(format!("the run at {p:?} has no stored error estimate"))
+            })?;
+            records.push(CreRecord::from_values(&values).ok_or_else(|| {
+                StudyError::Other(format!(
+                    "the stored error estimate of the run at {p:?} is damaged"
+                ))
+            })?);
+            fields.push(store.fields(p)?);
         }
-        let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
-        let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
-        let terms = alea_estimate::cell_terms(
-            &ar,
-            &hr,
-            &young,
-            &setup.layout.subs[s].cell_offsets,
-            &moments[s],
-        );
-        let model = solver.model(s);
-        let th = model.analysis.thickness();
-        let area: Vec<f64> = (0..model.mesh.num_cells())
-            .map(|c| model.mesh.cell_measure(c) * th)
-            .collect();
-        let per = |v: &dyn Fn(&(f64, f64)) -> f64| -> Vec<f64> {
-            terms.iter().map(|t| v(t).max(0.0)).collect()
-        };
-        let geo = per(&|t| t.0);
-        let tot = per(&|t| t.1);
-        let geo_d = geo
-            .iter()
-            .zip(&area)
-            .map(|(g, a)| if *a > 0.0 { g / a } else { 0.0 })
-            .collect();
-        let tot_d = tot
-            .iter()
-            .zip(&area)
-            .map(|(g, a)| if *a > 0.0 { g / a } else { 0.0 })
-            .collect();
-        cell_fields.push([geo_d, tot_d, geo, tot]);
+        for s in (0..ns).filter(|&s| estimated[s]) {
+            let mut a = Vec::with_capacity(points.len());
+            let mut h = Vec::with_capacity(points.len());
+            let mut young = Vec::with_capacity(points.len());
+            for (r, f) in records.iter().zip(&fields) {
+                let (ya, yh) = setup.sub_samples(solver, s, r, f)?;
+                a.push(ya);
+                h.push(yh);
+                young.push(r.young[s]);
+            }
+            let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
+            let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
+            let terms = alea_estimate::cell_terms(
+                &ar,
+                &hr,
+                &young,
+                &setup.layout.subs[s].cell_offsets,
+                &moments[s],
+            );
+            let model = solver.model(s);
+            let th = model.analysis.thickness();
+            let area: Vec<f64> = (0..model.mesh.num_cells())
+                .map(|c| model.mesh.cell_measure(c) * th)
+                .collect();
+            let per = |v: &dyn Fn(&(f64, f64)) -> f64| -> Vec<f64> {
+                terms.iter().map(|t| v(t).max(0.0)).collect()
+            };
+            let geo = per(&|t| t.0);
+            let tot = per(&|t| t.1);
+            let density = |v: &[f64]| -> Vec<f64> {
+                v.iter()
+                    .zip(&area)
+                    .map(|(g, a)| if *a > 0.0 { g / a } else { 0.0 })
+                    .collect()
+            };
+            cell_fields[s] = Some([density(&geo), density(&tot), geo, tot]);
+        }
+    }
+    // Interface densities on the interface nodes of both sides (0 elsewhere).
+    let built;
+    let est = match est {
+        Some(e) => e,
+        None => {
+            built = build_estimator(setup, solver, store, points)?;
+            &built
+        }
+    };
+    let per_point = est.interface_point_terms(&rule, sur, &params);
+    let mut node_fields: Vec<[Vec<f64>; 3]> = (0..ns)
+        .map(|s| {
+            let n = solver.model(s).mesh.num_nodes();
+            [vec![0.0; n], vec![0.0; n], vec![0.0; n]]
+        })
+        .collect();
+    for (i, terms) in per_point.iter().enumerate() {
+        let weights = solver.interface_weights(i);
+        let (subs, nodes) = solver.interface_nodes(i);
+        for side in 0..2 {
+            let f = &mut node_fields[subs[side]];
+            for (p, (&node, t)) in nodes[side].iter().zip(terms).enumerate() {
+                let m = weights[p];
+                if m > 0.0 {
+                    f[0][node] = t[0] / m;
+                    f[1][node] = t[1] / m;
+                    f[2][node] = (t[0] - t[1]) / m;
+                }
+            }
+        }
     }
     let names: Vec<String> = (0..ns).map(|s| solver.sub_name(s).to_string()).collect();
     let parts: Vec<(&str, VtuWriter<'_>)> = (0..ns)
         .map(|s| {
             let mesh = &solver.model(s).mesh;
-            let [gd, td, g, t] = &cell_fields[s];
-            (
-                names[s].as_str(),
-                VtuWriter::new(mesh)
+            let [e, g, st] = &node_fields[s];
+            let mut w = VtuWriter::new(mesh)
+                .point_scalar("interface_error_density", e)
+                .point_scalar("interface_space_error_density", g)
+                .point_scalar("interface_stochastic_error_density", st);
+            if let Some([gd, td, g, t]) = &cell_fields[s] {
+                w = w
                     .cell_scalar("space_error_density", gd)
                     .cell_scalar("error_density", td)
                     .cell_scalar("space_error", g)
-                    .cell_scalar("error", t),
-            )
+                    .cell_scalar("error", t);
+            }
+            (names[s].as_str(), w)
         })
         .collect();
     let path = dir.join("paraview").join("error.vtm");

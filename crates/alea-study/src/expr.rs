@@ -341,6 +341,9 @@ impl Expr {
                         '-' => a - b,
                         '*' => a * b,
                         '/' => a / b,
+                        // Squares, the most common power in profiles: `a * a` is correctly
+                        // rounded, as `powf` is, hence the same value, several times faster.
+                        _ if b == 2.0 => a * a,
                         _ => a.powf(b),
                     }
                 }
@@ -375,6 +378,17 @@ mod tests {
         let mu = "0.2 + 0.6 * (a * exp(-(x - 0.7)^2 / 0.13) + b * exp(-(x - 1.5)^2 / 0.13))";
         let got = e(mu, &[0.5, 0.0, 0.7]);
         assert!((got - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn squares_are_the_powers_they_replace() {
+        let e = Expr::parse("x^2", &["x"]).unwrap();
+        let mut x = -7.3e3;
+        while x < 7.3e3 {
+            assert_eq!(e.eval(&[x]).to_bits(), x.powf(2.0).to_bits(), "{x}");
+            x += 0.7312345;
+        }
+        assert!(e.eval(&[f64::NAN]).is_nan());
     }
 
     #[test]

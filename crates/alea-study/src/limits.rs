@@ -110,7 +110,8 @@ pub fn mesh_estimate(
     // The generators' default kinds (`build_mesh`).
     let default_kind = match spec.generator.get_ref().as_str() {
         "plate_with_hole" | "annulus_sector" => "quad8",
-        "box" => "hex8",
+        "box" | "turbine_3d" => "hex8",
+        "turbine_2d" => "quad8",
         _ => "quad4",
     };
     let kind = spec
@@ -188,6 +189,23 @@ pub fn mesh_estimate(
                         span_of(spec),
                         "mesh.params",
                     )
+                } else {
+                    (plane, 2, span_of(spec), "mesh.params")
+                }
+            }
+            "turbine_2d" | "turbine_3d" => {
+                let d = alea_mesh::generate::TurbineParams::default();
+                let n = |k: &str, v: usize| num(k, v as f64);
+                let nh = n("n_fillet", d.n_fillet) / 2.0;
+                let (lobe, below) = (n("n_lobe", d.n_lobe), n("n_below", d.n_below));
+                // Per half: the disk's four blocks and the root's two (turbine_2d's doc).
+                let plane = 2.0
+                    * (lobe * (n("n_flank", d.n_flank) + n("n_runout", d.n_runout) + nh + below)
+                        + (nh + n("n_slot", d.n_slot)) * below
+                        + n("n_root", d.n_root)
+                            * (n("n_flank", d.n_flank) + n("n_shank", d.n_shank)));
+                if spec.generator.get_ref() == "turbine_3d" {
+                    (plane * num("n_z", 10.0), 3, span_of(spec), "mesh.params")
                 } else {
                     (plane, 2, span_of(spec), "mesh.params")
                 }
@@ -488,6 +506,8 @@ mod tests {
             "generator = \"stacked_blocks\"",
             "generator = \"stacked_blocks\"\nkind = \"hex8\"\nparams = { n_z = 3 }",
             "generator = \"concentric_rings\"",
+            "generator = \"turbine_2d\"\nparams = { n_flank = 6, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 4 }",
+            "generator = \"turbine_3d\"\nparams = { n_flank = 6, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 4, n_z = 3 }",
             "generator = \"cylinder_on_block\"\nparams = { n = 12, m = 9, half = false }",
         ];
         for text in cases {

@@ -80,8 +80,8 @@ pub fn estimate_all(
                 if Some(m) == main {
                     let used = used_points(method, runs);
                     if let Ok(sur) = method.surrogate(&study.params, &used) {
-                        if let (Some(est), true) = (est, study.params.names.len() >= 2) {
-                            maps = density_maps(study, &runs.solver, &est, &sur, &settings)
+                        if let (Some(est), true) = (&est, study.params.names.len() >= 2) {
+                            maps = density_maps(study, &runs.solver, est, &sur, &settings)
                                 .unwrap_or_default();
                         }
                         vtu = alea_study::estimate::write_error_fields(
@@ -93,6 +93,7 @@ pub fn estimate_all(
                             &used,
                             &sur,
                             &settings,
+                            est.as_ref(),
                             dir,
                         )?;
                     }
@@ -102,7 +103,10 @@ pub fn estimate_all(
             Err(e) => (Err(e), Vec::new(), None),
         };
         if let Some(p) = &vtu {
-            println!("mean error density per cell: {}", p.display());
+            println!(
+                "mean error densities (cells, interface nodes): {}",
+                p.display()
+            );
         }
         out.push(MethodEstimate {
             method: m,
@@ -165,8 +169,18 @@ pub fn print(
     if estimates.is_empty() {
         return warnings;
     }
+    let all_admissible = estimates.iter().all(|e| {
+        e.result
+            .as_ref()
+            .map_or(true, |r| r.substructures_estimated)
+    });
     println!(
-        "error estimate (constitutive-relation error, thesis 3.2 / 4.1; relative to the energy of the admissible stresses):"
+        "error estimate (constitutive-relation error, thesis 3.2 / 4.1; relative to the energy of the {}):",
+        if all_admissible {
+            "admissible stresses"
+        } else {
+            "admissible stresses, FE stresses where there are none (3D: interface part only)"
+        }
     );
     println!(
         "  {:<34} {:>5} {:>9} {:>9} {:>9}  largest part",
@@ -219,7 +233,7 @@ pub fn print(
                 }
                 if !e.substructures_estimated {
                     warnings.push(format!(
-                        "method '{label}': 3D substructures have no admissible-stress construction in the study estimate yet: interfaces only"
+                        "method '{label}': 3D substructures: interface part of the error only (as the thesis's 3D study), relative indicators normalised by the FE energy; e~ is not a bound of the total error"
                     ));
                 }
             }
