@@ -1138,9 +1138,15 @@ impl LatinSolver {
     }
 }
 
-/// True if the sampled imbalance of the second half of a run is above the tolerance and not
-/// below half the smallest one of its first half: the loads are not balanced and the iteration
-/// does not bring them closer to balance.
+/// True if the sampled imbalance of the second half of a run is above the tolerance and has
+/// stagnated (its second-half minimum at least [`STAGNATION`] times its first-half one): the
+/// loads are not balanced and the iteration does not bring them closer to balance. Measured:
+/// a root pulled out of its slot (no equilibrium) keeps a second-half imbalance 1.04-1.08
+/// times its first-half one, while its LATIN indicator may still fall a hundredfold (so the
+/// indicator is no sign of convergence here); long chains of substructures without the coarse
+/// problem (slow, but with an equilibrium) bring it down to 0.70-0.83 times, and are reported
+/// as not converged rather than as having no equilibrium (tests `coarse.rs` and the study's
+/// `no_equilibrium.rs`).
 fn persistent_imbalance(samples: &[(usize, f64)], iterations: usize, tolerance: f64) -> bool {
     let min_of = |first: bool| {
         samples
@@ -1150,8 +1156,12 @@ fn persistent_imbalance(samples: &[(usize, f64)], iterations: usize, tolerance: 
             .fold(f64::INFINITY, f64::min)
     };
     let (early, late) = (min_of(true), min_of(false));
-    early.is_finite() && late.is_finite() && late > tolerance && late >= 0.5 * early
+    early.is_finite() && late.is_finite() && late > tolerance && late >= STAGNATION * early
 }
+
+/// Ratio of the second-half to the first-half minimum above which a quantity of a run is said
+/// to stagnate ([`persistent_imbalance`]).
+const STAGNATION: f64 = 0.9;
 
 /// Iterations a run may spend below the tolerance while some substructure is out of
 /// equilibrium (within the rigid-motion bound) before it is reported as having no static
