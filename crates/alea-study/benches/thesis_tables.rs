@@ -27,12 +27,21 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use alea_cre::{CreOptions, EnergySampler};
+use alea_estimate::gram::CrossGram;
+use alea_estimate::reference::{self, expected_distances};
+use alea_estimate::{Rule, Weights};
+use alea_fem::{Location, PointLocator};
+use alea_latin::LatinSolver;
 use alea_study::Source;
 use alea_study::adaptive::AdaptiveOutcome;
+use alea_study::cre::StudyParameters;
 use alea_study::estimate::{error_settings, estimate_method};
 use alea_study::method::MethodKind;
+use alea_study::method::Surrogate;
 use alea_study::runner::{NoProgress, Study, StudyRuns, run_study};
 use alea_study::store::{Store, point_key};
+use rayon::prelude::*;
 
 /// Cell counts of the shipped mesh (11 544 dof).
 const SHIPPED: [(&str, f64); 4] = [
@@ -53,7 +62,7 @@ fn example() -> String {
 }
 
 /// The example with its cell counts times `factor` and `methods` in place of its methods.
-fn study_text(base: &str, factor: f64, methods: &str) -> String {
+fn study_text(base: &str, factor: f64, methods: &str, error: bool) -> String {
     let mut out = String::new();
     for line in base.lines() {
         if line.starts_with("params = {") {
@@ -73,8 +82,9 @@ fn study_text(base: &str, factor: f64, methods: &str) -> String {
     let first = out.find("\n[[method]]").expect("the example has methods");
     let solver = out.find("\n[solver]").expect("the example has [solver]");
     assert!(solver > first, "[solver] after the methods");
+    let error = if error { "\n[error]\nwarn = 1.0\n" } else { "" };
     format!(
-        "{}\n{methods}\n[statistics]\nsamples = 20000\n\n[error]\nwarn = 1.0\n{}",
+        "{}\n{methods}\n[statistics]\nsamples = 20000\n{error}{}",
         &out[..first],
         &out[solver..]
     )
@@ -93,6 +103,14 @@ fn dofs(runs: &StudyRuns) -> usize {
         .sum()
 }
 
+/// The study of one space mesh.
+struct MeshStudy {
+    study: Study,
+    runs: StudyRuns,
+    rows: Vec<Row>,
+    dir: PathBuf,
+}
+
 /// One estimated method.
 #[derive(Clone, Debug)]
 struct Row {
@@ -104,6 +122,10 @@ struct Row {
     /// `i_sto` per entity (substructures, then interfaces), `name=value` in %: signed, with
     /// `-` when the entity's `I_sto^2` is negative (an interface's `sto_I` of (4.5) has no sign).
     entities: String,
+    /// `e~^2`, its substructure part and the normalisation `E[sum ||sigma~||^2]`.
+    e2: f64,
+    sub_e2: f64,
+    norm2: f64,
 }
 
 /// Runs `study` in `dir` and estimates every non-adaptive method.
@@ -154,6 +176,9 @@ fn run(study: &Study, dir: &Path) -> (StudyRuns, Vec<Row>, f64) {
                 })
                 .collect::<Vec<_>>()
                 .join(" "),
+            e2: est.e2,
+            sub_e2: est.subs.iter().map(|x| x.e2).sum(),
+            norm2: est.norm2,
         });
     }
     (runs, rows, t0.elapsed().as_secs_f64())
@@ -235,23 +260,29 @@ fn main() {
         if methods.is_empty() {
             continue;
         }
-        let text = study_text(&base, f * scale, &methods);
+        let text = study_text(&base, f * scale, &methods, true);
         let study = load(&format!("mesh{i}.toml"), &text);
-        let (runs, rows, secs) = run(&study, &root.join(format!("mesh{i}-{}", study.hash)));
+        let dir = root.join(format!("mesh{i}-{}", study.hash));
+        let (runs, rows, secs) = run(&study, &dir);
         println!(
             "mesh {i}: {} dof, {} runs ({} computed), {secs:.1} s",
             dofs(&runs),
             runs.records.len(),
             runs.computed
         );
-        per_mesh.push((i, study, runs, rows));
+        per_mesh.push(MeshStudy {
+            study,
+            runs,
+            rows,
+            dir,
+        });
     }
 
     if wants("4.1") {
         println!("\nTable 4.1 (piecewise linear on regular grids):");
         println!("| dof | K | e~ | i_geo | i_sto | i_sto per entity [%] |");
         println!("|---|---|---|---|---|---|");
-        for (_, _, runs, rows) in &per_mesh {
+        for MeshStudy { runs, rows, .. } in &per_mesh {
             for r in rows.iter().filter(|r| r.label.starts_with("K = ")) {
                 if r.runs > 25 {
                     continue;
@@ -275,7 +306,7 @@ fn main() {
             "| dof | chaos p=2 i_sto | standard polynomial p=2 i_sto | piecewise linear 3 x 3 i_sto | i_geo (PL 3 x 3) |"
         );
         println!("|---|---|---|---|---|");
-        for (_, _, runs, rows) in &per_mesh {
+        for MeshStudy { runs, rows, .. } in &per_mesh {
             let get = |l: &str| rows.iter().find(|r| r.label == l).map(|r| r.i_sto);
             let (Some(c), Some(s), Some(p)) = (
                 get("chaos p=2"),
@@ -300,7 +331,7 @@ fn main() {
     }
 
     if wants("4.3") {
-        if let Some((_, _, runs, rows)) = per_mesh.last() {
+        if let Some(MeshStudy { runs, rows, .. }) = per_mesh.last() {
             table_43(runs, rows, &[0.1, strict]);
         }
     }
@@ -383,11 +414,198 @@ fn print_adaptive(runs: &StudyRuns, a: &AdaptiveOutcome) {
     println!("| {label}: stop | {} | | | | |", a.stop);
 }
 
-/// The stochastic efficiency index of every (mesh, K) of table 4.1 (not yet wired).
-fn efficiency(
-    _base: &str,
-    _scale: f64,
-    _root: &Path,
-    _per_mesh: &[(usize, Study, StudyRuns, Vec<Row>)],
-) {
+/// A surrogate's weights with its run indices mapped into a larger list of runs.
+struct Remapped<'a> {
+    surrogate: &'a Surrogate,
+    map: Vec<usize>,
+}
+
+impl Weights for Remapped<'_> {
+    fn weights(&self, xi: &[f64], w: &mut Vec<(usize, f64)>) {
+        Weights::weights(self.surrogate, xi, w);
+        for (k, _) in w.iter_mut() {
+            *k = self.map[*k];
+        }
+    }
+}
+
+/// Offset of substructure `s`'s displacement in a stored field vector.
+fn field_offset(solver: &LatinSolver, s: usize) -> usize {
+    (0..s)
+        .map(|t| solver.model(t).mesh.num_nodes() * solver.model(t).mesh.dim)
+        .sum()
+}
+
+/// Nodes of a regular grid of `n` points per parameter, per parameter.
+fn grid_breaks(study: &Study, n: usize) -> Vec<Vec<f64>> {
+    let p = &study.params;
+    (0..p.lo.len())
+        .map(|j| {
+            (0..n)
+                .map(|i| p.lo[j] + (p.hi[j] - p.lo[j]) * i as f64 / (n - 1) as f64)
+                .collect()
+        })
+        .collect()
+}
+
+/// The stochastic efficiency index (thesis 3.3.3, `alea_estimate::reference`) of every
+/// (mesh, K) of table 4.1 against the reference study: space mesh with 2x the finest mesh's cell
+/// counts (4x in area), piecewise linear on 11 x 11 runs. Per substructure, the reference runs'
+/// strains and the coarse runs' (located at the reference mesh's sample points) in energy
+/// coordinates give the Gram blocks of `E[alpha |sum r_m z_ref,m - sum w_k z_h,k|^2]`,
+/// accumulated over blocks of reference cells; the expectation is taken over Gauss rules on the
+/// cells of the union of both grids' nodes.
+fn efficiency(base: &str, scale: f64, root: &Path, per_mesh: &[MeshStudy]) {
+    let t0 = Instant::now();
+    let text = study_text(base, REFERENCE * scale, &grid(11), false);
+    let rstudy = load("reference.toml", &text);
+    let rdir = root.join(format!("reference-{}", rstudy.hash));
+    let rruns = run_study(&rstudy, &rdir, false, &NoProgress).unwrap();
+    let rmethod = &rruns.methods[0];
+    let rpoints = rmethod.points.clone();
+    for p in &rpoints {
+        let ok = rruns
+            .records
+            .iter()
+            .any(|r| point_key(&r.params) == point_key(p) && r.converged());
+        assert!(ok, "reference: the run at {p:?} did not converge");
+    }
+    let rsur = rmethod.surrogate(&rstudy.params, &rpoints).unwrap();
+    let rstore = Store::open(&rdir, &rstudy.hash, false).unwrap();
+    let rfields: Vec<Vec<f64>> = rpoints.iter().map(|p| rstore.fields(p).unwrap()).collect();
+    println!(
+        "\nreference: {} dof, {} runs ({} computed), {:.1} s",
+        dofs(&rruns),
+        rpoints.len(),
+        rruns.computed,
+        t0.elapsed().as_secs_f64()
+    );
+    println!(
+        "\nTable 4.1, stochastic efficiency index nu = e~ / (E[sum_s ||sigma_ref - sigma_h1||^2])^(1/2):"
+    );
+    println!(
+        "| dof | K | e~ | reference distance | nu | sqrt(2) nu | nu of the substructures' part of e~ | seconds since the mesh's Gram blocks began |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for ms in per_mesh {
+        let t1 = Instant::now();
+        let (study, runs) = (&ms.study, &ms.runs);
+        let Some(m25) = runs.methods.iter().find(|m| m.label == "K = 25") else {
+            continue;
+        };
+        let cpoints = m25.points.clone();
+        let store = Store::open(&ms.dir, &study.hash, false).unwrap();
+        let cfields: Vec<Vec<f64>> = cpoints.iter().map(|p| store.fields(p).unwrap()).collect();
+        let ns = runs.solver.num_subs();
+        let mut grams = Vec::with_capacity(ns);
+        for s in 0..ns {
+            let (rmodel, cmodel) = (rruns.solver.model(s), runs.solver.model(s));
+            let (roff, coff) = (
+                field_offset(&rruns.solver, s),
+                field_offset(&runs.solver, s),
+            );
+            let sampler = EnergySampler::new(rmodel, &CreOptions::default()).unwrap();
+            let locator = PointLocator::new(&cmodel.mesh).unwrap();
+            let ncells = rmodel.mesh.num_cells();
+            let locs: Vec<Location> = (0..ncells)
+                .into_par_iter()
+                .flat_map_iter(|c| {
+                    sampler
+                        .cell_points(c)
+                        .map(|(_, x)| {
+                            locator.locate_nearest(x, 1e-3).unwrap_or_else(|| {
+                                panic!("sample point {x:?} of the reference is off the coarse mesh")
+                            })
+                        })
+                        .collect::<Vec<_>>()
+                })
+                .collect();
+            let point_offset: Vec<usize> = sampler.cell_offsets().iter().map(|o| o / 3).collect();
+            const BLOCK: usize = 256;
+            let starts: Vec<usize> = (0..ncells).step_by(BLOCK).collect();
+            let parts: Vec<CrossGram> = starts
+                .par_iter()
+                .map(|&c0| {
+                    let c1 = (c0 + BLOCK).min(ncells);
+                    let m = 3 * (point_offset[c1] - point_offset[c0]);
+                    let mut a = Vec::with_capacity(m * rfields.len());
+                    for f in &rfields {
+                        let u = &f[roff..];
+                        sampler.strain_samples(
+                            c0..c1,
+                            |c, xi, _| EnergySampler::strain_at(rmodel, u, c, xi),
+                            &mut a,
+                        );
+                    }
+                    let mut b = Vec::with_capacity(m * cfields.len());
+                    for f in &cfields {
+                        let u = &f[coff..];
+                        let mut q = point_offset[c0];
+                        sampler.strain_samples(
+                            c0..c1,
+                            |_, _, _| {
+                                let l = locs[q];
+                                q += 1;
+                                EnergySampler::strain_at(cmodel, u, l.cell, l.xi)
+                            },
+                            &mut b,
+                        );
+                    }
+                    let mut g = CrossGram::zeros(rfields.len(), cfields.len());
+                    g.add_block(m, &a, &b);
+                    g
+                })
+                .collect();
+            let mut g = CrossGram::zeros(rfields.len(), cfields.len());
+            for p in &parts {
+                g.add(p);
+            }
+            grams.push(Some(g));
+        }
+        let params = StudyParameters::new(&study.model.parametric, &runs.solver);
+        for k in [2usize, 3, 5] {
+            let label = format!("K = {}", k * k);
+            let (Some(m), Some(row)) = (
+                runs.methods.iter().find(|m| m.label == label),
+                ms.rows.iter().find(|r| r.label == label),
+            ) else {
+                continue;
+            };
+            let sur = m.surrogate(&study.params, &m.points).unwrap();
+            let map: Vec<usize> = m
+                .points
+                .iter()
+                .map(|p| {
+                    cpoints
+                        .iter()
+                        .position(|c| point_key(c) == point_key(p))
+                        .expect("nested grids")
+                })
+                .collect();
+            let remapped = Remapped {
+                surrogate: &sur,
+                map,
+            };
+            let mut breaks = grid_breaks(study, 11);
+            for (b, g) in breaks.iter_mut().zip(grid_breaks(study, k)) {
+                b.extend(g);
+            }
+            let cells = Rule::product_cells(&breaks).unwrap();
+            let tags: Vec<usize> = (0..cells.len()).collect();
+            let rule = Rule::on_cells(&cells, &tags, 4, study.params.joint.as_ref()).unwrap();
+            let d2: f64 = expected_distances(&rule, &rsur, &remapped, &params, &grams)
+                .iter()
+                .sum();
+            let (nu, nu_ps) = reference::efficiency(row.e2, d2).unwrap_or((f64::NAN, f64::NAN));
+            let nu_subs = reference::efficiency(row.sub_e2, d2).map_or(f64::NAN, |x| x.0);
+            println!(
+                "| {} | {} | {} | {} | {nu:.3} | {nu_ps:.3} | {nu_subs:.3} | {:.1} |",
+                dofs(runs),
+                k * k,
+                pct(row.e),
+                pct((d2 / row.norm2).sqrt()),
+                t1.elapsed().as_secs_f64()
+            );
+        }
+    }
 }
