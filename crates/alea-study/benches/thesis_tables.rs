@@ -328,6 +328,12 @@ fn main() {
                 pct(g)
             );
         }
+        println!("\ni_sto per entity [%] of the 9-run surrogates:");
+        for MeshStudy { runs, rows, .. } in &per_mesh {
+            for r in rows.iter().filter(|r| r.runs == 9) {
+                println!("| {} | {} | {} |", dofs(runs), r.label, r.entities);
+            }
+        }
     }
 
     if wants("4.3") {
