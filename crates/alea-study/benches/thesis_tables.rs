@@ -336,10 +336,10 @@ fn main() {
         }
     }
 
-    if wants("4.3") {
-        if let Some(MeshStudy { runs, rows, .. }) = per_mesh.last() {
-            table_43(runs, rows, &[0.1, strict]);
-        }
+    if wants("4.3")
+        && let Some(MeshStudy { runs, rows, .. }) = per_mesh.last()
+    {
+        table_43(runs, rows, &[0.1, strict]);
     }
 
     if wants("eff") {
