@@ -206,6 +206,57 @@ impl EnergySampler {
         out
     }
 
+    /// Reference and physical coordinates of the sample points of cell `c`, in sample order.
+    ///
+    /// # Panics
+    /// If `c` is not a cell of the sampler's model.
+    pub fn cell_points(&self, c: usize) -> impl Iterator<Item = ([f64; 3], [f64; 3])> + '_ {
+        self.points[c].iter().map(|(xi, x, _)| (*xi, *x))
+    }
+
+    /// Energy coordinates `z_q = sqrt(w_q |J_q| t) R^T eps_q` of a strain field (engineering
+    /// shear, `[e_xx, e_yy, g_xy]`) at the sample points of cells `cells`, appended to `out` in
+    /// sample order; `strain(c, xi, x)` gives the strain at the point of reference coordinates
+    /// `xi` and physical coordinates `x` of cell `c` (e.g. a field of another mesh located at
+    /// `x`). Then `int eps(u) : D0 : eps(v) = z(u) . z(v)` over those cells, and
+    /// [`EnergySampler::fe_stress`] of a displacement is `alpha` times its `z`: the samples of the
+    /// efficiency index's reference distance (`alea_estimate::reference`).
+    ///
+    /// # Panics
+    /// If `cells` is not a range of cells of the sampler's model.
+    pub fn strain_samples(
+        &self,
+        cells: std::ops::Range<usize>,
+        mut strain: impl FnMut(usize, [f64; 3], [f64; 3]) -> [f64; 3],
+        out: &mut Vec<f64>,
+    ) {
+        for c in cells {
+            let l = &self.factors[c];
+            for (xi, x, s) in &self.points[c] {
+                let e = strain(c, *xi, *x);
+                for i in 0..3 {
+                    let v: f64 = (i..3).map(|k| l[k][i] * e[k]).sum();
+                    out.push(s * v);
+                }
+            }
+        }
+    }
+
+    /// The strain `[e_xx, e_yy, g_xy]` of the displacement `u` of `model` (node-major, 2 per
+    /// node) at reference coordinates `xi` of cell `c`.
+    ///
+    /// # Panics
+    /// If `c` is not a cell of `model` or `u` is too short.
+    pub fn strain_at(model: &Model, u: &[f64], c: usize, xi: [f64; 3]) -> [f64; 3] {
+        let mesh = &model.mesh;
+        let ue: Vec<f64> = mesh
+            .cell_nodes(c)
+            .iter()
+            .flat_map(|&n| [u[2 * n], u[2 * n + 1]])
+            .collect();
+        strain_h(mesh.cell_type(c), &model.cell_coords(c), &ue, xi).0
+    }
+
     /// Offset of each cell's phase-2 coefficients in a coefficient vector (`num_cells + 1`
     /// entries).
     pub fn coefficient_offsets(&self) -> &[usize] {

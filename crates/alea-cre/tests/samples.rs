@@ -81,3 +81,64 @@ fn samples_reproduce_the_deterministic_estimate() {
         }
     }
 }
+
+/// Strain samples of a field of another mesh (the efficiency index's reference distance): an
+/// affine displacement is exact on every mesh, so located on a coarse distorted mesh and sampled
+/// at a fine mesh's points it gives the fine mesh's own FE samples (`fe_stress / alpha`), and
+/// `strain_at` on the fine mesh's own cells does too.
+#[test]
+fn strain_samples_of_a_located_field_match_the_fe_samples() {
+    let analysis = Analysis::PlaneStrain { thickness: 1.5 };
+    for kind in [CellType::Quad4, CellType::Tri6] {
+        let fine = model(square(8, kind, 0.15), analysis);
+        let coarse = model(square(3, kind, 0.2), analysis);
+        let affine = |x: [f64; 3]| {
+            [
+                1e-3 * (0.3 + 2.0 * x[0] - 0.7 * x[1]),
+                1e-3 * (-0.1 + 0.4 * x[0] + 1.3 * x[1]),
+            ]
+        };
+        let nodal = |m: &alea_fem::Model| -> Vec<f64> {
+            (0..m.mesh.num_nodes())
+                .flat_map(|n| affine(m.mesh.coords[n]))
+                .collect()
+        };
+        let (uf, uc) = (nodal(&fine), nodal(&coarse));
+        let sampler = EnergySampler::new(&fine, &CreOptions::default()).unwrap();
+        let alpha = 1.3;
+        let yh = sampler.fe_stress(&fine, &uf, alpha);
+        let locator = alea_fem::PointLocator::new(&coarse.mesh).unwrap();
+        let mut z_coarse = Vec::new();
+        let cells = 0..fine.mesh.num_cells();
+        sampler.strain_samples(
+            cells.clone(),
+            |_, _, x| {
+                let loc = locator.locate_nearest(x, 1e-9).expect("inside");
+                EnergySampler::strain_at(&coarse, &uc, loc.cell, loc.xi)
+            },
+            &mut z_coarse,
+        );
+        let mut z_own = Vec::new();
+        sampler.strain_samples(
+            cells,
+            |c, xi, _| EnergySampler::strain_at(&fine, &uf, c, xi),
+            &mut z_own,
+        );
+        let scale = dot(&yh, &yh).sqrt() / alpha;
+        assert_eq!(z_coarse.len(), yh.len());
+        for ((a, b), y) in z_coarse.iter().zip(&z_own).zip(&yh) {
+            assert!((alpha * b - y).abs() <= 1e-12 * alpha * scale, "{kind}");
+            assert!(
+                (a - y / alpha).abs() <= 1e-9 * scale,
+                "{kind}: {a} vs {}",
+                y / alpha
+            );
+        }
+        assert!((dot(&z_own, &z_own) - scale * scale).abs() <= 1e-12 * scale * scale);
+        // The points are the sampler's: one per sample triple.
+        let n: usize = (0..fine.mesh.num_cells())
+            .map(|c| sampler.cell_points(c).count())
+            .sum();
+        assert_eq!(3 * n, sampler.len());
+    }
+}
