@@ -291,7 +291,7 @@ fn print_table(study: &Study, results: &[MethodResult], confidence: f64) {
         return;
     }
     for (q, qoi) in study.qois.iter().enumerate() {
-        println!("\n{} [{}]", qoi.name, qoi.unit);
+        println!("\n{} [{}]: {}", qoi.name, qoi.unit, qoi.what);
         println!(
             "  {:<34} {:>5} {:>14} {:>14} {:>10}",
             "method", "runs", "mean", "std", "skewness"
@@ -478,6 +478,7 @@ fn report_input(
             Some(QoiReport {
                 name: qoi.name.clone(),
                 unit: qoi.unit.clone(),
+                what: qoi.what.clone(),
                 samples: s.samples.clone(),
                 mean: s.mean,
                 std: s.std,

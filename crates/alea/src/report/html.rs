@@ -335,9 +335,13 @@ fn parameters(o: &mut String, input: &ReportInput) {
 fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
     let _ = write!(
         o,
-        "<section id=\"qoi-{k}\"><h2>Quantity of interest: {}</h2>\n<div class=\"tables\">\n",
+        "<section id=\"qoi-{k}\"><h2>Quantity of interest: {}</h2>\n",
         with_unit(&q.name, &q.unit)
     );
+    if !q.what.is_empty() {
+        let _ = writeln!(o, "<p>{}</p>", esc(&q.what));
+    }
+    o.push_str("<div class=\"tables\">\n");
     // Statistics.
     o.push_str("<div><h3>Statistics</h3><table><tbody>\n");
     let unit = if q.unit.trim().is_empty() {
