@@ -333,9 +333,9 @@ fn parameters(o: &mut String, input: &ReportInput) {
 }
 
 fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
-    let _ = write!(
+    let _ = writeln!(
         o,
-        "<section id=\"qoi-{k}\"><h2>Quantity of interest: {}</h2>\n",
+        "<section id=\"qoi-{k}\"><h2>Quantity of interest: {}</h2>",
         with_unit(&q.name, &q.unit)
     );
     if !q.what.is_empty() {
