@@ -6,15 +6,18 @@
 //!   centre of [0, 1]^4 and stops because i_sto reached its target, or i_sto decreased.
 //! - The error terms are non-negative, `e~^2 = I_geo^2 + I_sto^2`, and the whole estimate is
 //!   the interfaces' (3D substructures carry no admissible stress: their parts are 0) with
-//!   the two contact faces carrying most of it.
+//!   the two contact faces carrying most of it; the per-cell error map (ParaView's
+//!   `interface_cell_error`) adds up, on each side of each interface, to that interface's
+//!   E[e^2] and E[geo^2], the facet shares being the side's lumped weights facet by facet.
 //! - Equilibrium of the blade root A1 + A2: the in-plane (x, y) resultants of the contact
 //!   faces I1, I2 on the root balance its loads (blade pull + centrifugal), whatever the
 //!   wear; and at a = b the two faces are each other's mirror images in x = 0 (Fx opposite, Fy
 //!   and Fz equal), as the example's mirrored wear profiles make the problem symmetric.
 
 use alea_latin::{LatinSolver, RunStatus};
-use alea_study::Source;
+use alea_study::cre::StudyParameters;
 use alea_study::runner::{NoProgress, Study, run_study};
+use alea_study::{Source, estimate};
 
 const FINE: &str = "n_flank = 16, n_runout = 5, n_fillet = 16, n_lobe = 10, n_slot = 6, n_below = 10, n_root = 15, n_shank = 12, depth = 20.0, n_z = 12";
 const COARSE: &str = "n_flank = 4, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 3, depth = 20.0, n_z = 2";
@@ -95,6 +98,68 @@ fn coarse_3d_turbine_adaptive_study_converges_and_its_error_is_the_interfaces() 
         // A positive, finite relative error.
         let rel = e.relative();
         assert!(rel > 0.0 && rel < 1.0, "e~ = {rel}");
+    }
+    // The error map per cell (ParaView's `interface_cell_error`): on each side of each
+    // interface the cells' shares add up to the interface's E[e^2] and E[geo^2].
+    let method = &runs.methods[0];
+    let points = method.points.clone();
+    let sur = method.surrogate(&study.params, &points).unwrap();
+    let settings = estimate::error_settings(&study).unwrap();
+    let (_, rule) = estimate::integration_rule(&study, method, &settings).unwrap();
+    let params = StudyParameters::new(&study.model.parametric, &runs.solver);
+    let est = outcome
+        .estimator
+        .as_ref()
+        .expect("the last step's estimator");
+    let per_point = est.interface_point_terms(&rule, &sur, &params);
+    let last = &steps.last().unwrap().error.estimate;
+    let scale = last.e2;
+    for (i, spec) in study.model.assembly.interfaces.iter().enumerate() {
+        // This interface's point terms alone.
+        let only: Vec<Vec<[f64; 2]>> = per_point
+            .iter()
+            .enumerate()
+            .map(|(k, t)| {
+                if k == i {
+                    t.clone()
+                } else {
+                    vec![[0.0; 2]; t.len()]
+                }
+            })
+            .collect();
+        let cells = estimate::interface_cell_terms(&study, &runs.solver, &only).unwrap();
+        let it = &last.interfaces[i];
+        for s in [spec.sub1, spec.sub2] {
+            let (e, g) = cells[s]
+                .iter()
+                .fold((0.0, 0.0), |(e, g), c| (e + c[0], g + c[1]));
+            assert!(
+                (e - it.e2).abs() <= 1e-9 * scale && (g - it.geo2).abs() <= 1e-9 * scale,
+                "{} on {s}: cells ({e}, {g}) vs interface ({}, {})",
+                spec.name,
+                it.e2,
+                it.geo2
+            );
+        }
+    }
+    // Facet shares are the side weights facet by facet.
+    let d2 = study
+        .model
+        .assembly
+        .subs
+        .iter()
+        .position(|s| s.name == "D2")
+        .unwrap();
+    let mesh = &runs.solver.model(d2).mesh;
+    let side = alea_latin::interface::side_geometry(mesh, "I2_disk", 1.0).unwrap();
+    let mut summed = vec![0.0; side.nodes.len()];
+    for f in alea_latin::interface::facet_shares(mesh, "I2_disk", 1.0).unwrap() {
+        for (n, w) in f.shares {
+            summed[side.nodes.binary_search(&n).unwrap()] += w;
+        }
+    }
+    for (a, b) in summed.iter().zip(&side.weights) {
+        assert!((a - b).abs() <= 1e-12 * b, "{a} vs {b}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

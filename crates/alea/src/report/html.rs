@@ -715,7 +715,7 @@ fn error_section(o: &mut String, e: &super::ErrorReport, figures: &[Figure]) {
     if let Some(v) = &e.vtu {
         let _ = writeln!(
             o,
-            "<p>Mean error densities for ParaView: <code>{}</code> (cells of substructures with admissible stresses: <code>space_error_density</code>, <code>error_density</code>; interface nodes: <code>interface_error_density</code>, <code>interface_space_error_density</code>, <code>interface_stochastic_error_density</code>).</p>",
+            "<p>Mean error densities for ParaView: <code>{}</code> (cells of substructures with admissible stresses: <code>space_error_density</code>, <code>error_density</code>; interface nodes: <code>interface_error_density</code>, <code>interface_space_error_density</code>, <code>interface_stochastic_error_density</code>; cells along the interfaces: <code>interface_cell_error</code>, <code>interface_cell_space_error</code>, <code>interface_cell_stochastic_error</code>, <code>interface_cell_error_density</code>).</p>",
             esc(v)
         );
     }
