@@ -1,5 +1,5 @@
 //! The shipped 3D turbine study (`examples/turbine-3d-wear.toml`, thesis 5.2.5-5.2.6) on a
-//! coarse copy of its mesh (about 1 700 dof, 2 layers of Hex8): the trends the example's header
+//! coarse copy of its mesh (1 872 dof, 2 layers of Hex8): the trends the example's header
 //! states must hold, none of them a snapshot.
 //!
 //! - Every run of the adaptive loop converges; the loop starts from the 16 corners and the
