@@ -8,7 +8,8 @@
 //!   the interfaces' (3D substructures carry no admissible stress: their parts are 0) with
 //!   the two contact faces carrying most of it; the per-cell error map (ParaView's
 //!   `interface_cell_error`) adds up, on each side of each interface, to that interface's
-//!   E[e^2] and E[geo^2], the facet shares being the side's lumped weights facet by facet.
+//!   E[e^2] and E[geo^2], the facet shares being the side's lumped weights facet by facet;
+//!   at the runs themselves every interface term vanishes (converged fields satisfy the laws).
 //! - Equilibrium of the blade root A1 + A2: the in-plane (x, y) resultants of the contact
 //!   faces I1, I2 on the root balance its loads (blade pull + centrifugal), whatever the
 //!   wear; and at a = b the two faces are each other's mirror images in x = 0 (Fx opposite, Fy
@@ -141,6 +142,22 @@ fn coarse_3d_turbine_adaptive_study_converges_and_its_error_is_the_interfaces() 
                 it.geo2
             );
         }
+    }
+    // At the runs themselves the interpolated fields are the runs' converged fields, which
+    // satisfy the laws: every interface term vanishes there (the whole interface error comes
+    // from between the runs).
+    let flat: Vec<f64> = points.iter().flatten().copied().collect();
+    let at_runs = alea_estimate::rule::Rule::equal_weights(4, flat).unwrap();
+    for (i, t) in est
+        .interface_point_terms(&at_runs, &sur, &params)
+        .iter()
+        .enumerate()
+    {
+        let e: f64 = t.iter().map(|x| x[0]).sum::<f64>() / points.len() as f64;
+        assert!(
+            e.abs() <= 1e-9 * scale,
+            "interface {i}: mean term {e:e} at the runs, expectation {scale:e}"
+        );
     }
     // Facet shares are the side weights facet by facet.
     let d2 = study
