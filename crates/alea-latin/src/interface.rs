@@ -37,6 +37,62 @@ pub struct SideGeometry {
     pub normals: Vec<[f64; 3]>,
 }
 
+/// One facet of a side: the cell it bounds, its measure (times the thickness in 2D) and the
+/// HRZ-lumped share of that measure at each of its nodes (the shares add up to the measure;
+/// summed over the facets around a node they give its [`SideGeometry`] weight).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FacetShare {
+    /// Cell the facet bounds.
+    pub cell: usize,
+    /// Facet measure.
+    pub measure: f64,
+    /// `(mesh node, share)` per facet node.
+    pub shares: Vec<(usize, f64)>,
+}
+
+/// The facets of group `group` of `mesh` with their lumped node shares (the weights of
+/// [`side_geometry`] facet by facet: error maps distribute nodal values to cells with them).
+///
+/// # Errors
+/// An unknown group or a facet bounding no cell.
+pub fn facet_shares(
+    mesh: &Mesh,
+    group: &str,
+    thickness: f64,
+) -> Result<Vec<FacetShare>, alea_mesh::MeshError> {
+    let facets = mesh.attach_facets(mesh.facet_group(group)?, None)?;
+    let th = if mesh.dim == 2 { thickness } else { 1.0 };
+    Ok(facets
+        .iter()
+        .map(|bf| {
+            let f = &bf.facet;
+            let coords: Vec<[f64; 3]> = f.nodes.iter().map(|&n| mesh.coords[n]).collect();
+            let q = Quadrature::for_cell(f.kind, 2 * f.kind.order() + 1);
+            let mut diag = vec![0.0; f.nodes.len()];
+            let mut measure = 0.0;
+            for (xi, w) in q.points.iter().zip(&q.weights) {
+                let g = facet_geometry(f.kind, &coords, *xi);
+                let dm = w * g.jac * th;
+                measure += dm;
+                for (d, n) in diag.iter_mut().zip(&g.n) {
+                    *d += dm * n * n;
+                }
+            }
+            let dsum: f64 = diag.iter().sum();
+            FacetShare {
+                cell: bf.cell,
+                measure,
+                shares: f
+                    .nodes
+                    .iter()
+                    .zip(&diag)
+                    .map(|(&node, d)| (node, d * measure / dsum))
+                    .collect(),
+            }
+        })
+        .collect())
+}
+
 /// Computes the side geometry of facet group `group` of `mesh`.
 pub fn side_geometry(
     mesh: &Mesh,

@@ -325,6 +325,65 @@ pub fn density_maps(
     .map_err(|e| StudyError::Other(e.to_string()))
 }
 
+/// The interface error terms per cell: each interface point's `[E[m_p rho(w~, F_1)],
+/// E[m_p rho(w~, F_2)]]` (`per_point`, from [`Estimator::interface_point_terms`]) divided by its
+/// weight `m_p` is a density at the point's node on each side; a cell whose facets lie on the
+/// interface side gets that density times the lumped share of its facets at the node
+/// ([`alea_latin::interface::facet_shares`]). Returns per substructure and cell `[e, geo,
+/// interface measure of its facets]`; over the cells of one side the `e` (and `geo`) add up to
+/// the interface's `e2` (`geo2`) when that side's lumped weights are the points' (node-to-node
+/// pairing of matching sides). The error map of 3D substructures, which carry no admissible
+/// stress, cell by cell.
+///
+/// # Errors
+/// A facet group of an interface missing from its substructure's mesh.
+pub fn interface_cell_terms(
+    study: &Study,
+    solver: &LatinSolver,
+    per_point: &[Vec<[f64; 2]>],
+) -> Result<Vec<Vec<[f64; 3]>>, StudyError> {
+    let ns = solver.num_subs();
+    let mut cells: Vec<Vec<[f64; 3]>> = (0..ns)
+        .map(|s| vec![[0.0; 3]; solver.model(s).mesh.num_cells()])
+        .collect();
+    for (i, terms) in per_point.iter().enumerate() {
+        let spec = &study.model.assembly.interfaces[i];
+        let weights = solver.interface_weights(i);
+        let (subs, nodes) = solver.interface_nodes(i);
+        for (side, group) in [&spec.group1, &spec.group2].into_iter().enumerate() {
+            let s = subs[side];
+            let model = solver.model(s);
+            let mut density: std::collections::HashMap<usize, [f64; 2]> =
+                std::collections::HashMap::with_capacity(nodes[side].len());
+            for (p, (&node, t)) in nodes[side].iter().zip(terms).enumerate() {
+                if weights[p] > 0.0 {
+                    density.insert(node, [t[0] / weights[p], t[1] / weights[p]]);
+                }
+            }
+            let facets =
+                alea_latin::interface::facet_shares(&model.mesh, group, model.analysis.thickness())
+                    .map_err(|e| {
+                        StudyError::Other(format!(
+                            "interface '{}', substructure '{}': {e}",
+                            spec.name,
+                            solver.sub_name(s)
+                        ))
+                    })?;
+            for f in facets {
+                let c = &mut cells[s][f.cell];
+                c[2] += f.measure;
+                for (node, share) in f.shares {
+                    if let Some(d) = density.get(&node) {
+                        c[0] += share * d[0];
+                        c[1] += share * d[1];
+                    }
+                }
+            }
+        }
+    }
+    Ok(cells)
+}
+
 /// Writes the mean error density of a method for ParaView (`<dir>/paraview/error.vtm`, one
 /// `.vtu` per substructure). Per cell of every substructure with admissible stresses:
 /// `space_error_density` `= E[geo_E^2] / |E|` (the thesis's `I_geo` per unit area: where to
@@ -333,8 +392,11 @@ pub fn density_maps(
 /// add up to the estimate's substructure terms). On the interface nodes of both sides, per unit
 /// interface measure: `interface_error_density` `= E[m_p rho(w~, F_1)] / m_p`,
 /// `interface_space_error_density` (with `F_2`, (4.4)) and `interface_stochastic_error_density`
-/// (their difference, (4.5)) - the only error fields of substructures without admissible
-/// stresses (3D: interface part only). `est`: the method's estimator if at hand (else it is
+/// (their difference, (4.5)); per cell, the same interface terms distributed to the cells
+/// whose facets carry them ([`interface_cell_terms`]: `interface_cell_error`,
+/// `interface_cell_space_error`, `interface_cell_stochastic_error`, and
+/// `interface_cell_error_density` per unit interface measure) - the only error fields of
+/// substructures without admissible stresses (3D: interface part only). `est`: the method's estimator if at hand (else it is
 /// rebuilt from the store). Returns the path, or `None` when there is nothing to map.
 ///
 /// # Errors
@@ -424,6 +486,7 @@ pub fn write_error_fields(
         }
     };
     let per_point = est.interface_point_terms(&rule, sur, &params);
+    let iface_cells = interface_cell_terms(study, solver, &per_point)?;
     let mut node_fields: Vec<[Vec<f64>; 3]> = (0..ns)
         .map(|s| {
             let n = solver.model(s).mesh.num_nodes();
@@ -445,15 +508,40 @@ pub fn write_error_fields(
             }
         }
     }
+    // Per cell: the interface error of its facets, its space and stochastic parts, and the
+    // error per unit interface measure (0 off the interfaces).
+    let cell_iface: Vec<[Vec<f64>; 4]> = iface_cells
+        .iter()
+        .map(|cells| {
+            let col = |f: &dyn Fn(&[f64; 3]) -> f64| cells.iter().map(f).collect::<Vec<f64>>();
+            [
+                col(&|c| c[0].max(0.0)),
+                col(&|c| c[1].max(0.0)),
+                col(&|c| (c[0] - c[1]).max(0.0)),
+                col(&|c| {
+                    if c[2] > 0.0 {
+                        c[0].max(0.0) / c[2]
+                    } else {
+                        0.0
+                    }
+                }),
+            ]
+        })
+        .collect();
     let names: Vec<String> = (0..ns).map(|s| solver.sub_name(s).to_string()).collect();
     let parts: Vec<(&str, VtuWriter<'_>)> = (0..ns)
         .map(|s| {
             let mesh = &solver.model(s).mesh;
             let [e, g, st] = &node_fields[s];
+            let [ce, cg, cst, cd] = &cell_iface[s];
             let mut w = VtuWriter::new(mesh)
                 .point_scalar("interface_error_density", e)
                 .point_scalar("interface_space_error_density", g)
-                .point_scalar("interface_stochastic_error_density", st);
+                .point_scalar("interface_stochastic_error_density", st)
+                .cell_scalar("interface_cell_error", ce)
+                .cell_scalar("interface_cell_space_error", cg)
+                .cell_scalar("interface_cell_stochastic_error", cst)
+                .cell_scalar("interface_cell_error_density", cd);
             if let Some([gd, td, g, t]) = &cell_fields[s] {
                 w = w
                     .cell_scalar("space_error_density", gd)

@@ -135,14 +135,34 @@ pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
         failures: AtomicUsize::new(0),
     };
     let runs = run_study(&study, dir, restart, &progress)?;
+    let per_run_estimates = if runs.estimate_seconds > 0.0 {
+        format!(
+            "; per-run error estimates {:.2} s summed over the runs",
+            runs.estimate_seconds
+        )
+    } else {
+        String::new()
+    };
     println!(
-        "runs: {} computed, {} resumed; solver set-up {:.2} s, solves {:.2} s ({:.1} runs/s)",
+        "runs: {} computed, {} resumed; solver set-up {:.2} s, solves {:.2} s ({:.1} runs/s{per_run_estimates})",
         runs.computed,
         runs.resumed,
         runs.setup_seconds,
         runs.solve_seconds,
         runs.computed as f64 / runs.solve_seconds.max(1e-9)
     );
+    let iterations: Vec<usize> = runs
+        .records
+        .iter()
+        .filter(|r| r.converged())
+        .map(|r| r.iterations)
+        .collect();
+    if let (Some(lo), Some(hi)) = (iterations.iter().min(), iterations.iter().max()) {
+        println!(
+            "LATIN iterations per converged run: min {lo}, mean {:.1}, max {hi}",
+            iterations.iter().sum::<usize>() as f64 / iterations.len() as f64
+        );
+    }
     let report = study.output.report.unwrap_or(true);
     write_outputs(&study, &runs, dir, &settings, Vec::new(), report)?;
     println!("done in {:.2} s", t_all.elapsed().as_secs_f64());
@@ -291,7 +311,7 @@ fn print_table(study: &Study, results: &[MethodResult], confidence: f64) {
         return;
     }
     for (q, qoi) in study.qois.iter().enumerate() {
-        println!("\n{} [{}]", qoi.name, qoi.unit);
+        println!("\n{} [{}]: {}", qoi.name, qoi.unit, qoi.what);
         println!(
             "  {:<34} {:>5} {:>14} {:>14} {:>10}",
             "method", "runs", "mean", "std", "skewness"
@@ -478,6 +498,7 @@ fn report_input(
             Some(QoiReport {
                 name: qoi.name.clone(),
                 unit: qoi.unit.clone(),
+                what: qoi.what.clone(),
                 samples: s.samples.clone(),
                 mean: s.mean,
                 std: s.std,

@@ -63,6 +63,9 @@ pub struct Qoi {
     pub kind: QoiKind,
     /// Failure thresholds.
     pub thresholds: Vec<f64>,
+    /// What it measures, in words, with the names of its interface or substructure and the
+    /// labelled component (`resultant Fz on side 2 of interface 'I2'`), for the reports.
+    pub what: String,
 }
 
 const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip or contact_status";
@@ -423,15 +426,59 @@ pub fn build_qois(
         if q.thresholds.iter().any(|t| !t.is_finite()) {
             return Err(src.error(q.name.span(), f("thresholds"), "thresholds must be finite"));
         }
+        let what = describe(&kind, model, q.group.as_ref().map(|g| g.get_ref().as_str()));
         out.push(Qoi {
             name: q.name.get_ref().clone(),
             unit: q.unit.clone().unwrap_or_default(),
             kind,
             thresholds: q.thresholds.clone(),
+            what,
         });
     }
     crate::checks::check_quantities(src, specs, model, &out)?;
     Ok(out)
+}
+
+/// A quantity in words: the kind, the interface or substructure by name, the component by axis
+/// label (`Fx`, `Fy`, `Fz` for a resultant, `ux`, `uy`, `uz` for a displacement).
+fn describe(kind: &QoiKind, model: &BuiltModel, group: Option<&str>) -> String {
+    const AXES: [&str; 3] = ["x", "y", "z"];
+    let iface = |i: usize| format!("interface '{}'", model.assembly.interfaces[i].name);
+    let sub = |s: usize| format!("substructure '{}'", model.assembly.subs[s].name);
+    let on = |s: usize| match group {
+        Some(g) => format!("{} / {g}", sub(s)),
+        None => sub(s),
+    };
+    match kind {
+        QoiKind::InterfaceWork(i) => format!("work of the forces of {}", iface(*i)),
+        QoiKind::FrictionDissipation(i) => format!("friction dissipation on {}", iface(*i)),
+        QoiKind::InterfaceForce(i, c) => {
+            format!("resultant F{} on side 2 of {}", AXES[*c], iface(*i))
+        }
+        QoiKind::MaxVonMises { sub: s, .. } => format!("maximum von Mises stress on {}", on(*s)),
+        QoiKind::MeanVonMises { sub: s, .. } => format!("mean von Mises stress on {}", on(*s)),
+        QoiKind::Displacement(s, p, c) => {
+            let dim = model.assembly.subs[*s].model.mesh.dim;
+            let at: Vec<String> = p[..dim].iter().map(|x| format!("{x}")).collect();
+            format!(
+                "displacement u{} of {} at the node nearest to ({})",
+                AXES[*c],
+                sub(*s),
+                at.join(", ")
+            )
+        }
+        QoiKind::Contact(c) => {
+            let field = match c.field {
+                ContactField::Pressure => "contact pressure",
+                ContactField::Slip => "slip",
+                ContactField::Status(_) => "contact status",
+            };
+            match c.node {
+                Some(n) => format!("{field} on {} at its side-1 node {n}", iface(c.iface)),
+                None => format!("{field} over {}", iface(c.iface)),
+            }
+        }
+    }
 }
 
 /// Where a maximum was found: its value, the substructure node, and the boundary groups that

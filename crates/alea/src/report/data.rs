@@ -150,6 +150,9 @@ pub struct RunInfo {
 pub struct QoiReport {
     pub name: String,
     pub unit: String,
+    /// What it measures, in words (`resultant Fz on side 2 of interface 'I2'`).
+    #[serde(default)]
+    pub what: String,
     /// Monte Carlo samples on the surrogate (may be 250 000; plots subsample as needed).
     pub samples: Vec<f64>,
     pub mean: f64,

@@ -333,11 +333,15 @@ fn parameters(o: &mut String, input: &ReportInput) {
 }
 
 fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
-    let _ = write!(
+    let _ = writeln!(
         o,
-        "<section id=\"qoi-{k}\"><h2>Quantity of interest: {}</h2>\n<div class=\"tables\">\n",
+        "<section id=\"qoi-{k}\"><h2>Quantity of interest: {}</h2>",
         with_unit(&q.name, &q.unit)
     );
+    if !q.what.is_empty() {
+        let _ = writeln!(o, "<p>{}</p>", esc(&q.what));
+    }
+    o.push_str("<div class=\"tables\">\n");
     // Statistics.
     o.push_str("<div><h3>Statistics</h3><table><tbody>\n");
     let unit = if q.unit.trim().is_empty() {
@@ -711,7 +715,7 @@ fn error_section(o: &mut String, e: &super::ErrorReport, figures: &[Figure]) {
     if let Some(v) = &e.vtu {
         let _ = writeln!(
             o,
-            "<p>Mean error densities for ParaView: <code>{}</code> (cells of substructures with admissible stresses: <code>space_error_density</code>, <code>error_density</code>; interface nodes: <code>interface_error_density</code>, <code>interface_space_error_density</code>, <code>interface_stochastic_error_density</code>).</p>",
+            "<p>Mean error densities for ParaView: <code>{}</code> (cells of substructures with admissible stresses: <code>space_error_density</code>, <code>error_density</code>; interface nodes: <code>interface_error_density</code>, <code>interface_space_error_density</code>, <code>interface_stochastic_error_density</code>; cells along the interfaces: <code>interface_cell_error</code>, <code>interface_cell_space_error</code>, <code>interface_cell_stochastic_error</code>, <code>interface_cell_error_density</code>).</p>",
             esc(v)
         );
     }

@@ -123,6 +123,7 @@ fn synthetic() -> ReportInput {
             QoiReport {
                 name: "friction work".into(),
                 unit: "N·mm".into(),
+                what: String::new(),
                 samples,
                 mean: m,
                 std: s,
@@ -155,6 +156,7 @@ fn synthetic() -> ReportInput {
             QoiReport {
                 name: "max <σ>".into(),
                 unit: "MPa".into(),
+                what: String::new(),
                 samples: vec![412.0; 50],
                 mean: 412.0,
                 std: 0.0,
@@ -537,6 +539,7 @@ fn degenerate_inputs_give_a_report() {
         qois: vec![QoiReport {
             name: "compliance".into(),
             unit: String::new(),
+            what: String::new(),
             samples: vec![0.0],
             mean: 0.0,
             std: 0.0,
