@@ -30,9 +30,13 @@ fn study_text(method: &str) -> String {
     let text = std::fs::read_to_string(root().join("examples/blade-root-simple-comparison.toml"))
         .expect("example")
         .replace(
-            "params = { n_flank = 24, n_side = 30, n_root = 24, n_shank = 18 }",
-            "params = { n_flank = 8, n_side = 10, n_root = 8, n_shank = 6 }",
+            "n_flank = 36, n_side = 45, n_root = 36, n_shank = 27 }",
+            "n_flank = 12, n_side = 15, n_root = 12, n_shank = 9 }",
         );
+    assert!(
+        text.contains("n_flank = 12,"),
+        "the example's mesh line changed"
+    );
     let head = &text[..text.find("[[method]]").expect("a method")];
     format!("{head}\n[statistics]\nsamples = 100000\n\n[[method]]\n{method}\n")
 }

@@ -33,14 +33,14 @@ fn study(dir: &Path, extra: &str) -> PathBuf {
     let text = std::fs::read_to_string(root().join("examples/blade-root-simple-comparison.toml"))
         .unwrap()
         .replace(
-            "params = { n_flank = 24, n_side = 30, n_root = 24, n_shank = 18 }",
-            "params = { n_flank = 8, n_side = 10, n_root = 8, n_shank = 6 }",
+            "n_flank = 36, n_side = 45, n_root = 36, n_shank = 27 }",
+            "n_flank = 12, n_side = 15, n_root = 12, n_shank = 9 }",
         )
         .replace(
             "[[method]]\ntype = \"pc_regression\"",
             "[statistics]\nsamples = 20000\n\n[[method]]\ntype = \"pc_regression\"",
         );
-    assert!(text.contains("n_flank = 8") && text.contains("samples = 20000"));
+    assert!(text.contains("n_flank = 12,") && text.contains("samples = 20000"));
     let text = format!(
         "{text}\n[[method]]\ntype = \"adaptive\"\nmax_runs = 14\nlabel = \"adaptive\"\n{extra}"
     );
