@@ -49,9 +49,9 @@ pub struct SubPoint {
 /// Terms of one interface at one point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct InterfacePoint {
-    /// `e_I = sum_i m_i rho(w~, F_1)` (3.31 integrand).
+    /// `e_I = sum_i m_i rho*(w~, F~; mu(xi))` (3.31 integrand, crate doc).
     pub e: f64,
-    /// `geo_I = sum_i m_i rho(w~, F_2)` (4.4 integrand).
+    /// `geo_I = sum_k w_k(xi) rho_k`, the runs' own interface errors interpolated.
     pub geo: f64,
 }
 
@@ -133,9 +133,10 @@ pub struct Estimate {
     pub max_violation: f64,
 }
 
+/// `sign(v) (|v| / norm2)^(1/2)`: a negative squared part keeps its sign (never a silent 0).
 fn rel(v: f64, norm2: f64) -> f64 {
-    if norm2 > 0.0 && v > 0.0 {
-        (v / norm2).sqrt()
+    if norm2 > 0.0 && v.is_finite() {
+        v.signum() * (v.abs() / norm2).sqrt()
     } else {
         0.0
     }
@@ -147,19 +148,56 @@ impl Estimate {
         rel(self.e2, self.norm2)
     }
 
-    /// `i_geo` (4.8); 0 if `I_geo^2 <= 0`.
+    /// `i_geo` (4.8); negative (`-(|I_geo^2| / norm)^(1/2)`) if `I_geo^2 < 0`, a defect that
+    /// [`Estimate::negative_parts`] names.
     pub fn i_geo(&self) -> f64 {
         rel(self.geo2, self.norm2)
     }
 
-    /// `i_sto` (4.9); 0 if `I_sto^2 <= 0`.
+    /// `i_sto` (4.9); negative if `I_sto^2 < 0` (see [`Estimate::i_geo`]).
     pub fn i_sto(&self) -> f64 {
         rel(self.sto2, self.norm2)
     }
 
-    /// Relative share of an entity's `e2` (or `geo2`, `sto2`) in the normalisation.
+    /// Relative share of an entity's `e2` (or `geo2`, `sto2`) in the normalisation, with the
+    /// sign of `v`.
     pub fn relative_of(&self, v: f64) -> f64 {
         rel(v, self.norm2)
+    }
+
+    /// The squared parts that came out negative beyond round-off (`-1e-9 e~^2`), as messages
+    /// naming the entity and the part: `I_sto^2` of an entity is `E[e^2] - E[geo^2]`, which no
+    /// construction keeps non-negative (e.g. a substructure whose interpolated stresses fit the
+    /// interpolated displacements better than the runs' own did). Empty when there is none.
+    pub fn negative_parts(&self) -> Vec<String> {
+        let tol = 1e-9 * self.e2.abs().max(f64::MIN_POSITIVE);
+        let mut out = Vec::new();
+        for (what, list) in [
+            ("substructure", &self.subs),
+            ("interface", &self.interfaces),
+        ] {
+            for e in list {
+                for (part, v) in [("e~^2", e.e2), ("I_geo^2", e.geo2), ("I_sto^2", e.sto2)] {
+                    if v < -tol {
+                        out.push(format!(
+                            "{what} '{}': {part} = {v:.3e} < 0 ({:.2} % of e~^2)",
+                            e.name,
+                            100.0 * v / self.e2.abs().max(f64::MIN_POSITIVE)
+                        ));
+                    }
+                }
+            }
+        }
+        for (part, v) in [
+            ("e~^2", self.e2),
+            ("I_geo^2", self.geo2),
+            ("I_sto^2", self.sto2),
+        ] {
+            if v < -tol {
+                out.push(format!("total: {part} = {v:.3e} < 0"));
+            }
+        }
+        out
     }
 }
 
@@ -203,11 +241,46 @@ pub struct Estimator {
     jump: Vec<Vec<[f64; 3]>>,
     /// Per interface, point-major: `force[p * K + k]`.
     force: Vec<Vec<[f64; 3]>>,
+    /// Per interface, point-major: `m_p rho*(w_hat_k, F_hat_k; mu(xi_k))`, run `k`'s own
+    /// interface error density at point `p` (crate doc, "Interfaces"): the terms that the
+    /// surrogate's weights interpolate into the space part `geo_I`.
+    run_rho: Vec<Vec<f64>>,
     options: Options,
 }
 
 fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The interface error density of a contact point (crate doc, "Interfaces"): the finite part of
+/// the bipotential evaluated on the fields brought onto the admissible set, plus the work of
+/// the correction,
+/// `rho*(w, F) = mu F_n+ |w_t| + |w_n F_n| + w_t . P(F_t) + |w_t| |F_t - P(F_t)|`, with
+/// `F_n+ = max(F_n, 0)` and `P` the projection onto the disk of radius `mu F_n+`. Non-negative,
+/// continuous in `(w, F, mu)`, equal to `rho(w, F) = mu F_n |w_t| + w_n F_n + w_t . F_t` when
+/// `w_n >= 0`, `F_n >= 0` and `|F_t| <= mu F_n`, and 0 exactly when the pair obeys the law.
+pub fn contact_density(w: &[f64; 3], f: &[f64; 3], n: &[f64; 3], mu: f64) -> f64 {
+    let (wn, fn_) = (dot(w, n), dot(f, n));
+    let wt = [w[0] - wn * n[0], w[1] - wn * n[1], w[2] - wn * n[2]];
+    let ft = [f[0] - fn_ * n[0], f[1] - fn_ * n[1], f[2] - fn_ * n[2]];
+    let wtn = dot(&wt, &wt).sqrt();
+    let ftn = dot(&ft, &ft).sqrt();
+    let radius = mu * fn_.max(0.0);
+    let (wt_pft, excess) = if ftn > radius {
+        // P(F_t) = radius F_t / |F_t|; the correction's length is |F_t| - radius.
+        (radius / ftn * dot(&wt, &ft), ftn - radius)
+    } else {
+        (dot(&wt, &ft), 0.0)
+    };
+    // Round-off can leave the sum a hair below 0 when the pair obeys the law.
+    (radius * wtn + (wn * fn_).abs() + wt_pft + wtn * excess).max(0.0)
+}
+
+/// The interface error density of a perfect (bonded) point: the admissible jump is 0, so the
+/// fields brought onto the admissible set carry no work and the correction's is `|w| |F|`
+/// (`rho = w . F` is 0 there; `|w| |F| >= |w . F|`).
+pub fn perfect_density(w: &[f64; 3], f: &[f64; 3]) -> f64 {
+    dot(w, w).sqrt() * dot(f, f).sqrt()
 }
 
 /// `sum_kl x_k y_l M_kl` over sparse vectors.
@@ -226,11 +299,19 @@ fn form(m: &[f64], k: usize, x: &[(usize, f64)], y: &[(usize, f64)]) -> f64 {
 
 impl Estimator {
     /// Builds the Gram matrices and gathers the interface data of `runs` (in surrogate run
-    /// order: run `k` of the surrogate is `runs[k]`).
+    /// order: run `k` of the surrogate is `runs[k]`, computed at the parameter point
+    /// `run_points[k]`; `params` gives the friction coefficient there, for each run's own
+    /// interface error).
     ///
     /// # Errors
     /// [`EstimateError::Invalid`] if a run does not match the layout.
-    pub fn new(layout: Layout, runs: &[RunData], options: Options) -> Result<Self, EstimateError> {
+    pub fn new(
+        layout: Layout,
+        runs: &[RunData],
+        run_points: &[Vec<f64>],
+        params: &dyn Parameters,
+        options: Options,
+    ) -> Result<Self, EstimateError> {
         for (k, r) in runs.iter().enumerate() {
             layout
                 .check(r)
@@ -258,22 +339,28 @@ impl Estimator {
             .collect();
         let jump = runs.iter().map(|r| r.jump.clone()).collect();
         let force = runs.iter().map(|r| r.force.clone()).collect();
-        Self::from_parts(layout, young, grams, jump, force, options)
+        Self::from_parts(
+            layout, young, grams, jump, force, run_points, params, options,
+        )
     }
 
     /// Builds the estimator from Gram matrices computed elsewhere (e.g. substructure by
     /// substructure, to bound memory) and the runs' interface fields: `young[s][k]`,
     /// `grams[s]` (`None`: substructure left out; [`Gram::fe_only`] for a substructure without
-    /// admissible samples), `jump[k][i][p]`, `force[k][i][p]`.
+    /// admissible samples), `jump[k][i][p]`, `force[k][i][p]`, the runs' parameter points
+    /// `run_points[k]` and the friction law `params` (for each run's own interface error).
     ///
     /// # Errors
     /// [`EstimateError::Invalid`] on inconsistent counts or non-finite data.
+    #[allow(clippy::too_many_arguments)]
     pub fn from_parts(
         layout: Layout,
         young: Vec<Vec<f64>>,
         grams: Vec<Option<Gram>>,
         jump: Vec<Vec<Vec<[f64; 3]>>>,
         force: Vec<Vec<Vec<[f64; 3]>>>,
+        run_points: &[Vec<f64>],
+        params: &dyn Parameters,
         options: Options,
     ) -> Result<Self, EstimateError> {
         if !(options.admissibility_tolerance >= 0.0 && options.admissibility_tolerance.is_finite())
@@ -359,12 +446,45 @@ impl Estimator {
                 "{ni} interfaces: a run's interface fields do not match the layout"
             )));
         }
-        let jump = (0..ni)
+        let jump: Vec<Vec<[f64; 3]>> = (0..ni)
             .map(|i| gather(&jump, i))
             .collect::<Result<_, _>>()?;
-        let force = (0..ni)
+        let force: Vec<Vec<[f64; 3]>> = (0..ni)
             .map(|i| gather(&force, i))
             .collect::<Result<_, _>>()?;
+        if run_points.len() != k || run_points.iter().any(|p| p.iter().any(|x| !x.is_finite())) {
+            return Err(EstimateError::Invalid(format!(
+                "{k} runs but {} run points (or a non-finite one)",
+                run_points.len()
+            )));
+        }
+        // Each run's own interface error density, point by point, with its own mu(xi_k).
+        let mut mu = Vec::new();
+        let run_rho = (0..ni)
+            .map(|i| {
+                let it = &layout.interfaces[i];
+                let np = it.weights.len();
+                let mut out = vec![0.0; np * k];
+                for (r, xi) in run_points.iter().enumerate() {
+                    if it.kind == InterfaceKind::Contact {
+                        mu.clear();
+                        mu.resize(np, 0.0);
+                        params.friction(xi, i, &mut mu);
+                    }
+                    for p in 0..np {
+                        let (wv, fv) = (&jump[i][p * k + r], &force[i][p * k + r]);
+                        out[p * k + r] = it.weights[p]
+                            * match it.kind {
+                                InterfaceKind::Contact => {
+                                    contact_density(wv, fv, &it.normals[p], mu[p])
+                                }
+                                InterfaceKind::Perfect => perfect_density(wv, fv),
+                            };
+                    }
+                }
+                out
+            })
+            .collect();
         Ok(Estimator {
             layout,
             k,
@@ -372,6 +492,7 @@ impl Estimator {
             grams,
             jump,
             force,
+            run_rho,
             options,
         })
     }
@@ -442,8 +563,8 @@ impl Estimator {
     }
 
     /// The terms of interface `i` at `xi` (weights `w`) and the largest relative violation of
-    /// the admissibility there; `per_point[p]` (if given) receives `[m_p rho(w~, F_1),
-    /// m_p rho(w~, F_2)]` of each point. `mu` is scratch space.
+    /// the admissibility there; `per_point[p]` (if given) receives `[m_p rho*(w~, F~),
+    /// m_p sum_k w_k rho_k,p]` of each point. `mu` is scratch space.
     fn interface_at(
         &self,
         i: usize,
@@ -482,9 +603,10 @@ impl Estimator {
             wf.push((wt, ft));
         }
         let mut out = InterfacePoint::default();
+        let rho_k = &self.run_rho[i];
         for (p, (wt, ft)) in wf.iter().enumerate() {
             let m = it.weights[p];
-            let (e, geo) = if contact {
+            let e = if contact {
                 let n = it.normals[p];
                 let (wn, fn_) = (dot(wt, &n), dot(ft, &n));
                 if w_scale > 0.0 && wn < -tol * w_scale {
@@ -493,27 +615,12 @@ impl Estimator {
                 if f_scale > 0.0 && fn_ < -tol * f_scale {
                     violation = violation.max(-fn_ / f_scale);
                 }
-                let wtan = [wt[0] - wn * n[0], wt[1] - wn * n[1], wt[2] - wn * n[2]];
-                let ftan = [ft[0] - fn_ * n[0], ft[1] - fn_ * n[1], ft[2] - fn_ * n[2]];
-                let wtn = dot(&wtan, &wtan).sqrt();
-                let ftn = dot(&ftan, &ftan).sqrt();
-                // The tangential force the law allows at xi given the interpolated normal
-                // force: within the disk of radius mu(xi) F_n (crate doc: continuous in xi,
-                // so the stochastic part vanishes as xi approaches a run).
-                let radius = mu[p] * fn_.max(0.0);
-                // rho(w, F_2) and the stochastic part w_t . (F_t1 - F_t2).
-                let geo = mu[p] * fn_ * wtn + wn * fn_ + dot(&wtan, &ftan);
-                let sto = if ftn > radius {
-                    let s = radius / ftn - 1.0;
-                    s * dot(&wtan, &ftan)
-                } else {
-                    0.0
-                };
-                (m * (geo + sto), m * geo)
+                m * contact_density(wt, ft, &n, mu[p])
             } else {
-                let v = m * dot(wt, ft);
-                (v, v)
+                m * perfect_density(wt, ft)
             };
+            // The space part: the runs' own interface errors, interpolated (crate doc).
+            let geo: f64 = w.iter().map(|&(r, wr)| wr * rho_k[p * k + r]).sum();
             out.e += e;
             out.geo += geo;
             if let Some(pp) = per_point.as_deref_mut() {
@@ -523,7 +630,7 @@ impl Estimator {
         (out, violation)
     }
 
-    /// Per interface and point: `[E[m_p rho(w~, F_1)], E[m_p rho(w~, F_2)]]` over `rule` (the
+    /// Per interface and point: `[E[m_p rho*(w~, F~)], E[m_p sum_k w_k rho_k,p]]` over `rule` (the
     /// terms of (3.31) and (4.4) point by point; per interface they add up to its `e2` and
     /// `geo2` of [`Estimator::expectation`] on the same rule). Divided by `m_p`: the error
     /// densities per unit interface measure, for maps.

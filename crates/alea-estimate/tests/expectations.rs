@@ -124,18 +124,32 @@ fn setup(params: &Params) -> (PcSurrogate, Estimator) {
     (sur, est)
 }
 
-fn setup_with_runs(params: &Params) -> (PcSurrogate, Estimator, Vec<RunData>) {
+/// The 3 x 3 design of [`setup_with_runs`], one point per run.
+fn grid_points() -> Vec<Vec<f64>> {
     let mut pts = Vec::new();
     for j in 0..3 {
         for i in 0..3 {
-            pts.extend([0.1 + 0.4 * i as f64, 0.1 + 0.4 * j as f64]);
+            pts.push(vec![0.1 + 0.4 * i as f64, 0.1 + 0.4 * j as f64]);
         }
     }
+    pts
+}
+
+fn setup_with_runs(params: &Params) -> (PcSurrogate, Estimator, Vec<RunData>) {
+    let pts: Vec<f64> = grid_points().concat();
     let basis = PcBasis::total_degree(&marginals(), 2).unwrap();
     let sur = PcSurrogate::regression(basis, &pts).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let runs: Vec<RunData> = pts.chunks(2).map(|x| run_at(x, params, &mut rng)).collect();
-    let est = Estimator::new(layout(), &runs, EstimatorOptions::default()).unwrap();
+    let run_points: Vec<Vec<f64>> = pts.chunks(2).map(|x| x.to_vec()).collect();
+    let est = Estimator::new(
+        layout(),
+        &runs,
+        &run_points,
+        params,
+        EstimatorOptions::default(),
+    )
+    .unwrap();
     (sur, est, runs)
 }
 
@@ -263,6 +277,8 @@ fn zero_variance_reduces_to_the_deterministic_estimate() {
     let est = Estimator::new(
         layout(),
         std::slice::from_ref(&run),
+        &[xi.to_vec()],
+        &params,
         EstimatorOptions::default(),
     )
     .unwrap();
@@ -307,7 +323,17 @@ fn the_law_holds_at_the_runs_of_an_interpolating_surrogate() {
     let runs: Vec<RunData> = (0..mesh.num_runs())
         .map(|k| run_at(mesh.run_point(k), &params, &mut rng))
         .collect();
-    let est = Estimator::new(layout(), &runs, EstimatorOptions::default()).unwrap();
+    let run_points: Vec<Vec<f64>> = (0..mesh.num_runs())
+        .map(|k| mesh.run_point(k).to_vec())
+        .collect();
+    let est = Estimator::new(
+        layout(),
+        &runs,
+        &run_points,
+        &params,
+        EstimatorOptions::default(),
+    )
+    .unwrap();
     let mut w = Vec::new();
     for k in 0..mesh.num_runs() {
         let xi = mesh.run_point(k).to_vec();
@@ -366,7 +392,14 @@ fn the_interface_stochastic_density_vanishes_continuously_at_a_run_whose_neighbo
         run([-slip, 0.0, 0.0], [0.3 * fnormal, fnormal, 0.0]),
         run([-0.1, 0.05, 0.0], [0.0; 3]),
     ];
-    let est = Estimator::new(layout, &runs, EstimatorOptions::default()).unwrap();
+    let est = Estimator::new(
+        layout,
+        &runs,
+        &[vec![0.0], vec![1.0]],
+        &Mu,
+        EstimatorOptions::default(),
+    )
+    .unwrap();
     let sto = |x: f64| {
         let mut w = Vec::new();
         alea_estimate::Weights::weights(&Linear, &[x], &mut w);
@@ -374,12 +407,20 @@ fn the_interface_stochastic_density_vanishes_continuously_at_a_run_whose_neighbo
     };
     let jump_size = slip * 0.3 * fnormal;
     assert!(sto(0.0).abs() < 1e-14 && sto(1.0).abs() < 1e-14);
-    // mu falls with xi: the interpolated tangential force leaves the disk and the stochastic
-    // part is (1 - mu(xi) F_n / |F_t|) |w_t . F_t| = O(xi).
-    for x in [1e-1, 1e-2, 1e-3, 1e-4, 1e-6] {
+    // Between the runs: w~ = (-0.4 + 0.3 x, 0.05 x), F~ = (1 - x) (0.6, 2), mu = 0.3 - 0.2 x.
+    // The interpolated normal jump opens while the normal force presses (|w_n F_n| =
+    // 0.1 x (1 - x)), and the tangential force leaves the disk of mu F_n by 0.4 x (1 - x),
+    // charged as work along the slip: rho* = 0.1 x (1 - x) + |w_t| 0.4 x (1 - x). Both runs
+    // obey their law (rho_k = 0), so all of it is stochastic, and it vanishes like xi.
+    for x in [0.5, 1e-1, 1e-2, 1e-3, 1e-4, 1e-6] {
         let s = sto(x);
+        let exact = 0.1 * x * (1.0 - x) + (0.4 - 0.3 * x) * 0.4 * x * (1.0 - x);
         assert!(
-            s > 0.0 && s < x * jump_size,
+            (s - exact).abs() < 1e-9 * exact + 1e-15,
+            "sto({x}) = {s} against {exact}"
+        );
+        assert!(
+            s > 0.0 && s < 1.1 * x * jump_size,
             "sto({x}) = {s}: does not vanish like xi (|w_t . F_t| = {jump_size})"
         );
     }
@@ -422,7 +463,17 @@ fn stochastic_error_of_a_response_in_one_over_e_converges_at_the_interpolation_r
                 force: vec![],
             })
             .collect();
-        let est = Estimator::new(lay.clone(), &runs, EstimatorOptions::default()).unwrap();
+        let run_points: Vec<Vec<f64>> = (0..mesh.num_runs())
+            .map(|k| mesh.run_point(k).to_vec())
+            .collect();
+        let est = Estimator::new(
+            lay.clone(),
+            &runs,
+            &run_points,
+            &Young,
+            EstimatorOptions::default(),
+        )
+        .unwrap();
         let leaves = mesh.leaves();
         let boxes: Vec<_> = leaves.iter().map(|&c| mesh.cell_bounds(c)).collect();
         let rule = Rule::on_cells(&boxes, &leaves, 6, &law).unwrap();
@@ -513,7 +564,17 @@ fn the_maximum_error_search_copes_with_leaves_at_the_finest_level() {
     let runs: Vec<RunData> = (0..mesh.num_runs())
         .map(|k| run_at(mesh.run_point(k), &params, &mut rng))
         .collect();
-    let est = Estimator::new(layout(), &runs, EstimatorOptions::default()).unwrap();
+    let run_points: Vec<Vec<f64>> = (0..mesh.num_runs())
+        .map(|k| mesh.run_point(k).to_vec())
+        .collect();
+    let est = Estimator::new(
+        layout(),
+        &runs,
+        &run_points,
+        &params,
+        EstimatorOptions::default(),
+    )
+    .unwrap();
     let law = Independent::new(marginals()).unwrap();
     let best = alea_estimate::refine::max_error_point(&mesh, &est, &mesh, &params, &law, 3)
         .expect("no level error")
@@ -550,8 +611,10 @@ fn fe_samples_only_give_no_substructure_term_and_the_fe_energy_as_the_norm() {
         })
         .collect();
     // Admissible samples given for a substructure the layout says has none: refused.
-    assert!(Estimator::new(lay.clone(), &runs, EstimatorOptions::default()).is_err());
-    let est = Estimator::new(lay, &fe_runs, EstimatorOptions::default()).unwrap();
+    let run_points = grid_points();
+    let opts = EstimatorOptions::default();
+    assert!(Estimator::new(lay.clone(), &runs, &run_points, &params, opts).is_err());
+    let est = Estimator::new(lay, &fe_runs, &run_points, &params, opts).unwrap();
     let g = est.gram(0).unwrap();
     assert!(!g.has_admissible() && full.gram(0).unwrap().has_admissible());
     assert_eq!(g.hh, full.gram(0).unwrap().hh);

@@ -146,6 +146,7 @@ pub fn build_estimator(
     solver: &LatinSolver,
     store: &Store,
     points: &[Vec<f64>],
+    params: &dyn alea_estimate::Parameters,
 ) -> Result<Estimator, StudyError> {
     let mut records = Vec::with_capacity(points.len());
     let mut fields = Vec::with_capacity(points.len());
@@ -201,6 +202,8 @@ pub fn build_estimator(
         grams,
         jump,
         force,
+        points,
+        params,
         EstimatorOptions {
             admissibility_tolerance: setup.options.admissibility_tolerance,
         },
@@ -257,9 +260,9 @@ pub fn estimate_method(
     settings: &ErrorSettings,
 ) -> Result<(Estimator, MethodError), StudyError> {
     let t0 = Instant::now();
-    let est = build_estimator(setup, solver, store, points)?;
-    let (cells, rule) = integration_rule(study, method, settings)?;
     let params = StudyParameters::new(&study.model.parametric, solver);
+    let est = build_estimator(setup, solver, store, points, &params)?;
+    let (cells, rule) = integration_rule(study, method, settings)?;
     let estimate = est.expectation(&rule, sur, &params);
     let load_defect = load_defect(study, points, &rule, sur);
     Ok((
@@ -325,8 +328,8 @@ pub fn density_maps(
     .map_err(|e| StudyError::Other(e.to_string()))
 }
 
-/// The interface error terms per cell: each interface point's `[E[m_p rho(w~, F_1)],
-/// E[m_p rho(w~, F_2)]]` (`per_point`, from [`Estimator::interface_point_terms`]) divided by its
+/// The interface error terms per cell: each interface point's `[E[m_p rho*(w~, F~)],
+/// E[m_p sum_k w_k rho_k,p]]` (`per_point`, from [`Estimator::interface_point_terms`]) divided by its
 /// weight `m_p` is a density at the point's node on each side; a cell whose facets lie on the
 /// interface side gets that density times the lumped share of its facets at the node
 /// ([`alea_latin::interface::facet_shares`]). Returns per substructure and cell `[e, geo,
@@ -390,9 +393,9 @@ pub fn interface_cell_terms(
 /// refine the space mesh), `error_density` `= E[e_E^2] / |E|`, and the per-cell values
 /// themselves (the moments of the weights come from the method's integration rule, so the cells
 /// add up to the estimate's substructure terms). On the interface nodes of both sides, per unit
-/// interface measure: `interface_error_density` `= E[m_p rho(w~, F_1)] / m_p`,
-/// `interface_space_error_density` (with `F_2`, (4.4)) and `interface_stochastic_error_density`
-/// (their difference, (4.5)); per cell, the same interface terms distributed to the cells
+/// interface measure: `interface_error_density` `= E[m_p rho*(w~, F~)] / m_p`,
+/// `interface_space_error_density` (the runs' own interface errors interpolated) and
+/// `interface_stochastic_error_density` (their difference; crate `alea-estimate`, "Interfaces"); per cell, the same interface terms distributed to the cells
 /// whose facets carry them ([`interface_cell_terms`]: `interface_cell_error`,
 /// `interface_cell_space_error`, `interface_cell_stochastic_error`, and
 /// `interface_cell_error_density` per unit interface measure) - the only error fields of
@@ -481,7 +484,7 @@ pub fn write_error_fields(
     let est = match est {
         Some(e) => e,
         None => {
-            built = build_estimator(setup, solver, store, points)?;
+            built = build_estimator(setup, solver, store, points, &params)?;
             &built
         }
     };

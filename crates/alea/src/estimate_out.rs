@@ -219,9 +219,14 @@ pub fn print(
                         100.0 * s
                     ));
                 }
+                for part in est.negative_parts() {
+                    warnings.push(format!(
+                        "method '{label}': {part}: a part of the error estimate is negative (a defect of the split, reported with its sign)"
+                    ));
+                }
                 if est.violation_probability > 0.0 {
                     warnings.push(format!(
-                        "method '{label}': the interpolated interface fields leave the admissible set (negative gap or normal force) with probability {:.3}: the error estimate is not a guaranteed bound there",
+                        "method '{label}': the interpolated interface fields leave the admissible set (negative gap or normal force) with probability {:.3}: they are brought onto it and the correction is charged to I_sto",
                         est.violation_probability
                     ));
                 }
