@@ -10,9 +10,13 @@
 //! 4. Stop when `i_sto <= target` (if given), else when `i_sto <= i_geo` and `i_geo` changed by
 //!    at most 10 % since the previous step (stable); or when the run budget is reached or no cell
 //!    carries stochastic error.
-//! 5. Mark and refine: the improved criterion refines every cell whose integrated stochastic
-//!    error is at least `fraction` of the largest at its centre (one run per cell; the other new
-//!    nodes interpolated), the maximum-error criterion searches the point of largest
+//! 5. Mark and refine: the improved criterion marks every cell whose integrated stochastic
+//!    error is at least `fraction` of the largest and, in each, runs the centre and the
+//!    interpolated corners (edge / face midpoints of earlier refinements) where the error
+//!    density is within `fraction` of the cell's largest (`alea_estimate::refine` says why:
+//!    centres alone saturate, and the midpoints along directions where the response is linear
+//!    carry no density, so the runs follow the directions where it bends), the maximum-error
+//!    criterion searches the point of largest
 //!    stochastic error density over the sub-cell centres of every cell and the interpolated
 //!    nodes, and adds one run: the node itself, or the centre of the cell that holds the
 //!    sub-cell centre (`alea_estimate::refine` says why). Then back to 2.
@@ -196,22 +200,47 @@ pub(crate) fn run_adaptive(
         }
         let new = match settings.criterion {
             Criterion::Improved { fraction } => {
-                let mut marked = refine::improved(&cells, fraction)
+                let marked = refine::improved(&cells, fraction)
                     .map_err(|e| StudyError::Other(e.to_string()))?;
-                let room = settings.max_runs - runs;
-                if marked.len() > room {
-                    // Keep the largest contributions within the budget.
-                    let contrib = |c: &usize| cells.iter().find(|x| x.0 == *c).map_or(0.0, |x| x.1);
-                    marked.sort_by(|a, b| contrib(b).total_cmp(&contrib(a)).then(a.cmp(b)));
-                    marked.truncate(room);
-                    marked.sort_unstable();
-                }
                 if marked.is_empty() {
                     break ("no cell carries stochastic error".to_string(), None);
                 }
-                mesh.refine_centred(&marked)
+                let sp = StudyParameters::new(&study.model.parametric, &runner.solver);
+                let (mut actions, _) = refine::improved_actions(
+                    &mesh,
+                    &marked,
+                    &est,
+                    &sur,
+                    &sp,
+                    params.joint.as_ref(),
+                    fraction,
+                )
+                .map_err(|e| StudyError::Other(e.to_string()))?;
+                // Keep the largest densities within the budget (actions come sorted).
+                actions.truncate(settings.max_runs - runs);
+                if actions.is_empty() {
+                    break (
+                        "no point of the marked cells carries stochastic error".to_string(),
+                        None,
+                    );
+                }
+                let mut centres = Vec::new();
+                let mut added = 0;
+                for (a, _) in &actions {
+                    match a {
+                        refine::ImprovedAction::Promote(p) => {
+                            mesh.promote(p)
+                                .map_err(|e| StudyError::Other(e.to_string()))?;
+                            added += 1;
+                        }
+                        refine::ImprovedAction::Centre(c) => centres.push(*c),
+                    }
+                }
+                added += mesh
+                    .refine_centred(&centres)
                     .map_err(|e| StudyError::Other(e.to_string()))?
-                    .len()
+                    .len();
+                added
             }
             Criterion::MaxError { depth } => {
                 let sp = StudyParameters::new(&study.model.parametric, &runner.solver);
