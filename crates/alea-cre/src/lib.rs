@@ -69,11 +69,14 @@
 //! 3D substructures keep the direct path.
 //!
 //! # Scope
-//! 2D (plane strain / plane stress): Tri3, Quad4, Tri6 and Quad8 cells with straight edges; 3D:
-//! Tet4, Tet10 (straight edges) and Hex8 (faces may be warped). Curved quadratic edges are
+//! 2D (plane strain / plane stress): Tri3, Quad4, Tri6 and Quad8 cells; quadratic cells may
+//! have curved (isoparametric) edges: phase-1 densities per unit reference length on the
+//! curved edge, phase-2 local problems on the curved cell with rules exact for their
+//! polynomial integrands ([`eet::phase1`] and [`eet::phase2`] "Curved ..."; `tests/curved.rs`).
+//! 3D: Tet4, Tet10 (straight edges) and Hex8 (faces may be warped). Curved Tet10 edges are
 //! rejected with [`CreError::Invalid`], other cells with [`CreError::UnsupportedCell`];
 //! constraints along axes or skew (`fix_normal`); isotropic materials (one per cell). The
-//! interface term is dimension-free (tangent line or plane). Missing: curved edges, the
+//! interface term is dimension-free (tangent line or plane). Missing: curved 3D edges, the
 //! "improved" technique (3.1.1.4 b). Cost in 3D: one dense local problem of `3 n_s - 6`
 //! unknowns per cell (99 for Tet4/Hex8 at `p + 3`, 162 for Tet10), about three times a
 //! deterministic LATIN solve on the 3D benchmark (`BENCHMARKS.md`).
