@@ -82,7 +82,11 @@
 //! polynomial integrands ([`eet::phase1`] and [`eet::phase2`] "Curved ..."; `tests/curved.rs`).
 //! 3D: Tet4, Tet10 (straight edges) and Hex8 (faces may be warped). Curved Tet10 edges are
 //! rejected with [`CreError::Invalid`], other cells with [`CreError::UnsupportedCell`];
-//! constraints along axes or skew (`fix_normal`); isotropic materials (one per cell). The
+//! constraints along axes or skew (`fix_normal`) - a boundary edge carries a reaction only in a
+//! direction constrained at all its nodes, so a sliding constraint along a curved boundary (the
+//! nodal normals differ along each edge) is not equilibrated:
+//! [`DomainEstimate::compatibility_defect`] reports it (0.4-0.5 measured on an arc, Q4 and Q8
+//! alike); isotropic materials (one per cell). The
 //! interface term is dimension-free (tangent line or plane). Missing: curved 3D edges, the
 //! "improved" technique (3.1.1.4 b). Cost in 3D: one dense local problem of `3 n_s - 6`
 //! unknowns per cell (99 for Tet4/Hex8 at `p + 3`, 162 for Tet10), about three times a
