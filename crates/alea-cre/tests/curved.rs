@@ -608,3 +608,126 @@ fn lame_q8_two_rings_perfect_interface() {
         assert!(ratio > 0.97 && ratio < 1.05, "ratio {ratio}");
     }
 }
+
+/// One curved cell whose local problem has its exact solution in the phase-2 space: the
+/// quadratic displacement `u_ex`, its (linear) stress's tractions `sigma(u_ex) n(s)` given as
+/// data on every curved edge and its constant body force. The phase-2 stress must be
+/// `sigma(u_ex)` to round-off at every degree `>= 2` and `theta_E^2` (with `u_h = 0`) its energy:
+/// the local stiffness, the edge loads (on the curve, `dS = J ds`) and the body loads are exact
+/// on the curved cell.
+fn exact_local_curved(kind: CellType) {
+    use std::sync::Arc;
+    let (lam, mu) = lame(PS);
+    // u = (x^2 + 2xy - y^2, 3xy - x^2 + y^2 / 2)
+    let grad = |x: [f64; 3]| {
+        let (a, b) = (x[0], x[1]);
+        [
+            2.0 * a + 2.0 * b,
+            2.0 * a - 2.0 * b,
+            3.0 * b - 2.0 * a,
+            3.0 * a + b,
+        ]
+    };
+    let stress = move |x: [f64; 3]| {
+        let g = grad(x);
+        let tr = g[0] + g[3];
+        [
+            lam * tr + 2.0 * mu * g[0],
+            lam * tr + 2.0 * mu * g[3],
+            mu * (g[1] + g[2]),
+        ]
+    };
+    // div sigma = (lam + mu) grad div u + mu lap u; div u = 5x + 3y, lap u = (0, -1).
+    let f = [-(lam + mu) * 5.0, -((lam + mu) * 3.0 - mu), 0.0];
+    let mut pts: Vec<[f64; 3]> = match kind {
+        CellType::Tri6 => vec![[0.1, 0.2, 0.0], [1.3, 0.4, 0.0], [0.5, 1.1, 0.0]],
+        _ => vec![
+            [0.1, 0.2, 0.0],
+            [1.3, 0.0, 0.0],
+            [1.1, 1.2, 0.0],
+            [0.0, 0.9, 0.0],
+        ],
+    };
+    // Mid-side nodes off the chords (outward and inward bulges).
+    let bulge = [0.08, -0.06, 0.1, 0.05];
+    let nc = pts.len();
+    for k in 0..nc {
+        let (a, b) = (pts[k], pts[(k + 1) % nc]);
+        let t = [b[0] - a[0], b[1] - a[1]];
+        pts.push([
+            0.5 * (a[0] + b[0]) + bulge[k] * t[1],
+            0.5 * (a[1] + b[1]) - bulge[k] * t[0],
+            0.0,
+        ]);
+    }
+    let mut mesh = Mesh::new(2);
+    let ids: Vec<usize> = pts.iter().map(|&p| mesh.add_node(p)).collect();
+    mesh.add_cell(kind, &ids);
+    let m = model(mesh, PS);
+    let topo = alea_cre::topology::Topology::new(&m.mesh).unwrap();
+    assert!(topo.edges.iter().all(|e| e.curved));
+    let density = topo
+        .edges
+        .iter()
+        .map(|_| alea_cre::eet::phase1::EdgeDensity {
+            lin: [[0.0; 2]; 3],
+            data: vec![alea_cre::eet::phase1::EdgeData {
+                field: 0,
+                projector: [[1.0, 0.0], [0.0, 1.0]],
+            }],
+        })
+        .collect();
+    let field: alea_cre::TractionField = Arc::new(move |x, n| traction(stress(x), n));
+    let tr = alea_cre::eet::phase1::EdgeTractions {
+        topo: Arc::new(topo),
+        density,
+        fields: vec![field],
+        compatibility_defect: 0.0,
+    };
+    let u = vec![0.0; 2 * ids.len()];
+    let body: alea_cre::VectorField = Arc::new(move |_| f);
+    for degree in 2..=6 {
+        let r = alea_cre::eet::phase2::element(
+            &m,
+            0,
+            &u,
+            Some(&body),
+            &tr,
+            &alea_cre::eet::phase2::Phase2Rules::new(degree),
+        )
+        .unwrap();
+        let q = Quadrature::for_cell(kind, 10);
+        let coords = m.cell_coords(0);
+        let (mut e2, mut dev, mut smax): (f64, f64, f64) = (0.0, 0.0, 0.0);
+        for (xi, w) in q.points.iter().zip(&q.weights) {
+            let g = point_geometry(kind, &coords, *xi);
+            let s = stress(g.x);
+            let sh = r.stress.stress(g.x);
+            smax = smax.max(s.iter().fold(0.0f64, |a, v| a.max(v.abs())));
+            for c in 0..3 {
+                dev = dev.max((sh[c] - s[c]).abs());
+            }
+            let gr = grad(g.x);
+            e2 += w * g.det * (s[0] * gr[0] + s[1] * gr[3] + s[2] * (gr[1] + gr[2]));
+        }
+        println!(
+            "exact local {kind} degree {degree}: |sigma_hat - sigma_ex| / |sigma_ex| = {:.1e}, theta_E^2 / energy - 1 = {:.1e}, balance {:.1e}",
+            dev / smax,
+            r.theta2 / e2 - 1.0,
+            r.balance_defect
+        );
+        assert!(dev < 1e-9 * smax, "{kind} degree {degree}: {}", dev / smax);
+        assert!(
+            (r.theta2 - e2).abs() < 1e-10 * e2,
+            "{kind}: {} vs {e2}",
+            r.theta2
+        );
+        assert!(r.balance_defect < 1e-12, "{}", r.balance_defect);
+    }
+}
+
+#[test]
+fn phase2_is_exact_on_curved_cells() {
+    exact_local_curved(CellType::Quad8);
+    exact_local_curved(CellType::Tri6);
+}

@@ -9,33 +9,38 @@
 //! remark). With `p + 3` the residual is small (checked by the tests) but not zero.
 //!
 //! # Curved cells (isoparametric Tri6 / Quad8 with a curved edge)
-//! The local space stays the complete polynomial space of degree `p + k` in **physical**
+//! The local space stays the complete polynomial space of degree `d = p + k` in **physical**
 //! coordinates, on the exact (isoparametric) cell. What changes:
 //!
 //! - the edge loads `int_Gamma eta F_hat . v_j dS = int_0^1 eta L P(s) . v_j(x(s)) ds` (phase-1
-//!   representation `F_hat J = L P`, [`super::phase1`]): the integrand is a polynomial of degree
-//!   `2 + 2 (p + k)` in `s`, integrated exactly (`p + k + 4` Gauss points here, `p + k + 2` in
-//!   the cached path); prescribed-traction data use `x(s)`, `n(s)` and `dS = J ds`
-//!   (quadrature, as on straight edges);
-//! - the cell rule: the local stiffness `int eps(v_i) : K eps(v_j)` has, in reference
-//!   coordinates, the polynomial integrand `eps(v_i)(x(xi)) ... det J(xi)` of degree `4 (p + k)
-//!   - 2` on a Tri6 (`x(xi)` quadratic) and `4 (p + k) - 1` per direction on a Quad8
-//!   (serendipity `x(xi)`), so curved cells use rules exact for it ([`Phase2Rules::volume`]:
-//!   `triangle(4 (p + k) - 2)`, `2 (p + k)` Gauss points per direction). The local system is
-//!   then the exact Galerkin system of the degree-`p + k` space on the curved cell.
+//!   representation `F_hat J = L P`, [`super::phase1`]): the integrand is a polynomial of
+//!   degree `2 d + 2` in `s`, integrated exactly (`d + 4` Gauss points here, `d + 2` in the
+//!   cached path); prescribed-traction data use `x(s)`, `n(s)` and `dS = J ds` (quadrature, as
+//!   on straight edges);
+//! - the cell rule: in reference coordinates the local stiffness integrand
+//!   `eps(v_i)(x(xi)) : K eps(v_j)(x(xi)) det J(xi)` is a polynomial, of degree `4 d - 2` on a
+//!   Tri6 (`x(xi)` quadratic) and `4 d - 1` per direction on a Quad8 (serendipity `x(xi)`), so
+//!   curved cells use rules exact for it ([`Phase2Rules::volume`]: `triangle(4 d - 2)`, `2 d`
+//!   Gauss points per direction). The local system is then the exact Galerkin system of the
+//!   degree-`d` space on the curved cell.
 //!
-//! What this gives, exactly (to round-off): the element loads are in balance (force and moment:
-//! phase 1 holds the prolongation condition exactly and the rigid modes are in the
-//! isoparametric space), the local problem is solvable, and `sigma_hat` satisfies `int_E
-//! sigma_hat : eps(v) = int_dE eta F_hat . v + int_E f . v` for every polynomial `v` of degree
-//! `<= p + k` (polynomial data). A uniform stress is reproduced exactly (its densities are in
-//! the phase-1 space; `tests/curved.rs`). What is approximate, as on straight cells: the
-//! pointwise equilibrium and `sigma_hat n = F_hat` (weak only; on a curved edge `F_hat =
-//! (L / J) P` is rational, never the exact trace of a polynomial stress unless uniform), the
-//! FE energy terms of `theta_E` (`eps_h` is rational on curved as on distorted cells:
-//! quadrature), non-polynomial data. So the bound is *nearly* guaranteed in the same sense as on
-//! straight cells ([`crate`] "What is guaranteed"): the local Neumann problems are solved by a
-//! displacement method, whose energy approaches the exact local one from below.
+//! Exact (to round-off): the element loads are in balance (force and moment: phase 1 holds the
+//! prolongation condition exactly and the rigid modes are in the isoparametric space), the
+//! local problem is solvable, and `sigma_hat` satisfies `int_E sigma_hat : eps(v) = int_dE eta
+//! F_hat . v + int_E f . v` for every polynomial `v` of degree `<= d` (polynomial densities,
+//! body forces of degree `<= d - 2`). A uniform stress is reproduced exactly (its densities are
+//! in the phase-1 space), and so is any local problem whose exact solution is in the local
+//! space (`tests/curved.rs`; with the straight cells' rules instead, a strongly curved Quad8
+//! misses a linear stress by `4e-5`, while on the Lame meshes `theta` moves by `1e-5`
+//! relative).
+//!
+//! Approximate, as on straight cells: the pointwise equilibrium and `sigma_hat n = F_hat` (weak
+//! only; on a curved edge `F_hat = (L / J) P` is rational, the trace of no polynomial stress
+//! unless uniform), the FE energy terms of `theta_E` (`eps_h` is rational on curved as on
+//! distorted cells: quadrature), non-polynomial data. So the bound is *nearly* guaranteed in
+//! the same sense as on straight cells ([`crate`] "What is guaranteed"): the local Neumann
+//! problems are solved by a displacement method, whose energy approaches the exact local one
+//! from below.
 
 use alea_fem::{Model, Quadrature};
 use alea_mesh::CellType;
