@@ -15,20 +15,23 @@
 //! (`D = alpha D0`), `||sigma||^2_{D^-1} = |y(sigma)|^2 / alpha`.
 //!
 //! The quadrature rules are those of the phase-2 local problems ([`crate::eet::phase2`]: degree
-//! `2 (p + k)` on triangles, `(p + k + 1)^2` Gauss points on quadrilaterals), so that
+//! `2 (p + k)` on triangles, `(p + k + 1)^2` Gauss points on quadrilaterals, richer on cells
+//! with a curved edge: [`crate::eet::phase2::Phase2Rules::volume`]), so that
 //! `|y(sigma_hat) - y(sigma_h)|^2 / alpha = theta^2` reproduces the deterministic estimate to
 //! round-off. `y(sigma_h)` comes from the FE displacement and `y(sigma_hat)` from the phase-2
 //! solution of a [`DomainEstimate`] of the same model (same mesh and cell order).
 //!
 //! 2D cells (Tri3, Quad4, Tri6, Quad8) only, as the estimate itself.
 
-use alea_fem::{Model, Quadrature};
+use alea_fem::Model;
 use alea_mesh::CellType;
 
 use crate::CreError;
 use crate::domain::{CreOptions, DomainEstimate};
+use crate::eet::phase2::Phase2Rules;
 use crate::fe::{hooke, strain_h};
 use crate::poly::{PolyPoint, PolySpace};
+use crate::topology::cell_is_curved;
 
 /// A quadrature point: reference coordinates, physical coordinates and `sqrt(w |J| t)`.
 type SamplePoint = ([f64; 3], [f64; 3], f64);
@@ -105,14 +108,10 @@ impl EnergySampler {
         options.validate()?;
         let mesh = &model.mesh;
         let th = model.analysis.thickness();
-        let rules = |order: usize| {
-            let degree = order + options.extra_degree;
-            (
-                Quadrature::triangle(2 * degree),
-                Quadrature::tensor(2, degree + 1),
-            )
-        };
-        let by_order = [rules(1), rules(2)];
+        let by_order = [
+            Phase2Rules::new(1 + options.extra_degree),
+            Phase2Rules::new(2 + options.extra_degree),
+        ];
         let mut points = Vec::with_capacity(mesh.num_cells());
         let mut factors = Vec::with_capacity(mesh.num_cells());
         let mut offsets = vec![0];
@@ -121,8 +120,9 @@ impl EnergySampler {
         for c in 0..mesh.num_cells() {
             let kind = mesh.cell_type(c);
             let rule = match kind {
-                CellType::Tri3 | CellType::Tri6 => &by_order[kind.order().clamp(1, 2) - 1].0,
-                CellType::Quad4 | CellType::Quad8 => &by_order[kind.order().clamp(1, 2) - 1].1,
+                CellType::Tri3 | CellType::Tri6 | CellType::Quad4 | CellType::Quad8 => {
+                    by_order[kind.order().clamp(1, 2) - 1].volume(kind, cell_is_curved(mesh, c))
+                }
                 other => {
                     return Err(CreError::UnsupportedCell {
                         cell: c,

@@ -23,6 +23,29 @@
 //! the density of degree `p` (1 or 2) is recovered from its `p + 1` projections through the
 //! edge mass matrix: `F_a = (2 / L) (2 b_a - b_b)` on a 2-node edge. Everything is per unit
 //! thickness.
+//!
+//! # Curved edges
+//! A quadratic edge whose mid node is off the chord is the isoparametric curve `x(s)`,
+//! `s in [0, 1]`, with length element `J(s) = |x'(s)|` and normal `n(s)`
+//! ([`crate::topology::Edge::point`]); the FE shape functions restricted to it are the edge
+//! shape functions `N_k(s)` of the reference parameter. The density is stored **per unit
+//! reference length**: with `L` the chord length and `P(s) = sum_k N_k(s) F_k` the stored
+//! quadratic polynomial ([`EdgeDensity::lin`]),
+//!
+//! `F_hat(x(s)) J(s) = L P(s)`, i.e. the traction `F_hat(x(s)) = (L / J(s)) P(s)`
+//! ([`EdgeTractions::traction`]).
+//!
+//! Then `b_k = int_Gamma F_hat N_k dS = L int_0^1 P N_k ds = (M_L F)_k` with the same edge mass
+//! matrix `M_L` as a straight edge of length `L`: the node systems (3.22), the recovery of `F`
+//! from its projections and the interface densities are unchanged, and the projections hold
+//! exactly. Because the isoparametric space reproduces the rigid modes exactly (`sum_i phi_i =
+//! 1` and `sum_i phi_i (-y_i, x_i) = (-y, x)` on the curved cell), the prolongation condition
+//! makes every cell's force **and moment** resultant of `F_hat` (plus the body force, with the
+//! FE load rule) vanish to round-off, as on straight cells. On a straight edge `J = L` and the
+//! representation is the usual one. A uniform stress `sigma_0` has the traction `sigma_0 n J /
+//! L = sigma_0 (x'_y, -x'_x) / L`, linear in `s`: it is represented exactly. The targets
+//! `b_bar` and the prescribed-traction projections are integrated on the curved edge
+//! (`n(s)`, `J(s)`; for the latter the FE load vector's rule and facet geometry).
 
 use std::sync::Arc;
 
@@ -37,7 +60,7 @@ use crate::linalg::{cholesky_solve, least_change};
 
 use super::sides::edge_mass;
 pub use super::sides::{EdgeLinear, facet_projections, interface_densities};
-use crate::topology::Topology;
+use crate::topology::{EdgePoint, Topology};
 
 /// Data part of an edge's density.
 #[derive(Clone, Copy, Debug)]
@@ -83,8 +106,34 @@ impl std::fmt::Debug for EdgeTractions {
 
 impl EdgeTractions {
     /// Traction on edge `e`'s first cell at parameter `s in [0, 1]` (from `nodes[0]`), physical
-    /// point `x` and first-cell outward normal `n`.
+    /// point `x` and first-cell outward normal `n` (on a curved edge: `x(s)` and `n(s)` of
+    /// [`crate::topology::Edge::point`]; the polynomial part is then scaled by `L / J(s)`, see
+    /// the module doc).
     pub fn traction(&self, e: usize, s: f64, x: [f64; 3], n: [f64; 2]) -> [f64; 2] {
+        let edge = &self.topo.edges[e];
+        let scale = if edge.curved {
+            edge.chord() / edge.point(s).jac
+        } else {
+            1.0
+        };
+        self.traction_scaled(e, s, x, n, scale)
+    }
+
+    /// [`EdgeTractions::traction`] at the edge point `p` of parameter `s` (its `x`, `n` and
+    /// `J`).
+    pub fn traction_at(&self, e: usize, s: f64, p: &EdgePoint) -> [f64; 2] {
+        let edge = &self.topo.edges[e];
+        let scale = if edge.curved {
+            edge.chord() / p.jac
+        } else {
+            1.0
+        };
+        self.traction_scaled(e, s, p.x, p.n, scale)
+    }
+
+    /// The polynomial density at `s` (values per unit chord length of the reference
+    /// parametrisation: `t J / L`, see the module doc).
+    pub fn polynomial(&self, e: usize, s: f64) -> [f64; 2] {
         let d = &self.density[e];
         let sh = self.topo.edges[e].shape(s);
         let mut t = [0.0; 2];
@@ -92,6 +141,13 @@ impl EdgeTractions {
             t[0] += sh[k] * d.lin[k][0];
             t[1] += sh[k] * d.lin[k][1];
         }
+        t
+    }
+
+    fn traction_scaled(&self, e: usize, s: f64, x: [f64; 3], n: [f64; 2], scale: f64) -> [f64; 2] {
+        let d = &self.density[e];
+        let p = self.polynomial(e, s);
+        let mut t = [scale * p[0], scale * p[1]];
         for ed in &d.data {
             let v = (self.fields[ed.field])(x, [n[0], n[1], 0.0]);
             let p = ed.projector;
@@ -231,7 +287,6 @@ impl EdgeLoads {
                     field: fi,
                     projector,
                 });
-                let (n, len, [xa, xb]) = topo.geometry(mesh, e);
                 let edge = &topo.edges[e];
                 let line_rule = Quadrature::for_cell(
                     alea_mesh::CellType::Line2,
@@ -239,17 +294,14 @@ impl EdgeLoads {
                 );
                 for (xi, w) in line_rule.points.iter().zip(&line_rule.weights) {
                     let s = 0.5 * (xi[0] + 1.0);
-                    let x = [
-                        (1.0 - s) * xa[0] + s * xb[0],
-                        (1.0 - s) * xa[1] + s * xb[1],
-                        0.0,
-                    ];
+                    // The FE load vector's facet geometry (isoparametric: curved edges too).
+                    let EdgePoint { x, n, jac } = edge.point(s);
                     let v = field(x, [n[0], n[1], 0.0]);
                     let pv = [
                         projector[0][0] * v[0] + projector[0][1] * v[1],
                         projector[1][0] * v[0] + projector[1][1] * v[1],
                     ];
-                    let dl = 0.5 * w * len;
+                    let dl = 0.5 * w * jac;
                     let sh = edge.shape(s);
                     for k in 0..3 {
                         for c in 0..2 {
@@ -546,10 +598,9 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
     let b_bar: Vec<[[f64; 2]; 3]> = topo
         .edges
         .par_iter()
-        .enumerate()
-        .map(|(e, edge)| -> Result<[[f64; 2]; 3], CreError> {
+        .map(|edge| -> Result<[[f64; 2]; 3], CreError> {
             let mut bb = [[0.0; 2]; 3];
-            let (n, len, _) = topo.geometry(mesh, e);
+            let pts: Vec<EdgePoint> = rule.iter().map(|&(s, _)| edge.point(s)).collect();
             let share = 1.0 / edge.cells.len() as f64;
             for (k, &(c, l)) in edge.cells.iter().enumerate() {
                 let kind = mesh.cell_type(c);
@@ -560,15 +611,15 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
                     .flat_map(|&nd| [inp.u[2 * nd], inp.u[2 * nd + 1]])
                     .collect();
                 let d = hooke(model.material(c)?, model.analysis);
-                for &(s, w) in &rule {
+                for (&(s, w), p) in rule.iter().zip(&pts) {
                     // The second cell runs along the edge in the opposite direction.
                     let s_cell = if k == 0 { s } else { 1.0 - s };
                     let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, l, s_cell));
-                    let t = traction_of(&mul3(&d, &eps), n);
+                    let t = traction_of(&mul3(&d, &eps), p.n);
                     let sh = edge.shape(s);
                     for kk in 0..3 {
                         for c2 in 0..2 {
-                            bb[kk][c2] += share * w * len * sh[kk] * t[c2];
+                            bb[kk][c2] += share * w * p.jac * sh[kk] * t[c2];
                         }
                     }
                 }

@@ -32,7 +32,7 @@ use crate::CreError;
 use crate::data::{AffineBody, SideForces, TractionField, VectorField};
 use crate::fe::{facet_point, gauss01, hooke, mul3, traction_of};
 use crate::linalg::least_change_operator;
-use crate::topology::Topology;
+use crate::topology::{EdgePoint, Topology};
 
 /// Reference shape-function gradients of one cell type at the points of the FE stiffness rule
 /// (with their weights) and, per local facet, at the 4 Gauss points of the traction
@@ -365,9 +365,9 @@ impl Phase1Cache {
         let b_bar: Vec<[[f64; 2]; 3]> = topo
             .edges
             .par_iter()
-            .enumerate()
-            .map(|(e, edge)| -> Result<[[f64; 2]; 3], CreError> {
-                let (n, len, _) = topo.geometry(mesh, e);
+            .map(|edge| -> Result<[[f64; 2]; 3], CreError> {
+                let pts: Vec<EdgePoint> =
+                    self.edge_rule.iter().map(|&(s, _)| edge.point(s)).collect();
                 let share = 1.0 / edge.cells.len() as f64;
                 let mut bb = [[0.0; 2]; 3];
                 let mut grad = [[0.0; 2]; MAX_NODES];
@@ -386,11 +386,12 @@ impl Phase1Cache {
                     for (p, &(s, w)) in self.edge_rule.iter().enumerate() {
                         let dn = &facet[if k == 0 { p } else { np - 1 - p }];
                         let (eps, _) = strain_at(dn, &coords, &ue, &mut grad);
-                        let t = traction_of(&mul3(&d, &eps), n);
+                        let t = traction_of(&mul3(&d, &eps), pts[p].n);
                         let sh = edge.shape(s);
+                        let wl = share * w * pts[p].jac;
                         for kk in 0..3 {
                             for c2 in 0..2 {
-                                bb[kk][c2] += share * w * len * sh[kk] * t[c2];
+                                bb[kk][c2] += wl * sh[kk] * t[c2];
                             }
                         }
                     }

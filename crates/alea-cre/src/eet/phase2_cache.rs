@@ -50,6 +50,7 @@ use crate::CreError;
 use crate::data::{AffineBody, VectorField};
 use crate::fe::{gauss01, hooke, mul3};
 use crate::poly::{PolyPoint, PolySpace};
+use crate::topology::cell_is_curved;
 
 /// Index of the packed lower triangle entry `(i, j)`, `j <= i`.
 #[inline]
@@ -66,6 +67,8 @@ struct CellData {
     offset: usize,
     /// Number of deformation coordinates `2 nn - 3`.
     ndef: usize,
+    /// The cell has a curved edge (richer phase-2 rule).
+    curved: bool,
 }
 
 /// The moments an affine body force needs, per cell (cached on first use).
@@ -118,6 +121,7 @@ impl Phase2Cache {
                 space,
                 offset: data.len(),
                 ndef: 2 * mesh.cell_nodes(c).len() - 3,
+                curved: cell_is_curved(mesh, c),
             });
             data.extend_from_slice(&values);
         }
@@ -187,33 +191,32 @@ impl Phase2Cache {
             if !has_data && d.lin.iter().flatten().all(|v| *v == 0.0) {
                 continue;
             }
-            let (nrm, len, [xa, xb]) = tr.topo.geometry(mesh, e);
             let edge = &tr.topo.edges[e];
             let npts = if has_data {
                 degree + 4
+            } else if edge.curved {
+                // `L P(s) . v(x(s))`: degree `2 + 2 degree` in `s`.
+                degree + 2
             } else {
                 let p_edge = 1 + edge.mid.is_some() as usize;
                 (degree + p_edge + 2) / 2
             };
             for &(s, w) in &self.line_rules[npts] {
-                let x = [
-                    (1.0 - s) * xa[0] + s * xb[0],
-                    (1.0 - s) * xa[1] + s * xb[1],
-                    0.0,
-                ];
+                let ep = edge.point(s);
+                let x = ep.x;
                 let t = if has_data {
-                    tr.traction(e, s, x, nrm)
+                    tr.traction_at(e, s, &ep)
                 } else {
-                    let sh = edge.shape(s);
-                    let mut t = [0.0; 2];
-                    for k in 0..3 {
-                        t[0] += sh[k] * d.lin[k][0];
-                        t[1] += sh[k] * d.lin[k][1];
+                    let p = tr.polynomial(e, s);
+                    if edge.curved {
+                        let r = edge.chord() / ep.jac;
+                        [r * p[0], r * p[1]]
+                    } else {
+                        p
                     }
-                    t
                 };
                 let t = [eta * t[0], eta * t[1]];
-                let wl = w * len;
+                let wl = w * ep.jac;
                 space.scalars([x[0], x[1]], psi);
                 let wt = [wl * t[0], wl * t[1]];
                 space.accumulate(l, |comp, sc| wt[comp] * psi[sc]);
@@ -254,10 +257,7 @@ impl Phase2Cache {
             abs_sum += a0 * sum / nv as f64;
         } else if let Some(b) = body {
             let coords = model.cell_coords(c);
-            let q = match kind {
-                CellType::Tri3 | CellType::Tri6 => &rule.tri,
-                _ => &rule.quad,
-            };
+            let q = rule.volume(kind, cd.curved);
             for (xi, w) in q.points.iter().zip(&q.weights) {
                 let g = point_geometry(kind, &coords, *xi);
                 let wd = w * g.det;
@@ -403,10 +403,7 @@ fn cell_data(
     let d = hooke(model.material(c)?, model.analysis);
     let space = PolySpace::new(rules.degree, &coords);
     let n = space.len();
-    let rule = match kind {
-        CellType::Tri3 | CellType::Tri6 => &rules.tri,
-        _ => &rules.quad,
-    };
+    let rule = rules.volume(kind, cell_is_curved(mesh, c));
     let mut k = vec![0.0; n * n];
     let mut g = vec![0.0; n * m];
     let mut p = PolyPoint::default();
@@ -549,10 +546,7 @@ fn body_moments(model: &Model, cells: &[CellData], rules: &[Phase2Rules; 2]) -> 
         .map(|(c, cd)| {
             let kind = mesh.cell_type(c);
             let rules = &rules[kind.order().clamp(1, 2) - 1];
-            let rule = match kind {
-                CellType::Tri3 | CellType::Tri6 => &rules.tri,
-                _ => &rules.quad,
-            };
+            let rule = rules.volume(kind, cd.curved);
             let coords = model.cell_coords(c);
             let ns = cd.space.num_scalars();
             let mut mom = vec![0.0; 3 * ns];

@@ -10,7 +10,7 @@ use crate::CreError;
 use crate::data::{FacetProjections, SideForces};
 use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
 use crate::linalg::cholesky_solve;
-use crate::topology::Topology;
+use crate::topology::{Topology, facet_point_at};
 
 /// A polynomial density on one edge: `(edge, values at [nodes[0], nodes[1], mid])`.
 pub type EdgeLinear = (usize, [[f64; 2]; 3]);
@@ -174,15 +174,13 @@ pub fn facet_projections(
             .collect();
         let d = hooke(model.material(c)?, model.analysis);
         let fnodes = &bf.facet.nodes;
-        let (xa, xb) = (mesh.coords[fnodes[0]], mesh.coords[fnodes[1]]);
-        let t = [xb[0] - xa[0], xb[1] - xa[1]];
-        let len = (t[0] * t[0] + t[1] * t[1]).sqrt();
-        let n = [t[1] / len, -t[0] / len];
         let quadratic = fnodes.len() == 3;
         let mut proj = vec![[0.0; 2]; fnodes.len()];
         for &(s, w) in &rule {
+            // Isoparametric facet geometry (curved quadratic facets included).
+            let ep = facet_point_at(mesh, fnodes, s);
             let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, bf.local, s));
-            let tr = traction_of(&mul3(&d, &eps), n);
+            let tr = traction_of(&mul3(&d, &eps), ep.n);
             let sh = if quadratic {
                 [
                     (1.0 - s) * (1.0 - 2.0 * s),
@@ -194,7 +192,7 @@ pub fn facet_projections(
             };
             for (k, p) in proj.iter_mut().enumerate() {
                 for c2 in 0..2 {
-                    p[c2] += w * len * sh[k] * tr[c2];
+                    p[c2] += w * ep.jac * sh[k] * tr[c2];
                 }
             }
         }
