@@ -32,7 +32,12 @@
 //!   midpoint along a direction in which the response is linear is interpolated exactly, its
 //!   density is ~0 and it stays interpolated, while the midpoints along the directions where
 //!   the response bends become runs (the per-direction indicators of [`DirectionShares`]
-//!   report the split).
+//!   report the split). The leaf itself is split **only along the directions where the
+//!   response bends**: per direction `j` the indicator `eta_j` is the largest density at the
+//!   midpoints of the leaf's edges along `j`, and the split runs along the directions with
+//!   `eta_j >= fraction max eta` (`StochasticMesh::refine_directions`, runs at the centres of
+//!   the split faces); a response linear in a parameter is interpolated exactly along it, its
+//!   `eta` is ~0 and the cells never split in it.
 
 use alea_uq::joint::JointLaw;
 use alea_uq::surrogate::{CellId, MAX_LEVEL, StochasticMesh};
@@ -67,8 +72,11 @@ pub fn improved(cells: &[(usize, f64, f64)], fraction: f64) -> Result<Vec<usize>
 /// One new run of the improved criterion (module doc).
 #[derive(Clone, Debug, PartialEq)]
 pub enum ImprovedAction {
-    /// Refine this leaf at its centre.
+    /// Refine this leaf at its centre, in every direction.
     Centre(CellId),
+    /// Refine this leaf only along the directions of the mask (bit `j`: direction `j`), with
+    /// runs at the centres of the split (`StochasticMesh::refine_directions`).
+    Split(CellId, u32),
     /// Make the interpolated node at this point a run.
     Promote(Vec<f64>),
 }
@@ -144,8 +152,43 @@ pub fn improved_actions(
             .filter(|p| inside(p) && on_corner_grid(p))
             .collect();
         let centre = mesh.cell_centre(c);
-        let mut cand: Vec<(ImprovedAction, f64)> =
-            vec![(ImprovedAction::Centre(c), density(&centre))];
+        // Per-direction indicators: the largest density at the midpoints of the leaf's edges
+        // along each direction; the split runs along the directions within `fraction` of the
+        // largest (all of them when no edge midpoint carries density).
+        let mut eta = vec![0.0f64; d];
+        for (j, e) in eta.iter_mut().enumerate() {
+            for corner in 0..(1usize << d) {
+                if (corner >> j) & 1 == 1 {
+                    continue;
+                }
+                let p: Vec<f64> = (0..d)
+                    .map(|i| {
+                        if i == j {
+                            centre[i]
+                        } else if (corner >> i) & 1 == 1 {
+                            hi[i]
+                        } else {
+                            lo[i]
+                        }
+                    })
+                    .collect();
+                *e = e.max(density(&p));
+            }
+        }
+        let eta_max = eta.iter().copied().fold(0.0, f64::max);
+        let mask: u32 = if eta_max > 0.0 {
+            (0..d)
+                .filter(|&j| eta[j] >= fraction * eta_max)
+                .fold(0u32, |m, j| m | (1 << j))
+        } else {
+            (1u32 << d) - 1
+        };
+        let split = if mask == (1u32 << d) - 1 {
+            ImprovedAction::Centre(c)
+        } else {
+            ImprovedAction::Split(c, mask)
+        };
+        let mut cand: Vec<(ImprovedAction, f64)> = vec![(split, density(&centre))];
         for p in corners {
             let v = density(p);
             cand.push((ImprovedAction::Promote(p.clone()), v));
