@@ -68,6 +68,10 @@ pub struct NewRun {
 #[derive(Debug, Clone)]
 struct Cell {
     origin: Key,
+    /// Refinement level per direction (0 for root cells): the cell spans
+    /// `2^(MAX_LEVEL - levels[j])` units in direction `j`.
+    levels: [u32; MAX_DIM],
+    /// Maximum of `levels` (the level of an isotropic cell).
     level: u32,
     first_child: Option<usize>,
 }
@@ -93,6 +97,9 @@ pub struct StochasticMesh {
     /// First child of each cell (`u32::MAX` for leaves): a compact copy of
     /// `Cell::first_child` for cache-friendly point location.
     child: Vec<u32>,
+    /// Directions along which each cell was split (bit j: direction j; 0 for leaves). A child
+    /// index packs one bit per split direction, in increasing direction order.
+    split_mask: Vec<u8>,
     nodes: HashMap<Key, NodeKind>,
     run_keys: Vec<Key>,
     run_points: Vec<f64>,
@@ -145,6 +152,7 @@ impl StochasticMesh {
             roots: roots.to_vec(),
             cells: Vec::new(),
             child: Vec::new(),
+            split_mask: Vec::new(),
             nodes: HashMap::new(),
             run_keys: Vec::new(),
             run_points: Vec::new(),
@@ -163,10 +171,12 @@ impl StochasticMesh {
             }
             m.cells.push(Cell {
                 origin,
+                levels: [0; MAX_DIM],
                 level: 0,
                 first_child: None,
             });
             m.child.push(u32::MAX);
+            m.split_mask.push(0);
         }
         let nnode: usize = roots.iter().map(|r| r + 1).product();
         for flat in 0..nnode {
@@ -204,8 +214,93 @@ impl StochasticMesh {
             .collect()
     }
 
-    fn size(&self, c: usize) -> u64 {
-        1u64 << (MAX_LEVEL - self.cells[c].level)
+    /// Size of cell `c` in direction `j`, in key units.
+    fn size(&self, c: usize, j: usize) -> u64 {
+        1u64 << (MAX_LEVEL - self.cells[c].levels[j])
+    }
+
+    /// The corner of cell `c` opposite to its origin.
+    fn far_corner(&self, c: usize) -> Key {
+        let mut hi = self.cells[c].origin;
+        for (j, v) in hi.iter_mut().enumerate().take(self.d) {
+            *v += self.size(c, j);
+        }
+        hi
+    }
+
+    /// `mask` with only the directions of this mesh: `0 < mask < 2^d`.
+    fn full_mask(&self) -> u8 {
+        ((1usize << self.d) - 1) as u8
+    }
+
+    /// Splits leaf `c` along the directions of `mask` into `2^popcount(mask)` children (child
+    /// index: one bit per split direction, in increasing direction order). Returns the first
+    /// child. No node is created.
+    fn split_cell(&mut self, c: CellId, mask: u8) -> usize {
+        let d = self.d;
+        let o = self.cells[c].origin;
+        let dirs: Vec<usize> = (0..d).filter(|&j| (mask >> j) & 1 == 1).collect();
+        let mut levels = self.cells[c].levels;
+        for &j in &dirs {
+            levels[j] += 1;
+        }
+        let level = levels[..d].iter().copied().max().unwrap_or(0);
+        let first = self.cells.len();
+        for child in 0..(1usize << dirs.len()) {
+            let mut origin = o;
+            for (b, &j) in dirs.iter().enumerate() {
+                if (child >> b) & 1 == 1 {
+                    origin[j] += self.size(c, j) / 2;
+                }
+            }
+            self.cells.push(Cell {
+                origin,
+                levels,
+                level,
+                first_child: None,
+            });
+            self.child.push(u32::MAX);
+            self.split_mask.push(0);
+        }
+        self.cells[c].first_child = Some(first);
+        self.child[c] = first as u32;
+        self.split_mask[c] = mask;
+        first
+    }
+
+    /// The nodes of a split of leaf `c` along `mask`, before it is split: `(key, centre,
+    /// corner)` for the grid with the cell's corners and midpoints in the split directions and
+    /// its corners in the others (first direction fastest). `centre`: midpoint in every split
+    /// direction; `corner`: a corner of `c`.
+    fn split_grid(&self, c: CellId, mask: u8) -> Vec<(Key, bool, bool)> {
+        let d = self.d;
+        let o = self.cells[c].origin;
+        let mut out = Vec::new();
+        let mut m = [0u64; MAX_DIM];
+        for _ in 0..3usize.pow(d as u32) {
+            let ok = (0..d).all(|j| m[j] != 1 || (mask >> j) & 1 == 1);
+            if ok {
+                let mut key = o;
+                for j in 0..d {
+                    key[j] += m[j] * (self.size(c, j) / 2);
+                    if m[j] == 2 {
+                        // Exact also for a cell of size 1 in a direction that is not split.
+                        key[j] = o[j] + self.size(c, j);
+                    }
+                }
+                let centre = (0..d).all(|j| (mask >> j) & 1 == 0 || m[j] == 1);
+                let corner = m[..d].iter().all(|&v| v != 1);
+                out.push((key, centre, corner));
+            }
+            for mj in m.iter_mut().take(d) {
+                *mj += 1;
+                if *mj < 3 {
+                    break;
+                }
+                *mj = 0;
+            }
+        }
+        out
     }
 
     /// Number of parameters.
@@ -246,9 +341,15 @@ impl StochasticMesh {
     pub fn is_leaf(&self, cell: CellId) -> bool {
         cell < self.cells.len() && self.cells[cell].first_child.is_none()
     }
-    /// Refinement level of a cell (0 for root cells).
+    /// Refinement level of a cell (0 for root cells): the maximum of its levels per direction
+    /// ([`StochasticMesh::levels`]), so the number of halvings of an isotropic cell.
     pub fn level(&self, cell: CellId) -> u32 {
         self.cells[cell].level
+    }
+    /// Refinement level of a cell in each direction (the cell spans `2^-levels[j]` root cells in
+    /// direction `j`).
+    pub fn levels(&self, cell: CellId) -> Vec<u32> {
+        self.cells[cell].levels[..self.d].to_vec()
     }
     /// Bounds `(lo, hi)` of a cell.
     ///
@@ -257,11 +358,7 @@ impl StochasticMesh {
     /// [`StochasticMesh::cell_centre`] and [`StochasticMesh::neighbours`]).
     pub fn cell_bounds(&self, cell: CellId) -> (Vec<f64>, Vec<f64>) {
         let o = self.cells[cell].origin;
-        let s = self.size(cell);
-        let mut hi = o;
-        for v in hi.iter_mut().take(self.d) {
-            *v += s;
-        }
+        let hi = self.far_corner(cell);
         (self.key_point(&o), self.key_point(&hi))
     }
     /// Centre of a cell.
@@ -293,13 +390,18 @@ impl StochasticMesh {
                 break;
             }
             let first = first as usize;
+            let mask = self.split_mask[c];
             let mut child = 0usize;
+            let mut b = 0;
             for (j, tj) in t.iter_mut().enumerate().take(d) {
-                if *tj >= 0.5 {
-                    child |= 1 << j;
-                    *tj = 2.0 * *tj - 1.0;
-                } else {
-                    *tj *= 2.0;
+                if (mask >> j) & 1 == 1 {
+                    if *tj >= 0.5 {
+                        child |= 1 << b;
+                        *tj = 2.0 * *tj - 1.0;
+                    } else {
+                        *tj *= 2.0;
+                    }
+                    b += 1;
                 }
             }
             c = first + child;
@@ -336,10 +438,15 @@ impl StochasticMesh {
         }
         let mut c = root;
         while let Some(first) = self.cells[c].first_child {
-            let half = self.size(c) / 2;
+            let mask = self.split_mask[c];
             let o = self.cells[c].origin;
             let mut child = 0usize;
+            let mut b = 0;
             for j in 0..self.d {
+                if (mask >> j) & 1 == 0 {
+                    continue;
+                }
+                let half = self.size(c, j) / 2;
                 let off = p[j] - o[j];
                 let up = if (signs >> j) & 1 == 1 {
                     off >= half
@@ -347,8 +454,9 @@ impl StochasticMesh {
                     off > half
                 };
                 if up {
-                    child |= 1 << j;
+                    child |= 1 << b;
                 }
+                b += 1;
             }
             c = first + child;
         }
@@ -357,18 +465,46 @@ impl StochasticMesh {
 
     fn is_corner(&self, c: usize, p: &Key) -> bool {
         let o = self.cells[c].origin;
-        let s = self.size(c);
-        (0..self.d).all(|j| p[j] == o[j] || p[j] == o[j] + s)
+        (0..self.d).all(|j| p[j] == o[j] || p[j] == o[j] + self.size(c, j))
+    }
+
+    /// Extent of the face of cell `c` through `p` (in its closure): the cell's size in the
+    /// directions where `p` is strictly inside it, 0 in the others.
+    fn extent(&self, c: usize, p: &Key) -> Key {
+        let o = self.cells[c].origin;
+        let mut e = [0u64; MAX_DIM];
+        for j in 0..self.d {
+            let s = self.size(c, j);
+            if p[j] != o[j] && p[j] != o[j] + s {
+                e[j] = s;
+            }
+        }
+        e
+    }
+
+    /// `true` if leaf `c` is a better master than `b` for `p`: its face through `p` contains
+    /// `b`'s (componentwise larger extent; for isotropic cells: coarser), or, when neither
+    /// contains the other, it has the larger total extent.
+    fn better_master(&self, c: usize, b: usize, p: &Key) -> bool {
+        let (ec, eb) = (self.extent(c, p), self.extent(b, p));
+        let ge = (0..self.d).all(|j| ec[j] >= eb[j]);
+        let le = (0..self.d).all(|j| ec[j] <= eb[j]);
+        if ge || le {
+            ge && !le
+        } else {
+            ec.iter().sum::<u64>() > eb.iter().sum::<u64>()
+        }
     }
 
     /// Classify node `p`: `None` if it is a corner of every leaf around it, else the coarsest
-    /// leaf that contains it without having it as a corner.
+    /// leaf that contains it without having it as a corner (the one whose face through `p`
+    /// contains the others').
     fn master_of(&self, p: &Key) -> Option<usize> {
         let mut best: Option<usize> = None;
         for signs in 0..(1usize << self.d) {
             if let Some(c) = self.locate_key(p, signs)
                 && !self.is_corner(c, p)
-                && best.is_none_or(|b| self.cells[c].level < self.cells[b].level)
+                && best.is_none_or(|b| self.better_master(c, b, p))
             {
                 best = Some(c);
             }
@@ -382,7 +518,7 @@ impl StochasticMesh {
     /// # Errors
     /// If a cell is not a leaf or is already at [`MAX_LEVEL`].
     pub fn refine(&mut self, cells: &[CellId]) -> Result<Vec<NewRun>> {
-        let d = self.d;
+        let full = self.full_mask();
         let mut todo: Vec<CellId> = cells.to_vec();
         todo.sort_unstable();
         todo.dedup();
@@ -403,43 +539,13 @@ impl StochasticMesh {
             }
         }
         for &c in &todo {
-            let o = self.cells[c].origin;
-            let half = self.size(c) / 2;
-            let level = self.cells[c].level + 1;
-            let first = self.cells.len();
-            for child in 0..(1usize << d) {
-                let mut origin = o;
-                for j in 0..d {
-                    if (child >> j) & 1 == 1 {
-                        origin[j] += half;
-                    }
-                }
-                self.cells.push(Cell {
-                    origin,
-                    level,
-                    first_child: None,
-                });
-                self.child.push(u32::MAX);
-            }
-            self.cells[c].first_child = Some(first);
-            self.child[c] = first as u32;
             // New nodes: o + half * m, m in {0, 1, 2}^d (placeholder kind, classified below).
-            let mut m = [0u64; MAX_DIM];
-            for _ in 0..3usize.pow(d as u32) {
-                let mut key = o;
-                for j in 0..d {
-                    key[j] += m[j] * half;
-                }
+            let grid = self.split_grid(c, full);
+            self.split_cell(c, full);
+            for (key, _, _) in grid {
                 self.nodes
                     .entry(key)
                     .or_insert(NodeKind::Hanging(usize::MAX));
-                for mj in m.iter_mut().take(d) {
-                    *mj += 1;
-                    if *mj < 3 {
-                        break;
-                    }
-                    *mj = 0;
-                }
             }
         }
         // Reclassify every non-run node; nodes with no master become runs.
@@ -469,64 +575,42 @@ impl StochasticMesh {
         Ok(new_runs)
     }
 
-    /// Splits leaf `c` into its `2^d` children and classifies the `3^d` nodes of the split:
-    /// the centre becomes a run if `centre_run` (pushed to `new_runs`), every other node that is
-    /// neither a run nor already interpolated for good is interpolated from `c` for good.
-    fn split_interpolated(
-        &mut self,
-        c: CellId,
-        centre_run: bool,
-        new_runs: &mut Vec<NewRun>,
-    ) -> Result<()> {
+    /// Splits leaf `c` along the directions of `mask` and classifies the nodes of the split
+    /// ([`StochasticMesh::split_grid`]): if `centre_runs`, the centres are left as they are and
+    /// returned (the caller makes them runs); every other node that is neither a corner of `c`,
+    /// a run nor already interpolated for good is interpolated from `c` for good.
+    fn split_interpolated(&mut self, c: CellId, mask: u8, centre_runs: bool) -> Result<Vec<Key>> {
         if !self.is_leaf(c) {
             return Err(UqError::Invalid {
                 what: "stochastic mesh",
                 message: format!("cell {c} is not a leaf"),
             });
         }
-        if self.cells[c].level >= MAX_LEVEL {
+        let d = self.d;
+        if mask == 0 || (mask as usize) >> d != 0 {
+            return Err(invalid(
+                "stochastic mesh",
+                "split mask",
+                "a non-empty set of directions of the mesh",
+                mask as f64,
+            ));
+        }
+        if let Some(j) =
+            (0..d).find(|&j| (mask >> j) & 1 == 1 && self.cells[c].levels[j] >= MAX_LEVEL)
+        {
             return Err(invalid(
                 "stochastic mesh",
                 "cell level",
                 "below the maximum",
-                self.cells[c].level as f64,
+                self.cells[c].levels[j] as f64,
             ));
         }
-        let d = self.d;
-        let o = self.cells[c].origin;
-        let half = self.size(c) / 2;
-        let level = self.cells[c].level + 1;
-        let first = self.cells.len();
-        for child in 0..(1usize << d) {
-            let mut origin = o;
-            for j in 0..d {
-                if (child >> j) & 1 == 1 {
-                    origin[j] += half;
-                }
-            }
-            self.cells.push(Cell {
-                origin,
-                level,
-                first_child: None,
-            });
-            self.child.push(u32::MAX);
-        }
-        self.cells[c].first_child = Some(first);
-        self.child[c] = first as u32;
-        let mut m = [0u64; MAX_DIM];
-        for _ in 0..3usize.pow(d as u32) {
-            let mut key = o;
-            for j in 0..d {
-                key[j] += m[j] * half;
-            }
-            let centre = m[..d].iter().all(|&v| v == 1);
-            let corner = m[..d].iter().all(|&v| v != 1);
-            if centre && centre_run {
-                let run = self.add_run(key);
-                new_runs.push(NewRun {
-                    run,
-                    point: self.run_point(run).to_vec(),
-                });
+        let grid = self.split_grid(c, mask);
+        self.split_cell(c, mask);
+        let mut centres = Vec::new();
+        for (key, centre, corner) in grid {
+            if centre && centre_runs {
+                centres.push(key);
             } else if !corner {
                 match self.nodes.get(&key) {
                     Some(NodeKind::Run(_)) | Some(NodeKind::Fixed(_)) => {}
@@ -535,15 +619,8 @@ impl StochasticMesh {
                     }
                 }
             }
-            for mj in m.iter_mut().take(d) {
-                *mj += 1;
-                if *mj < 3 {
-                    break;
-                }
-                *mj = 0;
-            }
         }
-        Ok(())
+        Ok(centres)
     }
 
     /// Re-classifies the hanging nodes after splits and rebuilds the weights. A hanging node
@@ -562,8 +639,7 @@ impl StochasticMesh {
                 None => {
                     let owner = split.iter().copied().find(|&c| {
                         let o = self.cells[c].origin;
-                        let s = self.size(c);
-                        (0..self.d).all(|j| key[j] >= o[j] && key[j] <= o[j] + s)
+                        (0..self.d).all(|j| key[j] >= o[j] && key[j] <= o[j] + self.size(c, j))
                     });
                     match owner {
                         Some(c) => NodeKind::Fixed(c),
@@ -601,11 +677,112 @@ impl StochasticMesh {
                 });
             }
         }
+        let full = self.full_mask();
         let mut new_runs = Vec::with_capacity(todo.len());
         for &c in &todo {
-            self.split_interpolated(c, true, &mut new_runs)?;
+            for key in self.split_interpolated(c, full, true)? {
+                let run = self.add_run(key);
+                new_runs.push(NewRun {
+                    run,
+                    point: self.run_point(run).to_vec(),
+                });
+            }
         }
         self.settle(&todo)?;
+        Ok(new_runs)
+    }
+
+    /// Splits each leaf `cell` only along the directions whose bit is set in `mask` (bit j:
+    /// direction j; `mask != 0`, only bits below `d`) into `2^popcount(mask)` children, and
+    /// makes runs of the **centres** of the split: the new nodes at the cell's midpoint in every
+    /// split direction and at a corner value in every other direction (`2^(d - popcount)` of
+    /// them; the midpoint of the cell when the mask is full). Every other new node is
+    /// interpolated from the cell for good (as [`StochasticMesh::refine_centred`], which this is
+    /// with a full mask: same runs, same order, same weights).
+    ///
+    /// A centre on a face of the cell must be a corner of every leaf around it to be a run (else
+    /// the surrogate would jump there): a leaf across that holds it inside a face is split
+    /// first, with interpolated nodes only, along the directions in which it holds it inside,
+    /// until it is a corner (as [`StochasticMesh::refine_at_point`] does). A centre that is
+    /// already a run (shared with a neighbour split the same way) is not returned again; one that
+    /// was interpolated becomes a run.
+    ///
+    /// Returns the nodes that became runs, in increasing run index.
+    ///
+    /// # Errors
+    /// If a cell is not a leaf, is listed twice with different masks, a mask is empty or has a
+    /// bit at or above `d`, or the cell is already at [`MAX_LEVEL`] in a split direction. The
+    /// mesh is unchanged then.
+    pub fn refine_directions(&mut self, cells: &[(CellId, u32)]) -> Result<Vec<NewRun>> {
+        let d = self.d;
+        let mut todo: Vec<(CellId, u32)> = cells.to_vec();
+        todo.sort_unstable();
+        todo.dedup();
+        for (i, &(c, mask)) in todo.iter().enumerate() {
+            if !self.is_leaf(c) {
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!("cell {c} is not a leaf"),
+                });
+            }
+            if i > 0 && todo[i - 1].0 == c {
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!("cell {c} is listed with two masks"),
+                });
+            }
+            if mask == 0 || mask >> d != 0 {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "split mask",
+                    "a non-empty set of directions of the mesh",
+                    mask as f64,
+                ));
+            }
+            if let Some(j) =
+                (0..d).find(|&j| (mask >> j) & 1 == 1 && self.cells[c].levels[j] >= MAX_LEVEL)
+            {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "cell level",
+                    "below the maximum",
+                    self.cells[c].levels[j] as f64,
+                ));
+            }
+        }
+        let mut split: Vec<CellId> = Vec::with_capacity(todo.len());
+        let mut centres = Vec::new();
+        for &(c, mask) in &todo {
+            centres.extend(self.split_interpolated(c, mask as u8, true)?);
+            split.push(c);
+        }
+        let mut new_runs = Vec::with_capacity(centres.len());
+        for key in centres {
+            if matches!(self.nodes.get(&key), Some(NodeKind::Run(_))) {
+                continue;
+            }
+            // Split the leaves that hold the centre inside a face until it is their corner.
+            while let Some(l) = (0..(1usize << d))
+                .filter_map(|signs| self.locate_key(&key, signs))
+                .find(|&l| !self.is_corner(l, &key))
+            {
+                let o = self.cells[l].origin;
+                let mut mask = 0u8;
+                for j in 0..d {
+                    if key[j] != o[j] && key[j] != o[j] + self.size(l, j) {
+                        mask |= 1 << j;
+                    }
+                }
+                self.split_interpolated(l, mask, false)?;
+                split.push(l);
+            }
+            let run = self.add_run(key);
+            new_runs.push(NewRun {
+                run,
+                point: self.run_point(run).to_vec(),
+            });
+        }
+        self.settle(&split)?;
         Ok(new_runs)
     }
 
@@ -663,9 +840,9 @@ impl StochasticMesh {
                 message: format!("{xi:?} is outside the mesh"),
             })?;
             let o = self.cells[c].origin;
-            let half = self.size(c) / 2;
-            let is_centre = (0..d).all(|j| key[j] == o[j] + half);
-            if half == 0 {
+            let half: Vec<u64> = (0..d).map(|j| self.size(c, j) / 2).collect();
+            let is_centre = (0..d).all(|j| key[j] == o[j] + half[j]);
+            if half.contains(&0) {
                 return Err(invalid(
                     "stochastic mesh",
                     "point",
@@ -674,11 +851,18 @@ impl StochasticMesh {
                 ));
             }
             split.push(c);
-            self.split_interpolated(c, is_centre, &mut runs)?;
+            let full = self.full_mask();
+            for centre in self.split_interpolated(c, full, is_centre)? {
+                let run = self.add_run(centre);
+                runs.push(NewRun {
+                    run,
+                    point: self.run_point(run).to_vec(),
+                });
+            }
             if is_centre {
                 break;
             }
-            if (0..d).any(|j| key[j] == o[j] + half) {
+            if (0..d).any(|j| key[j] == o[j] + half[j]) {
                 // On a split plane but not the centre: never a leaf centre below.
                 return Err(UqError::Invalid {
                     what: "stochastic mesh",
@@ -771,14 +955,14 @@ impl StochasticMesh {
             ));
         }
         let o = self.cells[cell].origin;
-        let step = self.size(cell) >> depth;
+        let step: Vec<u64> = (0..d).map(|j| self.size(cell, j) >> depth).collect();
         let n = 1usize << depth;
         let mut out = Vec::with_capacity(n.pow(d as u32) * d);
         let mut idx = [0usize; MAX_DIM];
         for _ in 0..n.pow(d as u32) {
             let mut key = o;
             for j in 0..d {
-                key[j] += step / 2 + idx[j] as u64 * step;
+                key[j] += step[j] / 2 + idx[j] as u64 * step[j];
             }
             out.extend(self.key_point(&key));
             for v in idx.iter_mut().take(d) {
@@ -796,7 +980,6 @@ impl StochasticMesh {
     pub fn neighbours(&self, cell: CellId) -> Vec<CellId> {
         let d = self.d;
         let o = self.cells[cell].origin;
-        let sz = self.size(cell);
         let mut out = Vec::new();
         let mut delta = [-1i32; MAX_DIM];
         for _ in 0..3usize.pow(d as u32) {
@@ -810,8 +993,8 @@ impl StochasticMesh {
                     let span = (self.roots[j] as u64) << MAX_LEVEL;
                     let v = match delta[j] {
                         -1 => o[j].checked_sub(1),
-                        0 => Some(o[j] + sz / 2),
-                        _ => Some(o[j] + sz),
+                        0 => Some(o[j] + self.size(cell, j) / 2),
+                        _ => Some(o[j] + self.size(cell, j)),
                     };
                     match v {
                         Some(v) if v < span => key[j] = v,
@@ -882,12 +1065,11 @@ impl StochasticMesh {
             nl += 1;
             let start = terms.len() as u32;
             let o = self.cells[c].origin;
-            let s = self.size(c);
             for corner in 0..(1usize << d) {
                 let mut key = o;
                 for j in 0..d {
                     if (corner >> j) & 1 == 1 {
-                        key[j] += s;
+                        key[j] += self.size(c, j);
                     }
                 }
                 let w = self.resolve(&key, &mut memo, 0)?;
@@ -930,16 +1112,15 @@ impl StochasticMesh {
                     });
                 }
                 let o = self.cells[m].origin;
-                let s = self.size(m) as f64;
                 let mut acc: Vec<(usize, f64)> = Vec::new();
                 for corner in 0..(1usize << self.d) {
                     let mut phi = 1.0;
                     let mut ck = o;
                     for j in 0..self.d {
-                        let t = (key[j] - o[j]) as f64 / s;
+                        let t = (key[j] - o[j]) as f64 / self.size(m, j) as f64;
                         if (corner >> j) & 1 == 1 {
                             phi *= t;
-                            ck[j] += self.size(m);
+                            ck[j] += self.size(m, j);
                         } else {
                             phi *= 1.0 - t;
                         }
@@ -1100,12 +1281,8 @@ impl StochasticMesh {
     fn cell_weights(&self, c: CellId, xi: &[f64], w: &mut Vec<(usize, f64)>) {
         w.clear();
         let o = self.cells[c].origin;
-        let s = self.size(c);
         let mut t = [0.0; MAX_DIM];
-        let mut hi = o;
-        for v in hi.iter_mut().take(self.d) {
-            *v += s;
-        }
+        let hi = self.far_corner(c);
         let (pl, ph) = (self.key_point(&o), self.key_point(&hi));
         for j in 0..self.d {
             t[j] = ((xi[j] - pl[j]) / (ph[j] - pl[j])).clamp(0.0, 1.0);
