@@ -108,6 +108,9 @@ pub struct StochasticMesh {
     /// `(corner, run, coefficient)` triples.
     terms: Vec<(u8, u32, f64)>,
     num_leaves: usize,
+    /// Some cell was split along only some directions: every interpolated node is then
+    /// re-classified after a refinement (see [`StochasticMesh::settle`]).
+    aniso: bool,
 }
 
 impl StochasticMesh {
@@ -159,6 +162,7 @@ impl StochasticMesh {
             leaf_terms: Vec::new(),
             terms: Vec::new(),
             num_leaves: 0,
+            aniso: false,
         };
         let s = 1u64 << MAX_LEVEL;
         let ncell: usize = roots.iter().product();
@@ -548,6 +552,9 @@ impl StochasticMesh {
                     .or_insert(NodeKind::Hanging(usize::MAX));
             }
         }
+        // Anisotropic meshes: split (interpolated) where faces cross (see `crossings`).
+        let mut split = todo.clone();
+        self.resolve_crossings(&mut split)?;
         // Reclassify every non-run node; nodes with no master become runs.
         let mut pending: Vec<Key> = self
             .nodes
@@ -570,6 +577,9 @@ impl StochasticMesh {
                     });
                 }
             }
+        }
+        if self.aniso {
+            self.classify_interpolated(&split)?;
         }
         self.rebuild()?;
         Ok(new_runs)
@@ -607,6 +617,7 @@ impl StochasticMesh {
         }
         let grid = self.split_grid(c, mask);
         self.split_cell(c, mask);
+        self.aniso |= mask != self.full_mask();
         let mut centres = Vec::new();
         for (key, centre, corner) in grid {
             if centre && centre_runs {
@@ -623,19 +634,213 @@ impl StochasticMesh {
         Ok(centres)
     }
 
+    /// Leaves whose interior meets the open box `(lo, hi)` (key units), appended to `out`.
+    fn leaves_in(&self, lo: &Key, hi: &Key, out: &mut Vec<usize>) {
+        let d = self.d;
+        let s = 1u64 << MAX_LEVEL;
+        let mut rlo = [0usize; MAX_DIM];
+        let mut rhi = [0usize; MAX_DIM];
+        for j in 0..d {
+            if hi[j] <= lo[j] {
+                return;
+            }
+            rlo[j] = (lo[j] / s) as usize;
+            rhi[j] = (((hi[j] - 1) / s) as usize).min(self.roots[j] - 1);
+            if rlo[j] > rhi[j] {
+                return;
+            }
+        }
+        let mut stack = Vec::new();
+        let mut idx = rlo;
+        'roots: loop {
+            let mut root = 0usize;
+            let mut stride = 1usize;
+            for j in 0..d {
+                root += idx[j] * stride;
+                stride *= self.roots[j];
+            }
+            stack.push(root);
+            for j in 0..d {
+                idx[j] += 1;
+                if idx[j] <= rhi[j] {
+                    continue 'roots;
+                }
+                idx[j] = rlo[j];
+            }
+            break;
+        }
+        while let Some(c) = stack.pop() {
+            let o = self.cells[c].origin;
+            if !(0..d).all(|j| o[j] < hi[j] && o[j] + self.size(c, j) > lo[j]) {
+                continue;
+            }
+            match self.cells[c].first_child {
+                None => out.push(c),
+                Some(first) => {
+                    let n = 1usize << self.split_mask[c].count_ones();
+                    stack.extend((first..first + n).rev());
+                }
+            }
+        }
+    }
+
+    /// Points where two adjacent leaves hold a point of their common boundary inside faces that
+    /// do not contain one another (possible with anisotropic cells when the leaves share a
+    /// region of dimension 2 or more: a face in 3D, also a 2D region in 4D): no node value can
+    /// match both interpolants there. Returns, per leaf to split (the newer of the two), the
+    /// directions in which its face through the point exceeds the other's, so that splitting
+    /// along them makes the point its corner (sorted by leaf, deterministic).
+    /// Only pairs with a leaf of `from` are examined.
+    fn crossings(&self, from: &[usize]) -> Vec<(usize, u8)> {
+        let d = self.d;
+        let mut out: Vec<(usize, u8)> = Vec::new();
+        let mut across = Vec::new();
+        for &a in from {
+            let oa = self.cells[a].origin;
+            let fa = self.far_corner(a);
+            // The regions around `a`: per direction below (0), along (1) or above (2) it.
+            'patterns: for pattern in 0..3usize.pow(d as u32) {
+                let mut side = [0usize; MAX_DIM];
+                let mut r = pattern;
+                for v in side.iter_mut().take(d) {
+                    *v = r % 3;
+                    r /= 3;
+                }
+                let along = side[..d].iter().filter(|&&v| v == 1).count();
+                if along < 2 || along == d {
+                    continue;
+                }
+                let (mut lo, mut hi) = (oa, fa);
+                for i in 0..d {
+                    let span = (self.roots[i] as u64) << MAX_LEVEL;
+                    match side[i] {
+                        0 if oa[i] == 0 => continue 'patterns,
+                        0 => (lo[i], hi[i]) = (oa[i] - 1, oa[i]),
+                        2 if fa[i] == span => continue 'patterns,
+                        2 => (lo[i], hi[i]) = (fa[i], fa[i] + 1),
+                        _ => {}
+                    }
+                }
+                across.clear();
+                self.leaves_in(&lo, &hi, &mut across);
+                for &b in &across {
+                    let ob = self.cells[b].origin;
+                    let fb = self.far_corner(b);
+                    for corner in 0..(1usize << d) {
+                        if (0..d).any(|i| side[i] != 1 && (corner >> i) & 1 == 1) {
+                            continue;
+                        }
+                        let mut q = [0u64; MAX_DIM];
+                        for i in 0..d {
+                            q[i] = match side[i] {
+                                0 => oa[i],
+                                2 => fa[i],
+                                _ if (corner >> i) & 1 == 1 => fa[i].min(fb[i]),
+                                _ => oa[i].max(ob[i]),
+                            };
+                        }
+                        let (ea, eb) = (self.extent(a, &q), self.extent(b, &q));
+                        let ge = (0..d).all(|i| ea[i] >= eb[i]);
+                        let le = (0..d).all(|i| ea[i] <= eb[i]);
+                        if ge || le {
+                            continue;
+                        }
+                        let (l, el, eo) = if b > a { (b, eb, ea) } else { (a, ea, eb) };
+                        let mask = (0..d)
+                            .filter(|&i| el[i] > eo[i])
+                            .fold(0u8, |m, i| m | (1 << i));
+                        match out.iter_mut().find(|e| e.0 == l) {
+                            Some(e) => e.1 |= mask,
+                            None => out.push((l, mask)),
+                        }
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// The leaves below (or equal to) the given cells, in increasing id order.
+    fn leaves_below(&self, cells: &[CellId]) -> Vec<CellId> {
+        let mut out = Vec::new();
+        let mut stack: Vec<CellId> = cells.to_vec();
+        while let Some(c) = stack.pop() {
+            match self.cells[c].first_child {
+                None => out.push(c),
+                Some(first) => {
+                    stack.extend(first..first + (1usize << self.split_mask[c].count_ones()))
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Splits leaves (interpolated nodes only) until no [`StochasticMesh::crossings`] remain;
+    /// the split cells are appended to `split`.
+    fn resolve_crossings(&mut self, split: &mut Vec<CellId>) -> Result<()> {
+        if !self.aniso {
+            return Ok(());
+        }
+        // A crossing involves a leaf made by the splits: look from those only.
+        let mut from = self.leaves_below(split);
+        loop {
+            let todo = self.crossings(&from);
+            if todo.is_empty() {
+                return Ok(());
+            }
+            let cells: Vec<CellId> = todo.iter().map(|e| e.0).collect();
+            for (l, mask) in todo {
+                self.split_interpolated(l, mask, false)?;
+                split.push(l);
+            }
+            from = self.leaves_below(&cells);
+        }
+    }
+
     /// Re-classifies the hanging nodes after splits and rebuilds the weights. A hanging node
     /// left without a leaf master lies on a split cell: it is interpolated from it for good.
+    ///
+    /// On a mesh with anisotropic splits, the interpolated-for-good nodes are re-classified as
+    /// well: a node inside a face of a leaf must take that leaf's value for the surrogate to be
+    /// continuous (on isotropic meshes this holds by construction), so it hangs on the leaf;
+    /// a hanging node whose master leaf was split is interpolated from that cell for good (its
+    /// value is unchanged).
     fn settle(&mut self, split: &[CellId]) -> Result<()> {
+        let mut split = split.to_vec();
+        self.resolve_crossings(&mut split)?;
+        self.classify_interpolated(&split)?;
+        self.rebuild()
+    }
+
+    fn classify_interpolated(&mut self, split: &[CellId]) -> Result<()> {
+        let aniso = self.aniso;
         let mut pending: Vec<Key> = self
             .nodes
             .iter()
-            .filter(|(_, k)| matches!(k, NodeKind::Hanging(_)))
+            .filter(|(_, k)| match k {
+                NodeKind::Hanging(_) => true,
+                NodeKind::Fixed(_) => aniso,
+                NodeKind::Run(_) => false,
+            })
             .map(|(key, _)| *key)
             .collect();
         pending.sort_unstable();
         for key in pending {
+            let old = self.nodes[&key];
             let kind = match self.master_of(&key) {
                 Some(mc) => NodeKind::Hanging(mc),
+                None if aniso && matches!(old, NodeKind::Fixed(_)) => old,
+                None if aniso
+                    && matches!(old, NodeKind::Hanging(m) if m < self.cells.len() && !self.is_leaf(m)) =>
+                {
+                    let NodeKind::Hanging(m) = old else {
+                        unreachable!()
+                    };
+                    NodeKind::Fixed(m)
+                }
                 None => {
                     let owner = split.iter().copied().find(|&c| {
                         let o = self.cells[c].origin;
@@ -654,7 +859,7 @@ impl StochasticMesh {
             };
             self.nodes.insert(key, kind);
         }
-        self.rebuild()
+        Ok(())
     }
 
     /// Refines leaf cells **at their centres** (the thesis's improved criterion, 4.2.2.2, and
