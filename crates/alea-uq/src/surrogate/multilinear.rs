@@ -2,7 +2,7 @@
 //! the "stochastic finite elements" refined by the adaptive loop).
 //!
 //! The parameter box `[lo, hi]` (`d <= 6`) is covered by a regular grid of root cells; each cell
-//! can be split into `2^d` children. On a leaf cell `C` with local coordinates `t in [0, 1]^d`
+//! can be split into `2^d` children (or along some directions only, see below). On a leaf cell `C` with local coordinates `t in [0, 1]^d`
 //!
 //! ```text
 //! q~(xi) = sum_{c in corners(C)} phi_c(t) q(c),    phi_c(t) = prod_j (c_j ? t_j : 1 - t_j).
@@ -25,6 +25,23 @@
 //! [`StochasticMesh::refine_at_point`] places one run at a dyadic point by splitting the leaves
 //! around it with interpolated nodes only (the maximum-error criterion).
 //!
+//! **Anisotropic refinement** ([`StochasticMesh::refine_directions`]): a leaf is split only
+//! along some directions (a mask), into `2^popcount` children, so a response that bends in some
+//! parameters only (e.g. `P / E`, curved in `E`, linear in `P`) is refined like a
+//! lower-dimensional interpolant. Cells then have a level per direction
+//! ([`StochasticMesh::levels`]; [`StochasticMesh::level`] is their maximum) and a cell records the
+//! mask it was split along (a child index packs one bit per split direction, in increasing
+//! direction order). The runs are the split's centres (midpoint in the split directions, corner
+//! values in the others), the other new nodes are interpolated from the cell for good. A centre
+//! on the cell's boundary is made a corner of every leaf around it (leaves across that hold it
+//! inside a face are split with interpolated nodes only). On a mesh with anisotropic cells two
+//! more rules keep the surrogate continuous: an interpolated node inside a face of a leaf takes
+//! that leaf's value (it hangs on it), and where the faces of two adjacent leaves cross (each
+//! holds a point of their common boundary inside a face that does not contain the other's:
+//! possible in 3D and above) the newer leaf is split, with interpolated nodes, until the point is
+//! its corner. On meshes refined isotropically only, none of this applies and the results are
+//! bit for bit those of the isotropic mesh.
+//!
 //! Refinement ([`StochasticMesh::refine`]) returns the nodes that became runs (new centre, face
 //! and edge points shared with already refined neighbours or on the box boundary, and former
 //! hanging nodes freed by the refinement): these need model runs. Runs are never removed and keep
@@ -36,9 +53,10 @@
 //! then be finite, e.g. truncated normal laws). On the cube every cell's probability is its volume
 //! (independent inputs) and `E[q~] = sum_k E[w_k] q_k` with `expected_weights(|_| 1.0, order)`.
 //! Integer coordinates: a root cell spans `2^MAX_LEVEL` units, so node keys are exact.
-//! Cell ids and run indices are deterministic: replaying the same sequence of `refine` calls on
-//! a new mesh reproduces it exactly (a store only needs the box, the root counts and the lists
-//! of refined cell ids).
+//! Cell ids and run indices are deterministic: replaying the same sequence of refinement calls
+//! (`refine`, `refine_centred`, `refine_directions`, ...) on a new mesh reproduces it exactly (a
+//! store only needs the box, the root counts and the lists of refined cell ids, with their masks
+//! for `refine_directions`).
 
 use super::LinearSurrogate;
 use crate::error::{Result, UqError, check_len, invalid};
@@ -910,7 +928,10 @@ impl StochasticMesh {
     /// first, with interpolated nodes only, along the directions in which it holds it inside,
     /// until it is a corner (as [`StochasticMesh::refine_at_point`] does). A centre that is
     /// already a run (shared with a neighbour split the same way) is not returned again; one that
-    /// was interpolated becomes a run.
+    /// was interpolated becomes a run. On a mesh with anisotropic cells, interpolated nodes inside
+    /// a face of a leaf hang on it and crossing faces are split (see the module documentation),
+    /// so the surrogate can also change on the leaves next to the refined cells: it stays
+    /// continuous.
     ///
     /// Returns the nodes that became runs, in increasing run index.
     ///
