@@ -2,7 +2,7 @@
 //! the "stochastic finite elements" refined by the adaptive loop).
 //!
 //! The parameter box `[lo, hi]` (`d <= 6`) is covered by a regular grid of root cells; each cell
-//! can be split into `2^d` children. On a leaf cell `C` with local coordinates `t in [0, 1]^d`
+//! can be split into `2^d` children (or along some directions only, see below). On a leaf cell `C` with local coordinates `t in [0, 1]^d`
 //!
 //! ```text
 //! q~(xi) = sum_{c in corners(C)} phi_c(t) q(c),    phi_c(t) = prod_j (c_j ? t_j : 1 - t_j).
@@ -25,6 +25,23 @@
 //! [`StochasticMesh::refine_at_point`] places one run at a dyadic point by splitting the leaves
 //! around it with interpolated nodes only (the maximum-error criterion).
 //!
+//! **Anisotropic refinement** ([`StochasticMesh::refine_directions`]): a leaf is split only
+//! along some directions (a mask), into `2^popcount` children, so a response that bends in some
+//! parameters only (e.g. `P / E`, curved in `E`, linear in `P`) is refined like a
+//! lower-dimensional interpolant. Cells then have a level per direction
+//! ([`StochasticMesh::levels`]; [`StochasticMesh::level`] is their maximum) and a cell records the
+//! mask it was split along (a child index packs one bit per split direction, in increasing
+//! direction order). The runs are the split's centres (midpoint in the split directions, corner
+//! values in the others), the other new nodes are interpolated from the cell for good. A centre
+//! on the cell's boundary is made a corner of every leaf around it (leaves across that hold it
+//! inside a face are split with interpolated nodes only). On a mesh with anisotropic cells two
+//! more rules keep the surrogate continuous: an interpolated node inside a face of a leaf takes
+//! that leaf's value (it hangs on it), and where the faces of two adjacent leaves cross (each
+//! holds a point of their common boundary inside a face that does not contain the other's:
+//! possible in 3D and above) the newer leaf is split, with interpolated nodes, until the point is
+//! its corner. On meshes refined isotropically only, none of this applies and the results are
+//! bit for bit those of the isotropic mesh.
+//!
 //! Refinement ([`StochasticMesh::refine`]) returns the nodes that became runs (new centre, face
 //! and edge points shared with already refined neighbours or on the box boundary, and former
 //! hanging nodes freed by the refinement): these need model runs. Runs are never removed and keep
@@ -36,9 +53,10 @@
 //! then be finite, e.g. truncated normal laws). On the cube every cell's probability is its volume
 //! (independent inputs) and `E[q~] = sum_k E[w_k] q_k` with `expected_weights(|_| 1.0, order)`.
 //! Integer coordinates: a root cell spans `2^MAX_LEVEL` units, so node keys are exact.
-//! Cell ids and run indices are deterministic: replaying the same sequence of `refine` calls on
-//! a new mesh reproduces it exactly (a store only needs the box, the root counts and the lists
-//! of refined cell ids).
+//! Cell ids and run indices are deterministic: replaying the same sequence of refinement calls
+//! (`refine`, `refine_centred`, `refine_directions`, ...) on a new mesh reproduces it exactly (a
+//! store only needs the box, the root counts and the lists of refined cell ids, with their masks
+//! for `refine_directions`).
 
 use super::LinearSurrogate;
 use crate::error::{Result, UqError, check_len, invalid};
@@ -68,6 +86,10 @@ pub struct NewRun {
 #[derive(Debug, Clone)]
 struct Cell {
     origin: Key,
+    /// Refinement level per direction (0 for root cells): the cell spans
+    /// `2^(MAX_LEVEL - levels[j])` units in direction `j`.
+    levels: [u32; MAX_DIM],
+    /// Maximum of `levels` (the level of an isotropic cell).
     level: u32,
     first_child: Option<usize>,
 }
@@ -93,6 +115,9 @@ pub struct StochasticMesh {
     /// First child of each cell (`u32::MAX` for leaves): a compact copy of
     /// `Cell::first_child` for cache-friendly point location.
     child: Vec<u32>,
+    /// Directions along which each cell was split (bit j: direction j; 0 for leaves). A child
+    /// index packs one bit per split direction, in increasing direction order.
+    split_mask: Vec<u8>,
     nodes: HashMap<Key, NodeKind>,
     run_keys: Vec<Key>,
     run_points: Vec<f64>,
@@ -101,6 +126,9 @@ pub struct StochasticMesh {
     /// `(corner, run, coefficient)` triples.
     terms: Vec<(u8, u32, f64)>,
     num_leaves: usize,
+    /// Some cell was split along only some directions: every interpolated node is then
+    /// re-classified after a refinement (see [`StochasticMesh::settle`]).
+    aniso: bool,
 }
 
 impl StochasticMesh {
@@ -145,12 +173,14 @@ impl StochasticMesh {
             roots: roots.to_vec(),
             cells: Vec::new(),
             child: Vec::new(),
+            split_mask: Vec::new(),
             nodes: HashMap::new(),
             run_keys: Vec::new(),
             run_points: Vec::new(),
             leaf_terms: Vec::new(),
             terms: Vec::new(),
             num_leaves: 0,
+            aniso: false,
         };
         let s = 1u64 << MAX_LEVEL;
         let ncell: usize = roots.iter().product();
@@ -163,10 +193,12 @@ impl StochasticMesh {
             }
             m.cells.push(Cell {
                 origin,
+                levels: [0; MAX_DIM],
                 level: 0,
                 first_child: None,
             });
             m.child.push(u32::MAX);
+            m.split_mask.push(0);
         }
         let nnode: usize = roots.iter().map(|r| r + 1).product();
         for flat in 0..nnode {
@@ -204,8 +236,93 @@ impl StochasticMesh {
             .collect()
     }
 
-    fn size(&self, c: usize) -> u64 {
-        1u64 << (MAX_LEVEL - self.cells[c].level)
+    /// Size of cell `c` in direction `j`, in key units.
+    fn size(&self, c: usize, j: usize) -> u64 {
+        1u64 << (MAX_LEVEL - self.cells[c].levels[j])
+    }
+
+    /// The corner of cell `c` opposite to its origin.
+    fn far_corner(&self, c: usize) -> Key {
+        let mut hi = self.cells[c].origin;
+        for (j, v) in hi.iter_mut().enumerate().take(self.d) {
+            *v += self.size(c, j);
+        }
+        hi
+    }
+
+    /// `mask` with only the directions of this mesh: `0 < mask < 2^d`.
+    fn full_mask(&self) -> u8 {
+        ((1usize << self.d) - 1) as u8
+    }
+
+    /// Splits leaf `c` along the directions of `mask` into `2^popcount(mask)` children (child
+    /// index: one bit per split direction, in increasing direction order). Returns the first
+    /// child. No node is created.
+    fn split_cell(&mut self, c: CellId, mask: u8) -> usize {
+        let d = self.d;
+        let o = self.cells[c].origin;
+        let dirs: Vec<usize> = (0..d).filter(|&j| (mask >> j) & 1 == 1).collect();
+        let mut levels = self.cells[c].levels;
+        for &j in &dirs {
+            levels[j] += 1;
+        }
+        let level = levels[..d].iter().copied().max().unwrap_or(0);
+        let first = self.cells.len();
+        for child in 0..(1usize << dirs.len()) {
+            let mut origin = o;
+            for (b, &j) in dirs.iter().enumerate() {
+                if (child >> b) & 1 == 1 {
+                    origin[j] += self.size(c, j) / 2;
+                }
+            }
+            self.cells.push(Cell {
+                origin,
+                levels,
+                level,
+                first_child: None,
+            });
+            self.child.push(u32::MAX);
+            self.split_mask.push(0);
+        }
+        self.cells[c].first_child = Some(first);
+        self.child[c] = first as u32;
+        self.split_mask[c] = mask;
+        first
+    }
+
+    /// The nodes of a split of leaf `c` along `mask`, before it is split: `(key, centre,
+    /// corner)` for the grid with the cell's corners and midpoints in the split directions and
+    /// its corners in the others (first direction fastest). `centre`: midpoint in every split
+    /// direction; `corner`: a corner of `c`.
+    fn split_grid(&self, c: CellId, mask: u8) -> Vec<(Key, bool, bool)> {
+        let d = self.d;
+        let o = self.cells[c].origin;
+        let mut out = Vec::new();
+        let mut m = [0u64; MAX_DIM];
+        for _ in 0..3usize.pow(d as u32) {
+            let ok = (0..d).all(|j| m[j] != 1 || (mask >> j) & 1 == 1);
+            if ok {
+                let mut key = o;
+                for j in 0..d {
+                    key[j] += m[j] * (self.size(c, j) / 2);
+                    if m[j] == 2 {
+                        // Exact also for a cell of size 1 in a direction that is not split.
+                        key[j] = o[j] + self.size(c, j);
+                    }
+                }
+                let centre = (0..d).all(|j| (mask >> j) & 1 == 0 || m[j] == 1);
+                let corner = m[..d].iter().all(|&v| v != 1);
+                out.push((key, centre, corner));
+            }
+            for mj in m.iter_mut().take(d) {
+                *mj += 1;
+                if *mj < 3 {
+                    break;
+                }
+                *mj = 0;
+            }
+        }
+        out
     }
 
     /// Number of parameters.
@@ -246,9 +363,15 @@ impl StochasticMesh {
     pub fn is_leaf(&self, cell: CellId) -> bool {
         cell < self.cells.len() && self.cells[cell].first_child.is_none()
     }
-    /// Refinement level of a cell (0 for root cells).
+    /// Refinement level of a cell (0 for root cells): the maximum of its levels per direction
+    /// ([`StochasticMesh::levels`]), so the number of halvings of an isotropic cell.
     pub fn level(&self, cell: CellId) -> u32 {
         self.cells[cell].level
+    }
+    /// Refinement level of a cell in each direction (the cell spans `2^-levels[j]` root cells in
+    /// direction `j`).
+    pub fn levels(&self, cell: CellId) -> Vec<u32> {
+        self.cells[cell].levels[..self.d].to_vec()
     }
     /// Bounds `(lo, hi)` of a cell.
     ///
@@ -257,11 +380,7 @@ impl StochasticMesh {
     /// [`StochasticMesh::cell_centre`] and [`StochasticMesh::neighbours`]).
     pub fn cell_bounds(&self, cell: CellId) -> (Vec<f64>, Vec<f64>) {
         let o = self.cells[cell].origin;
-        let s = self.size(cell);
-        let mut hi = o;
-        for v in hi.iter_mut().take(self.d) {
-            *v += s;
-        }
+        let hi = self.far_corner(cell);
         (self.key_point(&o), self.key_point(&hi))
     }
     /// Centre of a cell.
@@ -293,13 +412,18 @@ impl StochasticMesh {
                 break;
             }
             let first = first as usize;
+            let mask = self.split_mask[c];
             let mut child = 0usize;
+            let mut b = 0;
             for (j, tj) in t.iter_mut().enumerate().take(d) {
-                if *tj >= 0.5 {
-                    child |= 1 << j;
-                    *tj = 2.0 * *tj - 1.0;
-                } else {
-                    *tj *= 2.0;
+                if (mask >> j) & 1 == 1 {
+                    if *tj >= 0.5 {
+                        child |= 1 << b;
+                        *tj = 2.0 * *tj - 1.0;
+                    } else {
+                        *tj *= 2.0;
+                    }
+                    b += 1;
                 }
             }
             c = first + child;
@@ -336,10 +460,15 @@ impl StochasticMesh {
         }
         let mut c = root;
         while let Some(first) = self.cells[c].first_child {
-            let half = self.size(c) / 2;
+            let mask = self.split_mask[c];
             let o = self.cells[c].origin;
             let mut child = 0usize;
+            let mut b = 0;
             for j in 0..self.d {
+                if (mask >> j) & 1 == 0 {
+                    continue;
+                }
+                let half = self.size(c, j) / 2;
                 let off = p[j] - o[j];
                 let up = if (signs >> j) & 1 == 1 {
                     off >= half
@@ -347,8 +476,9 @@ impl StochasticMesh {
                     off > half
                 };
                 if up {
-                    child |= 1 << j;
+                    child |= 1 << b;
                 }
+                b += 1;
             }
             c = first + child;
         }
@@ -357,18 +487,46 @@ impl StochasticMesh {
 
     fn is_corner(&self, c: usize, p: &Key) -> bool {
         let o = self.cells[c].origin;
-        let s = self.size(c);
-        (0..self.d).all(|j| p[j] == o[j] || p[j] == o[j] + s)
+        (0..self.d).all(|j| p[j] == o[j] || p[j] == o[j] + self.size(c, j))
+    }
+
+    /// Extent of the face of cell `c` through `p` (in its closure): the cell's size in the
+    /// directions where `p` is strictly inside it, 0 in the others.
+    fn extent(&self, c: usize, p: &Key) -> Key {
+        let o = self.cells[c].origin;
+        let mut e = [0u64; MAX_DIM];
+        for j in 0..self.d {
+            let s = self.size(c, j);
+            if p[j] != o[j] && p[j] != o[j] + s {
+                e[j] = s;
+            }
+        }
+        e
+    }
+
+    /// `true` if leaf `c` is a better master than `b` for `p`: its face through `p` contains
+    /// `b`'s (componentwise larger extent; for isotropic cells: coarser), or, when neither
+    /// contains the other, it has the larger total extent.
+    fn better_master(&self, c: usize, b: usize, p: &Key) -> bool {
+        let (ec, eb) = (self.extent(c, p), self.extent(b, p));
+        let ge = (0..self.d).all(|j| ec[j] >= eb[j]);
+        let le = (0..self.d).all(|j| ec[j] <= eb[j]);
+        if ge || le {
+            ge && !le
+        } else {
+            ec.iter().sum::<u64>() > eb.iter().sum::<u64>()
+        }
     }
 
     /// Classify node `p`: `None` if it is a corner of every leaf around it, else the coarsest
-    /// leaf that contains it without having it as a corner.
+    /// leaf that contains it without having it as a corner (the one whose face through `p`
+    /// contains the others').
     fn master_of(&self, p: &Key) -> Option<usize> {
         let mut best: Option<usize> = None;
         for signs in 0..(1usize << self.d) {
             if let Some(c) = self.locate_key(p, signs)
                 && !self.is_corner(c, p)
-                && best.is_none_or(|b| self.cells[c].level < self.cells[b].level)
+                && best.is_none_or(|b| self.better_master(c, b, p))
             {
                 best = Some(c);
             }
@@ -382,7 +540,7 @@ impl StochasticMesh {
     /// # Errors
     /// If a cell is not a leaf or is already at [`MAX_LEVEL`].
     pub fn refine(&mut self, cells: &[CellId]) -> Result<Vec<NewRun>> {
-        let d = self.d;
+        let full = self.full_mask();
         let mut todo: Vec<CellId> = cells.to_vec();
         todo.sort_unstable();
         todo.dedup();
@@ -403,45 +561,18 @@ impl StochasticMesh {
             }
         }
         for &c in &todo {
-            let o = self.cells[c].origin;
-            let half = self.size(c) / 2;
-            let level = self.cells[c].level + 1;
-            let first = self.cells.len();
-            for child in 0..(1usize << d) {
-                let mut origin = o;
-                for j in 0..d {
-                    if (child >> j) & 1 == 1 {
-                        origin[j] += half;
-                    }
-                }
-                self.cells.push(Cell {
-                    origin,
-                    level,
-                    first_child: None,
-                });
-                self.child.push(u32::MAX);
-            }
-            self.cells[c].first_child = Some(first);
-            self.child[c] = first as u32;
             // New nodes: o + half * m, m in {0, 1, 2}^d (placeholder kind, classified below).
-            let mut m = [0u64; MAX_DIM];
-            for _ in 0..3usize.pow(d as u32) {
-                let mut key = o;
-                for j in 0..d {
-                    key[j] += m[j] * half;
-                }
+            let grid = self.split_grid(c, full);
+            self.split_cell(c, full);
+            for (key, _, _) in grid {
                 self.nodes
                     .entry(key)
                     .or_insert(NodeKind::Hanging(usize::MAX));
-                for mj in m.iter_mut().take(d) {
-                    *mj += 1;
-                    if *mj < 3 {
-                        break;
-                    }
-                    *mj = 0;
-                }
             }
         }
+        // Anisotropic meshes: split (interpolated) where faces cross (see `crossings`).
+        let mut split = todo.clone();
+        self.resolve_crossings(&mut split)?;
         // Reclassify every non-run node; nodes with no master become runs.
         let mut pending: Vec<Key> = self
             .nodes
@@ -465,68 +596,50 @@ impl StochasticMesh {
                 }
             }
         }
+        if self.aniso {
+            self.classify_interpolated(&split)?;
+        }
         self.rebuild()?;
         Ok(new_runs)
     }
 
-    /// Splits leaf `c` into its `2^d` children and classifies the `3^d` nodes of the split:
-    /// the centre becomes a run if `centre_run` (pushed to `new_runs`), every other node that is
-    /// neither a run nor already interpolated for good is interpolated from `c` for good.
-    fn split_interpolated(
-        &mut self,
-        c: CellId,
-        centre_run: bool,
-        new_runs: &mut Vec<NewRun>,
-    ) -> Result<()> {
+    /// Splits leaf `c` along the directions of `mask` and classifies the nodes of the split
+    /// ([`StochasticMesh::split_grid`]): if `centre_runs`, the centres are left as they are and
+    /// returned (the caller makes them runs); every other node that is neither a corner of `c`,
+    /// a run nor already interpolated for good is interpolated from `c` for good.
+    fn split_interpolated(&mut self, c: CellId, mask: u8, centre_runs: bool) -> Result<Vec<Key>> {
         if !self.is_leaf(c) {
             return Err(UqError::Invalid {
                 what: "stochastic mesh",
                 message: format!("cell {c} is not a leaf"),
             });
         }
-        if self.cells[c].level >= MAX_LEVEL {
+        let d = self.d;
+        if mask == 0 || (mask as usize) >> d != 0 {
+            return Err(invalid(
+                "stochastic mesh",
+                "split mask",
+                "a non-empty set of directions of the mesh",
+                mask as f64,
+            ));
+        }
+        if let Some(j) =
+            (0..d).find(|&j| (mask >> j) & 1 == 1 && self.cells[c].levels[j] >= MAX_LEVEL)
+        {
             return Err(invalid(
                 "stochastic mesh",
                 "cell level",
                 "below the maximum",
-                self.cells[c].level as f64,
+                self.cells[c].levels[j] as f64,
             ));
         }
-        let d = self.d;
-        let o = self.cells[c].origin;
-        let half = self.size(c) / 2;
-        let level = self.cells[c].level + 1;
-        let first = self.cells.len();
-        for child in 0..(1usize << d) {
-            let mut origin = o;
-            for j in 0..d {
-                if (child >> j) & 1 == 1 {
-                    origin[j] += half;
-                }
-            }
-            self.cells.push(Cell {
-                origin,
-                level,
-                first_child: None,
-            });
-            self.child.push(u32::MAX);
-        }
-        self.cells[c].first_child = Some(first);
-        self.child[c] = first as u32;
-        let mut m = [0u64; MAX_DIM];
-        for _ in 0..3usize.pow(d as u32) {
-            let mut key = o;
-            for j in 0..d {
-                key[j] += m[j] * half;
-            }
-            let centre = m[..d].iter().all(|&v| v == 1);
-            let corner = m[..d].iter().all(|&v| v != 1);
-            if centre && centre_run {
-                let run = self.add_run(key);
-                new_runs.push(NewRun {
-                    run,
-                    point: self.run_point(run).to_vec(),
-                });
+        let grid = self.split_grid(c, mask);
+        self.split_cell(c, mask);
+        self.aniso |= mask != self.full_mask();
+        let mut centres = Vec::new();
+        for (key, centre, corner) in grid {
+            if centre && centre_runs {
+                centres.push(key);
             } else if !corner {
                 match self.nodes.get(&key) {
                     Some(NodeKind::Run(_)) | Some(NodeKind::Fixed(_)) => {}
@@ -535,35 +648,221 @@ impl StochasticMesh {
                     }
                 }
             }
-            for mj in m.iter_mut().take(d) {
-                *mj += 1;
-                if *mj < 3 {
-                    break;
-                }
-                *mj = 0;
+        }
+        Ok(centres)
+    }
+
+    /// Leaves whose interior meets the open box `(lo, hi)` (key units), appended to `out`.
+    fn leaves_in(&self, lo: &Key, hi: &Key, out: &mut Vec<usize>) {
+        let d = self.d;
+        let s = 1u64 << MAX_LEVEL;
+        let mut rlo = [0usize; MAX_DIM];
+        let mut rhi = [0usize; MAX_DIM];
+        for j in 0..d {
+            if hi[j] <= lo[j] {
+                return;
+            }
+            rlo[j] = (lo[j] / s) as usize;
+            rhi[j] = (((hi[j] - 1) / s) as usize).min(self.roots[j] - 1);
+            if rlo[j] > rhi[j] {
+                return;
             }
         }
-        Ok(())
+        let mut stack = Vec::new();
+        let mut idx = rlo;
+        'roots: loop {
+            let mut root = 0usize;
+            let mut stride = 1usize;
+            for j in 0..d {
+                root += idx[j] * stride;
+                stride *= self.roots[j];
+            }
+            stack.push(root);
+            for j in 0..d {
+                idx[j] += 1;
+                if idx[j] <= rhi[j] {
+                    continue 'roots;
+                }
+                idx[j] = rlo[j];
+            }
+            break;
+        }
+        while let Some(c) = stack.pop() {
+            let o = self.cells[c].origin;
+            if !(0..d).all(|j| o[j] < hi[j] && o[j] + self.size(c, j) > lo[j]) {
+                continue;
+            }
+            match self.cells[c].first_child {
+                None => out.push(c),
+                Some(first) => {
+                    let n = 1usize << self.split_mask[c].count_ones();
+                    stack.extend((first..first + n).rev());
+                }
+            }
+        }
+    }
+
+    /// Points where two adjacent leaves hold a point of their common boundary inside faces that
+    /// do not contain one another (possible with anisotropic cells when the leaves share a
+    /// region of dimension 2 or more: a face in 3D, also a 2D region in 4D): no node value can
+    /// match both interpolants there. Returns, per leaf to split (the newer of the two), the
+    /// directions in which its face through the point exceeds the other's, so that splitting
+    /// along them makes the point its corner (sorted by leaf, deterministic).
+    /// Only pairs with a leaf of `from` are examined.
+    fn crossings(&self, from: &[usize]) -> Vec<(usize, u8)> {
+        let d = self.d;
+        let mut out: Vec<(usize, u8)> = Vec::new();
+        let mut across = Vec::new();
+        for &a in from {
+            let oa = self.cells[a].origin;
+            let fa = self.far_corner(a);
+            // The regions around `a`: per direction below (0), along (1) or above (2) it.
+            'patterns: for pattern in 0..3usize.pow(d as u32) {
+                let mut side = [0usize; MAX_DIM];
+                let mut r = pattern;
+                for v in side.iter_mut().take(d) {
+                    *v = r % 3;
+                    r /= 3;
+                }
+                let along = side[..d].iter().filter(|&&v| v == 1).count();
+                if along < 2 || along == d {
+                    continue;
+                }
+                let (mut lo, mut hi) = (oa, fa);
+                for i in 0..d {
+                    let span = (self.roots[i] as u64) << MAX_LEVEL;
+                    match side[i] {
+                        0 if oa[i] == 0 => continue 'patterns,
+                        0 => (lo[i], hi[i]) = (oa[i] - 1, oa[i]),
+                        2 if fa[i] == span => continue 'patterns,
+                        2 => (lo[i], hi[i]) = (fa[i], fa[i] + 1),
+                        _ => {}
+                    }
+                }
+                across.clear();
+                self.leaves_in(&lo, &hi, &mut across);
+                for &b in &across {
+                    let ob = self.cells[b].origin;
+                    let fb = self.far_corner(b);
+                    for corner in 0..(1usize << d) {
+                        if (0..d).any(|i| side[i] != 1 && (corner >> i) & 1 == 1) {
+                            continue;
+                        }
+                        let mut q = [0u64; MAX_DIM];
+                        for i in 0..d {
+                            q[i] = match side[i] {
+                                0 => oa[i],
+                                2 => fa[i],
+                                _ if (corner >> i) & 1 == 1 => fa[i].min(fb[i]),
+                                _ => oa[i].max(ob[i]),
+                            };
+                        }
+                        let (ea, eb) = (self.extent(a, &q), self.extent(b, &q));
+                        let ge = (0..d).all(|i| ea[i] >= eb[i]);
+                        let le = (0..d).all(|i| ea[i] <= eb[i]);
+                        if ge || le {
+                            continue;
+                        }
+                        let (l, el, eo) = if b > a { (b, eb, ea) } else { (a, ea, eb) };
+                        let mask = (0..d)
+                            .filter(|&i| el[i] > eo[i])
+                            .fold(0u8, |m, i| m | (1 << i));
+                        match out.iter_mut().find(|e| e.0 == l) {
+                            Some(e) => e.1 |= mask,
+                            None => out.push((l, mask)),
+                        }
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// The leaves below (or equal to) the given cells, in increasing id order.
+    fn leaves_below(&self, cells: &[CellId]) -> Vec<CellId> {
+        let mut out = Vec::new();
+        let mut stack: Vec<CellId> = cells.to_vec();
+        while let Some(c) = stack.pop() {
+            match self.cells[c].first_child {
+                None => out.push(c),
+                Some(first) => {
+                    stack.extend(first..first + (1usize << self.split_mask[c].count_ones()))
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Splits leaves (interpolated nodes only) until no [`StochasticMesh::crossings`] remain;
+    /// the split cells are appended to `split`.
+    fn resolve_crossings(&mut self, split: &mut Vec<CellId>) -> Result<()> {
+        if !self.aniso {
+            return Ok(());
+        }
+        // A crossing involves a leaf made by the splits: look from those only.
+        let mut from = self.leaves_below(split);
+        loop {
+            let todo = self.crossings(&from);
+            if todo.is_empty() {
+                return Ok(());
+            }
+            let cells: Vec<CellId> = todo.iter().map(|e| e.0).collect();
+            for (l, mask) in todo {
+                self.split_interpolated(l, mask, false)?;
+                split.push(l);
+            }
+            from = self.leaves_below(&cells);
+        }
     }
 
     /// Re-classifies the hanging nodes after splits and rebuilds the weights. A hanging node
     /// left without a leaf master lies on a split cell: it is interpolated from it for good.
+    ///
+    /// On a mesh with anisotropic splits, the interpolated-for-good nodes are re-classified as
+    /// well: a node inside a face of a leaf must take that leaf's value for the surrogate to be
+    /// continuous (on isotropic meshes this holds by construction), so it hangs on the leaf;
+    /// a hanging node whose master leaf was split is interpolated from that cell for good (its
+    /// value is unchanged).
     fn settle(&mut self, split: &[CellId]) -> Result<()> {
+        let mut split = split.to_vec();
+        self.resolve_crossings(&mut split)?;
+        self.classify_interpolated(&split)?;
+        self.rebuild()
+    }
+
+    fn classify_interpolated(&mut self, split: &[CellId]) -> Result<()> {
+        let aniso = self.aniso;
         let mut pending: Vec<Key> = self
             .nodes
             .iter()
-            .filter(|(_, k)| matches!(k, NodeKind::Hanging(_)))
+            .filter(|(_, k)| match k {
+                NodeKind::Hanging(_) => true,
+                NodeKind::Fixed(_) => aniso,
+                NodeKind::Run(_) => false,
+            })
             .map(|(key, _)| *key)
             .collect();
         pending.sort_unstable();
         for key in pending {
+            let old = self.nodes[&key];
             let kind = match self.master_of(&key) {
                 Some(mc) => NodeKind::Hanging(mc),
+                None if aniso && matches!(old, NodeKind::Fixed(_)) => old,
+                None if aniso
+                    && matches!(old, NodeKind::Hanging(m) if m < self.cells.len() && !self.is_leaf(m)) =>
+                {
+                    let NodeKind::Hanging(m) = old else {
+                        unreachable!()
+                    };
+                    NodeKind::Fixed(m)
+                }
                 None => {
                     let owner = split.iter().copied().find(|&c| {
                         let o = self.cells[c].origin;
-                        let s = self.size(c);
-                        (0..self.d).all(|j| key[j] >= o[j] && key[j] <= o[j] + s)
+                        (0..self.d).all(|j| key[j] >= o[j] && key[j] <= o[j] + self.size(c, j))
                     });
                     match owner {
                         Some(c) => NodeKind::Fixed(c),
@@ -578,7 +877,7 @@ impl StochasticMesh {
             };
             self.nodes.insert(key, kind);
         }
-        self.rebuild()
+        Ok(())
     }
 
     /// Refines leaf cells **at their centres** (the thesis's improved criterion, 4.2.2.2, and
@@ -601,11 +900,115 @@ impl StochasticMesh {
                 });
             }
         }
+        let full = self.full_mask();
         let mut new_runs = Vec::with_capacity(todo.len());
         for &c in &todo {
-            self.split_interpolated(c, true, &mut new_runs)?;
+            for key in self.split_interpolated(c, full, true)? {
+                let run = self.add_run(key);
+                new_runs.push(NewRun {
+                    run,
+                    point: self.run_point(run).to_vec(),
+                });
+            }
         }
         self.settle(&todo)?;
+        Ok(new_runs)
+    }
+
+    /// Splits each leaf `cell` only along the directions whose bit is set in `mask` (bit j:
+    /// direction j; `mask != 0`, only bits below `d`) into `2^popcount(mask)` children, and
+    /// makes runs of the **centres** of the split: the new nodes at the cell's midpoint in every
+    /// split direction and at a corner value in every other direction (`2^(d - popcount)` of
+    /// them; the midpoint of the cell when the mask is full). Every other new node is
+    /// interpolated from the cell for good (as [`StochasticMesh::refine_centred`], which this is
+    /// with a full mask: same runs, same order, same weights).
+    ///
+    /// A centre on a face of the cell must be a corner of every leaf around it to be a run (else
+    /// the surrogate would jump there): a leaf across that holds it inside a face is split
+    /// first, with interpolated nodes only, along the directions in which it holds it inside,
+    /// until it is a corner (as [`StochasticMesh::refine_at_point`] does). A centre that is
+    /// already a run (shared with a neighbour split the same way) is not returned again; one that
+    /// was interpolated becomes a run. On a mesh with anisotropic cells, interpolated nodes inside
+    /// a face of a leaf hang on it and crossing faces are split (see the module documentation),
+    /// so the surrogate can also change on the leaves next to the refined cells: it stays
+    /// continuous.
+    ///
+    /// Returns the nodes that became runs, in increasing run index.
+    ///
+    /// # Errors
+    /// If a cell is not a leaf, is listed twice with different masks, a mask is empty or has a
+    /// bit at or above `d`, or the cell is already at [`MAX_LEVEL`] in a split direction. The
+    /// mesh is unchanged then.
+    pub fn refine_directions(&mut self, cells: &[(CellId, u32)]) -> Result<Vec<NewRun>> {
+        let d = self.d;
+        let mut todo: Vec<(CellId, u32)> = cells.to_vec();
+        todo.sort_unstable();
+        todo.dedup();
+        for (i, &(c, mask)) in todo.iter().enumerate() {
+            if !self.is_leaf(c) {
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!("cell {c} is not a leaf"),
+                });
+            }
+            if i > 0 && todo[i - 1].0 == c {
+                return Err(UqError::Invalid {
+                    what: "stochastic mesh",
+                    message: format!("cell {c} is listed with two masks"),
+                });
+            }
+            if mask == 0 || mask >> d != 0 {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "split mask",
+                    "a non-empty set of directions of the mesh",
+                    mask as f64,
+                ));
+            }
+            if let Some(j) =
+                (0..d).find(|&j| (mask >> j) & 1 == 1 && self.cells[c].levels[j] >= MAX_LEVEL)
+            {
+                return Err(invalid(
+                    "stochastic mesh",
+                    "cell level",
+                    "below the maximum",
+                    self.cells[c].levels[j] as f64,
+                ));
+            }
+        }
+        let mut split: Vec<CellId> = Vec::with_capacity(todo.len());
+        let mut centres = Vec::new();
+        for &(c, mask) in &todo {
+            centres.extend(self.split_interpolated(c, mask as u8, true)?);
+            split.push(c);
+        }
+        let mut new_runs = Vec::with_capacity(centres.len());
+        for key in centres {
+            if matches!(self.nodes.get(&key), Some(NodeKind::Run(_))) {
+                continue;
+            }
+            // Split the leaves that hold the centre inside a face until it is their corner.
+            while let Some(l) = (0..(1usize << d))
+                .filter_map(|signs| self.locate_key(&key, signs))
+                .find(|&l| !self.is_corner(l, &key))
+            {
+                let o = self.cells[l].origin;
+                let mut mask = 0u8;
+                for j in 0..d {
+                    if key[j] != o[j] && key[j] != o[j] + self.size(l, j) {
+                        mask |= 1 << j;
+                    }
+                }
+                self.split_interpolated(l, mask, false)?;
+                split.push(l);
+            }
+            let run = self.add_run(key);
+            new_runs.push(NewRun {
+                run,
+                point: self.run_point(run).to_vec(),
+            });
+        }
+        self.settle(&split)?;
         Ok(new_runs)
     }
 
@@ -663,9 +1066,9 @@ impl StochasticMesh {
                 message: format!("{xi:?} is outside the mesh"),
             })?;
             let o = self.cells[c].origin;
-            let half = self.size(c) / 2;
-            let is_centre = (0..d).all(|j| key[j] == o[j] + half);
-            if half == 0 {
+            let half: Vec<u64> = (0..d).map(|j| self.size(c, j) / 2).collect();
+            let is_centre = (0..d).all(|j| key[j] == o[j] + half[j]);
+            if half.contains(&0) {
                 return Err(invalid(
                     "stochastic mesh",
                     "point",
@@ -674,11 +1077,18 @@ impl StochasticMesh {
                 ));
             }
             split.push(c);
-            self.split_interpolated(c, is_centre, &mut runs)?;
+            let full = self.full_mask();
+            for centre in self.split_interpolated(c, full, is_centre)? {
+                let run = self.add_run(centre);
+                runs.push(NewRun {
+                    run,
+                    point: self.run_point(run).to_vec(),
+                });
+            }
             if is_centre {
                 break;
             }
-            if (0..d).any(|j| key[j] == o[j] + half) {
+            if (0..d).any(|j| key[j] == o[j] + half[j]) {
                 // On a split plane but not the centre: never a leaf centre below.
                 return Err(UqError::Invalid {
                     what: "stochastic mesh",
@@ -771,14 +1181,14 @@ impl StochasticMesh {
             ));
         }
         let o = self.cells[cell].origin;
-        let step = self.size(cell) >> depth;
+        let step: Vec<u64> = (0..d).map(|j| self.size(cell, j) >> depth).collect();
         let n = 1usize << depth;
         let mut out = Vec::with_capacity(n.pow(d as u32) * d);
         let mut idx = [0usize; MAX_DIM];
         for _ in 0..n.pow(d as u32) {
             let mut key = o;
             for j in 0..d {
-                key[j] += step / 2 + idx[j] as u64 * step;
+                key[j] += step[j] / 2 + idx[j] as u64 * step[j];
             }
             out.extend(self.key_point(&key));
             for v in idx.iter_mut().take(d) {
@@ -796,7 +1206,6 @@ impl StochasticMesh {
     pub fn neighbours(&self, cell: CellId) -> Vec<CellId> {
         let d = self.d;
         let o = self.cells[cell].origin;
-        let sz = self.size(cell);
         let mut out = Vec::new();
         let mut delta = [-1i32; MAX_DIM];
         for _ in 0..3usize.pow(d as u32) {
@@ -810,8 +1219,8 @@ impl StochasticMesh {
                     let span = (self.roots[j] as u64) << MAX_LEVEL;
                     let v = match delta[j] {
                         -1 => o[j].checked_sub(1),
-                        0 => Some(o[j] + sz / 2),
-                        _ => Some(o[j] + sz),
+                        0 => Some(o[j] + self.size(cell, j) / 2),
+                        _ => Some(o[j] + self.size(cell, j)),
                     };
                     match v {
                         Some(v) if v < span => key[j] = v,
@@ -882,12 +1291,11 @@ impl StochasticMesh {
             nl += 1;
             let start = terms.len() as u32;
             let o = self.cells[c].origin;
-            let s = self.size(c);
             for corner in 0..(1usize << d) {
                 let mut key = o;
                 for j in 0..d {
                     if (corner >> j) & 1 == 1 {
-                        key[j] += s;
+                        key[j] += self.size(c, j);
                     }
                 }
                 let w = self.resolve(&key, &mut memo, 0)?;
@@ -930,16 +1338,15 @@ impl StochasticMesh {
                     });
                 }
                 let o = self.cells[m].origin;
-                let s = self.size(m) as f64;
                 let mut acc: Vec<(usize, f64)> = Vec::new();
                 for corner in 0..(1usize << self.d) {
                     let mut phi = 1.0;
                     let mut ck = o;
                     for j in 0..self.d {
-                        let t = (key[j] - o[j]) as f64 / s;
+                        let t = (key[j] - o[j]) as f64 / self.size(m, j) as f64;
                         if (corner >> j) & 1 == 1 {
                             phi *= t;
-                            ck[j] += self.size(m);
+                            ck[j] += self.size(m, j);
                         } else {
                             phi *= 1.0 - t;
                         }
@@ -1100,12 +1507,8 @@ impl StochasticMesh {
     fn cell_weights(&self, c: CellId, xi: &[f64], w: &mut Vec<(usize, f64)>) {
         w.clear();
         let o = self.cells[c].origin;
-        let s = self.size(c);
         let mut t = [0.0; MAX_DIM];
-        let mut hi = o;
-        for v in hi.iter_mut().take(self.d) {
-            *v += s;
-        }
+        let hi = self.far_corner(c);
         let (pl, ph) = (self.key_point(&o), self.key_point(&hi));
         for j in 0..self.d {
             t[j] = ((xi[j] - pl[j]) / (ph[j] - pl[j])).clamp(0.0, 1.0);
