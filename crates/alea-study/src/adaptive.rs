@@ -216,31 +216,47 @@ pub(crate) fn run_adaptive(
                     fraction,
                 )
                 .map_err(|e| StudyError::Other(e.to_string()))?;
-                // Keep the largest densities within the budget (actions come sorted).
-                actions.truncate(settings.max_runs - runs);
+                // Keep the largest densities within the budget (actions come sorted; a split
+                // along m of d directions adds up to 2^(d - m) runs).
+                let d = params.lo.len();
+                let full = (1u32 << d) - 1;
+                let room = settings.max_runs - runs;
+                let mut cost = 0;
+                actions.retain(|(a, _)| {
+                    let c = match a {
+                        refine::ImprovedAction::Split(_, m) => {
+                            1usize << (d - m.count_ones() as usize)
+                        }
+                        _ => 1,
+                    };
+                    let keep = cost + c <= room;
+                    if keep {
+                        cost += c;
+                    }
+                    keep
+                });
                 if actions.is_empty() {
                     break (
-                        "no point of the marked cells carries stochastic error".to_string(),
+                        "no point of the marked cells carries stochastic error within the run budget"
+                            .to_string(),
                         None,
                     );
                 }
-                let mut centres = Vec::new();
-                let mut added = 0;
+                let before = mesh.num_runs();
+                let mut splits = Vec::new();
                 for (a, _) in &actions {
                     match a {
                         refine::ImprovedAction::Promote(p) => {
                             mesh.promote(p)
                                 .map_err(|e| StudyError::Other(e.to_string()))?;
-                            added += 1;
                         }
-                        refine::ImprovedAction::Centre(c) => centres.push(*c),
+                        refine::ImprovedAction::Centre(c) => splits.push((*c, full)),
+                        refine::ImprovedAction::Split(c, m) => splits.push((*c, *m)),
                     }
                 }
-                added += mesh
-                    .refine_centred(&centres)
-                    .map_err(|e| StudyError::Other(e.to_string()))?
-                    .len();
-                added
+                mesh.refine_directions(&splits)
+                    .map_err(|e| StudyError::Other(e.to_string()))?;
+                mesh.num_runs() - before
             }
             Criterion::MaxError { depth } => {
                 let sp = StudyParameters::new(&study.model.parametric, &runner.solver);

@@ -172,3 +172,112 @@ fn wide_range_young_modulus_estimate_is_the_true_error_over_sqrt_two() {
     drop(runs);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The same plate with a random load factor too, `P ~ U(0.8, 1.2)`: the response `2e4 P / E`
+/// bends in `E` only. Both adaptive criteria, from the corners and the centre, must reach the
+/// regular 9 x 9 grid's `i_sto` with fewer runs than its 81, and their true error (closed form)
+/// must then be below the grid's.
+#[test]
+fn adaptive_criteria_beat_the_regular_grid_on_a_response_bending_in_one_parameter() {
+    let two = |methods: &str| {
+        let text = TEXT
+            .replace(
+                "[[substructure]]",
+                "[[parameter]]\nname = \"P\"\nlaw = \"uniform\"\nlo = 0.8\nhi = 1.2\n\n[[substructure]]",
+            )
+            .replace(
+                "traction = [200.0, 0.0] }",
+                "traction = [200.0, 0.0], factor = \"P\" }",
+            );
+        let head = &text[..text.find("[[method]]").unwrap()];
+        let tail = &text[text.find("[error]").unwrap()..];
+        Study::from_source(Source::from_text(
+            "plate_adaptive.toml",
+            &format!("{head}{methods}\n{tail}"),
+        ))
+        .unwrap()
+    };
+    // True error of a surrogate on `points`, closed form, 16 x 16 cells of 8 x 8 Gauss points.
+    let true_error = |s: &Study, m: &alea_study::method::Method| -> f64 {
+        let sur = m.surrogate(&s.params, &m.points).unwrap();
+        let tips: Vec<f64> = m.points.iter().map(|p| 2e4 * p[1] / p[0]).collect();
+        let (lo, hi) = ([20e3, 0.8], [400e3, 1.2]);
+        let mut w = Vec::new();
+        let mut t2 = 0.0;
+        let n = 16;
+        for i in 0..n {
+            for j in 0..n {
+                let a = [
+                    lo[0] + (hi[0] - lo[0]) * i as f64 / n as f64,
+                    lo[1] + (hi[1] - lo[1]) * j as f64 / n as f64,
+                ];
+                let b = [
+                    a[0] + (hi[0] - lo[0]) / n as f64,
+                    a[1] + (hi[1] - lo[1]) / n as f64,
+                ];
+                let rule = QuadratureRule::gauss_legendre_box(&a, &b, 8).unwrap();
+                for q in 0..rule.len() {
+                    let x = rule.node(q);
+                    Weights::weights(&sur, x, &mut w);
+                    let interp: f64 = w.iter().map(|&(k, wk)| wk * tips[k]).sum();
+                    let energy = x[0] * 20.0 / 100.0 * (interp - 2e4 * x[1] / x[0]).powi(2);
+                    t2 += rule.weights()[q] / ((hi[0] - lo[0]) * (hi[1] - lo[1])) * energy;
+                }
+            }
+        }
+        t2.sqrt()
+    };
+    let dir = std::env::temp_dir().join(format!("alea-plate-adapt-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let s = two("[[method]]\ntype = \"piecewise_linear\"\npoints_per_dim = 9\nlabel = \"grid\"\n");
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let setup = runs.cre.clone().unwrap();
+    let store = Store::open(&dir, &s.hash, false).unwrap();
+    let settings = error_settings(&s).unwrap();
+    let grid = &runs.methods[0];
+    let sur = grid.surrogate(&s.params, &grid.points).unwrap();
+    let (_, e) = estimate_method(
+        &s,
+        &setup,
+        &runs.solver,
+        &store,
+        grid,
+        &grid.points,
+        &sur,
+        &settings,
+    )
+    .unwrap();
+    let target = e.estimate.i_sto();
+    let grid_true = true_error(&s, grid);
+    drop((runs, store));
+    let _ = std::fs::remove_dir_all(&dir);
+    for criterion in ["improved", "max_error"] {
+        let s = two(&format!(
+            "[[method]]\ntype = \"adaptive\"\ncriterion = \"{criterion}\"\ntarget = {target}\nmax_runs = 81\nlabel = \"{criterion}\"\n"
+        ));
+        let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+        let a = &runs.adaptive[0];
+        let last = a.steps.last().unwrap();
+        let t = true_error(&s, &runs.methods[0]);
+        eprintln!(
+            "{criterion}: {} runs, i_sto {:.2} % (grid 81 runs: {:.2} %), true {t:.4e} (grid {grid_true:.4e}); stop: {}",
+            last.runs,
+            100.0 * last.error.estimate.i_sto(),
+            100.0 * target,
+            a.stop
+        );
+        assert!(
+            last.error.estimate.i_sto() <= target && last.runs < 81,
+            "{criterion}: {} runs, i_sto {} against the grid's {target}; stop: {}",
+            last.runs,
+            last.error.estimate.i_sto(),
+            a.stop
+        );
+        assert!(
+            t <= grid_true,
+            "{criterion}: true error {t} above the grid's {grid_true}"
+        );
+        drop(runs);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
