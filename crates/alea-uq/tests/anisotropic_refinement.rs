@@ -3,9 +3,9 @@
 //! functions are reproduced exactly, the weights sum to 1 and the surrogate is continuous across
 //! every leaf face; a full mask is exactly `refine_centred`; replays are identical; and a
 //! response that bends in one parameter only is refined like a 1D interpolant, with 2 runs per
-//! new node in 2D, far fewer than isotropic refinement to the same maximum error (and u = P/E
-//! split along E beats the regular 5 x 5 grid with 24 runs); isotropic use is bit for bit as
-//! before.
+//! new node in 2D (4 in 3D), far fewer than isotropic refinement to the same maximum error (and
+//! u = P/E split along E beats the regular 5 x 5 grid with 24 runs); isotropic use is bit for
+//! bit as before.
 
 use alea_uq::surrogate::{LinearSurrogate, StochasticMesh};
 
@@ -377,6 +377,39 @@ fn a_response_bending_in_one_parameter_is_refined_along_it_only() {
         let s = aniso.eval(&x, &v);
         assert!((s - interp_1d(&nodes, x[0])).abs() < 1e-12);
         max_err = max_err.max((s - f(&x)).abs());
+    }
+    // In 3D: 4 runs per new x0 node (one per edge of the box along x0), still the 1D interpolant.
+    let mut cube = StochasticMesh::new(&[0.0; 3], &[1.0; 3], &[1, 1, 1]).unwrap();
+    for _ in 0..12 {
+        let v = values(&cube, f);
+        let worst = cube
+            .leaves()
+            .into_iter()
+            .map(|c| {
+                let (a, b) = cube.cell_bounds(c);
+                let e = (0..=8)
+                    .map(|i| {
+                        let x = [a[0] + (b[0] - a[0]) * i as f64 / 8.0, 0.3, 0.7];
+                        (cube.eval(&x, &v) - f(&x)).abs()
+                    })
+                    .fold(0.0, f64::max);
+                (c, e)
+            })
+            .max_by(|p, q| p.1.total_cmp(&q.1))
+            .unwrap();
+        assert_eq!(cube.refine_directions(&[(worst.0, 1)]).unwrap().len(), 4);
+    }
+    let mut cube_nodes: Vec<(f64, f64)> = (0..cube.num_runs())
+        .map(|k| cube.run_point(k))
+        .filter(|p| p[1] == 0.0 && p[2] == 0.0)
+        .map(|p| (p[0], f(p)))
+        .collect();
+    cube_nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(cube.num_runs(), 4 * cube_nodes.len());
+    let v = values(&cube, f);
+    for _ in 0..2000 {
+        let x = [lcg(&mut seed), lcg(&mut seed), lcg(&mut seed)];
+        assert!((cube.eval(&x, &v) - interp_1d(&cube_nodes, x[0])).abs() < 1e-12);
     }
     // Isotropic: split the worst leaf in both directions (new nodes become runs; 2:1 balanced,
     // else the hanging nodes of a fine leaf keep its error).
