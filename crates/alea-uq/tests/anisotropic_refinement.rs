@@ -3,9 +3,9 @@
 //! functions are reproduced exactly, the weights sum to 1 and the surrogate is continuous across
 //! every leaf face; a full mask is exactly `refine_centred`; replays are identical; and a
 //! response that bends in one parameter only is refined like a 1D interpolant, with 2 runs per
-//! new node in 2D, far fewer than isotropic refinement to the same maximum error (and u = P/E
-//! split along E beats the regular 5 x 5 grid with 24 runs); isotropic use is bit for bit as
-//! before.
+//! new node in 2D (4 in 3D), far fewer than isotropic refinement to the same maximum error (and
+//! u = P/E split along E beats the regular 5 x 5 grid with 24 runs); isotropic use is bit for
+//! bit as before.
 
 use alea_uq::surrogate::{LinearSurrogate, StochasticMesh};
 
@@ -31,6 +31,7 @@ enum Step {
     Directions(Vec<(usize, u32)>),
     Centred(Vec<usize>),
     Plain(Vec<usize>),
+    AtPoint(Vec<f64>),
     Promote(Vec<f64>),
 }
 
@@ -45,14 +46,18 @@ fn apply(mesh: &mut StochasticMesh, step: &Step) {
         Step::Plain(cells) => {
             mesh.refine(cells).unwrap();
         }
+        Step::AtPoint(x) => {
+            mesh.refine_at_point(x).unwrap();
+        }
         Step::Promote(x) => {
             mesh.promote(x).unwrap();
         }
     }
 }
 
-/// A random sequence of `steps` directional / centred / plain refinements and promotions on
-/// `[lo, hi]` with `roots` root cells (leaves kept at level <= 5 in each direction).
+/// A random sequence of `steps` directional / centred / plain / at-a-point refinements and
+/// promotions on `[lo, hi]` with `roots` root cells (leaves kept at level <= 5 in each
+/// direction).
 fn random_mesh(
     lo: &[f64],
     hi: &[f64],
@@ -89,8 +94,12 @@ fn random_mesh(
             let mut cells: Vec<usize> = (0..n).map(|_| leaves[pick(seed, leaves.len())]).collect();
             cells.sort_unstable();
             cells.dedup();
-            if r < 0.22 {
+            if r < 0.2 {
                 Step::Plain(cells)
+            } else if r < 0.25 {
+                let x = mesh.sub_cell_centres(cells[0], 2).unwrap();
+                let k = pick(seed, x.len() / d);
+                Step::AtPoint(x[k * d..(k + 1) * d].to_vec())
             } else if r < 0.4 {
                 Step::Centred(cells)
             } else {
@@ -369,6 +378,39 @@ fn a_response_bending_in_one_parameter_is_refined_along_it_only() {
         assert!((s - interp_1d(&nodes, x[0])).abs() < 1e-12);
         max_err = max_err.max((s - f(&x)).abs());
     }
+    // In 3D: 4 runs per new x0 node (one per edge of the box along x0), still the 1D interpolant.
+    let mut cube = StochasticMesh::new(&[0.0; 3], &[1.0; 3], &[1, 1, 1]).unwrap();
+    for _ in 0..12 {
+        let v = values(&cube, f);
+        let worst = cube
+            .leaves()
+            .into_iter()
+            .map(|c| {
+                let (a, b) = cube.cell_bounds(c);
+                let e = (0..=8)
+                    .map(|i| {
+                        let x = [a[0] + (b[0] - a[0]) * i as f64 / 8.0, 0.3, 0.7];
+                        (cube.eval(&x, &v) - f(&x)).abs()
+                    })
+                    .fold(0.0, f64::max);
+                (c, e)
+            })
+            .max_by(|p, q| p.1.total_cmp(&q.1))
+            .unwrap();
+        assert_eq!(cube.refine_directions(&[(worst.0, 1)]).unwrap().len(), 4);
+    }
+    let mut cube_nodes: Vec<(f64, f64)> = (0..cube.num_runs())
+        .map(|k| cube.run_point(k))
+        .filter(|p| p[1] == 0.0 && p[2] == 0.0)
+        .map(|p| (p[0], f(p)))
+        .collect();
+    cube_nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert_eq!(cube.num_runs(), 4 * cube_nodes.len());
+    let v = values(&cube, f);
+    for _ in 0..2000 {
+        let x = [lcg(&mut seed), lcg(&mut seed), lcg(&mut seed)];
+        assert!((cube.eval(&x, &v) - interp_1d(&cube_nodes, x[0])).abs() < 1e-12);
+    }
     // Isotropic: split the worst leaf in both directions (new nodes become runs; 2:1 balanced,
     // else the hanging nodes of a fine leaf keep its error).
     let mut iso = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[1, 1]).unwrap();
@@ -507,4 +549,92 @@ fn p_over_e_beats_the_regular_grid_with_fewer_runs() {
     );
     assert_eq!(mesh.num_runs(), 24);
     assert!(error < 0.1 * grid_error, "{error:e} vs {grid_error:e}");
+}
+
+#[test]
+fn anisotropic_cells_keep_their_geometry_and_levels_per_direction() {
+    let mut m = StochasticMesh::new(&[0.0, 0.0, 0.0], &[1.0, 2.0, 4.0], &[1, 1, 1]).unwrap();
+    // Split along x1 and x2 (mask 6): 4 children of size 1 x 1 x 2.
+    let new = m.refine_directions(&[(0, 6)]).unwrap();
+    assert_eq!(new.len(), 2, "centres on the faces x0 = 0 and x0 = 1");
+    assert_eq!(new[0].point, vec![0.0, 1.0, 2.0]);
+    assert_eq!(new[1].point, vec![1.0, 1.0, 2.0]);
+    let c = m.locate(&[0.5, 1.5, 0.5]).unwrap();
+    assert_eq!(m.levels(c), vec![0, 1, 1]);
+    assert_eq!(m.level(c), 1);
+    assert_eq!(m.cell_bounds(c), (vec![0.0, 1.0, 0.0], vec![1.0, 2.0, 2.0]));
+    assert_eq!(m.cell_centre(c), vec![0.5, 1.5, 1.0]);
+    // Sub-cell centres follow the cell's own sizes.
+    let x = m.sub_cell_centres(c, 1).unwrap();
+    assert_eq!(x.len(), 8 * 3);
+    assert_eq!(&x[..3], &[0.25, 1.25, 0.5]);
+    assert_eq!(&x[21..], &[0.75, 1.75, 1.5]);
+    // The three other children are its neighbours.
+    let mut nb = m.neighbours(c);
+    nb.sort_unstable();
+    let mut others: Vec<usize> = m.leaves().into_iter().filter(|&l| l != c).collect();
+    others.sort_unstable();
+    assert_eq!(nb, others);
+    // Cell probabilities on the box are the volumes.
+    let law = alea_uq::joint::Independent::new(vec![
+        std::sync::Arc::new(alea_uq::law::Uniform::new(0.0, 1.0).unwrap())
+            as std::sync::Arc<dyn alea_uq::law::Marginal>,
+        std::sync::Arc::new(alea_uq::law::Uniform::new(0.0, 2.0).unwrap()),
+        std::sync::Arc::new(alea_uq::law::Uniform::new(0.0, 4.0).unwrap()),
+    ])
+    .unwrap();
+    for (_, p) in m.cell_probabilities(&law) {
+        assert!((p - 0.25).abs() < 1e-14);
+    }
+    // MAX_LEVEL counts per direction: x0 can still be split 24 times, x1 only 23 more.
+    let mut m = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[1, 1]).unwrap();
+    for _ in 0..alea_uq::surrogate::MAX_LEVEL {
+        let c = m.locate(&[0.0, 0.0]).unwrap();
+        m.refine_directions(&[(c, 1)]).unwrap();
+    }
+    let c = m.locate(&[0.0, 0.0]).unwrap();
+    assert_eq!(m.levels(c), vec![alea_uq::surrogate::MAX_LEVEL, 0]);
+    let n = m.num_runs();
+    assert!(m.refine_directions(&[(c, 1)]).is_err());
+    assert!(m.refine_centred(&[c]).is_err());
+    assert_eq!(m.num_runs(), n);
+    m.refine_directions(&[(c, 2)]).unwrap();
+    assert_eq!(m.num_runs(), n + 2);
+}
+
+#[test]
+fn promoting_an_interpolated_node_of_an_anisotropic_mesh() {
+    // Split the unit square along x, then the left half in both directions (centred): the
+    // midpoint of the left half's left edge is interpolated, on the box boundary, promotable.
+    let mut m = StochasticMesh::new(&[0.0, 0.0], &[1.0, 1.0], &[1, 1]).unwrap();
+    m.refine_directions(&[(0, 1)]).unwrap();
+    let left = m.locate(&[0.25, 0.5]).unwrap();
+    m.refine_centred(&[left]).unwrap();
+    let nodes = m.interpolated_nodes();
+    let edge = nodes
+        .iter()
+        .find(|(x, _)| x == &vec![0.0, 0.5])
+        .expect("(0, 0.5) is interpolated");
+    assert_eq!(edge.1, None);
+    // (0.5, 0.5) lies inside the edge of the unrefined right half: refine it first.
+    let mid = nodes
+        .iter()
+        .find(|(x, _)| x == &vec![0.5, 0.5])
+        .expect("(0.5, 0.5) is interpolated");
+    let right = m.locate(&[0.75, 0.5]).unwrap();
+    assert_eq!(mid.1, Some(right));
+    assert!(m.promote(&[0.5, 0.5]).is_err());
+    let f = |x: &[f64]| 2.0 + x[0] - 3.0 * x[1];
+    let new = m.promote(&[0.0, 0.5]).unwrap();
+    assert_eq!(new.point, vec![0.0, 0.5]);
+    m.refine_directions(&[(right, 2)]).unwrap();
+    m.promote(&[0.5, 0.5]).unwrap_err(); // now a run: the centre of the split along y
+    let v = values(&m, f);
+    let mut seed = 9;
+    for _ in 0..500 {
+        let x = [lcg(&mut seed), lcg(&mut seed)];
+        assert!((m.eval(&x, &v) - f(&x)).abs() < 1e-14);
+    }
+    let r: Vec<f64> = (0..m.num_runs()).map(|_| lcg(&mut seed)).collect();
+    assert!(max_jump(&m, &r, &[0.0, 0.0], &[1.0, 1.0], &mut seed) < 1e-12);
 }

@@ -1331,7 +1331,9 @@ impl StochasticMesh {
         let out = match kind {
             NodeKind::Run(k) => vec![(k, 1.0)],
             NodeKind::Hanging(m) | NodeKind::Fixed(m) => {
-                if depth > MAX_LEVEL + 2 || m == usize::MAX {
+                // A guard against cycles: a chain of interpolated nodes has at most a few steps
+                // per level and direction.
+                if depth > (MAX_LEVEL + 2) * self.d as u32 || m == usize::MAX {
                     return Err(UqError::Invalid {
                         what: "stochastic mesh",
                         message: "internal error: unresolved hanging node".into(),
