@@ -2,7 +2,7 @@
 //! turbine_tables`; `ALEA_TABLE53_COLD=N` solves only the first `N` chaining runs and
 //! extrapolates, `ALEA_THREADS` sets the worker threads, default 2).
 //!
-//! One model: `examples/turbine-2d-wear-adaptive.toml` (four substructures, Quad4, ~22 000
+//! One model: `examples/turbine-2d-wear-adaptive.toml` (four substructures, Quad8, ~22 000
 //! dof). Measured in one process, one after the other, so that the ratios hold on a shared
 //! machine:
 //! 1. **chaining** (the thesis's "commercial chaining" baseline): the 225 runs of the 15 x 15
@@ -10,7 +10,7 @@
 //! 2. **multiresolution**: the same 225 runs through the study runner (one set-up, every run
 //!    warm-started from the nearest finished one), the study's piecewise-linear 15 x 15;
 //! 3. **adaptive**: the study's own adaptive method (5 runs to start, improved criterion, until
-//!    `i_sto <= i_geo`), runs and error estimates;
+//!    the example's stopping rule, `i_sto <= 7 %`), runs and error estimates;
 //!
 //! and tables 5.1 / 5.2: per adaptive step the runs, `i_sto`, `i_geo`, mean, std and
 //! `P(vm_fillet > threshold)`, against the 225-run reference statistics (piecewise linear

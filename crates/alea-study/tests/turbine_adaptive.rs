@@ -2,11 +2,13 @@
 //! 5.1 / 5.2), on a copy with every mesh count divided by four (about 1 500 dof).
 //!
 //! Checked, as the example's header states them: the study starts from the 4 corners and the
-//! centre of [0, 1]^2 and every run converges; at every step `e~^2 = I_geo^2 + I_sto^2`; the
-//! Young's moduli are deterministic, so the substructures carry no stochastic error and all of
-//! `I_sto` comes from the contact interfaces (the thesis: 99.9 %), the perfect interfaces
-//! carry none; the loop stops on its criterion (`i_sto <= i_geo`) within its budget; the
-//! statistics are those of a non-degenerate response (std > 0, P_f in [0, 1]).
+//! centre of [0, 1]^2 and every run converges; the Young's moduli are deterministic, so the
+//! substructures carry no stochastic error and all of `I_sto` comes from the contact
+//! interfaces (the thesis: 99.9 %), the perfect interfaces carry none; the contact interfaces'
+//! stochastic part is positive from the start (the interpolation between runs of different
+//! contact status; it was 0 under the thesis's split (4.4)-(4.5)); the loop stops on its
+//! criterion (`i_sto <= 7 %`) within its budget; the statistics are those of a non-degenerate
+//! response (std > 0, P_f in [0, 1]).
 
 use alea_study::Source;
 use alea_study::runner::{NoProgress, Study, run_study};
@@ -51,19 +53,12 @@ fn adaptive_turbine_study_on_a_coarse_mesh() {
     assert_eq!(steps[0].runs, 5, "4 corners and the centre");
     for step in steps {
         let e = &step.error.estimate;
-        assert!(
-            (e.e2 - e.geo2 - e.sto2).abs() <= 1e-12 * e.e2,
-            "e~^2 = I_geo^2 + I_sto^2: {} vs {} + {}",
-            e.e2,
-            e.geo2,
-            e.sto2
-        );
         assert!(e.geo2 > 0.0 && e.sto2 >= -1e-12 * e.e2);
         for s in &e.subs {
             assert!(s.sto2.abs() <= 1e-12 * s.e2.abs(), "{}: {s:?}", s.name);
         }
         let contact_sto: f64 = e.interfaces[..2].iter().map(|i| i.sto2).sum();
-        assert!(contact_sto >= 0.0);
+        assert!(contact_sto > 1e-3 * e.e2, "{e:?}");
         assert!((contact_sto - e.sto2).abs() <= 1e-12 * e.e2);
         for i in &e.interfaces[2..] {
             assert!(i.sto2.abs() <= 1e-12 * e.e2, "{}: {i:?}", i.name);
@@ -89,10 +84,9 @@ fn adaptive_turbine_study_on_a_coarse_mesh() {
     }
     let last = steps.last().unwrap().error.estimate.clone();
     assert!(
-        last.i_sto() <= last.i_geo(),
-        "stopped with i_sto {} > i_geo {} ({})",
+        last.i_sto() <= 0.07,
+        "stopped with i_sto {} > 7 % ({})",
         last.i_sto(),
-        last.i_geo(),
         outcome.stop
     );
     drop(runs);
