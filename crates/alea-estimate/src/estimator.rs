@@ -245,6 +245,10 @@ pub struct Estimator {
     /// interface error density at point `p` (crate doc, "Interfaces"): the terms that the
     /// surrogate's weights interpolate into the space part `geo_I`.
     run_rho: Vec<Vec<f64>>,
+    /// Per interface: the largest jump and force magnitudes over the runs' points, the scales
+    /// of the admissibility checks (a scale taken from the interpolated fields themselves made
+    /// round-off in an all-sticking interface, where every jump is ~0, count as a violation).
+    scales: Vec<(f64, f64)>,
     options: Options,
 }
 
@@ -485,6 +489,15 @@ impl Estimator {
                 out
             })
             .collect();
+        let norm = |v: &[f64; 3]| dot(v, v).sqrt();
+        let scales = (0..ni)
+            .map(|i| {
+                (
+                    jump[i].iter().map(norm).fold(0.0, f64::max),
+                    force[i].iter().map(norm).fold(0.0, f64::max),
+                )
+            })
+            .collect();
         Ok(Estimator {
             layout,
             k,
@@ -493,6 +506,7 @@ impl Estimator {
             jump,
             force,
             run_rho,
+            scales,
             options,
         })
     }
@@ -585,9 +599,9 @@ impl Estimator {
             mu.resize(np, 0.0);
             params.friction(xi, i, mu);
         }
-        // Interpolated fields, then the scales of the admissibility checks.
+        // Interpolated fields; the scales of the admissibility checks are the runs'.
         let mut wf: Vec<([f64; 3], [f64; 3])> = Vec::with_capacity(np);
-        let (mut w_scale, mut f_scale): (f64, f64) = (0.0, 0.0);
+        let (w_scale, f_scale) = self.scales[i];
         for p in 0..np {
             let mut wt = [0.0; 3];
             let mut ft = [0.0; 3];
@@ -598,8 +612,6 @@ impl Estimator {
                     ft[c] += wr * f[c];
                 }
             }
-            w_scale = w_scale.max(dot(&wt, &wt).sqrt());
-            f_scale = f_scale.max(dot(&ft, &ft).sqrt());
             wf.push((wt, ft));
         }
         let mut out = InterfacePoint::default();
