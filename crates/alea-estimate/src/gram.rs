@@ -106,7 +106,7 @@ fn cross_gram(a: &[&[f64]], b: &[&[f64]], n: usize) -> CrossGram {
 /// length, accumulated over blocks of sample rows (so that neither family need be held whole):
 /// `aa = A^T A` (`ka x ka`), `ab = A^T B` (`ka x kb`), `bb = B^T B` (`kb x kb`), dense
 /// row-major. [`Gram`] is the case `ka = kb` with the admissible and FE samples; the reference
-/// distance of [`crate::reference`] uses a reference solution's runs against a surrogate's.
+/// distance of the `reference` module uses a reference solution's runs against a surrogate's.
 /// Blocks are multiplied by faer's matmul (sequential); adding them in a fixed order gives
 /// results independent of the thread count.
 #[derive(Clone, Debug, PartialEq)]
@@ -190,6 +190,20 @@ impl CrossGram {
             hh: self.bb,
         }
     }
+}
+
+/// `sum_kl x_k y_l M_kl` over sparse vectors.
+pub(crate) fn form(m: &[f64], k: usize, x: &[(usize, f64)], y: &[(usize, f64)]) -> f64 {
+    let mut s = 0.0;
+    for &(i, xi) in x {
+        let row = &m[i * k..(i + 1) * k];
+        let mut r = 0.0;
+        for &(j, yj) in y {
+            r += row[j] * yj;
+        }
+        s += xi * r;
+    }
+    s
 }
 
 #[cfg(test)]

@@ -74,7 +74,7 @@
 //! ```
 //!
 //! with `F_n+ = max(F_n, 0)` and `P` the projection onto the Coulomb disk of radius
-//! `mu F_n+` ([`estimator::contact_density`]). `rho* >= 0` everywhere, `rho* = rho` on
+//! `mu F_n+` ([`interface::contact_density`]). `rho* >= 0` everywhere, `rho* = rho` on
 //! admissible pairs, `rho* = 0` exactly when the pair obeys the law, continuous in `(w, F, mu)`.
 //! (A perfect interface: admissible jump 0, `rho* = |w| |F|`.) Then, like the substructures'
 //! (4.2)-(4.3):
@@ -139,14 +139,16 @@ pub mod density;
 mod error;
 pub mod estimator;
 pub mod gram;
+pub mod interface;
+pub mod moments;
 pub mod reference;
 pub mod refine;
+pub mod results;
 pub mod rule;
 
 pub use data::{InterfaceKind, InterfaceLayout, Layout, RunData, SubLayout};
 pub use error::EstimateError;
-pub use estimator::{
-    EntityEstimate, Estimate, Estimator, InterfacePoint, Options as EstimatorOptions, Parameters,
-    PointEstimate, SubPoint, SubstructureMoments, Weights, cell_terms, weight_moments,
-};
+pub use estimator::{Estimator, Options as EstimatorOptions, Parameters, Weights};
+pub use moments::{SubstructureMoments, cell_terms, weight_moments};
+pub use results::{EntityEstimate, Estimate, InterfacePoint, PointEstimate, SubPoint};
 pub use rule::{CellBox, Rule};
