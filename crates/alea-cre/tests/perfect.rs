@@ -168,8 +168,10 @@ fn check_with(kind: CellType, ns: [usize; 4], max_ratio: f64) -> f64 {
     }
     // One file per test case and process: the tests of this file run concurrently.
     let dir = std::env::temp_dir().join(format!(
-        "alea_cre_perfect_{}_{kind}_{n}.vtu",
-        std::process::id()
+        "alea_cre_perfect_{}_{kind}_{}_{}.vtu",
+        std::process::id(),
+        ns.map(|v| v.to_string()).join("-"),
+        if mortar { "mortar" } else { "node" }
     ));
     write_error_vtu(&assembly.subs[0].model, &est.substructures[0], &dir).unwrap();
     assert!(
