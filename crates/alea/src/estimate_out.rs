@@ -325,6 +325,7 @@ pub fn error_json(e: &MethodError) -> serde_json::Value {
         "runs": e.runs, "rule_points": e.rule_points, "load_defect": e.load_defect,
         "violation_probability": est.violation_probability, "max_violation": est.max_violation,
         "substructures_estimated": e.substructures_estimated,
+        "negative_parts": est.negative_parts(),
         "entities": entities,
     })
 }
