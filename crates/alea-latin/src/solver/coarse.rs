@@ -1,0 +1,89 @@
+//! The coarse step of the two-scale LATIN (`LatinOptions::coarse`; macro space and
+//! substructure responses in module [`crate::coarse`]): the macro imbalance `b` of the plain
+//! linear stage's interface forces (resultants and moments per interface), the macro unknowns
+//! `lambda = (macro operator)^-1 b`, and the correction of every substructure's `u`, `W`, `F`.
+
+use rayon::prelude::*;
+
+use super::{LatinSolver, Run, SubOperator, SubState};
+use crate::coarse::{InterfaceModes, SubMacro};
+
+impl LatinSolver {
+    /// Corrects the plain linear stage of every substructure so that its interface forces
+    /// balance macroscopically across every interface (nothing without the coarse problem).
+    pub(super) fn coarse_step(&self, run: &mut Run<'_>) {
+        let (Some(cs), Some(inv)) = (&self.coarse, &run.macro_inv) else {
+            return;
+        };
+        let (sstate, alpha) = (&mut run.sstate, &run.alpha);
+        let n = cs.n;
+        let mut b = vec![0.0; n];
+        for (i, op) in self.ifaces.iter().enumerate() {
+            for side in 0..2 {
+                let (s, l) = (op.sub[side], op.link[side]);
+                let w = &self.subs[s].links[l].proj.weights;
+                cs.modes[i].add_resultants(w, &sstate[s].f_new[l], &mut b);
+            }
+        }
+        let lambda: Vec<f64> = (0..n)
+            .map(|r| (0..n).map(|c| inv[r * n + c] * b[c]).sum())
+            .collect();
+        self.subs
+            .par_iter()
+            .zip(sstate.par_iter_mut())
+            .zip(cs.subs.par_iter())
+            .enumerate()
+            .for_each(|(s, ((op, st), sm))| {
+                coarse_correction(op, sm, &cs.modes, st, &lambda, alpha[s])
+            });
+    }
+}
+
+/// The coarse correction of one substructure's linear stage (module `coarse`):
+/// `F -= k (sum lambda Pi u^(Gj) + E lambda_G)`, `u += sum lambda u_d^(Gj)`,
+/// `W += sum lambda Pi u_d^(Gj)` (`u_d`: the response without its free rigid part).
+fn coarse_correction(
+    op: &SubOperator,
+    sm: &SubMacro,
+    modes: &[InterfaceModes],
+    st: &mut SubState,
+    lambda: &[f64],
+    alpha: f64,
+) {
+    // Forces from the whole response (admissible with the corrected displacement: a rigid
+    // motion in the free modes does no work), displacements without the free rigid part.
+    for (li, l) in op.links.iter().enumerate() {
+        let k = alpha * l.k0;
+        let im = &modes[l.iface];
+        let lam = &lambda[im.offset..im.offset + im.len()];
+        for p in 0..l.proj.len() {
+            let mut e = [0.0; 3];
+            for (j, mode) in im.modes.iter().enumerate() {
+                for c in 0..3 {
+                    e[c] += lam[j] * mode[p][c];
+                }
+            }
+            for c in 0..3 {
+                st.f_new[li][p][c] -= k * e[c];
+            }
+        }
+    }
+    for col in &sm.columns {
+        let a = lambda[col.index];
+        if a == 0.0 {
+            continue;
+        }
+        for (u, v) in st.rhs.iter_mut().zip(&col.u) {
+            *u += a * v;
+        }
+        for (li, l) in op.links.iter().enumerate() {
+            let k = alpha * l.k0;
+            for p in 0..l.proj.len() {
+                for c in 0..3 {
+                    st.w_new[li][p][c] += a * col.w[li][p][c];
+                    st.f_new[li][p][c] -= k * a * col.w_full[li][p][c];
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,106 @@
+//! The linear stage (thesis 2.1; per substructure, in parallel): with `k_s = alpha_s k0_s`,
+//! `A0 u = (f + M_Gamma (F_hat + k W_hat)) / alpha - A0 u_p` with the factorisation of `A0` made
+//! at set-up, then `W = Pi u|Gamma` and `F = F_hat - k (W - W_hat)`; after the coarse
+//! correction (module `coarse` of the solver), the relaxation
+//! `(W, F) <- rho (W, F) + (1 - rho) (W, F)_previous`.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::{InterfaceState, LatinSolver, Run, SubOperator, SubState};
+
+impl LatinSolver {
+    /// Relaxation of the linear stage: the option's, at most 0.8 with the coarse problem and
+    /// without acceleration (`LatinOptions::coarse`).
+    fn relaxation(&self) -> f64 {
+        if self.coarse.is_some() && self.options.acceleration == 0 {
+            self.options.relaxation.min(0.8)
+        } else {
+            self.options.relaxation
+        }
+    }
+
+    /// The linear stage of every substructure from the run's local-stage state: plain solves,
+    /// coarse correction, relaxation (none in the first iteration).
+    pub(super) fn linear_stage(&self, run: &mut Run<'_>, first: bool) {
+        let t0 = Instant::now();
+        let solve_time: f64 = self
+            .subs
+            .par_iter()
+            .zip(run.sstate.par_iter_mut())
+            .enumerate()
+            .map(|(s, (op, st))| linear_stage(op, st, &run.istate, &run.base[s], run.alpha[s]))
+            .sum();
+        self.coarse_step(run);
+        let r = if first { 1.0 } else { self.relaxation() };
+        run.sstate.par_iter_mut().for_each(|st| relax(st, r));
+        run.timings.linear += t0.elapsed().as_secs_f64();
+        run.timings.triangular_solves += solve_time;
+    }
+}
+
+/// One plain linear stage of one substructure (without the coarse correction and the
+/// relaxation): `u`, and `W`, `F` into `w_new`, `f_new`; returns the seconds spent in the
+/// triangular solve.
+fn linear_stage(
+    op: &SubOperator,
+    st: &mut SubState,
+    istate: &[InterfaceState],
+    base: &[f64],
+    alpha: f64,
+) -> f64 {
+    st.rhs.copy_from_slice(base);
+    for l in &op.links {
+        let is = &istate[l.iface];
+        let k = alpha * l.k0;
+        for (p, &m) in l.proj.weights.iter().enumerate() {
+            let fh = is.fhat[l.side][p];
+            let wh = is.what[l.side][p];
+            let v = [
+                m * (fh[0] + k * wh[0]) / alpha,
+                m * (fh[1] + k * wh[1]) / alpha,
+                m * (fh[2] + k * wh[2]) / alpha,
+            ];
+            for (n, c) in l.proj.row(p) {
+                let cv = [c * v[0], c * v[1], c * v[2]];
+                op.dofs.add_node_force(n, &cv, &mut st.rhs);
+            }
+        }
+    }
+    let t0 = Instant::now();
+    op.chol.solve_with(&mut st.rhs, &mut st.scratch);
+    let t = t0.elapsed().as_secs_f64();
+    for (li, l) in op.links.iter().enumerate() {
+        let is = &istate[l.iface];
+        let k = alpha * l.k0;
+        for p in 0..l.proj.len() {
+            let mut w = [0.0; 3];
+            for (n, c) in l.proj.row(p) {
+                let u = op.dofs.node_displacement(n, &st.rhs);
+                for d in 0..3 {
+                    w[d] += c * u[d];
+                }
+            }
+            let wh = is.what[l.side][p];
+            let fh = is.fhat[l.side][p];
+            for c in 0..3 {
+                st.w_new[li][p][c] = w[c];
+                st.f_new[li][p][c] = fh[c] - k * (w[c] - wh[c]);
+            }
+        }
+    }
+    t
+}
+
+/// Relaxation of the linear stage: `(W, F) <- r (W, F)_new + (1 - r) (W, F)_previous`.
+fn relax(st: &mut SubState, r: f64) {
+    for li in 0..st.w.len() {
+        for p in 0..st.w[li].len() {
+            for c in 0..3 {
+                st.w[li][p][c] = r * st.w_new[li][p][c] + (1.0 - r) * st.w[li][p][c];
+                st.f[li][p][c] = r * st.f_new[li][p][c] + (1.0 - r) * st.f[li][p][c];
+            }
+        }
+    }
+}

@@ -1,0 +1,89 @@
+//! Assembly of a finished run's [`RunResult`] (the last linear stage's displacements, the
+//! interface fields of both stages, status and equilibrium check) and the multiresolution
+//! store: only converged runs are kept for warm starts (thesis 5.1.3).
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::{LatinSolver, Run, StoredRun};
+use crate::{InterfaceResult, RunResult, RunStatus, SubEquilibrium};
+
+impl LatinSolver {
+    /// The result of a run that ended with `status` (remembered for warm starts when
+    /// converged); `t_start`: when the run started.
+    pub(super) fn finish_run(
+        &self,
+        mut run: Run<'_>,
+        status: RunStatus,
+        equilibrium: Vec<SubEquilibrium>,
+        t_start: Instant,
+    ) -> RunResult {
+        // Final fields: the last linear stage's displacement.
+        let displacements: Vec<Vec<f64>> = self
+            .subs
+            .par_iter()
+            .zip(run.sstate.par_iter_mut())
+            // The linear stage solves in place: `rhs` holds the last reduced displacement.
+            .map(|(op, st)| op.dofs.expand(&st.rhs))
+            .collect();
+        let points = std::mem::take(&mut run.points);
+        let interfaces: Vec<InterfaceResult> = self
+            .ifaces
+            .iter()
+            .zip(run.istate.iter())
+            .zip(points)
+            .map(|((op, st), pts)| {
+                let side = |s: usize| &run.sstate[op.sub[s]];
+                InterfaceResult {
+                    name: op.name.clone(),
+                    law: op.law.name(),
+                    subs: op.sub,
+                    nodes: [0, 1].map(|s| {
+                        let proj = &op.pairing.sides[s];
+                        (0..proj.len()).map(|p| proj.main_node(p)).collect()
+                    }),
+                    pairing: op.pairing.clone(),
+                    points: pts,
+                    weights: op.weights.clone(),
+                    w: [side(0).w[op.link[0]].clone(), side(1).w[op.link[1]].clone()],
+                    f: [side(0).f[op.link[0]].clone(), side(1).f[op.link[1]].clone()],
+                    what: st.what.clone(),
+                    what_prev: st.what_prev.clone(),
+                    fhat: st.fhat.clone(),
+                    status: st.status.clone(),
+                }
+            })
+            .collect();
+        if status == RunStatus::Converged
+            && !run.input.params.is_empty()
+            && run.input.initial.is_none()
+            && let Ok(mut store) = self.store.lock()
+        {
+            store.push(StoredRun {
+                params: run.input.params.clone(),
+                what: run.istate.iter().map(|s| s.what.clone()).collect(),
+                fhat: run.istate.iter().map(|s| s.fhat.clone()).collect(),
+            });
+        }
+        let Run {
+            alpha,
+            warm,
+            residuals,
+            mut timings,
+            ..
+        } = run;
+        timings.total = t_start.elapsed().as_secs_f64();
+        RunResult {
+            status,
+            iterations: residuals.len(),
+            residuals,
+            warm_start: warm,
+            displacements,
+            interfaces,
+            young_factors: alpha,
+            equilibrium,
+            timings,
+        }
+    }
+}

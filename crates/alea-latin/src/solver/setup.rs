@@ -1,0 +1,419 @@
+//! Set-up of the solver (everything done once per assembly, thesis 5.1.3): validation of the
+//! options, pairing of every interface (node to node, or dual mortar: module
+//! [`crate::mortar`]), the search direction `k0 = factor E_side / L_interface`, the assembly and
+//! factorisation of every substructure operator `A0 = T^T (K0 + sum k0 Pi^T M_Gamma Pi) T`, the
+//! rigid modes left free by the constraints (module `equilibrium`) and the macro space of the
+//! coarse problem (module `coarse`).
+
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
+use rayon::prelude::*;
+
+use super::{
+    Coarse, InterfaceOperator, LatinOptions, LatinSolver, Link, SearchDirection, SubOperator,
+};
+use crate::coarse::{InterfaceModes, MacroLink, SubMacro};
+use crate::equilibrium::RigidModes;
+use crate::interface::{Pairing, pair_node_to_node, side_geometry};
+use crate::mortar::pair_mortar;
+use crate::{Assembly, InterfaceSpec, LatinError, PointData, Substructure};
+
+pub(super) fn fem_err(sub: &str) -> impl Fn(alea_fem::FemError) -> LatinError + '_ {
+    move |source| LatinError::Fem {
+        sub: sub.to_string(),
+        source,
+    }
+}
+
+fn mesh_err(sub: &str) -> impl Fn(alea_mesh::MeshError) -> LatinError + '_ {
+    move |source| LatinError::Mesh {
+        sub: sub.to_string(),
+        source,
+    }
+}
+
+impl LatinSolver {
+    /// Sets up the assembly: pairs interfaces, assembles and factorises every substructure
+    /// operator `A0 = K0 + sum k0 M_Gamma` once.
+    pub fn new(assembly: Assembly, options: LatinOptions) -> Result<Self, LatinError> {
+        let t0 = Instant::now();
+        check_options(&options)?;
+        let Assembly { subs, interfaces } = assembly;
+        let nsub = subs.len();
+        let model_size = bounding_diagonal(subs.iter().flat_map(|s| s.model.mesh.coords.iter()));
+        let mut links: Vec<Vec<Link>> = vec![Vec::new(); nsub];
+        let mut ifaces = Vec::new();
+        for (i, spec) in interfaces.iter().enumerate() {
+            ifaces.push(interface_operator(
+                i,
+                spec,
+                &subs,
+                interfaces.len(),
+                &options.search_direction,
+                &mut links,
+            )?);
+        }
+        let ordering = options.ordering;
+        let ops: Vec<SubOperator> = subs
+            .into_par_iter()
+            .zip(links.into_par_iter())
+            .map(|(sub, links)| build_operator(sub, links, ordering))
+            .collect::<Result<_, _>>()?;
+        let coarse = options.coarse.then(|| build_coarse(&ops, &ifaces));
+        Ok(LatinSolver {
+            subs: ops,
+            ifaces,
+            options,
+            store: Mutex::new(Vec::new()),
+            model_size,
+            coarse,
+            setup_seconds: t0.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// Relaxation in (0, 1], equilibrium bounds and tolerance > 0.
+fn check_options(options: &LatinOptions) -> Result<(), LatinError> {
+    if !(options.relaxation > 0.0 && options.relaxation <= 1.0) {
+        return Err(LatinError::Invalid(format!(
+            "relaxation must be in (0, 1], got {}",
+            options.relaxation
+        )));
+    }
+    if !(options.equilibrium_tolerance > 0.0 && options.max_rigid_motion > 0.0) {
+        return Err(LatinError::Invalid(format!(
+            "equilibrium tolerance and rigid-motion bound must be > 0, got {} and {}",
+            options.equilibrium_tolerance, options.max_rigid_motion
+        )));
+    }
+    if !(options.tolerance > 0.0) {
+        return Err(LatinError::Invalid(format!(
+            "tolerance must be > 0, got {}",
+            options.tolerance
+        )));
+    }
+    Ok(())
+}
+
+/// Interface `i`: checks its substructures, pairs its sides (node to node or mortar, as
+/// `spec.pairing` asks), derives the search direction of both sides and the point data at the
+/// set-up's `mu` and gap fields, and adds one [`Link`] to each side's substructure.
+fn interface_operator(
+    i: usize,
+    spec: &InterfaceSpec,
+    subs: &[Substructure],
+    num_interfaces: usize,
+    search_direction: &SearchDirection,
+    links: &mut [Vec<Link>],
+) -> Result<InterfaceOperator, LatinError> {
+    let nsub = subs.len();
+    for (s, sub) in [spec.sub1, spec.sub2].into_iter().enumerate() {
+        if sub >= nsub {
+            return Err(LatinError::Invalid(format!(
+                "interface '{}': side {} refers to substructure {sub}, but there are {nsub}",
+                spec.name,
+                s + 1
+            )));
+        }
+    }
+    if spec.sub1 == spec.sub2 {
+        return Err(LatinError::Invalid(format!(
+            "interface '{}' joins substructure '{}' to itself",
+            spec.name, subs[spec.sub1].name
+        )));
+    }
+    let s1 = &subs[spec.sub1];
+    let s2 = &subs[spec.sub2];
+    s1.model
+        .mesh
+        .facet_group(&spec.group1)
+        .map_err(mesh_err(&s1.name))?;
+    s2.model
+        .mesh
+        .facet_group(&spec.group2)
+        .map_err(mesh_err(&s2.name))?;
+    let sides = [
+        (
+            &s1.model.mesh,
+            spec.group1.as_str(),
+            s1.model.analysis.thickness(),
+        ),
+        (
+            &s2.model.mesh,
+            spec.group2.as_str(),
+            s2.model.analysis.thickness(),
+        ),
+    ];
+    let held1 = DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem_err(&s1.name))?;
+    let held2 = DofMap::for_mesh(&s2.model.mesh, &s2.constraints).map_err(fem_err(&s2.name))?;
+    let fixed1 = |n: usize| held1.node_dofs(n).is_empty();
+    let fixed2 = |n: usize| held2.node_dofs(n).is_empty();
+    let mortar = || {
+        pair_mortar(
+            &spec.name,
+            sides,
+            spec.search_distance,
+            spec.law.uses_gap(),
+            [&fixed1, &fixed2],
+        )
+    };
+    let pairing = match spec.pairing {
+        Pairing::NodeToNode => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
+        Pairing::Mortar => mortar()?,
+        Pairing::Auto => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
+            Ok(p) => p,
+            Err(LatinError::Unmatched { .. }) => mortar()?,
+            Err(e) => return Err(e),
+        },
+    };
+    let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
+        .map_err(mesh_err(&s1.name))?;
+    // Characteristic length and side moduli for the default search direction.
+    let total: f64 = g1.weights.iter().sum();
+    let len = if s1.model.mesh.dim == 2 {
+        total / s1.model.analysis.thickness()
+    } else {
+        total.sqrt()
+    };
+    let k0 = match &search_direction {
+        SearchDirection::Auto { factor } => {
+            let e1 = side_young(&s1.model, &spec.group1).map_err(fem_err(&s1.name))?;
+            let e2 = side_young(&s2.model, &spec.group2).map_err(fem_err(&s2.name))?;
+            [factor * e1 / len, factor * e2 / len]
+        }
+        SearchDirection::Fixed(k) => *k.get(i).ok_or_else(|| {
+            LatinError::Invalid(format!(
+                "fixed search direction given for {} interfaces, but there are {}",
+                k.len(),
+                num_interfaces
+            ))
+        })?,
+    };
+    if !(k0[0] > 0.0 && k0[1] > 0.0) {
+        return Err(LatinError::Invalid(format!(
+            "interface '{}': search direction must be > 0, got {k0:?}",
+            spec.name
+        )));
+    }
+    let points: Vec<PointData> = pairing
+        .x
+        .iter()
+        .zip(&pairing.normals)
+        .zip(&pairing.geometric_gap)
+        .map(|((&x, &normal), &g)| PointData {
+            x,
+            normal,
+            mu: (spec.mu)(x),
+            gap: (spec.gap)(x) + g,
+        })
+        .collect();
+    let l1 = links[spec.sub1].len();
+    let [side1, side2] = pairing.sides.clone();
+    links[spec.sub1].push(Link {
+        iface: i,
+        side: 0,
+        proj: Arc::new(side1),
+        k0: k0[0],
+    });
+    let l2 = links[spec.sub2].len();
+    links[spec.sub2].push(Link {
+        iface: i,
+        side: 1,
+        proj: Arc::new(side2),
+        k0: k0[1],
+    });
+    Ok(InterfaceOperator {
+        name: spec.name.clone(),
+        law: spec.law.clone(),
+        sub: [spec.sub1, spec.sub2],
+        link: [l1, l2],
+        points,
+        weights: pairing.weights.clone(),
+        mu: spec.mu.clone(),
+        gap: spec.gap.clone(),
+        pairing: Arc::new(pairing),
+    })
+}
+
+/// The macro space of the coarse problem (interface resultants and moments, module `coarse`)
+/// and every substructure's responses to it.
+fn build_coarse(ops: &[SubOperator], ifaces: &[InterfaceOperator]) -> Coarse {
+    let dim = ops.first().map_or(2, |o| o.model.mesh.dim);
+    let mut offset = 0;
+    let modes: Vec<InterfaceModes> = ifaces
+        .iter()
+        .map(|op| {
+            let m = InterfaceModes::new(dim, &op.pairing.x, &op.pairing.weights, offset);
+            offset += m.len();
+            m
+        })
+        .collect();
+    let subs: Vec<SubMacro> = ops
+        .par_iter()
+        .map(|op| {
+            let links: Vec<MacroLink<'_>> = op
+                .links
+                .iter()
+                .map(|l| MacroLink {
+                    proj: &l.proj,
+                    k0: l.k0,
+                    modes: &modes[l.iface],
+                })
+                .collect();
+            SubMacro::new(&op.dofs, &op.chol, &links, &op.rigid, &op.model.mesh.coords)
+        })
+        .collect();
+    Coarse {
+        n: offset,
+        modes,
+        subs,
+    }
+}
+
+/// Mean Young's modulus of the cells along a facet group.
+fn side_young(model: &alea_fem::Model, group: &str) -> Result<f64, alea_fem::FemError> {
+    let facets = model
+        .mesh
+        .attach_facets(model.mesh.facet_group(group)?, None)?;
+    let mut sum = 0.0;
+    for f in &facets {
+        sum += model.material(f.cell)?.young;
+    }
+    Ok(sum / facets.len().max(1) as f64)
+}
+
+fn build_operator(
+    sub: Substructure,
+    links: Vec<Link>,
+    ordering: Ordering,
+) -> Result<SubOperator, LatinError> {
+    let name = sub.name.clone();
+    let model = sub.model;
+    let dofs = DofMap::for_mesh(&model.mesh, &sub.constraints).map_err(fem_err(&name))?;
+    let asm = assemble_stiffness(&model, &dofs).map_err(fem_err(&name))?;
+    let mut a0: SymCsc = with_interface_couplings(asm.k, &dofs, &links);
+    let mut r_presc = asm.f_prescribed;
+    let dim = model.mesh.dim;
+    for l in &links {
+        // k0 Pi^T M Pi: node blocks k0 m_p c_pa c_pb.
+        for (p, &m) in l.proj.weights.iter().enumerate() {
+            let km = l.k0 * m;
+            for (a, ca) in l.proj.row(p) {
+                for (b, cb) in l.proj.row(p) {
+                    if a == b {
+                        dofs.add_node_diagonal(a, km * ca * cb, &mut a0);
+                    } else if a < b {
+                        dofs.add_node_coupling(a, b, km * ca * cb, &mut a0);
+                    }
+                }
+            }
+            // -T^T (k0 Pi^T M Pi) u_p for prescribed interface nodes.
+            let mut up = [0.0; 3];
+            for (b, cb) in l.proj.row(p) {
+                let u = dofs.prescribed(b);
+                for c in 0..3 {
+                    up[c] += cb * u[c];
+                }
+            }
+            if up.iter().any(|&v| v != 0.0) {
+                for (a, ca) in l.proj.row(p) {
+                    let s = -(km * ca);
+                    let v = [s * up[0], s * up[1], s * up[2]];
+                    dofs.add_node_force(a, &v, &mut r_presc);
+                }
+            }
+        }
+    }
+    let mut chol =
+        Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
+    chol.factorize(&a0).map_err(fem_err(&name))?;
+    let n_nodes = model.mesh.num_nodes() * model.mesh.dim;
+    if let Some(f) = sub.load_cases.iter().find(|f| f.len() != n_nodes) {
+        return Err(LatinError::Invalid(format!(
+            "substructure '{name}': load case of length {} for {n_nodes} dofs",
+            f.len()
+        )));
+    }
+    let rigid = RigidModes::new(
+        dim,
+        &model.mesh.coords,
+        |n, v| dofs.constrained_part(n, v),
+        &sub.load_cases,
+        (0..model.mesh.num_nodes()).any(|n| dofs.prescribed(n).iter().any(|&v| v != 0.0)),
+    );
+    let r_ext: Vec<Vec<f64>> = sub.load_cases.iter().map(|f| dofs.reduce(f)).collect();
+    Ok(SubOperator {
+        name,
+        model,
+        dofs,
+        chol,
+        r_ext,
+        r_presc,
+        links,
+        rigid,
+    })
+}
+
+/// The stiffness matrix on a pattern that also couples the nodes of every interface point
+/// (mortar rows join nodes of different cells); unchanged when they are already coupled (always
+/// for node-to-node interfaces).
+fn with_interface_couplings(k: SymCsc, dofs: &DofMap, links: &[Link]) -> SymCsc {
+    let mut extra: Vec<(usize, usize)> = Vec::new();
+    for l in links {
+        for p in 0..l.proj.len() {
+            for (a, _) in l.proj.row(p) {
+                for (b, _) in l.proj.row(p) {
+                    let (ra, rb) = (dofs.node_dofs(a), dofs.node_dofs(b));
+                    if a < b
+                        && !ra.is_empty()
+                        && !rb.is_empty()
+                        && k.position(ra.start, rb.start).is_none()
+                    {
+                        extra.push((a, b));
+                    }
+                }
+            }
+        }
+    }
+    if extra.is_empty() {
+        return k;
+    }
+    let mut adj: std::collections::HashMap<usize, Vec<usize>> = Default::default();
+    for &(a, b) in &extra {
+        adj.entry(a).or_default().push(b);
+        adj.entry(b).or_default().push(a);
+    }
+    let node_of = dofs.node_of_dof();
+    let mut out = SymCsc::from_couplings(k.n, |j, buf| {
+        buf.extend_from_slice(&k.row_idx[k.col_ptr[j]..k.col_ptr[j + 1]]);
+        if let Some(list) = adj.get(&node_of[j]) {
+            for &m in list {
+                buf.extend(dofs.node_dofs(m));
+            }
+        }
+    });
+    for j in 0..k.n {
+        for q in k.col_ptr[j]..k.col_ptr[j + 1] {
+            out.add(k.row_idx[q], j, k.values[q]);
+        }
+    }
+    out
+}
+
+/// Diagonal of the bounding box of a set of points (0 for none).
+fn bounding_diagonal<'a>(points: impl Iterator<Item = &'a [f64; 3]>) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for x in points {
+        for c in 0..3 {
+            lo[c] = lo[c].min(x[c]);
+            hi[c] = hi[c].max(x[c]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return 0.0;
+    }
+    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
+}

@@ -1,0 +1,247 @@
+//! What a run starts from: the checked [`RunInput`], the Young's-modulus factors `alpha_s`, the
+//! interface point data with the run's `mu(x)` and `g0(x)`, the constant part of every
+//! right-hand side (prescribed-displacement terms plus the loads times the run's load factors
+//! `/ alpha_s`), and the initial local-stage state
+//! `(W_hat, F_hat)`: the caller's, the nearest stored run's (multiresolution, thesis 5.1.3) or
+//! zero.
+
+use super::{InterfaceState, LatinSolver, Run, RunInput, SubState};
+use crate::coarse::macro_inverse;
+use crate::{LatinError, PointData, PointStatus, RunTimings};
+
+impl LatinSolver {
+    fn check_input(&self, input: &RunInput) -> Result<(), LatinError> {
+        let ns = self.subs.len();
+        if !input.young_factors.is_empty() && input.young_factors.len() != ns {
+            return Err(LatinError::Invalid(format!(
+                "{} Young's-modulus factors given for {ns} substructures",
+                input.young_factors.len()
+            )));
+        }
+        if let Some((s, a)) = input
+            .young_factors
+            .iter()
+            .enumerate()
+            .find(|(_, a)| !(a.is_finite() && **a > 0.0))
+        {
+            return Err(LatinError::Invalid(format!(
+                "Young's-modulus factor of substructure '{}' must be > 0, got {a}",
+                self.subs[s].name
+            )));
+        }
+        if !input.load_factors.is_empty() {
+            if input.load_factors.len() != ns {
+                return Err(LatinError::Invalid(format!(
+                    "load factors given for {} substructures, there are {ns}",
+                    input.load_factors.len()
+                )));
+            }
+            for (s, lf) in input.load_factors.iter().enumerate() {
+                if lf.len() != self.subs[s].r_ext.len() || lf.iter().any(|v| !v.is_finite()) {
+                    return Err(LatinError::Invalid(format!(
+                        "substructure '{}': {} finite load factors expected, got {:?}",
+                        self.subs[s].name,
+                        self.subs[s].r_ext.len(),
+                        lf
+                    )));
+                }
+            }
+        }
+        for (name, v) in [("mu", &input.mu), ("gap", &input.gap)] {
+            if !v.is_empty() && v.len() != self.ifaces.len() {
+                return Err(LatinError::Invalid(format!(
+                    "{name} fields given for {} interfaces, there are {}",
+                    v.len(),
+                    self.ifaces.len()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks `input` and sets up the working state of its run (before the first iteration).
+    pub(super) fn start<'a>(&self, input: &'a RunInput) -> Result<Run<'a>, LatinError> {
+        self.check_input(input)?;
+        let alpha: Vec<f64> = if input.young_factors.is_empty() {
+            vec![1.0; self.subs.len()]
+        } else {
+            input.young_factors.clone()
+        };
+        let points = self.run_points(input)?;
+        let base = self.constant_rhs(input, &alpha);
+        let (istate, warm) = self.initial_state(input)?;
+        let macro_inv = self
+            .coarse
+            .as_ref()
+            .map(|cs| macro_inverse(cs.n, &cs.subs, &alpha));
+        Ok(Run {
+            input,
+            alpha,
+            points,
+            base,
+            warm,
+            istate,
+            sstate: self.sub_states(),
+            macro_inv,
+            residuals: Vec::new(),
+            timings: RunTimings::default(),
+        })
+    }
+
+    /// Interface point data for this run: the run's (or the set-up's) `mu(x)` and `g0(x)`, plus
+    /// the geometric gap of mortar points.
+    fn run_points(&self, input: &RunInput) -> Result<Vec<Vec<PointData>>, LatinError> {
+        let mut points: Vec<Vec<PointData>> = Vec::with_capacity(self.ifaces.len());
+        for (i, op) in self.ifaces.iter().enumerate() {
+            let mu = input
+                .mu
+                .get(i)
+                .cloned()
+                .flatten()
+                .unwrap_or_else(|| op.mu.clone());
+            let gap = input
+                .gap
+                .get(i)
+                .cloned()
+                .flatten()
+                .unwrap_or_else(|| op.gap.clone());
+            let mut pts = op.points.clone();
+            for (p, g) in pts.iter_mut().zip(&op.pairing.geometric_gap) {
+                p.mu = mu(p.x);
+                p.gap = gap(p.x) + g;
+                if !(p.mu.is_finite() && p.mu >= 0.0) {
+                    return Err(LatinError::Invalid(format!(
+                        "interface '{}': friction coefficient must be finite and >= 0, got {} at ({}, {}, {})",
+                        op.name, p.mu, p.x[0], p.x[1], p.x[2]
+                    )));
+                }
+                if !p.gap.is_finite() {
+                    return Err(LatinError::Invalid(format!(
+                        "interface '{}': gap is not finite at ({}, {}, {})",
+                        op.name, p.x[0], p.x[1], p.x[2]
+                    )));
+                }
+            }
+            points.push(pts);
+        }
+        Ok(points)
+    }
+
+    /// Constant part of each right-hand side: `(r_presc + sum_j lf_j r_ext_j / alpha)`.
+    fn constant_rhs(&self, input: &RunInput, alpha: &[f64]) -> Vec<Vec<f64>> {
+        self.subs
+            .iter()
+            .enumerate()
+            .map(|(s, op)| {
+                let mut r = op.r_presc.clone();
+                for (j, rj) in op.r_ext.iter().enumerate() {
+                    let lf = input.load_factors.get(s).map_or(1.0, |v| v[j]);
+                    for (a, b) in r.iter_mut().zip(rj) {
+                        *a += lf * b / alpha[s];
+                    }
+                }
+                r
+            })
+            .collect()
+    }
+
+    /// Initial local-stage state: the caller's, the nearest stored run (returned with its
+    /// index), or zero.
+    fn initial_state(
+        &self,
+        input: &RunInput,
+    ) -> Result<(Vec<InterfaceState>, Option<usize>), LatinError> {
+        let mut warm = None;
+        let mut istate: Vec<InterfaceState> = self
+            .ifaces
+            .iter()
+            .map(|op| {
+                let n = op.points.len();
+                InterfaceState {
+                    what: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    fhat: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    what_prev: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    what_last: [vec![[0.0; 3]; n], vec![[0.0; 3]; n]],
+                    status: vec![PointStatus::Open; n],
+                }
+            })
+            .collect();
+        if let Some(init) = &input.initial {
+            if init.what.len() != istate.len()
+                || init
+                    .what
+                    .iter()
+                    .zip(&istate)
+                    .any(|(w, st)| w[0].len() != st.what[0].len())
+            {
+                return Err(LatinError::Invalid(
+                    "initial local-stage state does not match the interfaces".into(),
+                ));
+            }
+            for (i, st) in istate.iter_mut().enumerate() {
+                st.what = init.what[i].clone();
+                st.what_last = init.what[i].clone();
+                st.fhat = init.fhat[i].clone();
+            }
+        } else if !input.params.is_empty() {
+            let store = self
+                .store
+                .lock()
+                .map_err(|_| LatinError::Invalid("warm-start store poisoned".into()))?;
+            let best = store
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| r.params.len() == input.params.len())
+                .map(|(k, r)| {
+                    let d: f64 = r
+                        .params
+                        .iter()
+                        .zip(&input.params)
+                        .map(|(a, b)| (a - b) * (a - b))
+                        .sum();
+                    (d, k)
+                })
+                .min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((_, k)) = best {
+                warm = Some(k);
+                for (i, st) in istate.iter_mut().enumerate() {
+                    st.what = store[k].what[i].clone();
+                    st.what_last = store[k].what[i].clone();
+                    st.fhat = store[k].fhat[i].clone();
+                }
+            }
+        }
+        Ok((istate, warm))
+    }
+
+    /// Zeroed linear-stage state and solve scratch of every substructure.
+    fn sub_states(&self) -> Vec<SubState> {
+        self.subs
+            .iter()
+            .map(|op| SubState {
+                rhs: vec![0.0; op.dofs.num_free()],
+                scratch: op.chol.solve_scratch(1),
+                w: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
+                    .collect(),
+                f: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
+                    .collect(),
+                w_new: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
+                    .collect(),
+                f_new: op
+                    .links
+                    .iter()
+                    .map(|l| vec![[0.0; 3]; l.proj.len()])
+                    .collect(),
+            })
+            .collect()
+    }
+}
