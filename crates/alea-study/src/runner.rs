@@ -14,7 +14,7 @@
 //!
 //! A batch's runs are independent of each other, so a [`BatchExecutor`] may solve them
 //! anywhere: [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
-//! `crate::distributed`) on other ranks. Each finished run is committed to the [`Store`] at
+//! the `distributed` module) on other ranks. Each finished run is committed to the [`Store`] at
 //! once, by this process only; `run_study` on a directory that already holds runs skips them (a
 //! resume) and loads their local-stage states for the warm starts.
 
@@ -26,45 +26,14 @@ use std::time::Instant;
 use alea_latin::{LatinSolver, LocalState, RunStatus};
 use rayon::prelude::*;
 
+use crate::StudyError;
 use crate::cre::CreSetup;
 use crate::lock::StudyLock;
-use crate::method::{Method, MethodKind, build_methods};
-use crate::qoi::{Qoi, build_qois};
+use crate::method::{Method, MethodKind};
 use crate::spatial::KdTree;
 use crate::spatial::nn_order;
-use crate::spec::{ModelFile, OutputSpec};
 use crate::store::{RunRecord, Store, point_key, run_file_stem};
-use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
-
-/// A loaded, validated study.
-pub struct Study {
-    /// The study file.
-    pub source: Source,
-    /// Its parsed content.
-    pub file: ModelFile,
-    /// Random parameters.
-    pub params: ParamSpace,
-    /// The mechanical model.
-    pub model: BuiltModel,
-    /// Quantities of interest.
-    pub qois: Vec<Qoi>,
-    /// Methods (the first is the study's answer).
-    pub methods: Vec<Method>,
-    /// Seed of all random draws.
-    pub seed: u64,
-    /// Hash of the study's inputs (its file's text and its mesh file).
-    pub hash: String,
-    /// Outputs.
-    pub output: OutputSpec,
-}
-
-impl std::fmt::Debug for Study {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Study")
-            .field("file", &self.source.path)
-            .finish()
-    }
-}
+pub use crate::study::{Study, estimates_error};
 
 /// Observer of a running study (progress bars live in the binary).
 pub trait Progress: Sync {
@@ -83,159 +52,6 @@ pub trait Progress: Sync {
 /// A progress observer that does nothing.
 pub struct NoProgress;
 impl Progress for NoProgress {}
-
-impl Study {
-    /// Loads and checks a study from its source text.
-    pub fn from_source(source: Source) -> Result<Self, StudyError> {
-        let file: ModelFile = source.parse()?;
-        let params = build_params(&source, &file)?;
-        if params.names.is_empty()
-            && let Some(m) = file.method.first()
-        {
-            return Err(source.error(m.kind.span(), "method[0].type", "methods need random parameters: without [[parameter]], leave out [[method]] (the study is then one deterministic run)"));
-        }
-        if file.quantity.is_empty() {
-            return Err(source.error(0..0, "quantity", "a study needs at least one [[quantity]]"));
-        }
-        if file.method.is_empty() && !params.names.is_empty() {
-            return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
-        }
-        crate::limits::check_study_file(&source, &file, params.names.len())?;
-        let model = build_model(&source, &file, &params)?;
-        let qois = build_qois(&source, &file.quantity, &model)?;
-        let seed = file.study.seed.unwrap_or(1);
-        let methods = if params.names.is_empty() {
-            vec![crate::method::Method::deterministic()]
-        } else {
-            build_methods(&source, &file.method, &params, seed)?
-        };
-        let hash = crate::build::input_hash(&source, &file)?;
-        let output = file.output.clone();
-        let study = Study {
-            source,
-            file,
-            params,
-            model,
-            qois,
-            methods,
-            seed,
-            hash,
-            output,
-        };
-        crate::limits::check_built(&study)?;
-        Ok(study)
-    }
-
-    /// Loads a study file.
-    pub fn load(path: &Path) -> Result<Self, StudyError> {
-        Self::from_source(Source::read(path)?)
-    }
-
-    /// The title (from `[study]`, else the file name).
-    pub fn title(&self) -> String {
-        self.file.study.title.clone().unwrap_or_else(|| {
-            self.source
-                .path
-                .file_stem()
-                .map_or("study".into(), |s| s.to_string_lossy().into_owned())
-        })
-    }
-
-    /// Every distinct design point, in method order.
-    pub fn all_points(&self) -> Vec<Vec<f64>> {
-        let mut seen = std::collections::HashSet::new();
-        let mut out = Vec::new();
-        for m in &self.methods {
-            for p in &m.points {
-                if seen.insert(point_key(p)) {
-                    out.push(p.clone());
-                }
-            }
-        }
-        out
-    }
-
-    /// A point scaled to the unit cube of the parameter box.
-    pub fn normalise(&self, p: &[f64]) -> Vec<f64> {
-        p.iter()
-            .enumerate()
-            .map(|(j, v)| (v - self.params.lo[j]) / (self.params.hi[j] - self.params.lo[j]))
-            .collect()
-    }
-
-    /// Checks the parameter-dependent model data at a design point (Young's moduli > 0, finite
-    /// load factors, mu >= 0 and finite gaps at every interface point): errors name the field.
-    fn check_point(&self, solver: &LatinSolver, theta: &[f64]) -> Result<(), StudyError> {
-        let src = &self.source;
-        let at = || {
-            self.params
-                .names
-                .iter()
-                .zip(theta)
-                .map(|(n, v)| format!("{n} = {v}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let par = &self.model.parametric;
-        for (s, e) in par.young.iter().enumerate() {
-            let v = e.eval(theta);
-            if !(v.is_finite() && v > 0.0) {
-                let sp = &self.file.substructure[s].young;
-                return Err(src.error(
-                    sp.span(),
-                    format!("substructure[{s}].young"),
-                    format!("evaluates to {v} at {}; must be > 0", at()),
-                ));
-            }
-        }
-        for (s, fs) in par.load_factors.iter().enumerate() {
-            for (j, e) in fs.iter().enumerate() {
-                let v = e.eval(theta);
-                if !v.is_finite() {
-                    let sp = self.file.substructure[s].load[j]
-                        .factor
-                        .as_ref()
-                        .map_or(0..0, |f| f.span());
-                    return Err(src.error(
-                        sp,
-                        format!("substructure[{s}].load[{j}].factor"),
-                        format!("evaluates to {v} at {}", at()),
-                    ));
-                }
-            }
-        }
-        let input = par.run_input(theta, vec![]);
-        for i in 0..solver.num_interfaces() {
-            for p in solver.interface_points(i) {
-                let mu = input.mu[i].as_ref().map_or(p.mu, |f| f(p.x));
-                let gap = input.gap[i].as_ref().map_or(p.gap, |f| f(p.x));
-                let spec = &self.file.interface[i];
-                if !(mu.is_finite() && mu >= 0.0) {
-                    let sp = spec.mu.as_ref().map_or(spec.name.span(), |m| m.span());
-                    return Err(src.error(sp, format!("interface[{i}].mu"), format!(
-                        "friction coefficient {mu} at ({:.4}, {:.4}, {:.4}) for {}; must be finite and >= 0",
-                        p.x[0], p.x[1], p.x[2], at()
-                    )));
-                }
-                if !gap.is_finite() {
-                    let sp = spec.gap.as_ref().map_or(spec.name.span(), |m| m.span());
-                    return Err(src.error(
-                        sp,
-                        format!("interface[{i}].gap"),
-                        format!(
-                            "gap {gap} at ({:.4}, {:.4}, {:.4}) for {}",
-                            p.x[0],
-                            p.x[1],
-                            p.x[2],
-                            at()
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
-    }
-}
 
 /// The batches of the fixed schedule: indices into the ordered points.
 fn schedule(n: usize) -> Vec<std::ops::Range<usize>> {
@@ -657,18 +473,34 @@ impl<'a> Runner<'a> {
     }
 }
 
-/// True if the study estimates its error: an `[error]` table (not disabled) or an adaptive
-/// method.
-pub fn estimates_error(study: &Study) -> bool {
-    study
-        .file
-        .error
-        .as_ref()
-        .is_some_and(|e| e.enabled.unwrap_or(true))
-        || study
-            .methods
-            .iter()
-            .any(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+impl<'a> crate::adaptive::AdaptiveRuns<'a> for Runner<'a> {
+    fn study(&self) -> &'a Study {
+        self.study
+    }
+    fn cre(&self) -> Option<Arc<CreSetup>> {
+        self.cre.clone()
+    }
+    fn solver(&self) -> &LatinSolver {
+        &self.solver
+    }
+    fn by_key(&self) -> &HashMap<String, RunRecord> {
+        &self.by_key
+    }
+    fn solve_seconds(&self) -> f64 {
+        self.solve_seconds
+    }
+    fn estimate_seconds(&self) -> f64 {
+        self.estimate_seconds
+    }
+    fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError> {
+        Runner::run_points(self, points)
+    }
+    fn store(&self) -> Result<std::sync::MutexGuard<'_, Store>, StudyError> {
+        Runner::store(self)
+    }
+    fn announce(&self, more: usize) {
+        Runner::announce(self, more);
+    }
 }
 
 /// Runs (or resumes) every design point of `study` in the study directory `dir`, then the
