@@ -19,6 +19,7 @@ pub mod method;
 mod params;
 pub mod qoi;
 pub mod reopen;
+pub mod run;
 pub mod runner;
 mod source;
 mod spatial;
