@@ -35,8 +35,9 @@ use alea_uq::surrogate::StochasticMesh;
 use crate::StudyError;
 use crate::analysis::{AnalysisSettings, analyse_method};
 use crate::cre::{CreSetup, StudyParameters};
-use crate::estimate::{ErrorSettings, MethodError, error_settings, estimate_method};
+use crate::estimate::{ErrorSettings, error_settings, estimate_method};
 use crate::method::{AdaptiveSettings, Criterion, Method};
+pub use crate::runs::{AdaptiveOutcome, StepQoi, StepRecord};
 use crate::store::{RunRecord, Store, point_key};
 use crate::study::Study;
 
@@ -61,53 +62,6 @@ pub(crate) trait AdaptiveRuns<'a> {
     fn store(&self) -> Result<MutexGuard<'_, Store>, StudyError>;
     /// Tells the progress observer about runs added by an adaptive step.
     fn announce(&self, more: usize);
-}
-
-/// Statistics of one quantity of interest at one step.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StepQoi {
-    /// Mean.
-    pub mean: f64,
-    /// Standard deviation.
-    pub std: f64,
-    /// `P(q > threshold)` for each threshold of the quantity.
-    pub failure: Vec<f64>,
-}
-
-/// One step of the loop.
-#[derive(Clone, Debug)]
-pub struct StepRecord {
-    /// Runs of the surrogate at this step.
-    pub runs: usize,
-    /// Runs added by the refinement that ended this step (0 for the last step).
-    pub new_runs: usize,
-    /// The estimate.
-    pub error: MethodError,
-    /// Statistics of each quantity of interest on this step's surrogate.
-    pub qois: Vec<StepQoi>,
-    /// Seconds of this step's solves (wall clock).
-    pub solve_seconds: f64,
-    /// Seconds of this step's estimate (per-run CRE of its new runs + stochastic estimate).
-    pub estimate_seconds: f64,
-    /// Cumulative cost in the thesis's units: runs + 1.5 x estimates.
-    pub thesis_cost: f64,
-}
-
-/// The outcome of one adaptive method.
-#[derive(Clone, Debug)]
-pub struct AdaptiveOutcome {
-    /// Index of the method in the study.
-    pub method: usize,
-    /// The final stochastic mesh (its runs are the method's runs).
-    pub mesh: StochasticMesh,
-    /// Every step, in order.
-    pub steps: Vec<StepRecord>,
-    /// Why the loop stopped.
-    pub stop: String,
-    /// Set when the loop could not go on (a run that did not converge).
-    pub error: Option<String>,
-    /// The estimator of the last step (for maps and element fields).
-    pub estimator: Option<alea_estimate::Estimator>,
 }
 
 /// The start mesh: the parameter box with its corners and centre as runs.

@@ -30,7 +30,7 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::method::MethodKind;
-use crate::runner::StudyRuns;
+use crate::runs::StudyRuns;
 use crate::store::{Store, point_key, read_values};
 use crate::study::Study;
 

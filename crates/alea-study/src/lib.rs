@@ -21,6 +21,7 @@ pub mod qoi;
 pub mod reopen;
 pub mod run;
 pub mod runner;
+pub mod runs;
 mod source;
 mod spatial;
 pub mod spec;

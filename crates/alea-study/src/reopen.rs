@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use crate::lock::StudyLock;
-use crate::runner::StudyRuns;
+use crate::runs::StudyRuns;
 use crate::store::Store;
 use crate::study::Study;
 use crate::{Source, StudyError};

@@ -29,11 +29,12 @@ use rayon::prelude::*;
 use crate::StudyError;
 use crate::cre::CreSetup;
 use crate::lock::StudyLock;
-use crate::method::{Method, MethodKind};
+use crate::method::MethodKind;
 use crate::run::executor;
 pub use crate::run::{
     BatchExecutor, LocalExecutor, RunContext, RunJob, RunOutcome, RunSetup, install_executor,
 };
+pub use crate::runs::StudyRuns;
 use crate::spatial::KdTree;
 use crate::spatial::nn_order;
 use crate::store::{RunRecord, Store, point_key};
@@ -94,35 +95,6 @@ pub fn warm_start_plan(study: &Study, points: &[Vec<f64>]) -> Vec<(usize, Option
         }
     }
     plan
-}
-
-/// What [`run_study`] returns.
-pub struct StudyRuns {
-    /// Every run's record: the fixed designs' points in [`Study::all_points`] order, then the
-    /// runs of the adaptive methods in the order they were chosen.
-    pub records: Vec<RunRecord>,
-    /// Runs computed by this invocation.
-    pub computed: usize,
-    /// Runs found in the store.
-    pub resumed: usize,
-    /// Solver set-up seconds.
-    pub setup_seconds: f64,
-    /// Wall-clock seconds of the solves of this invocation.
-    pub solve_seconds: f64,
-    /// Wall-clock seconds of the runs' deterministic error estimates of this invocation
-    /// (included in `solve_seconds`).
-    pub estimate_seconds: f64,
-    /// The solver (for field output and further runs).
-    pub solver: Arc<LatinSolver>,
-    /// The study's methods as they ended: adaptive methods with their stochastic mesh and runs.
-    pub methods: Vec<Method>,
-    /// The adaptive loops, one per adaptive method (in method order).
-    pub adaptive: Vec<crate::adaptive::AdaptiveOutcome>,
-    /// Error estimation set-up, when the study estimates its error.
-    pub cre: Option<Arc<CreSetup>>,
-    /// The study directory's lock, held as long as these runs are (outputs are written under
-    /// it).
-    pub lock: StudyLock,
 }
 
 /// Runs the deterministic solves of a study and keeps the state they share: the solver, the
