@@ -25,62 +25,43 @@
 //! and recomputes no run. Cost in the thesis's units (tables 4.3-4.4): a run counts 1, an
 //! estimate 1.5.
 
+use std::collections::HashMap;
+use std::sync::{Arc, MutexGuard};
+
 use alea_estimate::refine;
+use alea_latin::LatinSolver;
 use alea_uq::surrogate::StochasticMesh;
 
 use crate::StudyError;
 use crate::analysis::{AnalysisSettings, analyse_method};
-use crate::cre::StudyParameters;
-use crate::estimate::{ErrorSettings, MethodError, error_settings, estimate_method};
+use crate::cre::{CreSetup, StudyParameters};
+use crate::estimate::{ErrorSettings, error_settings, estimate_method};
 use crate::method::{AdaptiveSettings, Criterion, Method};
-use crate::runner::Runner;
-use crate::store::point_key;
+pub use crate::runs::{AdaptiveOutcome, StepQoi, StepRecord};
+use crate::store::{RunRecord, Store, point_key};
+use crate::study::Study;
 
-/// Statistics of one quantity of interest at one step.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StepQoi {
-    /// Mean.
-    pub mean: f64,
-    /// Standard deviation.
-    pub std: f64,
-    /// `P(q > threshold)` for each threshold of the quantity.
-    pub failure: Vec<f64>,
-}
-
-/// One step of the loop.
-#[derive(Clone, Debug)]
-pub struct StepRecord {
-    /// Runs of the surrogate at this step.
-    pub runs: usize,
-    /// Runs added by the refinement that ended this step (0 for the last step).
-    pub new_runs: usize,
-    /// The estimate.
-    pub error: MethodError,
-    /// Statistics of each quantity of interest on this step's surrogate.
-    pub qois: Vec<StepQoi>,
-    /// Seconds of this step's solves (wall clock).
-    pub solve_seconds: f64,
-    /// Seconds of this step's estimate (per-run CRE of its new runs + stochastic estimate).
-    pub estimate_seconds: f64,
-    /// Cumulative cost in the thesis's units: runs + 1.5 x estimates.
-    pub thesis_cost: f64,
-}
-
-/// The outcome of one adaptive method.
-#[derive(Clone, Debug)]
-pub struct AdaptiveOutcome {
-    /// Index of the method in the study.
-    pub method: usize,
-    /// The final stochastic mesh (its runs are the method's runs).
-    pub mesh: StochasticMesh,
-    /// Every step, in order.
-    pub steps: Vec<StepRecord>,
-    /// Why the loop stopped.
-    pub stop: String,
-    /// Set when the loop could not go on (a run that did not converge).
-    pub error: Option<String>,
-    /// The estimator of the last step (for maps and element fields).
-    pub estimator: Option<alea_estimate::Estimator>,
+/// What the adaptive loop needs from the runner of a study's solves (the runner implements it
+/// and calls [`run_adaptive`]; the loop depends on this trait, never on the runner).
+pub(crate) trait AdaptiveRuns<'a> {
+    /// The study.
+    fn study(&self) -> &'a Study;
+    /// Error estimation set-up, when the study estimates its error.
+    fn cre(&self) -> Option<Arc<CreSetup>>;
+    /// The solver.
+    fn solver(&self) -> &LatinSolver;
+    /// The finished runs by point key.
+    fn by_key(&self) -> &HashMap<String, RunRecord>;
+    /// Wall-clock seconds of the solves so far.
+    fn solve_seconds(&self) -> f64;
+    /// Wall-clock seconds of the runs' error estimates so far.
+    fn estimate_seconds(&self) -> f64;
+    /// Runs (or finds in the store) every point of `points` not finished yet.
+    fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError>;
+    /// The store (locked).
+    fn store(&self) -> Result<MutexGuard<'_, Store>, StudyError>;
+    /// Tells the progress observer about runs added by an adaptive step.
+    fn announce(&self, more: usize);
 }
 
 /// The start mesh: the parameter box with its corners and centre as runs.
@@ -92,15 +73,14 @@ pub fn start_mesh(lo: &[f64], hi: &[f64]) -> Result<StochasticMesh, StudyError> 
 }
 
 /// Runs the adaptive loop of method `m`.
-pub(crate) fn run_adaptive(
-    runner: &mut Runner<'_>,
+pub(crate) fn run_adaptive<'a>(
+    runner: &mut impl AdaptiveRuns<'a>,
     m: usize,
     settings: &AdaptiveSettings,
 ) -> Result<AdaptiveOutcome, StudyError> {
-    let study = runner.study;
+    let study = runner.study();
     let setup = runner
-        .cre
-        .clone()
+        .cre()
         .ok_or_else(|| StudyError::Other("adaptive method without error estimation".into()))?;
     let err_settings: ErrorSettings = error_settings(study)?;
     let stats: AnalysisSettings = crate::analysis::analysis_settings(study)?;
@@ -113,17 +93,17 @@ pub(crate) fn run_adaptive(
         let points: Vec<Vec<f64>> = (0..mesh.num_runs())
             .map(|r| mesh.run_point(r).to_vec())
             .collect();
-        let (solve0, est0) = (runner.solve_seconds, runner.estimate_seconds);
+        let (solve0, est0) = (runner.solve_seconds(), runner.estimate_seconds());
         runner.run_points(&points)?;
-        let solve_seconds = runner.solve_seconds - solve0;
+        let solve_seconds = runner.solve_seconds() - solve0;
         if let Some(p) = points.iter().find(|p| {
             runner
-                .by_key
+                .by_key()
                 .get(&point_key(p))
                 .is_none_or(|r| !r.converged())
         }) {
             let status = runner
-                .by_key
+                .by_key()
                 .get(&point_key(p))
                 .map_or("missing".to_string(), |r| r.status.clone());
             break (
@@ -144,7 +124,7 @@ pub(crate) fn run_adaptive(
             estimate_method(
                 study,
                 &setup,
-                &runner.solver,
+                runner.solver(),
                 &store,
                 &method,
                 &points,
@@ -155,7 +135,7 @@ pub(crate) fn run_adaptive(
         estimates += 1;
         let records: Vec<_> = points
             .iter()
-            .filter_map(|p| runner.by_key.get(&point_key(p)).cloned())
+            .filter_map(|p| runner.by_key().get(&point_key(p)).cloned())
             .collect();
         let analysis = analyse_method(study, &method, &records, &stats);
         let qois = analysis
@@ -168,7 +148,7 @@ pub(crate) fn run_adaptive(
             })
             .collect();
         let (i_sto, i_geo) = (merr.estimate.i_sto(), merr.estimate.i_geo());
-        let estimate_seconds = runner.estimate_seconds - est0 + merr.seconds;
+        let estimate_seconds = runner.estimate_seconds() - est0 + merr.seconds;
         let runs = mesh.num_runs();
         let thesis_cost = runs as f64 + 1.5 * estimates as f64;
         let previous_geo = steps.last().map(|s| s.error.estimate.i_geo());
@@ -205,7 +185,7 @@ pub(crate) fn run_adaptive(
                 if marked.is_empty() {
                     break ("no cell carries stochastic error".to_string(), None);
                 }
-                let sp = StudyParameters::new(&study.model.parametric, &runner.solver);
+                let sp = StudyParameters::new(&study.model.parametric, runner.solver());
                 let (mut actions, _) = refine::improved_actions(
                     &mesh,
                     &marked,
@@ -259,7 +239,7 @@ pub(crate) fn run_adaptive(
                 mesh.num_runs() - before
             }
             Criterion::MaxError { depth } => {
-                let sp = StudyParameters::new(&study.model.parametric, &runner.solver);
+                let sp = StudyParameters::new(&study.model.parametric, runner.solver());
                 let best =
                     refine::max_error_point(&mesh, &est, &sur, &sp, params.joint.as_ref(), depth)
                         .map_err(|e| StudyError::Other(e.to_string()))?;

@@ -13,8 +13,8 @@ use serde::Serialize;
 
 use crate::StudyError;
 use crate::method::{Method, MethodKind};
-use crate::runner::Study;
 use crate::store::{RunRecord, point_key};
+use crate::study::Study;
 
 /// `P(q > threshold)`.
 #[derive(Clone, Debug, Serialize)]

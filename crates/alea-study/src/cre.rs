@@ -26,8 +26,8 @@ use alea_cre::{AffineBody, CreOptions, EnergySampler, FeEnergySampler, LatinEsti
 use alea_estimate::{InterfaceKind, InterfaceLayout, Layout, Parameters, SubLayout};
 use alea_latin::{LatinSolver, RunResult};
 
-use crate::runner::Study;
 use crate::spec::LoadSpec;
+use crate::study::Study;
 use crate::{Parametric, StudyError};
 
 /// One load case of a substructure as the estimator needs it.

@@ -29,8 +29,8 @@ use alea_latin::LatinSolver;
 use crate::StudyError;
 use crate::cre::{CreRecord, CreSetup, StudyParameters};
 use crate::method::{Method, Surrogate};
-use crate::runner::Study;
 use crate::store::Store;
+use crate::study::Study;
 
 /// Settings of the `[error]` table.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -30,8 +30,9 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::method::MethodKind;
-use crate::runner::{Study, StudyRuns};
+use crate::runs::StudyRuns;
 use crate::store::{Store, point_key, read_values};
+use crate::study::Study;
 
 /// Mean and standard deviation of the fields of one substructure (node-major, like the
 /// solver's displacements).

@@ -6,7 +6,6 @@
 pub mod adaptive;
 pub mod analysis;
 mod build;
-mod checks;
 pub mod cre;
 #[cfg(feature = "mpi")]
 pub mod distributed;
@@ -20,11 +19,14 @@ pub mod method;
 mod params;
 pub mod qoi;
 pub mod reopen;
+pub mod run;
 pub mod runner;
+pub mod runs;
 mod source;
 mod spatial;
 pub mod spec;
 pub mod store;
+pub mod study;
 
 pub use build::{BuiltModel, InterfaceSite, Parametric, build_mesh, build_model};
 pub use error::StudyError;

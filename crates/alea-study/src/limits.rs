@@ -419,34 +419,6 @@ pub fn check_total_runs(runs: usize) -> Result<(), StudyError> {
     Ok(())
 }
 
-/// Checks the sizes of a built study: distinct runs, and the memory of the mean / std fields.
-///
-/// # Errors
-/// [`StudyError::TooLarge`] with the estimate.
-pub fn check_built(study: &crate::runner::Study) -> Result<(), StudyError> {
-    check_total_runs(study.all_points().len())?;
-    if study.output.mean_fields.unwrap_or(true)
-        && let Some(m) = study
-            .methods
-            .iter()
-            .find(|m| m.kind != crate::method::MethodKind::MonteCarlo)
-    {
-        let need = mean_fields_memory(m.points.len());
-        let have = available_memory() as f64 / 2.0;
-        if need > have {
-            return Err(StudyError::TooLarge(format!(
-                "the mean / std fields of method '{}' on {} runs would need about {} of memory ({} usable); \
-                 set mean_fields = false in [output]",
-                m.label,
-                m.points.len(),
-                human_bytes(need),
-                human_bytes(have)
-            )));
-        }
-    }
-    Ok(())
-}
-
 /// Memory (bytes) of the weight moments of the mean / std fields for `runs` surrogate runs
 /// (`fields.rs`: 16 blocks of draws at a time, each with a `runs x runs` matrix).
 pub fn mean_fields_memory(runs: usize) -> f64 {
@@ -484,44 +456,6 @@ mod tests {
     fn byte_counts_read_well() {
         assert_eq!(human_bytes(512.0), "512 bytes");
         assert_eq!(human_bytes(1.6e10), "16.0 GB");
-    }
-
-    #[test]
-    fn node_estimates_match_the_generated_meshes() {
-        #[derive(serde::Deserialize)]
-        struct F {
-            mesh: MeshSpec,
-        }
-        let cases = [
-            "generator = \"rectangle\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
-            "generator = \"rectangle\"\nkind = \"quad8\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
-            "generator = \"rectangle\"\nkind = \"tri6\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
-            "generator = \"box\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
-            "generator = \"box\"\nkind = \"tet10\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
-            "generator = \"plate_with_hole\"\nparams = { radius = 1.0, half_width = 5.0 }",
-            "generator = \"annulus_sector\"\nparams = { r_in = 1.0, r_out = 2.0, angle_deg = 90.0, n_theta = 20 }",
-            "generator = \"dovetail\"",
-            "generator = \"dovetail\"\nparams = { n_flank = 30, n_below = 2 }",
-            "generator = \"blade_root_simple\"",
-            "generator = \"stacked_blocks\"",
-            "generator = \"stacked_blocks\"\nkind = \"hex8\"\nparams = { n_z = 3 }",
-            "generator = \"concentric_rings\"",
-            "generator = \"turbine_2d\"\nparams = { n_flank = 6, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 4 }",
-            "generator = \"turbine_3d\"\nparams = { n_flank = 6, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 4, n_z = 3 }",
-            "generator = \"cylinder_on_block\"\nparams = { n = 12, m = 9, half = false }",
-        ];
-        for text in cases {
-            let f: F = toml::from_str(&format!("[mesh]\n{text}\n")).unwrap();
-            let src = Source::from_text("t.toml", text);
-            let mesh = crate::build_mesh(&src, &f.mesh).unwrap();
-            let (nodes, ..) = mesh_estimate(&f.mesh).unwrap();
-            let ratio = nodes / mesh.num_nodes() as f64;
-            assert!(
-                (0.5..=2.0).contains(&ratio),
-                "{text}: estimate {nodes}, mesh {}",
-                mesh.num_nodes()
-            );
-        }
     }
 
     #[test]

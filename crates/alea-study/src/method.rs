@@ -4,7 +4,7 @@
 //! standard (monomial) polynomial by least squares on a grid; piecewise multilinear
 //! interpolation on a regular stochastic mesh; piecewise multilinear interpolation on an
 //! **adaptive** stochastic mesh that chooses its own runs with the stochastic error estimate
-//! (thesis 4.2; the loop is in [`crate::adaptive`]); or plain Monte Carlo on the model.
+//! (thesis 4.2; the loop is in the `adaptive` module); or plain Monte Carlo on the model.
 
 use alea_uq::basis::PcBasis;
 use alea_uq::design::{self, Design};

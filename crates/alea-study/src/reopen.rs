@@ -10,8 +10,9 @@
 use std::path::Path;
 
 use crate::lock::StudyLock;
-use crate::runner::{Study, StudyRuns};
+use crate::runs::StudyRuns;
 use crate::store::Store;
+use crate::study::Study;
 use crate::{Source, StudyError};
 
 /// A reopened study directory.

@@ -14,7 +14,7 @@
 //!
 //! A batch's runs are independent of each other, so a [`BatchExecutor`] may solve them
 //! anywhere: [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
-//! `crate::distributed`) on other ranks. Each finished run is committed to the [`Store`] at
+//! the `distributed` module) on other ranks. Each finished run is committed to the [`Store`] at
 //! once, by this process only; `run_study` on a directory that already holds runs skips them (a
 //! resume) and loads their local-stage states for the warm starts.
 
@@ -23,48 +23,22 @@ use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use alea_latin::{LatinSolver, LocalState, RunStatus};
+use alea_latin::{LatinSolver, LocalState};
 use rayon::prelude::*;
 
+use crate::StudyError;
 use crate::cre::CreSetup;
 use crate::lock::StudyLock;
-use crate::method::{Method, MethodKind, build_methods};
-use crate::qoi::{Qoi, build_qois};
+use crate::method::MethodKind;
+use crate::run::executor;
+pub use crate::run::{
+    BatchExecutor, LocalExecutor, RunContext, RunJob, RunOutcome, RunSetup, install_executor,
+};
+pub use crate::runs::StudyRuns;
 use crate::spatial::KdTree;
 use crate::spatial::nn_order;
-use crate::spec::{ModelFile, OutputSpec};
-use crate::store::{RunRecord, Store, point_key, run_file_stem};
-use crate::{BuiltModel, ParamSpace, Source, StudyError, build_model, build_params};
-
-/// A loaded, validated study.
-pub struct Study {
-    /// The study file.
-    pub source: Source,
-    /// Its parsed content.
-    pub file: ModelFile,
-    /// Random parameters.
-    pub params: ParamSpace,
-    /// The mechanical model.
-    pub model: BuiltModel,
-    /// Quantities of interest.
-    pub qois: Vec<Qoi>,
-    /// Methods (the first is the study's answer).
-    pub methods: Vec<Method>,
-    /// Seed of all random draws.
-    pub seed: u64,
-    /// Hash of the study's inputs (its file's text and its mesh file).
-    pub hash: String,
-    /// Outputs.
-    pub output: OutputSpec,
-}
-
-impl std::fmt::Debug for Study {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Study")
-            .field("file", &self.source.path)
-            .finish()
-    }
-}
+use crate::store::{RunRecord, Store, point_key};
+pub use crate::study::{Study, estimates_error};
 
 /// Observer of a running study (progress bars live in the binary).
 pub trait Progress: Sync {
@@ -83,159 +57,6 @@ pub trait Progress: Sync {
 /// A progress observer that does nothing.
 pub struct NoProgress;
 impl Progress for NoProgress {}
-
-impl Study {
-    /// Loads and checks a study from its source text.
-    pub fn from_source(source: Source) -> Result<Self, StudyError> {
-        let file: ModelFile = source.parse()?;
-        let params = build_params(&source, &file)?;
-        if params.names.is_empty()
-            && let Some(m) = file.method.first()
-        {
-            return Err(source.error(m.kind.span(), "method[0].type", "methods need random parameters: without [[parameter]], leave out [[method]] (the study is then one deterministic run)"));
-        }
-        if file.quantity.is_empty() {
-            return Err(source.error(0..0, "quantity", "a study needs at least one [[quantity]]"));
-        }
-        if file.method.is_empty() && !params.names.is_empty() {
-            return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
-        }
-        crate::limits::check_study_file(&source, &file, params.names.len())?;
-        let model = build_model(&source, &file, &params)?;
-        let qois = build_qois(&source, &file.quantity, &model)?;
-        let seed = file.study.seed.unwrap_or(1);
-        let methods = if params.names.is_empty() {
-            vec![crate::method::Method::deterministic()]
-        } else {
-            build_methods(&source, &file.method, &params, seed)?
-        };
-        let hash = crate::build::input_hash(&source, &file)?;
-        let output = file.output.clone();
-        let study = Study {
-            source,
-            file,
-            params,
-            model,
-            qois,
-            methods,
-            seed,
-            hash,
-            output,
-        };
-        crate::limits::check_built(&study)?;
-        Ok(study)
-    }
-
-    /// Loads a study file.
-    pub fn load(path: &Path) -> Result<Self, StudyError> {
-        Self::from_source(Source::read(path)?)
-    }
-
-    /// The title (from `[study]`, else the file name).
-    pub fn title(&self) -> String {
-        self.file.study.title.clone().unwrap_or_else(|| {
-            self.source
-                .path
-                .file_stem()
-                .map_or("study".into(), |s| s.to_string_lossy().into_owned())
-        })
-    }
-
-    /// Every distinct design point, in method order.
-    pub fn all_points(&self) -> Vec<Vec<f64>> {
-        let mut seen = std::collections::HashSet::new();
-        let mut out = Vec::new();
-        for m in &self.methods {
-            for p in &m.points {
-                if seen.insert(point_key(p)) {
-                    out.push(p.clone());
-                }
-            }
-        }
-        out
-    }
-
-    /// A point scaled to the unit cube of the parameter box.
-    pub fn normalise(&self, p: &[f64]) -> Vec<f64> {
-        p.iter()
-            .enumerate()
-            .map(|(j, v)| (v - self.params.lo[j]) / (self.params.hi[j] - self.params.lo[j]))
-            .collect()
-    }
-
-    /// Checks the parameter-dependent model data at a design point (Young's moduli > 0, finite
-    /// load factors, mu >= 0 and finite gaps at every interface point): errors name the field.
-    fn check_point(&self, solver: &LatinSolver, theta: &[f64]) -> Result<(), StudyError> {
-        let src = &self.source;
-        let at = || {
-            self.params
-                .names
-                .iter()
-                .zip(theta)
-                .map(|(n, v)| format!("{n} = {v}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
-        let par = &self.model.parametric;
-        for (s, e) in par.young.iter().enumerate() {
-            let v = e.eval(theta);
-            if !(v.is_finite() && v > 0.0) {
-                let sp = &self.file.substructure[s].young;
-                return Err(src.error(
-                    sp.span(),
-                    format!("substructure[{s}].young"),
-                    format!("evaluates to {v} at {}; must be > 0", at()),
-                ));
-            }
-        }
-        for (s, fs) in par.load_factors.iter().enumerate() {
-            for (j, e) in fs.iter().enumerate() {
-                let v = e.eval(theta);
-                if !v.is_finite() {
-                    let sp = self.file.substructure[s].load[j]
-                        .factor
-                        .as_ref()
-                        .map_or(0..0, |f| f.span());
-                    return Err(src.error(
-                        sp,
-                        format!("substructure[{s}].load[{j}].factor"),
-                        format!("evaluates to {v} at {}", at()),
-                    ));
-                }
-            }
-        }
-        let input = par.run_input(theta, vec![]);
-        for i in 0..solver.num_interfaces() {
-            for p in solver.interface_points(i) {
-                let mu = input.mu[i].as_ref().map_or(p.mu, |f| f(p.x));
-                let gap = input.gap[i].as_ref().map_or(p.gap, |f| f(p.x));
-                let spec = &self.file.interface[i];
-                if !(mu.is_finite() && mu >= 0.0) {
-                    let sp = spec.mu.as_ref().map_or(spec.name.span(), |m| m.span());
-                    return Err(src.error(sp, format!("interface[{i}].mu"), format!(
-                        "friction coefficient {mu} at ({:.4}, {:.4}, {:.4}) for {}; must be finite and >= 0",
-                        p.x[0], p.x[1], p.x[2], at()
-                    )));
-                }
-                if !gap.is_finite() {
-                    let sp = spec.gap.as_ref().map_or(spec.name.span(), |m| m.span());
-                    return Err(src.error(
-                        sp,
-                        format!("interface[{i}].gap"),
-                        format!(
-                            "gap {gap} at ({:.4}, {:.4}, {:.4}) for {}",
-                            p.x[0],
-                            p.x[1],
-                            p.x[2],
-                            at()
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
-    }
-}
 
 /// The batches of the fixed schedule: indices into the ordered points.
 fn schedule(n: usize) -> Vec<std::ops::Range<usize>> {
@@ -274,218 +95,6 @@ pub fn warm_start_plan(study: &Study, points: &[Vec<f64>]) -> Vec<(usize, Option
         }
     }
     plan
-}
-
-/// What [`run_study`] returns.
-pub struct StudyRuns {
-    /// Every run's record: the fixed designs' points in [`Study::all_points`] order, then the
-    /// runs of the adaptive methods in the order they were chosen.
-    pub records: Vec<RunRecord>,
-    /// Runs computed by this invocation.
-    pub computed: usize,
-    /// Runs found in the store.
-    pub resumed: usize,
-    /// Solver set-up seconds.
-    pub setup_seconds: f64,
-    /// Wall-clock seconds of the solves of this invocation.
-    pub solve_seconds: f64,
-    /// Wall-clock seconds of the runs' deterministic error estimates of this invocation
-    /// (included in `solve_seconds`).
-    pub estimate_seconds: f64,
-    /// The solver (for field output and further runs).
-    pub solver: Arc<LatinSolver>,
-    /// The study's methods as they ended: adaptive methods with their stochastic mesh and runs.
-    pub methods: Vec<Method>,
-    /// The adaptive loops, one per adaptive method (in method order).
-    pub adaptive: Vec<crate::adaptive::AdaptiveOutcome>,
-    /// Error estimation set-up, when the study estimates its error.
-    pub cre: Option<Arc<CreSetup>>,
-    /// The study directory's lock, held as long as these runs are (outputs are written under
-    /// it).
-    pub lock: StudyLock,
-}
-
-/// One pending run: its physical point and the converged state it starts from.
-#[derive(Clone, Debug)]
-pub struct RunJob {
-    /// Parameter point (physical values).
-    pub theta: Vec<f64>,
-    /// Local-stage state of the nearest converged run of the earlier batches (`None`: cold
-    /// start).
-    pub start: Option<Arc<LocalState>>,
-}
-
-/// A finished run before it is committed to the store.
-#[derive(Clone, Debug)]
-pub struct RunOutcome {
-    /// The store row.
-    pub rec: RunRecord,
-    /// Displacements of every substructure, concatenated (the run's field file).
-    pub fields: Vec<f64>,
-    /// Compact per-run error-estimate data, when the study estimates its error.
-    pub cre: Option<Vec<f64>>,
-    /// Seconds of the run's error estimate.
-    pub estimate_seconds: f64,
-}
-
-/// The solver and error-estimator set-up of a study: built once per process (per MPI rank),
-/// always in this order so that every process holds bit-identical factorisations.
-pub struct RunSetup {
-    /// The multiresolution solver.
-    pub solver: Arc<LatinSolver>,
-    /// Error estimation set-up, when the study estimates its error.
-    pub cre: Option<Arc<CreSetup>>,
-}
-
-impl RunSetup {
-    /// Builds the solver (and factorises), then the error estimator's set-up if the study has
-    /// one.
-    pub fn build(study: &Study) -> Result<Self, StudyError> {
-        let solver = Arc::new(study.model.solver()?);
-        let cre = if estimates_error(study) {
-            Some(Arc::new(CreSetup::new(study, &solver)?))
-        } else {
-            None
-        };
-        Ok(RunSetup { solver, cre })
-    }
-}
-
-/// Everything needed to solve one run: the study, its set-up and the study directory (where
-/// per-run ParaView files go when `[output] vtu = true`).
-#[derive(Clone, Copy)]
-pub struct RunContext<'a> {
-    /// The study.
-    pub study: &'a Study,
-    /// The solver.
-    pub solver: &'a LatinSolver,
-    /// Error estimation set-up, when the study estimates its error.
-    pub cre: Option<&'a CreSetup>,
-    /// The study directory.
-    pub dir: &'a Path,
-}
-
-impl RunContext<'_> {
-    /// Solves one run (and its error estimate when the study has one), writes its ParaView
-    /// files if asked; commits nothing. A pure function of the job: the same on every thread and
-    /// every MPI rank.
-    pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
-        let study = self.study;
-        let solver = self.solver;
-        let theta = job.theta.as_slice();
-        let mut input = study.model.parametric.run_input(theta, vec![]);
-        input.initial = job.start.clone();
-        let res = solver.run_shared(&input)?;
-        let qois = study
-            .qois
-            .iter()
-            .map(|q| q.eval(solver, &res))
-            .collect::<Result<Vec<_>, _>>()?;
-        let status = match (res.status, solver.equilibrium_report(&res)) {
-            (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
-            (st, _) => st.label().to_string(),
-        };
-        let state = LocalState {
-            what: res.interfaces.iter().map(|it| it.what.clone()).collect(),
-            fhat: res.interfaces.iter().map(|it| it.fhat.clone()).collect(),
-        };
-        let rec = RunRecord {
-            params: theta.to_vec(),
-            status,
-            iterations: res.iterations,
-            residual: res
-                .residuals
-                .last()
-                .copied()
-                .filter(|v| v.is_finite())
-                .unwrap_or(f64::MAX),
-            seconds: res.timings.total,
-            qois: qois
-                .iter()
-                .map(|&v| if v.is_finite() { v } else { f64::NAN })
-                .collect(),
-            history: res
-                .residuals
-                .iter()
-                .map(|v| if v.is_finite() { *v } else { f64::MAX })
-                .collect(),
-            state: state.to_vec(),
-        };
-        if rec.qois.iter().any(|v| v.is_nan()) && rec.converged() {
-            return Err(StudyError::Other(format!(
-                "a quantity of interest is not finite at {theta:?}"
-            )));
-        }
-        let (cre, estimate_seconds) = match (self.cre, rec.converged()) {
-            (Some(setup), true) => {
-                let c = setup.estimate_run(study, solver, theta, &res)?;
-                let s = c.seconds;
-                (Some(c.to_values()), s)
-            }
-            _ => (None, 0.0),
-        };
-        let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
-        if study.output.vtu.unwrap_or(false) {
-            let path = self
-                .dir
-                .join("vtu")
-                .join(format!("{}.vtm", run_file_stem(theta)));
-            alea_latin::output::write_run(&path, solver, &res)?;
-        }
-        Ok(RunOutcome {
-            rec,
-            fields,
-            cre,
-            estimate_seconds,
-        })
-    }
-}
-
-/// Solves the pending runs of one batch. Every run of a batch is independent of the others
-/// (they start from runs of earlier batches only), so an executor may solve them in any order,
-/// on any thread or process: the outcomes do not change.
-pub trait BatchExecutor: Sync {
-    /// Solves every job and hands each outcome to `commit` (from any thread, in any order).
-    /// Returns the first error (in job order for the local executor); runs that finished
-    /// before an error are committed all the same.
-    fn execute(
-        &self,
-        ctx: &RunContext<'_>,
-        jobs: &[RunJob],
-        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
-    ) -> Result<(), StudyError>;
-}
-
-/// The single-process executor: the runs of a batch in parallel on the rayon pool.
-pub struct LocalExecutor;
-
-impl BatchExecutor for LocalExecutor {
-    fn execute(
-        &self,
-        ctx: &RunContext<'_>,
-        jobs: &[RunJob],
-        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
-    ) -> Result<(), StudyError> {
-        let results: Vec<Result<(), StudyError>> =
-            jobs.par_iter().map(|job| commit(ctx.solve(job)?)).collect();
-        results.into_iter().collect()
-    }
-}
-
-static EXECUTOR: std::sync::OnceLock<Box<dyn BatchExecutor + Send>> = std::sync::OnceLock::new();
-
-/// Installs the executor [`run_study`] uses in this process (the binary installs the MPI one
-/// when it runs under `mpirun`). Returns false if one was installed already.
-pub fn install_executor(exec: Box<dyn BatchExecutor + Send>) -> bool {
-    EXECUTOR.set(exec).is_ok()
-}
-
-/// The executor of this process: the installed one, else [`LocalExecutor`].
-fn executor() -> &'static dyn BatchExecutor {
-    match EXECUTOR.get() {
-        Some(e) => e.as_ref(),
-        None => &LocalExecutor,
-    }
 }
 
 /// Runs the deterministic solves of a study and keeps the state they share: the solver, the
@@ -657,18 +266,34 @@ impl<'a> Runner<'a> {
     }
 }
 
-/// True if the study estimates its error: an `[error]` table (not disabled) or an adaptive
-/// method.
-pub fn estimates_error(study: &Study) -> bool {
-    study
-        .file
-        .error
-        .as_ref()
-        .is_some_and(|e| e.enabled.unwrap_or(true))
-        || study
-            .methods
-            .iter()
-            .any(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+impl<'a> crate::adaptive::AdaptiveRuns<'a> for Runner<'a> {
+    fn study(&self) -> &'a Study {
+        self.study
+    }
+    fn cre(&self) -> Option<Arc<CreSetup>> {
+        self.cre.clone()
+    }
+    fn solver(&self) -> &LatinSolver {
+        &self.solver
+    }
+    fn by_key(&self) -> &HashMap<String, RunRecord> {
+        &self.by_key
+    }
+    fn solve_seconds(&self) -> f64 {
+        self.solve_seconds
+    }
+    fn estimate_seconds(&self) -> f64 {
+        self.estimate_seconds
+    }
+    fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError> {
+        Runner::run_points(self, points)
+    }
+    fn store(&self) -> Result<std::sync::MutexGuard<'_, Store>, StudyError> {
+        Runner::store(self)
+    }
+    fn announce(&self, more: usize) {
+        Runner::announce(self, more);
+    }
 }
 
 /// Runs (or resumes) every design point of `study` in the study directory `dir`, then the

@@ -49,8 +49,9 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
 use crate::StudyError;
-use crate::runner::{BatchExecutor, RunContext, RunJob, RunOutcome, RunSetup, Study};
+use crate::run::{BatchExecutor, RunContext, RunJob, RunOutcome, RunSetup};
 use crate::store::run_file_stem;
+use crate::study::Study;
 
 const TAG_READY: i32 = 11;
 const TAG_JOB: i32 = 12;

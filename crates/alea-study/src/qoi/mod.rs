@@ -435,7 +435,7 @@ pub fn build_qois(
             what,
         });
     }
-    crate::checks::check_quantities(src, specs, model, &out)?;
+    check_quantities(src, specs, model, &out)?;
     Ok(out)
 }
 
@@ -536,4 +536,69 @@ impl Qoi {
             junction: set.junction[i].clone(),
         }))
     }
+}
+
+/// Checks the quantities of interest, when the file is loaded: unique names (they head the
+/// columns of `samples.csv`); a `displacement` point lies within one cell size of its nearest
+/// node (else it is outside the substructure, and the nearest node would silently be somewhere
+/// else).
+///
+/// # Errors
+/// [`StudyError::Input`] at the offending quantity.
+pub fn check_quantities(
+    src: &Source,
+    specs: &[QuantitySpec],
+    model: &BuiltModel,
+    qois: &[Qoi],
+) -> Result<(), StudyError> {
+    for (i, q) in specs.iter().enumerate() {
+        if let Some(j) = specs[..i]
+            .iter()
+            .position(|p| p.name.get_ref() == q.name.get_ref())
+        {
+            return Err(src.error(
+                q.name.span(),
+                format!("quantity[{i}].name"),
+                format!(
+                    "'{}' is already the name of quantity[{j}]; names head the columns of samples.csv and must be unique",
+                    q.name.get_ref()
+                ),
+            ));
+        }
+    }
+    for (i, (q, spec)) in qois.iter().zip(specs).enumerate() {
+        if let QoiKind::Displacement(s, x, _) = &q.kind {
+            let mesh = &model.assembly.subs[*s].model.mesh;
+            let d2 = |n: usize| -> f64 { (0..3).map(|k| (mesh.coords[n][k] - x[k]).powi(2)).sum() };
+            let Some(node) = (0..mesh.num_nodes()).min_by(|&a, &b| d2(a).total_cmp(&d2(b))) else {
+                continue;
+            };
+            let dist = d2(node).sqrt();
+            // Size of the cells around that node: the farthest node of any cell holding it.
+            let mut h = 0.0f64;
+            for c in 0..mesh.num_cells() {
+                let nodes = mesh.cell_nodes(c);
+                if nodes.contains(&node) {
+                    for &m in nodes {
+                        let e: f64 = (0..3)
+                            .map(|k| (mesh.coords[m][k] - mesh.coords[node][k]).powi(2))
+                            .sum();
+                        h = h.max(e.sqrt());
+                    }
+                }
+            }
+            if dist > h {
+                let p = mesh.coords[node];
+                return Err(src.error(
+                    spec.point.as_ref().map_or(spec.name.span(), |p| p.span()),
+                    format!("quantity[{i}].point"),
+                    format!(
+                        "no node of substructure '{}' near this point: the nearest, at ({:.6}, {:.6}, {:.6}), is {dist:.4e} away, more than the size of its cells ({h:.4e}); is the point outside the substructure?",
+                        model.assembly.subs[*s].name, p[0], p[1], p[2]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }

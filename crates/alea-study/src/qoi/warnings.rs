@@ -14,8 +14,8 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::qoi::QoiKind;
-use crate::runner::Study;
 use crate::store::{RunRecord, Store};
+use crate::study::Study;
 
 /// A maximum-type quantity found on a node where two boundary groups meet.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,23 +1,19 @@
-//! Consistency checks of a built model and its quantities, done when the file is loaded so
-//! that every mistake is an input error naming file, line and field (exit code 2), never a
-//! failure of the solver set-up:
-//!
-//! - interfaces: two sides on two different substructures; when the sides' nodes pair one to
-//!   one (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]), paired
-//!   nodes have opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet
-//!   belongs to two interfaces (sides that do not match are paired by the mortar method, whose
-//!   errors are reported when the solver is built, [`crate::BuiltModel::solver`]);
-//! - quantities: unique names (they head the columns of `samples.csv`); a `displacement` point
-//!   lies within one cell size of its nearest node (else it is outside the substructure, and
-//!   the nearest node would silently be somewhere else).
+//! Consistency checks of a built model, done when the file is loaded so that every mistake is
+//! an input error naming file, line and field (exit code 2), never a failure of the solver
+//! set-up: two sides on two different substructures; when the sides' nodes pair one to one
+//! (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]), paired nodes have
+//! opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet belongs to two
+//! interfaces (sides that do not match are paired by the mortar method, whose errors are
+//! reported when the solver is built, [`BuiltModel::solver`]). The quantities are checked where
+//! they are built (module `qoi`).
 
 use std::collections::HashMap;
 
 use alea_latin::interface::{pair_nodes, side_geometry};
 
-use crate::qoi::{Qoi, QoiKind};
-use crate::spec::{InterfaceSpecToml, QuantitySpec};
-use crate::{BuiltModel, Source, StudyError};
+use super::parametric::BuiltModel;
+use crate::spec::InterfaceSpecToml;
+use crate::{Source, StudyError};
 
 /// Checks the interfaces of a built model (module doc).
 ///
@@ -104,68 +100,6 @@ pub fn check_interfaces(
                     format!(
                         "the sides do not face each other: at ({:.6}, {:.6}, {:.6}) the outward normals of side 1 ({:.3}, {:.3}, {:.3}) and side 2 ({:.3}, {:.3}, {:.3}) are not opposite (the two bodies overlap, or a facet group is on the wrong face)",
                         p[0], p[1], p[2], a[0], a[1], a[2], b[0], b[1], b[2]
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Checks the quantities of interest (module doc).
-///
-/// # Errors
-/// [`StudyError::Input`] at the offending quantity.
-pub fn check_quantities(
-    src: &Source,
-    specs: &[QuantitySpec],
-    model: &BuiltModel,
-    qois: &[Qoi],
-) -> Result<(), StudyError> {
-    for (i, q) in specs.iter().enumerate() {
-        if let Some(j) = specs[..i]
-            .iter()
-            .position(|p| p.name.get_ref() == q.name.get_ref())
-        {
-            return Err(src.error(
-                q.name.span(),
-                format!("quantity[{i}].name"),
-                format!(
-                    "'{}' is already the name of quantity[{j}]; names head the columns of samples.csv and must be unique",
-                    q.name.get_ref()
-                ),
-            ));
-        }
-    }
-    for (i, (q, spec)) in qois.iter().zip(specs).enumerate() {
-        if let QoiKind::Displacement(s, x, _) = &q.kind {
-            let mesh = &model.assembly.subs[*s].model.mesh;
-            let d2 = |n: usize| -> f64 { (0..3).map(|k| (mesh.coords[n][k] - x[k]).powi(2)).sum() };
-            let Some(node) = (0..mesh.num_nodes()).min_by(|&a, &b| d2(a).total_cmp(&d2(b))) else {
-                continue;
-            };
-            let dist = d2(node).sqrt();
-            // Size of the cells around that node: the farthest node of any cell holding it.
-            let mut h = 0.0f64;
-            for c in 0..mesh.num_cells() {
-                let nodes = mesh.cell_nodes(c);
-                if nodes.contains(&node) {
-                    for &m in nodes {
-                        let e: f64 = (0..3)
-                            .map(|k| (mesh.coords[m][k] - mesh.coords[node][k]).powi(2))
-                            .sum();
-                        h = h.max(e.sqrt());
-                    }
-                }
-            }
-            if dist > h {
-                let p = mesh.coords[node];
-                return Err(src.error(
-                    spec.point.as_ref().map_or(spec.name.span(), |p| p.span()),
-                    format!("quantity[{i}].point"),
-                    format!(
-                        "no node of substructure '{}' near this point: the nearest, at ({:.6}, {:.6}, {:.6}), is {dist:.4e} away, more than the size of its cells ({h:.4e}); is the point outside the substructure?",
-                        model.assembly.subs[*s].name, p[0], p[1], p[2]
                     ),
                 ));
             }

@@ -1,0 +1,447 @@
+//! The mesh of a `[mesh]` table: the generators' dispatch (and their parameters), a mesh file,
+//! and the hash of a study's inputs.
+
+use std::path::Path;
+
+use alea_mesh::{CellType, Mesh, generate};
+use toml::Spanned;
+
+use crate::spec::{MeshSpec, ModelFile};
+use crate::{Source, StudyError};
+
+fn cell_type(src: &Source, s: &Spanned<String>) -> Result<CellType, StudyError> {
+    Ok(match s.get_ref().to_ascii_lowercase().as_str() {
+        "tri3" => CellType::Tri3,
+        "tri6" => CellType::Tri6,
+        "quad4" => CellType::Quad4,
+        "quad8" => CellType::Quad8,
+        "tet4" => CellType::Tet4,
+        "tet10" => CellType::Tet10,
+        "hex8" => CellType::Hex8,
+        other => {
+            return Err(src.error(
+                s.span(),
+                "mesh.kind",
+                format!("unknown cell type '{other}'; expected tri3, tri6, quad4, quad8, tet4, tet10 or hex8"),
+            ));
+        }
+    })
+}
+
+fn param_f64(
+    src: &Source,
+    spec: &MeshSpec,
+    key: &str,
+    default: Option<f64>,
+) -> Result<f64, StudyError> {
+    let Some(p) = &spec.params else {
+        return default.ok_or_else(|| {
+            src.error(
+                spec.generator.span(),
+                format!("mesh.params.{key}"),
+                "missing; expected a number",
+            )
+        });
+    };
+    match p.get_ref().get(key) {
+        Some(toml::Value::Float(v)) => Ok(*v),
+        Some(toml::Value::Integer(v)) => Ok(*v as f64),
+        Some(_) => Err(src.error(p.span(), format!("mesh.params.{key}"), "expected a number")),
+        None => default.ok_or_else(|| {
+            src.error(
+                p.span(),
+                format!("mesh.params.{key}"),
+                "missing; expected a number",
+            )
+        }),
+    }
+}
+
+fn param_usize(
+    src: &Source,
+    spec: &MeshSpec,
+    key: &str,
+    default: Option<usize>,
+) -> Result<usize, StudyError> {
+    let v = param_f64(src, spec, key, default.map(|d| d as f64))?;
+    if v < 1.0 || v.fract() != 0.0 {
+        let span = spec
+            .params
+            .as_ref()
+            .map_or(spec.generator.span(), |p| p.span());
+        return Err(src.error(
+            span,
+            format!("mesh.params.{key}"),
+            format!("expected a positive integer, got {v}"),
+        ));
+    }
+    Ok(v as usize)
+}
+
+fn check_params(src: &Source, spec: &MeshSpec, allowed: &[&str]) -> Result<(), StudyError> {
+    if let Some(p) = &spec.params {
+        for k in p.get_ref().keys() {
+            if !allowed.contains(&k.as_str()) {
+                return Err(src.error(
+                    p.span(),
+                    format!("mesh.params.{k}"),
+                    format!(
+                        "unknown parameter for generator '{}'; expected one of: {}",
+                        spec.generator.get_ref(),
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The path of a mesh file named in a study file (relative to the study file).
+fn mesh_file_path(src: &Source, f: &Spanned<String>) -> std::path::PathBuf {
+    src.path
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join(f.get_ref())
+}
+
+/// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes
+/// (a changed mesh file makes a different study).
+pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> {
+    match (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
+        (Some(f), "gmsh") => {
+            let path = mesh_file_path(src, f);
+            let bytes = std::fs::read(&path).map_err(|e| {
+                src.error(f.span(), "mesh.file", format!("{}: {e}", path.display()))
+            })?;
+            Ok(crate::store::study_hash(&src.text, &[&bytes]))
+        }
+        _ => Ok(crate::store::study_hash(&src.text, &[])),
+    }
+}
+
+/// Geometry and in-plane counts of the turbine generators (`mesh.params`).
+const TURBINE_KEYS: &[&str] = &[
+    "r_inner",
+    "r_rim",
+    "half_angle_deg",
+    "neck_half_width",
+    "flank_angle_deg",
+    "contact_length",
+    "runout",
+    "fillet_radius",
+    "shank_height",
+    "n_flank",
+    "n_runout",
+    "n_fillet",
+    "n_lobe",
+    "n_slot",
+    "n_below",
+    "n_root",
+    "n_shank",
+    "lobe_grading",
+    "below_grading",
+];
+
+/// The [`generate::TurbineParams`] of a `[mesh]` table (defaults for the missing keys).
+fn turbine_params(src: &Source, spec: &MeshSpec) -> Result<generate::TurbineParams, StudyError> {
+    let d = generate::TurbineParams::default();
+    Ok(generate::TurbineParams {
+        r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
+        r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
+        half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?
+            .to_radians(),
+        neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+        flank_angle: param_f64(
+            src,
+            spec,
+            "flank_angle_deg",
+            Some(d.flank_angle.to_degrees()),
+        )?
+        .to_radians(),
+        contact_length: param_f64(src, spec, "contact_length", Some(d.contact_length))?,
+        runout: param_f64(src, spec, "runout", Some(d.runout))?,
+        fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
+        shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+        n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+        n_runout: param_usize(src, spec, "n_runout", Some(d.n_runout))?,
+        n_fillet: param_usize(src, spec, "n_fillet", Some(d.n_fillet))?,
+        n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
+        n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
+        n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
+        n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+        n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+        lobe_grading: param_f64(src, spec, "lobe_grading", Some(d.lobe_grading))?,
+        below_grading: param_f64(src, spec, "below_grading", Some(d.below_grading))?,
+    })
+}
+
+/// Builds the mesh of a `[mesh]` table.
+pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+    crate::limits::check_mesh(src, spec)?;
+    let kind = |default: CellType| -> Result<CellType, StudyError> {
+        spec.kind
+            .as_ref()
+            .map_or(Ok(default), |k| cell_type(src, k))
+    };
+    let gen_name = spec.generator.get_ref().as_str();
+    let mesh_err =
+        |e: alea_mesh::MeshError| src.error(spec.generator.span(), "mesh", e.to_string());
+    let vec_field =
+        |name: &str, v: &Option<Spanned<Vec<f64>>>, n: usize| -> Result<Vec<f64>, StudyError> {
+            let v = v.as_ref().ok_or_else(|| {
+                src.error(
+                    spec.generator.span(),
+                    format!("mesh.{name}"),
+                    format!("missing; expected {n} numbers"),
+                )
+            })?;
+            if v.get_ref().len() != n {
+                return Err(src.error(
+                    v.span(),
+                    format!("mesh.{name}"),
+                    format!("expected {n} values, got {}", v.get_ref().len()),
+                ));
+            }
+            Ok(v.get_ref().clone())
+        };
+    let cells = |n: usize| -> Result<Vec<usize>, StudyError> {
+        let v = spec.cells.as_ref().ok_or_else(|| {
+            src.error(
+                spec.generator.span(),
+                "mesh.cells",
+                format!("missing; expected {n} cell counts"),
+            )
+        })?;
+        if v.get_ref().len() != n || v.get_ref().contains(&0) {
+            return Err(src.error(
+                v.span(),
+                "mesh.cells",
+                format!("expected {n} positive cell counts"),
+            ));
+        }
+        Ok(v.get_ref().clone())
+    };
+    match gen_name {
+        "rectangle" => {
+            check_params(src, spec, &[])?;
+            let s = vec_field("size", &spec.size, 2)?;
+            let c = cells(2)?;
+            generate::rectangle(s[0], s[1], c[0], c[1], kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "box" => {
+            check_params(src, spec, &[])?;
+            let s = vec_field("size", &spec.size, 3)?;
+            let c = cells(3)?;
+            generate::box_mesh([s[0], s[1], s[2]], [c[0], c[1], c[2]], kind(CellType::Hex8)?).map_err(mesh_err)
+        }
+        "plate_with_hole" => {
+            check_params(src, spec, &["radius", "half_width", "n_arc", "n_radial", "grading"])?;
+            generate::plate_with_hole(
+                param_f64(src, spec, "radius", None)?,
+                param_f64(src, spec, "half_width", None)?,
+                param_usize(src, spec, "n_arc", Some(16))?,
+                param_usize(src, spec, "n_radial", Some(16))?,
+                param_f64(src, spec, "grading", Some(4.0))?,
+                kind(CellType::Quad8)?,
+            )
+            .map_err(mesh_err)
+        }
+        "annulus_sector" => {
+            check_params(src, spec, &["r_in", "r_out", "angle_deg", "n_radial", "n_theta"])?;
+            generate::annulus_sector(
+                param_f64(src, spec, "r_in", None)?,
+                param_f64(src, spec, "r_out", None)?,
+                param_f64(src, spec, "angle_deg", None)?.to_radians(),
+                param_usize(src, spec, "n_radial", Some(8))?,
+                param_usize(src, spec, "n_theta", Some(8))?,
+                kind(CellType::Quad8)?,
+            )
+            .map_err(mesh_err)
+        }
+        "dovetail" => {
+            let d = generate::DovetailParams::default();
+            check_params(src, spec, &[
+                "r_inner", "r_rim", "half_angle_deg", "neck_half_width", "bottom_half_width", "flank_height",
+                "slot_gap", "fillet_radius", "shank_height", "n_flank", "n_root", "n_shank", "n_lobe", "n_wall",
+                "n_slot", "n_below",
+            ])?;
+            let p = generate::DovetailParams {
+                r_inner: param_f64(src, spec, "r_inner", Some(d.r_inner))?,
+                r_rim: param_f64(src, spec, "r_rim", Some(d.r_rim))?,
+                half_angle: param_f64(src, spec, "half_angle_deg", Some(d.half_angle.to_degrees()))?.to_radians(),
+                neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+                bottom_half_width: param_f64(src, spec, "bottom_half_width", Some(d.bottom_half_width))?,
+                flank_height: param_f64(src, spec, "flank_height", Some(d.flank_height))?,
+                slot_gap: param_f64(src, spec, "slot_gap", Some(d.slot_gap))?,
+                fillet_radius: param_f64(src, spec, "fillet_radius", Some(d.fillet_radius))?,
+                shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+                n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+                n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+                n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+                n_lobe: param_usize(src, spec, "n_lobe", Some(d.n_lobe))?,
+                n_wall: param_usize(src, spec, "n_wall", Some(d.n_wall))?,
+                n_slot: param_usize(src, spec, "n_slot", Some(d.n_slot))?,
+                n_below: param_usize(src, spec, "n_below", Some(d.n_below))?,
+            };
+            generate::dovetail_root_and_disk(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "blade_root_simple" => {
+            let d = generate::BladeRootParams::default();
+            check_params(src, spec, &[
+                "half_width", "bottom_half_width", "neck_half_width", "flank_height", "shank_height",
+                "n_flank", "n_side", "n_root", "n_shank",
+            ])?;
+            let p = generate::BladeRootParams {
+                half_width: param_f64(src, spec, "half_width", Some(d.half_width))?,
+                bottom_half_width: param_f64(src, spec, "bottom_half_width", Some(d.bottom_half_width))?,
+                neck_half_width: param_f64(src, spec, "neck_half_width", Some(d.neck_half_width))?,
+                flank_height: param_f64(src, spec, "flank_height", Some(d.flank_height))?,
+                shank_height: param_f64(src, spec, "shank_height", Some(d.shank_height))?,
+                n_flank: param_usize(src, spec, "n_flank", Some(d.n_flank))?,
+                n_side: param_usize(src, spec, "n_side", Some(d.n_side))?,
+                n_root: param_usize(src, spec, "n_root", Some(d.n_root))?,
+                n_shank: param_usize(src, spec, "n_shank", Some(d.n_shank))?,
+            };
+            generate::blade_root_simple(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "stacked_blocks" | "block_on_incline" => {
+            let d = generate::StackedBlocks::default();
+            let incline = gen_name == "block_on_incline";
+            let mut keys = vec!["width", "h_lower", "h_upper", "n_x", "n_lower", "n_upper", "depth", "n_z"];
+            if incline {
+                keys.push("angle_deg");
+            }
+            check_params(src, spec, &keys)?;
+            let p = generate::StackedBlocks {
+                width: param_f64(src, spec, "width", Some(d.width))?,
+                h_lower: param_f64(src, spec, "h_lower", Some(d.h_lower))?,
+                h_upper: param_f64(src, spec, "h_upper", Some(d.h_upper))?,
+                n_x: param_usize(src, spec, "n_x", Some(d.n_x))?,
+                n_lower: param_usize(src, spec, "n_lower", Some(d.n_lower))?,
+                n_upper: param_usize(src, spec, "n_upper", Some(d.n_upper))?,
+            };
+            // Hex8: the Quad4 blocks extruded over `depth` in `n_z` layers (3D).
+            let kind = kind(CellType::Quad4)?;
+            let plane = if kind == CellType::Hex8 { CellType::Quad4 } else { kind };
+            let mesh = if incline {
+                let a = param_f64(src, spec, "angle_deg", None)?.to_radians();
+                generate::block_on_incline(&p, a, plane).map_err(mesh_err)?
+            } else {
+                generate::stacked_blocks(&p, plane).map_err(mesh_err)?
+            };
+            if kind == CellType::Hex8 {
+                let depth = param_f64(src, spec, "depth", Some(p.width))?;
+                let n_z = param_usize(src, spec, "n_z", Some(p.n_x))?;
+                generate::extrude(&mesh, n_z, depth).map_err(mesh_err)
+            } else {
+                Ok(mesh)
+            }
+        }
+        "concentric_rings" => {
+            let d = generate::ConcentricRings::default();
+            check_params(src, spec, &["r_in", "r_contact", "r_out", "angle_deg", "n_inner", "n_outer", "n_theta"])?;
+            let p = generate::ConcentricRings {
+                r_in: param_f64(src, spec, "r_in", Some(d.r_in))?,
+                r_contact: param_f64(src, spec, "r_contact", Some(d.r_contact))?,
+                r_out: param_f64(src, spec, "r_out", Some(d.r_out))?,
+                angle: param_f64(src, spec, "angle_deg", Some(d.angle.to_degrees()))?.to_radians(),
+                n_inner: param_usize(src, spec, "n_inner", Some(d.n_inner))?,
+                n_outer: param_usize(src, spec, "n_outer", Some(d.n_outer))?,
+                n_theta: param_usize(src, spec, "n_theta", Some(d.n_theta))?,
+            };
+            generate::concentric_rings(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "cylinder_on_block" => {
+            let d = generate::CylinderOnBlock::default();
+            check_params(src, spec, &["a", "l", "n", "m", "half"])?;
+            let half = match spec.params.as_ref().and_then(|p| p.get_ref().get("half")) {
+                None => d.half,
+                Some(toml::Value::Boolean(b)) => *b,
+                Some(_) => {
+                    let span = spec.params.as_ref().map_or(spec.generator.span(), |p| p.span());
+                    return Err(src.error(span, "mesh.params.half", "expected true or false"));
+                }
+            };
+            let p = generate::CylinderOnBlock {
+                a: param_f64(src, spec, "a", Some(d.a))?,
+                l: param_f64(src, spec, "l", Some(d.l))?,
+                n: param_usize(src, spec, "n", Some(d.n))?,
+                m: param_usize(src, spec, "m", Some(d.m))?,
+                half,
+            };
+            generate::cylinder_on_block(&p, kind(CellType::Quad4)?).map_err(mesh_err)
+        }
+        "turbine_2d" => {
+            check_params(src, spec, TURBINE_KEYS)?;
+            generate::turbine_2d(&turbine_params(src, spec)?, kind(CellType::Quad8)?).map_err(mesh_err)
+        }
+        "turbine_3d" => {
+            let keys: Vec<&str> = TURBINE_KEYS.iter().copied().chain(["depth", "n_z"]).collect();
+            check_params(src, spec, &keys)?;
+            if kind(CellType::Hex8)? != CellType::Hex8 {
+                let span = spec.kind.as_ref().map_or(spec.generator.span(), |k| k.span());
+                return Err(src.error(span, "mesh.kind", "turbine_3d makes HEX8 cells (the Quad4 model extruded)"));
+            }
+            let depth = param_f64(src, spec, "depth", Some(20.0))?;
+            let n_z = param_usize(src, spec, "n_z", Some(10))?;
+            generate::turbine_3d(&turbine_params(src, spec)?, depth, n_z).map_err(mesh_err)
+        }
+        "gmsh" => {
+            check_params(src, spec, &[])?;
+            let f = spec.file.as_ref().ok_or_else(|| src.error(spec.generator.span(), "mesh.file", "missing; expected the path of a Gmsh .msh file"))?;
+            let path = mesh_file_path(src, f);
+            // Every Gmsh error (missing file, directory, truncated or malformed content) is an
+            // input error of this field; the message carries the mesh file's own line.
+            alea_mesh::read_msh(&path).map_err(|e| src.error(f.span(), "mesh.file", e.to_string()))
+        }
+        other => Err(src.error(
+            spec.generator.span(),
+            "mesh.generator",
+            format!("unknown generator '{other}'; expected rectangle, box, plate_with_hole, annulus_sector, dovetail, blade_root_simple, turbine_2d, turbine_3d, stacked_blocks, block_on_incline, concentric_rings, cylinder_on_block or gmsh"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn node_estimates_match_the_generated_meshes() {
+        #[derive(serde::Deserialize)]
+        struct F {
+            mesh: MeshSpec,
+        }
+        let cases = [
+            "generator = \"rectangle\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"rectangle\"\nkind = \"quad8\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"rectangle\"\nkind = \"tri6\"\nsize = [2.0, 1.0]\ncells = [30, 7]",
+            "generator = \"box\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
+            "generator = \"box\"\nkind = \"tet10\"\nsize = [1.0, 1.0, 1.0]\ncells = [5, 6, 7]",
+            "generator = \"plate_with_hole\"\nparams = { radius = 1.0, half_width = 5.0 }",
+            "generator = \"annulus_sector\"\nparams = { r_in = 1.0, r_out = 2.0, angle_deg = 90.0, n_theta = 20 }",
+            "generator = \"dovetail\"",
+            "generator = \"dovetail\"\nparams = { n_flank = 30, n_below = 2 }",
+            "generator = \"blade_root_simple\"",
+            "generator = \"stacked_blocks\"",
+            "generator = \"stacked_blocks\"\nkind = \"hex8\"\nparams = { n_z = 3 }",
+            "generator = \"concentric_rings\"",
+            "generator = \"turbine_2d\"\nparams = { n_flank = 6, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 4 }",
+            "generator = \"turbine_3d\"\nparams = { n_flank = 6, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 4, n_z = 3 }",
+            "generator = \"cylinder_on_block\"\nparams = { n = 12, m = 9, half = false }",
+        ];
+        for text in cases {
+            let f: F = toml::from_str(&format!("[mesh]\n{text}\n")).unwrap();
+            let src = Source::from_text("t.toml", text);
+            let mesh = build_mesh(&src, &f.mesh).unwrap();
+            let (nodes, ..) = crate::limits::mesh_estimate(&f.mesh).unwrap();
+            let ratio = nodes / mesh.num_nodes() as f64;
+            assert!(
+                (0.5..=2.0).contains(&ratio),
+                "{text}: estimate {nodes}, mesh {}",
+                mesh.num_nodes()
+            );
+        }
+    }
+}

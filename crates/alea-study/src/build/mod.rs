@@ -1,0 +1,18 @@
+//! From a parsed model file to solver inputs: mesh, substructure models with their
+//! constraints and load cases, interfaces and LATIN options. Every semantic error names the
+//! file, line and field.
+
+//!
+//! - [`parametric`]: the built model and how the parameters enter it;
+//! - [`mesh`]: the mesh generators' dispatch and the input hash;
+//! - [`model`]: substructures, loads and interfaces of a model file;
+//! - [`checks`]: consistency checks of the built interfaces.
+
+mod checks;
+mod mesh;
+mod model;
+mod parametric;
+
+pub use mesh::{build_mesh, input_hash};
+pub use model::build_model;
+pub use parametric::{BuiltModel, InterfaceSite, Parametric};

@@ -1,0 +1,199 @@
+//! One run of a study: the job ([`RunJob`]), its solve and error estimate ([`RunContext::solve`],
+//! a pure function of the job) and its outcome ([`RunOutcome`]), the per-process set-up
+//! ([`RunSetup`]), and the executors that solve the runs of a batch ([`BatchExecutor`]:
+//! [`LocalExecutor`] on the rayon pool, the MPI one in the `distributed` module). The runner
+//! schedules the batches and commits the outcomes.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use alea_latin::{LatinSolver, LocalState, RunStatus};
+use rayon::prelude::*;
+
+use crate::StudyError;
+use crate::cre::CreSetup;
+use crate::store::{RunRecord, run_file_stem};
+use crate::study::{Study, estimates_error};
+
+/// One pending run: its physical point and the converged state it starts from.
+#[derive(Clone, Debug)]
+pub struct RunJob {
+    /// Parameter point (physical values).
+    pub theta: Vec<f64>,
+    /// Local-stage state of the nearest converged run of the earlier batches (`None`: cold
+    /// start).
+    pub start: Option<Arc<LocalState>>,
+}
+
+/// A finished run before it is committed to the store.
+#[derive(Clone, Debug)]
+pub struct RunOutcome {
+    /// The store row.
+    pub rec: RunRecord,
+    /// Displacements of every substructure, concatenated (the run's field file).
+    pub fields: Vec<f64>,
+    /// Compact per-run error-estimate data, when the study estimates its error.
+    pub cre: Option<Vec<f64>>,
+    /// Seconds of the run's error estimate.
+    pub estimate_seconds: f64,
+}
+
+/// The solver and error-estimator set-up of a study: built once per process (per MPI rank),
+/// always in this order so that every process holds bit-identical factorisations.
+pub struct RunSetup {
+    /// The multiresolution solver.
+    pub solver: Arc<LatinSolver>,
+    /// Error estimation set-up, when the study estimates its error.
+    pub cre: Option<Arc<CreSetup>>,
+}
+
+impl RunSetup {
+    /// Builds the solver (and factorises), then the error estimator's set-up if the study has
+    /// one.
+    pub fn build(study: &Study) -> Result<Self, StudyError> {
+        let solver = Arc::new(study.model.solver()?);
+        let cre = if estimates_error(study) {
+            Some(Arc::new(CreSetup::new(study, &solver)?))
+        } else {
+            None
+        };
+        Ok(RunSetup { solver, cre })
+    }
+}
+
+/// Everything needed to solve one run: the study, its set-up and the study directory (where
+/// per-run ParaView files go when `[output] vtu = true`).
+#[derive(Clone, Copy)]
+pub struct RunContext<'a> {
+    /// The study.
+    pub study: &'a Study,
+    /// The solver.
+    pub solver: &'a LatinSolver,
+    /// Error estimation set-up, when the study estimates its error.
+    pub cre: Option<&'a CreSetup>,
+    /// The study directory.
+    pub dir: &'a Path,
+}
+
+impl RunContext<'_> {
+    /// Solves one run (and its error estimate when the study has one), writes its ParaView
+    /// files if asked; commits nothing. A pure function of the job: the same on every thread and
+    /// every MPI rank.
+    pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
+        let study = self.study;
+        let solver = self.solver;
+        let theta = job.theta.as_slice();
+        let mut input = study.model.parametric.run_input(theta, vec![]);
+        input.initial = job.start.clone();
+        let res = solver.run_shared(&input)?;
+        let qois = study
+            .qois
+            .iter()
+            .map(|q| q.eval(solver, &res))
+            .collect::<Result<Vec<_>, _>>()?;
+        let status = match (res.status, solver.equilibrium_report(&res)) {
+            (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
+            (st, _) => st.label().to_string(),
+        };
+        let state = LocalState {
+            what: res.interfaces.iter().map(|it| it.what.clone()).collect(),
+            fhat: res.interfaces.iter().map(|it| it.fhat.clone()).collect(),
+        };
+        let rec = RunRecord {
+            params: theta.to_vec(),
+            status,
+            iterations: res.iterations,
+            residual: res
+                .residuals
+                .last()
+                .copied()
+                .filter(|v| v.is_finite())
+                .unwrap_or(f64::MAX),
+            seconds: res.timings.total,
+            qois: qois
+                .iter()
+                .map(|&v| if v.is_finite() { v } else { f64::NAN })
+                .collect(),
+            history: res
+                .residuals
+                .iter()
+                .map(|v| if v.is_finite() { *v } else { f64::MAX })
+                .collect(),
+            state: state.to_vec(),
+        };
+        if rec.qois.iter().any(|v| v.is_nan()) && rec.converged() {
+            return Err(StudyError::Other(format!(
+                "a quantity of interest is not finite at {theta:?}"
+            )));
+        }
+        let (cre, estimate_seconds) = match (self.cre, rec.converged()) {
+            (Some(setup), true) => {
+                let c = setup.estimate_run(study, solver, theta, &res)?;
+                let s = c.seconds;
+                (Some(c.to_values()), s)
+            }
+            _ => (None, 0.0),
+        };
+        let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
+        if study.output.vtu.unwrap_or(false) {
+            let path = self
+                .dir
+                .join("vtu")
+                .join(format!("{}.vtm", run_file_stem(theta)));
+            alea_latin::output::write_run(&path, solver, &res)?;
+        }
+        Ok(RunOutcome {
+            rec,
+            fields,
+            cre,
+            estimate_seconds,
+        })
+    }
+}
+
+/// Solves the pending runs of one batch. Every run of a batch is independent of the others
+/// (they start from runs of earlier batches only), so an executor may solve them in any order,
+/// on any thread or process: the outcomes do not change.
+pub trait BatchExecutor: Sync {
+    /// Solves every job and hands each outcome to `commit` (from any thread, in any order).
+    /// Returns the first error (in job order for the local executor); runs that finished
+    /// before an error are committed all the same.
+    fn execute(
+        &self,
+        ctx: &RunContext<'_>,
+        jobs: &[RunJob],
+        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+    ) -> Result<(), StudyError>;
+}
+
+/// The single-process executor: the runs of a batch in parallel on the rayon pool.
+pub struct LocalExecutor;
+
+impl BatchExecutor for LocalExecutor {
+    fn execute(
+        &self,
+        ctx: &RunContext<'_>,
+        jobs: &[RunJob],
+        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+    ) -> Result<(), StudyError> {
+        let results: Vec<Result<(), StudyError>> =
+            jobs.par_iter().map(|job| commit(ctx.solve(job)?)).collect();
+        results.into_iter().collect()
+    }
+}
+
+static EXECUTOR: std::sync::OnceLock<Box<dyn BatchExecutor + Send>> = std::sync::OnceLock::new();
+
+/// Installs the executor `run_study` uses in this process (the binary installs the MPI one
+/// when it runs under `mpirun`). Returns false if one was installed already.
+pub fn install_executor(exec: Box<dyn BatchExecutor + Send>) -> bool {
+    EXECUTOR.set(exec).is_ok()
+}
+
+/// The executor of this process: the installed one, else [`LocalExecutor`].
+pub(crate) fn executor() -> &'static dyn BatchExecutor {
+    match EXECUTOR.get() {
+        Some(e) => e.as_ref(),
+        None => &LocalExecutor,
+    }
+}

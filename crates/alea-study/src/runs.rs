@@ -1,0 +1,91 @@
+//! What a study's runs produced: the runs ([`StudyRuns`]) and the outcome of each adaptive
+//! method's loop ([`AdaptiveOutcome`], one [`StepRecord`] per step). Data only: the runner and
+//! the adaptive loop fill them, the services (fields, reports) read them.
+
+use std::sync::Arc;
+
+use alea_latin::LatinSolver;
+use alea_uq::surrogate::StochasticMesh;
+
+use crate::cre::CreSetup;
+use crate::estimate::MethodError;
+use crate::lock::StudyLock;
+use crate::method::Method;
+use crate::store::RunRecord;
+
+/// What `run_study` (module `runner`) returns.
+pub struct StudyRuns {
+    /// Every run's record: the fixed designs' points in
+    /// [`Study::all_points`](crate::study::Study::all_points) order, then the runs of the
+    /// adaptive methods in the order they were chosen.
+    pub records: Vec<RunRecord>,
+    /// Runs computed by this invocation.
+    pub computed: usize,
+    /// Runs found in the store.
+    pub resumed: usize,
+    /// Solver set-up seconds.
+    pub setup_seconds: f64,
+    /// Wall-clock seconds of the solves of this invocation.
+    pub solve_seconds: f64,
+    /// Wall-clock seconds of the runs' deterministic error estimates of this invocation
+    /// (included in `solve_seconds`).
+    pub estimate_seconds: f64,
+    /// The solver (for field output and further runs).
+    pub solver: Arc<LatinSolver>,
+    /// The study's methods as they ended: adaptive methods with their stochastic mesh and runs.
+    pub methods: Vec<Method>,
+    /// The adaptive loops, one per adaptive method (in method order).
+    pub adaptive: Vec<AdaptiveOutcome>,
+    /// Error estimation set-up, when the study estimates its error.
+    pub cre: Option<Arc<CreSetup>>,
+    /// The study directory's lock, held as long as these runs are (outputs are written under
+    /// it).
+    pub lock: StudyLock,
+}
+
+/// Statistics of one quantity of interest at one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepQoi {
+    /// Mean.
+    pub mean: f64,
+    /// Standard deviation.
+    pub std: f64,
+    /// `P(q > threshold)` for each threshold of the quantity.
+    pub failure: Vec<f64>,
+}
+
+/// One step of the loop.
+#[derive(Clone, Debug)]
+pub struct StepRecord {
+    /// Runs of the surrogate at this step.
+    pub runs: usize,
+    /// Runs added by the refinement that ended this step (0 for the last step).
+    pub new_runs: usize,
+    /// The estimate.
+    pub error: MethodError,
+    /// Statistics of each quantity of interest on this step's surrogate.
+    pub qois: Vec<StepQoi>,
+    /// Seconds of this step's solves (wall clock).
+    pub solve_seconds: f64,
+    /// Seconds of this step's estimate (per-run CRE of its new runs + stochastic estimate).
+    pub estimate_seconds: f64,
+    /// Cumulative cost in the thesis's units: runs + 1.5 x estimates.
+    pub thesis_cost: f64,
+}
+
+/// The outcome of one adaptive method.
+#[derive(Clone, Debug)]
+pub struct AdaptiveOutcome {
+    /// Index of the method in the study.
+    pub method: usize,
+    /// The final stochastic mesh (its runs are the method's runs).
+    pub mesh: StochasticMesh,
+    /// Every step, in order.
+    pub steps: Vec<StepRecord>,
+    /// Why the loop stopped.
+    pub stop: String,
+    /// Set when the loop could not go on (a run that did not converge).
+    pub error: Option<String>,
+    /// The estimator of the last step (for maps and element fields).
+    pub estimator: Option<alea_estimate::Estimator>,
+}

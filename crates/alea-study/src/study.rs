@@ -1,0 +1,249 @@
+//! A loaded, validated study ([`Study`]): its file, random parameters, model, quantities of
+//! interest and methods. The leaf of the study layer: it depends on the input and model
+//! modules only (spec, params, build, qoi, method, limits), never on the runner or the
+//! services that use it.
+
+use std::path::Path;
+
+use alea_latin::LatinSolver;
+
+use crate::StudyError;
+use crate::build::{BuiltModel, build_model, input_hash};
+use crate::limits::{
+    available_memory, check_study_file, check_total_runs, human_bytes, mean_fields_memory,
+};
+use crate::method::{Method, MethodKind, build_methods};
+use crate::params::{ParamSpace, build_params};
+use crate::qoi::{Qoi, build_qois};
+use crate::source::Source;
+use crate::spec::{ModelFile, OutputSpec};
+use crate::store::point_key;
+
+/// A loaded, validated study.
+pub struct Study {
+    /// The study file.
+    pub source: Source,
+    /// Its parsed content.
+    pub file: ModelFile,
+    /// Random parameters.
+    pub params: ParamSpace,
+    /// The mechanical model.
+    pub model: BuiltModel,
+    /// Quantities of interest.
+    pub qois: Vec<Qoi>,
+    /// Methods (the first is the study's answer).
+    pub methods: Vec<Method>,
+    /// Seed of all random draws.
+    pub seed: u64,
+    /// Hash of the study's inputs (its file's text and its mesh file).
+    pub hash: String,
+    /// Outputs.
+    pub output: OutputSpec,
+}
+
+impl std::fmt::Debug for Study {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Study")
+            .field("file", &self.source.path)
+            .finish()
+    }
+}
+
+impl Study {
+    /// Loads and checks a study from its source text.
+    pub fn from_source(source: Source) -> Result<Self, StudyError> {
+        let file: ModelFile = source.parse()?;
+        let params = build_params(&source, &file)?;
+        if params.names.is_empty()
+            && let Some(m) = file.method.first()
+        {
+            return Err(source.error(m.kind.span(), "method[0].type", "methods need random parameters: without [[parameter]], leave out [[method]] (the study is then one deterministic run)"));
+        }
+        if file.quantity.is_empty() {
+            return Err(source.error(0..0, "quantity", "a study needs at least one [[quantity]]"));
+        }
+        if file.method.is_empty() && !params.names.is_empty() {
+            return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
+        }
+        check_study_file(&source, &file, params.names.len())?;
+        let model = build_model(&source, &file, &params)?;
+        let qois = build_qois(&source, &file.quantity, &model)?;
+        let seed = file.study.seed.unwrap_or(1);
+        let methods = if params.names.is_empty() {
+            vec![Method::deterministic()]
+        } else {
+            build_methods(&source, &file.method, &params, seed)?
+        };
+        let hash = input_hash(&source, &file)?;
+        let output = file.output.clone();
+        let study = Study {
+            source,
+            file,
+            params,
+            model,
+            qois,
+            methods,
+            seed,
+            hash,
+            output,
+        };
+        check_built(&study)?;
+        Ok(study)
+    }
+
+    /// Loads a study file.
+    pub fn load(path: &Path) -> Result<Self, StudyError> {
+        Self::from_source(Source::read(path)?)
+    }
+
+    /// The title (from `[study]`, else the file name).
+    pub fn title(&self) -> String {
+        self.file.study.title.clone().unwrap_or_else(|| {
+            self.source
+                .path
+                .file_stem()
+                .map_or("study".into(), |s| s.to_string_lossy().into_owned())
+        })
+    }
+
+    /// Every distinct design point, in method order.
+    pub fn all_points(&self) -> Vec<Vec<f64>> {
+        let mut seen = std::collections::HashSet::new();
+        let mut out = Vec::new();
+        for m in &self.methods {
+            for p in &m.points {
+                if seen.insert(point_key(p)) {
+                    out.push(p.clone());
+                }
+            }
+        }
+        out
+    }
+
+    /// A point scaled to the unit cube of the parameter box.
+    pub fn normalise(&self, p: &[f64]) -> Vec<f64> {
+        p.iter()
+            .enumerate()
+            .map(|(j, v)| (v - self.params.lo[j]) / (self.params.hi[j] - self.params.lo[j]))
+            .collect()
+    }
+
+    /// Checks the parameter-dependent model data at a design point (Young's moduli > 0, finite
+    /// load factors, mu >= 0 and finite gaps at every interface point): errors name the field.
+    pub(crate) fn check_point(
+        &self,
+        solver: &LatinSolver,
+        theta: &[f64],
+    ) -> Result<(), StudyError> {
+        let src = &self.source;
+        let at = || {
+            self.params
+                .names
+                .iter()
+                .zip(theta)
+                .map(|(n, v)| format!("{n} = {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let par = &self.model.parametric;
+        for (s, e) in par.young.iter().enumerate() {
+            let v = e.eval(theta);
+            if !(v.is_finite() && v > 0.0) {
+                let sp = &self.file.substructure[s].young;
+                return Err(src.error(
+                    sp.span(),
+                    format!("substructure[{s}].young"),
+                    format!("evaluates to {v} at {}; must be > 0", at()),
+                ));
+            }
+        }
+        for (s, fs) in par.load_factors.iter().enumerate() {
+            for (j, e) in fs.iter().enumerate() {
+                let v = e.eval(theta);
+                if !v.is_finite() {
+                    let sp = self.file.substructure[s].load[j]
+                        .factor
+                        .as_ref()
+                        .map_or(0..0, |f| f.span());
+                    return Err(src.error(
+                        sp,
+                        format!("substructure[{s}].load[{j}].factor"),
+                        format!("evaluates to {v} at {}", at()),
+                    ));
+                }
+            }
+        }
+        let input = par.run_input(theta, vec![]);
+        for i in 0..solver.num_interfaces() {
+            for p in solver.interface_points(i) {
+                let mu = input.mu[i].as_ref().map_or(p.mu, |f| f(p.x));
+                let gap = input.gap[i].as_ref().map_or(p.gap, |f| f(p.x));
+                let spec = &self.file.interface[i];
+                if !(mu.is_finite() && mu >= 0.0) {
+                    let sp = spec.mu.as_ref().map_or(spec.name.span(), |m| m.span());
+                    return Err(src.error(sp, format!("interface[{i}].mu"), format!(
+                        "friction coefficient {mu} at ({:.4}, {:.4}, {:.4}) for {}; must be finite and >= 0",
+                        p.x[0], p.x[1], p.x[2], at()
+                    )));
+                }
+                if !gap.is_finite() {
+                    let sp = spec.gap.as_ref().map_or(spec.name.span(), |m| m.span());
+                    return Err(src.error(
+                        sp,
+                        format!("interface[{i}].gap"),
+                        format!(
+                            "gap {gap} at ({:.4}, {:.4}, {:.4}) for {}",
+                            p.x[0],
+                            p.x[1],
+                            p.x[2],
+                            at()
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// True if the study estimates its error: an `[error]` table (not disabled) or an adaptive
+/// method.
+pub fn estimates_error(study: &Study) -> bool {
+    study
+        .file
+        .error
+        .as_ref()
+        .is_some_and(|e| e.enabled.unwrap_or(true))
+        || study
+            .methods
+            .iter()
+            .any(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+}
+
+/// Checks the sizes of a built study: distinct runs, and the memory of the mean / std fields.
+///
+/// # Errors
+/// [`StudyError::TooLarge`] with the estimate.
+pub fn check_built(study: &Study) -> Result<(), StudyError> {
+    check_total_runs(study.all_points().len())?;
+    if study.output.mean_fields.unwrap_or(true)
+        && let Some(m) = study
+            .methods
+            .iter()
+            .find(|m| m.kind != MethodKind::MonteCarlo)
+    {
+        let need = mean_fields_memory(m.points.len());
+        let have = available_memory() as f64 / 2.0;
+        if need > have {
+            return Err(StudyError::TooLarge(format!(
+                "the mean / std fields of method '{}' on {} runs would need about {} of memory ({} usable); \
+                 set mean_fields = false in [output]",
+                m.label,
+                m.points.len(),
+                human_bytes(need),
+                human_bytes(have)
+            )));
+        }
+    }
+    Ok(())
+}
