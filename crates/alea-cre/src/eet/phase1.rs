@@ -174,9 +174,7 @@ pub struct Phase1Input<'a> {
     pub sides: &'a [SideForces],
 }
 
-/// A node's orthonormal frame (rows) and its number of free directions (the first ones; the
-/// rest are constrained).
-pub type NodeFrame = ([[f64; 2]; 2], usize);
+pub use super::sides::NodeFrame;
 
 /// Per node: orthonormal frame (rows) and the number of free directions (the rest are
 /// constrained).

@@ -5,12 +5,15 @@
 use alea_fem::Model;
 use alea_mesh::Mesh;
 
-use super::phase1::NodeFrame;
 use crate::CreError;
 use crate::data::{FacetProjections, SideForces};
 use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
 use crate::linalg::cholesky_solve;
 use crate::topology::{Topology, facet_point_at};
+
+/// A node's orthonormal frame (rows) and its number of free directions (the first ones; the
+/// rest are constrained).
+pub type NodeFrame = ([[f64; 2]; 2], usize);
 
 /// A polynomial density on one edge: `(edge, values at [nodes[0], nodes[1], mid])`.
 pub type EdgeLinear = (usize, [[f64; 2]; 3]);

@@ -31,7 +31,7 @@
 use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
 use rayon::prelude::*;
 
-use super::sides::interface_densities;
+use super::sides::{fe_traction, interface_densities};
 use super::topology::{FaceTopology, face_mass};
 use crate::CreError;
 use crate::data::{SideForces, TractionField, VectorField};
@@ -116,9 +116,7 @@ pub struct Phase1Input<'a> {
     pub sides: &'a [SideForces],
 }
 
-/// A node's orthonormal frame (rows: free directions first, then constrained ones) and its
-/// number of free directions.
-pub type NodeFrame3 = ([[f64; 3]; 3], usize);
+pub use super::sides::NodeFrame3;
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
@@ -211,23 +209,6 @@ fn face_projector(topo: &FaceTopology, frames: &[NodeFrame3], f: usize) -> [[f64
 
 fn apply(p: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| p[i][0] * v[0] + p[i][1] * v[1] + p[i][2] * v[2])
-}
-
-/// FE traction `sigma_h n` of cell `c` at its reference point `xi`.
-pub(crate) fn fe_traction(
-    model: &Model,
-    c: usize,
-    u: &[f64],
-    xi: [f64; 3],
-    n: [f64; 3],
-) -> Result<[f64; 3], CreError> {
-    let s = alea_fem::post::stress_at(model, c, u, xi)?;
-    // [xx, yy, zz, yz, xz, xy]
-    Ok([
-        s[0] * n[0] + s[5] * n[1] + s[4] * n[2],
-        s[5] * n[0] + s[1] * n[1] + s[3] * n[2],
-        s[4] * n[0] + s[3] * n[1] + s[2] * n[2],
-    ])
 }
 
 /// Runs phase 1 on one 3D domain.

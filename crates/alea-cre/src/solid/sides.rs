@@ -6,11 +6,14 @@
 use alea_fem::{Model, Quadrature};
 use alea_mesh::Mesh;
 
-use super::phase1::{NodeFrame3, fe_traction};
 use super::topology::{FaceTopology, face_mass};
 use crate::CreError;
 use crate::data::{FaceProjections, SideForces};
 use crate::linalg::cholesky_solve;
+
+/// A node's orthonormal frame (rows: free directions first, then constrained ones) and its
+/// number of free directions.
+pub type NodeFrame3 = ([[f64; 3]; 3], usize);
 
 /// A polynomial density on one face: `(face, values at the face's nodes)`.
 pub type FaceValues = (usize, Vec<[f64; 3]>);
@@ -179,4 +182,21 @@ pub fn face_projections(
         out.insert(key, fnodes.iter().copied().zip(proj).collect());
     }
     Ok(out)
+}
+
+/// FE traction `sigma_h n` of cell `c` at its reference point `xi`.
+pub(crate) fn fe_traction(
+    model: &Model,
+    c: usize,
+    u: &[f64],
+    xi: [f64; 3],
+    n: [f64; 3],
+) -> Result<[f64; 3], CreError> {
+    let s = alea_fem::post::stress_at(model, c, u, xi)?;
+    // [xx, yy, zz, yz, xz, xy]
+    Ok([
+        s[0] * n[0] + s[5] * n[1] + s[4] * n[2],
+        s[5] * n[0] + s[1] * n[1] + s[3] * n[2],
+        s[4] * n[0] + s[3] * n[1] + s[2] * n[2],
+    ])
 }

@@ -25,7 +25,7 @@
 //! 200 points, reported 2.2e-9 against a true 1.6e-7): the factor `T` grows as `P -> K` and
 //! keeps the selection away from near-interpolating fits.
 
-use super::pc::PcSurrogate;
+use super::pc::{PcSurrogate, corrected_loo_factor};
 use crate::basis::PcBasis;
 use crate::error::{Result, UqError, check_len, invalid};
 use rayon::prelude::*;
@@ -283,15 +283,6 @@ impl<'a> IncrementalLs<'a> {
         let t = corrected_loo_factor(k, p, self.trace_inv_gram);
         Some((plain, plain * t))
     }
-}
-
-/// Chapelle / Blatman-Sudret correction `T(P, K) = K/(K - P) (1 + tr((Psi^T Psi)^-1))` of the
-/// LOO error of a least-squares fit with `p` terms on `k` points (infinite for `p >= k`).
-pub fn corrected_loo_factor(k: usize, p: usize, trace_inv_gram: f64) -> f64 {
-    if p >= k {
-        return f64::INFINITY;
-    }
-    k as f64 / (k - p) as f64 * (1.0 + trace_inv_gram)
 }
 
 /// Run LARS on the columns of the `k x p` row-major matrix `psi` other than the constant column

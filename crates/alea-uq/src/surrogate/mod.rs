@@ -23,9 +23,10 @@ mod multilinear;
 mod pc;
 mod saved;
 
-pub use lars::{LarsOptions, LarsReport, corrected_loo_factor};
+pub use lars::{LarsOptions, LarsReport};
 pub use monomial::MonomialSurface;
 pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, StochasticMesh};
+pub use pc::corrected_loo_factor;
 pub use pc::{PcExpansion, PcMethod, PcSurrogate};
 pub use saved::RunData;
 

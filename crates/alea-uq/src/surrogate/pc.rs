@@ -228,7 +228,7 @@ impl PcSurrogate {
     /// As [`PcSurrogate::loo_error`].
     pub fn corrected_loo_error(&self, values: &[f64]) -> Result<f64> {
         let e = self.loo_error(values)?;
-        Ok(e * super::lars::corrected_loo_factor(self.k, self.basis.len(), self.trace_inv_gram))
+        Ok(e * corrected_loo_factor(self.k, self.basis.len(), self.trace_inv_gram))
     }
 }
 
@@ -401,4 +401,13 @@ impl PcExpansion {
         }
         psi.iter().zip(&self.coeffs).map(|(a, b)| a * b).sum()
     }
+}
+
+/// Chapelle / Blatman-Sudret correction `T(P, K) = K/(K - P) (1 + tr((Psi^T Psi)^-1))` of the
+/// LOO error of a least-squares fit with `p` terms on `k` points (infinite for `p >= k`).
+pub fn corrected_loo_factor(k: usize, p: usize, trace_inv_gram: f64) -> f64 {
+    if p >= k {
+        return f64::INFINITY;
+    }
+    k as f64 / (k - p) as f64 * (1.0 + trace_inv_gram)
 }
