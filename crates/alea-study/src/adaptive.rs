@@ -66,7 +66,7 @@ pub(crate) trait AdaptiveRuns<'a> {
 
 /// The start mesh: the parameter box with its corners and centre as runs.
 pub fn start_mesh(lo: &[f64], hi: &[f64]) -> Result<StochasticMesh, StudyError> {
-    let uq = |e: alea_uq::UqError| StudyError::Other(e.to_string());
+    let uq = StudyError::from;
     let mut mesh = StochasticMesh::new(lo, hi, &vec![1; lo.len()]).map_err(uq)?;
     mesh.refine_centred(&[0]).map_err(uq)?;
     Ok(mesh)
@@ -180,8 +180,7 @@ pub(crate) fn run_adaptive<'a>(
         }
         let new = match settings.criterion {
             Criterion::Improved { fraction } => {
-                let marked = refine::improved(&cells, fraction)
-                    .map_err(|e| StudyError::Other(e.to_string()))?;
+                let marked = refine::improved(&cells, fraction).map_err(StudyError::from)?;
                 if marked.is_empty() {
                     break ("no cell carries stochastic error".to_string(), None);
                 }
@@ -195,7 +194,7 @@ pub(crate) fn run_adaptive<'a>(
                     params.joint.as_ref(),
                     fraction,
                 )
-                .map_err(|e| StudyError::Other(e.to_string()))?;
+                .map_err(StudyError::from)?;
                 // Keep the largest densities within the budget (actions come sorted; a split
                 // along m of d directions adds up to 2^(d - m) runs).
                 let d = params.lo.len();
@@ -227,33 +226,29 @@ pub(crate) fn run_adaptive<'a>(
                 for (a, _) in &actions {
                     match a {
                         refine::ImprovedAction::Promote(p) => {
-                            mesh.promote(p)
-                                .map_err(|e| StudyError::Other(e.to_string()))?;
+                            mesh.promote(p).map_err(StudyError::from)?;
                         }
                         refine::ImprovedAction::Centre(c) => splits.push((*c, full)),
                         refine::ImprovedAction::Split(c, m) => splits.push((*c, *m)),
                     }
                 }
-                mesh.refine_directions(&splits)
-                    .map_err(|e| StudyError::Other(e.to_string()))?;
+                mesh.refine_directions(&splits).map_err(StudyError::from)?;
                 mesh.num_runs() - before
             }
             Criterion::MaxError { depth } => {
                 let sp = StudyParameters::new(&study.model.parametric, runner.solver());
                 let best =
                     refine::max_error_point(&mesh, &est, &sur, &sp, params.joint.as_ref(), depth)
-                        .map_err(|e| StudyError::Other(e.to_string()))?;
+                        .map_err(StudyError::from)?;
                 let Some(best) = best else {
                     break ("no point carries stochastic error".to_string(), None);
                 };
                 match best.enrich {
                     refine::Enrich::Centre(cell) => {
-                        mesh.refine_centred(&[cell])
-                            .map_err(|e| StudyError::Other(e.to_string()))?;
+                        mesh.refine_centred(&[cell]).map_err(StudyError::from)?;
                     }
                     refine::Enrich::Node => {
-                        mesh.promote(&best.point)
-                            .map_err(|e| StudyError::Other(e.to_string()))?;
+                        mesh.promote(&best.point).map_err(StudyError::from)?;
                     }
                 }
                 1

@@ -485,7 +485,7 @@ impl CreSetup {
                 Some(fe) => Ok((
                     Vec::new(),
                     fe.fe_stress(model, u, record.young[s])
-                        .map_err(|e| StudyError::Other(e.to_string()))?,
+                        .map_err(StudyError::from)?,
                 )),
                 None => Ok((Vec::new(), Vec::new())),
             };

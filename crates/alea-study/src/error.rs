@@ -35,6 +35,15 @@ pub enum StudyError {
     /// Solver error.
     #[error(transparent)]
     Latin(#[from] alea_latin::LatinError),
+    /// Deterministic error-estimator error (admissible stresses of a run).
+    #[error(transparent)]
+    Cre(#[from] alea_cre::CreError),
+    /// Stochastic error-estimate error (Gram matrices, rules, criteria).
+    #[error(transparent)]
+    Estimate(#[from] alea_estimate::EstimateError),
+    /// Stochastic toolkit error (laws, designs, surrogates, the stochastic mesh).
+    #[error(transparent)]
+    Uq(#[from] alea_uq::UqError),
     /// A command-line argument or study directory that cannot be used as asked.
     #[error("{0}")]
     Usage(String),

@@ -13,7 +13,7 @@
 //! interface part converges with the cells.
 //!
 //! **Admissibility.** The interpolated fields are admissible for the loads at `xi` only if the
-//! surrogate reproduces the load factors; [`MethodError::load_defect`] reports the largest
+//! surrogate reproduces the load factors; [`SurrogateEstimate::load_defect`] reports the largest
 //! relative error of that reproduction on the rule (0 for load factors affine in the
 //! parameters), and [`alea_estimate::Estimate::violation_probability`] the probability of points
 //! where the interpolated interface fields leave the admissible set (negative gap or normal
@@ -118,7 +118,7 @@ pub fn error_settings(study: &Study) -> Result<ErrorSettings, StudyError> {
 
 /// The error estimate of one surrogate.
 #[derive(Clone, Debug)]
-pub struct MethodError {
+pub struct SurrogateEstimate {
     /// Expectations per entity and in total.
     pub estimate: Estimate,
     /// Runs the surrogate is built on.
@@ -208,7 +208,7 @@ pub fn build_estimator(
             admissibility_tolerance: setup.options.admissibility_tolerance,
         },
     )
-    .map_err(|e| StudyError::Other(e.to_string()))
+    .map_err(StudyError::from)
 }
 
 /// The integration rule of a method (module doc): its cells and the rule.
@@ -228,7 +228,7 @@ pub fn integration_rule(
             .map(|c| (c, mesh.cell_bounds(c)))
             .collect(),
         None => Rule::regular_cells(&params.lo, &params.hi, settings.cells_per_dim)
-            .map_err(|e| StudyError::Other(e.to_string()))?
+            .map_err(StudyError::from)?
             .into_iter()
             .enumerate()
             .collect(),
@@ -258,7 +258,7 @@ pub fn estimate_method(
     points: &[Vec<f64>],
     sur: &Surrogate,
     settings: &ErrorSettings,
-) -> Result<(Estimator, MethodError), StudyError> {
+) -> Result<(Estimator, SurrogateEstimate), StudyError> {
     let t0 = Instant::now();
     let params = StudyParameters::new(&study.model.parametric, solver);
     let est = build_estimator(setup, solver, store, points, &params)?;
@@ -267,7 +267,7 @@ pub fn estimate_method(
     let load_defect = load_defect(study, points, &rule, sur);
     Ok((
         est,
-        MethodError {
+        SurrogateEstimate {
             estimate,
             runs: points.len(),
             rule_points: rule.len(),
@@ -359,7 +359,7 @@ pub fn density_maps(
         n,
         budget,
     )
-    .map_err(|e| StudyError::Other(e.to_string()))
+    .map_err(StudyError::from)
 }
 
 /// The interface error terms per cell: each interface point's `[E[m_p rho*(w~, F~)],

@@ -195,14 +195,11 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
     }
     let joint: Arc<dyn JointLaw> = match &file.joint {
         None if d == 0 => Arc::new(NoParameters),
-        None => Arc::new(
-            Independent::new(marginals.clone()).map_err(|e| StudyError::Other(e.to_string()))?,
-        ),
+        None => Arc::new(Independent::new(marginals.clone()).map_err(StudyError::from)?),
         Some(j) => match j.kind.get_ref().as_str() {
-            "independent" => Arc::new(
-                Independent::new(marginals.clone())
-                    .map_err(|e| StudyError::Other(e.to_string()))?,
-            ),
+            "independent" => {
+                Arc::new(Independent::new(marginals.clone()).map_err(StudyError::from)?)
+            }
             "gaussian_copula" => {
                 let c = j.correlation.as_ref().ok_or_else(|| {
                     src.error(

@@ -8,7 +8,7 @@ use alea_latin::LatinSolver;
 use alea_uq::surrogate::StochasticMesh;
 
 use crate::cre::CreSetup;
-use crate::estimate::MethodError;
+use crate::estimate::SurrogateEstimate;
 use crate::lock::StudyLock;
 use crate::method::Method;
 use crate::store::RunRecord;
@@ -62,7 +62,7 @@ pub struct StepRecord {
     /// Runs added by the refinement that ended this step (0 for the last step).
     pub new_runs: usize,
     /// The estimate.
-    pub error: MethodError,
+    pub error: SurrogateEstimate,
     /// Statistics of each quantity of interest on this step's surrogate.
     pub qois: Vec<StepQoi>,
     /// Seconds of this step's solves (wall clock).

@@ -8,7 +8,7 @@ use alea_estimate::density::PairMap;
 use alea_study::adaptive::AdaptiveOutcome;
 use alea_study::analysis::MethodResult;
 use alea_study::estimate::{
-    ErrorSettings, MethodError, density_maps, error_settings, estimate_method,
+    ErrorSettings, SurrogateEstimate, density_maps, error_settings, estimate_method,
 };
 use alea_study::method::{Method, MethodKind};
 use alea_study::runner::{Study, StudyRuns};
@@ -20,7 +20,7 @@ pub struct MethodEstimate {
     /// Method index.
     pub method: usize,
     /// The estimate (or why there is none).
-    pub result: std::result::Result<MethodError, String>,
+    pub result: std::result::Result<SurrogateEstimate, String>,
     /// Density maps (main method only).
     pub maps: Vec<PairMap>,
     /// The ParaView file of the mean error density per cell (main method only).
@@ -48,7 +48,7 @@ pub fn estimate_all(
         }
         let adaptive = runs.adaptive.iter().find(|a| a.method == m);
         let computed =
-            (|| -> std::result::Result<(Option<alea_estimate::Estimator>, MethodError), String> {
+            (|| -> std::result::Result<(Option<alea_estimate::Estimator>, SurrogateEstimate), String> {
                 if let Some(a) = adaptive {
                     let last = a.steps.last().ok_or("the adaptive loop made no estimate")?;
                     return Ok((a.estimator.clone(), last.error.clone()));
@@ -307,7 +307,7 @@ fn entity_json(e: &alea_estimate::EntityEstimate, kind: &str, est: &Estimate) ->
 }
 
 /// The JSON of one method's estimate.
-pub fn error_json(e: &MethodError) -> serde_json::Value {
+pub fn error_json(e: &SurrogateEstimate) -> serde_json::Value {
     let est = &e.estimate;
     let entities: Vec<serde_json::Value> = est
         .subs
