@@ -4,40 +4,34 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::super::QoiReport;
-use super::super::format::{count, num};
+use super::super::format::count;
 use super::common::{
-    DrawResult, GRID_BOLD, GRID_LIGHT, KDE, MEAN, QUANTILE, axis_label, configure_legend, err,
-    font, line_legend, ticks,
+    DrawResult, KDE, QUANTILE, axis_label, chart, configure_legend, err, grid, line_legend, ticks,
 };
-use super::qoi::{draw_thresholds, qoi_x_range};
+use super::qoi::{draw_mean, draw_thresholds, qoi_x_range};
 
 /// Points drawn at most for the empirical CDF.
 const CDF_POINTS: usize = 2000;
+
 pub(super) fn draw_cdf<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     q: &QoiReport,
     sorted: &[f64],
 ) -> DrawResult {
     let ((lo, hi), on_scale) = qoi_x_range(q, sorted);
-    let mut chart = ChartBuilder::on(root)
-        .caption(format!("Cumulative distribution of {}", q.name), font(24.0))
-        .margin(18)
-        .x_label_area_size(54)
-        .y_label_area_size(72)
-        .build_cartesian_2d(lo..hi, -0.02..1.04)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
+    let mut chart = chart(
+        root,
+        format!("Cumulative distribution of {}", q.name),
+        lo..hi,
+        -0.02..1.04,
+    )?;
+    grid(&mut chart.configure_mesh())
         .x_desc(axis_label(&q.name, &q.unit))
         .y_desc("probability")
         .x_labels(8)
         .y_labels(11)
         .x_label_formatter(&ticks(lo, hi, 8))
         .y_label_formatter(&ticks(0.0, 1.0, 10))
-        .axis_desc_style(font(17.0))
-        .label_style(font(15.0))
-        .bold_line_style(GRID_BOLD)
-        .light_line_style(GRID_LIGHT)
         .draw()
         .map_err(err)?;
     let n = sorted.len();
@@ -62,16 +56,7 @@ pub(super) fn draw_cdf<DB: DrawingBackend>(
             .label(format!("empirical CDF ({} samples)", count(n)))
             .legend(line_legend(KDE, 2));
     }
-    chart
-        .draw_series(DashedLineSeries::new(
-            [(q.mean, 0.0), (q.mean, 1.0)],
-            9,
-            6,
-            MEAN.stroke_width(2),
-        ))
-        .map_err(err)?
-        .label(format!("mean = {}", num(q.mean, 4)))
-        .legend(line_legend(MEAN, 2));
+    draw_mean(&mut chart, q, 1.0)?;
     if !q.quantiles.is_empty() {
         chart
             .draw_series(

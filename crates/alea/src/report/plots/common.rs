@@ -4,6 +4,9 @@
 use std::path::Path;
 use std::sync::OnceLock;
 
+use plotters::chart::MeshStyle;
+use plotters::coord::Shift;
+use plotters::coord::ranged1d::AsRangedCoord;
 use plotters::prelude::*;
 
 use super::super::ReportError;
@@ -22,8 +25,8 @@ pub(super) const KDE: RGBColor = RGBColor(8, 69, 148);
 pub(super) const MEAN: RGBColor = RGBColor(40, 40, 40);
 pub(super) const THRESHOLD: RGBColor = RGBColor(203, 24, 29);
 pub(super) const QUANTILE: RGBColor = RGBColor(230, 120, 20);
-pub(super) const GRID_BOLD: RGBColor = RGBColor(222, 222, 222);
-pub(super) const GRID_LIGHT: RGBColor = RGBColor(242, 242, 242);
+const GRID_BOLD: RGBColor = RGBColor(222, 222, 222);
+const GRID_LIGHT: RGBColor = RGBColor(242, 242, 242);
 const LEGEND_EDGE: RGBColor = RGBColor(190, 190, 190);
 /// Qualitative palette for several lines (Tableau 10).
 pub(super) const PALETTE: [RGBColor; 10] = [
@@ -121,16 +124,22 @@ fn write_png(path: &Path, (w, h): (u32, u32), rgb: &[u8]) -> Result<(), ReportEr
             message: format!("PNG encoding: {other}"),
         },
     };
+    let bytes = encode_png((w, h), rgb).map_err(enc_err)?;
+    alea_mesh::atomic::write_bytes_atomic(path, &bytes).map_err(io)
+}
+
+/// 8-bit RGB pixels, row 0 at the top, as PNG file bytes.
+pub(super) fn encode_png((w, h): (u32, u32), rgb: &[u8]) -> Result<Vec<u8>, png::EncodingError> {
     let mut bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut bytes, w, h);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder.write_header().map_err(enc_err)?;
-        writer.write_image_data(rgb).map_err(enc_err)?;
-        writer.finish().map_err(enc_err)?;
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(rgb)?;
+        writer.finish()?;
     }
-    alea_mesh::atomic::write_bytes_atomic(path, &bytes).map_err(io)
+    Ok(bytes)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -196,6 +205,45 @@ pub(super) fn by_x(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     let mut v = points.to_vec();
     v.sort_by(|a, b| a.0.total_cmp(&b.0));
     v
+}
+
+/// A chart with Cartesian coordinates.
+pub(super) type Chart2d<'a, DB, X, Y> = ChartContext<'a, DB, Cartesian2d<X, Y>>;
+
+/// A chart in the frame every plot but the response surface has: title, margins, room for the
+/// axis labels.
+pub(super) fn chart<'a, DB: DrawingBackend, X: AsRangedCoord, Y: AsRangedCoord>(
+    root: &'a DrawingArea<DB, Shift>,
+    title: impl AsRef<str>,
+    x: X,
+    y: Y,
+) -> Result<Chart2d<'a, DB, X::CoordDescType, Y::CoordDescType>, String> {
+    ChartBuilder::on(root)
+        .caption(title, font(24.0))
+        .margin(18)
+        .x_label_area_size(54)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x, y)
+        .map_err(err)
+}
+
+/// The axis and grid style of the same plots.
+pub(super) fn grid<'m, 'a, 'b, X: Ranged, Y: Ranged, DB: DrawingBackend>(
+    mesh: &'m mut MeshStyle<'a, 'b, X, Y, DB>,
+) -> &'m mut MeshStyle<'a, 'b, X, Y, DB> {
+    mesh.axis_desc_style(font(17.0))
+        .label_style(font(15.0))
+        .bold_line_style(GRID_BOLD)
+        .light_line_style(GRID_LIGHT)
+}
+
+/// Tick label of a count axis (runs, iterations): whole numbers only.
+pub(super) fn integer_label(v: &f64) -> String {
+    if (v - v.round()).abs() < 1e-9 {
+        format!("{}", v.round() as i64)
+    } else {
+        String::new()
+    }
 }
 
 pub(super) fn line_legend(

@@ -5,8 +5,8 @@ use plotters::prelude::*;
 
 use super::super::Comparison;
 use super::common::{
-    DrawResult, GRID_BOLD, GRID_LIGHT, PALETTE, axis_label, by_x, configure_legend, err, extend,
-    font, line_legend, pad, ticks,
+    DrawResult, PALETTE, axis_label, by_x, chart, configure_legend, err, extend, grid, line_legend,
+    pad, ticks,
 };
 
 pub(super) fn draw_comparison<DB: DrawingBackend>(
@@ -26,28 +26,19 @@ pub(super) fn draw_comparison<DB: DrawingBackend>(
     }
     let (x0, x1) = pad(xr.unwrap_or((0.0, 1.0)), 0.02);
     let ymax = if ymax > 0.0 { ymax * 1.15 } else { 1.0 };
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            format!("Probability density of {}: methods compared", c.qoi),
-            font(24.0),
-        )
-        .margin(18)
-        .x_label_area_size(54)
-        .y_label_area_size(72)
-        .build_cartesian_2d(x0..x1, 0.0..ymax)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
+    let mut chart = chart(
+        root,
+        format!("Probability density of {}: methods compared", c.qoi),
+        x0..x1,
+        0.0..ymax,
+    )?;
+    grid(&mut chart.configure_mesh())
         .x_desc(axis_label(&c.qoi, unit))
         .y_desc("probability density")
         .x_labels(8)
         .y_labels(7)
         .x_label_formatter(&ticks(x0, x1, 8))
         .y_label_formatter(&ticks(0.0, ymax, 7))
-        .axis_desc_style(font(17.0))
-        .label_style(font(15.0))
-        .bold_line_style(GRID_BOLD)
-        .light_line_style(GRID_LIGHT)
         .draw()
         .map_err(err)?;
     let mut k = 0;

@@ -6,7 +6,7 @@ use plotters::prelude::*;
 use super::super::AdaptiveReport;
 use super::super::format::num;
 use super::common::{
-    DrawResult, GRID_BOLD, GRID_LIGHT, PALETTE, configure_legend, err, extend, font, line_legend,
+    DrawResult, PALETTE, chart, configure_legend, err, extend, grid, integer_label, line_legend,
     pad,
 };
 
@@ -35,31 +35,19 @@ pub(super) fn draw_indicators<DB: DrawingBackend>(
     } else {
         (y0 / 10.0, y1 * 10.0)
     };
-    let mut chart = ChartBuilder::on(root)
-        .caption("Error indicators of the adaptive steps", font(24.0))
-        .margin(18)
-        .x_label_area_size(54)
-        .y_label_area_size(72)
-        .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-        .map_err(err)?;
-    chart
-        .configure_mesh()
+    let mut chart = chart(
+        root,
+        "Error indicators of the adaptive steps",
+        x0..x1,
+        (y0..y1).log_scale(),
+    )?;
+    grid(&mut chart.configure_mesh())
         .x_desc("runs")
         .y_desc("indicator (% of the admissible energy)")
         .x_labels(10)
         .y_labels(10)
-        .x_label_formatter(&|v| {
-            if (v - v.round()).abs() < 1e-9 {
-                format!("{}", v.round() as i64)
-            } else {
-                String::new()
-            }
-        })
+        .x_label_formatter(&integer_label)
         .y_label_formatter(&|v| num(*v, 2))
-        .axis_desc_style(font(17.0))
-        .label_style(font(15.0))
-        .bold_line_style(GRID_BOLD)
-        .light_line_style(GRID_LIGHT)
         .draw()
         .map_err(err)?;
     for (k, a) in adaptive.iter().enumerate() {

@@ -6,10 +6,10 @@ use plotters::prelude::*;
 use super::super::QoiReport;
 use super::super::format::{count, num};
 use super::common::{
-    DrawResult, GRID_BOLD, GRID_LIGHT, HIST_EDGE, HIST_FILL, KDE, MEAN, THRESHOLD, axis_label,
-    by_x, configure_legend, err, font, line_legend, ticks,
+    DrawResult, HIST_EDGE, HIST_FILL, KDE, THRESHOLD, axis_label, by_x, chart, configure_legend,
+    err, grid, line_legend, ticks,
 };
-use super::qoi::{draw_thresholds, qoi_x_range};
+use super::qoi::{draw_mean, draw_thresholds, qoi_x_range};
 
 /// The region under a curve (increasing x) right of `t`, as a closed polygon; `None` when the
 /// curve ends before `t`.
@@ -80,25 +80,19 @@ pub(super) fn draw_pdf<DB: DrawingBackend>(
         .chain(q.kde.iter().map(|p| p.1))
         .fold(0.0, f64::max);
     let ymax = if ymax > 0.0 { ymax * 1.15 } else { 1.0 };
-    let mut chart = ChartBuilder::on(root)
-        .caption(format!("Probability density of {}", q.name), font(24.0))
-        .margin(18)
-        .x_label_area_size(54)
-        .y_label_area_size(72)
-        .build_cartesian_2d(lo..hi, 0.0..ymax)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
+    let mut chart = chart(
+        root,
+        format!("Probability density of {}", q.name),
+        lo..hi,
+        0.0..ymax,
+    )?;
+    grid(&mut chart.configure_mesh())
         .x_desc(axis_label(&q.name, &q.unit))
         .y_desc("probability density")
         .x_labels(8)
         .y_labels(7)
         .x_label_formatter(&ticks(lo, hi, 8))
         .y_label_formatter(&ticks(0.0, ymax, 7))
-        .axis_desc_style(font(17.0))
-        .label_style(font(15.0))
-        .bold_line_style(GRID_BOLD)
-        .light_line_style(GRID_LIGHT)
         .draw()
         .map_err(err)?;
     if !bars.is_empty() {
@@ -149,16 +143,7 @@ pub(super) fn draw_pdf<DB: DrawingBackend>(
             .legend(line_legend(KDE, 3));
     }
     let top = ymax / 1.15;
-    chart
-        .draw_series(DashedLineSeries::new(
-            [(q.mean, 0.0), (q.mean, top)],
-            9,
-            6,
-            MEAN.stroke_width(2),
-        ))
-        .map_err(err)?
-        .label(format!("mean = {}", num(q.mean, 4)))
-        .legend(line_legend(MEAN, 2));
+    draw_mean(&mut chart, q, top)?;
     draw_thresholds(&mut chart, q, &on_scale, top)?;
     let position = if q.mean > 0.5 * (lo + hi) {
         SeriesLabelPosition::UpperLeft

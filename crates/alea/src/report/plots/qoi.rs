@@ -5,7 +5,7 @@ use plotters::prelude::*;
 
 use super::super::QoiReport;
 use super::super::format::num;
-use super::common::{DrawResult, THRESHOLD, err, extend, line_legend, pad};
+use super::common::{DrawResult, MEAN, THRESHOLD, err, extend, line_legend, pad};
 
 /// The x range of a QoI's plots: samples, KDE grid, mean, and the thresholds that are not far
 /// off (returned with a flag: on scale or not).
@@ -37,6 +37,25 @@ pub(super) fn qoi_x_range(q: &QoiReport, sorted: &[f64]) -> ((f64, f64), Vec<boo
         }
     }
     (pad(r.unwrap_or((lo, hi)), 0.03), on_scale)
+}
+
+/// The mean, a dashed vertical line up to `top`.
+pub(super) fn draw_mean<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    q: &QoiReport,
+    top: f64,
+) -> DrawResult {
+    chart
+        .draw_series(DashedLineSeries::new(
+            [(q.mean, 0.0), (q.mean, top)],
+            9,
+            6,
+            MEAN.stroke_width(2),
+        ))
+        .map_err(err)?
+        .label(format!("mean = {}", num(q.mean, 4)))
+        .legend(line_legend(MEAN, 2));
+    Ok(())
 }
 
 pub(super) fn draw_thresholds<'a, DB: DrawingBackend + 'a>(

@@ -4,7 +4,7 @@
 use plotters::prelude::*;
 
 use super::super::Surface;
-use super::common::err;
+use super::common::{encode_png, err};
 
 /// Colour levels of the response surface.
 pub(super) const LEVELS: usize = 14;
@@ -27,6 +27,11 @@ fn band_color(v: f64, (vmin, vmax): (f64, f64)) -> RGBColor {
         .floor()
         .max(0.0) as usize)
         .min(LEVELS - 1);
+    level_color(l)
+}
+
+/// Colour of level `l` of `LEVELS` (the middle of its band on the viridis scale).
+pub(super) fn level_color(l: usize) -> RGBColor {
     viridis((l as f64 + 0.5) / LEVELS as f64)
 }
 
@@ -62,15 +67,7 @@ pub(super) fn embed_raster(svg: &mut String, s: &Surface, r: &Raster) -> Result<
             .ok_or("raster placeholder malformed")?
         + 7;
     let (w, h, rgb) = raster_rgb(s, r, 2);
-    let mut png_bytes = Vec::new();
-    {
-        let mut encoder = png::Encoder::new(&mut png_bytes, w, h);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder.write_header().map_err(err)?;
-        writer.write_image_data(&rgb).map_err(err)?;
-        writer.finish().map_err(err)?;
-    }
+    let png_bytes = encode_png((w, h), &rgb).map_err(err)?;
     let (px0, py0, px1, py1) = r.px;
     let image = format!(
         "<image x=\"{px0}\" y=\"{py0}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" \
@@ -84,7 +81,7 @@ pub(super) fn embed_raster(svg: &mut String, s: &Surface, r: &Raster) -> Result<
 }
 
 /// Viridis, from 9 control points.
-pub(super) fn viridis(t: f64) -> RGBColor {
+fn viridis(t: f64) -> RGBColor {
     const C: [(f64, f64, f64); 9] = [
         (68.0, 1.0, 84.0),
         (71.0, 44.0, 122.0),

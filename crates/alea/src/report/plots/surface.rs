@@ -7,7 +7,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::super::Surface;
 use super::common::{axis_label, err, extend, font, pad, ticks};
-use super::raster::{LEVELS, RASTER_MARKER, Raster, raster_rgb, viridis};
+use super::raster::{LEVELS, RASTER_MARKER, Raster, level_color, raster_rgb};
 
 pub(super) fn draw_surface<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -37,7 +37,6 @@ pub(super) fn draw_surface<DB: DrawingBackend>(
     } else {
         pad((vmin, vmax), 0.0)
     };
-    let level_color = |l: usize| viridis((l as f64 + 0.5) / LEVELS as f64);
 
     let (w, _) = root.dim_in_pixel();
     let left_w = w as i32 - 140;
