@@ -208,7 +208,7 @@ pub(super) fn by_x(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 }
 
 /// A chart with Cartesian coordinates.
-pub(super) type Chart2d<'a, DB, X, Y> = ChartContext<'a, DB, Cartesian2d<X, Y>>;
+type Chart2d<'a, DB, X, Y> = ChartContext<'a, DB, Cartesian2d<X, Y>>;
 
 /// A chart in the frame every plot but the response surface has: title, margins, room for the
 /// axis labels.
