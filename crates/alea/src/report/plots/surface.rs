@@ -2,12 +2,23 @@
 //! points and a colour bar.
 
 use plotters::coord::Shift;
+use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::super::Surface;
 use super::common::{axis_label, err, extend, font, pad, ticks};
 use super::raster::{LEVELS, RASTER_MARKER, Raster, level_color, raster_rgb};
+
+/// A collocation point: a white disc ringed in black.
+type Marker<C, DB> = ComposedElement<C, DB, Circle<(i32, i32), i32>, Circle<(i32, i32), i32>>;
+
+/// The marker of a collocation point, on the plot and in its key.
+fn marker<C, DB: DrawingBackend>(at: C) -> Marker<C, DB> {
+    EmptyElement::at(at)
+        + Circle::new((0, 0), 6, WHITE.filled())
+        + Circle::new((0, 0), 6, BLACK.stroke_width(2))
+}
 
 pub(super) fn draw_surface<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -97,18 +108,9 @@ pub(super) fn draw_surface<DB: DrawingBackend>(
             BLACK.mix(0.5).stroke_width(1),
         )))
         .map_err(err)?;
-    let marker = |at: (i32, i32)| {
-        EmptyElement::at(at)
-            + Circle::new((0, 0), 6, WHITE.filled())
-            + Circle::new((0, 0), 6, BLACK.stroke_width(2))
-    };
     if !s.points.is_empty() {
         chart
-            .draw_series(s.points.iter().map(|p| {
-                EmptyElement::at((p[0], p[1]))
-                    + Circle::new((0, 0), 6, WHITE.filled())
-                    + Circle::new((0, 0), 6, BLACK.stroke_width(2))
-            }))
+            .draw_series(s.points.iter().map(|p| marker((p[0], p[1]))))
             .map_err(err)?;
         // Key, bottom right, below the plot.
         let label = format!("collocation points ({})", s.points.len());
