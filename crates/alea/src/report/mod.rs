@@ -11,6 +11,9 @@
 //! - `surface_<qoi>.{png,svg}`: response surface over two parameters (when given);
 //! - `convergence.{png,svg}`: LATIN error indicator per iteration (when histories are given);
 //! - `comparison.{png,svg}`: the PDFs of several methods (when a comparison is given);
+//! - `error_map.{png,svg}`: the stochastic error density over two parameters (when given);
+//! - `indicators.{png,svg}`: `i_sto` and `i_geo` against the runs of the adaptive methods
+//!   (when given);
 //! - `report.html`.
 //!
 //! `<qoi>` is the QoI name reduced to ASCII letters, digits, `-` and `_`.
