@@ -12,6 +12,7 @@ use plotters::prelude::*;
 use super::super::ReportError;
 use super::super::format::num;
 use super::raster::embed_raster;
+pub(super) use super::util::{encode_png, err};
 use super::{Figure, Kind, Spec};
 
 /// DejaVu Sans (Bitstream Vera licence, see assets/fonts/DejaVu-LICENSE.txt).
@@ -43,10 +44,6 @@ pub(super) const PALETTE: [RGBColor; 10] = [
 ];
 
 pub(super) type DrawResult = Result<(), String>;
-
-pub(super) fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
 
 pub(super) fn font(size: f64) -> FontDesc<'static> {
     (FAMILY, size).into_font()
@@ -126,20 +123,6 @@ fn write_png(path: &Path, (w, h): (u32, u32), rgb: &[u8]) -> Result<(), ReportEr
     };
     let bytes = encode_png((w, h), rgb).map_err(enc_err)?;
     alea_mesh::atomic::write_bytes_atomic(path, &bytes).map_err(io)
-}
-
-/// 8-bit RGB pixels, row 0 at the top, as PNG file bytes.
-pub(super) fn encode_png((w, h): (u32, u32), rgb: &[u8]) -> Result<Vec<u8>, png::EncodingError> {
-    let mut bytes = Vec::new();
-    {
-        let mut encoder = png::Encoder::new(&mut bytes, w, h);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder.write_header()?;
-        writer.write_image_data(rgb)?;
-        writer.finish()?;
-    }
-    Ok(bytes)
 }
 
 // ---------------------------------------------------------------------------------------------

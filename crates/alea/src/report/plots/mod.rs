@@ -14,6 +14,7 @@ mod pdf;
 mod qoi;
 mod raster;
 mod surface;
+mod util;
 
 use std::path::{Path, PathBuf};
 

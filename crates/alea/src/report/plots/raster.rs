@@ -4,7 +4,7 @@
 use plotters::prelude::*;
 
 use super::super::Surface;
-use super::common::{encode_png, err};
+use super::util::{encode_png, err};
 
 /// Colour levels of the response surface.
 pub(super) const LEVELS: usize = 14;
