@@ -31,8 +31,7 @@
 //!   leaf's best get the run. This is what makes the refinement **directional**: an edge
 //!   midpoint along a direction in which the response is linear is interpolated exactly, its
 //!   density is ~0 and it stays interpolated, while the midpoints along the directions where
-//!   the response bends become runs (the per-direction indicators of [`DirectionShares`]
-//!   report the split). The leaf itself is split **only along the directions where the
+//!   the response bends become runs. The leaf itself is split **only along the directions where the
 //!   response bends**: per direction `j` the indicator `eta_j` is the largest density at the
 //!   midpoints of the leaf's edges along `j`, and the split runs along the directions with
 //!   `eta_j >= fraction max eta` (`StochasticMesh::refine_directions`, runs at the centres of
@@ -81,22 +80,11 @@ pub enum ImprovedAction {
     Promote(Vec<f64>),
 }
 
-/// Share of the stochastic error density at the promoted / candidate edge midpoints, per
-/// parameter direction: `shares[j]` sums `rho_sto` over the candidate nodes that are midpoints
-/// along direction `j` (the node differs from the leaf's corners in coordinate `j` only),
-/// divided by the total over all candidate nodes (0 when there is none). A direction in which
-/// the response is linear gets ~0.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct DirectionShares {
-    /// Per direction.
-    pub shares: Vec<f64>,
-}
-
 /// Where the improved criterion puts its runs in the `marked` leaves (module doc): per leaf,
 /// the centre and the promotable interpolated corners, scored by `rho_sto`, those with at least
 /// `fraction` of the leaf's best score. Returned in decreasing score (ties: leaf order, then
 /// centre before corners in key order), without duplicates (a corner shared by two marked
-/// leaves counts once), with the per-direction shares of the candidate corners.
+/// leaves counts once).
 ///
 /// # Errors
 /// [`EstimateError::Invalid`] if `fraction` is not in `(0, 1]`; mesh errors.
@@ -109,7 +97,7 @@ pub fn improved_actions(
     params: &dyn Parameters,
     law: &dyn JointLaw,
     fraction: f64,
-) -> Result<(Vec<(ImprovedAction, f64)>, DirectionShares), EstimateError> {
+) -> Result<Vec<(ImprovedAction, f64)>, EstimateError> {
     if !(fraction > 0.0 && fraction <= 1.0) {
         return Err(EstimateError::Invalid(format!(
             "refinement fraction must be in (0, 1], got {fraction}"
@@ -132,8 +120,6 @@ pub fn improved_actions(
         f * est.at(xi, &w, params).sto2()
     };
     let mut out: Vec<(ImprovedAction, f64, usize)> = Vec::new();
-    let mut dir = vec![0.0; d];
-    let mut dir_total = 0.0;
     let mut seen: Vec<Vec<f64>> = Vec::new();
     for (order, &c) in marked.iter().enumerate() {
         if mesh.level(c) >= MAX_LEVEL {
@@ -204,41 +190,13 @@ pub fn improved_actions(
                         continue;
                     }
                     seen.push(p.clone());
-                    // Per-direction share: the node is an edge midpoint along direction j when
-                    // its two neighbours one leaf size away along j are runs (its value was
-                    // interpolated between them).
-                    for j in 0..d {
-                        let h = hi[j] - lo[j];
-                        let mut a1 = p.clone();
-                        let mut a2 = p.clone();
-                        a1[j] -= h;
-                        a2[j] += h;
-                        let is_run = |x: &[f64]| {
-                            (0..mesh.num_runs()).any(|k| {
-                                mesh.run_point(k)
-                                    .iter()
-                                    .zip(x)
-                                    .all(|(u, v)| (u - v).abs() <= 1e-9 * h.max(1e-300))
-                            })
-                        };
-                        if is_run(&a1) && is_run(&a2) {
-                            dir[j] += v;
-                        }
-                    }
-                    dir_total += v;
                 }
                 out.push((a, v, order));
             }
         }
     }
     out.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.2.cmp(&b.2)));
-    let shares = DirectionShares {
-        shares: dir
-            .iter()
-            .map(|v| if dir_total > 0.0 { v / dir_total } else { 0.0 })
-            .collect(),
-    };
-    Ok((out.into_iter().map(|(a, v, _)| (a, v)).collect(), shares))
+    Ok(out.into_iter().map(|(a, v, _)| (a, v)).collect())
 }
 
 /// How the maximum-error criterion adds its run (module doc).

@@ -185,7 +185,7 @@ pub(crate) fn run_adaptive<'a>(
                     break ("no cell carries stochastic error".to_string(), None);
                 }
                 let sp = StudyParameters::new(&study.model.parametric, runner.solver());
-                let (mut actions, _) = refine::improved_actions(
+                let mut actions = refine::improved_actions(
                     &mesh,
                     &marked,
                     &est,

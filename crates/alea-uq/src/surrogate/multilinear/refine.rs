@@ -74,24 +74,11 @@ impl StochasticMesh {
         Ok(new_runs)
     }
 
-    /// Splits leaf `c` along the directions of `mask` and classifies the nodes of the split
-    /// ([`StochasticMesh::split_grid`]): if `centre_runs`, the centres are left as they are and
-    /// returned (the caller makes them runs); every other node that is neither a corner of `c`,
-    /// a run nor already interpolated for good is interpolated from `c` for good.
-    pub(super) fn split_interpolated(
-        &mut self,
-        c: CellId,
-        mask: u8,
-        centre_runs: bool,
-    ) -> Result<Vec<Key>> {
-        if !self.is_leaf(c) {
-            return Err(UqError::Invalid {
-                what: "stochastic mesh",
-                message: format!("cell {c} is not a leaf"),
-            });
-        }
+    /// Checks that `mask` is a non-empty set of the mesh's directions and that leaf `c` is below
+    /// [`MAX_LEVEL`] in each of them.
+    fn check_split(&self, c: CellId, mask: u32) -> Result<()> {
         let d = self.d;
-        if mask == 0 || (mask as usize) >> d != 0 {
+        if mask == 0 || mask >> d != 0 {
             return Err(invalid(
                 "stochastic mesh",
                 "split mask",
@@ -109,6 +96,26 @@ impl StochasticMesh {
                 self.cells[c].levels[j] as f64,
             ));
         }
+        Ok(())
+    }
+
+    /// Splits leaf `c` along the directions of `mask` and classifies the nodes of the split
+    /// ([`StochasticMesh::split_grid`]): if `centre_runs`, the centres are left as they are and
+    /// returned (the caller makes them runs); every other node that is neither a corner of `c`,
+    /// a run nor already interpolated for good is interpolated from `c` for good.
+    pub(super) fn split_interpolated(
+        &mut self,
+        c: CellId,
+        mask: u8,
+        centre_runs: bool,
+    ) -> Result<Vec<Key>> {
+        if !self.is_leaf(c) {
+            return Err(UqError::Invalid {
+                what: "stochastic mesh",
+                message: format!("cell {c} is not a leaf"),
+            });
+        }
+        self.check_split(c, mask as u32)?;
         let grid = self.split_grid(c, mask);
         self.split_cell(c, mask);
         self.aniso |= mask != self.full_mask();
@@ -433,24 +440,7 @@ impl StochasticMesh {
                     message: format!("cell {c} is listed with two masks"),
                 });
             }
-            if mask == 0 || mask >> d != 0 {
-                return Err(invalid(
-                    "stochastic mesh",
-                    "split mask",
-                    "a non-empty set of directions of the mesh",
-                    mask as f64,
-                ));
-            }
-            if let Some(j) =
-                (0..d).find(|&j| (mask >> j) & 1 == 1 && self.cells[c].levels[j] >= MAX_LEVEL)
-            {
-                return Err(invalid(
-                    "stochastic mesh",
-                    "cell level",
-                    "below the maximum",
-                    self.cells[c].levels[j] as f64,
-                ));
-            }
+            self.check_split(c, mask)?;
         }
         let mut split: Vec<CellId> = Vec::with_capacity(todo.len());
         let mut centres = Vec::new();
