@@ -87,6 +87,8 @@ pub(crate) fn run_adaptive<'a>(
     let params = &study.params;
     let mut mesh = start_mesh(&params.lo, &params.hi)?;
     let mut steps: Vec<StepRecord> = Vec::new();
+    // The mesh of every step: the error budget compares with an earlier one.
+    let mut step_meshes: Vec<StochasticMesh> = Vec::new();
     let mut estimates = 0usize;
     let mut last_estimator = None;
     let (stop, error) = loop {
@@ -154,6 +156,7 @@ pub(crate) fn run_adaptive<'a>(
         let previous_geo = steps.last().map(|s| s.error.estimate.i_geo());
         let cells = merr.estimate.cells.clone();
         last_estimator = Some(est.clone());
+        step_meshes.push(mesh.clone());
         steps.push(StepRecord {
             runs,
             new_runs: 0,
@@ -259,9 +262,21 @@ pub(crate) fn run_adaptive<'a>(
         }
         runner.announce(new);
     };
+    // The comparison of the error budget: the last step with at most half the runs, or the
+    // corners of the box (the runs of the start mesh but its centre).
+    let coarse_mesh = match step_meshes
+        .iter()
+        .rev()
+        .find(|s| 2 * s.num_runs() <= mesh.num_runs())
+    {
+        Some(s) => s.clone(),
+        None => StochasticMesh::new(&params.lo, &params.hi, &vec![1; params.lo.len()])
+            .map_err(StudyError::from)?,
+    };
     Ok(AdaptiveOutcome {
         method: m,
         mesh,
+        coarse_mesh,
         steps,
         stop,
         error,

@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::StudyError;
+use crate::budget::{self, QoiBudget, SurrogatePart};
 use crate::method::{Method, MethodKind};
 use crate::store::{RunRecord, point_key};
 use crate::study::Study;
@@ -56,6 +57,9 @@ pub struct QoiStats {
     pub kde: Vec<(f64, f64)>,
     /// Failure probabilities.
     pub failure: Vec<FailureStat>,
+    /// The error budget of each statistic (none for a study without random parameters).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub budget: Option<QoiBudget>,
     /// The samples (not serialised).
     #[serde(skip)]
     pub samples: Vec<f64>,
@@ -143,12 +147,23 @@ pub fn analysis_settings(study: &Study) -> Result<AnalysisSettings, StudyError> 
     })
 }
 
-fn qoi_stats(study: &Study, q: usize, samples: Vec<f64>, s: &AnalysisSettings) -> QoiStats {
+/// The orders of the quantiles reported for every quantity.
+pub const QUANTILES: [f64; 7] = [0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99];
+
+fn qoi_stats(
+    study: &Study,
+    q: usize,
+    samples: Vec<f64>,
+    s: &AnalysisSettings,
+    surrogate: Option<SurrogatePart<'_>>,
+) -> QoiStats {
     let qoi = &study.qois[q];
+    let budget = surrogate
+        .map(|part| budget::qoi_budget(&samples, part, &QUANTILES, &qoi.thresholds, s.confidence));
     let sum = Summary::of(&samples);
     let mut sorted = samples.clone();
     sorted.sort_by(|a, b| a.total_cmp(b));
-    let quantiles = [0.01, 0.05, 0.25, 0.5, 0.75, 0.95, 0.99]
+    let quantiles = QUANTILES
         .iter()
         .map(|&p| (p, quantile_sorted(&sorted, p)))
         .collect();
@@ -199,6 +214,7 @@ fn qoi_stats(study: &Study, q: usize, samples: Vec<f64>, s: &AnalysisSettings) -
         bandwidth,
         kde: kde_curve,
         failure,
+        budget,
         samples,
     }
 }
@@ -248,10 +264,11 @@ pub fn analyse_method(
             out.error = Some(format!("fewer than {needed} converged runs"));
             return out;
         }
+        let has_params = !study.params.names.is_empty();
         out.qois = values
             .into_iter()
             .enumerate()
-            .map(|(q, v)| qoi_stats(study, q, v, s))
+            .map(|(q, v)| qoi_stats(study, q, v, s, has_params.then_some(SurrogatePart::Exact)))
             .collect();
         return out;
     }
@@ -290,8 +307,53 @@ pub fn analyse_method(
             },
         )
         .collect();
+    // The comparison surrogates of the error budget, at the same draws.
+    let comparisons = budget::comparisons(method, &study.params, &used_points);
+    let coarse_per_draw: Vec<Vec<Vec<f64>>> = comparisons
+        .iter()
+        .flatten()
+        .map(|c| {
+            pts.par_chunks(d)
+                .map_init(
+                    || (vec![0.0; d], Vec::new()),
+                    |(t, w), x| {
+                        c.surrogate.weights(x, t, w);
+                        (0..nq)
+                            .map(|q| w.iter().map(|&(k, wk)| wk * values[q][c.runs[k]]).sum())
+                            .collect::<Vec<f64>>()
+                    },
+                )
+                .collect()
+        })
+        .collect();
     out.qois = (0..nq)
-        .map(|q| qoi_stats(study, q, per_draw.iter().map(|v| v[q]).collect(), s))
+        .map(|q| {
+            let coarse: Vec<Vec<f64>> = coarse_per_draw
+                .iter()
+                .map(|c| c.iter().map(|v| v[q]).collect())
+                .collect();
+            let part = match &comparisons {
+                Ok(cs) => SurrogatePart::Comparison(
+                    coarse
+                        .iter()
+                        .zip(cs)
+                        .map(|(v, c)| (v.as_slice(), c.coarser))
+                        .collect(),
+                    cs.iter()
+                        .map(|c| c.description.as_str())
+                        .collect::<Vec<_>>()
+                        .join(" and "),
+                ),
+                Err(why) => SurrogatePart::Unavailable(why),
+            };
+            qoi_stats(
+                study,
+                q,
+                per_draw.iter().map(|v| v[q]).collect(),
+                s,
+                Some(part),
+            )
+        })
         .collect();
     out.monte_carlo_seconds = t0.elapsed().as_secs_f64();
     out.draws = s.samples;

@@ -5,6 +5,7 @@
 
 pub mod adaptive;
 pub mod analysis;
+pub mod budget;
 mod build;
 pub mod cre;
 #[cfg(feature = "mpi")]

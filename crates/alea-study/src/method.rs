@@ -87,6 +87,9 @@ pub struct Method {
     pub description: String,
     /// Adaptive methods: the stochastic mesh once the loop has run (its runs are `points`).
     pub mesh: Option<StochasticMesh>,
+    /// Adaptive methods: the mesh of an earlier step, the comparison of the surrogate part of
+    /// the error budget (`crate::budget`).
+    pub coarse_mesh: Option<StochasticMesh>,
 }
 
 impl Method {
@@ -100,6 +103,7 @@ impl Method {
             rule: None,
             description: "one deterministic run (the study has no random parameter)".into(),
             mesh: None,
+            coarse_mesh: None,
         }
     }
 }
@@ -311,6 +315,7 @@ pub fn build_methods(
             rule,
             description,
             mesh: None,
+            coarse_mesh: None,
         });
     }
     Ok(out)

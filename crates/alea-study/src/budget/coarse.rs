@@ -1,0 +1,207 @@
+//! The comparison surrogates of the surrogate part of the error budget: the method's surrogate
+//! one level coarser, built on a subset of the same runs, and for global polynomials also one
+//! degree richer (no new run).
+//!
+//! | method                         | comparisons                                              |
+//! |--------------------------------|----------------------------------------------------------|
+//! | PC regression, degree `p`      | PC regression of degree `p - 1` (`p - 2`) and `p + 1` on the same  |
+//! |                                | runs (`p + 1` when the runs outnumber its terms and      |
+//! |                                | determine it)                                            |
+//! | PC projection, degree `p`      | the same regressions on the Gauss nodes (a projection of |
+//! |                                | degree `p - 1` on the same rule has the same mean, so it |
+//! |                                | would see no error in the mean)                          |
+//! | standard polynomial, `p`       | degrees `p - 1` and `p + 1` on the same runs             |
+//! | piecewise linear, `n` intervals| the grid of `m` intervals, `m` the largest proper divisor |
+//! |                                | of `n` (its nodes are nodes of the fine grid)            |
+//! | adaptive                       | the stochastic mesh of the last step with at most half   |
+//! |                                | the final runs (its runs are a prefix of the final ones; |
+//! |                                | the corners alone when the loop stopped at its start)    |
+//!
+//! A statistic `S` of the quantity is computed on every surrogate with the same Monte Carlo
+//! draws, and `max_c |S(q~) - S(q~_c)|` is the surrogate part of its budget, over the richer
+//! comparisons and the first coarser one that differs from the method's surrogate (degree
+//! `p - 2` when `p - 1` gives the same surrogate: for a response odd in its parameters the
+//! even degrees vanish on a symmetric design, so degree `p - 1` sees no error at all). The coarser
+//! comparison estimates the coarse surrogate's error, an upper estimate of the method's own
+//! when the surrogates converge. Why both degrees for polynomials, measured on the 2D turbine
+//! (25 runs, chaos p = 3, against its 225-run reference): the degree-2 fit changes the mean by
+//! 0.009 MPa where the true error is 0.17 (the added terms are orthogonal to the constant), the
+//! degree-4 fit changes the std by 0.003 where the true error is 1.1; each sees what the other
+//! misses (BENCHMARKS.md "Error budget per quantity").
+
+use alea_uq::basis::PcBasis;
+use alea_uq::surrogate::StochasticMesh;
+
+use crate::ParamSpace;
+use crate::method::{Method, MethodKind, Surrogate};
+
+/// A comparison surrogate with the map of its runs onto the method's runs.
+pub struct Comparison {
+    /// The coarser surrogate (its run `k` is the method's used run `runs[k]`).
+    pub surrogate: Surrogate,
+    /// Index, among the method's used runs, of each run of the comparison.
+    pub runs: Vec<usize>,
+    /// What it is, for the report ("PC regression of degree 2 on the same 20 runs").
+    pub description: String,
+    /// Coarser than the method (`false`: richer). The budget uses the first coarser comparison
+    /// that differs from the method's surrogate at the draws, and every richer one.
+    pub coarser: bool,
+}
+
+/// The comparison surrogates of `method` whose converged runs are `used` (physical points);
+/// `Err(why)` when the method has none (degree 0, a two-node grid, Monte Carlo).
+pub fn comparisons(
+    method: &Method,
+    params: &ParamSpace,
+    used: &[Vec<f64>],
+) -> Result<Vec<Comparison>, String> {
+    let d = params.names.len();
+    let same = |kind: MethodKind, what: String, coarser: bool| -> Result<Comparison, String> {
+        let m = Method {
+            kind,
+            points: used.to_vec(),
+            rule: None,
+            mesh: None,
+            coarse_mesh: None,
+            label: String::new(),
+            description: String::new(),
+        };
+        let surrogate = m.surrogate(params, used)?;
+        Ok(Comparison {
+            surrogate,
+            runs: (0..used.len()).collect(),
+            description: format!("{what} on the same {} runs", used.len()),
+            coarser,
+        })
+    };
+    match &method.kind {
+        MethodKind::MonteCarlo => Err("Monte Carlo on the model has no surrogate".into()),
+        MethodKind::PcRegression { degree } | MethodKind::PcProjection { degree } => {
+            if *degree == 0 {
+                return Err("a degree-0 chaos has no coarser surrogate".into());
+            }
+            let at = |p: usize| {
+                same(
+                    MethodKind::PcRegression { degree: p },
+                    format!("PC regression of degree {p}"),
+                    p < *degree,
+                )
+            };
+            let terms = PcBasis::total_degree(&params.marginals, degree + 1)
+                .map_or(usize::MAX, |b| b.len());
+            let mut out = vec![at(degree - 1)?];
+            if *degree >= 2 {
+                out.push(at(degree - 2)?);
+            }
+            // The richer fit only where the runs determine it (a tensor design of p + 1 points
+            // per parameter cannot fit degree p + 1: rank deficient, left out).
+            if terms < used.len()
+                && let Ok(up) = at(degree + 1)
+            {
+                out.push(up);
+            }
+            Ok(out)
+        }
+        MethodKind::Polynomial { degree } => {
+            if *degree == 0 {
+                return Err("a degree-0 polynomial has no coarser surrogate".into());
+            }
+            let at = |p: usize| {
+                same(
+                    MethodKind::Polynomial { degree: p },
+                    format!("standard polynomial of degree {p}"),
+                    p < *degree,
+                )
+            };
+            let terms = binomial(d + degree + 1, d);
+            let mut out = vec![at(degree - 1)?];
+            if *degree >= 2 {
+                out.push(at(degree - 2)?);
+            }
+            // The richer fit only where the runs determine it (a tensor design of p + 1 points
+            // per parameter cannot fit degree p + 1: rank deficient, left out).
+            if terms < used.len()
+                && let Ok(up) = at(degree + 1)
+            {
+                out.push(up);
+            }
+            Ok(out)
+        }
+        MethodKind::PiecewiseLinear { nodes } => {
+            let n = nodes - 1;
+            let Some(m) = (1..n).rev().find(|m| n % m == 0) else {
+                return Err(format!("a {nodes}-node grid has no coarser nested grid"));
+            };
+            let mesh = StochasticMesh::new(&params.lo, &params.hi, &vec![m; d])
+                .map_err(|e| e.to_string())?;
+            Ok(vec![on_mesh(
+                mesh,
+                params,
+                used,
+                format!("piecewise multilinear on the nested {}^{d} grid", m + 1),
+            )?])
+        }
+        MethodKind::Adaptive(_) => {
+            let mesh = method
+                .coarse_mesh
+                .clone()
+                .ok_or("the adaptive loop has not recorded a coarser mesh")?;
+            let runs = mesh.num_runs();
+            Ok(vec![on_mesh(
+                mesh,
+                params,
+                used,
+                format!("the adaptive stochastic mesh of {runs} runs (an earlier step)"),
+            )?])
+        }
+    }
+}
+
+/// A multilinear comparison on `mesh`, whose run points are among `used`.
+fn on_mesh(
+    mesh: StochasticMesh,
+    params: &ParamSpace,
+    used: &[Vec<f64>],
+    description: String,
+) -> Result<Comparison, String> {
+    let d = params.names.len();
+    // Node coordinates of the coarse and the fine mesh are computed by different divisions of
+    // the box: match them within a round-off tolerance of the box size.
+    let tol: Vec<f64> = (0..d)
+        .map(|j| 1e-9 * (params.hi[j] - params.lo[j]).abs().max(f64::MIN_POSITIVE))
+        .collect();
+    let runs = (0..mesh.num_runs())
+        .map(|r| {
+            let p = mesh.run_point(r);
+            used.iter()
+                .position(|u| (0..d).all(|j| (u[j] - p[j]).abs() <= tol[j]))
+                .ok_or_else(|| format!("the comparison mesh's run at {p:?} is not a run"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let method = Method {
+        kind: MethodKind::Adaptive(crate::method::AdaptiveSettings {
+            criterion: crate::method::Criterion::MaxError { depth: 0 },
+            target: None,
+            max_runs: runs.len(),
+        }),
+        points: runs.iter().map(|&k| used[k].clone()).collect(),
+        rule: None,
+        mesh: Some(mesh),
+        coarse_mesh: None,
+        label: String::new(),
+        description: String::new(),
+    };
+    let surrogate = method.surrogate(params, &method.points)?;
+    Ok(Comparison {
+        surrogate,
+        runs,
+        description,
+        coarser: true,
+    })
+}
+
+/// `n` choose `k` (the number of monomials of total degree `<= p` in `d` variables is
+/// `binomial(d + p, d)`).
+fn binomial(n: usize, k: usize) -> usize {
+    (0..k).fold(1usize, |acc, i| acc.saturating_mul(n - i) / (i + 1))
+}

@@ -1,0 +1,281 @@
+//! The error budget of each statistic a study reports (issue 19): for the mean, the standard
+//! deviation, every quantile and every `P(q > t)` of every quantity, an estimate of its error
+//! split into parts, with the total their sum (the parts are magnitudes of errors of different
+//! origin, so their sum bounds their combination when each part holds).
+//!
+//! - **surrogate** (stochastic discretisation): `max_c |S(q~) - S(q~_c)|`, the statistic on the
+//!   method's surrogate minus the same statistic on comparison surrogates built on the same
+//!   runs (one level coarser, and for global polynomials one degree richer: [`coarse`]), all
+//!   evaluated on the same Monte Carlo draws so that the differences carry no sampling noise.
+//!   The standard deviation and `P(q > t)` use pointwise bounds (see [`comparison_parts`]).
+//!   `None` (with the reason) when the method has no comparison.
+//! - **sampling**: the half-width of the asymptotic confidence interval of `S` at the study's
+//!   level `1 - alpha` from the `N` draws (`z = Phi^-1(1 - alpha / 2)`):
+//!   mean `z s / sqrt(N)`; standard deviation `z s sqrt((k + 2) / (4 N))` with `k` the excess
+//!   kurtosis (delta method on `s^2`, whose variance is `s^4 (k + 2) / N`); quantile of order
+//!   `p` half the distance between the order statistics of ranks `N p -+ z sqrt(N p (1 - p))`
+//!   (the distribution-free binomial interval); `P(q > t)` half the Wilson interval.
+//! - **mesh** (space discretisation): not estimated yet for statistics (`None`); the runs'
+//!   energy-norm error is the CRE estimate's `I_geo`.
+
+mod coarse;
+
+pub use coarse::{Comparison, comparisons};
+
+use alea_uq::special::norm_quantile;
+use alea_uq::stats::{Summary, failure_probability, quantile_sorted};
+use serde::Serialize;
+
+/// The budget of one statistic.
+#[derive(Clone, Debug, Serialize)]
+pub struct BudgetRow {
+    /// The statistic: `mean`, `std`, `q0.05` (quantile of order 0.05), `P(> t)`.
+    pub statistic: String,
+    /// Its value.
+    pub value: f64,
+    /// Space-discretisation part (`None`: not estimated).
+    pub mesh: Option<f64>,
+    /// Surrogate part (`None`: the method has no comparison surrogate).
+    pub surrogate: Option<f64>,
+    /// Sampling part (half-width of the confidence interval).
+    pub sampling: f64,
+    /// Sum of the estimated parts.
+    pub total: f64,
+}
+
+/// The budget of one quantity under one method.
+#[derive(Clone, Debug, Serialize)]
+pub struct QoiBudget {
+    /// One row per statistic: mean, std, the quantiles, each `P(q > t)`.
+    pub rows: Vec<BudgetRow>,
+    /// How the surrogate part was estimated, or why it was not.
+    pub surrogate_basis: String,
+    /// How the mesh part was estimated, or why it was not.
+    pub mesh_basis: String,
+    /// Monte Carlo draws behind the statistics.
+    pub draws: usize,
+}
+
+/// The statistics of a sample with the sampling half-width of each.
+struct Statistics {
+    /// `(name, value, sampling half-width)`.
+    rows: Vec<(String, f64, f64)>,
+}
+
+impl Statistics {
+    fn of(samples: &[f64], quantiles: &[f64], thresholds: &[f64], confidence: f64) -> Self {
+        let n = samples.len();
+        let nf = n as f64;
+        let z = norm_quantile(0.5 + 0.5 * confidence);
+        let sum = Summary::of(samples);
+        let finite = |v: f64| if v.is_finite() { v } else { 0.0 };
+        let std = finite(sum.std);
+        let mut sorted = samples.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let mut rows = vec![
+            (
+                "mean".to_string(),
+                sum.mean,
+                finite(sum.mean_ci_half_width(confidence)),
+            ),
+            (
+                "std".to_string(),
+                std,
+                finite(z * std * ((sum.kurtosis + 2.0).max(0.0) / (4.0 * nf)).sqrt()),
+            ),
+        ];
+        for &p in quantiles {
+            let half = z * (nf * p * (1.0 - p)).sqrt();
+            let rank = |r: f64| sorted[(r.round().max(0.0) as usize).min(n - 1)];
+            let (lo, hi) = (rank(nf * p - half - 1.0), rank(nf * p + half - 1.0));
+            rows.push((
+                format!("q{p}"),
+                quantile_sorted(&sorted, p),
+                finite(0.5 * (hi - lo)),
+            ));
+        }
+        for &t in thresholds {
+            let f = failure_probability(samples, t, confidence);
+            rows.push((format!("P(> {t})"), f.p, finite(0.5 * (f.upper - f.lower))));
+        }
+        Statistics { rows }
+    }
+}
+
+/// The surrogate part of each statistic (in the rows' order) from one comparison `c` at the
+/// same draws as the method's `samples`: the mean and the quantiles by their differences, the
+/// standard deviation by `std(q~ - q~_c)` (which bounds `|std(q~) - std(q~_c)|` and does not
+/// vanish when two different surrogates happen to share their spread), `P(q > t)` by the share
+/// of draws on which the two surrogates fall on different sides of `t` (which bounds
+/// `|P - P_c|` likewise).
+fn comparison_parts(
+    samples: &[f64],
+    c: &[f64],
+    fine: &Statistics,
+    quantiles: &[f64],
+    thresholds: &[f64],
+    confidence: f64,
+) -> Vec<f64> {
+    let coarse = Statistics::of(c, quantiles, thresholds, confidence);
+    let diff: Vec<f64> = samples.iter().zip(c).map(|(a, b)| a - b).collect();
+    let spread = Summary::of(&diff).std;
+    let n = samples.len() as f64;
+    let mut out: Vec<f64> = fine
+        .rows
+        .iter()
+        .zip(&coarse.rows)
+        .map(|(f, c)| (f.1 - c.1).abs())
+        .collect();
+    if spread.is_finite() {
+        out[1] = out[1].max(spread);
+    }
+    let first_p = 2 + quantiles.len();
+    for (k, &t) in thresholds.iter().enumerate() {
+        let flips = samples
+            .iter()
+            .zip(c)
+            .filter(|(a, b)| (**a > t) != (**b > t))
+            .count();
+        out[first_p + k] = out[first_p + k].max(flips as f64 / n);
+    }
+    out
+}
+
+/// What the surrogate part of a budget compares with.
+pub enum SurrogatePart<'a> {
+    /// The samples of the comparison surrogates at the same draws with whether each is
+    /// coarser than the method's, and what they are.
+    Comparison(Vec<(&'a [f64], bool)>, String),
+    /// The statistics are those of the model runs themselves: no surrogate error.
+    Exact,
+    /// Not estimated, and why.
+    Unavailable(&'a str),
+}
+
+/// The budget of one quantity from its samples on the method's surrogate (or the model runs).
+pub fn qoi_budget(
+    samples: &[f64],
+    surrogate: SurrogatePart<'_>,
+    quantiles: &[f64],
+    thresholds: &[f64],
+    confidence: f64,
+) -> QoiBudget {
+    let fine = Statistics::of(samples, quantiles, thresholds, confidence);
+    // The first coarser comparison that differs from the method's surrogate, and every richer
+    // one.
+    let chosen: Vec<&[f64]> = match &surrogate {
+        SurrogatePart::Comparison(c, _) => {
+            let (lo, hi) = samples
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                    (a.min(v), b.max(v))
+                });
+            let tol = 1e-9 * (hi - lo).abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+            let differs = |c: &[f64]| c.iter().zip(samples).any(|(a, b)| (a - b).abs() > tol);
+            let first_coarser = c.iter().position(|(s, coarser)| *coarser && differs(s));
+            c.iter()
+                .enumerate()
+                .filter(|(i, (_, coarser))| !coarser || Some(*i) == first_coarser)
+                .map(|(_, (c, _))| *c)
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    let parts: Vec<Vec<f64>> = chosen
+        .iter()
+        .map(|c| comparison_parts(samples, c, &fine, quantiles, thresholds, confidence))
+        .collect();
+    let rows = fine
+        .rows
+        .iter()
+        .enumerate()
+        .map(|(i, (name, value, sampling))| {
+            let part = match &surrogate {
+                SurrogatePart::Comparison(..) => {
+                    Some(parts.iter().map(|p| p[i]).fold(0.0, f64::max))
+                }
+                SurrogatePart::Exact => Some(0.0),
+                SurrogatePart::Unavailable(_) => None,
+            };
+            BudgetRow {
+                statistic: name.clone(),
+                value: *value,
+                mesh: None,
+                surrogate: part,
+                sampling: *sampling,
+                total: sampling + part.unwrap_or(0.0),
+            }
+        })
+        .collect();
+    let surrogate_basis = match surrogate {
+        SurrogatePart::Comparison(_, what) => {
+            format!("largest difference with {what}, on the same draws")
+        }
+        SurrogatePart::Exact => "none: the statistics of the model runs themselves".into(),
+        SurrogatePart::Unavailable(why) => format!("not estimated: {why}"),
+    };
+    QoiBudget {
+        rows,
+        surrogate_basis,
+        mesh_basis:
+            "not estimated (the runs' energy-norm mesh error is I_geo of the error estimate)".into(),
+        draws: samples.len(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Uniforms in (0, 1) from splitmix64 (deterministic, no dependency).
+    fn uniforms(seed: u64, n: usize) -> Vec<f64> {
+        let mut x = seed;
+        (0..n)
+            .map(|_| {
+                x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+                let mut z = x;
+                z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+                z ^= z >> 31;
+                ((z >> 11) as f64 + 0.5) / (1u64 << 53) as f64
+            })
+            .collect()
+    }
+
+    /// The sampling half-widths cover the exact statistics of Exp(1) (std 1, kurtosis excess
+    /// 6: a skewed, heavy-tailed case for the delta method) at their stated 95 % level: over
+    /// 400 independent samples of 2 000 draws, each interval covers the exact value in 92 - 98 %
+    /// of them (binomial standard deviation of the coverage 1.1 %).
+    #[test]
+    fn sampling_intervals_cover_exact_exponential_statistics_at_their_level() {
+        let reps = 400;
+        let exact = [
+            1.0,             // mean
+            1.0,             // std
+            2f64.ln(),       // median
+            20f64.ln(),      // q0.95
+            (-2.0f64).exp(), // P(> 2)
+        ];
+        let mut covered = [0usize; 5];
+        for r in 0..reps {
+            let x: Vec<f64> = uniforms(1000 + r as u64, 2000)
+                .into_iter()
+                .map(|u| -u.ln())
+                .collect();
+            let s = Statistics::of(&x, &[0.5, 0.95], &[2.0], 0.95);
+            for (i, c) in covered.iter_mut().enumerate() {
+                let (_, v, h) = &s.rows[i];
+                if (v - exact[i]).abs() <= *h {
+                    *c += 1;
+                }
+            }
+        }
+        for (i, c) in covered.iter().enumerate() {
+            let rate = *c as f64 / reps as f64;
+            assert!(
+                (0.92..=0.98).contains(&rate),
+                "statistic {i}: coverage {rate} (expected 0.95)"
+            );
+        }
+    }
+}
