@@ -337,7 +337,7 @@ pub fn analyse_method(
                     coarse
                         .iter()
                         .zip(cs)
-                        .map(|(v, c)| (v.as_slice(), c.coarser))
+                        .map(|(v, c)| (v.as_slice(), c.coarser, c.sees_mean))
                         .collect(),
                     cs.iter()
                         .map(|c| c.description.as_str())

@@ -227,6 +227,8 @@ struct Outcome {
     kink: f64,
     /// Per adaptive method: its label and run points in the order they were chosen.
     adaptive: Vec<(String, Vec<f64>)>,
+    /// The error budget against the reference: `(statistics, covered, within 10x)`.
+    budget: (usize, usize, usize),
 }
 
 struct Reference<'a>(&'a alea_study::method::Surrogate);
@@ -384,6 +386,7 @@ fn outcome(s: &Study, name: &str) -> Outcome {
         adaptive.push((label, a.mesh.run_points().to_vec()));
     }
     eprintln!("kink at {kink}; adaptive runs {adaptive:?}");
+    let budget = budget_against_reference(s, &runs);
     drop(runs);
     let _ = std::fs::remove_dir_all(&dir);
     for r in &out {
@@ -404,13 +407,67 @@ fn outcome(s: &Study, name: &str) -> Outcome {
         rows: out,
         kink,
         adaptive,
+        budget,
     }
+}
+
+/// The error budget (issue 19) of every surrogate's mean, std and quantiles of the interface
+/// resultant `T` against the 81-run reference's: `(statistics, covered, within 10x)`, "within
+/// 10x" measured against the sampling half-width where the true error is below it.
+fn budget_against_reference(s: &Study, runs: &StudyRuns) -> (usize, usize, usize) {
+    use alea_study::analysis::{AnalysisSettings, analyse_method};
+    let settings = AnalysisSettings {
+        samples: 100_000,
+        bandwidth: alea_uq::kde::Bandwidth::Silverman,
+        kde_points: 64,
+        confidence: 0.95,
+    };
+    let truth = &analyse_method(s, &runs.methods[0], &runs.records, &settings).qois[0];
+    let exact: Vec<(&str, f64)> = [("mean", truth.mean), ("std", truth.std)]
+        .into_iter()
+        .chain(truth.quantiles.iter().filter_map(|&(p, v)| match p {
+            0.05 => Some(("q0.05", v)),
+            0.5 => Some(("q0.5", v)),
+            0.95 => Some(("q0.95", v)),
+            _ => None,
+        }))
+        .collect();
+    let (mut n, mut covered, mut tight) = (0, 0, 0);
+    for m in &runs.methods[1..] {
+        let res = analyse_method(s, m, &runs.records, &settings);
+        let Some(q) = res.qois.first() else { continue };
+        let budget = q.budget.as_ref().unwrap();
+        for (name, t) in &exact {
+            let row = budget.rows.iter().find(|r| r.statistic == *name).unwrap();
+            let actual = (row.value - t).abs();
+            n += 1;
+            covered += usize::from(row.total >= actual);
+            tight += usize::from(row.total <= 10.0 * actual.max(row.sampling));
+            eprintln!(
+                "budget {:<24} {:<6} true {:9.3e} total {:9.3e} (surrogate {:9.3e}, sampling {:9.3e}){}",
+                m.label,
+                name,
+                actual,
+                row.total,
+                row.surrogate.unwrap_or(f64::NAN),
+                row.sampling,
+                if row.total >= actual {
+                    ""
+                } else {
+                    "  NOT COVERED"
+                }
+            );
+        }
+    }
+    eprintln!("budget: covered {covered}/{n}, within 10x {tight}/{n}");
+    (n, covered, tight)
 }
 
 #[test]
 fn stick_slip_estimate_tracks_the_true_error() {
     let o = outcome(&stick_slip(), "stick");
     check(&o, "stick/slip");
+    check_budget(&o);
 }
 
 #[test]
@@ -423,6 +480,7 @@ fn closing_gap_estimate_tracks_the_true_error() {
         o.kink
     );
     check(&o, "gap");
+    check_budget(&o);
     // The 3-point quadratic's negative weights leave the admissible set between runs of
     // different contact status (issue 18: this case reported e~ = 0 against a true 26.5 %).
     let quad = row(&o, "poly2");
@@ -432,6 +490,21 @@ fn closing_gap_estimate_tracks_the_true_error() {
         quad.estimate
     );
     assert!(quad.efficiency() >= 1.0);
+}
+
+/// The error budget of the statistics of `T` (issue 19) against the reference: measured on the
+/// stick/slip case 38 of 45 (method, statistic) pairs covered and 34 within 10x, on the closing
+/// gap 35 and 36. Below the issue's 90 % target; the misses: the two-node grid's mean (not
+/// estimated: no coarser surrogate has another mean), chaos p = 3 mean and median (its degree-2
+/// comparison moves them 10 - 300x less than their error), the standard polynomials' 5 % and
+/// 95 % quantiles in the flat (open / sliding) branch, and the adaptive meshes' 5 % quantile
+/// (1.5e-3 N true error, 0 estimated). Asserted: at least 75 % covered, as a guard.
+fn check_budget(o: &Outcome) {
+    let (n, covered, _) = o.budget;
+    assert!(
+        covered as f64 >= 0.75 * n as f64,
+        "budget covers {covered} of {n}"
+    );
 }
 
 fn row<'a>(o: &'a Outcome, label: &str) -> &'a Row {

@@ -144,8 +144,9 @@ fn comparison_parts(
 /// What the surrogate part of a budget compares with.
 pub enum SurrogatePart<'a> {
     /// The samples of the comparison surrogates at the same draws with whether each is
-    /// coarser than the method's, and what they are.
-    Comparison(Vec<(&'a [f64], bool)>, String),
+    /// coarser than the method's and whether it can see an error of the mean, and what they
+    /// are.
+    Comparison(Vec<(&'a [f64], bool, bool)>, String),
     /// The statistics are those of the model runs themselves: no surrogate error.
     Exact,
     /// Not estimated, and why.
@@ -163,7 +164,7 @@ pub fn qoi_budget(
     let fine = Statistics::of(samples, quantiles, thresholds, confidence);
     // The first coarser comparison that differs from the method's surrogate, and every richer
     // one.
-    let chosen: Vec<&[f64]> = match &surrogate {
+    let chosen: Vec<(&[f64], bool)> = match &surrogate {
         SurrogatePart::Comparison(c, _) => {
             let (lo, hi) = samples
                 .iter()
@@ -172,28 +173,36 @@ pub fn qoi_budget(
                 });
             let tol = 1e-9 * (hi - lo).abs().max(hi.abs()).max(f64::MIN_POSITIVE);
             let differs = |c: &[f64]| c.iter().zip(samples).any(|(a, b)| (a - b).abs() > tol);
-            let first_coarser = c.iter().position(|(s, coarser)| *coarser && differs(s));
+            let first_coarser = c.iter().position(|(s, coarser, _)| *coarser && differs(s));
             c.iter()
                 .enumerate()
-                .filter(|(i, (_, coarser))| !coarser || Some(*i) == first_coarser)
-                .map(|(_, (c, _))| *c)
+                .filter(|(i, (_, coarser, _))| !coarser || Some(*i) == first_coarser)
+                .map(|(_, (c, _, sees_mean))| (*c, *sees_mean))
                 .collect()
         }
         _ => Vec::new(),
     };
     let parts: Vec<Vec<f64>> = chosen
         .iter()
-        .map(|c| comparison_parts(samples, c, &fine, quantiles, thresholds, confidence))
+        .map(|(c, _)| comparison_parts(samples, c, &fine, quantiles, thresholds, confidence))
         .collect();
+    let mean_seen = chosen.iter().any(|(_, sees)| *sees);
     let rows = fine
         .rows
         .iter()
         .enumerate()
         .map(|(i, (name, value, sampling))| {
             let part = match &surrogate {
-                SurrogatePart::Comparison(..) => {
-                    Some(parts.iter().map(|p| p[i]).fold(0.0, f64::max))
-                }
+                // No comparison can see the mean's error: not estimated.
+                SurrogatePart::Comparison(..) if i == 0 && !mean_seen => None,
+                SurrogatePart::Comparison(..) => Some(
+                    parts
+                        .iter()
+                        .zip(&chosen)
+                        .filter(|(_, (_, sees))| i != 0 || *sees)
+                        .map(|(p, _)| p[i])
+                        .fold(0.0, f64::max),
+                ),
                 SurrogatePart::Exact => Some(0.0),
                 SurrogatePart::Unavailable(_) => None,
             };
