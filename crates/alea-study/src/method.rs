@@ -9,7 +9,9 @@
 use alea_uq::basis::PcBasis;
 use alea_uq::design::{self, Design};
 use alea_uq::quadrature::QuadratureRule;
-use alea_uq::surrogate::{LinearSurrogate, MonomialSurface, PcSurrogate, StochasticMesh};
+use alea_uq::surrogate::{
+    LinearSurrogate, MonomialSurface, ParentLevel, PcSurrogate, StochasticMesh,
+};
 
 use crate::spec::MethodSpec;
 use crate::{ParamSpace, Source, StudyError};
@@ -435,6 +437,17 @@ impl std::fmt::Debug for Surrogate {
 }
 
 impl Surrogate {
+    /// The interpolant one level coarser than a stochastic mesh (`ParentLevel`), on the box.
+    pub fn parent_level(mesh: StochasticMesh, params: &ParamSpace) -> Self {
+        let d = params.names.len();
+        Surrogate {
+            inner: Box::new(ParentLevel::new(mesh)),
+            shift: vec![0.0; d],
+            scale: vec![1.0; d],
+            clamp: Some((params.lo.clone(), params.hi.clone())),
+        }
+    }
+
     /// Number of runs it is built on.
     pub fn num_runs(&self) -> usize {
         self.inner.num_runs()

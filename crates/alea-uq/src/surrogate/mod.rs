@@ -25,7 +25,7 @@ mod saved;
 
 pub use lars::{LarsOptions, LarsReport};
 pub use monomial::MonomialSurface;
-pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, StochasticMesh};
+pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, ParentLevel, StochasticMesh};
 pub use pc::corrected_loo_factor;
 pub use pc::{PcExpansion, PcMethod, PcSurrogate};
 pub use saved::RunData;

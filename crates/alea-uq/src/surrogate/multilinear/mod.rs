@@ -65,8 +65,11 @@ use crate::quadrature::QuadratureRule;
 use std::collections::HashMap;
 
 mod locate;
+mod parent;
 mod refine;
 mod weights;
+
+pub use parent::ParentLevel;
 
 /// Maximum refinement depth below a root cell.
 pub const MAX_LEVEL: u32 = 24;
