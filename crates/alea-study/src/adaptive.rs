@@ -36,6 +36,7 @@ use crate::StudyError;
 use crate::analysis::{AnalysisSettings, analyse_method};
 use crate::cre::{CreSetup, StudyParameters};
 use crate::estimate::{ErrorSettings, error_settings, estimate_method};
+use crate::goal;
 use crate::method::{AdaptiveSettings, Criterion, Method};
 pub use crate::runs::{AdaptiveOutcome, StepQoi, StepRecord};
 use crate::store::{RunRecord, Store, point_key};
@@ -62,6 +63,24 @@ pub(crate) trait AdaptiveRuns<'a> {
     fn store(&self) -> Result<MutexGuard<'_, Store>, StudyError>;
     /// Tells the progress observer about runs added by an adaptive step.
     fn announce(&self, more: usize);
+}
+
+/// The comparison of the error budget of `mesh`: the last step's mesh with at most half its
+/// runs, or the corners of the box (the runs of the start mesh but its centre).
+fn comparison_mesh(
+    step_meshes: &[StochasticMesh],
+    mesh: &StochasticMesh,
+    params: &crate::ParamSpace,
+) -> Result<StochasticMesh, StudyError> {
+    match step_meshes
+        .iter()
+        .rev()
+        .find(|s| 2 * s.num_runs() <= mesh.num_runs())
+    {
+        Some(s) => Ok(s.clone()),
+        None => StochasticMesh::new(&params.lo, &params.hi, &vec![1; params.lo.len()])
+            .map_err(StudyError::from),
+    }
 }
 
 /// The start mesh: the parameter box with its corners and centre as runs.
@@ -157,6 +176,22 @@ pub(crate) fn run_adaptive<'a>(
         let cells = merr.estimate.cells.clone();
         last_estimator = Some(est.clone());
         step_meshes.push(mesh.clone());
+        let goal_step = match settings.goal {
+            Some(g) => {
+                let values: Vec<f64> = records.iter().map(|r| r.qois[g.quantity]).collect();
+                let coarse = comparison_mesh(&step_meshes, &mesh, params)?;
+                Some(goal::goal_step(
+                    study,
+                    &g,
+                    &mesh,
+                    &coarse,
+                    &values,
+                    stats.samples,
+                    stats.confidence,
+                ))
+            }
+            None => None,
+        };
         steps.push(StepRecord {
             runs,
             new_runs: 0,
@@ -165,7 +200,49 @@ pub(crate) fn run_adaptive<'a>(
             solve_seconds,
             estimate_seconds,
             thesis_cost,
+            goal: goal_step
+                .as_ref()
+                .map_or_else(Vec::new, |g| g.records.clone()),
         });
+        if let Some(g) = &goal_step {
+            let budget = g
+                .records
+                .iter()
+                .map(|r| format!("{} = {:.6} +- {:.2e}", r.statistic, r.value, r.total))
+                .collect::<Vec<_>>()
+                .join(", ");
+            if g.reached {
+                break (format!("goal reached: {budget}"), None);
+            }
+            if runs >= settings.max_runs {
+                break (
+                    format!(
+                        "run budget of {} reached (goal: {budget})",
+                        settings.max_runs
+                    ),
+                    None,
+                );
+            }
+            let fraction = match settings.criterion {
+                Criterion::Improved { fraction } => fraction,
+                Criterion::MaxError { .. } => 0.5,
+            };
+            let mut marked = goal::marked_leaves(&g.indicators, fraction);
+            marked.truncate(settings.max_runs - runs);
+            if marked.is_empty() {
+                break (format!("no leaf carries goal error ({budget})"), None);
+            }
+            let full = (1u32 << params.lo.len()) - 1;
+            let before = mesh.num_runs();
+            let splits: Vec<_> = marked.iter().map(|&(c, _)| (c, full)).collect();
+            mesh.refine_directions(&splits).map_err(StudyError::from)?;
+            let new = mesh.num_runs() - before;
+            if let Some(s) = steps.last_mut() {
+                s.new_runs = new;
+            }
+            runner.announce(new);
+            continue;
+        }
         match settings.target {
             Some(t) if i_sto <= t => break (format!("i_sto = {i_sto:.4} <= target {t}"), None),
             None if i_sto <= i_geo
@@ -262,17 +339,7 @@ pub(crate) fn run_adaptive<'a>(
         }
         runner.announce(new);
     };
-    // The comparison of the error budget: the last step with at most half the runs, or the
-    // corners of the box (the runs of the start mesh but its centre).
-    let coarse_mesh = match step_meshes
-        .iter()
-        .rev()
-        .find(|s| 2 * s.num_runs() <= mesh.num_runs())
-    {
-        Some(s) => s.clone(),
-        None => StochasticMesh::new(&params.lo, &params.hi, &vec![1; params.lo.len()])
-            .map_err(StudyError::from)?,
-    };
+    let coarse_mesh = comparison_mesh(&step_meshes, &mesh, params)?;
     Ok(AdaptiveOutcome {
         method: m,
         mesh,

@@ -14,6 +14,7 @@ mod error;
 pub mod estimate;
 pub mod expr;
 pub mod fields;
+pub mod goal;
 pub mod limits;
 pub mod lock;
 pub mod method;

@@ -72,6 +72,39 @@ pub struct AdaptiveSettings {
     pub target: Option<f64>,
     /// Run budget.
     pub max_runs: usize,
+    /// A goal quantity: refinement and stop follow its statistic's error budget instead
+    /// (`crate::goal`).
+    pub goal: Option<Goal>,
+}
+
+/// The goal of a goal-oriented adaptive method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Goal {
+    /// Index of the quantity.
+    pub quantity: usize,
+    /// `Some(t)`: the statistic is `P(q > t)`; `None`: the mean and the standard deviation.
+    pub threshold: Option<f64>,
+    /// When the statistic's budget is small enough.
+    pub tolerance: Tolerance,
+}
+
+/// A tolerance on an error budget.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tolerance {
+    /// In the statistic's unit.
+    Absolute(f64),
+    /// Relative to the statistic's value.
+    Relative(f64),
+}
+
+impl Tolerance {
+    /// True if a budget `total` on a statistic of value `value` is within the tolerance.
+    pub fn holds(&self, total: f64, value: f64) -> bool {
+        match *self {
+            Tolerance::Absolute(t) => total <= t,
+            Tolerance::Relative(r) => total <= r * value.abs(),
+        }
+    }
 }
 
 /// A method with its design.
@@ -119,6 +152,7 @@ pub fn build_methods(
     src: &Source,
     specs: &[MethodSpec],
     params: &ParamSpace,
+    quantities: &[String],
     seed: u64,
 ) -> Result<Vec<Method>, StudyError> {
     let d = params.names.len();
@@ -161,6 +195,15 @@ pub fn build_methods(
                 m.kind.span(),
                 f("type"),
                 "a method needs at least one [[parameter]]",
+            ));
+        }
+        if let Some(g) = &m.goal
+            && m.kind.get_ref() != "adaptive"
+        {
+            return Err(src.error(
+                g.span(),
+                f("goal"),
+                "only an adaptive method has a goal (it chooses its runs by it)",
             ));
         }
         let (kind, points, rule, description) = match m.kind.get_ref().as_str() {
@@ -243,7 +286,7 @@ pub fn build_methods(
                 )
             }
             "adaptive" => {
-                let settings = adaptive_settings(src, m, i, d)?;
+                let settings = adaptive_settings(src, m, i, d, quantities)?;
                 if let Some(dn) = design_name
                     && dn != "corners_centre"
                 {
@@ -266,9 +309,21 @@ pub fn build_methods(
                     ),
                     Criterion::MaxError { .. } => "maximum-error criterion".to_string(),
                 };
-                let stop = match settings.target {
-                    Some(t) => format!("i_sto <= {t}"),
-                    None => "i_sto <= i_geo".to_string(),
+                let stop = match (settings.goal, settings.target) {
+                    (Some(g), _) => {
+                        let q = &quantities[g.quantity];
+                        let stat = match g.threshold {
+                            Some(t) => format!("P({q} > {t})"),
+                            None => format!("the mean and std of {q}"),
+                        };
+                        let tol = match g.tolerance {
+                            Tolerance::Absolute(t) => format!("{t}"),
+                            Tolerance::Relative(r) => format!("{} % of its value", 100.0 * r),
+                        };
+                        format!("goal: the error budget of {stat} <= {tol}")
+                    }
+                    (None, Some(t)) => format!("i_sto <= {t}"),
+                    (None, None) => "i_sto <= i_geo".to_string(),
                 };
                 (
                     MethodKind::Adaptive(settings),
@@ -328,6 +383,7 @@ fn adaptive_settings(
     m: &MethodSpec,
     i: usize,
     d: usize,
+    quantities: &[String],
 ) -> Result<AdaptiveSettings, StudyError> {
     let f = |k: &str| format!("method[{i}].{k}");
     if d > alea_uq::surrogate::MAX_DIM {
@@ -411,10 +467,88 @@ fn adaptive_settings(
         }
         None => 100.max(start),
     };
+    let goal = match &m.goal {
+        Some(g) => Some(goal(src, g, i, quantities)?),
+        None => None,
+    };
     Ok(AdaptiveSettings {
         criterion,
         target,
         max_runs,
+        goal,
+    })
+}
+
+fn goal(
+    src: &Source,
+    g: &toml::Spanned<crate::spec::GoalSpec>,
+    i: usize,
+    quantities: &[String],
+) -> Result<Goal, StudyError> {
+    let f = |k: &str| format!("method[{i}].goal.{k}");
+    let spec = g.get_ref();
+    let name = spec.quantity.get_ref();
+    let quantity = quantities.iter().position(|q| q == name).ok_or_else(|| {
+        src.error(
+            spec.quantity.span(),
+            f("quantity"),
+            format!(
+                "unknown quantity '{name}'; the study's quantities are {}",
+                quantities.join(", ")
+            ),
+        )
+    })?;
+    let threshold = match &spec.threshold {
+        Some(t) if !t.get_ref().is_finite() => {
+            return Err(src.error(t.span(), f("threshold"), "must be a finite number"));
+        }
+        t => t.as_ref().map(|t| *t.get_ref()),
+    };
+    let tolerance = match (&spec.tolerance, &spec.relative_tolerance) {
+        (Some(t), None) => {
+            let x = *t.get_ref();
+            if !(x > 0.0 && x.is_finite()) {
+                return Err(src.error(t.span(), f("tolerance"), format!("must be > 0, got {x}")));
+            }
+            if threshold.is_some() && x >= 1.0 {
+                return Err(src.error(
+                    t.span(),
+                    f("tolerance"),
+                    format!("a tolerance on a probability must be below 1, got {x}"),
+                ));
+            }
+            Tolerance::Absolute(x)
+        }
+        (None, Some(r)) => {
+            let x = *r.get_ref();
+            if !(x > 0.0 && x < 1.0) {
+                return Err(src.error(
+                    r.span(),
+                    f("relative_tolerance"),
+                    format!("must be in (0, 1), got {x}"),
+                ));
+            }
+            Tolerance::Relative(x)
+        }
+        (Some(_), Some(r)) => {
+            return Err(src.error(
+                r.span(),
+                f("relative_tolerance"),
+                "give tolerance or relative_tolerance, not both",
+            ));
+        }
+        (None, None) => {
+            return Err(src.error(
+                g.span(),
+                format!("method[{i}].goal"),
+                "needs tolerance (absolute) or relative_tolerance",
+            ));
+        }
+    };
+    Ok(Goal {
+        quantity,
+        threshold,
+        tolerance,
     })
 }
 

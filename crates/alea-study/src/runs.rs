@@ -71,6 +71,23 @@ pub struct StepRecord {
     pub estimate_seconds: f64,
     /// Cumulative cost in the thesis's units: runs + 1.5 x estimates.
     pub thesis_cost: f64,
+    /// A goal-oriented method: the goal statistics' budgets at this step (empty otherwise).
+    pub goal: Vec<GoalRecord>,
+}
+
+/// The error budget of one goal statistic at one adaptive step (`crate::goal`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct GoalRecord {
+    /// `mean`, `std` or `P(> t)`.
+    pub statistic: String,
+    /// Its value on this step's surrogate.
+    pub value: f64,
+    /// Surrogate part of its budget.
+    pub surrogate: f64,
+    /// Sampling part.
+    pub sampling: f64,
+    /// Total.
+    pub total: f64,
 }
 
 /// The outcome of one adaptive method.

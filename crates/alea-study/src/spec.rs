@@ -391,6 +391,30 @@ pub struct MethodSpec {
     /// the `2^(d depth)` sub-cells of each cell (default 3) and the interpolated nodes.
     #[serde(default)]
     pub depth: Option<Spanned<u32>>,
+    /// `adaptive`: a goal quantity (goal-oriented refinement and stop, `crate::goal`).
+    #[serde(default)]
+    pub goal: Option<Spanned<GoalSpec>>,
+}
+
+/// `goal = { quantity = "vm_fillet", threshold = 1165.0, tolerance = 0.005 }` of an adaptive
+/// method: refine where the surrogate error of this quantity's statistic is largest and stop
+/// when the statistic's error budget is below the tolerance. The statistic is `P(q > threshold)`
+/// when a threshold is given, else the mean and the standard deviation (both).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GoalSpec {
+    /// Name of a `[[quantity]]`.
+    pub quantity: Spanned<String>,
+    /// Threshold of the failure probability `P(q > threshold)` (the quantity's unit).
+    #[serde(default)]
+    pub threshold: Option<Spanned<f64>>,
+    /// Absolute tolerance on the statistic's error budget (a probability, or the quantity's
+    /// unit for the mean and std).
+    #[serde(default)]
+    pub tolerance: Option<Spanned<f64>>,
+    /// Tolerance relative to the statistic's value (e.g. 0.05: 5 %).
+    #[serde(default)]
+    pub relative_tolerance: Option<Spanned<f64>>,
 }
 
 /// `[error]`: the stochastic error estimate (thesis 3.2, 4.1).

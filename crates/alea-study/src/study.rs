@@ -72,7 +72,8 @@ impl Study {
         let methods = if params.names.is_empty() {
             vec![Method::deterministic()]
         } else {
-            build_methods(&source, &file.method, &params, seed)?
+            let names: Vec<String> = qois.iter().map(|q| q.name.clone()).collect();
+            build_methods(&source, &file.method, &params, &names, seed)?
         };
         let hash = input_hash(&source, &file)?;
         let output = file.output.clone();

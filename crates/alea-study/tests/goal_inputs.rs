@@ -1,0 +1,141 @@
+//! A goal-oriented adaptive method's bad inputs are refused when the study is loaded, before
+//! any run, naming the file, the line and the field (issue 19).
+
+use alea_study::runner::Study;
+use alea_study::{Source, StudyError};
+
+const BASE: &str = r#"
+[study]
+title = "goal inputs"
+
+[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "rectangle"
+kind = "quad4"
+size = [10.0, 2.0]
+cells = [2, 1]
+
+[analysis]
+type = "plane_stress"
+
+[[parameter]]
+name = "E"
+law = "uniform"
+lo = 150e3
+hi = 250e3
+
+[[substructure]]
+name = "plate"
+young = "E"
+poisson = 0.0
+constraint = [ { group = "xmin", x = 0.0 }, { group = "ymin", y = 0.0 } ]
+load = [ { group = "xmax", traction = [1.0, 0.0] } ]
+
+[[quantity]]
+name = "tip"
+kind = "displacement"
+substructure = "plate"
+point = [10.0, 2.0]
+component = 0
+
+[error]
+
+[[method]]
+"#;
+
+fn load(method: &str) -> Result<Study, StudyError> {
+    Study::from_source(Source::from_text("goal.toml", &format!("{BASE}{method}")))
+}
+
+fn refused(method: &str, field: &str, words: &str) {
+    let e = load(method).expect_err("refused");
+    let text = e.to_string();
+    assert!(text.contains("goal.toml:"), "{text}");
+    assert!(text.contains(field), "{field} in {text}");
+    assert!(text.contains(words), "'{words}' in {text}");
+}
+
+#[test]
+fn a_goal_naming_an_unknown_quantity_is_refused() {
+    refused(
+        "type = \"adaptive\"\ngoal = { quantity = \"tipp\", tolerance = 0.01 }\n",
+        "method[0].goal.quantity",
+        "unknown quantity 'tipp'",
+    );
+}
+
+#[test]
+fn a_goal_needs_one_tolerance_below_one_for_a_probability() {
+    refused(
+        "type = \"adaptive\"\ngoal = { quantity = \"tip\" }\n",
+        "method[0].goal",
+        "needs tolerance",
+    );
+    refused(
+        "type = \"adaptive\"\ngoal = { quantity = \"tip\", threshold = 0.01, tolerance = 2.0 }\n",
+        "method[0].goal.tolerance",
+        "below 1",
+    );
+    refused(
+        "type = \"adaptive\"\ngoal = { quantity = \"tip\", tolerance = 0.1, relative_tolerance = 0.1 }\n",
+        "method[0].goal.relative_tolerance",
+        "not both",
+    );
+}
+
+#[test]
+fn only_an_adaptive_method_has_a_goal() {
+    refused(
+        "type = \"piecewise_linear\"\ngoal = { quantity = \"tip\", tolerance = 0.01 }\n",
+        "method[0].goal",
+        "only an adaptive method",
+    );
+}
+
+#[test]
+fn a_valid_goal_is_accepted_and_described() {
+    let s = load(
+        "type = \"adaptive\"\ngoal = { quantity = \"tip\", threshold = 1e-4, relative_tolerance = 0.05 }\n",
+    )
+    .unwrap();
+    assert!(
+        s.methods[0]
+            .description
+            .contains("goal: the error budget of P(tip > 0.0001)"),
+        "{}",
+        s.methods[0].description
+    );
+}
+
+/// End to end against an exact failure probability: `tip = s L / E` exactly (a linear field,
+/// traction s = 1 MPa, L = 10 mm), `E ~ U(150e3, 250e3)`, so
+/// `P(tip > t) = (s L / t - 150e3) / 100e3`. The goal-oriented loop stops when its budget is
+/// within the tolerance, and the exact probability lies within the reported total of the value.
+#[test]
+fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget() {
+    use alea_study::runner::{NoProgress, run_study};
+    let t = 10.0 / 190e3; // P = 0.4
+    let s = load(&format!(
+        "type = \"adaptive\"\ngoal = {{ quantity = \"tip\", threshold = {t:e}, tolerance = 0.01 }}\nmax_runs = 40\n"
+    ))
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-goal-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let a = &runs.adaptive[0];
+    assert!(a.stop.starts_with("goal reached"), "{}", a.stop);
+    let last = a.steps.last().unwrap();
+    let g = &last.goal[0];
+    let exact = (10.0 / t - 150e3) / 100e3;
+    assert!(
+        (g.value - exact).abs() <= g.total && g.total <= 0.01,
+        "P = {} +- {} vs exact {exact}",
+        g.value,
+        g.total
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
