@@ -20,6 +20,7 @@ pub mod lock;
 pub mod method;
 mod params;
 pub mod qoi;
+pub mod reliability;
 pub mod reopen;
 pub mod run;
 pub mod runner;

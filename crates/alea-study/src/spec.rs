@@ -396,6 +396,27 @@ pub struct MethodSpec {
     pub goal: Option<Spanned<GoalSpec>>,
 }
 
+/// `[[reliability]]`: `P(q > threshold)` of a quantity by FORM, SORM, importance sampling and
+/// subset simulation on the surrogate of one method (`crate::reliability`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReliabilitySpec {
+    /// Name of a `[[quantity]]`.
+    pub quantity: Spanned<String>,
+    /// Threshold (the quantity's unit).
+    pub threshold: Spanned<f64>,
+    /// Label of the `[[method]]` whose surrogate is the limit state (default: the first method
+    /// with a surrogate).
+    #[serde(default)]
+    pub method: Option<Spanned<String>>,
+    /// Any of `form`, `sorm`, `importance`, `subset` (default: all four).
+    #[serde(default)]
+    pub algorithms: Option<Spanned<Vec<String>>>,
+    /// Coefficient of variation at which importance sampling stops (default 0.05).
+    #[serde(default)]
+    pub target_cov: Option<Spanned<f64>>,
+}
+
 /// `goal = { quantity = "vm_fillet", threshold = 1165.0, tolerance = 0.005 }` of an adaptive
 /// method: refine where the surrogate error of this quantity's statistic is largest and stop
 /// when the statistic's error budget is below the tolerance. The statistic is `P(q > threshold)`
@@ -499,6 +520,9 @@ pub struct ModelFile {
     /// Methods.
     #[serde(default)]
     pub method: Vec<MethodSpec>,
+    /// `[[reliability]]`: rare-event probabilities of a quantity on a method's surrogate.
+    #[serde(default)]
+    pub reliability: Vec<ReliabilitySpec>,
     /// Statistics settings (`[statistics]`).
     #[serde(default)]
     pub statistics: StatsSpec,

@@ -39,6 +39,8 @@ pub struct Study {
     pub hash: String,
     /// Outputs.
     pub output: OutputSpec,
+    /// The `[[reliability]]` analyses, checked.
+    pub reliability: Vec<crate::reliability::ReliabilityTask>,
 }
 
 impl std::fmt::Debug for Study {
@@ -75,6 +77,13 @@ impl Study {
             let names: Vec<String> = qois.iter().map(|q| q.name.clone()).collect();
             build_methods(&source, &file.method, &params, &names, seed)?
         };
+        let reliability = crate::reliability::build_reliability(
+            &source,
+            &file.reliability,
+            &qois,
+            &methods,
+            &params,
+        )?;
         let hash = input_hash(&source, &file)?;
         let output = file.output.clone();
         let study = Study {
@@ -87,6 +96,7 @@ impl Study {
             seed,
             hash,
             output,
+            reliability,
         };
         check_built(&study)?;
         Ok(study)
