@@ -135,4 +135,28 @@ mod tests {
         }
         assert_eq!(SUCCESS, 0);
     }
+
+    #[test]
+    fn errors_of_the_study_outputs_keep_their_inner_codes() {
+        let busy = alea_report::Error::Study(StudyError::Busy {
+            dir: "d".into(),
+            holder: "h".into(),
+        });
+        assert_eq!(code(&busy.into()), BUSY);
+        let failed = alea_report::Error::Study(StudyError::Failed("f".into()));
+        assert_eq!(code(&failed.into()), COMPUTATION);
+        let write = alea_report::Error::Write {
+            path: "summary.json".into(),
+            source: std::io::Error::other("disk full"),
+        };
+        let e = anyhow::Error::from(write);
+        assert_eq!(format!("{e:#}"), "writing summary.json: disk full");
+        assert_eq!(code(&e), FILES);
+        let report = alea_report::Error::Report(alea_report::report::ReportError::Plot {
+            plot: "pdf".into(),
+            message: "m".into(),
+        });
+        assert_eq!(code(&report.into()), INTERNAL);
+        assert_eq!(code(&alea_report::Error::NonFinite.into()), INTERNAL);
+    }
 }
