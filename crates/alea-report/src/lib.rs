@@ -2,9 +2,9 @@
 //!
 //! Two layers, one way:
 //!
-//! * [`report`]: pure drawing. A validated [`report::ReportInput`] (plain data, JSON) becomes PNG
-//!   + SVG plots (plotters, bundled DejaVu font) and one self-contained `report.html`. It knows
-//!   nothing of studies.
+//! * [`report`]: pure drawing. A validated [`report::ReportInput`] (plain data, JSON) becomes
+//!   plots in PNG and SVG (plotters, bundled DejaVu font) and one self-contained `report.html`.
+//!   It knows nothing of studies.
 //! * [`study`]: the orchestration over `alea-study` that both front ends call. [`study::run`]
 //!   runs a study file into a study directory (the runs, resumable; surrogates and Monte Carlo
 //!   statistics; the stochastic error estimates; `summary.json`, `samples.csv`, mean / std
