@@ -25,12 +25,15 @@ use crate::convert::{array1, array2, study_err, value_error};
 /// An error of the study orchestration as a Python exception: study errors as `study_err`
 /// does, files that cannot be read or written as `OSError` (`FileNotFoundError` for a
 /// directory without a store), a directory that is not a study store as `ValueError`, bugs as
-/// `RuntimeError`. The message is the error's with its causes.
+/// `RuntimeError`. The message is the error's with its causes (each once).
 fn output_err(e: OutputError) -> PyErr {
     let mut message = e.to_string();
     let mut cause = std::error::Error::source(&e);
     while let Some(c) = cause {
-        message.push_str(&format!(": {c}"));
+        let text = c.to_string();
+        if !message.ends_with(&text) {
+            message.push_str(&format!(": {text}"));
+        }
         cause = c.source();
     }
     match e {
