@@ -208,17 +208,7 @@ pub fn write_run_with_reactions(
         .unwrap_or_else(|| "parts".into());
     let dir = path.parent().unwrap_or(Path::new("")).join(stem);
     for it in &result.interfaces {
-        let safe: String = it
-            .name
-            .chars()
-            .map(|c| {
-                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
+        let safe = alea_mesh::atomic::safe_file_name(&it.name);
         let csv = dir.join(format!("interface_{safe}.csv"));
         let dim = solver.model(it.subs[0]).mesh.dim;
         crate::contact::write_interface_csv(&csv, it, dim).map_err(|source| LatinError::Io {

@@ -22,6 +22,20 @@ pub fn temporary_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}", std::process::id()))
 }
 
+/// A name made safe for a file name: ASCII letters, digits, `-` and `_` kept, anything else
+/// replaced by `_` (one per character).
+pub fn safe_file_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
 /// Writes `path` atomically: `write` fills a buffered writer on a temporary file, which is then
 /// synced and renamed over `path`. On any error the temporary file is removed and `path` is
 /// left as it was.

@@ -12,7 +12,8 @@
 //! * [`designs`]: `monte_carlo`, `lhs`, `sobol`, `grid`, `pc_collocation`, `quadrature`;
 //! * [`surrogates`]: `PolynomialChaos` (regression, projection, LARS; statistics, Sobol'
 //!   indices, LOO errors, save/load) and `PiecewiseLinear`;
-//! * [`study`]: running a study file and reading a study directory's store.
+//! * [`study`]: running a study file, reading a study directory's store and rebuilding its
+//!   outputs (summary, samples, fields, HTML report), through `alea-report` as the CLI does.
 
 use pyo3::prelude::*;
 
@@ -50,5 +51,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<surrogates::PiecewiseLinear>()?;
     m.add_function(wrap_pyfunction!(study::run_study_file, m)?)?;
     m.add_function(wrap_pyfunction!(study::read_store, m)?)?;
+    m.add_function(wrap_pyfunction!(study::rebuild_outputs, m)?)?;
     Ok(())
 }

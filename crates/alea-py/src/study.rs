@@ -1,6 +1,7 @@
-//! Studies: running a study file (`alea_study::runner::run_study`, then
-//! `alea_study::analysis::analyse_method` for every method, as `alea run` does) and reading the
-//! runs of a study directory's store (`alea_study::store::Store`).
+//! Studies: the binding glue over `alea-report`'s study orchestration, the same that `alea run`
+//! and `alea report` call: running a study file and analysing every method
+//! (`alea_report::study::run_runs`, `analyse_all`), reading the runs of a study directory's
+//! store (`stored_runs`), and rebuilding every output of a study directory (`rebuild`).
 //!
 //! The results cross to Python as plain dicts of NumPy arrays; the `alea` package turns them
 //! into DataFrames. Nothing is computed here: every number is alea-study's.
@@ -9,16 +10,45 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use alea_study::analysis::{MethodResult, analyse_method, analysis_settings};
-use alea_study::method::MethodKind;
-use alea_study::runner::{Progress, Study, run_study};
-use alea_study::store::{RunRecord, Store, point_key};
+use alea_report::study::{analyse_all, run_runs, sample_points, stored_runs};
+use alea_report::{Error as OutputError, Silent, report::ReportError};
+use alea_study::analysis::MethodResult;
+use alea_study::runner::{Progress, Study};
+use alea_study::store::RunRecord;
 use numpy::PyArray1;
-use pyo3::exceptions::PyFileNotFoundError;
+use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::convert::{array1, array2, study_err, value_error};
+
+/// An error of the study orchestration as a Python exception: study errors as `study_err`
+/// does, files that cannot be read or written as `OSError` (`FileNotFoundError` for a
+/// directory without a store), a directory that is not a study store as `ValueError`, bugs as
+/// `RuntimeError`. The message is the error's with its causes (each once).
+fn output_err(e: OutputError) -> PyErr {
+    let mut message = e.to_string();
+    let mut cause = std::error::Error::source(&e);
+    while let Some(c) = cause {
+        let text = c.to_string();
+        if !message.ends_with(&text) {
+            message.push_str(&format!(": {text}"));
+        }
+        cause = c.source();
+    }
+    match e {
+        OutputError::Study(s) => study_err(s),
+        OutputError::NoStore { .. } => PyFileNotFoundError::new_err(message),
+        OutputError::Store { .. } => value_error(message),
+        OutputError::Write { .. }
+        | OutputError::Report(ReportError::Io { .. } | ReportError::Json { .. }) => {
+            PyOSError::new_err(message)
+        }
+        OutputError::Report(_) | OutputError::NonFinite | OutputError::Json(_) => {
+            PyRuntimeError::new_err(message)
+        }
+    }
+}
 
 /// Calls a Python `progress(done, total)` after each finished run (from the worker threads,
 /// attaching to the interpreter for the call). The first exception it raises is kept, further
@@ -114,63 +144,31 @@ impl StudyInfo {
     }
 }
 
-/// The parameter points of a Monte Carlo method's statistics, in the order of its samples: the
-/// method's converged runs in design order. Returned only if it reproduces the method's samples
-/// bit for bit (so it can never mislabel a sample).
-fn monte_carlo_points(
-    points: &[Vec<f64>],
-    records: &[RunRecord],
-    result: &MethodResult,
-) -> Option<Vec<f64>> {
-    let by_key: std::collections::HashMap<String, &RunRecord> =
-        records.iter().map(|r| (point_key(&r.params), r)).collect();
-    let used: Vec<&RunRecord> = points
-        .iter()
-        .filter_map(|p| by_key.get(&point_key(p)).copied())
-        .filter(|r| r.converged())
-        .collect();
-    let same = used.len() == result.runs_used
-        && result.qois.iter().enumerate().all(|(q, s)| {
-            s.samples.len() == used.len()
-                && s.samples
-                    .iter()
-                    .zip(&used)
-                    .all(|(v, r)| r.qois.get(q).is_some_and(|x| x.to_bits() == v.to_bits()))
-        });
-    same.then(|| used.iter().flat_map(|r| r.params.iter().copied()).collect())
-}
-
 fn run(
     path: &Path,
     dir: &Path,
     restart: bool,
     progress: &PyProgress,
-) -> Result<StudyOutput, alea_study::StudyError> {
-    let study = Study::load(path)?;
-    let settings = analysis_settings(&study)?;
-    let runs = run_study(&study, dir, restart, progress)?;
-    let methods = runs
+) -> Result<StudyOutput, OutputError> {
+    let ran = run_runs(path, dir, restart, progress, &Silent)?;
+    let results = analyse_all(&ran.study, &ran.runs, &ran.settings);
+    let methods = ran
+        .runs
         .methods
         .iter()
-        .map(|m| {
-            let r = analyse_method(&study, m, &runs.records, &settings);
-            let pts = if m.kind == MethodKind::MonteCarlo && !r.qois.is_empty() {
-                monte_carlo_points(&m.points, &runs.records, &r)
-            } else if r.points.is_empty() {
-                None
-            } else {
-                Some(r.points.clone())
-            };
-            (r, pts)
+        .zip(results)
+        .map(|(m, r)| {
+            let points = sample_points(m, &ran.runs.records, &r);
+            (r, points)
         })
         .collect();
     Ok(StudyOutput {
-        study: StudyInfo::of(&study),
-        records: runs.records,
-        computed: runs.computed,
-        resumed: runs.resumed,
-        setup_seconds: runs.setup_seconds,
-        solve_seconds: runs.solve_seconds,
+        study: StudyInfo::of(&ran.study),
+        records: ran.runs.records,
+        computed: ran.runs.computed,
+        resumed: ran.runs.resumed,
+        setup_seconds: ran.runs.setup_seconds,
+        solve_seconds: ran.runs.solve_seconds,
         methods,
     })
 }
@@ -241,12 +239,16 @@ fn method_dict<'py>(
         let q = PyDict::new(py);
         q.set_item("quantity", &s.name)?;
         q.set_item("unit", &s.unit)?;
-        q.set_item("mean", s.mean)?;
-        q.set_item("std", s.std)?;
-        q.set_item("skewness", s.skewness)?;
-        q.set_item("min", s.min)?;
-        q.set_item("max", s.max)?;
-        q.set_item("mean_ci_half_width", s.mean_ci_half_width)?;
+        for (key, value) in [
+            ("mean", s.mean),
+            ("std", s.std),
+            ("skewness", s.skewness),
+            ("min", s.min),
+            ("max", s.max),
+            ("mean_ci_half_width", s.mean_ci_half_width),
+        ] {
+            q.set_item(key, value)?;
+        }
         q.set_item("quantiles", s.quantiles.clone())?;
         q.set_item("bandwidth", s.bandwidth)?;
         let kx: Vec<f64> = s.kde.iter().map(|p| p.0).collect();
@@ -313,7 +315,7 @@ pub fn run_study_file<'py>(
     if let Some(e) = prog.error.lock().ok().and_then(|mut e| e.take()) {
         return Err(e);
     }
-    let out = out.map_err(study_err)?;
+    let out = out.map_err(output_err)?;
     let d = out.study.parameters.len();
     let m = out.study.quantities.len();
     let dict = PyDict::new(py);
@@ -332,18 +334,6 @@ pub fn run_study_file<'py>(
     Ok(dict)
 }
 
-/// The study hash recorded in a store's database (read only).
-fn stored_hash(dir: &Path) -> PyResult<String> {
-    let db = dir.join("study.db");
-    let conn =
-        rusqlite::Connection::open_with_flags(&db, rusqlite::OpenFlags::SQLITE_OPEN_READ_ONLY)
-            .map_err(|e| value_error(format!("{}: {e}", db.display())))?;
-    conn.query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
-        r.get::<_, String>(0)
-    })
-    .map_err(|e| value_error(format!("{}: not a study store ({e})", db.display())))
-}
-
 /// Reads the runs stored in a study directory without running anything. With `study` (the
 /// study file), the store must hold that version of it and names come from it.
 #[pyfunction]
@@ -353,23 +343,11 @@ pub fn read_store<'py>(
     directory: PathBuf,
     study: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if !directory.join("study.db").is_file() {
-        return Err(PyFileNotFoundError::new_err(format!(
-            "{}: no study store here (no study.db)",
-            directory.display()
-        )));
-    }
-    let dict = PyDict::new(py);
-    let (hash, info) = match study {
-        Some(path) => {
-            let s = py.detach(|| Study::load(&path)).map_err(study_err)?;
-            (s.hash.clone(), Some(StudyInfo::of(&s)))
-        }
-        None => (stored_hash(&directory)?, None),
-    };
-    let records = Store::open(&directory, &hash, false)
-        .and_then(|s| s.runs())
-        .map_err(study_err)?;
+    let stored = py
+        .detach(|| stored_runs(&directory, study.as_deref()))
+        .map_err(output_err)?;
+    let records = &stored.records;
+    let info = stored.study.as_ref().map(StudyInfo::of);
     let d = match &info {
         Some(i) => i.parameters.len(),
         None => records.first().map_or(0, |r| r.params.len()),
@@ -378,11 +356,39 @@ pub fn read_store<'py>(
         Some(i) => i.quantities.len(),
         None => records.iter().map(|r| r.qois.len()).max().unwrap_or(0),
     };
+    let dict = PyDict::new(py);
     if let Some(i) = &info {
         i.to_dict(py, &dict)?;
     }
-    dict.set_item("study_hash", hash)?;
+    dict.set_item("study_hash", &stored.hash)?;
     dict.set_item("directory", directory.display().to_string())?;
-    dict.set_item("runs", records_dict(py, &records, d, m)?)?;
+    dict.set_item("runs", records_dict(py, records, d, m)?)?;
+    Ok(dict)
+}
+
+/// Rebuilds every output of a study directory from its store, computing no run (as
+/// `alea report DIR`); returns the files written and the warnings (see the `alea` package's
+/// `report`).
+#[pyfunction]
+pub fn rebuild_outputs<'py>(py: Python<'py>, directory: PathBuf) -> PyResult<Bound<'py, PyDict>> {
+    let out = py
+        .detach(|| alea_report::study::rebuild(&directory, "alea.report", &Silent))
+        .map_err(output_err)?;
+    let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
+    let dict = PyDict::new(py);
+    dict.set_item("summary", out.summary.display().to_string())?;
+    dict.set_item("samples", path(&out.samples))?;
+    dict.set_item("fields", path(&out.fields))?;
+    dict.set_item("error_fields", path(&out.error_fields))?;
+    let (html, plots) = match &out.report {
+        Some(r) => (
+            Some(r.html.display().to_string()),
+            r.plots.iter().map(|p| p.display().to_string()).collect(),
+        ),
+        None => (None, Vec::new()),
+    };
+    dict.set_item("report", html)?;
+    dict.set_item("plots", PyList::new(py, plots)?)?;
+    dict.set_item("notes", PyList::new(py, &out.notes)?)?;
     Ok(dict)
 }

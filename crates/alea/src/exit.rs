@@ -26,47 +26,68 @@ pub const BUSY: u8 = 5;
 
 /// The exit code of an error: the first cause in its chain that has a known kind decides.
 pub fn code(e: &anyhow::Error) -> u8 {
-    use crate::report::ReportError;
+    e.chain().find_map(kind).unwrap_or(INTERNAL)
+}
+
+/// The exit code of one error, `None` if its kind is not known here.
+fn kind(cause: &(dyn std::error::Error + 'static)) -> Option<u8> {
     use alea_mesh::MeshError;
-    for cause in e.chain() {
-        if let Some(s) = cause.downcast_ref::<StudyError>() {
-            return match s.exit_code() {
-                2 => INPUT,
-                3 => FILES,
-                5 => BUSY,
-                _ => COMPUTATION,
-            };
-        }
-        if let Some(l) = cause.downcast_ref::<alea_latin::LatinError>() {
-            return match l {
-                alea_latin::LatinError::Io { .. }
-                | alea_latin::LatinError::Mesh {
-                    source: MeshError::Io { .. },
-                    ..
-                } => FILES,
-                _ => COMPUTATION,
-            };
-        }
-        if let Some(r) = cause.downcast_ref::<ReportError>() {
-            return match r {
-                ReportError::Io { .. } | ReportError::Json { .. } => FILES,
-                _ => INTERNAL,
-            };
-        }
-        if let Some(m) = cause.downcast_ref::<MeshError>() {
-            return match m {
-                MeshError::Io { .. } => FILES,
-                _ => INTERNAL,
-            };
-        }
-        if cause.downcast_ref::<std::io::Error>().is_some() {
-            return FILES;
-        }
-        if cause.downcast_ref::<alea_fem::FemError>().is_some() {
-            return COMPUTATION;
-        }
+    use alea_report::report::ReportError;
+    if let Some(o) = cause.downcast_ref::<alea_report::Error>() {
+        return Some(match o {
+            alea_report::Error::Study(s) => study_code(s),
+            alea_report::Error::Report(r) => report_code(r),
+            alea_report::Error::Write { .. } => FILES,
+            alea_report::Error::NoStore { .. } | alea_report::Error::Store { .. } => INPUT,
+            alea_report::Error::NonFinite | alea_report::Error::Json(_) => INTERNAL,
+        });
     }
-    INTERNAL
+    if let Some(s) = cause.downcast_ref::<StudyError>() {
+        return Some(study_code(s));
+    }
+    if let Some(l) = cause.downcast_ref::<alea_latin::LatinError>() {
+        return Some(match l {
+            alea_latin::LatinError::Io { .. }
+            | alea_latin::LatinError::Mesh {
+                source: MeshError::Io { .. },
+                ..
+            } => FILES,
+            _ => COMPUTATION,
+        });
+    }
+    if let Some(r) = cause.downcast_ref::<ReportError>() {
+        return Some(report_code(r));
+    }
+    if let Some(m) = cause.downcast_ref::<MeshError>() {
+        return Some(match m {
+            MeshError::Io { .. } => FILES,
+            _ => INTERNAL,
+        });
+    }
+    if cause.downcast_ref::<std::io::Error>().is_some() {
+        return Some(FILES);
+    }
+    if cause.downcast_ref::<alea_fem::FemError>().is_some() {
+        return Some(COMPUTATION);
+    }
+    None
+}
+
+fn study_code(s: &StudyError) -> u8 {
+    match s.exit_code() {
+        2 => INPUT,
+        3 => FILES,
+        5 => BUSY,
+        _ => COMPUTATION,
+    }
+}
+
+fn report_code(r: &alea_report::report::ReportError) -> u8 {
+    use alea_report::report::ReportError;
+    match r {
+        ReportError::Io { .. } | ReportError::Json { .. } => FILES,
+        _ => INTERNAL,
+    }
 }
 
 #[cfg(test)]
@@ -113,5 +134,29 @@ mod tests {
             assert_eq!(code(&e.into()), own);
         }
         assert_eq!(SUCCESS, 0);
+    }
+
+    #[test]
+    fn errors_of_the_study_outputs_keep_their_inner_codes() {
+        let busy = alea_report::Error::Study(StudyError::Busy {
+            dir: "d".into(),
+            holder: "h".into(),
+        });
+        assert_eq!(code(&busy.into()), BUSY);
+        let failed = alea_report::Error::Study(StudyError::Failed("f".into()));
+        assert_eq!(code(&failed.into()), COMPUTATION);
+        let write = alea_report::Error::Write {
+            path: "summary.json".into(),
+            source: std::io::Error::other("disk full"),
+        };
+        let e = anyhow::Error::from(write);
+        assert_eq!(format!("{e:#}"), "writing summary.json: disk full");
+        assert_eq!(code(&e), FILES);
+        let report = alea_report::Error::Report(alea_report::report::ReportError::Plot {
+            plot: "pdf".into(),
+            message: "m".into(),
+        });
+        assert_eq!(code(&report.into()), INTERNAL);
+        assert_eq!(code(&alea_report::Error::NonFinite.into()), INTERNAL);
     }
 }

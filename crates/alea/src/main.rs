@@ -1,8 +1,7 @@
-//! The `alea` command line. Thin: parsing arguments, calling `alea-study`, printing.
+//! The `alea` command line. Thin: parsing arguments, calling `alea-report` (studies, their
+//! outputs and reports) and `alea-study`, printing.
 
-mod estimate_out;
 mod exit;
-mod report;
 mod solve;
 mod study_cmd;
 
@@ -138,7 +137,7 @@ fn main() -> ExitCode {
             threads,
             quiet,
         } => {
-            let dir = dir.unwrap_or_else(|| study_cmd::default_dir(&study));
+            let dir = dir.unwrap_or_else(|| alea_report::study::default_dir(&study));
             #[cfg(feature = "mpi")]
             {
                 match run_distributed(&study, &dir, restart, quiet, threads) {

@@ -7,7 +7,8 @@ as NumPy arrays and pandas DataFrames.
 Studies
     ``run(study_file)`` runs (or resumes) a study file and returns a :class:`StudyResult`
     (``.runs``, ``.statistics``, ``.failure``, ``.samples``); ``open_store(directory)`` reads
-    the runs of a study directory without running anything.
+    the runs of a study directory without running anything; ``report(directory)`` writes its
+    outputs (``summary.json``, ``samples.csv``, fields, the HTML report) as ``alea report``.
 Laws
     ``Normal``, ``Uniform``, ``TruncatedNormal``, ``Lognormal``, ``Beta``, ``Gamma``,
     ``Triangular``, ``Empirical``, ``Kde`` (all subclasses of ``Law``: ``pdf``, ``cdf``,
@@ -49,7 +50,7 @@ from ._core import (
     quadrature,
     sobol,
 )
-from ._study import StoredRuns, StudyResult, open_store, run
+from ._study import StoredRuns, StudyOutputs, StudyResult, open_store, report, run
 
 __all__ = [
     "Beta",
@@ -63,6 +64,7 @@ __all__ = [
     "PiecewiseLinear",
     "PolynomialChaos",
     "StoredRuns",
+    "StudyOutputs",
     "StudyResult",
     "Triangular",
     "TruncatedNormal",
@@ -75,6 +77,7 @@ __all__ = [
     "open_store",
     "pc_collocation",
     "quadrature",
+    "report",
     "run",
     "sobol",
 ]

@@ -1,7 +1,8 @@
 """Study results as pandas DataFrames and NumPy arrays.
 
-The numbers come from ``alea._core.run_study_file`` / ``read_store`` (the Rust runner, store
-and analysis); this module only names and arranges them.
+The numbers come from ``alea._core.run_study_file`` / ``read_store`` / ``rebuild_outputs`` (the
+study orchestration of the Rust crate ``alea-report``, the same the ``alea`` command line
+calls); this module only names and arranges them.
 """
 
 from __future__ import annotations
@@ -285,7 +286,8 @@ def run(
         The study file or directory cannot be read or written.
 
     Writes only the store (``study.db`` and per-run field files); ``alea run`` also writes
-    ``summary.json``, ``samples.csv``, mean fields and the HTML report.
+    ``summary.json``, ``samples.csv``, mean fields and the HTML report, and :func:`report`
+    writes them from the store afterwards.
 
     The solves run without the interpreter lock, and Ctrl-C is only seen when the study
     returns; every finished run is already committed to the store, so killing the process
@@ -314,3 +316,71 @@ def open_store(directory: PathLike, study: Optional[PathLike] = None) -> StoredR
     """
     raw = _core.read_store(str(directory), None if study is None else str(study))
     return StoredRuns(raw)
+
+
+@dataclass
+class StudyOutputs:
+    """The files :func:`report` wrote into a study directory, and the warnings they carry.
+
+    Attributes
+    ----------
+    report : Path or None
+        ``report/report.html``, the self-contained HTML report.
+    plots : list of Path
+        Its plots (PNG and SVG, in ``report/``).
+    summary : Path
+        ``summary.json``: everything the study found, for programs.
+    samples : Path or None
+        ``samples.csv``: the main method's draws (unless the study file switches it off).
+    fields, error_fields : Path or None
+        ParaView files of the mean / std fields and of the mean error densities, when written.
+    notes : list of str
+        The warnings (as in ``summary.json`` and at the top of the report).
+    """
+
+    report: Optional[Path]
+    plots: List[Path]
+    summary: Path
+    samples: Optional[Path]
+    fields: Optional[Path]
+    error_fields: Optional[Path]
+    notes: List[str]
+
+
+def report(directory: PathLike) -> StudyOutputs:
+    """Rebuild every output of a study directory from its store, as ``alea report DIR`` does.
+
+    Writes the statistics and error estimates into ``summary.json``, the main method's draws
+    into ``samples.csv``, the mean / std fields and the HTML report (``report/report.html``
+    with its plots), computing no run: for a study run by :func:`run` (which writes only the
+    store), or one the command line ran with ``report = false`` or stopped before its outputs.
+    Runs missing from the store (a study stopped early) are left out, with a note. The output
+    files are the command line's, byte for byte.
+
+    Returns
+    -------
+    StudyOutputs
+        The files written and the warnings.
+
+    Raises
+    ------
+    ValueError
+        ``directory`` is not a study directory, its mesh file changed, another process works in
+        it, or no run converged / no method produced statistics (the outputs are written first).
+    OSError
+        A file cannot be read or written.
+    """
+    raw = _core.rebuild_outputs(str(directory))
+
+    def path(p: Optional[str]) -> Optional[Path]:
+        return None if p is None else Path(p)
+
+    return StudyOutputs(
+        report=path(raw["report"]),
+        plots=[Path(p) for p in raw["plots"]],
+        summary=Path(raw["summary"]),
+        samples=path(raw["samples"]),
+        fields=path(raw["fields"]),
+        error_fields=path(raw["error_fields"]),
+        notes=list(raw["notes"]),
+    )

@@ -4,10 +4,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::super::AdaptiveReport;
-use super::super::format::num;
 use super::common::{
-    DrawResult, PALETTE, chart, configure_legend, err, extend, grid, integer_label, line_legend,
-    pad,
+    DrawResult, PALETTE, configure_legend, count_log_chart, err, extend, line_legend, pad,
 };
 
 /// `i_sto` (solid) and `i_geo` (dashed) of each adaptive method against its number of runs
@@ -29,27 +27,14 @@ pub(super) fn draw_indicators<DB: DrawingBackend>(
         }
     }
     let (x0, x1) = pad(xr.unwrap_or((0.0, 1.0)), 0.05);
-    let (y0, y1) = yr.unwrap_or((0.1, 100.0));
-    let (y0, y1) = if y1 > y0 {
-        (y0 / 1.5, y1 * 1.5)
-    } else {
-        (y0 / 10.0, y1 * 10.0)
-    };
-    let mut chart = chart(
+    let mut chart = count_log_chart(
         root,
         "Error indicators of the adaptive steps",
         x0..x1,
-        (y0..y1).log_scale(),
+        yr.unwrap_or((0.1, 100.0)),
+        1.5,
+        ("runs", "indicator (% of the admissible energy)"),
     )?;
-    grid(&mut chart.configure_mesh())
-        .x_desc("runs")
-        .y_desc("indicator (% of the admissible energy)")
-        .x_labels(10)
-        .y_labels(10)
-        .x_label_formatter(&integer_label)
-        .y_label_formatter(&|v| num(*v, 2))
-        .draw()
-        .map_err(err)?;
     for (k, a) in adaptive.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let pts = |f: fn(&super::super::StepRow) -> f64| -> Vec<(f64, f64)> {

@@ -73,16 +73,7 @@ pub fn seconds(s: f64) -> String {
 
 /// A file-name stem: ASCII letters, digits, `-`, `_`; anything else becomes `_`.
 pub fn slug(name: &str) -> String {
-    let s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
+    let s = alea_mesh::atomic::safe_file_name(name);
     let s = s.trim_matches('_').to_string();
     if s.is_empty() { "qoi".into() } else { s }
 }

@@ -3,9 +3,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::super::format::num;
 use super::common::{
-    DrawResult, PALETTE, chart, configure_legend, err, extend, grid, integer_label, line_legend,
+    DrawResult, PALETTE, configure_legend, count_log_chart, err, extend, line_legend,
 };
 
 /// Legend entries at most in the convergence plot.
@@ -29,27 +28,14 @@ pub(super) fn draw_convergence<DB: DrawingBackend>(
     } else {
         (x0 - 0.5, x1 + 0.5)
     };
-    let (y0, y1) = yr.unwrap_or((0.1, 1.0));
-    let (y0, y1) = if y1 > y0 {
-        (y0 / 1.6, y1 * 1.6)
-    } else {
-        (y0 / 10.0, y1 * 10.0)
-    };
-    let mut chart = chart(
+    let mut chart = count_log_chart(
         root,
         "Convergence of the LATIN iterations",
         x0..x1,
-        (y0..y1).log_scale(),
+        yr.unwrap_or((0.1, 1.0)),
+        1.6,
+        ("iteration", "LATIN error indicator"),
     )?;
-    grid(&mut chart.configure_mesh())
-        .x_desc("iteration")
-        .y_desc("LATIN error indicator")
-        .x_labels(10)
-        .y_labels(10)
-        .x_label_formatter(&integer_label)
-        .y_label_formatter(&|v| num(*v, 2))
-        .draw()
-        .map_err(err)?;
     for (k, (label, h)) in histories.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let series = chart

@@ -7,6 +7,7 @@ use std::sync::OnceLock;
 use plotters::chart::MeshStyle;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::AsRangedCoord;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::super::ReportError;
@@ -218,6 +219,35 @@ pub(super) fn grid<'m, 'a, 'b, X: Ranged, Y: Ranged, DB: DrawingBackend>(
         .label_style(font(15.0))
         .bold_line_style(GRID_BOLD)
         .light_line_style(GRID_LIGHT)
+}
+
+/// A chart of a positive quantity on a log scale against a count (iterations, runs), with 10
+/// labels on each axis: the y range `(lo, hi)` is widened by the factor `margin` (by 10 when it
+/// is a single value).
+pub(super) fn count_log_chart<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    x: std::ops::Range<f64>,
+    (y0, y1): (f64, f64),
+    margin: f64,
+    (x_desc, y_desc): (&str, &str),
+) -> Result<Chart2d<'a, DB, RangedCoordf64, LogCoord<f64>>, String> {
+    let (y0, y1) = if y1 > y0 {
+        (y0 / margin, y1 * margin)
+    } else {
+        (y0 / 10.0, y1 * 10.0)
+    };
+    let mut chart = chart(root, title, x, (y0..y1).log_scale())?;
+    grid(&mut chart.configure_mesh())
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_labels(10)
+        .y_labels(10)
+        .x_label_formatter(&integer_label)
+        .y_label_formatter(&|v| num(*v, 2))
+        .draw()
+        .map_err(err)?;
+    Ok(chart)
 }
 
 /// Tick label of a count axis (runs, iterations): whole numbers only.

@@ -1,0 +1,205 @@
+//! The error estimates of a study's methods (the estimate of every method with a surrogate;
+//! adaptive methods reuse their last step) and their JSON for `summary.json`.
+
+use std::path::Path;
+
+use alea_estimate::density::PairMap;
+use alea_estimate::{EntityEstimate, Estimate};
+use alea_study::StudyError;
+use alea_study::adaptive::AdaptiveOutcome;
+use alea_study::analysis::MethodResult;
+use alea_study::estimate::{
+    ErrorSettings, SurrogateEstimate, density_maps, error_settings, estimate_method,
+};
+use alea_study::method::{Method, MethodKind};
+use alea_study::runner::{Study, StudyRuns};
+use alea_study::store::Store;
+
+use super::results::converged_runs;
+use crate::Console;
+
+/// The error estimate of one method.
+pub(super) struct MethodEstimate {
+    /// Method index.
+    pub method: usize,
+    /// The estimate (or why there is none).
+    pub result: Result<SurrogateEstimate, String>,
+    /// Density maps (main method only).
+    pub maps: Vec<PairMap>,
+    /// The ParaView file of the mean error density per cell (main method only).
+    pub vtu: Option<std::path::PathBuf>,
+}
+
+/// Estimates the error of every method with a surrogate; `main` (the method that answers) also
+/// gets its density maps.
+pub(super) fn estimate_all(
+    study: &Study,
+    runs: &StudyRuns,
+    results: &[MethodResult],
+    dir: &Path,
+    main: Option<usize>,
+    console: &dyn Console,
+) -> Result<(ErrorSettings, Vec<MethodEstimate>), StudyError> {
+    let settings = error_settings(study)?;
+    let Some(setup) = &runs.cre else {
+        return Ok((settings, Vec::new()));
+    };
+    let store = Store::open(dir, &study.hash, false)?;
+    let mut out = Vec::new();
+    for (m, method) in runs.methods.iter().enumerate() {
+        if method.kind == MethodKind::MonteCarlo {
+            continue;
+        }
+        let adaptive = runs.adaptive.iter().find(|a| a.method == m);
+        let computed =
+            (|| -> Result<(Option<alea_estimate::Estimator>, SurrogateEstimate), String> {
+                if let Some(a) = adaptive {
+                    let last = a.steps.last().ok_or("the adaptive loop made no estimate")?;
+                    return Ok((a.estimator.clone(), last.error.clone()));
+                }
+                if results[m].qois.is_empty() {
+                    return Err(results[m]
+                        .error
+                        .clone()
+                        .unwrap_or_else(|| "no statistics".into()));
+                }
+                let used = used_points(method, runs);
+                let sur = method.surrogate(&study.params, &used)?;
+                let (est, merr) = estimate_method(
+                    study,
+                    setup,
+                    &runs.solver,
+                    &store,
+                    method,
+                    &used,
+                    &sur,
+                    &settings,
+                )
+                .map_err(|e| e.to_string())?;
+                Ok((Some(est), merr))
+            })();
+        let (result, maps, vtu) = match computed {
+            Ok((est, merr)) => {
+                let (mut maps, mut vtu) = (Vec::new(), None);
+                if Some(m) == main {
+                    let used = used_points(method, runs);
+                    if let Ok(sur) = method.surrogate(&study.params, &used) {
+                        if let (Some(est), true) = (&est, study.params.names.len() >= 2) {
+                            maps = density_maps(study, &runs.solver, est, &sur, &settings)
+                                .unwrap_or_default();
+                        }
+                        vtu = alea_study::estimate::write_error_fields(
+                            study,
+                            setup,
+                            &runs.solver,
+                            &store,
+                            method,
+                            &used,
+                            &sur,
+                            &settings,
+                            est.as_ref(),
+                            dir,
+                        )?;
+                    }
+                }
+                (Ok(merr), maps, vtu)
+            }
+            Err(e) => (Err(e), Vec::new(), None),
+        };
+        if let Some(p) = &vtu {
+            console.line(&format!(
+                "mean error densities (cells, interface nodes): {}",
+                p.display()
+            ));
+        }
+        out.push(MethodEstimate {
+            method: m,
+            result,
+            maps,
+            vtu,
+        });
+    }
+    Ok((settings, out))
+}
+
+/// The converged runs of a method, in its point order (the surrogate's run order).
+fn used_points(method: &Method, runs: &StudyRuns) -> Vec<Vec<f64>> {
+    converged_runs(&method.points, &runs.records)
+        .into_iter()
+        .map(|(p, _)| p.clone())
+        .collect()
+}
+
+/// The entity that carries the largest part of `part(entity)`, with its share.
+pub(super) fn dominant(est: &Estimate, part: impl Fn(&EntityEstimate) -> f64) -> (String, f64) {
+    let total: f64 = est
+        .subs
+        .iter()
+        .chain(&est.interfaces)
+        .map(|e| part(e).max(0.0))
+        .sum();
+    let mut best = (String::new(), 0.0);
+    for (kind, list) in [("substructure", &est.subs), ("interface", &est.interfaces)] {
+        for e in list.iter() {
+            let v = part(e).max(0.0);
+            if v > best.1 {
+                best = (format!("{kind} '{}'", e.name), v);
+            }
+        }
+    }
+    (best.0, if total > 0.0 { best.1 / total } else { 0.0 })
+}
+
+fn entity_json(e: &EntityEstimate, kind: &str, est: &Estimate) -> serde_json::Value {
+    serde_json::json!({
+        "name": e.name, "kind": kind,
+        "e2": e.e2, "geo2": e.geo2, "sto2": e.sto2, "mean2": e.mean2, "std2": e.std2,
+        "relative": est.relative_of(e.e2), "i_geo": est.relative_of(e.geo2),
+        "i_sto": est.relative_of(e.sto2),
+    })
+}
+
+/// The JSON of one method's estimate.
+pub(super) fn error_json(e: &SurrogateEstimate) -> serde_json::Value {
+    let est = &e.estimate;
+    let entities: Vec<serde_json::Value> = est
+        .subs
+        .iter()
+        .map(|x| entity_json(x, "substructure", est))
+        .chain(
+            est.interfaces
+                .iter()
+                .map(|x| entity_json(x, "interface", est)),
+        )
+        .collect();
+    serde_json::json!({
+        "relative": est.relative(), "i_geo": est.i_geo(), "i_sto": est.i_sto(),
+        "e2": est.e2, "geo2": est.geo2, "sto2": est.sto2, "norm2": est.norm2,
+        "runs": e.runs, "rule_points": e.rule_points, "load_defect": e.load_defect,
+        "violation_probability": est.violation_probability, "max_violation": est.max_violation,
+        "substructures_estimated": e.substructures_estimated,
+        "negative_parts": est.negative_parts(),
+        "entities": entities,
+    })
+}
+
+/// The JSON of an adaptive loop.
+pub(super) fn adaptive_json(a: &AdaptiveOutcome) -> serde_json::Value {
+    let steps: Vec<serde_json::Value> = a
+        .steps
+        .iter()
+        .map(|s| {
+            serde_json::json!({
+                "runs": s.runs, "new_runs": s.new_runs, "thesis_cost": s.thesis_cost,
+                "estimate": error_json(&s.error),
+                "qois": s.qois.iter().map(|q| serde_json::json!({
+                    "mean": q.mean, "std": q.std, "failure": q.failure,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    serde_json::json!({
+        "stop": a.stop, "error": a.error, "steps": steps,
+        "runs": (0..a.mesh.num_runs()).map(|r| a.mesh.run_point(r).to_vec()).collect::<Vec<_>>(),
+    })
+}

@@ -1,0 +1,171 @@
+//! The report's input from a study's results: the main method's quantities with their
+//! response surfaces, the comparison of methods, the runs and a few LATIN histories.
+
+use alea_study::analysis::{MethodResult, response_surface};
+use alea_study::method::Method;
+use alea_study::runner::Study;
+use alea_study::store::RunRecord;
+
+use crate::report::{
+    Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReportInput, RunInfo, Surface,
+};
+
+/// The report's input (without the error section, which `estimate_report.rs` adds).
+pub(super) fn report_input(
+    study: &Study,
+    methods: &[Method],
+    results: &[MethodResult],
+    records: &[RunRecord],
+    notes: &[String],
+    timings: &[(String, f64)],
+) -> ReportInput {
+    // The first method that produced statistics answers; the others are compared with it.
+    let main_index = results.iter().position(|r| !r.qois.is_empty());
+    let units = &study.model.units;
+    let mut unit_list = vec![
+        ("length".to_string(), units.length.clone()),
+        ("force".into(), units.force.clone()),
+        ("stress".into(), units.stress.clone()),
+    ];
+    if let Some(d) = &units.density {
+        unit_list.push(("density".into(), d.clone()));
+    }
+    let qois = study
+        .qois
+        .iter()
+        .enumerate()
+        .filter_map(|(q, qoi)| {
+            let m = main_index?;
+            let s = results[m].qois.get(q)?;
+            let surface =
+                response_surface(study, &methods[m], records, q, 41).map(|(x, y, values)| {
+                    Surface {
+                        param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
+                        x,
+                        y,
+                        values,
+                        points: methods[m]
+                            .points
+                            .iter()
+                            .filter_map(|p| {
+                                let r = records.iter().find(|r| &r.params == p)?;
+                                r.converged().then(|| [p[0], p[1], r.qois[q]])
+                            })
+                            .collect(),
+                    }
+                });
+            Some(QoiReport {
+                name: qoi.name.clone(),
+                unit: qoi.unit.clone(),
+                what: qoi.what.clone(),
+                samples: s.samples.clone(),
+                mean: s.mean,
+                std: s.std,
+                skewness: s.skewness,
+                quantiles: s.quantiles.clone(),
+                kde: s.kde.clone(),
+                failure: s
+                    .failure
+                    .iter()
+                    .map(|f| FailureInfo {
+                        threshold: f.threshold,
+                        probability: f.probability,
+                        ci_low: f.ci_low,
+                        ci_high: f.ci_high,
+                    })
+                    .collect(),
+                surface,
+            })
+        })
+        .collect();
+    let comparison = (results.len() > 1).then(|| Comparison {
+        qoi: study.qois[0].name.clone(),
+        rows: results
+            .iter()
+            .filter_map(|r| {
+                let s = r.qois.first()?;
+                Some(ComparisonRow {
+                    method: r.label.clone(),
+                    runs: r.runs_used,
+                    mean: s.mean,
+                    std: s.std,
+                    kde: s.kde.clone(),
+                })
+            })
+            .collect(),
+    });
+    let mut histories: Vec<(String, Vec<f64>)> = records
+        .iter()
+        .take(4)
+        .map(|r| {
+            (
+                format!("run at {}", fmt_point(&r.params)),
+                r.history.clone(),
+            )
+        })
+        .collect();
+    if let Some(worst) = records.iter().max_by_key(|r| r.iterations)
+        && !histories.iter().any(|h| h.1 == worst.history)
+    {
+        histories.push((
+            format!("slowest: {}", fmt_point(&worst.params)),
+            worst.history.clone(),
+        ));
+    }
+    ReportInput {
+        title: study.title(),
+        study_file: study.source.path.display().to_string(),
+        units: unit_list,
+        method: main_index.map_or_else(
+            || "no method produced statistics (see the notes)".to_string(),
+            |m| format!("{}: {}", results[m].label, results[m].description),
+        ),
+        parameters: study
+            .params
+            .names
+            .iter()
+            .enumerate()
+            .map(|(j, n)| ParamInfo {
+                name: n.clone(),
+                law: study.params.descriptions[j].clone(),
+                lo: study.params.lo[j],
+                hi: study.params.hi[j],
+            })
+            .collect(),
+        runs: records
+            .iter()
+            .map(|r| RunInfo {
+                params: r.params.clone(),
+                status: r.status.clone(),
+                iterations: r.iterations,
+                seconds: r.seconds,
+                // Non-finite values only occur in runs that did not converge.
+                qois: if main_index.is_some() {
+                    r.qois
+                        .iter()
+                        .map(|v| if v.is_finite() { *v } else { 0.0 })
+                        .collect()
+                } else {
+                    Vec::new()
+                },
+            })
+            .collect(),
+        residual_histories: histories,
+        qois,
+        comparison,
+        timings: timings.to_vec(),
+        notes: notes.to_vec(),
+        error: None,
+    }
+}
+
+/// `(p1, p2, ...)` with 4 decimals.
+fn fmt_point(p: &[f64]) -> String {
+    format!(
+        "({})",
+        p.iter()
+            .map(|v| format!("{v:.4}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}

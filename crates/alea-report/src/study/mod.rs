@@ -1,0 +1,171 @@
+//! The orchestration of a study over `alea-study`, shared by the `alea` CLI (`alea run`,
+//! `alea report`) and the Python package (`alea.run`, `alea.report`, `alea.open_store`).
+//!
+//! Layered one way, no import circle: [`results`] (what a study gives without writing files)
+//! and the estimate services (`estimate.rs`, `estimate_text.rs`, `estimate_report.rs`), the
+//! writers (`files.rs`: `summary.json`, `samples.csv`; `input.rs`: the report's input;
+//! `table.rs`: the statistics table), then `outputs.rs` (every output of a study whose runs are
+//! done) and this file (run a study file, rebuild a study directory).
+
+mod estimate;
+mod estimate_report;
+mod estimate_text;
+mod files;
+mod input;
+mod outputs;
+mod results;
+mod table;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use alea_study::analysis::{AnalysisSettings, analysis_settings};
+use alea_study::runner::{Progress, Study, StudyRuns, run_study};
+
+pub use outputs::{Outputs, write_outputs};
+pub use results::{StoredRuns, analyse_all, converged_runs, sample_points, stored_runs};
+
+use crate::{Console, Error};
+
+/// A study file whose runs are done (computed or resumed), not yet analysed.
+pub struct Ran {
+    /// The loaded study.
+    pub study: Study,
+    /// Its analysis settings (Monte Carlo draws, confidence, KDE).
+    pub settings: AnalysisSettings,
+    /// Its runs, the solver and the adaptive loops' outcomes.
+    pub runs: StudyRuns,
+}
+
+/// Default study directory: `out/<file stem>`.
+pub fn default_dir(study: &Path) -> PathBuf {
+    let stem = study
+        .file_stem()
+        .map_or("study".into(), |s| s.to_string_lossy().into_owned());
+    PathBuf::from("out").join(stem)
+}
+
+/// Loads the study file `path` and runs (or resumes) its runs in `dir`, reporting each run to
+/// `progress` and the study's account (sizes, run counts, timings) to `console`. Writes no
+/// output but the store.
+pub fn run_runs(
+    path: &Path,
+    dir: &Path,
+    restart: bool,
+    progress: &dyn Progress,
+    console: &dyn Console,
+) -> Result<Ran, Error> {
+    let study = Study::load(path)?;
+    let settings = analysis_settings(&study)?;
+    console.line(&format!(
+        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs -> {}",
+        study.title(),
+        study.params.names.len(),
+        study.qois.len(),
+        if study.qois.len() == 1 { "y" } else { "ies" },
+        study.methods.len(),
+        study.all_points().len(),
+        dir.display()
+    ));
+    let runs = run_study(&study, dir, restart, progress)?;
+    let per_run_estimates = if runs.estimate_seconds > 0.0 {
+        format!(
+            "; per-run error estimates {:.2} s summed over the runs",
+            runs.estimate_seconds
+        )
+    } else {
+        String::new()
+    };
+    console.line(&format!(
+        "runs: {} computed, {} resumed; solver set-up {:.2} s, solves {:.2} s ({:.1} runs/s{per_run_estimates})",
+        runs.computed,
+        runs.resumed,
+        runs.setup_seconds,
+        runs.solve_seconds,
+        runs.computed as f64 / runs.solve_seconds.max(1e-9)
+    ));
+    let iterations: Vec<usize> = runs
+        .records
+        .iter()
+        .filter(|r| r.converged())
+        .map(|r| r.iterations)
+        .collect();
+    if let (Some(lo), Some(hi)) = (iterations.iter().min(), iterations.iter().max()) {
+        console.line(&format!(
+            "LATIN iterations per converged run: min {lo}, mean {:.1}, max {hi}",
+            iterations.iter().sum::<usize>() as f64 / iterations.len() as f64
+        ));
+    }
+    Ok(Ran {
+        study,
+        settings,
+        runs,
+    })
+}
+
+/// `alea run`: runs the study file `path` into `dir` (resumable; `restart` discards the runs
+/// of a previous version of the file), then writes every output ([`write_outputs`]; the report
+/// unless the file says `report = false`).
+///
+/// # Errors
+/// Any error of loading or running the study or of writing an output; after writing what it
+/// can, [`alea_study::StudyError::Failed`] if no run converged or no method produced
+/// statistics.
+pub fn run(
+    path: &Path,
+    dir: &Path,
+    restart: bool,
+    progress: &dyn Progress,
+    console: &dyn Console,
+) -> Result<Outputs, Error> {
+    let t_all = Instant::now();
+    let ran = run_runs(path, dir, restart, progress, console)?;
+    let report = ran.study.output.report.unwrap_or(true);
+    let out = write_outputs(
+        &ran.study,
+        &ran.runs,
+        dir,
+        &ran.settings,
+        Vec::new(),
+        report,
+        console,
+    )?;
+    console.line(&format!("done in {:.2} s", t_all.elapsed().as_secs_f64()));
+    Ok(out)
+}
+
+/// `alea report DIR`: rebuilds every output of a study directory (statistics, `summary.json`,
+/// `samples.csv`, mean / std fields, the report) from its store alone, computing no run - after
+/// a kill during the outputs, or for a study that ran with `report = false`. `command` names
+/// the caller in the messages of a busy directory.
+///
+/// # Errors
+/// As [`run`]; [`alea_study::StudyError::Usage`] if `dir` is not a study directory,
+/// [`alea_study::StudyError::Busy`] if another process works in it.
+pub fn rebuild(dir: &Path, command: &str, console: &dyn Console) -> Result<Outputs, Error> {
+    let t_all = Instant::now();
+    let re = alea_study::reopen::reopen(dir, command)?;
+    let settings = analysis_settings(&re.study)?;
+    let mut notes = Vec::new();
+    let total = re.runs.records.len() + re.missing;
+    console.line(&format!(
+        "study '{}' in {}: {} of {total} runs finished",
+        re.study.title(),
+        dir.display(),
+        re.runs.records.len()
+    ));
+    if re.missing > 0 {
+        let msg = format!(
+            "{} of {total} runs are not in the study directory (the study was stopped before it finished): \
+             these results use the finished runs only; resume with `alea run {} --dir {}`",
+            re.missing,
+            re.study.source.path.display(),
+            dir.display()
+        );
+        console.warning(&msg);
+        notes.push(msg);
+    }
+    let out = write_outputs(&re.study, &re.runs, dir, &settings, notes, true, console)?;
+    console.line(&format!("done in {:.2} s", t_all.elapsed().as_secs_f64()));
+    Ok(out)
+}

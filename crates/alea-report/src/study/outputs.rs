@@ -1,0 +1,178 @@
+//! Every output of a study whose runs are done: warnings, statistics, error estimates,
+//! `summary.json`, `samples.csv`, mean / std fields and the report.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use alea_study::StudyError;
+use alea_study::analysis::AnalysisSettings;
+use alea_study::runner::{Study, StudyRuns};
+use alea_study::store::RunRecord;
+
+use super::estimate::estimate_all;
+use super::estimate_report::report_error;
+use super::estimate_text::print_estimates;
+use super::files::{write_samples, write_summary};
+use super::input::report_input;
+use super::results::analyse_all;
+use super::table::print_table;
+use crate::report::{self, ReportFiles};
+use crate::{Console, Error};
+
+/// The files a study's outputs consist of, and the warnings they carry.
+#[derive(Debug, Clone)]
+pub struct Outputs {
+    /// `summary.json`.
+    pub summary: PathBuf,
+    /// `samples.csv` (the main method's draws), unless switched off or no method has draws.
+    pub samples: Option<PathBuf>,
+    /// The mean / std fields (ParaView), when written.
+    pub fields: Option<PathBuf>,
+    /// The mean error densities (ParaView), when the study has error estimates.
+    pub error_fields: Option<PathBuf>,
+    /// The report (`report.html` and its plots), when asked for.
+    pub report: Option<ReportFiles>,
+    /// The warnings, as in `summary.json`'s notes.
+    pub notes: Vec<String>,
+}
+
+/// Statistics and every output file of a study whose runs are in `runs`; `report`: write the
+/// HTML report too; `notes`: warnings found before (kept in `summary.json` and the report).
+///
+/// # Errors
+/// Any error of writing an output; after writing what it can,
+/// [`StudyError::Failed`] if no run converged or no method produced statistics.
+pub fn write_outputs(
+    study: &Study,
+    runs: &StudyRuns,
+    dir: &Path,
+    settings: &AnalysisSettings,
+    mut notes: Vec<String>,
+    report: bool,
+    console: &dyn Console,
+) -> Result<Outputs, Error> {
+    let mut warn = |msg: String| {
+        console.warning(&msg);
+        notes.push(msg);
+    };
+    let failed: Vec<&RunRecord> = runs.records.iter().filter(|r| !r.converged()).collect();
+    if !failed.is_empty() {
+        warn(format!(
+            "{} run(s) did not converge and are left out of the surrogates: {}",
+            failed.len(),
+            failed
+                .iter()
+                .take(10)
+                .map(|r| format!(
+                    "{:?} ({}, error indicator {:.1e} after {} iterations)",
+                    r.params, r.status, r.residual, r.iterations
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ));
+    }
+    for w in alea_study::qoi::warnings::corner_warnings(study, &runs.records, dir)? {
+        warn(w.to_string());
+    }
+    let t0 = Instant::now();
+    let results = analyse_all(study, runs, settings);
+    let analysis_seconds = t0.elapsed().as_secs_f64();
+    for r in &results {
+        if let Some(e) = &r.error {
+            warn(format!("method '{}' gave no statistics: {e}", r.label));
+        }
+    }
+    print_table(study, &results, settings.confidence, console);
+    let main_index = results.iter().position(|r| !r.qois.is_empty());
+    let t0 = Instant::now();
+    let (err_settings, estimates) = estimate_all(study, runs, &results, dir, main_index, console)?;
+    notes.extend(print_estimates(
+        study,
+        runs,
+        &err_settings,
+        &estimates,
+        console,
+    ));
+    let estimate_seconds = t0.elapsed().as_secs_f64();
+    let summary = write_summary(study, dir, &results, runs, &estimates, &notes, console)?;
+    let mut samples = None;
+    if study.output.samples_csv.unwrap_or(true)
+        && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
+    {
+        samples = write_samples(study, dir, main, console)?;
+    }
+    let mut fields = None;
+    if study.output.mean_fields.unwrap_or(true)
+        && !study.params.names.is_empty()
+        && let Some(m) = results
+            .iter()
+            .position(|r| !r.qois.is_empty() && !r.points.is_empty())
+    {
+        let t0 = Instant::now();
+        match alea_study::fields::write_mean_std_fields(study, runs, dir, m, &results[m].points) {
+            Ok(path) => {
+                console.line(&format!(
+                    "mean / std fields: {} ({}, {:.2} s)",
+                    path.display(),
+                    results[m].label,
+                    t0.elapsed().as_secs_f64()
+                ));
+                fields = Some(path);
+            }
+            Err(e) => {
+                let msg = format!("mean / std fields not written: {e}");
+                console.warning(&msg);
+                notes.push(msg);
+            }
+        }
+    }
+    let mut files = None;
+    if report {
+        let t0 = Instant::now();
+        let mut input = report_input(
+            study,
+            &runs.methods,
+            &results,
+            &runs.records,
+            &notes,
+            &[
+                ("solver set-up".into(), runs.setup_seconds),
+                ("solves".into(), runs.solve_seconds),
+                ("surrogates + Monte Carlo".into(), analysis_seconds),
+                ("stochastic error estimates".into(), estimate_seconds),
+            ],
+        );
+        input.error = report_error(study, runs, &err_settings, &estimates);
+        let written = report::write_report(&dir.join("report"), &input)?;
+        input.save_json(&dir.join("report").join("report-input.json"))?;
+        console.line(&format!(
+            "report: {} ({} plots, {:.2} s)",
+            written.html.display(),
+            written.plots.len(),
+            t0.elapsed().as_secs_f64()
+        ));
+        files = Some(written);
+    }
+    if !runs.records.iter().any(|r| r.converged()) {
+        return Err(StudyError::Failed(format!(
+            "no run converged ({} run(s); see summary.json for their status and error indicators): \
+             raise [solver] max_iterations or check the model",
+            runs.records.len()
+        ))
+        .into());
+    }
+    if results.iter().all(|r| r.qois.is_empty()) {
+        return Err(StudyError::Failed(
+            "no method produced statistics (the warnings above say why)".into(),
+        )
+        .into());
+    }
+    Ok(Outputs {
+        summary,
+        samples,
+        fields,
+        error_fields: estimates.iter().find_map(|e| e.vtu.clone()),
+        report: files,
+        notes,
+    })
+}

@@ -1,0 +1,123 @@
+//! What a study gives without writing any output: the statistics of every method, the parameter
+//! points of their draws, and the runs kept in a study directory's store.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method};
+use alea_study::method::{Method, MethodKind};
+use alea_study::runner::{Study, StudyRuns};
+use alea_study::store::{RunRecord, Store, point_key};
+
+use crate::Error;
+
+/// The surrogate and Monte Carlo statistics of every method of a study, in method order.
+pub fn analyse_all(
+    study: &Study,
+    runs: &StudyRuns,
+    settings: &AnalysisSettings,
+) -> Vec<MethodResult> {
+    runs.methods
+        .iter()
+        .map(|m| analyse_method(study, m, &runs.records, settings))
+        .collect()
+}
+
+/// The converged runs among `points`, in the order of `points`, each with its point.
+pub fn converged_runs<'a>(
+    points: &'a [Vec<f64>],
+    records: &'a [RunRecord],
+) -> Vec<(&'a Vec<f64>, &'a RunRecord)> {
+    let by_key: HashMap<String, &RunRecord> =
+        records.iter().map(|r| (point_key(&r.params), r)).collect();
+    points
+        .iter()
+        .filter_map(|p| by_key.get(&point_key(p)).map(|r| (p, *r)))
+        .filter(|(_, r)| r.converged())
+        .collect()
+}
+
+/// The parameter points of `result`'s draws, row-major (`draws x d`), in the order of its
+/// samples: a surrogate's Monte Carlo points, or for a Monte Carlo method its converged runs in
+/// design order - the latter only if they reproduce the method's samples bit for bit (so a
+/// sample is never mislabelled). `None` when there are no such points.
+pub fn sample_points(
+    method: &Method,
+    records: &[RunRecord],
+    result: &MethodResult,
+) -> Option<Vec<f64>> {
+    if method.kind == MethodKind::MonteCarlo && !result.qois.is_empty() {
+        let used = converged_runs(&method.points, records);
+        let same = used.len() == result.runs_used
+            && result.qois.iter().enumerate().all(|(q, s)| {
+                s.samples.len() == used.len()
+                    && s.samples.iter().zip(&used).all(|(v, (_, r))| {
+                        r.qois.get(q).is_some_and(|x| x.to_bits() == v.to_bits())
+                    })
+            });
+        same.then(|| {
+            used.iter()
+                .flat_map(|(_, r)| r.params.iter().copied())
+                .collect()
+        })
+    } else if result.points.is_empty() {
+        None
+    } else {
+        Some(result.points.clone())
+    }
+}
+
+/// The runs kept in a study directory's store.
+pub struct StoredRuns {
+    /// The study hash the store belongs to.
+    pub hash: String,
+    /// The study file, when given (then the store holds that version of it).
+    pub study: Option<Study>,
+    /// The finished runs, in the store's order.
+    pub records: Vec<RunRecord>,
+}
+
+/// Reads the runs stored in study directory `dir`, running nothing. With `study` (the study
+/// file), the store must hold that version of it; without, the store's own hash is used.
+///
+/// # Errors
+/// [`Error::NoStore`] without `study.db`; [`Error::Store`] if it is not a study store; the
+/// errors of loading `study` and of reading the store ([`Error::Study`]).
+pub fn stored_runs(dir: &Path, study: Option<&Path>) -> Result<StoredRuns, Error> {
+    let db = dir.join("study.db");
+    if !db.is_file() {
+        return Err(Error::NoStore {
+            dir: dir.to_path_buf(),
+        });
+    }
+    let (hash, study) = match study {
+        Some(path) => {
+            let s = Study::load(path)?;
+            (s.hash.clone(), Some(s))
+        }
+        None => (stored_hash(&db)?, None),
+    };
+    let records = Store::open(dir, &hash, false).and_then(|s| s.runs())?;
+    Ok(StoredRuns {
+        hash,
+        study,
+        records,
+    })
+}
+
+/// The study hash recorded in a store's database `db` (read only).
+fn stored_hash(db: &Path) -> Result<String, Error> {
+    let conn =
+        rusqlite::Connection::open_with_flags(db, rusqlite::OpenFlags::SQLITE_OPEN_READ_ONLY)
+            .map_err(|e| Error::Store {
+                path: db.to_path_buf(),
+                message: e.to_string(),
+            })?;
+    conn.query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
+        r.get::<_, String>(0)
+    })
+    .map_err(|e| Error::Store {
+        path: db.to_path_buf(),
+        message: format!("not a study store ({e})"),
+    })
+}
