@@ -103,6 +103,8 @@ struct StudyOutput {
     setup_seconds: f64,
     solve_seconds: f64,
     methods: Vec<(MethodResult, Option<Vec<f64>>)>,
+    /// The `[[reliability]]` results as JSON.
+    reliability: String,
 }
 
 /// Names and units of a study.
@@ -152,6 +154,14 @@ fn run(
 ) -> Result<StudyOutput, OutputError> {
     let ran = run_runs(path, dir, restart, progress, &Silent)?;
     let results = analyse_all(&ran.study, &ran.runs, &ran.settings);
+    let reliability = alea_study::reliability::analyse_reliability(
+        &ran.study,
+        &ran.study.reliability,
+        &ran.runs.methods,
+        &ran.runs.records,
+        ran.settings.confidence,
+    );
+    let reliability = serde_json::to_string(&reliability).unwrap_or_else(|_| "[]".into());
     let methods = ran
         .runs
         .methods
@@ -170,6 +180,7 @@ fn run(
         setup_seconds: ran.runs.setup_seconds,
         solve_seconds: ran.runs.solve_seconds,
         methods,
+        reliability,
     })
 }
 
@@ -260,6 +271,21 @@ fn method_dict<'py>(
             f.append((fs.threshold, fs.probability, fs.ci_low, fs.ci_high))?;
         }
         q.set_item("failure", f)?;
+        let budget = PyList::empty(py);
+        if let Some(b) = &s.budget {
+            for row in &b.rows {
+                budget.append((
+                    row.statistic.as_str(),
+                    row.value,
+                    row.mesh,
+                    row.surrogate,
+                    row.sampling,
+                    row.total,
+                ))?;
+            }
+            q.set_item("surrogate_basis", &b.surrogate_basis)?;
+        }
+        q.set_item("budget", budget)?;
         stats.append(q)?;
     }
     out.set_item("statistics", stats)?;
@@ -331,6 +357,7 @@ pub fn run_study_file<'py>(
         methods.append(method_dict(py, r, p.as_ref(), d)?)?;
     }
     dict.set_item("methods", methods)?;
+    dict.set_item("reliability_json", &out.reliability)?;
     Ok(dict)
 }
 

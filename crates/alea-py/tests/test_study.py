@@ -69,6 +69,32 @@ def test_statistics_match_the_exact_law(study):
         assert row["ci_low"] <= row["probability"] <= row["ci_high"]
 
 
+def test_error_budget_covers_the_exact_statistics(study):
+    """Each statistic's reported total error covers its true error (exact law above)."""
+    res, _, _ = study
+    exact = {"mean": MEAN, "std": STD, f"P(> {T})": exact_pf()}
+    budget = res.budget
+    assert set(budget["method"]) == {"PC regression p=4", "Monte Carlo"}
+    for _, row in budget[budget["statistic"].isin(list(exact))].iterrows():
+        assert abs(row["value"] - exact[row["statistic"]]) <= row["total"], row.to_dict()
+        assert np.isnan(row["mesh"])  # not estimated, and said so
+    mc = budget[budget["method"] == "Monte Carlo"]
+    assert (mc["surrogate"] == 0).all()  # the runs themselves: no surrogate error
+    assert "PC regression of degree 3" in res.budget_basis[("PC regression p=4", "tip")]
+
+
+def test_reliability_table_matches_the_exact_probability(study):
+    res, _, _ = study
+    (r,) = res.reliability
+    pf = exact_pf()
+    assert r["quantity"] == "tip" and r["threshold"] == T and r["method"] == "PC regression p=4"
+    for name in ("importance", "subset"):
+        e = r[name]
+        assert e["lower"] - 2e-3 <= pf <= e["upper"] + 2e-3, (name, e, pf)
+    assert abs(r["sorm"]["pf_breitung"] / pf - 1) < 0.1
+    assert r["warnings"] == [] and r["errors"] == []
+
+
 def test_samples_are_the_main_methods_draws(study):
     res, _, _ = study
     assert res.main_method == "PC regression p=4"

@@ -70,6 +70,15 @@ class StudyResult:
     failure : pandas.DataFrame
         ``P(quantity > threshold)`` for every threshold of the study: columns ``method``,
         ``quantity``, ``threshold``, ``probability``, ``ci_low``, ``ci_high`` (Wilson interval).
+    budget : pandas.DataFrame
+        The error budget of every statistic: columns ``method``, ``quantity``, ``statistic``
+        (``mean``, ``std``, ``q0.05``, ``P(> t)``...), ``value`` and its estimated error by
+        source, ``mesh``, ``surrogate`` and ``sampling`` (NaN where not estimated), and
+        ``total``. How the surrogate part was estimated: ``budget_basis[(method, quantity)]``.
+    reliability : list of dict
+        The ``[[reliability]]`` analyses of the study file (as in ``summary.json``): the FORM
+        design points, SORM, importance sampling and subset simulation with their intervals and
+        evaluation counts, warnings and errors.
     samples : numpy.ndarray
         The main method's Monte Carlo draws, ``(draws, d + m)``: the parameter point of each
         draw then the quantities' values there (columns named by ``sample_columns``). The main
@@ -110,6 +119,8 @@ class StudyResult:
         ]
         self.statistics = self._statistics()
         self.failure = self._failure()
+        self.budget, self.budget_basis = self._budget()
+        self.reliability: List[dict] = json.loads(raw.get("reliability_json", "[]"))
         main = next((m for m in raw["methods"] if m["statistics"]), None)
         self.main_method: Optional[str] = main["label"] if main is not None else None
         if main is None:
@@ -141,6 +152,29 @@ class StudyResult:
         if not rows:
             return pd.DataFrame(columns=["method", "quantity"]).set_index(["method", "quantity"])
         return pd.DataFrame(rows).set_index(["method", "quantity"])
+
+    def _budget(self) -> Tuple[pd.DataFrame, dict]:
+        rows, basis = [], {}
+        nan = float("nan")
+        for m in self._raw["methods"]:
+            for s in m["statistics"]:
+                if "surrogate_basis" in s:
+                    basis[(m["label"], s["quantity"])] = s["surrogate_basis"]
+                for (stat, value, mesh, surrogate, sampling, total) in s["budget"]:
+                    rows.append(
+                        {
+                            "method": m["label"],
+                            "quantity": s["quantity"],
+                            "statistic": stat,
+                            "value": value,
+                            "mesh": nan if mesh is None else mesh,
+                            "surrogate": nan if surrogate is None else surrogate,
+                            "sampling": sampling,
+                            "total": total,
+                        }
+                    )
+        columns = ["method", "quantity", "statistic", "value", "mesh", "surrogate", "sampling", "total"]
+        return pd.DataFrame(rows, columns=columns), basis
 
     def _failure(self) -> pd.DataFrame:
         rows = [

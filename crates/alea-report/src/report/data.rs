@@ -39,6 +39,9 @@ pub struct ReportInput {
     /// The stochastic error estimate (thesis 3.2, 4.1-4.2), when the study has one.
     #[serde(default)]
     pub error: Option<ErrorReport>,
+    /// The `[[reliability]]` analyses.
+    #[serde(default)]
+    pub reliability: Vec<ReliabilityReport>,
 }
 
 /// The stochastic error estimate of a study: per method, per entity of the main method, the
@@ -166,6 +169,48 @@ pub struct QoiReport {
     pub failure: Vec<FailureInfo>,
     /// The response surface over two parameters, when there is one to show.
     pub surface: Option<Surface>,
+    /// The error budget of each statistic (empty when not estimated).
+    #[serde(default)]
+    pub budget: Vec<BudgetLine>,
+    /// How the budget's parts were estimated (one sentence each).
+    #[serde(default)]
+    pub budget_basis: Vec<String>,
+}
+
+/// The error budget of one statistic: each part estimated, `None` when not.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BudgetLine {
+    /// `mean`, `std`, `q0.05`, `P(> t)`.
+    pub statistic: String,
+    pub value: f64,
+    pub mesh: Option<f64>,
+    pub surrogate: Option<f64>,
+    pub sampling: f64,
+    pub total: f64,
+}
+
+/// The failure probability by one algorithm.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReliabilityRow {
+    pub algorithm: String,
+    pub pf: f64,
+    /// Confidence interval (sampling algorithms; FORM and SORM have none).
+    pub interval: Option<(f64, f64)>,
+    /// Evaluations of the surrogate.
+    pub evaluations: usize,
+}
+
+/// One `[[reliability]]` analysis: the probability by each algorithm.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ReliabilityReport {
+    pub quantity: String,
+    pub threshold: f64,
+    /// Label of the method whose surrogate was analysed.
+    pub method: String,
+    /// The probability by each algorithm.
+    pub rows: Vec<ReliabilityRow>,
+    /// Warnings (several design points) and failures of algorithms.
+    pub notes: Vec<String>,
 }
 
 /// Probability of failure for one threshold, with its confidence interval.

@@ -30,8 +30,9 @@ use std::path::{Path, PathBuf};
 // The whole input type family is public API for the study runner (and the tests).
 #[allow(unused_imports)]
 pub use data::{
-    AdaptiveReport, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow, FailureInfo,
-    ParamInfo, QoiReport, ReportInput, RunInfo, StepRow, Surface,
+    AdaptiveReport, BudgetLine, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow,
+    FailureInfo, ParamInfo, QoiReport, ReliabilityReport, ReliabilityRow, ReportInput, RunInfo,
+    StepRow, Surface,
 };
 
 /// What went wrong while writing a report.

@@ -189,13 +189,17 @@ pub(super) fn adaptive_json(a: &AdaptiveOutcome) -> serde_json::Value {
         .steps
         .iter()
         .map(|s| {
-            serde_json::json!({
+            let mut v = serde_json::json!({
                 "runs": s.runs, "new_runs": s.new_runs, "thesis_cost": s.thesis_cost,
                 "estimate": error_json(&s.error),
                 "qois": s.qois.iter().map(|q| serde_json::json!({
                     "mean": q.mean, "std": q.std, "failure": q.failure,
                 })).collect::<Vec<_>>(),
-            })
+            });
+            if !s.goal.is_empty() {
+                v["goal"] = serde_json::json!(s.goal);
+            }
+            v
         })
         .collect();
     serde_json::json!({

@@ -17,6 +17,7 @@ pub(super) fn write_summary(
     results: &[MethodResult],
     study_runs: &StudyRuns,
     estimates: &[MethodEstimate],
+    reliability: &[alea_study::reliability::ReliabilityResult],
     notes: &[String],
     console: &dyn Console,
 ) -> Result<PathBuf, Error> {
@@ -65,6 +66,7 @@ pub(super) fn write_summary(
             "lo": study.params.lo[j], "hi": study.params.hi[j], "nominal": study.params.nominal[j],
         })).collect::<Vec<_>>(),
         "methods": methods,
+        "reliability": reliability,
         "runs": runs,
         "notes": notes,
     });

@@ -7,7 +7,8 @@ use alea_study::runner::Study;
 use alea_study::store::RunRecord;
 
 use crate::report::{
-    Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReportInput, RunInfo, Surface,
+    BudgetLine, Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
+    ReliabilityRow, ReportInput, RunInfo, Surface,
 };
 
 /// The report's input (without the error section, which `estimate_report.rs` adds).
@@ -75,6 +76,29 @@ pub(super) fn report_input(
                     })
                     .collect(),
                 surface,
+                budget: s.budget.as_ref().map_or_else(Vec::new, |b| {
+                    b.rows
+                        .iter()
+                        .map(|r| BudgetLine {
+                            statistic: r.statistic.clone(),
+                            value: r.value,
+                            mesh: r.mesh,
+                            surrogate: r.surrogate,
+                            sampling: r.sampling,
+                            total: r.total,
+                        })
+                        .collect()
+                }),
+                budget_basis: s.budget.as_ref().map_or_else(Vec::new, |b| {
+                    vec![
+                        format!("Surrogate: {}.", b.surrogate_basis),
+                        format!(
+                            "Sampling: half-width of the confidence interval from the {} draws.",
+                            b.draws
+                        ),
+                        format!("Mesh: {}.", b.mesh_basis),
+                    ]
+                }),
             })
         })
         .collect();
@@ -156,7 +180,65 @@ pub(super) fn report_input(
         timings: timings.to_vec(),
         notes: notes.to_vec(),
         error: None,
+        reliability: Vec::new(),
     }
+}
+
+/// The report's rare-event section from the `[[reliability]]` results.
+pub(super) fn reliability_report(
+    results: &[alea_study::reliability::ReliabilityResult],
+) -> Vec<ReliabilityReport> {
+    results
+        .iter()
+        .map(|r| {
+            let mut rows = Vec::new();
+            if let Some(f) = r.design_points.first() {
+                rows.push(ReliabilityRow {
+                    algorithm: "FORM".to_string(),
+                    pf: f.pf,
+                    interval: None,
+                    evaluations: r.form_evaluations,
+                });
+            }
+            if let Some(s) = &r.sorm {
+                rows.push(ReliabilityRow {
+                    algorithm: "SORM (Breitung)".into(),
+                    pf: s.pf_breitung,
+                    interval: None,
+                    evaluations: s.evaluations,
+                });
+                rows.push(ReliabilityRow {
+                    algorithm: "SORM (Tvedt)".into(),
+                    pf: s.pf_tvedt,
+                    interval: None,
+                    evaluations: s.evaluations,
+                });
+            }
+            if let Some(e) = &r.importance {
+                rows.push(ReliabilityRow {
+                    algorithm: "importance sampling".into(),
+                    pf: e.pf,
+                    interval: Some((e.lower, e.upper)),
+                    evaluations: e.evaluations,
+                });
+            }
+            if let Some(e) = &r.subset {
+                rows.push(ReliabilityRow {
+                    algorithm: "subset simulation".into(),
+                    pf: e.pf,
+                    interval: Some((e.lower, e.upper)),
+                    evaluations: e.evaluations,
+                });
+            }
+            ReliabilityReport {
+                quantity: r.quantity.clone(),
+                threshold: r.threshold,
+                method: r.method.clone(),
+                rows,
+                notes: r.warnings.iter().chain(&r.errors).cloned().collect(),
+            }
+        })
+        .collect()
 }
 
 /// `(p1, p2, ...)` with 4 decimals.

@@ -13,9 +13,9 @@ use super::estimate::estimate_all;
 use super::estimate_report::report_error;
 use super::estimate_text::print_estimates;
 use super::files::{write_samples, write_summary};
-use super::input::report_input;
+use super::input::{reliability_report, report_input};
 use super::results::analyse_all;
-use super::table::print_table;
+use super::table::{print_reliability, print_table};
 use crate::report::{self, ReportFiles};
 use crate::{Console, Error};
 
@@ -83,6 +83,22 @@ pub fn write_outputs(
         }
     }
     print_table(study, &results, settings.confidence, console);
+    let reliability = alea_study::reliability::analyse_reliability(
+        study,
+        &study.reliability,
+        &runs.methods,
+        &runs.records,
+        settings.confidence,
+    );
+    print_reliability(&reliability, console);
+    for r in &reliability {
+        for w in r.warnings.iter().chain(&r.errors) {
+            warn(format!(
+                "reliability of P({} > {}): {w}",
+                r.quantity, r.threshold
+            ));
+        }
+    }
     let main_index = results.iter().position(|r| !r.qois.is_empty());
     let t0 = Instant::now();
     let (err_settings, estimates) = estimate_all(study, runs, &results, dir, main_index, console)?;
@@ -94,7 +110,16 @@ pub fn write_outputs(
         console,
     ));
     let estimate_seconds = t0.elapsed().as_secs_f64();
-    let summary = write_summary(study, dir, &results, runs, &estimates, &notes, console)?;
+    let summary = write_summary(
+        study,
+        dir,
+        &results,
+        runs,
+        &estimates,
+        &reliability,
+        &notes,
+        console,
+    )?;
     let mut samples = None;
     if study.output.samples_csv.unwrap_or(true)
         && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
@@ -143,6 +168,7 @@ pub fn write_outputs(
             ],
         );
         input.error = report_error(study, runs, &err_settings, &estimates);
+        input.reliability = reliability_report(&reliability);
         let written = report::write_report(&dir.join("report"), &input)?;
         input.save_json(&dir.join("report").join("report-input.json"))?;
         console.line(&format!(

@@ -43,7 +43,34 @@ pub(super) fn print_table(
                 )),
             }
         }
-        if let Some(s) = results.iter().find_map(|r| r.qois.get(q)) {
+        if let Some((r, s)) = results.iter().find_map(|r| r.qois.get(q).map(|s| (r, s))) {
+            if let Some(b) = &s.budget {
+                console.line(&format!("  error budget ({}):", r.label));
+                for row in &b.rows {
+                    if row.statistic.starts_with('q')
+                        && !["q0.05", "q0.5", "q0.95"].contains(&row.statistic.as_str())
+                    {
+                        continue;
+                    }
+                    let unit = if row.statistic.starts_with('P') {
+                        ""
+                    } else {
+                        qoi.unit.as_str()
+                    };
+                    let part = |v: Option<f64>| {
+                        v.map_or_else(|| "not estimated".to_string(), |v| format!("+-{v:.2e}"))
+                    };
+                    console.line(&format!(
+                        "    {:<12} {:>13.6e} {unit:<4} total +-{:.2e}: surrogate {}, sampling +-{:.2e}, mesh {}",
+                        row.statistic,
+                        row.value,
+                        row.total,
+                        part(row.surrogate),
+                        row.sampling,
+                        part(row.mesh)
+                    ));
+                }
+            }
             for f in &s.failure {
                 console.line(&format!(
                     "  P({} > {}) = {:.4e}  ({:.0}% interval [{:.4e}, {:.4e}])",
@@ -58,4 +85,44 @@ pub(super) fn print_table(
         }
     }
     console.line("");
+}
+
+/// The `[[reliability]]` results: the probability by each algorithm, with its interval and
+/// cost.
+pub(super) fn print_reliability(
+    results: &[alea_study::reliability::ReliabilityResult],
+    console: &dyn Console,
+) {
+    for r in results {
+        console.line(&format!(
+            "\nP({} > {}) on the surrogate of '{}':",
+            r.quantity, r.threshold, r.method
+        ));
+        if let Some(f) = r.design_points.first() {
+            console.line(&format!(
+                "  FORM                 {:.4e}  beta {:.3}, {} design point(s), {} evaluations",
+                f.pf,
+                f.beta,
+                r.design_points.len(),
+                r.form_evaluations
+            ));
+        }
+        if let Some(s) = &r.sorm {
+            console.line(&format!(
+                "  SORM                 {:.4e}  (Tvedt {:.4e}), {} evaluations",
+                s.pf_breitung, s.pf_tvedt, s.evaluations
+            ));
+        }
+        for (name, e) in [
+            ("importance sampling", &r.importance),
+            ("subset simulation", &r.subset),
+        ] {
+            if let Some(e) = e {
+                console.line(&format!(
+                    "  {name:<20} {:.4e}  [{:.4e}, {:.4e}], {} evaluations",
+                    e.pf, e.lower, e.upper, e.evaluations
+                ));
+            }
+        }
+    }
 }

@@ -15,7 +15,7 @@ use super::format::esc;
 use super::plots::{Figure, Kind};
 use error::error_section;
 use figures::{figure, put_figure};
-use qoi::{comparison, qoi_section};
+use qoi::{comparison, qoi_section, reliability};
 use runs::{runs, timings};
 use study::{notes, overview, parameters};
 use style::CSS;
@@ -50,6 +50,7 @@ pub fn render(input: &ReportInput, figures: &[Figure]) -> String {
     if let Some(c) = &input.comparison {
         comparison(&mut o, c, figures);
     }
+    reliability(&mut o, &input.reliability);
     if let Some(e) = &input.error {
         error_section(&mut o, e, figures);
     }

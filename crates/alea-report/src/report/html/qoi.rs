@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use super::super::format::{count, esc, num, prob};
 use super::super::plots::{Figure, Kind};
-use super::super::{Comparison, QoiReport};
+use super::super::{Comparison, QoiReport, ReliabilityReport};
 use super::figures::{put_figure, with_unit};
 
 pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
@@ -83,6 +83,7 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         o.push_str("</tbody></table>");
     }
     o.push_str("</div>\n</div>\n");
+    budget_table(o, q, &unit);
     put_figure(
         o,
         figures,
@@ -116,6 +117,84 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
                 s.points.len()
             ),
         );
+    }
+    o.push_str("</section>\n");
+}
+
+/// The error budget of each statistic: value, mesh, surrogate, sampling and total parts.
+fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
+    if q.budget.is_empty() {
+        return;
+    }
+    o.push_str(
+        "<div class=\"budget\"><h3>Error budget</h3><p class=\"hint\">How far each statistic \
+         can be trusted: estimated error by source (&plusmn;), and their sum</p>\
+         <table><thead><tr><th>Statistic</th><th class=\"n\">Value</th><th class=\"n\">Mesh</th>\
+         <th class=\"n\">Surrogate</th><th class=\"n\">Sampling</th><th class=\"n\">Total</th>\
+         </tr></thead><tbody>\n",
+    );
+    let part = |v: Option<f64>| v.map_or_else(|| "not estimated".to_string(), |v| num(v, 2));
+    for b in &q.budget {
+        let u = if b.statistic.starts_with('P') {
+            ""
+        } else {
+            unit
+        };
+        let _ = writeln!(
+            o,
+            "<tr><th>{}</th><td class=\"n\">{}{u}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>\
+             <td class=\"n\">{}</td><td class=\"n\">{}</td></tr>",
+            esc(&b.statistic),
+            num(b.value, 5),
+            part(b.mesh),
+            part(b.surrogate),
+            num(b.sampling, 2),
+            num(b.total, 2)
+        );
+    }
+    o.push_str("</tbody></table>");
+    for line in &q.budget_basis {
+        let _ = writeln!(o, "<p class=\"hint\">{}</p>", esc(line));
+    }
+    o.push_str("</div>\n");
+}
+
+/// The `[[reliability]]` analyses: the failure probability by each algorithm.
+pub(super) fn reliability(o: &mut String, list: &[ReliabilityReport]) {
+    if list.is_empty() {
+        return;
+    }
+    o.push_str("<section id=\"reliability\"><h2>Rare events</h2>\n");
+    for r in list {
+        let _ = writeln!(
+            o,
+            "<h3>P({} &gt; {}) on the surrogate of {}</h3>",
+            esc(&r.quantity),
+            num(r.threshold, 5),
+            esc(&r.method)
+        );
+        o.push_str(
+            "<table><thead><tr><th>Algorithm</th><th class=\"n\">P<sub>f</sub></th>\
+             <th class=\"n\">Confidence interval</th><th class=\"n\">Evaluations</th></tr>\
+             </thead><tbody>\n",
+        );
+        for row in &r.rows {
+            let ci = row.interval.map_or_else(
+                || "asymptotic (no interval)".to_string(),
+                |(a, b)| format!("[{}, {}]", prob(a), prob(b)),
+            );
+            let _ = writeln!(
+                o,
+                "<tr><th>{}</th><td class=\"n\">{}</td><td class=\"n\">{ci}</td><td class=\"n\">{}</td></tr>",
+                esc(&row.algorithm),
+                prob(row.pf),
+                count(row.evaluations)
+            );
+        }
+        o.push_str("</tbody></table>\n");
+        for n in &r.notes {
+            let _ = writeln!(o, "<p class=\"warn\">{}</p>", esc(n));
+        }
     }
     o.push_str("</section>\n");
 }

@@ -146,6 +146,29 @@ pub(super) fn synthetic() -> ReportInput {
                     values,
                     points,
                 }),
+                budget: vec![
+                    BudgetLine {
+                        statistic: "mean".into(),
+                        value: 2.5e-3,
+                        mesh: None,
+                        surrogate: Some(4.0e-5),
+                        sampling: 1.0e-6,
+                        total: 4.1e-5,
+                    },
+                    BudgetLine {
+                        statistic: "P(> 0.004)".into(),
+                        value: 1.2e-4,
+                        mesh: None,
+                        surrogate: None,
+                        sampling: 3.0e-5,
+                        total: 3.0e-5,
+                    },
+                ],
+                budget_basis: vec![
+                    "surrogate: largest difference with the nested 3^2 grid, on the same draws"
+                        .into(),
+                    "mesh: not estimated".into(),
+                ],
             },
             // Degenerate: every sample equal, zero std, no KDE, no threshold.
             QoiReport {
@@ -160,6 +183,8 @@ pub(super) fn synthetic() -> ReportInput {
                 kde: vec![],
                 failure: vec![],
                 surface: None,
+                budget: vec![],
+                budget_basis: vec![],
             },
         ],
         comparison: Some(Comparison {
@@ -206,6 +231,26 @@ pub(super) fn synthetic() -> ReportInput {
             "<script>alert('x')</script> is text, not code".into(),
         ],
         error: Some(error_section()),
+        reliability: vec![ReliabilityReport {
+            quantity: "friction work".into(),
+            threshold: 0.004,
+            method: "piecewise linear 3^2".into(),
+            rows: vec![
+                ReliabilityRow {
+                    algorithm: "FORM".into(),
+                    pf: 1.1e-4,
+                    interval: None,
+                    evaluations: 31,
+                },
+                ReliabilityRow {
+                    algorithm: "subset simulation".into(),
+                    pf: 1.25e-4,
+                    interval: Some((0.9e-4, 1.6e-4)),
+                    evaluations: 7200,
+                },
+            ],
+            notes: vec!["2 design points within beta 3.7 + 1".into()],
+        }],
     }
 }
 

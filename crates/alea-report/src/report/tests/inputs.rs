@@ -80,6 +80,8 @@ fn degenerate_inputs_give_a_report() {
                 ci_high: 1.0,
             }],
             surface: None,
+            budget: vec![],
+            budget_basis: vec![],
         }],
         comparison: Some(Comparison {
             qoi: "compliance".into(),
@@ -88,6 +90,7 @@ fn degenerate_inputs_give_a_report() {
         timings: vec![],
         notes: vec![],
         error: None,
+        reliability: vec![],
     };
     let dir = out_dir("degenerate");
     let files = write_report(&dir, &input).unwrap();
