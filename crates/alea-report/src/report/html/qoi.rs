@@ -128,7 +128,7 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
     }
     o.push_str(
         "<div class=\"budget\"><h3>Error budget</h3><p class=\"hint\">How far each statistic \
-         can be trusted: estimated error by source (&plusmn;), and their sum</p>\
+         can be trusted: estimated error by source (±), and their sum</p>\
          <table><thead><tr><th>Statistic</th><th class=\"n\">Value</th><th class=\"n\">Mesh</th>\
          <th class=\"n\">Surrogate</th><th class=\"n\">Sampling</th><th class=\"n\">Total</th>\
          </tr></thead><tbody>\n",
