@@ -100,6 +100,7 @@ pub mod estimator;
 mod fe;
 mod fe_samples;
 pub mod interface;
+mod kernel;
 mod linalg;
 pub mod poly;
 mod result;

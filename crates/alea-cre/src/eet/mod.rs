@@ -3,8 +3,10 @@
 //! the admissible stress element by element. [`phase1_cache`] and [`phase2_cache`] are the same
 //! phases with their run-independent matrices computed once ([`crate::DomainEstimator`]).
 
+mod family;
 pub mod phase1;
 pub mod phase1_cache;
 pub mod phase2;
 pub mod phase2_cache;
+mod projections;
 pub mod sides;

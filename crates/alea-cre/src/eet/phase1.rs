@@ -49,27 +49,18 @@
 
 use std::sync::Arc;
 
-use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
-use alea_mesh::Mesh;
-use rayon::prelude::*;
-
 use crate::CreError;
-use crate::data::{SideForces, TractionField, VectorField};
-use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
-use crate::linalg::{cholesky_solve, least_change};
+use crate::data::TractionField;
+use crate::kernel::loads::SideData;
+pub use crate::kernel::phase1::Phase1Input;
+use crate::kernel::phase1::{Equilibrated, equilibrate};
 
-use super::sides::edge_mass;
-pub use super::sides::{EdgeLinear, facet_projections, interface_densities};
+pub use super::sides::{EdgeLinear, NodeFrame, facet_projections, interface_densities};
 use crate::topology::{EdgePoint, Topology};
 
-/// Data part of an edge's density.
-#[derive(Clone, Copy, Debug)]
-pub struct EdgeData {
-    /// Index of the traction field in the domain's load data.
-    pub field: usize,
-    /// Projector applied to the field (removes directions constrained along the edge).
-    pub projector: [[f64; 2]; 2],
-}
+/// Data part of an edge's density: a prescribed-traction field (index in the domain's load
+/// data) and the projector applied to it (removes directions constrained along the edge).
+pub type EdgeData = SideData<2>;
 
 /// Density on one edge (first-cell orientation: the traction exerted on the edge's first cell).
 #[derive(Clone, Debug, Default)]
@@ -158,525 +149,41 @@ impl EdgeTractions {
     }
 }
 
-/// Inputs of phase 1 for one domain.
-pub struct Phase1Input<'a> {
-    /// Model (materials already scaled).
-    pub model: &'a Model,
-    /// Constraints of the domain.
-    pub dofs: &'a DofMap,
-    /// FE displacement, node-major.
-    pub u: &'a [f64],
-    /// Body force.
-    pub body: Option<&'a VectorField>,
-    /// Prescribed tractions by facet group.
-    pub tractions: &'a [(String, TractionField)],
-    /// Discrete interface forces by side.
-    pub sides: &'a [SideForces],
-}
-
-pub use super::sides::NodeFrame;
-
-/// Per node: orthonormal frame (rows) and the number of free directions (the rest are
-/// constrained).
-pub(crate) fn node_frames(dofs: &DofMap, nn: usize) -> Vec<NodeFrame> {
-    let mut scratch = vec![0.0; dofs.num_free()];
-    (0..nn)
-        .map(|n| {
-            if dofs.is_free_node(n) {
-                return ([[1.0, 0.0], [0.0, 1.0]], 2);
-            }
-            let r = dofs.node_dofs(n);
-            let nf = r.len();
-            let mut free = [[0.0; 2]; 2];
-            for c in 0..2 {
-                let mut v = [0.0; 3];
-                v[c] = 1.0;
-                dofs.add_node_force(n, &v, &mut scratch);
-                for (i, g) in r.clone().enumerate() {
-                    free[i][c] = scratch[g];
-                    scratch[g] = 0.0;
-                }
-            }
-            match nf {
-                0 => ([[1.0, 0.0], [0.0, 1.0]], 0),
-                1 => {
-                    let t = free[0];
-                    ([t, [-t[1], t[0]]], 1)
-                }
-                _ => ([[1.0, 0.0], [0.0, 1.0]], 2),
-            }
-        })
-        .collect()
-}
-
-/// True if direction `d` is constrained at a node with frame `f`.
-fn constrained(f: &([[f64; 2]; 2], usize), d: [f64; 2]) -> bool {
-    let free_part: f64 = (0..f.1)
-        .map(|k| (f.0[k][0] * d[0] + f.0[k][1] * d[1]).powi(2))
-        .sum();
-    free_part < 1e-12
-}
-
-/// Projector `P = I - sum q q^T` of a boundary edge over the directions `q` constrained at all
-/// its nodes (the traction there is a reaction, not data).
-pub(crate) fn edge_projector(topo: &Topology, frames: &[NodeFrame], e: usize) -> [[f64; 2]; 2] {
-    let a = topo.edges[e].nodes[0];
-    let mut p = [[1.0, 0.0], [0.0, 1.0]];
-    let fa = &frames[a];
-    for k in fa.1..2 {
-        let q = fa.0[k];
-        if topo.edges[e]
-            .all_nodes()
-            .all(|nd| constrained(&frames[nd], q))
-        {
-            for i in 0..2 {
-                for j in 0..2 {
-                    p[i][j] -= q[i] * q[j];
-                }
-            }
-        }
-    }
-    p
-}
-
-/// Known edge projections `b_known[e][slot]` (per unit thickness) and the densities being built.
-pub(crate) struct EdgeLoads {
-    /// Density of each edge (polynomial part and prescribed-traction data).
-    pub density: Vec<EdgeDensity>,
-    /// Known projections on boundary edges (prescribed tractions, interface densities).
-    pub b_known: Vec<[[f64; 2]; 3]>,
-}
-
-impl EdgeLoads {
-    /// No load on `ne` edges.
-    pub fn new(ne: usize) -> Self {
-        EdgeLoads {
-            density: vec![EdgeDensity::default(); ne],
-            b_known: vec![[[0.0; 2]; 3]; ne],
-        }
-    }
-
-    /// Adds the prescribed tractions (projected on the unconstrained directions) as data
-    /// densities and their projections, integrated with the rule of `alea_fem::Loads::traction`
-    /// so that they are those of the FE load vector.
-    pub fn add_tractions(
-        &mut self,
-        mesh: &Mesh,
-        topo: &Topology,
-        frames: &[NodeFrame],
-        tractions: &[(String, TractionField)],
-    ) -> Result<(), CreError> {
-        for (fi, (group, field)) in tractions.iter().enumerate() {
-            for f in mesh.facet_group(group)? {
-                let e = topo.find(f.nodes[0], f.nodes[1]).ok_or_else(|| {
-                    CreError::Invalid(format!(
-                        "facet {:?} of '{group}' is not a mesh edge",
-                        f.nodes
-                    ))
-                })?;
-                if !topo.edges[e].is_boundary() {
-                    return Err(CreError::Invalid(format!(
-                        "traction group '{group}' contains the interior edge {:?}",
-                        f.nodes
-                    )));
-                }
-                let projector = edge_projector(topo, frames, e);
-                self.density[e].data.push(EdgeData {
-                    field: fi,
-                    projector,
-                });
-                let edge = &topo.edges[e];
-                let line_rule = Quadrature::for_cell(
-                    alea_mesh::CellType::Line2,
-                    2 * (1 + edge.mid.is_some() as usize) + 2,
-                );
-                for (xi, w) in line_rule.points.iter().zip(&line_rule.weights) {
-                    let s = 0.5 * (xi[0] + 1.0);
-                    // The FE load vector's facet geometry (isoparametric: curved edges too).
-                    let EdgePoint { x, n, jac } = edge.point(s);
-                    let v = field(x, [n[0], n[1], 0.0]);
-                    let pv = [
-                        projector[0][0] * v[0] + projector[0][1] * v[1],
-                        projector[1][0] * v[0] + projector[1][1] * v[1],
-                    ];
-                    let dl = 0.5 * w * jac;
-                    let sh = edge.shape(s);
-                    for k in 0..3 {
-                        for c in 0..2 {
-                            self.b_known[e][k][c] += dl * sh[k] * pv[c];
-                        }
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Adds the interface sides' densities ([`interface_densities`], split targets `b_bar`) as
-    /// known polynomial densities of their boundary edges.
-    #[allow(clippy::too_many_arguments)]
-    pub fn add_sides(
-        &mut self,
-        mesh: &Mesh,
-        topo: &Topology,
-        frames: &[NodeFrame],
-        sides: &[SideForces],
-        thickness: f64,
-        b_bar: &[[[f64; 2]; 3]],
-    ) -> Result<(), CreError> {
-        for side in sides {
-            for (e, t) in interface_densities(mesh, topo, side, thickness, b_bar, Some(frames))? {
-                if !topo.edges[e].is_boundary() {
-                    return Err(CreError::Invalid(format!(
-                        "interface side '{}' contains an interior edge",
-                        side.group
-                    )));
-                }
-                let p = edge_projector(topo, frames, e);
-                let (_, len, _) = topo.geometry(mesh, e);
-                let m = edge_mass(topo.edges[e].mid.is_some(), len);
-                let mut pt = [[0.0; 2]; 3];
-                for k in 0..3 {
-                    pt[k] = [
-                        p[0][0] * t[k][0] + p[0][1] * t[k][1],
-                        p[1][0] * t[k][0] + p[1][1] * t[k][1],
-                    ];
-                }
-                for k in 0..3 {
-                    for c in 0..2 {
-                        self.density[e].lin[k][c] += pt[k][c];
-                        self.b_known[e][k][c] += (0..3).map(|j| m[k][j] * pt[j][c]).sum::<f64>();
-                    }
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Adds the densities of the node systems' solutions: each edge's degree-`p` density
-    /// recovered from its projections `b_unknown[e][slot]` through the edge mass matrix.
-    pub fn add_unknown(
-        &mut self,
-        mesh: &Mesh,
-        topo: &Topology,
-        b_unknown: &[[[f64; 2]; 3]],
-    ) -> Result<(), CreError> {
-        for (e, bu) in b_unknown.iter().enumerate() {
-            let (_, len, _) = topo.geometry(mesh, e);
-            if topo.edges[e].mid.is_some() {
-                let m = edge_mass(true, len);
-                for c in 0..2 {
-                    let mut a: Vec<f64> = m.iter().flatten().copied().collect();
-                    let mut b = vec![bu[0][c], bu[1][c], bu[2][c]];
-                    if !cholesky_solve(&mut a, &mut b, 3) {
-                        return Err(CreError::Invalid(format!("degenerate edge {e}")));
-                    }
-                    for k in 0..3 {
-                        self.density[e].lin[k][c] += b[k];
-                    }
-                }
-            } else {
-                for c in 0..2 {
-                    self.density[e].lin[0][c] += 2.0 / len * (2.0 * bu[0][c] - bu[1][c]);
-                    self.density[e].lin[1][c] += 2.0 / len * (2.0 * bu[1][c] - bu[0][c]);
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
-/// The system (3.22) of one node in one direction `r` of its frame: one row per cell around the
-/// node, one unknown per edge around it whose projection is not data (interior edges, and
-/// boundary edges in a direction constrained at all their nodes). The unknowns are weighted,
-/// `x = sqrt(L) y` (the Ladeveze-Leguillon minimisation `sum (x - x_bar)^2 / L`), so the
-/// matrix holds `eta sqrt(L)`.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct NodeSystem {
-    /// Rows: `(cell, local index of the node in the cell)`.
-    pub rows: Vec<(u32, u32)>,
-    /// Unknown projections `(edge, slot of the node on the edge)`.
-    pub unknown: Vec<(u32, u32)>,
-    /// `sqrt(L)` of each unknown edge.
-    pub sqrt_len: Vec<f64>,
-    /// Weighted matrix (`rows x unknowns`, row-major).
-    pub a: Vec<f64>,
-    /// Known projections entering the rows: `(row, edge, slot, eta)`.
-    pub known: Vec<(u32, u32, u32, f64)>,
-    /// Every edge around the node with the node's slot (scale of the known data).
-    pub around: Vec<(u32, u32)>,
-}
-
-impl NodeSystem {
-    /// The system of node `i` in direction `d` of its frame (`None` for a node without cell).
-    /// Both directions of a node have the same rows; they differ only where `d` is a constrained
-    /// direction (boundary edges become unknown).
-    pub fn new(
-        mesh: &Mesh,
-        topo: &Topology,
-        frames: &[NodeFrame],
-        i: usize,
-        d: usize,
-    ) -> Option<NodeSystem> {
-        let cells = &topo.node_cells[i];
-        if cells.is_empty() {
-            return None;
-        }
-        let edges = &topo.node_edges[i];
-        let frame = &frames[i];
-        let slot = |e: usize| topo.edges[e].slot(i).unwrap_or(0);
-        let r = frame.0[d];
-        let is_constrained_dir = d >= frame.1;
-        let unknown: Vec<usize> = edges
-            .iter()
-            .copied()
-            .filter(|&e| {
-                let ed = &topo.edges[e];
-                !ed.is_boundary()
-                    || (is_constrained_dir && ed.all_nodes().all(|nd| constrained(&frames[nd], r)))
-            })
-            .collect();
-        let m = cells.len();
-        let nu = unknown.len();
-        let sqrt_len: Vec<f64> = unknown
-            .iter()
-            .map(|&e| topo.geometry(mesh, e).1.sqrt())
-            .collect();
-        let mut a = vec![0.0; m * nu];
-        let mut rows = Vec::with_capacity(m);
-        let mut known = Vec::new();
-        for (row, &c) in cells.iter().enumerate() {
-            let a_loc = mesh
-                .cell_nodes(c)
-                .iter()
-                .position(|&nd| nd == i)
-                .unwrap_or(0);
-            rows.push((c as u32, a_loc as u32));
-            for &(e, eta) in &topo.cell_edges[c] {
-                if topo.edges[e].slot(i).is_none() {
-                    continue;
-                }
-                if let Some(col) = unknown.iter().position(|&u| u == e) {
-                    a[row * nu + col] += eta;
-                } else {
-                    known.push((row as u32, e as u32, slot(e) as u32, eta));
-                }
-            }
-        }
-        for row in 0..m {
-            for col in 0..nu {
-                a[row * nu + col] *= sqrt_len[col];
-            }
-        }
-        Some(NodeSystem {
-            rows,
-            unknown: unknown
-                .iter()
-                .map(|&e| (e as u32, slot(e) as u32))
+impl EdgeTractions {
+    /// The edge tractions of the kernel's phase-1 result on the edges of `topo`.
+    pub(crate) fn from_kernel(
+        topo: Arc<Topology>,
+        values: Vec<[[f64; 2]; 3]>,
+        data: Vec<Vec<EdgeData>>,
+        fields: &[(String, TractionField)],
+        compatibility_defect: f64,
+    ) -> Self {
+        EdgeTractions {
+            topo,
+            density: values
+                .into_iter()
+                .zip(data)
+                .map(|(lin, data)| EdgeDensity { lin, data })
                 .collect(),
-            sqrt_len,
-            a,
-            known,
-            around: edges.iter().map(|&e| (e as u32, slot(e) as u32)).collect(),
-        })
-    }
-
-    /// Number of rows.
-    pub fn num_rows(&self) -> usize {
-        self.rows.len()
-    }
-
-    /// Number of unknowns.
-    pub fn num_unknowns(&self) -> usize {
-        self.unknown.len()
-    }
-
-    /// Right-hand side `Q_E(i) . r - sum_known eta b_known . r` into `rhs`, and the scale of the
-    /// node's data `(sum |Q_E(i) . r|, sum_around |b_known . r|)`. `q(cell, local node)` is the
-    /// element residual, `r` the system's direction.
-    pub fn rhs(
-        &self,
-        r: [f64; 2],
-        q: impl Fn(usize, usize) -> [f64; 2],
-        b_known: &[[[f64; 2]; 3]],
-        rhs: &mut Vec<f64>,
-    ) -> (f64, f64) {
-        rhs.clear();
-        let mut scale = 0.0;
-        for &(c, a_loc) in &self.rows {
-            let qv = q(c as usize, a_loc as usize);
-            let v = qv[0] * r[0] + qv[1] * r[1];
-            scale += v.abs();
-            rhs.push(v);
-        }
-        for &(row, e, slot, eta) in &self.known {
-            let bk = b_known[e as usize][slot as usize];
-            rhs[row as usize] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
-        }
-        let known_scale: f64 = self
-            .around
-            .iter()
-            .map(|&(e, slot)| {
-                let bk = b_known[e as usize][slot as usize];
-                (bk[0] * r[0] + bk[1] * r[1]).abs()
-            })
-            .sum();
-        (scale, known_scale)
-    }
-
-    /// Weighted targets `y_bar = (b_bar . r) / sqrt(L)` of the unknowns into `y_bar`.
-    pub fn targets(&self, r: [f64; 2], b_bar: &[[[f64; 2]; 3]], y_bar: &mut Vec<f64>) {
-        y_bar.clear();
-        for (&(e, slot), s) in self.unknown.iter().zip(&self.sqrt_len) {
-            let bb = b_bar[e as usize][slot as usize];
-            y_bar.push((bb[0] * r[0] + bb[1] * r[1]) / s);
+            fields: fields.iter().map(|t| t.1.clone()).collect(),
+            compatibility_defect,
         }
     }
 }
 
-/// Runs phase 1 on one domain.
+/// Runs phase 1 on one 2D domain.
 pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
-    let model = inp.model;
-    let mesh = &model.mesh;
-    if mesh.dim != 2 {
-        return Err(CreError::Invalid("the EET estimator is 2D only".into()));
-    }
-    let nn = mesh.num_nodes();
-    if inp.u.len() != 2 * nn {
-        return Err(CreError::Invalid(format!(
-            "displacement of length {} for {nn} nodes",
-            inp.u.len()
-        )));
-    }
-    let topo = Topology::new(mesh)?;
-    let th = model.analysis.thickness();
-    let frames = node_frames(inp.dofs, nn);
-    let ne = topo.edges.len();
-    let mut loads = EdgeLoads::new(ne);
-    loads.add_tractions(mesh, &topo, &frames, inp.tractions)?;
-    // Element residuals Q_E(i) (per unit thickness) and FE stresses along the edges.
-    let ncell = mesh.num_cells();
-    let q_res: Vec<Vec<[f64; 2]>> = (0..ncell)
-        .into_par_iter()
-        .map(|c| -> Result<Vec<[f64; 2]>, CreError> {
-            let mut ke = Vec::new();
-            let kind = mesh.cell_type(c);
-            let nodes = mesh.cell_nodes(c);
-            let coords = model.cell_coords(c);
-            alea_fem::assembly::element_stiffness(model, c, &mut ke)?;
-            let m = nodes.len() * 2;
-            let ue: Vec<f64> = nodes
-                .iter()
-                .flat_map(|&n| [inp.u[2 * n], inp.u[2 * n + 1]])
-                .collect();
-            let mut q = vec![[0.0; 2]; nodes.len()];
-            for a in 0..nodes.len() {
-                for ca in 0..2 {
-                    let r = a * 2 + ca;
-                    q[a][ca] = (0..m).map(|j| ke[r * m + j] * ue[j]).sum::<f64>() / th;
-                }
-            }
-            if let Some(body) = inp.body {
-                let rule = Quadrature::for_cell(kind, 2 * kind.order() + 2);
-                for (xi, w) in rule.points.iter().zip(&rule.weights) {
-                    let g = point_geometry(kind, &coords, *xi);
-                    let b = body(g.x);
-                    for a in 0..nodes.len() {
-                        for ca in 0..2 {
-                            q[a][ca] -= w * g.det * g.n[a] * b[ca];
-                        }
-                    }
-                }
-            }
-            Ok(q)
-        })
-        .collect::<Result<_, _>>()?;
-    // b_bar: averaged FE traction projections, per edge and edge node (first orientation).
-    let rule = gauss01(4);
-    let b_bar: Vec<[[f64; 2]; 3]> = topo
-        .edges
-        .par_iter()
-        .map(|edge| -> Result<[[f64; 2]; 3], CreError> {
-            let mut bb = [[0.0; 2]; 3];
-            let pts: Vec<EdgePoint> = rule.iter().map(|&(s, _)| edge.point(s)).collect();
-            let share = 1.0 / edge.cells.len() as f64;
-            for (k, &(c, l)) in edge.cells.iter().enumerate() {
-                let kind = mesh.cell_type(c);
-                let coords = model.cell_coords(c);
-                let nodes = mesh.cell_nodes(c);
-                let ue: Vec<f64> = nodes
-                    .iter()
-                    .flat_map(|&nd| [inp.u[2 * nd], inp.u[2 * nd + 1]])
-                    .collect();
-                let d = hooke(model.material(c)?, model.analysis);
-                for (&(s, w), p) in rule.iter().zip(&pts) {
-                    // The second cell runs along the edge in the opposite direction.
-                    let s_cell = if k == 0 { s } else { 1.0 - s };
-                    let (eps, _) = strain_h(kind, &coords, &ue, facet_point(kind, l, s_cell));
-                    let t = traction_of(&mul3(&d, &eps), p.n);
-                    let sh = edge.shape(s);
-                    for kk in 0..3 {
-                        for c2 in 0..2 {
-                            bb[kk][c2] += share * w * p.jac * sh[kk] * t[c2];
-                        }
-                    }
-                }
-            }
-            Ok(bb)
-        })
-        .collect::<Result<_, _>>()?;
-
-    // Interface sides (after b_bar, which they use as the minimisation target).
-    loads.add_sides(mesh, &topo, &frames, inp.sides, th, &b_bar)?;
-
-    // Node systems.
-    type NodeOut = (Vec<(usize, usize, [f64; 2])>, f64, f64);
-    let per_node: Vec<NodeOut> = (0..nn)
-        .into_par_iter()
-        .map(|i| {
-            let mut out: Vec<(usize, usize, [f64; 2])> = Vec::new();
-            let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
-            let (mut rhs, mut y_bar) = (Vec::new(), Vec::new());
-            for d in 0..2 {
-                let Some(sys) = NodeSystem::new(mesh, &topo, &frames, i, d) else {
-                    break;
-                };
-                let r = frames[i].0[d];
-                let (scale, known_scale) = sys.rhs(r, |c, a| q_res[c][a], &loads.b_known, &mut rhs);
-                sys.targets(r, &b_bar, &mut y_bar);
-                let (m, nu) = (sys.num_rows(), sys.num_unknowns());
-                let (mut x, res) = least_change(&sys.a, m, nu, &rhs, &y_bar);
-                for (v, s) in x.iter_mut().zip(&sys.sqrt_len) {
-                    *v *= s;
-                }
-                max_res = max_res.max(res);
-                max_scale = max_scale.max(scale + known_scale);
-                for (col, &(e, slot)) in sys.unknown.iter().enumerate() {
-                    out.push((e as usize, slot as usize, [x[col] * r[0], x[col] * r[1]]));
-                }
-            }
-            (out, max_res, max_scale)
-        })
-        .collect();
-    let mut b_unknown = vec![[[0.0; 2]; 3]; ne];
-    let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
-    for (out, res, scale) in per_node {
-        max_res = max_res.max(res);
-        max_scale = max_scale.max(scale);
-        for (e, slot, v) in out {
-            b_unknown[e][slot][0] += v[0];
-            b_unknown[e][slot][1] += v[1];
-        }
-    }
-    loads.add_unknown(mesh, &topo, &b_unknown)?;
-    Ok(EdgeTractions {
-        topo: Arc::new(topo),
-        density: loads.density,
-        fields: inp.tractions.iter().map(|t| t.1.clone()).collect(),
-        compatibility_defect: if max_scale > 0.0 {
-            max_res / max_scale
-        } else {
-            0.0
-        },
-    })
+    let Equilibrated {
+        topo,
+        values,
+        data,
+        compatibility_defect,
+    } = equilibrate::<Topology, 2>(inp)?;
+    Ok(EdgeTractions::from_kernel(
+        Arc::new(topo),
+        values,
+        data,
+        inp.tractions,
+        compatibility_defect,
+    ))
 }

@@ -37,8 +37,10 @@
 //! node by node between the interface faces around each node, as in 2D, and become known face
 //! densities of phase 1.
 
+mod family;
 pub mod phase1;
 pub mod phase2;
 pub mod poly;
+mod projections;
 pub mod sides;
 pub mod topology;
