@@ -97,7 +97,11 @@ impl CellFamily<2> for Topology {
         add_prescribed_tractions(mesh, self, frames, tractions, loads)
     }
 
-    fn averaged_projections(&self, model: &Model, u: &[f64]) -> Result<Vec<[[f64; 2]; 3]>, CreError> {
+    fn averaged_projections(
+        &self,
+        model: &Model,
+        u: &[f64],
+    ) -> Result<Vec<[[f64; 2]; 3]>, CreError> {
         averaged_projections(model, self, u)
     }
 

@@ -32,14 +32,14 @@ use rayon::prelude::*;
 use super::phase1::EdgeTractions;
 use super::projections::add_prescribed_tractions;
 use crate::CreError;
+use crate::data::{AffineBody, SideForces, TractionField, VectorField};
+use crate::fe::{facet_point, gauss01, hooke, mul3, traction_of};
 use crate::kernel::family::CellFamily;
 use crate::kernel::frames::node_frames;
 use crate::kernel::loads::SideLoads;
 use crate::kernel::node_system::{NodeSolution, NodeSystem, gather_node_solutions, node_rhs};
 use crate::kernel::phase1::{add_interface_sides, add_recovered};
 use crate::kernel::vector::Frame;
-use crate::data::{AffineBody, SideForces, TractionField, VectorField};
-use crate::fe::{facet_point, gauss01, hooke, mul3, traction_of};
 use crate::linalg::least_change_operator;
 use crate::topology::{EdgePoint, Topology};
 

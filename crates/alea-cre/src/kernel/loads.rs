@@ -88,4 +88,3 @@ impl<B: AsRef<[[f64; D]]> + AsMut<[[f64; D]]> + Clone, const D: usize> SideLoads
         projector
     }
 }
-

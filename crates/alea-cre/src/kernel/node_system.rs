@@ -163,7 +163,9 @@ impl NodeSystem {
             self.known
                 .iter()
                 .map(|&(row, s, slot, eta)| (row as usize, s as usize, slot as usize, eta)),
-            self.around.iter().map(|&(s, slot)| (s as usize, slot as usize)),
+            self.around
+                .iter()
+                .map(|&(s, slot)| (s as usize, slot as usize)),
             b_known,
             rhs,
         )

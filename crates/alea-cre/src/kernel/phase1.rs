@@ -111,7 +111,9 @@ pub(crate) fn equilibrate<F: CellFamily<D>, const D: usize>(
         .map(|s| topo.side_mass(mesh, s))
         .collect();
     // Interface sides (after b_bar, which they use as the minimisation target).
-    add_interface_sides(mesh, &topo, &frames, inp.sides, th, &b_bar, &masses, &mut loads)?;
+    add_interface_sides(
+        mesh, &topo, &frames, inp.sides, th, &b_bar, &masses, &mut loads,
+    )?;
     let per_node = solve_node_systems(mesh, &topo, &frames, &q_res, &loads.b_known, &b_bar);
     let mut b_unknown = topo.zero_values();
     let compatibility_defect = gather_node_solutions(per_node, &mut b_unknown);

@@ -125,7 +125,11 @@ impl CellFamily<3> for FaceTopology {
         add_prescribed_tractions(mesh, self, frames, tractions, loads)
     }
 
-    fn averaged_projections(&self, model: &Model, u: &[f64]) -> Result<Vec<Vec<[f64; 3]>>, CreError> {
+    fn averaged_projections(
+        &self,
+        model: &Model,
+        u: &[f64],
+    ) -> Result<Vec<Vec<[f64; 3]>>, CreError> {
         averaged_projections(model, self, u)
     }
 
