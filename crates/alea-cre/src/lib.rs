@@ -92,6 +92,7 @@
 //! unknowns per cell (99 for Tet4/Hex8 at `p + 3`, 162 for Tet10), about three times a
 //! deterministic LATIN solve on the 3D benchmark (`BENCHMARKS.md`).
 
+mod contribution;
 mod data;
 mod domain;
 pub mod eet;
@@ -101,6 +102,7 @@ mod fe;
 mod fe_samples;
 pub mod interface;
 mod kernel;
+mod legendre;
 mod linalg;
 pub mod poly;
 mod result;
@@ -109,6 +111,7 @@ pub mod solid;
 mod substructure;
 pub mod topology;
 
+pub use contribution::ElementContribution;
 pub use data::{
     AffineBody, FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
 };

@@ -47,8 +47,9 @@ use alea_mesh::CellType;
 
 use super::phase1::EdgeTractions;
 use crate::CreError;
+use crate::contribution::ElementContribution;
 use crate::data::VectorField;
-use crate::fe::{gauss01, hooke, mul3, strain_h};
+use crate::fe::{cell_values, check_jacobian, gauss01, hooke, mul3, strain_h};
 use crate::linalg::cholesky_solve;
 use crate::poly::{PolyPoint, PolySpace};
 
@@ -100,19 +101,8 @@ impl ElementStress {
     }
 }
 
-/// Phase-2 result of one element.
-#[derive(Clone, Debug)]
-pub struct ElementResult {
-    /// `theta_E^2` (thickness included).
-    pub theta2: f64,
-    /// `||u_h||^2_{K,E}` (thickness included).
-    pub energy2: f64,
-    /// Relative out-of-balance of the element loads (force and moment resultants over the sum
-    /// of absolute contributions): zero when phase 1 is exact.
-    pub balance_defect: f64,
-    /// The admissible stress.
-    pub stress: ElementStress,
-}
+/// Phase-2 result of one 2D element.
+pub type ElementResult = ElementContribution<ElementStress>;
 
 /// Quadrature rules of the local problems of one degree (built once, shared by all cells).
 #[derive(Clone, Debug)]
@@ -169,10 +159,7 @@ pub fn element(
     let kind = mesh.cell_type(c);
     let coords = model.cell_coords(c);
     let nodes = mesh.cell_nodes(c);
-    let ue: Vec<f64> = nodes
-        .iter()
-        .flat_map(|&n| [u[2 * n], u[2 * n + 1]])
-        .collect();
+    let ue: Vec<f64> = cell_values::<2>(u, nodes);
     let d = hooke(model.material(c)?, model.analysis);
     let th = model.analysis.thickness();
     let space = PolySpace::new(degree, &coords);
@@ -192,14 +179,7 @@ pub fn element(
     let mut pts = Vec::with_capacity(rule.len());
     for (xi, w) in rule.points.iter().zip(&rule.weights) {
         let (eps_h, g) = strain_h(kind, &coords, &ue, *xi);
-        if g.det <= 0.0 {
-            return Err(alea_fem::FemError::BadJacobian {
-                cell: c,
-                kind: kind.to_string(),
-                det: g.det,
-            }
-            .into());
-        }
+        check_jacobian(&g, c, kind)?;
         let wd = w * g.det;
         space.eval(g.x, false, &mut p);
         for j in 0..nb {

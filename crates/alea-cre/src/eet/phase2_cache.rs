@@ -48,7 +48,7 @@ use super::phase1::EdgeTractions;
 use super::phase2::{ElementResult, ElementStress, Phase2Rules};
 use crate::CreError;
 use crate::data::{AffineBody, VectorField};
-use crate::fe::{gauss01, hooke, mul3};
+use crate::fe::{check_jacobian, gauss01, hooke, mul3};
 use crate::poly::{PolyPoint, PolySpace};
 use crate::topology::cell_is_curved;
 
@@ -412,14 +412,7 @@ fn cell_data(
     let mut points: Vec<StrainPoint> = Vec::with_capacity(rule.len());
     for (xi, w) in rule.points.iter().zip(&rule.weights) {
         let geo = point_geometry(kind, &coords, *xi);
-        if geo.det <= 0.0 {
-            return Err(alea_fem::FemError::BadJacobian {
-                cell: c,
-                kind: kind.to_string(),
-                det: geo.det,
-            }
-            .into());
-        }
+        check_jacobian(&geo, c, kind)?;
         let wd = w * geo.det;
         space.eval(geo.x, false, &mut p);
         for j in 0..n {

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::CreError;
 use crate::data::TractionField;
-use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
+use crate::fe::{cell_values, facet_point, gauss01, hooke, mul3, strain_h, traction_of};
 use crate::kernel::loads::SideLoads;
 use crate::kernel::vector::Frame;
 use crate::topology::{EdgePoint, Topology};
@@ -86,10 +86,7 @@ pub(crate) fn averaged_projections(
                 let kind = mesh.cell_type(c);
                 let coords = model.cell_coords(c);
                 let nodes = mesh.cell_nodes(c);
-                let ue: Vec<f64> = nodes
-                    .iter()
-                    .flat_map(|&nd| [u[2 * nd], u[2 * nd + 1]])
-                    .collect();
+                let ue: Vec<f64> = cell_values::<2>(u, nodes);
                 let d = hooke(model.material(c)?, model.analysis);
                 for (&(s, w), p) in rule.iter().zip(&pts) {
                     // The second cell runs along the edge in the opposite direction.

@@ -7,7 +7,7 @@ use alea_mesh::{Facet, Mesh};
 
 use crate::CreError;
 use crate::data::{FacetProjections, SideForces};
-use crate::fe::{facet_point, gauss01, hooke, mul3, strain_h, traction_of};
+use crate::fe::{cell_values, facet_point, gauss01, hooke, mul3, strain_h, traction_of};
 use crate::kernel::family::CellFamily;
 use crate::kernel::split::split_interface_forces;
 use crate::kernel::vector::Frame;
@@ -101,10 +101,7 @@ pub fn facet_projections(
         let kind = mesh.cell_type(c);
         let nodes = mesh.cell_nodes(c);
         let coords = model.cell_coords(c);
-        let ue: Vec<f64> = nodes
-            .iter()
-            .flat_map(|&nd| [u[2 * nd], u[2 * nd + 1]])
-            .collect();
+        let ue: Vec<f64> = cell_values::<2>(u, nodes);
         let d = hooke(model.material(c)?, model.analysis);
         let fnodes = &bf.facet.nodes;
         let quadratic = fnodes.len() == 3;

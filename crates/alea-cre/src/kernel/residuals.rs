@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use crate::CreError;
 use crate::data::VectorField;
+use crate::fe::cell_values;
 
 /// `Q_E(i)` of every cell `E` and local node `i` of `model` (`D` components per node) for the
 /// FE displacement `u` (node-major) and the body force `body`, divided by `thickness` (1 in 3D).
@@ -27,10 +28,7 @@ pub(crate) fn element_residuals<const D: usize>(
             let coords = model.cell_coords(c);
             alea_fem::assembly::element_stiffness(model, c, &mut ke)?;
             let m = nodes.len() * D;
-            let ue: Vec<f64> = nodes
-                .iter()
-                .flat_map(|&n| (0..D).map(move |k| u[D * n + k]))
-                .collect();
+            let ue = cell_values::<D>(u, nodes);
             let mut q = vec![[0.0; D]; nodes.len()];
             for a in 0..nodes.len() {
                 for ca in 0..D {
