@@ -50,10 +50,10 @@
 use std::sync::Arc;
 
 use crate::CreError;
-use crate::data::TractionField;
 use crate::kernel::loads::SideData;
 pub use crate::kernel::phase1::Phase1Input;
 use crate::kernel::phase1::{Equilibrated, equilibrate};
+pub use crate::kernel::tractions::SideTractions;
 
 pub use super::sides::{EdgeLinear, NodeFrame, facet_projections, interface_densities};
 use crate::topology::{EdgePoint, Topology};
@@ -72,28 +72,9 @@ pub struct EdgeDensity {
     pub data: Vec<EdgeData>,
 }
 
-/// Result of phase 1.
-#[derive(Clone)]
-pub struct EdgeTractions {
-    /// Mesh edges (shared with the estimator context that built them).
-    pub topo: Arc<Topology>,
-    /// Density of each edge.
-    pub density: Vec<EdgeDensity>,
-    /// Prescribed traction fields (indexed by [`EdgeData::field`]).
-    pub fields: Vec<TractionField>,
-    /// Largest residual of the node systems relative to the largest node load (sum of the
-    /// absolute element residuals and data at a node) of the domain: 0 when compatible.
-    pub compatibility_defect: f64,
-}
-
-impl std::fmt::Debug for EdgeTractions {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("EdgeTractions")
-            .field("edges", &self.density.len())
-            .field("compatibility_defect", &self.compatibility_defect)
-            .finish()
-    }
-}
+/// Result of phase 1: the edge densities (the topology is shared with the estimator context
+/// that built it).
+pub type EdgeTractions = SideTractions<Arc<Topology>, EdgeDensity>;
 
 impl EdgeTractions {
     /// Traction on edge `e`'s first cell at parameter `s in [0, 1]` (from `nodes[0]`), physical
@@ -149,26 +130,9 @@ impl EdgeTractions {
     }
 }
 
-impl EdgeTractions {
-    /// The edge tractions of the kernel's phase-1 result on the edges of `topo`.
-    pub(crate) fn from_kernel(
-        topo: Arc<Topology>,
-        values: Vec<[[f64; 2]; 3]>,
-        data: Vec<Vec<EdgeData>>,
-        fields: &[(String, TractionField)],
-        compatibility_defect: f64,
-    ) -> Self {
-        EdgeTractions {
-            topo,
-            density: values
-                .into_iter()
-                .zip(data)
-                .map(|(lin, data)| EdgeDensity { lin, data })
-                .collect(),
-            fields: fields.iter().map(|t| t.1.clone()).collect(),
-            compatibility_defect,
-        }
-    }
+/// The 2D density of the kernel's parts.
+pub(crate) fn edge_density(lin: [[f64; 2]; 3], data: Vec<EdgeData>) -> EdgeDensity {
+    EdgeDensity { lin, data }
 }
 
 /// Runs phase 1 on one 2D domain.
@@ -179,11 +143,12 @@ pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
         data,
         compatibility_defect,
     } = equilibrate::<Topology, 2>(inp)?;
-    Ok(EdgeTractions::from_kernel(
+    Ok(EdgeTractions::from_parts(
         Arc::new(topo),
         values,
         data,
         inp.tractions,
         compatibility_defect,
+        edge_density,
     ))
 }

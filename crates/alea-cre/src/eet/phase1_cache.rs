@@ -29,7 +29,7 @@ use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
 use alea_mesh::CellType;
 use rayon::prelude::*;
 
-use super::phase1::EdgeTractions;
+use super::phase1::{EdgeTractions, edge_density};
 use super::projections::add_prescribed_tractions;
 use crate::CreError;
 use crate::data::{AffineBody, SideForces, TractionField, VectorField};
@@ -114,6 +114,17 @@ fn strain_at(
         e[2] += gy * ux + gx * uy;
     }
     (e, det)
+}
+
+/// The displacements `u` (node-major) of the nodes `nodes` of a cell, without allocation.
+#[inline]
+fn cell_dofs(u: &[f64], nodes: &[usize]) -> [f64; 2 * MAX_NODES] {
+    let mut ue = [0.0; 2 * MAX_NODES];
+    for (a, &nd) in nodes.iter().enumerate() {
+        ue[2 * a] = u[2 * nd];
+        ue[2 * a + 1] = u[2 * nd + 1];
+    }
+    ue
 }
 
 /// One node system: the unknowns and the least-change data in the shared pools.
@@ -333,11 +344,7 @@ impl Phase1Cache {
                 let nodes = mesh.cell_nodes(c);
                 let kind = mesh.cell_type(c);
                 let coords = model.cell_coords(c);
-                let mut ue = [0.0; 2 * MAX_NODES];
-                for (a, &nd) in nodes.iter().enumerate() {
-                    ue[2 * a] = u[2 * nd];
-                    ue[2 * a + 1] = u[2 * nd + 1];
-                }
+                let ue = cell_dofs(u, nodes);
                 let d = hooke(model.material(c)?, model.analysis);
                 let mut q = vec![[0.0; 2]; nodes.len()];
                 let mut grad = [[0.0; 2]; MAX_NODES];
@@ -390,11 +397,7 @@ impl Phase1Cache {
                     let kind = mesh.cell_type(c);
                     let nodes = mesh.cell_nodes(c);
                     let coords = model.cell_coords(c);
-                    let mut ue = [0.0; 2 * MAX_NODES];
-                    for (a, &nd) in nodes.iter().enumerate() {
-                        ue[2 * a] = u[2 * nd];
-                        ue[2 * a + 1] = u[2 * nd + 1];
-                    }
+                    let ue = cell_dofs(u, nodes);
                     let d = hooke(model.material(c)?, model.analysis);
                     let d = d.map(|row| row.map(|v| alpha * v));
                     let facet = &self.table(kind).facets[l];
@@ -500,12 +503,13 @@ impl Phase1Cache {
         let mut b_unknown = topo.zero_values();
         let compatibility_defect = gather_node_solutions(per_node, &mut b_unknown);
         add_recovered(mesh, &**topo, &self.masses, &b_unknown, &mut loads.values)?;
-        Ok(EdgeTractions::from_kernel(
+        Ok(EdgeTractions::from_parts(
             topo.clone(),
             loads.values,
             loads.data,
             tractions,
             compatibility_defect,
+            edge_density,
         ))
     }
 }

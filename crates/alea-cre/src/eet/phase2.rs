@@ -145,6 +145,28 @@ impl Phase2Rules {
     }
 }
 
+/// Adds `wd eps_i^T D eps_j` to the upper triangle of the local stiffness `k` (`n x n`,
+/// row-major; `eps` the strains of the `n` basis functions at a point, `db` scratch).
+#[inline]
+pub(crate) fn add_stiffness(
+    k: &mut [f64],
+    wd: f64,
+    eps: &[[f64; 3]],
+    d: &[[f64; 3]; 3],
+    db: &mut [[f64; 3]],
+) {
+    let n = eps.len();
+    for j in 0..n {
+        db[j] = mul3(d, &eps[j]);
+    }
+    for i in 0..n {
+        for j in i..n {
+            let s = eps[i][0] * db[j][0] + eps[i][1] * db[j][1] + eps[i][2] * db[j][2];
+            k[i * n + j] += wd * s;
+        }
+    }
+}
+
 /// Solves the local problem of cell `c` and evaluates its contribution.
 pub fn element(
     model: &Model,
@@ -182,15 +204,7 @@ pub fn element(
         check_jacobian(&g, c, kind)?;
         let wd = w * g.det;
         space.eval(g.x, false, &mut p);
-        for j in 0..nb {
-            db[j] = mul3(&d, &p.eps[j]);
-        }
-        for i in 0..nb {
-            for j in i..nb {
-                let s = p.eps[i][0] * db[j][0] + p.eps[i][1] * db[j][1] + p.eps[i][2] * db[j][2];
-                k[i * nb + j] += wd * s;
-            }
-        }
+        add_stiffness(&mut k, wd, &p.eps, &d, &mut db);
         if let Some(b) = body {
             let f = b(g.x);
             for j in 0..nb {

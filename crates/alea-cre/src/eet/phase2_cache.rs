@@ -45,7 +45,7 @@ use alea_mesh::CellType;
 use rayon::prelude::*;
 
 use super::phase1::EdgeTractions;
-use super::phase2::{ElementResult, ElementStress, Phase2Rules};
+use super::phase2::{ElementResult, ElementStress, Phase2Rules, add_stiffness};
 use crate::CreError;
 use crate::data::{AffineBody, VectorField};
 use crate::fe::{check_jacobian, gauss01, hooke, mul3};
@@ -415,15 +415,7 @@ fn cell_data(
         check_jacobian(&geo, c, kind)?;
         let wd = w * geo.det;
         space.eval(geo.x, false, &mut p);
-        for j in 0..n {
-            db[j] = mul3(&d, &p.eps[j]);
-        }
-        for i in 0..n {
-            for j in i..n {
-                let s = p.eps[i][0] * db[j][0] + p.eps[i][1] * db[j][1] + p.eps[i][2] * db[j][2];
-                k[i * n + j] += wd * s;
-            }
-        }
+        add_stiffness(&mut k, wd, &p.eps, &d, &mut db);
         // FE strain operator columns: eps(N_a e_x) = [gx, 0, gy], eps(N_a e_y) = [0, gy, gx].
         let mut bm = vec![[0.0; 3]; m];
         for a in 0..nn {

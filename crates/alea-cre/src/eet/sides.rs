@@ -51,7 +51,7 @@ pub fn interface_densities(
     b_bar: &[[[f64; 2]; 3]],
     frames: Option<&[NodeFrame]>,
 ) -> Result<Vec<EdgeLinear>, CreError> {
-    let locate = |f: &Facet| -> Result<(usize, [[f64; 2]; 3]), CreError> {
+    let locate = |f: &Facet| {
         let (a, b) = (f.nodes[0], f.nodes[1]);
         let e = topo.find(a, b).ok_or_else(|| {
             CreError::Invalid(format!(
@@ -59,21 +59,14 @@ pub fn interface_densities(
                 side.group
             ))
         })?;
-        let mut t = *b_bar
+        let t = *b_bar
             .get(e)
             .ok_or_else(|| CreError::Invalid(format!("edge {e} has no reference projection")))?;
-        if let Some(r) = side
+        let reference = side
             .reference
             .as_ref()
-            .and_then(|r| r.get(&[a.min(b), a.max(b)]))
-        {
-            for &(nd, v) in r {
-                if let Some(k) = topo.edges[e].slot(nd) {
-                    t[k] = v;
-                }
-            }
-        }
-        Ok((e, t))
+            .and_then(|r| r.get(&[a.min(b), a.max(b)]));
+        Ok((e, t, reference))
     };
     let mass = |e: usize| topo.side_mass(mesh, e);
     split_interface_forces(mesh, topo, side, thickness, frames, locate, mass)

@@ -24,4 +24,5 @@ pub mod phase1;
 pub mod residuals;
 pub mod split;
 pub mod topology;
+pub mod tractions;
 pub mod vector;

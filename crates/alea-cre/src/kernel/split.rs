@@ -21,17 +21,18 @@ use crate::data::SideForces;
 use crate::linalg::cholesky_solve;
 
 /// Densities (values at the side nodes) on the sides of the interface `side` of `mesh`:
-/// `locate(facet)` gives the side of a facet of the group and its target projections (with
-/// the side's reference projections applied), `mass(side)` the side mass matrix (row-major),
+/// `locate(facet)` gives the side of a facet of the group, its target projections and the
+/// side's reference projections `(node, b)` of that facet if any (they replace the targets),
+/// `mass(side)` the side mass matrix (row-major),
 /// the forces are per unit `thickness` (1 in 3D), `frames` the constraint frames of the nodes
 /// (all directions free without). Returns `(side, values)` per facet of the group.
-pub(crate) fn split_interface_forces<T, B, const D: usize>(
+pub(crate) fn split_interface_forces<'a, T, B, const D: usize>(
     mesh: &Mesh,
     topo: &T,
     side: &SideForces,
     thickness: f64,
     frames: Option<&[Frame<D>]>,
-    locate: impl Fn(&Facet) -> Result<(usize, B), CreError>,
+    locate: impl Fn(&Facet) -> Result<(usize, B, Option<&'a Vec<(usize, [f64; D])>>), CreError>,
     mass: impl Fn(usize) -> Vec<f64>,
 ) -> Result<Vec<(usize, B)>, CreError>
 where
@@ -57,7 +58,12 @@ where
     let mut targets: Vec<(usize, B)> = Vec::new();
     let mut around: BTreeMap<usize, Vec<(usize, usize)>> = BTreeMap::new();
     for facet in facets {
-        let (s, t) = locate(facet)?;
+        let (s, mut t, reference) = locate(facet)?;
+        for &(nd, v) in reference.into_iter().flatten() {
+            if let Some(k) = topo.slot(s, nd) {
+                t.as_mut()[k] = v;
+            }
+        }
         let k = targets.len();
         for (slot, nd) in topo.side_nodes(s).enumerate() {
             if !force.contains_key(&nd) {

@@ -29,10 +29,10 @@
 //! through the face mass matrix: `M F = b`, `M_ab = int_Gamma N_a N_b dS`.
 
 use crate::CreError;
-use crate::data::TractionField;
 use crate::kernel::loads::SideData;
 pub use crate::kernel::phase1::Phase1Input;
 use crate::kernel::phase1::{Equilibrated, equilibrate};
+pub use crate::kernel::tractions::SideTractions;
 
 pub use super::sides::NodeFrame3;
 use super::topology::FaceTopology;
@@ -50,28 +50,8 @@ pub struct FaceDensity {
     pub data: Vec<FaceData>,
 }
 
-/// Result of phase 1 in 3D.
-#[derive(Clone)]
-pub struct FaceTractions {
-    /// Mesh faces.
-    pub topo: FaceTopology,
-    /// Density of each face.
-    pub density: Vec<FaceDensity>,
-    /// Prescribed traction fields (indexed by [`FaceData::field`]).
-    pub fields: Vec<TractionField>,
-    /// Largest residual of the node systems relative to the largest node load (sum of the
-    /// absolute element residuals and data at a node): 0 when compatible.
-    pub compatibility_defect: f64,
-}
-
-impl std::fmt::Debug for FaceTractions {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("FaceTractions")
-            .field("faces", &self.density.len())
-            .field("compatibility_defect", &self.compatibility_defect)
-            .finish()
-    }
-}
+/// Result of phase 1 in 3D: the face densities.
+pub type FaceTractions = SideTractions<FaceTopology, FaceDensity>;
 
 impl FaceTractions {
     /// Traction on face `f`'s first cell at a face point with face shape values `shape`,
@@ -103,14 +83,12 @@ pub fn phase1(inp: &Phase1Input) -> Result<FaceTractions, CreError> {
         data,
         compatibility_defect,
     } = equilibrate::<FaceTopology, 3>(inp)?;
-    Ok(FaceTractions {
+    Ok(FaceTractions::from_parts(
         topo,
-        density: values
-            .into_iter()
-            .zip(data)
-            .map(|(values, data)| FaceDensity { values, data })
-            .collect(),
-        fields: inp.tractions.iter().map(|t| t.1.clone()).collect(),
+        values,
+        data,
+        inp.tractions,
         compatibility_defect,
-    })
+        |values, data| FaceDensity { values, data },
+    ))
 }

@@ -33,7 +33,7 @@ pub fn interface_densities(
     b_bar: &[Vec<[f64; 3]>],
     frames: Option<&[NodeFrame3]>,
 ) -> Result<Vec<FaceValues>, CreError> {
-    let locate = |fc: &Facet| -> Result<(usize, Vec<[f64; 3]>), CreError> {
+    let locate = |fc: &Facet| {
         let corners = &fc.nodes[..fc.kind.num_corners()];
         let f = topo.find(corners).ok_or_else(|| {
             CreError::Invalid(format!(
@@ -42,22 +42,15 @@ pub fn interface_densities(
             ))
         })?;
         let face = &topo.faces[f];
-        let mut t = b_bar
+        let t = b_bar
             .get(f)
             .cloned()
             .ok_or_else(|| CreError::Invalid(format!("face {f} has no reference projection")))?;
-        if let Some(r) = side
+        let reference = side
             .face_reference
             .as_ref()
-            .and_then(|r| r.get(&face.key()))
-        {
-            for &(nd, v) in r {
-                if let Some(k) = face.slot(nd) {
-                    t[k] = v;
-                }
-            }
-        }
-        Ok((f, t))
+            .and_then(|r| r.get(&face.key()));
+        Ok((f, t, reference))
     };
     let mass = |f: usize| face_mass(mesh, &topo.faces[f]);
     split_interface_forces(mesh, topo, side, 1.0, frames, locate, mass)
