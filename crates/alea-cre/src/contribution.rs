@@ -19,6 +19,19 @@ pub struct ElementContribution<S> {
     pub stress: S,
 }
 
+/// The balance defect of an element's loads: `(sum |force resultants| + sum |moment
+/// resultants| / h) / sum of the absolute contributions`, `h` the element's size (0 without
+/// loads).
+pub(crate) fn balance_defect(forces: &[f64], moments: &[f64], h: f64, abs_sum: f64) -> f64 {
+    if abs_sum > 0.0 {
+        (forces.iter().map(|v| v.abs()).sum::<f64>()
+            + moments.iter().map(|v| v.abs()).sum::<f64>() / h)
+            / abs_sum
+    } else {
+        0.0
+    }
+}
+
 /// The domain sums of the element contributions.
 pub(crate) struct DomainSums<S> {
     /// `theta = (sum_E theta_E^2)^(1/2)`.

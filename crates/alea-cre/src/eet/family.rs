@@ -12,40 +12,35 @@ use crate::CreError;
 use crate::data::{SideForces, TractionField};
 use crate::kernel::family::CellFamily;
 use crate::kernel::loads::SideLoads;
-use crate::kernel::topology::SideTopology;
+use crate::kernel::topology::{Incidence, Side, SideTopology};
 use crate::kernel::vector::{Frame, identity};
 use crate::linalg::cholesky_solve;
-use crate::topology::Topology;
+use crate::topology::{Edge, Topology};
+
+impl Side for Edge {
+    fn cells(&self) -> &[(usize, usize)] {
+        &self.cells
+    }
+
+    fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.all_nodes()
+    }
+}
 
 impl SideTopology<2> for Topology {
+    type Side = Edge;
     const SIDE: &'static str = "edge";
 
-    fn num_sides(&self) -> usize {
-        self.edges.len()
+    fn sides(&self) -> &[Edge] {
+        &self.edges
     }
 
-    fn is_boundary(&self, s: usize) -> bool {
-        self.edges[s].is_boundary()
-    }
-
-    fn slot(&self, s: usize, i: usize) -> Option<usize> {
-        self.edges[s].slot(i)
-    }
-
-    fn side_nodes(&self, s: usize) -> impl Iterator<Item = usize> + '_ {
-        self.edges[s].all_nodes()
-    }
-
-    fn cell_sides(&self, c: usize) -> &[(usize, f64)] {
-        &self.cell_edges[c]
-    }
-
-    fn node_cells(&self, i: usize) -> &[usize] {
-        &self.node_cells[i]
-    }
-
-    fn node_sides(&self, i: usize) -> &[usize] {
-        &self.node_edges[i]
+    fn incidence(&self) -> Incidence<'_> {
+        Incidence {
+            cell_sides: &self.cell_edges,
+            node_cells: &self.node_cells,
+            node_sides: &self.node_edges,
+        }
     }
 
     fn measure(&self, mesh: &Mesh, s: usize) -> f64 {

@@ -52,7 +52,7 @@ use std::sync::Arc;
 use crate::CreError;
 use crate::kernel::loads::SideData;
 pub use crate::kernel::phase1::Phase1Input;
-use crate::kernel::phase1::{Equilibrated, equilibrate};
+use crate::kernel::phase1::equilibrate;
 pub use crate::kernel::tractions::SideTractions;
 
 pub use super::sides::{EdgeLinear, NodeFrame, facet_projections, interface_densities};
@@ -137,18 +137,5 @@ pub(crate) fn edge_density(lin: [[f64; 2]; 3], data: Vec<EdgeData>) -> EdgeDensi
 
 /// Runs phase 1 on one 2D domain.
 pub fn phase1(inp: &Phase1Input) -> Result<EdgeTractions, CreError> {
-    let Equilibrated {
-        topo,
-        values,
-        data,
-        compatibility_defect,
-    } = equilibrate::<Topology, 2>(inp)?;
-    Ok(EdgeTractions::from_parts(
-        Arc::new(topo),
-        values,
-        data,
-        inp.tractions,
-        compatibility_defect,
-        edge_density,
-    ))
+    equilibrate::<Topology, _, _, 2>(inp, Arc::new, edge_density)
 }

@@ -47,7 +47,7 @@ use alea_mesh::CellType;
 
 use super::phase1::EdgeTractions;
 use crate::CreError;
-use crate::contribution::ElementContribution;
+use crate::contribution::{ElementContribution, balance_defect};
 use crate::data::VectorField;
 use crate::fe::{cell_values, check_jacobian, gauss01, hooke, mul3, strain_h};
 use crate::linalg::cholesky_solve;
@@ -145,6 +145,23 @@ impl Phase2Rules {
     }
 }
 
+/// Adds the load `w f` at `x` to the force and moment (about `ctr`) resultants `res` of an
+/// element and `w (|f_x| + |f_y|)` to `abs_sum` (the balance defect).
+#[inline]
+pub(crate) fn add_resultant(
+    res: &mut [f64; 3],
+    abs_sum: &mut f64,
+    w: f64,
+    x: [f64; 3],
+    ctr: [f64; 2],
+    f: [f64; 2],
+) {
+    res[0] += w * f[0];
+    res[1] += w * f[1];
+    res[2] += w * ((x[0] - ctr[0]) * f[1] - (x[1] - ctr[1]) * f[0]);
+    *abs_sum += w * (f[0].abs() + f[1].abs());
+}
+
 /// Adds `wd eps_i^T D eps_j` to the upper triangle of the local stiffness `k` (`n x n`,
 /// row-major; `eps` the strains of the `n` basis functions at a point, `db` scratch).
 #[inline]
@@ -210,10 +227,7 @@ pub fn element(
             for j in 0..nb {
                 l[j] += wd * (f[0] * p.u[j][0] + f[1] * p.u[j][1]);
             }
-            res[0] += wd * f[0];
-            res[1] += wd * f[1];
-            res[2] += wd * ((g.x[0] - ctr[0]) * f[1] - (g.x[1] - ctr[1]) * f[0]);
-            abs_sum += wd * (f[0].abs() + f[1].abs());
+            add_resultant(&mut res, &mut abs_sum, wd, g.x, ctr, [f[0], f[1]]);
         }
         pts.push((wd, eps_h, p.eps.clone()));
     }
@@ -237,18 +251,11 @@ pub fn element(
             for j in 0..nb {
                 l[j] += wl * (t[0] * p.u[j][0] + t[1] * p.u[j][1]);
             }
-            res[0] += wl * t[0];
-            res[1] += wl * t[1];
-            res[2] += wl * ((x[0] - ctr[0]) * t[1] - (x[1] - ctr[1]) * t[0]);
-            abs_sum += wl * (t[0].abs() + t[1].abs());
+            add_resultant(&mut res, &mut abs_sum, wl, x, ctr, [t[0], t[1]]);
         }
     }
     let h = space.scale;
-    let balance_defect = if abs_sum > 0.0 {
-        (res[0].abs() + res[1].abs() + res[2].abs() / h) / abs_sum
-    } else {
-        0.0
-    };
+    let balance_defect = balance_defect(&res[..2], &res[2..], h, abs_sum);
     if !cholesky_solve(&mut k, &mut l, nb) {
         return Err(CreError::LocalSolve { cell: c });
     }

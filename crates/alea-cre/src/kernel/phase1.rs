@@ -17,6 +17,7 @@ use super::frames::node_frames;
 use super::loads::{SideData, SideLoads};
 use super::node_system::{gather_node_solutions, solve_node_systems};
 use super::residuals::element_residuals;
+use super::tractions::SideTractions;
 use super::vector::Frame;
 use crate::CreError;
 use crate::data::{SideForces, TractionField, VectorField};
@@ -35,18 +36,6 @@ pub struct Phase1Input<'a> {
     pub tractions: &'a [(String, TractionField)],
     /// Discrete interface forces by side.
     pub sides: &'a [SideForces],
-}
-
-/// The result of phase 1 in the kernel's terms.
-pub(crate) struct Equilibrated<F: CellFamily<D>, const D: usize> {
-    /// The side topology.
-    pub topo: F,
-    /// Polynomial part of each side's density.
-    pub values: Vec<F::Values>,
-    /// Prescribed-traction part of each side's density.
-    pub data: Vec<Vec<SideData<D>>>,
-    /// Largest relative residual of the node systems (0 when compatible).
-    pub compatibility_defect: f64,
 }
 
 /// Adds the interface sides' densities (targets `b_bar`) as known densities of their sides.
@@ -82,10 +71,13 @@ pub(crate) fn add_recovered<F: CellFamily<D>, const D: usize>(
     Ok(())
 }
 
-/// Runs phase 1 on one domain of cell family `F`.
-pub(crate) fn equilibrate<F: CellFamily<D>, const D: usize>(
+/// Runs phase 1 on one domain of cell family `F`: the result holds `topology(F)` and, per side,
+/// `density(polynomial values, prescribed data)`.
+pub(crate) fn equilibrate<F: CellFamily<D>, T, S, const D: usize>(
     inp: &Phase1Input,
-) -> Result<Equilibrated<F, D>, CreError> {
+    topology: impl FnOnce(F) -> T,
+    density: impl Fn(F::Values, Vec<SideData<D>>) -> S,
+) -> Result<SideTractions<T, S>, CreError> {
     let model = inp.model;
     let mesh = &model.mesh;
     if mesh.dim != D {
@@ -118,10 +110,12 @@ pub(crate) fn equilibrate<F: CellFamily<D>, const D: usize>(
     let mut b_unknown = topo.zero_values();
     let compatibility_defect = gather_node_solutions(per_node, &mut b_unknown);
     add_recovered(mesh, &topo, &masses, &b_unknown, &mut loads.values)?;
-    Ok(Equilibrated {
-        topo,
-        values: loads.values,
-        data: loads.data,
+    Ok(SideTractions::from_parts(
+        topology(topo),
+        loads.values,
+        loads.data,
+        inp.tractions,
         compatibility_defect,
-    })
+        density,
+    ))
 }

@@ -7,12 +7,12 @@ use alea_mesh::Mesh;
 
 use super::projections::{add_prescribed_tractions, averaged_projections};
 use super::sides::interface_densities;
-use super::topology::{FaceTopology, face_mass};
+use super::topology::{Face, FaceTopology, face_mass};
 use crate::CreError;
 use crate::data::{SideForces, TractionField};
 use crate::kernel::family::CellFamily;
 use crate::kernel::loads::SideLoads;
-use crate::kernel::topology::SideTopology;
+use crate::kernel::topology::{Incidence, Side, SideTopology};
 use crate::kernel::vector::{Frame, dot, identity};
 use crate::linalg::cholesky_solve;
 
@@ -39,35 +39,30 @@ fn orthogonal(t: [f64; 3]) -> [f64; 3] {
     unit(cross(t, e))
 }
 
+impl Side for Face {
+    fn cells(&self) -> &[(usize, usize)] {
+        &self.cells
+    }
+
+    fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.nodes.iter().copied()
+    }
+}
+
 impl SideTopology<3> for FaceTopology {
+    type Side = Face;
     const SIDE: &'static str = "face";
 
-    fn num_sides(&self) -> usize {
-        self.faces.len()
+    fn sides(&self) -> &[Face] {
+        &self.faces
     }
 
-    fn is_boundary(&self, s: usize) -> bool {
-        self.faces[s].is_boundary()
-    }
-
-    fn slot(&self, s: usize, i: usize) -> Option<usize> {
-        self.faces[s].slot(i)
-    }
-
-    fn side_nodes(&self, s: usize) -> impl Iterator<Item = usize> + '_ {
-        self.faces[s].nodes.iter().copied()
-    }
-
-    fn cell_sides(&self, c: usize) -> &[(usize, f64)] {
-        &self.cell_faces[c]
-    }
-
-    fn node_cells(&self, i: usize) -> &[usize] {
-        &self.node_cells[i]
-    }
-
-    fn node_sides(&self, i: usize) -> &[usize] {
-        &self.node_faces[i]
+    fn incidence(&self) -> Incidence<'_> {
+        Incidence {
+            cell_sides: &self.cell_faces,
+            node_cells: &self.node_cells,
+            node_sides: &self.node_faces,
+        }
     }
 
     fn measure(&self, _mesh: &Mesh, s: usize) -> f64 {

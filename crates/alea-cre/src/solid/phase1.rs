@@ -31,7 +31,7 @@
 use crate::CreError;
 use crate::kernel::loads::SideData;
 pub use crate::kernel::phase1::Phase1Input;
-use crate::kernel::phase1::{Equilibrated, equilibrate};
+use crate::kernel::phase1::equilibrate;
 pub use crate::kernel::tractions::SideTractions;
 
 pub use super::sides::NodeFrame3;
@@ -77,18 +77,9 @@ impl FaceTractions {
 
 /// Runs phase 1 on one 3D domain.
 pub fn phase1(inp: &Phase1Input) -> Result<FaceTractions, CreError> {
-    let Equilibrated {
-        topo,
-        values,
-        data,
-        compatibility_defect,
-    } = equilibrate::<FaceTopology, 3>(inp)?;
-    Ok(FaceTractions::from_parts(
-        topo,
-        values,
-        data,
-        inp.tractions,
-        compatibility_defect,
+    equilibrate::<FaceTopology, _, _, 3>(
+        inp,
+        |topo| topo,
         |values, data| FaceDensity { values, data },
-    ))
+    )
 }

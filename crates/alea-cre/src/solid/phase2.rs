@@ -29,7 +29,7 @@ use faer::linalg::solvers::Solve;
 use faer::{Accum, Mat, MatRef, Par, Side};
 
 use crate::CreError;
-use crate::contribution::ElementContribution;
+use crate::contribution::{ElementContribution, balance_defect};
 use crate::data::VectorField;
 use crate::fe::check_jacobian;
 
@@ -243,13 +243,7 @@ pub fn element(
         })
         .collect();
     let h = space.scale;
-    let balance_defect = if abs_sum > 0.0 {
-        (res[..3].iter().map(|v| v.abs()).sum::<f64>()
-            + res[3..].iter().map(|v| v.abs()).sum::<f64>() / h)
-            / abs_sum
-    } else {
-        0.0
-    };
+    let balance_defect = balance_defect(&res[..3], &res[3..], h, abs_sum);
     // G_pq[a][b] for any p, q (G_qp = G_pq^T).
     let gval = |pp: usize, qq: usize, a: usize, b: usize| -> f64 {
         let k = voigt_index(pp, qq);
