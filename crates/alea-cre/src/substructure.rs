@@ -365,6 +365,10 @@ fn scale_projections<K, const D: usize>(p: &mut HashMap<K, Vec<(usize, [f64; D])
     }
 }
 
+/// Target projections `(node, b)` per facet key (2D: [`FacetProjections`], 3D:
+/// [`FaceProjections`]).
+type Projections<K, const D: usize> = HashMap<K, Vec<(usize, [f64; D])>>;
+
 /// The key of a facet's partner on the other side of an interface (`partner` the node pairing):
 /// the sorted partner nodes, if every node has one.
 trait FacetKey: Sized {
@@ -398,9 +402,9 @@ impl FacetKey for Vec<usize> {
 /// projections.
 fn average_references<K: FacetKey + Clone + Eq + std::hash::Hash, const D: usize>(
     ir: &InterfaceResult,
-    p1: HashMap<K, Vec<(usize, [f64; D])>>,
-    p2: HashMap<K, Vec<(usize, [f64; D])>>,
-) -> [HashMap<K, Vec<(usize, [f64; D])>>; 2] {
+    p1: Projections<K, D>,
+    p2: Projections<K, D>,
+) -> [Projections<K, D>; 2] {
     if ir.pairing.kind != PairingKind::NodeToNode {
         // Mortar: the facets of the two sides do not correspond; each side keeps its own.
         return [p1, p2];

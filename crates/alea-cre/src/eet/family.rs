@@ -1,4 +1,4 @@
-//! The 2D cell family of the EET kernel ([`crate::kernel`]): Tri3/Quad4/Tri6/Quad8 cells with
+//! The 2D cell family of the EET kernel (`crate::kernel`): Tri3/Quad4/Tri6/Quad8 cells with
 //! their edges ([`Topology`]) as sides; densities of the edge's degree (linear on 2-node
 //! edges, quadratic on 3-node edges, per unit reference length on curved edges: see
 //! [`super::phase1`]) stored as values at `[nodes[0], nodes[1], mid]`.

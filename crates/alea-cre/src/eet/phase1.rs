@@ -1,4 +1,6 @@
-//! EET phase 1: traction densities on the element edges (thesis (3.20)-(3.22)).
+//! EET phase 1: traction densities on the element edges (thesis (3.20)-(3.22)): the
+//! equilibrated-traction kernel `crate::kernel` instantiated for the 2D cell family (edges as
+//! sides: `super::family`, edge integrals: `super::projections`).
 //!
 //! With `phi_i` the FE shape function of node `i` and `Q_E(i) = int_E sigma_h : eps(phi_i) -
 //! int_E f phi_i` (a vector: one entry per direction), the prolongation condition (3.21) and the

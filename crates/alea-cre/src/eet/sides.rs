@@ -37,7 +37,7 @@ pub(crate) fn edge_mass(quadratic: bool, len: f64) -> [[f64; 3]; 3] {
 
 /// Densities of degree `p` on the edges of an interface side whose consistent nodal forces equal
 /// the given discrete forces `g_i` (per unit thickness: `g_i / thickness`): the split of
-/// [`crate::kernel::split`] with the edge mass matrices.
+/// `crate::kernel::split` with the edge mass matrices.
 ///
 /// `b_bar[e]` are the projections of edge `e` (edge orientation, slots ends/mid); entries of
 /// `side.reference` replace them. With node `frames` (constraint frames of the domain), the

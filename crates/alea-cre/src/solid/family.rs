@@ -1,4 +1,4 @@
-//! The 3D cell family of the EET kernel ([`crate::kernel`]): Tet4/Tet10/Hex8 cells with their
+//! The 3D cell family of the EET kernel (`crate::kernel`): Tet4/Tet10/Hex8 cells with their
 //! faces ([`FaceTopology`]) as sides; densities of the face's degree (linear on Tri3 faces,
 //! bilinear on Quad4, quadratic on Tri6) stored as values at the face nodes.
 

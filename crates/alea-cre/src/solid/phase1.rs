@@ -1,5 +1,6 @@
 //! EET phase 1 in 3D: traction densities on the element faces (thesis (3.20)-(3.22), with faces
-//! in place of edges).
+//! in place of edges): the equilibrated-traction kernel `crate::kernel` instantiated for the
+//! 3D cell family (faces as sides: `super::family`, face integrals: `super::projections`).
 //!
 //! With `phi_i` the FE shape function of node `i` and `Q_E(i) = int_E sigma_h : eps(phi_i) -
 //! int_E f phi_i` (a vector: one entry per direction), the prolongation condition (3.21) and the

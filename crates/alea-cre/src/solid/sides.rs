@@ -20,7 +20,7 @@ pub type NodeFrame3 = Frame<3>;
 pub type FaceValues = (usize, Vec<[f64; 3]>);
 
 /// Densities of the faces' degree on the faces of an interface side whose consistent nodal
-/// forces equal the given discrete forces `g_i`: the split of [`crate::kernel::split`] with the
+/// forces equal the given discrete forces `g_i`: the split of `crate::kernel::split` with the
 /// face mass matrices.
 ///
 /// `b_bar[f]` are the projections of face `f` (face order); entries of `side.face_reference`
