@@ -4,11 +4,12 @@ use alea_fem::{Constraints, DofMap, Model};
 use rayon::prelude::*;
 
 use crate::CreError;
+use crate::contribution::{DomainSums, ElementContribution, domain_sums};
 use crate::data::{LoadData, SideForces};
 use crate::eet::phase1::{EdgeTractions, Phase1Input, phase1};
 use crate::eet::phase2::{ElementStress, Phase2Rules, element};
 use crate::solid::phase1::FaceTractions;
-use crate::solid::phase2::{SolidElementStress, SolidRules};
+use crate::solid::phase2::{SolidElementStress, SolidRules, element as solid_element};
 
 /// Estimator options.
 #[derive(Clone, Copy, Debug)]
@@ -123,6 +124,25 @@ impl DomainEstimate {
         }
     }
 
+    /// The estimate of a domain from its element sums, phase-1 defect, timings and admissible
+    /// field (`admissible(stresses)`).
+    pub(crate) fn from_sums<S>(
+        sums: DomainSums<S>,
+        compatibility_defect: f64,
+        seconds: [f64; 2],
+        admissible: impl FnOnce(Vec<S>) -> Admissible,
+    ) -> Result<Self, CreError> {
+        Ok(DomainEstimate {
+            theta: sums.theta,
+            element_theta: sums.element_theta,
+            energy_norm: sums.energy_norm,
+            compatibility_defect,
+            balance_defect: sums.balance_defect,
+            admissible: admissible(sums.stresses),
+            seconds,
+        })
+    }
+
     /// Energy density of the error per cell, `theta_E^2 / |E|` (for plots).
     pub fn error_density(&self, model: &Model) -> Vec<f64> {
         self.element_theta
@@ -166,108 +186,70 @@ pub fn estimate_with_sides(
             "displacement entry {i} is not finite"
         )));
     }
-    if model.mesh.dim == 3 {
-        return estimate_solid(model, dofs, loads, sides, u, options);
-    }
     let t0 = std::time::Instant::now();
-    let tr = phase1(&Phase1Input {
+    let input = Phase1Input {
         model,
         dofs,
         u,
         body: loads.body.as_ref(),
         tractions: &loads.tractions,
         sides,
-    })?;
-    let t1 = t0.elapsed().as_secs_f64();
-    let t0 = std::time::Instant::now();
-    // Local degree p + k for cells of order p (1: T3/Q4, 2: T6/Q8).
-    let rules = [
-        Phase2Rules::new(1 + options.extra_degree),
-        Phase2Rules::new(2 + options.extra_degree),
-    ];
-    let per: Vec<_> = (0..model.mesh.num_cells())
-        .into_par_iter()
-        .map(|c| {
-            let order = model.mesh.cell_type(c).order().clamp(1, 2);
-            element(model, c, u, loads.body.as_ref(), &tr, &rules[order - 1])
-        })
-        .collect::<Result<_, _>>()?;
-    let theta2: f64 = per.iter().map(|r| r.theta2).sum();
-    if !theta2.is_finite() {
-        return Err(CreError::Invalid(
-            "non-finite error estimate (degenerate cell or non-finite load data)".into(),
-        ));
+    };
+    let body = loads.body.as_ref();
+    // Local degree p + k for cells of order p (1: T3/Q4/Tet4/Hex8, 2: T6/Q8/Tet10).
+    let (k1, k2) = (1 + options.extra_degree, 2 + options.extra_degree);
+    if model.mesh.dim == 3 {
+        // Module [`crate::solid`].
+        let tr = crate::solid::phase1::phase1(&input)?;
+        let t1 = t0.elapsed().as_secs_f64();
+        let rules = [SolidRules::new(k1, 1), SolidRules::new(k2, 2)];
+        return phase2_estimate(
+            model,
+            tr.compatibility_defect,
+            tr,
+            t1,
+            |tr, c, order| solid_element(model, c, u, body, tr, &rules[order - 1]),
+            |tractions, stresses| Admissible::Solid {
+                tractions,
+                stresses,
+            },
+        );
     }
-    let energy2: f64 = per.iter().map(|r| r.energy2).sum();
-    let balance_defect = per.iter().fold(0.0f64, |m, r| m.max(r.balance_defect));
-    let element_theta = per.iter().map(|r| r.theta2.max(0.0).sqrt()).collect();
-    let stresses = per.into_iter().map(|r| r.stress).collect();
-    Ok(DomainEstimate {
-        theta: theta2.max(0.0).sqrt(),
-        element_theta,
-        energy_norm: energy2.max(0.0).sqrt(),
-        compatibility_defect: tr.compatibility_defect,
-        balance_defect,
-        admissible: Admissible::Plane {
-            tractions: tr,
+    let tr = phase1(&input)?;
+    let t1 = t0.elapsed().as_secs_f64();
+    let rules = [Phase2Rules::new(k1), Phase2Rules::new(k2)];
+    phase2_estimate(
+        model,
+        tr.compatibility_defect,
+        tr,
+        t1,
+        |tr, c, order| element(model, c, u, body, tr, &rules[order - 1]),
+        |tractions, stresses| Admissible::Plane {
+            tractions,
             stresses,
         },
-        seconds: [t1, t0.elapsed().as_secs_f64()],
-    })
+    )
 }
 
-/// The 3D path of [`estimate_with_sides`] (module [`crate::solid`]).
-fn estimate_solid(
+/// Phase 2 on every cell of `model` (`element(tractions, cell, cell order 1 or 2)`) and the
+/// estimate of the domain (phase 1: `tractions`, its `compatibility_defect` and seconds `t1`).
+fn phase2_estimate<T: Sync, S: Send>(
     model: &Model,
-    dofs: &DofMap,
-    loads: &LoadData,
-    sides: &[SideForces],
-    u: &[f64],
-    options: &CreOptions,
+    compatibility_defect: f64,
+    tractions: T,
+    t1: f64,
+    element: impl Fn(&T, usize, usize) -> Result<ElementContribution<S>, CreError> + Sync,
+    admissible: impl FnOnce(T, Vec<S>) -> Admissible,
 ) -> Result<DomainEstimate, CreError> {
     let t0 = std::time::Instant::now();
-    let tr = crate::solid::phase1::phase1(&crate::solid::phase1::Phase1Input {
-        model,
-        dofs,
-        u,
-        body: loads.body.as_ref(),
-        tractions: &loads.tractions,
-        sides,
-    })?;
-    let t1 = t0.elapsed().as_secs_f64();
-    let t0 = std::time::Instant::now();
-    // Local degree p + k for cells of order p (1: Tet4/Hex8, 2: Tet10).
-    let rules = [
-        SolidRules::new(1 + options.extra_degree, 1),
-        SolidRules::new(2 + options.extra_degree, 2),
-    ];
     let per: Vec<_> = (0..model.mesh.num_cells())
         .into_par_iter()
-        .map(|c| {
-            let order = model.mesh.cell_type(c).order().clamp(1, 2);
-            crate::solid::phase2::element(model, c, u, loads.body.as_ref(), &tr, &rules[order - 1])
-        })
+        .map(|c| element(&tractions, c, model.mesh.cell_type(c).order().clamp(1, 2)))
         .collect::<Result<_, _>>()?;
-    let theta2: f64 = per.iter().map(|r| r.theta2).sum();
-    if !theta2.is_finite() {
-        return Err(CreError::Invalid(
-            "non-finite error estimate (degenerate cell or non-finite load data)".into(),
-        ));
-    }
-    let energy2: f64 = per.iter().map(|r| r.energy2).sum();
-    let balance_defect = per.iter().fold(0.0f64, |m, r| m.max(r.balance_defect));
-    let element_theta = per.iter().map(|r| r.theta2.max(0.0).sqrt()).collect();
-    let stresses = per.into_iter().map(|r| r.stress).collect();
-    Ok(DomainEstimate {
-        theta: theta2.max(0.0).sqrt(),
-        element_theta,
-        energy_norm: energy2.max(0.0).sqrt(),
-        compatibility_defect: tr.compatibility_defect,
-        balance_defect,
-        admissible: Admissible::Solid {
-            tractions: tr,
-            stresses,
-        },
-        seconds: [t1, t0.elapsed().as_secs_f64()],
-    })
+    DomainEstimate::from_sums(
+        domain_sums(per)?,
+        compatibility_defect,
+        [t1, t0.elapsed().as_secs_f64()],
+        |stresses| admissible(tractions, stresses),
+    )
 }

@@ -16,6 +16,7 @@ use alea_fem::{Constraints, DofMap, Model};
 use rayon::prelude::*;
 
 use crate::CreError;
+use crate::contribution::domain_sums;
 use crate::data::{LoadData, SideForces};
 use crate::domain::{Admissible, CreOptions, DomainEstimate, estimate_with_sides};
 use crate::eet::phase1_cache::Phase1Cache;
@@ -197,28 +198,16 @@ impl DomainEstimator {
                 )
             })
             .collect::<Result<_, _>>()?;
-        let theta2: f64 = per.iter().map(|r| r.theta2).sum();
-        if !theta2.is_finite() {
-            return Err(CreError::Invalid(
-                "non-finite error estimate (degenerate cell or non-finite load data)".into(),
-            ));
-        }
-        let energy2: f64 = per.iter().map(|r| r.energy2).sum();
-        let balance_defect = per.iter().fold(0.0f64, |m, r| m.max(r.balance_defect));
-        let element_theta = per.iter().map(|r| r.theta2.max(0.0).sqrt()).collect();
-        let stresses = per.into_iter().map(|r| r.stress).collect();
-        Ok(DomainEstimate {
-            theta: theta2.max(0.0).sqrt(),
-            element_theta,
-            energy_norm: energy2.max(0.0).sqrt(),
-            compatibility_defect: tr.compatibility_defect,
-            balance_defect,
-            admissible: Admissible::Plane {
+        let compatibility_defect = tr.compatibility_defect;
+        DomainEstimate::from_sums(
+            domain_sums(per)?,
+            compatibility_defect,
+            [t1, t0.elapsed().as_secs_f64()],
+            |stresses| Admissible::Plane {
                 tractions: tr,
                 stresses,
             },
-            seconds: [t1, t0.elapsed().as_secs_f64()],
-        })
+        )
     }
 }
 

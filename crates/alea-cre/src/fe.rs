@@ -1,9 +1,36 @@
-//! FE-side helpers: strains of the FE solution, element Hooke matrices, facet points.
+//! FE-side helpers: nodal values and strains of the FE solution, the Jacobian check of the
+//! local rules, element Hooke matrices, facet points.
 
 use alea_fem::kinematics::{PointGeometry, point_geometry};
 use alea_fem::reference::node_coords;
 use alea_fem::{Analysis, Material};
 use alea_mesh::CellType;
+
+use crate::CreError;
+
+/// The values of the `D`-component node-major field `u` at the nodes `nodes` of a cell
+/// (node-major, `D` per node).
+pub fn cell_values<const D: usize>(u: &[f64], nodes: &[usize]) -> Vec<f64> {
+    nodes
+        .iter()
+        .flat_map(|&n| (0..D).map(move |k| u[D * n + k]))
+        .collect()
+}
+
+/// `Ok` if the point geometry `g` of cell `c` (of type `kind`) has a positive Jacobian,
+/// [`alea_fem::FemError::BadJacobian`] otherwise.
+#[inline]
+pub fn check_jacobian(g: &PointGeometry, c: usize, kind: CellType) -> Result<(), CreError> {
+    if g.det <= 0.0 {
+        return Err(alea_fem::FemError::BadJacobian {
+            cell: c,
+            kind: kind.to_string(),
+            det: g.det,
+        }
+        .into());
+    }
+    Ok(())
+}
 
 /// Voigt strain `[e_xx, e_yy, g_xy]` of the FE displacement `ue` (node-major, 2 per node) at
 /// reference point `xi`, with the point geometry.

@@ -21,6 +21,8 @@ use alea_fem::kinematics::point_geometry;
 use alea_fem::{Model, Quadrature};
 
 use crate::CreError;
+use crate::fe::check_jacobian;
+use crate::linalg::cholesky_factor;
 
 /// Stiffness-rule points of every cell and the maps from strains to compliance coordinates,
 /// built once per substructure (reference materials).
@@ -42,26 +44,6 @@ pub struct FeEnergySampler {
     factors: Vec<f64>,
     /// Offset of each cell's values in a sample vector (`num_cells + 1` entries).
     offsets: Vec<usize>,
-}
-
-/// Lower Cholesky factor of a symmetric positive definite `n x n` row-major matrix.
-fn cholesky(d: &[f64], n: usize) -> Option<Vec<f64>> {
-    let mut l = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..=i {
-            let s: f64 = (0..j).map(|k| l[i * n + k] * l[j * n + k]).sum();
-            if i == j {
-                let v = d[i * n + i] - s;
-                if !(v > 0.0) {
-                    return None;
-                }
-                l[i * n + i] = v.sqrt();
-            } else {
-                l[i * n + j] = (d[i * n + j] - s) / l[j * n + j];
-            }
-        }
-    }
-    Some(l)
 }
 
 impl FeEnergySampler {
@@ -97,20 +79,13 @@ impl FeEnergySampler {
                 .expect("rule just added")
                 .1;
             let coords = model.cell_coords(c);
-            let l = cholesky(&model.material(c)?.hooke(model.analysis), nv).ok_or_else(|| {
-                CreError::Invalid(format!("cell {c}: Hooke matrix is not positive definite"))
-            })?;
+            let l = cholesky_factor(&model.material(c)?.hooke(model.analysis), nv).ok_or_else(
+                || CreError::Invalid(format!("cell {c}: Hooke matrix is not positive definite")),
+            )?;
             out.factors.extend_from_slice(&l);
             for (xi, w) in rule.points.iter().zip(&rule.weights) {
                 let g = point_geometry(kind, &coords, *xi);
-                if g.det <= 0.0 {
-                    return Err(alea_fem::FemError::BadJacobian {
-                        cell: c,
-                        kind: kind.to_string(),
-                        det: g.det,
-                    }
-                    .into());
-                }
+                check_jacobian(&g, c, kind)?;
                 out.scale.push((w * g.det * th).sqrt());
                 out.grads.extend(g.grad[..g.nn].iter().flatten());
                 out.grad_offsets.push(out.grads.len());

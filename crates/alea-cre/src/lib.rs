@@ -8,7 +8,8 @@
 //! Prager-Synge identity (3.19) `||u_ex - u_hat||^2_K + ||sigma_ex - sigma_hat||^2_{K^-1} =
 //! 2 e^2`, so `theta = sqrt(2) e` bounds the energy-norm error `||u_ex - u_h||_K =
 //! (int (sigma_ex - sigma_h) : eps(u_ex - u_h))^(1/2)`. We take `u_hat = u_h` and build
-//! `sigma_hat` by the standard EET technique ([`eet`] in 2D, [`solid`] in 3D): phase 1
+//! `sigma_hat` by the standard EET technique ([`eet`] in 2D, [`solid`] in 3D, phase 1 one
+//! kernel generic over the cell family: `kernel`): phase 1
 //! (3.20)-(3.22) equilibrated edge (2D) or face (3D) tractions from the prolongation condition,
 //! node by node; phase 2 (3.23) element-by-element Neumann problems solved with degree `p + 3`
 //! polynomials. Element contributions
@@ -92,6 +93,7 @@
 //! unknowns per cell (99 for Tet4/Hex8 at `p + 3`, 162 for Tet10), about three times a
 //! deterministic LATIN solve on the 3D benchmark (`BENCHMARKS.md`).
 
+mod contribution;
 mod data;
 mod domain;
 pub mod eet;
@@ -100,6 +102,8 @@ pub mod estimator;
 mod fe;
 mod fe_samples;
 pub mod interface;
+mod kernel;
+mod legendre;
 mod linalg;
 pub mod poly;
 mod result;
@@ -108,6 +112,7 @@ pub mod solid;
 mod substructure;
 pub mod topology;
 
+pub use contribution::ElementContribution;
 pub use data::{
     AffineBody, FaceProjections, FacetProjections, LoadData, SideForces, TractionField, VectorField,
 };

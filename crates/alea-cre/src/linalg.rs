@@ -1,4 +1,4 @@
-//! Small dense linear algebra: Cholesky solve and the least-norm solution of small (possibly
+//! Small dense linear algebra: Cholesky factor and solve, and the least-norm solution of small (possibly
 //! singular) systems through a symmetric eigendecomposition (cyclic Jacobi).
 
 /// Solves `a x = b` in place for a symmetric positive definite row-major `n x n` matrix `a`
@@ -37,6 +37,26 @@ pub fn cholesky_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
         b[i] = s / a[i * n + i];
     }
     true
+}
+
+/// Lower Cholesky factor of a symmetric positive definite `n x n` row-major matrix.
+pub fn cholesky_factor(d: &[f64], n: usize) -> Option<Vec<f64>> {
+    let mut l = vec![0.0; n * n];
+    for i in 0..n {
+        for j in 0..=i {
+            let s: f64 = (0..j).map(|k| l[i * n + k] * l[j * n + k]).sum();
+            if i == j {
+                let v = d[i * n + i] - s;
+                if !(v > 0.0) {
+                    return None;
+                }
+                l[i * n + i] = v.sqrt();
+            } else {
+                l[i * n + j] = (d[i * n + j] - s) / l[j * n + j];
+            }
+        }
+    }
+    Some(l)
 }
 
 /// Eigen-decomposition of a symmetric row-major `n x n` matrix by cyclic Jacobi rotations:
@@ -94,13 +114,9 @@ pub fn sym_eigen(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>) {
     ((0..n).map(|i| a[i * n + i]).collect(), v)
 }
 
-/// Least-change solution of the underdetermined (possibly singular) system `A x = c`
-/// (`m x n`, row-major): `x = x_bar + A^T lambda` with `lambda = (A A^T)^+ (c - A x_bar)`, i.e.
-/// the `x` closest to `x_bar` among the least-squares solutions. Returns `(x, |A x - c|)`.
-pub fn least_change(a: &[f64], m: usize, n: usize, c: &[f64], x_bar: &[f64]) -> (Vec<f64>, f64) {
-    let mut r: Vec<f64> = (0..m)
-        .map(|i| c[i] - (0..n).map(|j| a[i * n + j] * x_bar[j]).sum::<f64>())
-        .collect();
+/// Eigen-decomposition `(lambda, V)` of `A A^T` (`A` row-major `m x n`, [`sym_eigen`]) and
+/// which eigenvalues the pseudo-inverse keeps (positive and above `1e-11` of the largest).
+fn gram_eigen(a: &[f64], m: usize, n: usize) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
     let mut aat = vec![0.0; m * m];
     for i in 0..m {
         for j in 0..m {
@@ -109,9 +125,21 @@ pub fn least_change(a: &[f64], m: usize, n: usize, c: &[f64], x_bar: &[f64]) -> 
     }
     let (lam, v) = sym_eigen(&aat, m);
     let lmax = lam.iter().fold(0.0f64, |s, &l| s.max(l.abs()));
+    let kept = lam.iter().map(|&l| l > 1e-11 * lmax && l > 0.0).collect();
+    (lam, v, kept)
+}
+
+/// Least-change solution of the underdetermined (possibly singular) system `A x = c`
+/// (`m x n`, row-major): `x = x_bar + A^T lambda` with `lambda = (A A^T)^+ (c - A x_bar)`, i.e.
+/// the `x` closest to `x_bar` among the least-squares solutions. Returns `(x, |A x - c|)`.
+pub fn least_change(a: &[f64], m: usize, n: usize, c: &[f64], x_bar: &[f64]) -> (Vec<f64>, f64) {
+    let mut r: Vec<f64> = (0..m)
+        .map(|i| c[i] - (0..n).map(|j| a[i * n + j] * x_bar[j]).sum::<f64>())
+        .collect();
+    let (lam, v, kept) = gram_eigen(a, m, n);
     let mut mult = vec![0.0; m];
     for k in 0..m {
-        if lam[k] > 1e-11 * lmax && lam[k] > 0.0 {
+        if kept[k] {
             let proj: f64 = (0..m).map(|i| v[i * m + k] * r[i]).sum::<f64>() / lam[k];
             for i in 0..m {
                 mult[i] += proj * v[i * m + k];
@@ -133,18 +161,11 @@ pub fn least_change(a: &[f64], m: usize, n: usize, c: &[f64], x_bar: &[f64]) -> 
 /// `x = x_bar + P (c - A x_bar)` (same eigenvalue cut-off), so a system whose matrix does not
 /// change is solved for any `c` and `x_bar` by two small products.
 pub fn least_change_operator(a: &[f64], m: usize, n: usize) -> Vec<f64> {
-    let mut aat = vec![0.0; m * m];
-    for i in 0..m {
-        for j in 0..m {
-            aat[i * m + j] = (0..n).map(|k| a[i * n + k] * a[j * n + k]).sum();
-        }
-    }
-    let (lam, v) = sym_eigen(&aat, m);
-    let lmax = lam.iter().fold(0.0f64, |s, &l| s.max(l.abs()));
+    let (lam, v, kept) = gram_eigen(a, m, n);
     // (A A^T)^+ = sum_k v_k v_k^T / lambda_k over the kept eigenvalues.
     let mut pinv = vec![0.0; m * m];
     for k in 0..m {
-        if lam[k] > 1e-11 * lmax && lam[k] > 0.0 {
+        if kept[k] {
             for i in 0..m {
                 for j in 0..m {
                     pinv[i * m + j] += v[i * m + k] * v[j * m + k] / lam[k];

@@ -29,7 +29,8 @@ use alea_mesh::CellType;
 use crate::CreError;
 use crate::domain::{CreOptions, DomainEstimate};
 use crate::eet::phase2::Phase2Rules;
-use crate::fe::{hooke, strain_h};
+use crate::fe::{cell_values, check_jacobian, hooke, strain_h};
+use crate::linalg::cholesky_factor;
 use crate::poly::{PolyPoint, PolySpace};
 use crate::topology::cell_is_curved;
 
@@ -72,22 +73,15 @@ fn plane_stresses(
 
 /// Lower Cholesky factor of a symmetric positive definite 3 x 3 matrix.
 fn cholesky3(d: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
-    let mut l = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..=i {
-            let s: f64 = (0..j).map(|k| l[i][k] * l[j][k]).sum();
-            if i == j {
-                let v = d[i][i] - s;
-                if !(v > 0.0) {
-                    return None;
-                }
-                l[i][i] = v.sqrt();
-            } else {
-                l[i][j] = (d[i][j] - s) / l[j][j];
-            }
-        }
-    }
-    Some(l)
+    let l = cholesky_factor(d.as_flattened(), 3)?;
+    Some([0, 1, 2].map(|i| [l[3 * i], l[3 * i + 1], l[3 * i + 2]]))
+}
+
+/// `R^T e` for the lower factor `R`: the compliance coordinates of the stress `R R^T e` up to
+/// the point's weight.
+#[inline]
+fn transposed_product(l: &[[f64; 3]; 3], e: &[f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| (i..3).map(|k| l[k][i] * e[k]).sum())
 }
 
 /// Solves `L y = s` (lower triangular).
@@ -139,14 +133,7 @@ impl EnergySampler {
             let mut pts = Vec::with_capacity(rule.len());
             for (xi, w) in rule.points.iter().zip(&rule.weights) {
                 let (_, g) = strain_h(kind, &coords, &zero, *xi);
-                if g.det <= 0.0 {
-                    return Err(alea_fem::FemError::BadJacobian {
-                        cell: c,
-                        kind: kind.to_string(),
-                        det: g.det,
-                    }
-                    .into());
-                }
+                check_jacobian(&g, c, kind)?;
                 pts.push((*xi, g.x, (w * g.det * th).sqrt()));
             }
             offsets.push(offsets[c] + 3 * pts.len());
@@ -188,17 +175,12 @@ impl EnergySampler {
         for (c, pts) in self.points.iter().enumerate() {
             let kind = mesh.cell_type(c);
             let coords = model.cell_coords(c);
-            let ue: Vec<f64> = mesh
-                .cell_nodes(c)
-                .iter()
-                .flat_map(|&n| [u[2 * n], u[2 * n + 1]])
-                .collect();
+            let ue: Vec<f64> = cell_values::<2>(u, mesh.cell_nodes(c));
             let l = &self.factors[c];
             for (xi, _, s) in pts {
                 let (e, _) = strain_h(kind, &coords, &ue, *xi);
                 // y = R^-1 (alpha R R^T e) = alpha R^T e.
-                for i in 0..3 {
-                    let v: f64 = (i..3).map(|k| l[k][i] * e[k]).sum();
+                for v in transposed_product(l, &e) {
                     out.push(s * alpha * v);
                 }
             }
@@ -234,8 +216,7 @@ impl EnergySampler {
             let l = &self.factors[c];
             for (xi, x, s) in &self.points[c] {
                 let e = strain(c, *xi, *x);
-                for i in 0..3 {
-                    let v: f64 = (i..3).map(|k| l[k][i] * e[k]).sum();
+                for v in transposed_product(l, &e) {
                     out.push(s * v);
                 }
             }
@@ -249,11 +230,7 @@ impl EnergySampler {
     /// If `c` is not a cell of `model` or `u` is too short.
     pub fn strain_at(model: &Model, u: &[f64], c: usize, xi: [f64; 3]) -> [f64; 3] {
         let mesh = &model.mesh;
-        let ue: Vec<f64> = mesh
-            .cell_nodes(c)
-            .iter()
-            .flat_map(|&n| [u[2 * n], u[2 * n + 1]])
-            .collect();
+        let ue: Vec<f64> = cell_values::<2>(u, mesh.cell_nodes(c));
         strain_h(mesh.cell_type(c), &model.cell_coords(c), &ue, xi).0
     }
 
@@ -309,8 +286,7 @@ impl EnergySampler {
                         e[k] += aj * ej[k];
                     }
                 }
-                for i in 0..3 {
-                    let v: f64 = (i..3).map(|k| l[k][i] * e[k]).sum();
+                for v in transposed_product(l, &e) {
                     out.push(s * alpha * v);
                 }
             }

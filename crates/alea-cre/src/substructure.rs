@@ -207,7 +207,7 @@ pub fn estimate_latin_direct(
         let (refs, face_refs) = if solid {
             let p1 = face_projections(&models[spec.sub1], u(spec.sub1), &spec.group1)?;
             let p2 = face_projections(&models[spec.sub2], u(spec.sub2), &spec.group2)?;
-            let [a, b] = average_face_references(ir, p1, p2);
+            let [a, b] = average_references(ir, p1, p2);
             ([None, None], [Some(a), Some(b)])
         } else {
             let p1 = facet_projections(&models[spec.sub1], u(spec.sub1), &spec.group1)?;
@@ -320,7 +320,7 @@ impl LatinEstimator {
                 let mut p2 = face_projections(m2, u2, &spec.group2)?;
                 scale_projections(&mut p1, a1);
                 scale_projections(&mut p2, a2);
-                let [a, b] = average_face_references(ir, p1, p2);
+                let [a, b] = average_references(ir, p1, p2);
                 ([None, None], [Some(a), Some(b)])
             } else {
                 let mut p1 = facet_projections(m1, u1, &spec.group1)?;
@@ -365,15 +365,46 @@ fn scale_projections<K, const D: usize>(p: &mut HashMap<K, Vec<(usize, [f64; D])
     }
 }
 
-/// Target projections of both sides of an interface: the average of the two sides' FE traction
-/// projections (side 2's taken with the opposite sign, through the node pairing), so that the
-/// two sides' densities are exactly opposite once their nodal forces are (converged LATIN).
-/// Facets without a matching facet on the other side keep their own projections.
-fn average_references(
+/// Target projections `(node, b)` per facet key (2D: [`FacetProjections`], 3D:
+/// [`FaceProjections`]).
+type Projections<K, const D: usize> = HashMap<K, Vec<(usize, [f64; D])>>;
+
+/// The key of a facet's partner on the other side of an interface (`partner` the node pairing):
+/// the sorted partner nodes, if every node has one.
+trait FacetKey: Sized {
+    fn partner(&self, partner: &HashMap<usize, usize>) -> Option<Self>;
+}
+
+impl FacetKey for [usize; 2] {
+    fn partner(&self, partner: &HashMap<usize, usize>) -> Option<Self> {
+        let (Some(&a), Some(&b)) = (partner.get(&self[0]), partner.get(&self[1])) else {
+            return None;
+        };
+        Some([a.min(b), a.max(b)])
+    }
+}
+
+impl FacetKey for Vec<usize> {
+    fn partner(&self, partner: &HashMap<usize, usize>) -> Option<Self> {
+        let mut key = self
+            .iter()
+            .map(|n| partner.get(n).copied())
+            .collect::<Option<Vec<usize>>>()?;
+        key.sort_unstable();
+        Some(key)
+    }
+}
+
+/// Target projections of both sides of an interface (2D facets or 3D faces): the average of the
+/// two sides' FE traction projections (side 2's taken with the opposite sign, through the node
+/// pairing), so that the two sides' densities are exactly opposite once their nodal forces are
+/// (converged LATIN). Facets without a matching facet on the other side keep their own
+/// projections.
+fn average_references<K: FacetKey + Clone + Eq + std::hash::Hash, const D: usize>(
     ir: &InterfaceResult,
-    p1: FacetProjections,
-    p2: FacetProjections,
-) -> [FacetProjections; 2] {
+    p1: Projections<K, D>,
+    p2: Projections<K, D>,
+) -> [Projections<K, D>; 2] {
     if ir.pairing.kind != PairingKind::NodeToNode {
         // Mortar: the facets of the two sides do not correspond; each side keeps its own.
         return [p1, p2];
@@ -386,10 +417,9 @@ fn average_references(
     let mut r1 = p1.clone();
     let mut r2 = p2.clone();
     for (key, list1) in &p1 {
-        let (Some(&a), Some(&b)) = (partner.get(&key[0]), partner.get(&key[1])) else {
+        let Some(key2) = key.partner(&partner) else {
             continue;
         };
-        let key2 = [a.min(b), a.max(b)];
         let Some(list2) = p2.get(&key2) else {
             continue;
         };
@@ -402,62 +432,7 @@ fn average_references(
                 .and_then(|n2| list2.iter().find(|(m, _)| m == n2).map(|&(m, v)| (m, v)));
             match found {
                 Some((n2, v2)) => {
-                    let avg = [0.5 * (v1[0] - v2[0]), 0.5 * (v1[1] - v2[1])];
-                    avg1.push((n1, avg));
-                    avg2.push((n2, [-avg[0], -avg[1]]));
-                }
-                None => complete = false,
-            }
-        }
-        if complete {
-            r1.insert(*key, avg1);
-            r2.insert(key2, avg2);
-        }
-    }
-    [r1, r2]
-}
-
-/// The 3D counterpart of [`average_references`]: the average of the two sides' FE traction
-/// projections on each pair of matching faces (side 2's with the opposite sign, through the
-/// node pairing).
-fn average_face_references(
-    ir: &InterfaceResult,
-    p1: FaceProjections,
-    p2: FaceProjections,
-) -> [FaceProjections; 2] {
-    if ir.pairing.kind != PairingKind::NodeToNode {
-        // Mortar: the faces of the two sides do not correspond; each side keeps its own.
-        return [p1, p2];
-    }
-    let partner: HashMap<usize, usize> = ir.nodes[0]
-        .iter()
-        .copied()
-        .zip(ir.nodes[1].iter().copied())
-        .collect();
-    let mut r1 = p1.clone();
-    let mut r2 = p2.clone();
-    for (key, list1) in &p1 {
-        let Some(mut key2) = key
-            .iter()
-            .map(|n| partner.get(n).copied())
-            .collect::<Option<Vec<usize>>>()
-        else {
-            continue;
-        };
-        key2.sort_unstable();
-        let Some(list2) = p2.get(&key2) else {
-            continue;
-        };
-        let mut avg1 = Vec::with_capacity(list1.len());
-        let mut avg2 = Vec::with_capacity(list1.len());
-        let mut complete = true;
-        for &(n1, v1) in list1 {
-            let found = partner
-                .get(&n1)
-                .and_then(|n2| list2.iter().find(|(m, _)| m == n2).map(|&(m, v)| (m, v)));
-            match found {
-                Some((n2, v2)) => {
-                    let avg = [0, 1, 2].map(|c| 0.5 * (v1[c] - v2[c]));
+                    let avg: [f64; D] = std::array::from_fn(|c| 0.5 * (v1[c] - v2[c]));
                     avg1.push((n1, avg));
                     avg2.push((n2, avg.map(|v| -v)));
                 }

@@ -17,8 +17,10 @@
 //!   load rule, computed on first use); a general one is integrated on that rule as in the
 //!   direct path.
 //!
+//! - the edge mass matrices (recovery of the densities from their projections).
+//!
 //! Prescribed tractions and interface sides (boundary edges, run-dependent functions and forces)
-//! are handled as in the direct path (`super::phase1::EdgeLoads`).
+//! are handled as in the direct path (`crate::kernel::loads::SideLoads`).
 
 use std::sync::{Arc, OnceLock};
 
@@ -27,10 +29,17 @@ use alea_fem::{DofMap, Model, Quadrature, kinematics::point_geometry};
 use alea_mesh::CellType;
 use rayon::prelude::*;
 
-use super::phase1::{EdgeLoads, EdgeTractions, NodeFrame, NodeSystem, node_frames};
+use super::phase1::{EdgeTractions, edge_density};
+use super::projections::add_prescribed_tractions;
 use crate::CreError;
 use crate::data::{AffineBody, SideForces, TractionField, VectorField};
 use crate::fe::{facet_point, gauss01, hooke, mul3, traction_of};
+use crate::kernel::family::CellFamily;
+use crate::kernel::frames::node_frames;
+use crate::kernel::loads::SideLoads;
+use crate::kernel::node_system::{NodeSolution, NodeSystem, gather_node_solutions, node_rhs};
+use crate::kernel::phase1::{add_interface_sides, add_recovered};
+use crate::kernel::vector::Frame;
 use crate::linalg::least_change_operator;
 use crate::topology::{EdgePoint, Topology};
 
@@ -107,6 +116,17 @@ fn strain_at(
     (e, det)
 }
 
+/// The displacements `u` (node-major) of the nodes `nodes` of a cell, without allocation.
+#[inline]
+fn cell_dofs(u: &[f64], nodes: &[usize]) -> [f64; 2 * MAX_NODES] {
+    let mut ue = [0.0; 2 * MAX_NODES];
+    for (a, &nd) in nodes.iter().enumerate() {
+        ue[2 * a] = u[2 * nd];
+        ue[2 * a + 1] = u[2 * nd + 1];
+    }
+    ue
+}
+
 /// One node system: the unknowns and the least-change data in the shared pools.
 #[derive(Clone, Copy, Debug)]
 struct FlatSystem {
@@ -126,7 +146,9 @@ struct FlatSystem {
 #[derive(Debug)]
 pub(crate) struct Phase1Cache {
     /// Constraint frame of each node.
-    pub frames: Vec<NodeFrame>,
+    pub frames: Vec<Frame<2>>,
+    /// Mass matrix of each edge.
+    masses: Vec<Vec<f64>>,
     /// Offset of each cell's first node in node-indexed per-cell arrays (`num_cells + 1`).
     cell_nodes: Vec<usize>,
     /// Shape tables by cell type (`CellType as usize`).
@@ -150,7 +172,10 @@ impl Phase1Cache {
         let mesh = &model.mesh;
         let nn = mesh.num_nodes();
         let ncell = mesh.num_cells();
-        let frames = node_frames(dofs, nn);
+        let frames = node_frames::<Topology, 2>(dofs, nn);
+        let masses = (0..topo.edges.len())
+            .map(|e| topo.side_mass(mesh, e))
+            .collect();
         let mut cell_nodes = Vec::with_capacity(ncell + 1);
         cell_nodes.push(0);
         for c in 0..ncell {
@@ -218,6 +243,7 @@ impl Phase1Cache {
         u32::try_from(values.len()).map_err(|_| too_big())?;
         Ok(Phase1Cache {
             frames,
+            masses,
             cell_nodes,
             tables,
             edge_rule,
@@ -250,6 +276,7 @@ impl Phase1Cache {
             .sum();
         8 * self.cell_nodes.len()
             + std::mem::size_of_val(&self.frames[..])
+            + self.masses.iter().map(|m| 24 + 8 * m.len()).sum::<usize>()
             + std::mem::size_of_val(&self.node_systems[..])
             + std::mem::size_of_val(&self.systems[..])
             + std::mem::size_of_val(&self.unknowns[..])
@@ -307,9 +334,8 @@ impl Phase1Cache {
     ) -> Result<EdgeTractions, CreError> {
         let mesh = &model.mesh;
         let th = model.analysis.thickness();
-        let ne = topo.edges.len();
-        let mut loads = EdgeLoads::new(ne);
-        loads.add_tractions(mesh, topo, &self.frames, tractions)?;
+        let mut loads = SideLoads::new(topo.zero_values());
+        add_prescribed_tractions(mesh, topo, &self.frames, tractions, &mut loads)?;
         let affine_moments = affine.map(|_| self.body_moments(model));
         // Element residuals Q_E(i) per unit thickness, by cell node.
         let q_res: Vec<Vec<[f64; 2]>> = (0..mesh.num_cells())
@@ -318,11 +344,7 @@ impl Phase1Cache {
                 let nodes = mesh.cell_nodes(c);
                 let kind = mesh.cell_type(c);
                 let coords = model.cell_coords(c);
-                let mut ue = [0.0; 2 * MAX_NODES];
-                for (a, &nd) in nodes.iter().enumerate() {
-                    ue[2 * a] = u[2 * nd];
-                    ue[2 * a + 1] = u[2 * nd + 1];
-                }
+                let ue = cell_dofs(u, nodes);
                 let d = hooke(model.material(c)?, model.analysis);
                 let mut q = vec![[0.0; 2]; nodes.len()];
                 let mut grad = [[0.0; 2]; MAX_NODES];
@@ -375,11 +397,7 @@ impl Phase1Cache {
                     let kind = mesh.cell_type(c);
                     let nodes = mesh.cell_nodes(c);
                     let coords = model.cell_coords(c);
-                    let mut ue = [0.0; 2 * MAX_NODES];
-                    for (a, &nd) in nodes.iter().enumerate() {
-                        ue[2 * a] = u[2 * nd];
-                        ue[2 * a + 1] = u[2 * nd + 1];
-                    }
+                    let ue = cell_dofs(u, nodes);
                     let d = hooke(model.material(c)?, model.analysis);
                     let d = d.map(|row| row.map(|v| alpha * v));
                     let facet = &self.table(kind).facets[l];
@@ -399,10 +417,18 @@ impl Phase1Cache {
                 Ok(bb)
             })
             .collect::<Result<_, _>>()?;
-        loads.add_sides(mesh, topo, &self.frames, sides, th, &b_bar)?;
+        add_interface_sides(
+            mesh,
+            &**topo,
+            &self.frames,
+            sides,
+            th,
+            &b_bar,
+            &self.masses,
+            &mut loads,
+        )?;
         // Node systems.
-        type NodeOut = (Vec<(usize, usize, [f64; 2])>, f64, f64);
-        let per_node: Vec<NodeOut> = self
+        let per_node: Vec<NodeSolution<2>> = self
             .node_systems
             .par_iter()
             .enumerate()
@@ -422,32 +448,22 @@ impl Phase1Cache {
                         let vals = &self.values[sys.values as usize..][..nu + 2 * m * nu];
                         let (sqrt_len, rest) = vals.split_at(nu);
                         let (a, p) = rest.split_at(m * nu);
-                        // Right-hand side and scales (as `NodeSystem::rhs`).
-                        rhs.clear();
-                        let mut scale = 0.0;
-                        for &c in &topo.node_cells[i] {
-                            let a_loc = mesh
-                                .cell_nodes(c)
-                                .iter()
-                                .position(|&nd| nd == i)
-                                .unwrap_or(0);
-                            let qv = q_res[c][a_loc];
-                            let v = qv[0] * r[0] + qv[1] * r[1];
-                            scale += v.abs();
-                            rhs.push(v);
-                        }
                         let known = &self.known[sys.known as usize..][..sys.nknown as usize];
-                        for &(row, e, slot, eta) in known {
-                            let bk = loads.b_known[e as usize][slot as usize];
-                            rhs[row as usize] -= eta * (bk[0] * r[0] + bk[1] * r[1]);
-                        }
-                        let known_scale: f64 = topo.node_edges[i]
-                            .iter()
-                            .map(|&e| {
-                                let bk = loads.b_known[e][topo.edges[e].slot(i).unwrap_or(0)];
-                                (bk[0] * r[0] + bk[1] * r[1]).abs()
-                            })
-                            .sum();
+                        let (scale, known_scale) = node_rhs(
+                            r,
+                            topo.node_cells[i].iter().map(|&c| {
+                                let nodes = mesh.cell_nodes(c);
+                                q_res[c][nodes.iter().position(|&nd| nd == i).unwrap_or(0)]
+                            }),
+                            known.iter().map(|&(row, e, slot, eta)| {
+                                (row as usize, e as usize, slot as usize, eta)
+                            }),
+                            topo.node_edges[i]
+                                .iter()
+                                .map(|&e| (e, topo.edges[e].slot(i).unwrap_or(0))),
+                            &loads.b_known,
+                            rhs,
+                        );
                         y_bar.clear();
                         for (&(e, slot), sq) in unknown.iter().zip(sqrt_len) {
                             let bb = b_bar[e as usize][slot as usize];
@@ -484,26 +500,16 @@ impl Phase1Cache {
                 },
             )
             .collect();
-        let mut b_unknown = vec![[[0.0; 2]; 3]; ne];
-        let (mut max_res, mut max_scale) = (0.0f64, 0.0f64);
-        for (out, res, scale) in per_node {
-            max_res = max_res.max(res);
-            max_scale = max_scale.max(scale);
-            for (e, slot, v) in out {
-                b_unknown[e][slot][0] += v[0];
-                b_unknown[e][slot][1] += v[1];
-            }
-        }
-        loads.add_unknown(mesh, topo, &b_unknown)?;
-        Ok(EdgeTractions {
-            topo: topo.clone(),
-            density: loads.density,
-            fields: tractions.iter().map(|t| t.1.clone()).collect(),
-            compatibility_defect: if max_scale > 0.0 {
-                max_res / max_scale
-            } else {
-                0.0
-            },
-        })
+        let mut b_unknown = topo.zero_values();
+        let compatibility_defect = gather_node_solutions(per_node, &mut b_unknown);
+        add_recovered(mesh, &**topo, &self.masses, &b_unknown, &mut loads.values)?;
+        Ok(EdgeTractions::from_parts(
+            topo.clone(),
+            loads.values,
+            loads.data,
+            tractions,
+            compatibility_defect,
+            edge_density,
+        ))
     }
 }

@@ -47,8 +47,9 @@ use alea_mesh::CellType;
 
 use super::phase1::EdgeTractions;
 use crate::CreError;
+use crate::contribution::{ElementContribution, balance_defect};
 use crate::data::VectorField;
-use crate::fe::{gauss01, hooke, mul3, strain_h};
+use crate::fe::{cell_values, check_jacobian, gauss01, hooke, mul3, strain_h};
 use crate::linalg::cholesky_solve;
 use crate::poly::{PolyPoint, PolySpace};
 
@@ -100,19 +101,8 @@ impl ElementStress {
     }
 }
 
-/// Phase-2 result of one element.
-#[derive(Clone, Debug)]
-pub struct ElementResult {
-    /// `theta_E^2` (thickness included).
-    pub theta2: f64,
-    /// `||u_h||^2_{K,E}` (thickness included).
-    pub energy2: f64,
-    /// Relative out-of-balance of the element loads (force and moment resultants over the sum
-    /// of absolute contributions): zero when phase 1 is exact.
-    pub balance_defect: f64,
-    /// The admissible stress.
-    pub stress: ElementStress,
-}
+/// Phase-2 result of one 2D element.
+pub type ElementResult = ElementContribution<ElementStress>;
 
 /// Quadrature rules of the local problems of one degree (built once, shared by all cells).
 #[derive(Clone, Debug)]
@@ -155,6 +145,45 @@ impl Phase2Rules {
     }
 }
 
+/// Adds the load `w f` at `x` to the force and moment (about `ctr`) resultants `res` of an
+/// element and `w (|f_x| + |f_y|)` to `abs_sum` (the balance defect).
+#[inline]
+pub(crate) fn add_resultant(
+    res: &mut [f64; 3],
+    abs_sum: &mut f64,
+    w: f64,
+    x: [f64; 3],
+    ctr: [f64; 2],
+    f: [f64; 2],
+) {
+    res[0] += w * f[0];
+    res[1] += w * f[1];
+    res[2] += w * ((x[0] - ctr[0]) * f[1] - (x[1] - ctr[1]) * f[0]);
+    *abs_sum += w * (f[0].abs() + f[1].abs());
+}
+
+/// Adds `wd eps_i^T D eps_j` to the upper triangle of the local stiffness `k` (`n x n`,
+/// row-major; `eps` the strains of the `n` basis functions at a point, `db` scratch).
+#[inline]
+pub(crate) fn add_stiffness(
+    k: &mut [f64],
+    wd: f64,
+    eps: &[[f64; 3]],
+    d: &[[f64; 3]; 3],
+    db: &mut [[f64; 3]],
+) {
+    let n = eps.len();
+    for j in 0..n {
+        db[j] = mul3(d, &eps[j]);
+    }
+    for i in 0..n {
+        for j in i..n {
+            let s = eps[i][0] * db[j][0] + eps[i][1] * db[j][1] + eps[i][2] * db[j][2];
+            k[i * n + j] += wd * s;
+        }
+    }
+}
+
 /// Solves the local problem of cell `c` and evaluates its contribution.
 pub fn element(
     model: &Model,
@@ -169,10 +198,7 @@ pub fn element(
     let kind = mesh.cell_type(c);
     let coords = model.cell_coords(c);
     let nodes = mesh.cell_nodes(c);
-    let ue: Vec<f64> = nodes
-        .iter()
-        .flat_map(|&n| [u[2 * n], u[2 * n + 1]])
-        .collect();
+    let ue: Vec<f64> = cell_values::<2>(u, nodes);
     let d = hooke(model.material(c)?, model.analysis);
     let th = model.analysis.thickness();
     let space = PolySpace::new(degree, &coords);
@@ -192,34 +218,16 @@ pub fn element(
     let mut pts = Vec::with_capacity(rule.len());
     for (xi, w) in rule.points.iter().zip(&rule.weights) {
         let (eps_h, g) = strain_h(kind, &coords, &ue, *xi);
-        if g.det <= 0.0 {
-            return Err(alea_fem::FemError::BadJacobian {
-                cell: c,
-                kind: kind.to_string(),
-                det: g.det,
-            }
-            .into());
-        }
+        check_jacobian(&g, c, kind)?;
         let wd = w * g.det;
         space.eval(g.x, false, &mut p);
-        for j in 0..nb {
-            db[j] = mul3(&d, &p.eps[j]);
-        }
-        for i in 0..nb {
-            for j in i..nb {
-                let s = p.eps[i][0] * db[j][0] + p.eps[i][1] * db[j][1] + p.eps[i][2] * db[j][2];
-                k[i * nb + j] += wd * s;
-            }
-        }
+        add_stiffness(&mut k, wd, &p.eps, &d, &mut db);
         if let Some(b) = body {
             let f = b(g.x);
             for j in 0..nb {
                 l[j] += wd * (f[0] * p.u[j][0] + f[1] * p.u[j][1]);
             }
-            res[0] += wd * f[0];
-            res[1] += wd * f[1];
-            res[2] += wd * ((g.x[0] - ctr[0]) * f[1] - (g.x[1] - ctr[1]) * f[0]);
-            abs_sum += wd * (f[0].abs() + f[1].abs());
+            add_resultant(&mut res, &mut abs_sum, wd, g.x, ctr, [f[0], f[1]]);
         }
         pts.push((wd, eps_h, p.eps.clone()));
     }
@@ -243,18 +251,11 @@ pub fn element(
             for j in 0..nb {
                 l[j] += wl * (t[0] * p.u[j][0] + t[1] * p.u[j][1]);
             }
-            res[0] += wl * t[0];
-            res[1] += wl * t[1];
-            res[2] += wl * ((x[0] - ctr[0]) * t[1] - (x[1] - ctr[1]) * t[0]);
-            abs_sum += wl * (t[0].abs() + t[1].abs());
+            add_resultant(&mut res, &mut abs_sum, wl, x, ctr, [t[0], t[1]]);
         }
     }
     let h = space.scale;
-    let balance_defect = if abs_sum > 0.0 {
-        (res[0].abs() + res[1].abs() + res[2].abs() / h) / abs_sum
-    } else {
-        0.0
-    };
+    let balance_defect = balance_defect(&res[..2], &res[2..], h, abs_sum);
     if !cholesky_solve(&mut k, &mut l, nb) {
         return Err(CreError::LocalSolve { cell: c });
     }

@@ -45,10 +45,11 @@ use alea_mesh::CellType;
 use rayon::prelude::*;
 
 use super::phase1::EdgeTractions;
-use super::phase2::{ElementResult, ElementStress, Phase2Rules};
+use super::phase2::{ElementResult, ElementStress, Phase2Rules, add_resultant, add_stiffness};
 use crate::CreError;
+use crate::contribution::balance_defect;
 use crate::data::{AffineBody, VectorField};
-use crate::fe::{gauss01, hooke, mul3};
+use crate::fe::{check_jacobian, gauss01, hooke, mul3};
 use crate::poly::{PolyPoint, PolySpace};
 use crate::topology::cell_is_curved;
 
@@ -220,10 +221,7 @@ impl Phase2Cache {
                 space.scalars([x[0], x[1]], psi);
                 let wt = [wl * t[0], wl * t[1]];
                 space.accumulate(l, |comp, sc| wt[comp] * psi[sc]);
-                res[0] += wl * t[0];
-                res[1] += wl * t[1];
-                res[2] += wl * ((x[0] - ctr[0]) * t[1] - (x[1] - ctr[1]) * t[0]);
-                abs_sum += wl * (t[0].abs() + t[1].abs());
+                add_resultant(&mut res, &mut abs_sum, wl, x, ctr, [t[0], t[1]]);
             }
         }
         // Body force.
@@ -265,18 +263,11 @@ impl Phase2Cache {
                 space.scalars([g.x[0], g.x[1]], psi);
                 let wf = [wd * f[0], wd * f[1]];
                 space.accumulate(l, |comp, sc| wf[comp] * psi[sc]);
-                res[0] += wd * f[0];
-                res[1] += wd * f[1];
-                res[2] += wd * ((g.x[0] - ctr[0]) * f[1] - (g.x[1] - ctr[1]) * f[0]);
-                abs_sum += wd * (f[0].abs() + f[1].abs());
+                add_resultant(&mut res, &mut abs_sum, wd, g.x, ctr, [f[0], f[1]]);
             }
         }
         let h = space.scale;
-        let balance_defect = if abs_sum > 0.0 {
-            (res[0].abs() + res[1].abs() + res[2].abs() / h) / abs_sum
-        } else {
-            0.0
-        };
+        let balance_defect = balance_defect(&res[..2], &res[2..], h, abs_sum);
         // y = L^-1 l, in place.
         let lf = &self.data[cd.offset..cd.offset + n * (n + 1) / 2];
         for i in 0..n {
@@ -412,25 +403,10 @@ fn cell_data(
     let mut points: Vec<StrainPoint> = Vec::with_capacity(rule.len());
     for (xi, w) in rule.points.iter().zip(&rule.weights) {
         let geo = point_geometry(kind, &coords, *xi);
-        if geo.det <= 0.0 {
-            return Err(alea_fem::FemError::BadJacobian {
-                cell: c,
-                kind: kind.to_string(),
-                det: geo.det,
-            }
-            .into());
-        }
+        check_jacobian(&geo, c, kind)?;
         let wd = w * geo.det;
         space.eval(geo.x, false, &mut p);
-        for j in 0..n {
-            db[j] = mul3(&d, &p.eps[j]);
-        }
-        for i in 0..n {
-            for j in i..n {
-                let s = p.eps[i][0] * db[j][0] + p.eps[i][1] * db[j][1] + p.eps[i][2] * db[j][2];
-                k[i * n + j] += wd * s;
-            }
-        }
+        add_stiffness(&mut k, wd, &p.eps, &d, &mut db);
         // FE strain operator columns: eps(N_a e_x) = [gx, 0, gy], eps(N_a e_y) = [0, gy, gx].
         let mut bm = vec![[0.0; 3]; m];
         for a in 0..nn {

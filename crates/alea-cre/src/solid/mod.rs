@@ -1,6 +1,6 @@
 //! The standard EET technique in 3D (Tet4, Tet10, Hex8): the 2D construction of [`crate::eet`]
 //! with faces in place of edges (Ladeveze-Leguillon 1983; Ladeveze-Pelle 2004 ch. 2; thesis
-//! 3.1.1.4 b).
+//! 3.1.1.4 b). Phase 1 is the same generic kernel (`crate::kernel`) on the faces.
 //!
 //! **Phase 1** ([`phase1`]): traction densities `F_hat` on the element faces, of the face's
 //! FE degree (linear on Tri3 faces, bilinear on Quad4, quadratic on Tri6), such that every
@@ -37,8 +37,10 @@
 //! node by node between the interface faces around each node, as in 2D, and become known face
 //! densities of phase 1.
 
+mod family;
 pub mod phase1;
 pub mod phase2;
 pub mod poly;
+mod projections;
 pub mod sides;
 pub mod topology;

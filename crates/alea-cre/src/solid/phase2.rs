@@ -23,13 +23,15 @@ use alea_fem::{Model, Quadrature, kinematics::point_geometry};
 use alea_mesh::CellType;
 
 use super::phase1::FaceTractions;
-use super::poly::{PolySpace3, ScalarPoint};
+use super::poly::{PolySpace3, ScalarPoint, voigt_index};
 use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::Solve;
 use faer::{Accum, Mat, MatRef, Par, Side};
 
 use crate::CreError;
+use crate::contribution::{ElementContribution, balance_defect};
 use crate::data::VectorField;
+use crate::fe::check_jacobian;
 
 /// The admissible stress of one 3D element: `sigma_hat = K eps(sum_c sum_s u[c][s] phi_s e_c)`.
 #[derive(Clone, Debug)]
@@ -87,17 +89,7 @@ impl SolidElementStress {
                 }
             }
         }
-        let d2 = |c: usize, i: usize, j: usize| -> f64 {
-            let k = match (i.min(j), i.max(j)) {
-                (0, 0) => 0,
-                (1, 1) => 1,
-                (2, 2) => 2,
-                (1, 2) => 3,
-                (0, 2) => 4,
-                _ => 5,
-            };
-            h[c][k]
-        };
+        let d2 = |c: usize, i: usize, j: usize| -> f64 { h[c][voigt_index(i, j)] };
         let (lam, mu) = self.lame;
         // div sigma = (lambda + mu) grad div u + mu lap u.
         let mut out = [0.0; 3];
@@ -111,18 +103,7 @@ impl SolidElementStress {
 }
 
 /// Phase-2 result of one 3D element.
-#[derive(Clone, Debug)]
-pub struct SolidElementResult {
-    /// `theta_E^2`.
-    pub theta2: f64,
-    /// `||u_h||^2_{K,E}`.
-    pub energy2: f64,
-    /// Relative out-of-balance of the element loads (force and moment resultants over the sum
-    /// of absolute contributions): zero when phase 1 is exact.
-    pub balance_defect: f64,
-    /// The admissible stress.
-    pub stress: SolidElementStress,
-}
+pub type SolidElementResult = ElementContribution<SolidElementStress>;
 
 /// Quadrature rules of the 3D local problems of one degree (built once, shared by all cells).
 #[derive(Clone, Debug)]
@@ -178,8 +159,8 @@ pub fn element(
         &rules.tet
     };
     // Scalar integrals G_pq = B_p^T B_q with B_d[q][s] = sqrt(w_q det_q) d_d phi_s(x_q)
-    // (column-major npts x ns), for (p, q) in PAIRS.
-    const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+    // (column-major npts x ns), for (p, q) in PAIRS (Voigt order, `voigt_index`).
+    const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)];
     let npts = rule.len();
     let mut bmat = [
         vec![0.0; npts * ns],
@@ -194,14 +175,7 @@ pub fn element(
     let mut pts: Vec<VolumePoint> = Vec::with_capacity(rule.len());
     for (q, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
         let g = point_geometry(kind, &coords, *xi);
-        if g.det <= 0.0 {
-            return Err(alea_fem::FemError::BadJacobian {
-                cell: c,
-                kind: kind.to_string(),
-                det: g.det,
-            }
-            .into());
-        }
+        check_jacobian(&g, c, kind)?;
         let wd = w * g.det;
         let mut gh = [[0.0; 3]; 3];
         for (a, ua) in ue.iter().enumerate() {
@@ -269,28 +243,15 @@ pub fn element(
         })
         .collect();
     let h = space.scale;
-    let balance_defect = if abs_sum > 0.0 {
-        (res[..3].iter().map(|v| v.abs()).sum::<f64>()
-            + res[3..].iter().map(|v| v.abs()).sum::<f64>() / h)
-            / abs_sum
-    } else {
-        0.0
-    };
-    // G_pq[a][b] for any p, q.
-    let gidx = |pp: usize, qq: usize| -> (usize, bool) {
-        let k = match (pp.min(qq), pp.max(qq)) {
-            (0, 0) => 0,
-            (1, 1) => 1,
-            (2, 2) => 2,
-            (0, 1) => 3,
-            (0, 2) => 4,
-            _ => 5,
-        };
-        (k, pp > qq)
-    };
+    let balance_defect = balance_defect(&res[..3], &res[3..], h, abs_sum);
+    // G_pq[a][b] for any p, q (G_qp = G_pq^T).
     let gval = |pp: usize, qq: usize, a: usize, b: usize| -> f64 {
-        let (k, tr) = gidx(pp, qq);
-        if tr { gmat[k][(b, a)] } else { gmat[k][(a, b)] }
+        let k = voigt_index(pp, qq);
+        if pp > qq {
+            gmat[k][(b, a)]
+        } else {
+            gmat[k][(a, b)]
+        }
     };
     let block = |cc: usize, a: usize, d: usize, b: usize| -> f64 {
         let mut v = lam * gval(cc, d, a, b) + mu * gval(d, cc, a, b);

@@ -16,22 +16,19 @@
 //! the scalar integrals `G_pq[a][b] = int d_p phi_a d_q phi_b` and `L_c[a] = int t_c phi_a`
 //! (see [`super::phase2`]).
 
-/// Values, first and second derivatives of the 1D Legendre polynomials `P_0..=P_k` at `x`.
-fn legendre(k: usize, x: f64, p: &mut [f64], dp: &mut [f64], ddp: &mut [f64]) {
-    p[0] = 1.0;
-    dp[0] = 0.0;
-    ddp[0] = 0.0;
-    if k == 0 {
-        return;
-    }
-    p[1] = x;
-    dp[1] = 1.0;
-    ddp[1] = 0.0;
-    for n in 1..k {
-        let nf = n as f64;
-        p[n + 1] = ((2.0 * nf + 1.0) * x * p[n] - nf * p[n - 1]) / (nf + 1.0);
-        dp[n + 1] = dp[n - 1] + (2.0 * nf + 1.0) * p[n];
-        ddp[n + 1] = ddp[n - 1] + (2.0 * nf + 1.0) * dp[n];
+use crate::legendre::legendre;
+
+/// Position of the second derivative `d_i d_j` (or of the symmetric pair `(i, j)`) in Voigt
+/// order `[xx, yy, zz, yz, xz, xy]`.
+#[inline]
+pub fn voigt_index(i: usize, j: usize) -> usize {
+    match (i.min(j), i.max(j)) {
+        (0, 0) => 0,
+        (1, 1) => 1,
+        (2, 2) => 2,
+        (1, 2) => 3,
+        (0, 2) => 4,
+        _ => 5,
     }
 }
 
