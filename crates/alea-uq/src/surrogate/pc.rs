@@ -290,31 +290,28 @@ impl PcExpansion {
             .map(|(_, c)| c)
             .sum()
     }
-    /// `Var[q~] = sum_{alpha != 0} s_alpha^2`.
-    pub fn variance(&self) -> f64 {
+    /// `sum s_alpha^2` over the multi-indices `alpha` that `keep` accepts.
+    fn squares_where(&self, keep: impl Fn(&[u16]) -> bool) -> f64 {
         self.basis
             .indices()
             .iter()
             .zip(&self.coeffs)
-            .filter(|(a, _)| a.iter().any(|&v| v != 0))
+            .filter(|(a, _)| keep(a))
             .map(|(_, c)| c * c)
             .sum()
+    }
+    /// `Var[q~] = sum_{alpha != 0} s_alpha^2`.
+    pub fn variance(&self) -> f64 {
+        self.squares_where(|a| a.iter().any(|&v| v != 0))
     }
     /// First-order Sobol' indices `S_i`.
     pub fn sobol_first(&self) -> Vec<f64> {
         let v = self.variance();
         (0..self.basis.dim())
             .map(|i| {
-                self.basis
-                    .indices()
-                    .iter()
-                    .zip(&self.coeffs)
-                    .filter(|(a, _)| {
-                        a[i] > 0 && a.iter().enumerate().all(|(j, &x)| j == i || x == 0)
-                    })
-                    .map(|(_, c)| c * c)
-                    .sum::<f64>()
-                    / v
+                self.squares_where(|a| {
+                    a[i] > 0 && a.iter().enumerate().all(|(j, &x)| j == i || x == 0)
+                }) / v
             })
             .collect()
     }
@@ -322,16 +319,7 @@ impl PcExpansion {
     pub fn sobol_total(&self) -> Vec<f64> {
         let v = self.variance();
         (0..self.basis.dim())
-            .map(|i| {
-                self.basis
-                    .indices()
-                    .iter()
-                    .zip(&self.coeffs)
-                    .filter(|(a, _)| a[i] > 0)
-                    .map(|(_, c)| c * c)
-                    .sum::<f64>()
-                    / v
-            })
+            .map(|i| self.squares_where(|a| a[i] > 0) / v)
             .collect()
     }
     /// Sobol' index of the exact group of variables `vars` (interaction index):
