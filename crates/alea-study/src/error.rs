@@ -68,7 +68,7 @@ pub enum StudyError {
     Failed(String),
     /// A method's surrogate that cannot be built on its runs.
     #[error(transparent)]
-    Surrogate(#[from] crate::method::SurrogateError),
+    Surrogate(#[from] SurrogateError),
     /// The study database failed (a file-system failure is [`StudyError::Io`]).
     #[error("study database in {}: {error}", dir.display())]
     Database {
@@ -244,5 +244,23 @@ impl StudyError {
             StudyError::Busy { .. } => 5,
             _ => 4,
         }
+    }
+}
+
+/// Why a method's surrogate cannot be built.
+#[derive(Debug, thiserror::Error)]
+pub enum SurrogateError {
+    /// The fit failed (basis, regression, projection, grid).
+    #[error(transparent)]
+    Uq(#[from] alea_uq::UqError),
+    /// The method has no surrogate on these runs (the reason).
+    #[error("{0}")]
+    Unavailable(&'static str),
+}
+
+/// The message, for callers that keep a method's failure as text.
+impl From<SurrogateError> for String {
+    fn from(e: SurrogateError) -> String {
+        e.to_string()
     }
 }

@@ -11,6 +11,7 @@ use alea_uq::design::{self, Design};
 use alea_uq::quadrature::QuadratureRule;
 use alea_uq::surrogate::{LinearSurrogate, MonomialSurface, PcSurrogate, StochasticMesh};
 
+pub use crate::error::SurrogateError;
 use crate::spec::MethodSpec;
 use crate::{ParamSpace, Source, StudyError};
 
@@ -409,24 +410,6 @@ fn adaptive_settings(
         target,
         max_runs,
     })
-}
-
-/// Why a method's surrogate cannot be built.
-#[derive(Debug, thiserror::Error)]
-pub enum SurrogateError {
-    /// The fit failed (basis, regression, projection, grid).
-    #[error(transparent)]
-    Uq(#[from] alea_uq::UqError),
-    /// The method has no surrogate on these runs (the reason).
-    #[error("{0}")]
-    Unavailable(&'static str),
-}
-
-/// The message, for callers that keep a method's failure as text.
-impl From<SurrogateError> for String {
-    fn from(e: SurrogateError) -> String {
-        e.to_string()
-    }
 }
 
 /// A surrogate in physical coordinates, whatever its internal coordinates.
