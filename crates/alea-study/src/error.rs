@@ -264,3 +264,67 @@ impl From<SurrogateError> for String {
         e.to_string()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The typed variants print the texts their `Other(String)` predecessors printed, and
+    /// keep their exit code (4, a computation failure).
+    #[test]
+    fn typed_variants_keep_the_former_messages_and_exit_code() {
+        let cases = [
+            (
+                StudyError::NoEstimate {
+                    params: vec![1.0, 0.5],
+                    restart_hint: true,
+                },
+                "the run at [1.0, 0.5] has no stored error estimate (a study run before error \
+                 estimation was enabled: run it again with --restart)",
+            ),
+            (
+                StudyError::NoEstimate {
+                    params: vec![2.0],
+                    restart_hint: false,
+                },
+                "the run at [2.0] has no stored error estimate",
+            ),
+            (
+                StudyError::StaleEstimate { restart_hint: true },
+                "a stored error estimate does not match the model (run the study with --restart)",
+            ),
+            (
+                StudyError::StaleEstimate {
+                    restart_hint: false,
+                },
+                "a stored error estimate does not match the model",
+            ),
+            (
+                StudyError::ForeignFile {
+                    path: "d/f.bin".into(),
+                    hash: "abc".into(),
+                    study: "def".into(),
+                },
+                "d/f.bin belongs to another study (hash abc, this study def); run again with \
+                 --restart",
+            ),
+            (
+                StudyError::FieldSize {
+                    params: vec![0.25],
+                    found: 3,
+                    expected: 4,
+                },
+                "field file of the run at [0.25] has 3 values, expected 4",
+            ),
+            (StudyError::Poisoned("run list"), "run list lock poisoned"),
+            (
+                StudyError::Surrogate(SurrogateError::Unavailable("Monte Carlo has no surrogate")),
+                "Monte Carlo has no surrogate",
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+            assert_eq!(e.exit_code(), 4);
+        }
+    }
+}
