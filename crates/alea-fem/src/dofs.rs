@@ -11,6 +11,7 @@
 //! accepted; contradictory ones are an error.
 
 use alea_mesh::Mesh;
+use alea_mesh::vec3::{dot, norm};
 
 use crate::FemError;
 
@@ -98,7 +99,7 @@ impl Constraints {
             }
         }
         for (n, v) in normals {
-            let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            let len = norm(&v);
             if len == 0.0 {
                 return Err(FemError::Setup(format!(
                     "normal of facet group '{group}' vanishes at node {n}"
@@ -112,7 +113,7 @@ impl Constraints {
 
     /// Imposes `u . dir = value` at a single node.
     pub fn fix_direction(&mut self, node: usize, dir: [f64; 3], value: f64) -> &mut Self {
-        let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+        let len = norm(&dir);
         self.items
             .push((node, [dir[0] / len, dir[1] / len, dir[2] / len], value));
         self
@@ -143,10 +144,6 @@ pub struct DofMap {
     /// Prescribed part `u_p` of each node's displacement.
     prescribed: Vec<[f64; 3]>,
     n_free: usize,
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl DofMap {

@@ -6,6 +6,7 @@
 //! local dof `a * dim + c` is component `c` of node `a`.
 
 use alea_mesh::CellType;
+use alea_mesh::vec3::{cross, norm};
 
 use crate::reference::{MAX_NODES, shape};
 
@@ -146,12 +147,8 @@ pub fn facet_geometry(kind: CellType, coords: &[[f64; 3]], xi: [f64; 3]) -> Face
         let len = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
         ([t1[1] / len, -t1[0] / len, 0.0], len)
     } else {
-        let c = [
-            t1[1] * t2[2] - t1[2] * t2[1],
-            t1[2] * t2[0] - t1[0] * t2[2],
-            t1[0] * t2[1] - t1[1] * t2[0],
-        ];
-        let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        let c = cross(&t1, &t2);
+        let len = norm(&c);
         ([c[0] / len, c[1] / len, c[2] / len], len)
     };
     FacetGeometry { n, x, normal, jac }

@@ -23,10 +23,10 @@ mod model;
 pub mod post;
 mod problem;
 pub mod quadrature;
-pub mod reference;
 mod solver;
 mod sparse;
 
+pub use alea_mesh::reference;
 pub use assembly::{Assembled, assemble_stiffness};
 pub use dofs::{Constraints, DofMap};
 pub use error::FemError;

@@ -9,6 +9,7 @@
 //!   perpendicular to the axis (`rho` from each cell's material).
 
 use alea_mesh::CellType;
+use alea_mesh::vec3::{dot, norm};
 
 use crate::kinematics::{facet_geometry, point_geometry};
 use crate::{FemError, Model, Quadrature};
@@ -121,14 +122,14 @@ impl Loads {
         point: [f64; 3],
         axis: [f64; 3],
     ) -> Result<&mut Self, FemError> {
-        let len = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
+        let len = norm(&axis);
         if !(len > 0.0) {
             return Err(FemError::Setup("rotation axis must be non-zero".into()));
         }
         let e = [axis[0] / len, axis[1] / len, axis[2] / len];
         self.body_force(model, group, move |x, rho| {
             let r = [x[0] - point[0], x[1] - point[1], x[2] - point[2]];
-            let s = r[0] * e[0] + r[1] * e[1] + r[2] * e[2];
+            let s = dot(&r, &e);
             let w2 = rho * omega * omega;
             [
                 w2 * (r[0] - s * e[0]),

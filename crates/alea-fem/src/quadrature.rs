@@ -201,3 +201,55 @@ impl Quadrature {
         self.weights.is_empty()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn quadrature_integrates_monomials_exactly() {
+        use crate::quadrature::Quadrature;
+        // Triangle: int r^a s^b = a! b! / (a + b + 2)!.
+        let fact = |n: usize| (1..=n).product::<usize>() as f64;
+        for deg in 1..=8 {
+            let q = Quadrature::triangle(deg);
+            for a in 0..=deg {
+                let b = deg - a;
+                let got: f64 = q
+                    .points
+                    .iter()
+                    .zip(&q.weights)
+                    .map(|(p, w)| w * p[0].powi(a as i32) * p[1].powi(b as i32))
+                    .sum();
+                let want = fact(a) * fact(b) / fact(a + b + 2);
+                assert!((got - want).abs() < 1e-14, "tri deg {deg} r^{a} s^{b}");
+            }
+            let q = Quadrature::tetrahedron(deg);
+            for a in 0..=deg {
+                for b in 0..=deg - a {
+                    let c = deg - a - b;
+                    let got: f64 = q
+                        .points
+                        .iter()
+                        .zip(&q.weights)
+                        .map(|(p, w)| {
+                            w * p[0].powi(a as i32) * p[1].powi(b as i32) * p[2].powi(c as i32)
+                        })
+                        .sum();
+                    let want = fact(a) * fact(b) * fact(c) / fact(a + b + c + 3);
+                    assert!((got - want).abs() < 1e-14, "tet deg {deg}");
+                }
+            }
+        }
+        for n in 1..8 {
+            let (x, w) = crate::quadrature::gauss_legendre(n);
+            for d in 0..2 * n {
+                let got: f64 = x.iter().zip(&w).map(|(x, w)| w * x.powi(d as i32)).sum();
+                let want = if d % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (d as f64 + 1.0)
+                };
+                assert!((got - want).abs() < 1e-13, "GL n={n} x^{d}");
+            }
+        }
+    }
+}

@@ -69,6 +69,7 @@ use faer::{Mat, Side};
 use crate::equilibrium::RigidModes;
 use crate::interface::SideProjection;
 use alea_fem::{Cholesky, DofMap};
+use alea_mesh::vec3;
 
 type V3 = [f64; 3];
 
@@ -130,7 +131,7 @@ impl InterfaceModes {
             u.iter()
                 .zip(v)
                 .zip(m)
-                .map(|((a, b), w)| w * (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]))
+                .map(|((a, b), w)| w * vec3::dot(a, b))
                 .sum()
         };
         let mut modes: Vec<Vec<V3>> = Vec::new();
@@ -167,7 +168,7 @@ impl InterfaceModes {
         for (j, e) in self.modes.iter().enumerate() {
             let mut s = 0.0;
             for ((mp, ep), fp) in m.iter().zip(e).zip(f) {
-                s += mp * (ep[0] * fp[0] + ep[1] * fp[1] + ep[2] * fp[2]);
+                s += mp * vec3::dot(ep, fp);
             }
             out[self.offset + j] += s;
         }

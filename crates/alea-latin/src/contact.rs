@@ -23,6 +23,8 @@
 use std::io::Write;
 use std::path::Path;
 
+use alea_mesh::vec3::dot;
+
 use crate::{InterfaceResult, PointStatus};
 
 /// The contact fields of one interface point (module doc).
@@ -52,10 +54,6 @@ pub struct ContactRow {
     pub slip: [f64; 3],
     /// Contact status.
     pub status: PointStatus,
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 fn tangential(v: [f64; 3], n: &[f64; 3]) -> [f64; 3] {

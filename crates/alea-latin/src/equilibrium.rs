@@ -42,6 +42,7 @@
 //! diagonal of the assembly's bounding box). Small-displacement theory holds only when this is
 //! small; a drifting substructure makes it grow at every iteration.
 
+use alea_mesh::vec3::{self, cross, dot};
 use faer::{Mat, Side};
 
 /// Per-substructure data of the check, computed once at set-up.
@@ -88,14 +89,6 @@ impl SubEquilibrium {
     }
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 impl RigidModes {
     /// Rigid modes at `x`: `out[j]` is mode `j`'s displacement (`modes` entries).
     fn at(&self, x: &[f64; 3], out: &mut [[f64; 3]; 6]) {
@@ -113,7 +106,7 @@ impl RigidModes {
                 let mut e = [0.0; 3];
                 e[i] = 1.0;
                 out[i] = e;
-                out[3 + i] = cross(e, r);
+                out[3 + i] = cross(&e, &r);
             }
         }
     }
@@ -193,7 +186,7 @@ impl RigidModes {
             for (node, x) in coords.iter().enumerate() {
                 let mut v = [0.0; 3];
                 v[..dim].copy_from_slice(&f[node * dim..node * dim + dim]);
-                scale += (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                scale += vec3::norm(&v);
                 rm.at(x, &mut r);
                 for j in 0..modes {
                     gf[j] += (0..3).map(|c| r[j][c] * v[c]).sum::<f64>();
@@ -230,9 +223,9 @@ impl RigidModes {
         let mut r = [[0.0; 3]; 6];
         self.at(x, &mut r);
         for j in 0..self.modes {
-            g[j] += r[j][0] * f[0] + r[j][1] * f[1] + r[j][2] * f[2];
+            g[j] += dot(&r[j], f);
         }
-        *scale += (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+        *scale += vec3::norm(f);
     }
 
     /// The check, from the accumulated `(g, S)`, the full node-major displacement `u` (only
@@ -300,7 +293,7 @@ impl RigidModes {
                     v[c] += mode[j] * r[j][c];
                 }
             }
-            rigid = rigid.max((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt());
+            rigid = rigid.max(vec3::norm(&v));
         }
         SubEquilibrium {
             free_modes: nf,

@@ -23,6 +23,7 @@
 
 use alea_fem::{Quadrature, kinematics::facet_geometry};
 use alea_mesh::Mesh;
+use alea_mesh::vec3::norm;
 
 use crate::LatinError;
 
@@ -136,7 +137,7 @@ pub fn side_geometry(
         }
     }
     for nrm in normals.iter_mut() {
-        let l = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
+        let l = norm(nrm);
         if l > 0.0 {
             for v in nrm.iter_mut() {
                 *v /= l;

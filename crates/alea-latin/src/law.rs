@@ -30,6 +30,8 @@
 //!
 //! Finally `W_hat_1 = (-Phi - a_1)/k_1`, `W_hat_2 = (Phi - a_2)/k_2`.
 
+use alea_mesh::vec3::dot;
+
 /// Contact status of an interface point after a local stage.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PointStatus {
@@ -118,10 +120,6 @@ impl InterfaceLaw for Perfect {
 /// Unilateral contact with Coulomb friction; `mu` and the gap come from [`PointData`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CoulombContact;
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 
 impl InterfaceLaw for CoulombContact {
     fn name(&self) -> &'static str {

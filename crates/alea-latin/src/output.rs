@@ -19,6 +19,7 @@
 use std::path::{Path, PathBuf};
 
 use alea_fem::{post, von_mises};
+use alea_mesh::vec3::{dot, norm};
 use alea_mesh::vtu::{VtuWriter, write_vtm};
 
 use crate::{LatinError, LatinSolver, RunResult};
@@ -53,11 +54,11 @@ struct NodeAverage {
 impl SubFields {
     /// Sets the interface fields of `node` from its status code, normal, traction and jump.
     fn set(&mut self, node: usize, status: f64, n: &[f64; 3], fh: &[f64; 3], jump: &[f64; 3]) {
-        let fnn = fh[0] * n[0] + fh[1] * n[1] + fh[2] * n[2];
+        let fnn = dot(fh, n);
         let ft = [fh[0] - fnn * n[0], fh[1] - fnn * n[1], fh[2] - fnn * n[2]];
         self.status[node] = status;
         self.fnormal[node] = fnn;
-        self.ftangent[node] = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
+        self.ftangent[node] = norm(&ft);
         self.jump[node * 3..node * 3 + 3].copy_from_slice(jump);
     }
 }

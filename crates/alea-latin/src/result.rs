@@ -1,6 +1,7 @@
 //! Results of a LATIN run and the quantities of interest computed from them.
 
 use alea_fem::{Model, post};
+use alea_mesh::vec3::dot;
 
 use std::sync::Arc;
 
@@ -89,10 +90,6 @@ pub struct InterfaceResult {
     pub fhat: [Vec<[f64; 3]>; 2],
     /// Contact status per point.
     pub status: Vec<PointStatus>,
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl InterfaceResult {

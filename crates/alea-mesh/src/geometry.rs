@@ -4,175 +4,18 @@
 //! Reference cells: triangles and tetrahedra on the unit simplex (xi_i >= 0, sum <= 1), quads and
 //! hexahedra on [-1, 1]^d. In 2D only x and y are used. `det J` is positive for a cell oriented
 //! counter-clockwise (2D) or right-handed (3D). These are quality checks for meshes (orientation,
-//! areas); the finite-element crate has its own reference elements.
+//! areas), on the shape functions of [`crate::reference`].
 
+use crate::reference::{MAX_NODES, node_coords, shape};
 use crate::{CellType, Mesh};
-
-/// Reference coordinates of the nodes of a cell type (in node order).
-pub(crate) fn reference_nodes(kind: CellType) -> Vec<[f64; 3]> {
-    use CellType::*;
-    match kind {
-        Line2 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
-        Line3 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
-        Tri3 | Tri6 => {
-            let mut v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-            if kind == Tri6 {
-                v.extend([[0.5, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.0]]);
-            }
-            v
-        }
-        Quad4 | Quad8 => {
-            let mut v = vec![
-                [-1.0, -1.0, 0.0],
-                [1.0, -1.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [-1.0, 1.0, 0.0],
-            ];
-            if kind == Quad8 {
-                v.extend([
-                    [0.0, -1.0, 0.0],
-                    [1.0, 0.0, 0.0],
-                    [0.0, 1.0, 0.0],
-                    [-1.0, 0.0, 0.0],
-                ]);
-            }
-            v
-        }
-        Tet4 | Tet10 => {
-            let mut v = vec![
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-            ];
-            if kind == Tet10 {
-                for (a, b) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)] {
-                    let (p, q) = (v[a], v[b]);
-                    v.push([
-                        0.5 * (p[0] + q[0]),
-                        0.5 * (p[1] + q[1]),
-                        0.5 * (p[2] + q[2]),
-                    ]);
-                }
-            }
-            v
-        }
-        Hex8 => {
-            let mut v = Vec::new();
-            for z in [-1.0, 1.0] {
-                v.extend([
-                    [-1.0, -1.0, z],
-                    [1.0, -1.0, z],
-                    [1.0, 1.0, z],
-                    [-1.0, 1.0, z],
-                ]);
-            }
-            v
-        }
-    }
-}
-
-/// Derivatives dN_a/dxi_j of the shape functions at reference point `xi` (one row per node).
-pub(crate) fn shape_derivatives(kind: CellType, xi: [f64; 3]) -> Vec<[f64; 3]> {
-    use CellType::*;
-    let [r, s, t] = xi;
-    match kind {
-        Line2 => vec![[-0.5, 0.0, 0.0], [0.5, 0.0, 0.0]],
-        Line3 => vec![
-            [r - 0.5, 0.0, 0.0],
-            [r + 0.5, 0.0, 0.0],
-            [-2.0 * r, 0.0, 0.0],
-        ],
-        Tri3 => vec![[-1.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-        Tri6 => {
-            let l0 = 1.0 - r - s;
-            vec![
-                [1.0 - 4.0 * l0, 1.0 - 4.0 * l0, 0.0],
-                [4.0 * r - 1.0, 0.0, 0.0],
-                [0.0, 4.0 * s - 1.0, 0.0],
-                [4.0 * (l0 - r), -4.0 * r, 0.0],
-                [4.0 * s, 4.0 * r, 0.0],
-                [-4.0 * s, 4.0 * (l0 - s), 0.0],
-            ]
-        }
-        Quad4 => {
-            let c = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
-            c.iter()
-                .map(|[a, b]| [0.25 * a * (1.0 + b * s), 0.25 * b * (1.0 + a * r), 0.0])
-                .collect()
-        }
-        Quad8 => {
-            let c = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
-            let mut d: Vec<[f64; 3]> = c
-                .iter()
-                .map(|[a, b]| {
-                    // N = (1 + a r)(1 + b s)(a r + b s - 1) / 4
-                    [
-                        0.25 * a * (1.0 + b * s) * (2.0 * a * r + b * s),
-                        0.25 * b * (1.0 + a * r) * (a * r + 2.0 * b * s),
-                        0.0,
-                    ]
-                })
-                .collect();
-            // Mid-side: (1 - r^2)(1 + b s)/2 for b = -1, +1 and (1 + a r)(1 - s^2)/2 for a = 1, -1.
-            d.push([-r * (1.0 - s), -0.5 * (1.0 - r * r), 0.0]);
-            d.push([0.5 * (1.0 - s * s), -s * (1.0 + r), 0.0]);
-            d.push([-r * (1.0 + s), 0.5 * (1.0 - r * r), 0.0]);
-            d.push([-0.5 * (1.0 - s * s), -s * (1.0 - r), 0.0]);
-            d
-        }
-        Tet4 => vec![
-            [-1.0, -1.0, -1.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ],
-        Tet10 => {
-            let l = [1.0 - r - s - t, r, s, t];
-            // dl_i / dxi_j
-            let dl = [
-                [-1.0, -1.0, -1.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-            ];
-            let mut d = Vec::with_capacity(10);
-            for i in 0..4 {
-                let f = 4.0 * l[i] - 1.0;
-                d.push([f * dl[i][0], f * dl[i][1], f * dl[i][2]]);
-            }
-            for (a, b) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)] {
-                let mut g = [0.0; 3];
-                for (j, gj) in g.iter_mut().enumerate() {
-                    *gj = 4.0 * (dl[a][j] * l[b] + l[a] * dl[b][j]);
-                }
-                d.push(g);
-            }
-            d
-        }
-        Hex8 => {
-            let mut d = Vec::with_capacity(8);
-            for c in 0..2 {
-                let cz = if c == 0 { -1.0 } else { 1.0 };
-                for [a, b] in [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]] {
-                    d.push([
-                        0.125 * a * (1.0 + b * s) * (1.0 + cz * t),
-                        0.125 * b * (1.0 + a * r) * (1.0 + cz * t),
-                        0.125 * cz * (1.0 + a * r) * (1.0 + b * s),
-                    ]);
-                }
-            }
-            d
-        }
-    }
-}
 
 /// det J of the map of a cell with node coordinates `x` at reference point `xi` (2D cells use
 /// x and y; 1D cells give the length scale |dx/dxi|).
 pub(crate) fn jacobian_det(kind: CellType, x: &[[f64; 3]], xi: [f64; 3]) -> f64 {
-    let d = shape_derivatives(kind, xi);
+    let (mut n, mut d) = ([0.0; MAX_NODES], [[0.0; 3]; MAX_NODES]);
+    shape(kind, xi, &mut n, &mut d);
     let mut j = [[0.0; 3]; 3]; // j[i][k] = dx_i / dxi_k
-    for (a, da) in d.iter().enumerate() {
+    for (a, da) in d[..kind.num_nodes()].iter().enumerate() {
         for i in 0..3 {
             for k in 0..3 {
                 j[i][k] += x[a][i] * da[k];
@@ -268,7 +111,7 @@ impl Mesh {
     pub fn cell_min_jacobian(&self, c: usize) -> f64 {
         let kind = self.cell_type(c);
         let x = self.cell_coords(c);
-        let mut pts = reference_nodes(kind);
+        let mut pts = node_coords(kind);
         let n = pts.len() as f64;
         let mut centre = [0.0; 3];
         for p in &pts {

@@ -14,6 +14,8 @@
 //! - [`atomic::write_atomic`]: every output file is written to a temporary and renamed.
 //! - [`Mesh::cell_measure`], [`Mesh::cell_min_jacobian`]: geometric checks (areas, volumes,
 //!   orientation).
+//! - [`reference`]: shape functions of the reference cells, shared with the finite elements.
+//! - [`vec3`]: dot and cross products of 3-vectors, shared by the crates above.
 
 pub mod atomic;
 mod cell;
@@ -23,6 +25,8 @@ pub mod generate;
 mod geometry;
 pub mod gmsh;
 mod mesh;
+pub mod reference;
+pub mod vec3;
 pub mod vtu;
 
 pub use cell::CellType;

@@ -41,6 +41,18 @@ fn dense_weights(sur: &(dyn LinearSurrogate + Sync), pts: &[f64], d: usize) -> V
     out
 }
 
+/// The `weights` method of a surrogate: dense `w_k(x)` at `points` (`(n, d)`), shape `(n, K)`.
+fn weights_array<'py>(
+    py: Python<'py>,
+    sur: &(dyn LinearSurrogate + Sync),
+    points: &ArrayIn<'py>,
+    d: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let (p, n) = self::points(points, d, "weights points")?;
+    let out = py.detach(|| dense_weights(sur, &p, d));
+    array2(py, out, n, sur.num_runs())
+}
+
 /// A polynomial chaos expansion `q~(x) = sum_a s_a Psi_a(x)` in the orthonormal polynomials of
 /// independent marginals, fitted to run values.
 ///
@@ -198,10 +210,7 @@ impl PolynomialChaos {
         py: Python<'py>,
         points: ArrayIn<'py>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let d = self.dim();
-        let (p, n) = self::points(&points, d, "weights points")?;
-        let out = py.detach(|| dense_weights(&self.sur, &p, d));
-        array2(py, out, n, self.sur.num_runs())
+        weights_array(py, &self.sur, &points, self.dim())
     }
 
     /// Mean `E[q~] = s_0`.
@@ -456,10 +465,7 @@ impl PiecewiseLinear {
         py: Python<'py>,
         points: ArrayIn<'py>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let d = self.lo.len();
-        let (p, n) = self::points(&points, d, "weights points")?;
-        let out = py.detach(|| dense_weights(&self.mesh, &p, d));
-        array2(py, out, n, self.mesh.num_runs())
+        weights_array(py, &self.mesh, &points, self.lo.len())
     }
 
     /// `E[q~]` under `law` (supported in the box): `sum_k E[w_k] q_k`, each `E[w_k]` integrated

@@ -201,9 +201,7 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
     );
     if points.len() <= 2100 {
         // Previous: all run data in memory, dense moments, all pairs.
-        let sur = study.methods[0]
-            .surrogate(&study.params, &points)
-            .map_err(StudyError::Other)?;
+        let sur = study.methods[0].surrogate(&study.params, &points)?;
         let d = study.params.names.len();
         let t2 = Instant::now();
         let (ew, ew2) = dense_moments(&|x, t, w| sur.weights(x, t, w), points.len(), d, draws);
@@ -230,9 +228,7 @@ fn moments_1e6() -> Result<(), StudyError> {
         &study_text("type = \"piecewise_linear\"\npoints_per_dim = 15"),
     ))?;
     let points = study.methods[0].points.clone();
-    let sur = study.methods[0]
-        .surrogate(&study.params, &points)
-        .map_err(StudyError::Other)?;
+    let sur = study.methods[0].surrogate(&study.params, &points)?;
     let d = study.params.names.len();
     let draws = alea_uq::design::monte_carlo(study.params.joint.as_ref(), 1_000_000, 7);
     let draws = draws.points();

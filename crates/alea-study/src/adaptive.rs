@@ -100,7 +100,7 @@ pub(crate) fn run_adaptive<'a>(
     let study = runner.study();
     let setup = runner
         .cre()
-        .ok_or_else(|| StudyError::Other("adaptive method without error estimation".into()))?;
+        .ok_or_else(|| StudyError::Internal("adaptive method without error estimation".into()))?;
     let err_settings: ErrorSettings = error_settings(study)?;
     let stats: AnalysisSettings = crate::analysis::analysis_settings(study)?;
     let params = &study.params;
@@ -137,9 +137,7 @@ pub(crate) fn run_adaptive<'a>(
         let mut method: Method = study.methods[m].clone();
         method.points = points.clone();
         method.mesh = Some(mesh.clone());
-        let sur = method
-            .surrogate(params, &points)
-            .map_err(StudyError::Other)?;
+        let sur = method.surrogate(params, &points)?;
         let (est, merr) = {
             let store = runner.store()?;
             estimate_method(

@@ -277,7 +277,7 @@ pub fn analyse_method(
         Ok(sur) => sur,
         Err(e) => {
             out.error = Some(if out.left_out.is_empty() {
-                e
+                e.into()
             } else {
                 format!("{e} ({} runs did not converge)", out.left_out.len())
             });

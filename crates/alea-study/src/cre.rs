@@ -169,12 +169,7 @@ fn load_term(
 ) -> Result<LoadTerm, StudyError> {
     let src = &study.source;
     let field = format!("substructure[{s}].load[{j}]");
-    let span = l
-        .group
-        .as_ref()
-        .map(|g| g.span())
-        .or(l.name.as_ref().map(|n| n.span()))
-        .unwrap_or(0..0);
+    let span = l.span();
     let vec3 = |v: &[f64]| {
         let mut a = [0.0; 3];
         for (o, x) in a.iter_mut().zip(v) {
@@ -267,9 +262,10 @@ impl CreSetup {
                     .collect::<Result<Vec<_>, _>>()?,
             );
             let sampler = if model.mesh.dim == 2 {
-                Some(EnergySampler::new(model, &options).map_err(|e| {
-                    StudyError::Other(format!("substructure '{}': {e}", solver.sub_name(s)))
-                })?)
+                Some(
+                    EnergySampler::new(model, &options)
+                        .map_err(|error| sub_estimator(solver, s, error))?,
+                )
             } else {
                 None
             };
@@ -305,7 +301,7 @@ impl CreSetup {
         let estimator = if samplers.iter().all(|s| s.is_some()) {
             Some(
                 LatinEstimator::new(&study.model.assembly, &options)
-                    .map_err(|e| StudyError::Other(format!("error estimator set-up: {e}")))?,
+                    .map_err(StudyError::EstimatorSetup)?,
             )
         } else {
             None
@@ -399,8 +395,9 @@ impl CreSetup {
                 )
             })
             .collect();
-        let err = |e: alea_cre::CreError| {
-            StudyError::Other(format!("error estimate of the run at {theta:?}: {e}"))
+        let err = |error| StudyError::RunEstimate {
+            theta: theta.to_vec(),
+            error,
         };
         let (coefficients, theta_run, relative) = if let Some(estimator) = &self.estimator {
             let cre = estimator.estimate(&loads, res).map_err(err)?;
@@ -457,7 +454,8 @@ impl CreSetup {
     /// no admissible samples, FE samples on the stiffness rule.
     ///
     /// # Errors
-    /// [`StudyError::Other`] if the record or the fields do not match the model.
+    /// [`StudyError::StaleEstimate`], [`StudyError::ShortField`] or
+    /// [`StudyError::EstimateMesh`] if the record or the fields do not match the model.
     pub fn sub_samples(
         &self,
         solver: &LatinSolver,
@@ -467,19 +465,14 @@ impl CreSetup {
     ) -> Result<(Vec<f64>, Vec<f64>), StudyError> {
         let ns = solver.num_subs();
         if record.young.len() != ns || record.coefficients.len() != ns {
-            return Err(StudyError::Other(
-                "a stored error estimate does not match the model (run the study with --restart)"
-                    .into(),
-            ));
+            return Err(StudyError::StaleEstimate { restart_hint: true });
         }
         let off: usize = (0..s)
             .map(|t| solver.model(t).mesh.num_nodes() * solver.model(t).mesh.dim)
             .sum();
         let model = solver.model(s);
         let n = model.mesh.num_nodes() * model.mesh.dim;
-        let u = fields.get(off..off + n).ok_or_else(|| {
-            StudyError::Other("a stored displacement field is shorter than the model".into())
-        })?;
+        let u = fields.get(off..off + n).ok_or(StudyError::ShortField)?;
         let Some(sm) = &self.samplers[s] else {
             return match &self.norm_samplers[s] {
                 Some(fe) => Ok((
@@ -492,10 +485,9 @@ impl CreSetup {
         };
         let c = &record.coefficients[s];
         if c.len() != *sm.coefficient_offsets().last().unwrap_or(&0) {
-            return Err(StudyError::Other(format!(
-                "substructure '{}': stored error estimate of another mesh",
-                solver.sub_name(s)
-            )));
+            return Err(StudyError::EstimateMesh {
+                sub: solver.sub_name(s).to_string(),
+            });
         }
         let alpha = record.young[s];
         let mut a = Vec::with_capacity(sm.len());
@@ -515,7 +507,15 @@ fn norm_sampler(
     }
     FeEnergySampler::new(solver.model(s))
         .map(Some)
-        .map_err(|e| StudyError::Other(format!("substructure '{}': {e}", solver.sub_name(s))))
+        .map_err(|error| sub_estimator(solver, s, error))
+}
+
+/// The failed set-up of substructure `s`'s estimator or sampler.
+fn sub_estimator(solver: &LatinSolver, s: usize, error: alea_cre::CreError) -> StudyError {
+    StudyError::SubEstimator {
+        sub: solver.sub_name(s).to_string(),
+        error,
+    }
 }
 
 /// The study's parameters as the estimator sees them: Young's factors and friction profiles

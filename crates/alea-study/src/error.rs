@@ -66,9 +66,165 @@ pub enum StudyError {
     /// statistics).
     #[error("{0}")]
     Failed(String),
-    /// Anything else, described.
+    /// A method's surrogate that cannot be built on its runs.
+    #[error(transparent)]
+    Surrogate(#[from] SurrogateError),
+    /// The study database failed (a file-system failure is [`StudyError::Io`]).
+    #[error("study database in {}: {error}", dir.display())]
+    Database {
+        /// The study directory.
+        dir: PathBuf,
+        /// The database error.
+        error: rusqlite::Error,
+    },
+    /// A stored field or error-estimate file that is truncated or corrupt.
+    #[error("{} is truncated or corrupt", path.display())]
+    Corrupt {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A stored file written by another study (another study hash).
+    #[error(
+        "{} belongs to another study (hash {hash}, this study {study}); run again with --restart",
+        path.display()
+    )]
+    ForeignFile {
+        /// The file.
+        path: PathBuf,
+        /// The hash in the file.
+        hash: String,
+        /// This study's hash.
+        study: String,
+    },
+    /// A run's stored field file with another number of values than the model has.
+    #[error("field file of the run at {params:?} has {found} values, expected {expected}")]
+    FieldSize {
+        /// The run's parameters.
+        params: Vec<f64>,
+        /// Values in the file.
+        found: usize,
+        /// Values of the model.
+        expected: usize,
+    },
+    /// A run without a stored error estimate.
+    #[error(
+        "the run at {params:?} has no stored error estimate{}",
+        if *restart_hint {
+            " (a study run before error estimation was enabled: run it again with --restart)"
+        } else {
+            ""
+        }
+    )]
+    NoEstimate {
+        /// The run's parameters.
+        params: Vec<f64>,
+        /// Whether the message says how to recover (run again with `--restart`).
+        restart_hint: bool,
+    },
+    /// A run's stored error estimate that does not decode.
+    #[error("the stored error estimate of the run at {params:?} is damaged")]
+    DamagedEstimate {
+        /// The run's parameters.
+        params: Vec<f64>,
+    },
+    /// A stored error estimate of another model (other substructures).
+    #[error(
+        "a stored error estimate does not match the model{}",
+        if *restart_hint { " (run the study with --restart)" } else { "" }
+    )]
+    StaleEstimate {
+        /// Whether the message says how to recover (run again with `--restart`).
+        restart_hint: bool,
+    },
+    /// A stored error estimate of another mesh of a substructure.
+    #[error("substructure '{sub}': stored error estimate of another mesh")]
+    EstimateMesh {
+        /// The substructure.
+        sub: String,
+    },
+    /// A stored displacement field shorter than the model.
+    #[error("a stored displacement field is shorter than the model")]
+    ShortField,
+    /// A run's field values, as loaded for the field statistics, of the wrong length.
+    #[error("run {run} has {found} field values, expected {expected}")]
+    RunFieldSize {
+        /// The run (index among the method's runs).
+        run: usize,
+        /// Values loaded.
+        found: usize,
+        /// Values expected.
+        expected: usize,
+    },
+    /// Field statistics asked of Monte Carlo on the model (no surrogate to sample).
+    #[error("Monte Carlo on the model has no surrogate for fields")]
+    MonteCarloFields,
+    /// Field statistics without parameters or without Monte Carlo draws.
+    #[error("no Monte Carlo draws for the field statistics")]
+    NoFieldDraws,
+    /// The error estimator of a substructure cannot be set up.
+    ///
+    /// The estimator error is in the message, so it is a field and not the error's `source`
+    /// (the command line prints the source chain after the message).
+    #[error("substructure '{sub}': {error}")]
+    SubEstimator {
+        /// The substructure.
+        sub: String,
+        /// The estimator error.
+        error: alea_cre::CreError,
+    },
+    /// The error estimator of the assembly cannot be set up (the error is in the message).
+    #[error("error estimator set-up: {0}")]
+    EstimatorSetup(alea_cre::CreError),
+    /// The error estimate of one run failed (the error is in the message).
+    #[error("error estimate of the run at {theta:?}: {error}")]
+    RunEstimate {
+        /// The run's parameters.
+        theta: Vec<f64>,
+        /// The estimator error.
+        error: alea_cre::CreError,
+    },
+    /// A method's integration rule of the error estimate cannot be built (the error is in the
+    /// message).
+    #[error("method '{method}': {error}")]
+    MethodRule {
+        /// The method's label.
+        method: String,
+        /// The rule error.
+        error: alea_estimate::EstimateError,
+    },
+    /// The facets of an interface side cannot be found (the error is in the message).
+    #[error("interface '{interface}', substructure '{sub}': {error}")]
+    InterfaceFacets {
+        /// The interface.
+        interface: String,
+        /// The substructure.
+        sub: String,
+        /// The mesh error (boxed: it would make every `StudyError` larger).
+        error: Box<alea_mesh::MeshError>,
+    },
+    /// A quantity of interest at a point that is not on its interface.
+    #[error("quantity '{qoi}': its point is not on interface '{interface}'")]
+    QoiOffInterface {
+        /// The quantity.
+        qoi: String,
+        /// The interface.
+        interface: String,
+    },
+    /// A converged run with a quantity of interest that is not finite.
+    #[error("a quantity of interest is not finite at {theta:?}")]
+    NonFiniteQoi {
+        /// The run's parameters.
+        theta: Vec<f64>,
+    },
+    /// A lock held by a thread that panicked.
+    #[error("{0} lock poisoned")]
+    Poisoned(&'static str),
+    /// A failure of the distributed (MPI) execution: set-up, a rank, the messages.
     #[error("{0}")]
-    Other(String),
+    Mpi(String),
+    /// An invariant of alea that does not hold (a bug: please report it with the input).
+    #[error("{0}")]
+    Internal(String),
 }
 
 impl StudyError {
@@ -87,6 +243,88 @@ impl StudyError {
             }) => 3,
             StudyError::Busy { .. } => 5,
             _ => 4,
+        }
+    }
+}
+
+/// Why a method's surrogate cannot be built.
+#[derive(Debug, thiserror::Error)]
+pub enum SurrogateError {
+    /// The fit failed (basis, regression, projection, grid).
+    #[error(transparent)]
+    Uq(#[from] alea_uq::UqError),
+    /// The method has no surrogate on these runs (the reason).
+    #[error("{0}")]
+    Unavailable(&'static str),
+}
+
+/// The message, for callers that keep a method's failure as text.
+impl From<SurrogateError> for String {
+    fn from(e: SurrogateError) -> String {
+        e.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The typed variants print the texts their `Other(String)` predecessors printed, and
+    /// keep their exit code (4, a computation failure).
+    #[test]
+    fn typed_variants_keep_the_former_messages_and_exit_code() {
+        let cases = [
+            (
+                StudyError::NoEstimate {
+                    params: vec![1.0, 0.5],
+                    restart_hint: true,
+                },
+                "the run at [1.0, 0.5] has no stored error estimate (a study run before error \
+                 estimation was enabled: run it again with --restart)",
+            ),
+            (
+                StudyError::NoEstimate {
+                    params: vec![2.0],
+                    restart_hint: false,
+                },
+                "the run at [2.0] has no stored error estimate",
+            ),
+            (
+                StudyError::StaleEstimate { restart_hint: true },
+                "a stored error estimate does not match the model (run the study with --restart)",
+            ),
+            (
+                StudyError::StaleEstimate {
+                    restart_hint: false,
+                },
+                "a stored error estimate does not match the model",
+            ),
+            (
+                StudyError::ForeignFile {
+                    path: "d/f.bin".into(),
+                    hash: "abc".into(),
+                    study: "def".into(),
+                },
+                "d/f.bin belongs to another study (hash abc, this study def); run again with \
+                 --restart",
+            ),
+            (
+                StudyError::FieldSize {
+                    params: vec![0.25],
+                    found: 3,
+                    expected: 4,
+                },
+                "field file of the run at [0.25] has 3 values, expected 4",
+            ),
+            (StudyError::Poisoned("run list"), "run list lock poisoned"),
+            (
+                StudyError::Surrogate(SurrogateError::Unavailable("Monte Carlo has no surrogate")),
+                "Monte Carlo has no surrogate",
+            ),
+        ];
+        for (e, text) in cases {
+            assert_eq!(e.to_string(), text);
+            assert_eq!(e.exit_code(), 4);
         }
     }
 }

@@ -140,7 +140,8 @@ pub struct SurrogateEstimate {
 /// store; surrogate run order), substructure by substructure to bound memory.
 ///
 /// # Errors
-/// [`StudyError::Other`] if a run lacks its stored estimate or does not match the model.
+/// [`StudyError::NoEstimate`], [`StudyError::DamagedEstimate`] or
+/// [`StudyError::StaleEstimate`] if a run lacks its stored estimate or does not match the model.
 pub fn build_estimator(
     setup: &CreSetup,
     solver: &LatinSolver,
@@ -148,28 +149,13 @@ pub fn build_estimator(
     points: &[Vec<f64>],
     params: &dyn alea_estimate::Parameters,
 ) -> Result<Estimator, StudyError> {
-    let mut records = Vec::with_capacity(points.len());
-    let mut fields = Vec::with_capacity(points.len());
-    for p in points {
-        let values = store.cre(p)?.ok_or_else(|| {
-            StudyError::Other(format!(
-                "the run at {p:?} has no stored error estimate (a study run before error estimation was enabled: run it again with --restart)"
-            ))
-        })?;
-        let rec = CreRecord::from_values(&values).ok_or_else(|| {
-            StudyError::Other(format!(
-                "the stored error estimate of the run at {p:?} is damaged"
-            ))
-        })?;
-        records.push(rec);
-        fields.push(store.fields(p)?);
-    }
+    let (records, fields) = stored_runs(store, points, true)?;
     let ns = solver.num_subs();
     let mut young = vec![Vec::with_capacity(points.len()); ns];
     for r in &records {
         for s in 0..ns {
-            young[s].push(*r.young.get(s).ok_or_else(|| {
-                StudyError::Other("a stored error estimate does not match the model".into())
+            young[s].push(*r.young.get(s).ok_or(StudyError::StaleEstimate {
+                restart_hint: false,
             })?);
         }
     }
@@ -241,8 +227,33 @@ pub fn integration_rule(
         settings.points_per_cell,
         params.joint.as_ref(),
     )
-    .map_err(|e| StudyError::Other(format!("method '{}': {e}", method.label)))?;
+    .map_err(|error| StudyError::MethodRule {
+        method: method.label.clone(),
+        error,
+    })?;
     Ok((cells, rule))
+}
+
+/// The stored error estimates and displacement fields of the runs at `points`
+/// (`restart_hint`: a missing estimate's message says to run again with `--restart`).
+fn stored_runs(
+    store: &Store,
+    points: &[Vec<f64>],
+    restart_hint: bool,
+) -> Result<(Vec<CreRecord>, Vec<Vec<f64>>), StudyError> {
+    let mut records = Vec::with_capacity(points.len());
+    let mut fields = Vec::with_capacity(points.len());
+    for p in points {
+        let values = store.cre(p)?.ok_or_else(|| StudyError::NoEstimate {
+            params: p.clone(),
+            restart_hint,
+        })?;
+        let rec = CreRecord::from_values(&values)
+            .ok_or_else(|| StudyError::DamagedEstimate { params: p.clone() })?;
+        records.push(rec);
+        fields.push(store.fields(p)?);
+    }
+    Ok((records, fields))
 }
 
 /// The stochastic error of `method`'s surrogate `sur` built on the converged runs `points`.
@@ -399,12 +410,10 @@ pub fn interface_cell_terms(
             }
             let facets =
                 alea_latin::interface::facet_shares(&model.mesh, group, model.analysis.thickness())
-                    .map_err(|e| {
-                        StudyError::Other(format!(
-                            "interface '{}', substructure '{}': {e}",
-                            spec.name,
-                            solver.sub_name(s)
-                        ))
+                    .map_err(|error| StudyError::InterfaceFacets {
+                        interface: spec.name.clone(),
+                        sub: solver.sub_name(s).to_string(),
+                        error: Box::new(error),
                     })?;
             for f in facets {
                 let c = &mut cells[s][f.cell];
@@ -462,19 +471,7 @@ pub fn write_error_fields(
     let mut cell_fields: Vec<Option<[Vec<f64>; 4]>> = vec![None; ns];
     if estimated.contains(&true) {
         let moments = alea_estimate::weight_moments(&rule, sur, &params, ns, points.len());
-        let mut records = Vec::with_capacity(points.len());
-        let mut fields = Vec::with_capacity(points.len());
-        for p in points {
-            let values = store.cre(p)?.ok_or_else(|| {
-                StudyError::Other(format!("the run at {p:?} has no stored error estimate"))
-            })?;
-            records.push(CreRecord::from_values(&values).ok_or_else(|| {
-                StudyError::Other(format!(
-                    "the stored error estimate of the run at {p:?} is damaged"
-                ))
-            })?);
-            fields.push(store.fields(p)?);
-        }
+        let (records, fields) = stored_runs(store, points, false)?;
         for s in (0..ns).filter(|&s| estimated[s]) {
             let mut a = Vec::with_capacity(points.len());
             let mut h = Vec::with_capacity(points.len());

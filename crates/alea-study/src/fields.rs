@@ -92,9 +92,7 @@ pub fn mean_std_fields(
 ) -> Result<Vec<MeanStdFields>, StudyError> {
     let method = &runs.methods[m];
     if method.kind == MethodKind::MonteCarlo {
-        return Err(StudyError::Other(
-            "Monte Carlo on the model has no surrogate for fields".into(),
-        ));
+        return Err(StudyError::MonteCarloFields);
     }
     let by_key: std::collections::HashMap<String, &crate::store::RunRecord> = runs
         .records
@@ -107,15 +105,11 @@ pub fn mean_std_fields(
         .filter(|p| by_key.get(&point_key(p)).is_some_and(|r| r.converged()))
         .cloned()
         .collect();
-    let sur = method
-        .surrogate(&study.params, &used)
-        .map_err(StudyError::Other)?;
+    let sur = method.surrogate(&study.params, &used)?;
     let k = used.len();
     let d = study.params.names.len();
     if d == 0 || draws.is_empty() {
-        return Err(StudyError::Other(
-            "no Monte Carlo draws for the field statistics".into(),
-        ));
+        return Err(StudyError::NoFieldDraws);
     }
     let moments = WeightMoments::estimate(&|x, t, w| sur.weights(x, t, w), k, d, draws);
     let store = Store::open(dir, &study.hash, false)?;
@@ -137,10 +131,11 @@ pub fn mean_std_fields(
         let p = &used[a];
         let all = read_values(&paths[a])?;
         if all.len() != total {
-            return Err(StudyError::Other(format!(
-                "field file of the run at {p:?} has {} values, expected {total}",
-                all.len()
-            )));
+            return Err(StudyError::FieldSize {
+                params: p.clone(),
+                found: all.len(),
+                expected: total,
+            });
         }
         let factors = study.model.parametric.run_input(p, vec![]).young_factors;
         let mut row = Vec::with_capacity(width);
@@ -368,10 +363,11 @@ impl WeightMoments {
             for (a, row) in (a0..a1).zip(rows) {
                 let va = row?;
                 if va.len() != width {
-                    return Err(StudyError::Other(format!(
-                        "run {a} has {} field values, expected {width}",
-                        va.len()
-                    )));
+                    return Err(StudyError::RunFieldSize {
+                        run: a,
+                        found: va.len(),
+                        expected: width,
+                    });
                 }
                 let ea = self.mean[a];
                 for (m, v) in m1.iter_mut().zip(&va) {
@@ -387,7 +383,7 @@ impl WeightMoments {
                         (&va, g)
                     } else {
                         let vb = held.get(&b).ok_or_else(|| {
-                            StudyError::Other(format!("run {b} was dropped before its last use"))
+                            StudyError::Internal(format!("run {b} was dropped before its last use"))
                         })?;
                         (vb, 2.0 * g)
                     };

@@ -13,6 +13,7 @@ use alea_uq::surrogate::{
     LinearSurrogate, MonomialSurface, ParentLevel, PcSurrogate, StochasticMesh,
 };
 
+pub use crate::error::SurrogateError;
 use crate::spec::MethodSpec;
 use crate::{ParamSpace, Source, StudyError};
 
@@ -624,30 +625,37 @@ impl Method {
     /// Builds the surrogate on the runs at `points` (a subset of the design: the converged
     /// runs). Methods that need every design point (projection, piecewise linear) refuse a
     /// subset.
-    pub fn surrogate(&self, params: &ParamSpace, points: &[Vec<f64>]) -> Result<Surrogate, String> {
+    pub fn surrogate(
+        &self,
+        params: &ParamSpace,
+        points: &[Vec<f64>],
+    ) -> Result<Surrogate, SurrogateError> {
         let d = params.names.len();
         let flat: Vec<f64> = points.iter().flatten().copied().collect();
         let identity = || (vec![0.0; d], vec![1.0; d]);
         let complete = points.len() == self.points.len();
         let (inner, (shift, scale), clamp): (Box<dyn LinearSurrogate>, _, _) = match &self.kind {
             MethodKind::PcRegression { degree } => {
-                let basis =
-                    PcBasis::total_degree(&params.marginals, *degree).map_err(|e| e.to_string())?;
+                let basis = PcBasis::total_degree(&params.marginals, *degree)?;
                 (
-                    Box::new(PcSurrogate::regression(basis, &flat).map_err(|e| e.to_string())?),
+                    Box::new(PcSurrogate::regression(basis, &flat)?),
                     identity(),
                     None,
                 )
             }
             MethodKind::PcProjection { degree } => {
                 if !complete {
-                    return Err("projection needs a run at every quadrature node".into());
+                    return Err(SurrogateError::Unavailable(
+                        "projection needs a run at every quadrature node",
+                    ));
                 }
-                let basis =
-                    PcBasis::total_degree(&params.marginals, *degree).map_err(|e| e.to_string())?;
-                let rule = self.rule.as_ref().ok_or("projection without a rule")?;
+                let basis = PcBasis::total_degree(&params.marginals, *degree)?;
+                let rule = self
+                    .rule
+                    .as_ref()
+                    .ok_or(SurrogateError::Unavailable("projection without a rule"))?;
                 (
-                    Box::new(PcSurrogate::projection(basis, rule).map_err(|e| e.to_string())?),
+                    Box::new(PcSurrogate::projection(basis, rule)?),
                     identity(),
                     None,
                 )
@@ -670,19 +678,18 @@ impl Method {
                     })
                     .collect();
                 (
-                    Box::new(MonomialSurface::fit(d, *degree, &t).map_err(|e| e.to_string())?),
+                    Box::new(MonomialSurface::fit(d, *degree, &t)?),
                     (shift, scale),
                     None,
                 )
             }
             MethodKind::PiecewiseLinear { nodes } => {
                 if !complete {
-                    return Err(
-                        "piecewise-linear interpolation needs a run at every grid node".into(),
-                    );
+                    return Err(SurrogateError::Unavailable(
+                        "piecewise-linear interpolation needs a run at every grid node",
+                    ));
                 }
-                let mesh = StochasticMesh::new(&params.lo, &params.hi, &vec![nodes - 1; d])
-                    .map_err(|e| e.to_string())?;
+                let mesh = StochasticMesh::new(&params.lo, &params.hi, &vec![nodes - 1; d])?;
                 (
                     Box::new(mesh),
                     identity(),
@@ -690,12 +697,13 @@ impl Method {
                 )
             }
             MethodKind::Adaptive(_) => {
-                let mesh = self
-                    .mesh
-                    .as_ref()
-                    .ok_or("the adaptive loop has not built its stochastic mesh")?;
+                let mesh = self.mesh.as_ref().ok_or(SurrogateError::Unavailable(
+                    "the adaptive loop has not built its stochastic mesh",
+                ))?;
                 if !complete || mesh.num_runs() != points.len() {
-                    return Err("the adaptive stochastic mesh needs a run at every node".into());
+                    return Err(SurrogateError::Unavailable(
+                        "the adaptive stochastic mesh needs a run at every node",
+                    ));
                 }
                 (
                     Box::new(mesh.clone()),
@@ -703,7 +711,9 @@ impl Method {
                     Some((params.lo.clone(), params.hi.clone())),
                 )
             }
-            MethodKind::MonteCarlo => return Err("Monte Carlo has no surrogate".into()),
+            MethodKind::MonteCarlo => {
+                return Err(SurrogateError::Unavailable("Monte Carlo has no surrogate"));
+            }
         };
         Ok(Surrogate {
             inner,

@@ -122,9 +122,9 @@ impl RunContext<'_> {
             state: state.to_vec(),
         };
         if rec.qois.iter().any(|v| v.is_nan()) && rec.converged() {
-            return Err(StudyError::Other(format!(
-                "a quantity of interest is not finite at {theta:?}"
-            )));
+            return Err(StudyError::NonFiniteQoi {
+                theta: theta.to_vec(),
+            });
         }
         let (cre, estimate_seconds) = match (self.cre, rec.converged()) {
             (Some(setup), true) => {

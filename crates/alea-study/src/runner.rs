@@ -204,11 +204,11 @@ impl<'a> Runner<'a> {
             let commit = |out: RunOutcome| -> Result<(), StudyError> {
                 store
                     .lock()
-                    .map_err(|_| StudyError::Other("store lock poisoned".into()))?
+                    .map_err(|_| StudyError::Poisoned("store"))?
                     .commit(&out.rec, &out.fields, out.cre.as_deref())?;
                 progress.finished(&out.rec);
                 done.lock()
-                    .map_err(|_| StudyError::Other("run list lock poisoned".into()))?
+                    .map_err(|_| StudyError::Poisoned("run list"))?
                     .push((out.rec, out.estimate_seconds));
                 Ok(())
             };
@@ -216,7 +216,7 @@ impl<'a> Runner<'a> {
             // Whatever finished is committed: keep it even when a run failed.
             for (rec, est) in done
                 .into_inner()
-                .map_err(|_| StudyError::Other("run list lock poisoned".into()))?
+                .map_err(|_| StudyError::Poisoned("run list"))?
             {
                 self.computed += 1;
                 self.estimate_seconds += est;
@@ -247,7 +247,7 @@ impl<'a> Runner<'a> {
             let rec = self
                 .by_key
                 .get(&point_key(&self.finished[k]))
-                .ok_or_else(|| StudyError::Other("a finished run is missing".into()))?;
+                .ok_or_else(|| StudyError::Internal("a finished run is missing".into()))?;
             self.states[k] = LocalState::from_slice(&self.sizes, &rec.state).map(Arc::new);
         }
         Ok(self.states[k].clone())
@@ -255,9 +255,7 @@ impl<'a> Runner<'a> {
 
     /// The store (locked).
     pub(crate) fn store(&self) -> Result<std::sync::MutexGuard<'_, Store>, StudyError> {
-        self.store
-            .lock()
-            .map_err(|_| StudyError::Other("store lock poisoned".into()))
+        self.store.lock().map_err(|_| StudyError::Poisoned("store"))
     }
 
     /// Tells the progress observer about runs added by an adaptive step.
@@ -407,7 +405,7 @@ pub(crate) fn execute(
         .filter_map(|p| runner.by_key.get(&point_key(p)).cloned())
         .collect();
     if compute && records.len() != order.len() {
-        return Err(StudyError::Other("a run is missing".into()));
+        return Err(StudyError::Internal("a run is missing".into()));
     }
     let missing = runner.missing;
     Ok((

@@ -135,6 +135,17 @@ pub struct LoadSpec {
     pub factor: Option<Spanned<NumOrExpr>>,
 }
 
+impl LoadSpec {
+    /// Where the load is in its file, for messages: its group, else its name, else unknown.
+    pub fn span(&self) -> std::ops::Range<usize> {
+        self.group
+            .as_ref()
+            .map(|g| g.span())
+            .or(self.name.as_ref().map(|n| n.span()))
+            .unwrap_or(0..0)
+    }
+}
+
 /// `[[substructure]]`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

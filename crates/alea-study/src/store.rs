@@ -115,7 +115,10 @@ fn db_err(dir: &Path) -> impl Fn(rusqlite::Error) -> StudyError + '_ {
                 source: std::io::Error::other(e.to_string()),
             }
         } else {
-            StudyError::Other(format!("study database in {}: {e}", dir.display()))
+            StudyError::Database {
+                dir: dir.to_path_buf(),
+                error: e,
+            }
         }
     }
 }
@@ -400,19 +403,17 @@ impl Store {
         match b.strip_prefix(FIELD_MAGIC) {
             Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => {
                 if &rest[..16] != self.hash.as_bytes() {
-                    return Err(StudyError::Other(format!(
-                        "{} belongs to another study (hash {}, this study {}); run again with --restart",
-                        path.display(),
-                        String::from_utf8_lossy(&rest[..16]),
-                        self.hash
-                    )));
+                    return Err(StudyError::ForeignFile {
+                        path: path.to_path_buf(),
+                        hash: String::from_utf8_lossy(&rest[..16]).into_owned(),
+                        study: self.hash.clone(),
+                    });
                 }
                 Ok(from_blob(&rest[16..]))
             }
-            _ => Err(StudyError::Other(format!(
-                "{} is truncated or corrupt",
-                path.display()
-            ))),
+            _ => Err(StudyError::Corrupt {
+                path: path.to_path_buf(),
+            }),
         }
     }
 }
@@ -426,10 +427,9 @@ pub fn read_values(path: &Path) -> Result<Vec<f64>, StudyError> {
     })?;
     match b.strip_prefix(FIELD_MAGIC) {
         Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => Ok(from_blob(&rest[16..])),
-        Some(_) => Err(StudyError::Other(format!(
-            "{} is truncated or corrupt",
-            path.display()
-        ))),
+        Some(_) => Err(StudyError::Corrupt {
+            path: path.to_path_buf(),
+        }),
         None => Ok(from_blob(&b)),
     }
 }

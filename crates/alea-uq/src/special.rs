@@ -237,16 +237,24 @@ pub fn norm_isf_ln(ln_q: f64) -> f64 {
     x
 }
 
+/// A quantile at the ends of `[0, 1]`: NaN outside (and for NaN), `lo` at 0, `hi` at 1;
+/// `None` strictly inside, where the caller computes it.
+pub(crate) fn quantile_ends(p: f64, lo: f64, hi: f64) -> Option<f64> {
+    if !(0.0..=1.0).contains(&p) {
+        Some(f64::NAN)
+    } else if p == 0.0 {
+        Some(lo)
+    } else if p == 1.0 {
+        Some(hi)
+    } else {
+        None
+    }
+}
+
 /// Inverse of the standard normal cdf. Returns `-inf`/`+inf` at 0/1 and NaN outside `[0, 1]`.
 pub fn norm_quantile(p: f64) -> f64 {
-    if !(0.0..=1.0).contains(&p) {
-        return f64::NAN;
-    }
-    if p == 0.0 {
-        return f64::NEG_INFINITY;
-    }
-    if p == 1.0 {
-        return f64::INFINITY;
+    if let Some(q) = quantile_ends(p, f64::NEG_INFINITY, f64::INFINITY) {
+        return q;
     }
     // Wichura, Algorithm AS 241 (PPND16), Appl. Statist. 37 (1988) 477-484: three rational
     // approximations of degree 7/7, relative accuracy about 1e-16. Published coefficients.
@@ -364,14 +372,8 @@ pub fn ln_student_pdf(t: f64, nu: f64) -> f64 {
 
 /// Inverse of [`student_cdf`], by [`inc_beta_inv`] on the same two branches.
 pub fn student_quantile(p: f64, nu: f64) -> f64 {
-    if !(0.0..=1.0).contains(&p) {
-        return f64::NAN;
-    }
-    if p == 0.0 {
-        return f64::NEG_INFINITY;
-    }
-    if p == 1.0 {
-        return f64::INFINITY;
+    if let Some(q) = quantile_ends(p, f64::NEG_INFINITY, f64::INFINITY) {
+        return q;
     }
     let a = 2.0 * p.min(1.0 - p); // two-sided tail probability
     let t = if a > 0.5 {
@@ -474,14 +476,8 @@ fn beta_cf(x: f64, a: f64, b: f64) -> f64 {
 
 /// Inverse of `x -> I_x(a, b)`: the `x` in `[0, 1]` with `I_x(a, b) = p`.
 pub fn inc_beta_inv(p: f64, a: f64, b: f64) -> f64 {
-    if !(0.0..=1.0).contains(&p) {
-        return f64::NAN;
-    }
-    if p == 0.0 {
-        return 0.0;
-    }
-    if p == 1.0 {
-        return 1.0;
+    if let Some(q) = quantile_ends(p, 0.0, 1.0) {
+        return q;
     }
     let ln_b = ln_gamma(a) + ln_gamma(b) - ln_gamma(a + b);
     let pdf = |x: f64| ((a - 1.0) * x.ln() + (b - 1.0) * (1.0 - x).ln() - ln_b).exp();

@@ -8,9 +8,10 @@
 use alea_fem::Quadrature;
 use alea_fem::kinematics::facet_geometry;
 use alea_fem::quadrature::gauss_legendre;
+use alea_mesh::vec3::{dot, sub};
 
 use super::V3;
-use super::geometry::{SideFacet, centre, dot, frame, position, project, sub};
+use super::geometry::{SideFacet, centre, frame, position, project};
 
 /// One integration point of a side-1 facet: the side-2 facet, both reference points, weight.
 pub(super) struct IPoint {

@@ -1,4 +1,4 @@
-//! Geometry of the mortar pairing: vector algebra, the facets of a side with their
+//! Geometry of the mortar pairing: the facets of a side with their
 //! coordinates, the position `x(xi)` and tangents of a facet, the projection of a point on a
 //! facet along a direction (Newton on `x_s(xi) + t n_0 = p`), bounding boxes and the
 //! auxiliary plane (line) frame of a side-1 facet.
@@ -7,6 +7,8 @@ use alea_fem::kinematics::facet_geometry;
 use alea_fem::reference::{MAX_NODES, shape};
 use alea_mesh::{CellType, Mesh};
 
+use alea_mesh::vec3::{cross, dot, normalise, sub};
+
 use super::V3;
 
 /// A facet of one side with its coordinates.
@@ -14,31 +16,6 @@ pub(super) struct SideFacet {
     pub(super) kind: CellType,
     pub(super) nodes: Vec<usize>,
     pub(super) x: Vec<V3>,
-}
-
-pub(super) fn dot(a: &V3, b: &V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub(super) fn sub(a: &V3, b: &V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub(super) fn cross(a: &V3, b: &V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-pub(super) fn normalise(a: V3) -> V3 {
-    let l = dot(&a, &a).sqrt();
-    if l > 0.0 {
-        [a[0] / l, a[1] / l, a[2] / l]
-    } else {
-        a
-    }
 }
 
 pub(super) fn facets_of(mesh: &Mesh, group: &str) -> Result<Vec<SideFacet>, String> {

@@ -7,11 +7,12 @@ use std::collections::BTreeMap;
 
 use alea_fem::kinematics::facet_geometry;
 use alea_mesh::Mesh;
+use alea_mesh::vec3::{dot, sub};
 use rayon::prelude::*;
 
 use super::clipping::integration_points;
 use super::dual::{Contribution, NodeAcc, facet_contributions};
-use super::geometry::{bbox, centre, dot, facets_of, sub};
+use super::geometry::{bbox, centre, facets_of};
 use super::{DEFAULT_SEARCH_FRACTION, V3};
 use crate::LatinError;
 use crate::interface::{InterfacePairing, PairingKind, SideProjection, side_geometry};

@@ -28,7 +28,7 @@ use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 
 use crate::{Assembly, InterfaceSpec, LatinError, Substructure};
 
-use alea_mesh::generate::{Block, multiblock};
+use alea_mesh::generate::{Block, first_cell_grading, multiblock};
 use alea_mesh::{CellType, Mesh, MeshError};
 
 /// Mesh layout.
@@ -61,20 +61,7 @@ impl ContactLayout {
                  strip's {h}"
             )));
         }
-        // sum_{i<m} h r^i = len  <=>  h (r^m - 1) / (r - 1) = len; bisection on r > 1.
-        let (mut lo, mut hi) = (1.0 + 1e-12, 2.0f64);
-        while h * (hi.powi(m) - 1.0) / (hi - 1.0) < len {
-            hi *= 2.0;
-        }
-        for _ in 0..200 {
-            let r = 0.5 * (lo + hi);
-            if h * (r.powi(m) - 1.0) / (r - 1.0) < len {
-                lo = r;
-            } else {
-                hi = r;
-            }
-        }
-        Ok((0.5 * (lo + hi)).powi(m - 1))
+        Ok(first_cell_grading(len, h, self.m))
     }
 
     /// Blocks of the lower body, `x >= 0`.

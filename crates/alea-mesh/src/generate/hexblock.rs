@@ -413,7 +413,15 @@ pub fn grading_for_first_cell(len: f64, h: f64, m: usize) -> Result<f64, MeshErr
             "grading: {m} cells growing from {h} cannot span only {len} (need m >= 2 and len > m h)"
         )));
     }
+    Ok(first_cell_grading(len, h, m))
+}
+
+/// [`grading_for_first_cell`] without its checks, for callers that made them: the ratio of the
+/// last to the first cell size of `m` cells spanning `len > m h` whose first cell is `h > 0`
+/// (1 for one cell).
+pub fn first_cell_grading(len: f64, h: f64, m: usize) -> f64 {
     let mi = m as i32;
+    // sum_{i<m} h r^i = len  <=>  h (r^m - 1) / (r - 1) = len; bisection on r > 1.
     let total = |r: f64| h * (r.powi(mi) - 1.0) / (r - 1.0);
     let (mut lo, mut hi) = (1.0 + 1e-12, 2.0f64);
     while total(hi) < len {
@@ -427,7 +435,7 @@ pub fn grading_for_first_cell(len: f64, h: f64, m: usize) -> Result<f64, MeshErr
             hi = r;
         }
     }
-    Ok((0.5 * (lo + hi)).powi(mi - 1))
+    (0.5 * (lo + hi)).powi(mi - 1)
 }
 
 /// Blocks of the octant `[0, l] x [0, l] x [-l, 0]` refined toward the origin, for point

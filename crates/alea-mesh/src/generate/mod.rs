@@ -14,7 +14,9 @@ mod two_body;
 
 pub use blade_root::{BladeRootParams, blade_root_simple};
 pub use extrude::extrude;
-pub use hexblock::{HexBlock, corner_refined_blocks, grading_for_first_cell, multiblock_hex};
+pub use hexblock::{
+    HexBlock, corner_refined_blocks, first_cell_grading, grading_for_first_cell, multiblock_hex,
+};
 pub use multiblock::{Block, Curve, CurveFn, multiblock};
 pub use shapes::{DovetailParams, annulus_sector, dovetail_root_and_disk, plate_with_hole};
 pub use structured::{box_mesh, rectangle};

@@ -41,7 +41,7 @@
 //!   (the rest of `y = 0`), `<body>_far` (`y = -l` / `+l`), `<body>_far_side` (`|x| = l`) and,
 //!   for the half model `x >= 0`, `<body>_sym` (`x = 0`).
 
-use crate::generate::{Block, annulus_sector, multiblock, rectangle};
+use crate::generate::{Block, annulus_sector, first_cell_grading, multiblock, rectangle};
 use crate::{CellType, Mesh, MeshError};
 
 /// Renames every group of `mesh` through `rename` (groups it maps to `None` are dropped).
@@ -253,25 +253,6 @@ impl Default for CylinderOnBlock {
     }
 }
 
-/// Grading (last / first cell) of `m` cells over `len` whose first cell is `h`.
-fn grading_from_first(len: f64, h: f64, m: usize) -> f64 {
-    let m = m as i32;
-    // sum_{i<m} h r^i = len  <=>  h (r^m - 1) / (r - 1) = len; bisection on r > 1.
-    let (mut lo, mut hi) = (1.0 + 1e-12, 2.0f64);
-    while h * (hi.powi(m) - 1.0) / (hi - 1.0) < len {
-        hi *= 2.0;
-    }
-    for _ in 0..200 {
-        let r = 0.5 * (lo + hi);
-        if h * (r.powi(m) - 1.0) / (r - 1.0) < len {
-            lo = r;
-        } else {
-            hi = r;
-        }
-    }
-    (0.5 * (lo + hi)).powi(m - 1)
-}
-
 /// A cylinder on a block, meshed flat with coincident contact nodes (module doc).
 ///
 /// # Errors
@@ -284,7 +265,7 @@ pub fn cylinder_on_block(p: &CylinderOnBlock, kind: CellType) -> Result<Mesh, Me
             "cylinder on block needs a > 0, n, m >= 1 and l - a > m a / n (outer cells coarser than the contact cells), got a = {a}, l = {l}, n = {n}, m = {m}"
         )));
     }
-    let g = grading_from_first(l - a, a / n as f64, m);
+    let g = first_cell_grading(l - a, a / n as f64, m);
     let body = |upper: bool| -> Result<Mesh, MeshError> {
         let name = if upper { "cylinder" } else { "block" };
         let group = |s: &str| format!("{name}_{s}");

@@ -10,6 +10,7 @@
 use std::collections::HashMap;
 
 use alea_latin::interface::{pair_nodes, side_geometry};
+use alea_mesh::vec3::dot;
 
 use super::parametric::BuiltModel;
 use crate::spec::InterfaceSpecToml;
@@ -91,7 +92,7 @@ pub fn check_interfaces(
         };
         for (k, &j) in partner.iter().enumerate() {
             let (a, b) = (g1.normals[k], g2.normals[j]);
-            let c = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let c = dot(&a, &b);
             if c > -0.5 {
                 let p = subs[it.sub1].model.mesh.coords[g1.nodes[k]];
                 return Err(src.error(

@@ -85,12 +85,7 @@ fn build_load(
         l.body.is_some(),
         l.centrifugal.is_some(),
     ];
-    let span = l
-        .group
-        .as_ref()
-        .map(|g| g.span())
-        .or(l.name.as_ref().map(|n| n.span()))
-        .unwrap_or(0..0);
+    let span = l.span();
     if kinds.iter().filter(|&&k| k).count() != 1 {
         return Err(src.error(
             span,

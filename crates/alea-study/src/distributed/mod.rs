@@ -83,9 +83,9 @@ pub fn start(threads: Option<usize>) -> Result<Role, StudyError> {
         return Ok(Role::Single);
     }
     let (universe, provided) = mpi::initialize_with_threading(Threading::Funneled)
-        .ok_or_else(|| StudyError::Other("MPI was initialised twice".into()))?;
+        .ok_or_else(|| StudyError::Mpi("MPI was initialised twice".into()))?;
     if provided == Threading::Single {
-        return Err(StudyError::Other(
+        return Err(StudyError::Mpi(
             "the MPI library does not support threads (MPI_THREAD_FUNNELED needed)".into(),
         ));
     }
@@ -152,7 +152,7 @@ impl World {
         if std::thread::current().id() == self.thread {
             Ok(&self.comm)
         } else {
-            Err(StudyError::Other(
+            Err(StudyError::Mpi(
                 "MPI used from a thread other than the one that initialised it".into(),
             ))
         }
@@ -172,6 +172,14 @@ impl Nap {
     fn sleep(&mut self) {
         std::thread::sleep(self.0);
         self.0 = (self.0 * 2).min(Duration::from_millis(1));
+    }
+    /// After a round of a polling loop: no wait if it did something (`busy`), else a nap.
+    fn pace(&mut self, busy: bool) {
+        if busy {
+            self.reset();
+        } else {
+            self.sleep();
+        }
     }
 }
 
@@ -346,7 +354,7 @@ impl Leader {
         let mut st = inner
             .state
             .lock()
-            .map_err(|_| StudyError::Other("MPI state lock poisoned".into()))?;
+            .map_err(|_| StudyError::Poisoned("MPI state"))?;
         if st.ready.is_none() {
             let _ = wait_ready(world, inner.size, &mut st);
         }
@@ -420,13 +428,13 @@ impl BatchExecutor for MpiExecutor {
         let mut guard = inner
             .state
             .lock()
-            .map_err(|_| StudyError::Other("MPI state lock poisoned".into()))?;
+            .map_err(|_| StudyError::Poisoned("MPI state"))?;
         let st = &mut *guard;
         if st.ready.is_none() {
             let _ = wait_ready(world, inner.size, st);
         }
         if let Some(Err(e)) = &st.ready {
-            return Err(StudyError::Other(e.clone()));
+            return Err(StudyError::Mpi(e.clone()));
         }
         if jobs.is_empty() {
             return Ok(());
@@ -450,7 +458,7 @@ impl BatchExecutor for MpiExecutor {
         let mut first_err: Option<StudyError> = None;
         let study = ctx.study;
         let fail = |r: usize, i: usize, why: &str| {
-            StudyError::Other(format!(
+            StudyError::Mpi(format!(
                 "rank {r} failed on the run at {}: {why} (the runs that finished are committed: \
                  run the same command again, with any number of ranks, to resume)",
                 describe(study, &jobs[i].theta)
@@ -476,7 +484,7 @@ impl BatchExecutor for MpiExecutor {
                     .iter()
                     .position(|&(x, _)| x == id)
                     .ok_or_else(|| {
-                        StudyError::Other(format!("rank {r} returned a run it was not given"))
+                        StudyError::Mpi(format!("rank {r} returned a run it was not given"))
                     })?;
                 let (_, i) = inflight[r].swap_remove(k);
                 match out {
@@ -516,7 +524,7 @@ impl BatchExecutor for MpiExecutor {
                             }
                             if r == 0 {
                                 job_tx.send((id, jobs[i].clone())).map_err(|_| {
-                                    StudyError::Other("rank 0's solver threads stopped".into())
+                                    StudyError::Mpi("rank 0's solver threads stopped".into())
                                 })?;
                             } else {
                                 let (bytes, state) = wire::encode_job(id, &jobs[i]);
@@ -539,10 +547,7 @@ impl BatchExecutor for MpiExecutor {
                 for (r, _, bytes) in arrived {
                     st.stats.result_bytes += bytes.len() as u64;
                     let (id, out) = wire::decode_result(&bytes).map_err(|e| {
-                        StudyError::Other(format!(
-                            "a result from rank {r} does not decode: {}",
-                            e.0
-                        ))
+                        StudyError::Mpi(format!("a result from rank {r} does not decode: {}", e.0))
                     })?;
                     handle(r, id, out, &mut inflight, &mut first_err, &mut st.stats)?;
                 }
@@ -553,11 +558,7 @@ impl BatchExecutor for MpiExecutor {
                 if inflight.iter().all(Vec::is_empty) && (queue.is_empty() || first_err.is_some()) {
                     break Ok(());
                 }
-                if busy {
-                    nap.reset();
-                } else {
-                    nap.sleep();
-                }
+                nap.pace(busy);
             };
             drop(job_tx);
             result
@@ -658,14 +659,14 @@ impl Worker {
                             };
                             in_flight += 1;
                             if job_tx.send(job).is_err() {
-                                break 'serve Err(StudyError::Other(format!(
+                                break 'serve Err(StudyError::Mpi(format!(
                                     "rank {}: its solver threads stopped",
                                     self.rank
                                 )));
                             }
                         }
                         other => {
-                            break 'serve Err(StudyError::Other(format!(
+                            break 'serve Err(StudyError::Mpi(format!(
                                 "rank {}: unexpected message tag {other} from rank 0",
                                 self.rank
                             )));
@@ -681,11 +682,7 @@ impl Worker {
                 if stop && in_flight == 0 {
                     break Ok(());
                 }
-                if busy {
-                    nap.reset();
-                } else {
-                    nap.sleep();
-                }
+                nap.pace(busy);
             };
             drop(job_tx);
             result

@@ -14,6 +14,7 @@
 //! chosen status.
 
 use alea_latin::{InterfaceResult, PointStatus};
+use alea_mesh::vec3::dot;
 
 /// Which contact field.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,10 +71,6 @@ pub struct ContactQoi {
     pub field: ContactField,
     /// Side-1 mesh node of the point (`None`: integrated over the interface).
     pub node: Option<usize>,
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl ContactQoi {

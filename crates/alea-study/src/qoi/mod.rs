@@ -510,12 +510,13 @@ impl Qoi {
                 region.mean_von_mises(&model, &res.displacements[*sub])?
             }
             QoiKind::Displacement(s, x, c) => res.displacement_at(solver.model(*s), *s, *x).0[*c],
-            QoiKind::Contact(c) => c.eval(&res.interfaces[c.iface]).ok_or_else(|| {
-                StudyError::Other(format!(
-                    "quantity '{}': its point is not on interface '{}'",
-                    self.name, res.interfaces[c.iface].name
-                ))
-            })?,
+            QoiKind::Contact(c) => {
+                c.eval(&res.interfaces[c.iface])
+                    .ok_or_else(|| StudyError::QoiOffInterface {
+                        qoi: self.name.clone(),
+                        interface: res.interfaces[c.iface].name.clone(),
+                    })?
+            }
         })
     }
 

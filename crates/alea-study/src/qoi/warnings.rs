@@ -89,12 +89,11 @@ pub fn corner_warnings(
         .zip(&fields)
         .map(|(r, all)| -> Result<Vec<(usize, usize)>, StudyError> {
             if all.len() != sizes.iter().sum::<usize>() {
-                return Err(StudyError::Other(format!(
-                    "field file of the run at {:?} has {} values, expected {}",
-                    r.params,
-                    all.len(),
-                    sizes.iter().sum::<usize>()
-                )));
+                return Err(StudyError::FieldSize {
+                    params: r.params.clone(),
+                    found: all.len(),
+                    expected: sizes.iter().sum::<usize>(),
+                });
             }
             let factors = study
                 .model

@@ -15,7 +15,7 @@
 use super::Marginal;
 use crate::error::{Result, UqError, invalid};
 use crate::kde::Kde;
-use crate::special::{norm_cdf, norm_quantile, safeguarded_newton};
+use crate::special::{norm_cdf, norm_quantile, quantile_ends, safeguarded_newton};
 use rand::RngCore;
 
 /// Linearly interpolated empirical law.
@@ -151,14 +151,8 @@ impl Marginal for KdeLaw {
         ((a as f64 + window) / s.len() as f64).clamp(0.0, 1.0)
     }
     fn quantile(&self, p: f64) -> f64 {
-        if !(0.0..=1.0).contains(&p) {
-            return f64::NAN;
-        }
-        if p == 0.0 {
-            return f64::NEG_INFINITY;
-        }
-        if p == 1.0 {
-            return f64::INFINITY;
+        if let Some(q) = quantile_ends(p, f64::NEG_INFINITY, f64::INFINITY) {
+            return q;
         }
         let s = self.kde.samples();
         let h = self.kde.bandwidth();

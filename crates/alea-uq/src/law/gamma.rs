@@ -3,7 +3,7 @@
 
 use super::{Marginal, PolyFamily};
 use crate::error::{Result, invalid};
-use crate::special::{inc_gamma_p, ln_gamma, safeguarded_newton};
+use crate::special::{inc_gamma_p, ln_gamma, quantile_ends, safeguarded_newton};
 
 /// Gamma law with shape `k`, scale `theta` and location `loc`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,14 +55,8 @@ impl Marginal for Gamma {
         inc_gamma_p(self.k, (x - self.loc) / self.theta)
     }
     fn quantile(&self, p: f64) -> f64 {
-        if !(0.0..=1.0).contains(&p) {
-            return f64::NAN;
-        }
-        if p == 0.0 {
-            return self.loc;
-        }
-        if p == 1.0 {
-            return f64::INFINITY;
+        if let Some(q) = quantile_ends(p, self.loc, f64::INFINITY) {
+            return q;
         }
         // Bracket [0, hi] in the standard variable.
         let mut hi = self.k + 10.0 * self.k.sqrt() + 10.0;

@@ -14,7 +14,9 @@
 
 use super::Marginal;
 use crate::error::{Result, UqError, invalid};
-use crate::special::{ln_norm_pdf, ln_norm_sf, norm_cdf, norm_isf_ln, norm_quantile, norm_sf};
+use crate::special::{
+    ln_norm_pdf, ln_norm_sf, norm_cdf, norm_isf_ln, norm_quantile, norm_sf, quantile_ends,
+};
 
 /// Normal law `N(mu, sigma^2)` truncated to `[lo, hi]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -202,14 +204,8 @@ impl Marginal for TruncatedNormal {
         v.clamp(0.0, 1.0)
     }
     fn quantile(&self, p: f64) -> f64 {
-        if !(0.0..=1.0).contains(&p) {
-            return f64::NAN;
-        }
-        if p == 0.0 {
-            return self.lo;
-        }
-        if p == 1.0 {
-            return self.hi;
+        if let Some(q) = quantile_ends(p, self.lo, self.hi) {
+            return q;
         }
         let s = if self.mirror { self.qs(p) } else { self.qg(p) };
         self.x_of(s)

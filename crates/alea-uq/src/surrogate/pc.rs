@@ -290,31 +290,28 @@ impl PcExpansion {
             .map(|(_, c)| c)
             .sum()
     }
-    /// `Var[q~] = sum_{alpha != 0} s_alpha^2`.
-    pub fn variance(&self) -> f64 {
+    /// `sum s_alpha^2` over the multi-indices `alpha` that `keep` accepts.
+    fn squares_where(&self, keep: impl Fn(&[u16]) -> bool) -> f64 {
         self.basis
             .indices()
             .iter()
             .zip(&self.coeffs)
-            .filter(|(a, _)| a.iter().any(|&v| v != 0))
+            .filter(|(a, _)| keep(a))
             .map(|(_, c)| c * c)
             .sum()
+    }
+    /// `Var[q~] = sum_{alpha != 0} s_alpha^2`.
+    pub fn variance(&self) -> f64 {
+        self.squares_where(|a| a.iter().any(|&v| v != 0))
     }
     /// First-order Sobol' indices `S_i`.
     pub fn sobol_first(&self) -> Vec<f64> {
         let v = self.variance();
         (0..self.basis.dim())
             .map(|i| {
-                self.basis
-                    .indices()
-                    .iter()
-                    .zip(&self.coeffs)
-                    .filter(|(a, _)| {
-                        a[i] > 0 && a.iter().enumerate().all(|(j, &x)| j == i || x == 0)
-                    })
-                    .map(|(_, c)| c * c)
-                    .sum::<f64>()
-                    / v
+                self.squares_where(|a| {
+                    a[i] > 0 && a.iter().enumerate().all(|(j, &x)| j == i || x == 0)
+                }) / v
             })
             .collect()
     }
@@ -322,16 +319,7 @@ impl PcExpansion {
     pub fn sobol_total(&self) -> Vec<f64> {
         let v = self.variance();
         (0..self.basis.dim())
-            .map(|i| {
-                self.basis
-                    .indices()
-                    .iter()
-                    .zip(&self.coeffs)
-                    .filter(|(a, _)| a[i] > 0)
-                    .map(|(_, c)| c * c)
-                    .sum::<f64>()
-                    / v
-            })
+            .map(|i| self.squares_where(|a| a[i] > 0) / v)
             .collect()
     }
     /// Sobol' index of the exact group of variables `vars` (interaction index):
@@ -339,29 +327,23 @@ impl PcExpansion {
     /// `S_13`. The indices of all groups sum to 1.
     pub fn sobol_index(&self, vars: &[usize]) -> f64 {
         let v = self.variance();
-        let d = self.basis.dim();
-        let mut inside = vec![false; d];
-        for &i in vars {
-            if i < d {
-                inside[i] = true;
-            }
-        }
-        if vars.is_empty() || vars.iter().any(|&i| i >= d) {
+        let inside = self.group_mask(vars);
+        if vars.is_empty() || vars.iter().any(|&i| i >= inside.len()) {
             return 0.0;
         }
-        self.basis
-            .indices()
-            .iter()
-            .zip(&self.coeffs)
-            .filter(|(a, _)| a.iter().enumerate().all(|(j, &x)| (x > 0) == inside[j]))
-            .map(|(_, c)| c * c)
-            .sum::<f64>()
-            / v
+        self.squares_where(|a| a.iter().enumerate().all(|(j, &x)| (x > 0) == inside[j])) / v
     }
     /// Closed Sobol' index of the group `vars`: `sum` of the indices of all its non-empty
     /// subgroups (`S_u^clo = sum_{alpha != 0 : supp(alpha) in u} s_alpha^2 / Var`).
     pub fn sobol_closed(&self, vars: &[usize]) -> f64 {
         let v = self.variance();
+        let inside = self.group_mask(vars);
+        self.squares_where(|a| {
+            a.iter().any(|&x| x > 0) && a.iter().enumerate().all(|(j, &x)| x == 0 || inside[j])
+        }) / v
+    }
+    /// `inside[j]`: variable `j` is in the group `vars` (out-of-range entries ignored).
+    fn group_mask(&self, vars: &[usize]) -> Vec<bool> {
         let d = self.basis.dim();
         let mut inside = vec![false; d];
         for &i in vars {
@@ -369,16 +351,7 @@ impl PcExpansion {
                 inside[i] = true;
             }
         }
-        self.basis
-            .indices()
-            .iter()
-            .zip(&self.coeffs)
-            .filter(|(a, _)| {
-                a.iter().any(|&x| x > 0) && a.iter().enumerate().all(|(j, &x)| x == 0 || inside[j])
-            })
-            .map(|(_, c)| c * c)
-            .sum::<f64>()
-            / v
+        inside
     }
     /// Second-order interaction indices `S_ij` (symmetric `d x d`, row-major, zero diagonal).
     pub fn sobol_second_order(&self) -> Vec<f64> {

@@ -174,22 +174,11 @@ impl StochasticMesh {
         order: usize,
     ) -> Result<Vec<f64>> {
         let mut out = vec![0.0; self.num_runs()];
-        let mut w = Vec::new();
-        for c in self.leaves() {
-            let (a, b) = self.cell_bounds(c);
-            let r = QuadratureRule::gauss_legendre_box(&a, &b, order)?;
-            for q in 0..r.len() {
-                let x = r.node(q);
-                let f = r.weights()[q] * pdf(x);
-                if f == 0.0 {
-                    continue;
-                }
-                self.cell_weights(c, x, &mut w);
-                for &(k, wk) in &w {
-                    out[k] += f * wk;
-                }
+        self.for_each_leaf_point(pdf, order, |f, w| {
+            for &(k, wk) in w {
+                out[k] += f * wk;
             }
-        }
+        })?;
         Ok(out)
     }
 
@@ -207,6 +196,29 @@ impl StochasticMesh {
         order: usize,
     ) -> Result<Vec<(usize, usize, f64)>> {
         let mut acc: HashMap<(usize, usize), f64> = HashMap::new();
+        self.for_each_leaf_point(pdf, order, |f, w| {
+            for &(k, wk) in w {
+                for &(l, wl) in w {
+                    if k <= l {
+                        *acc.entry((k, l)).or_insert(0.0) += f * wk * wl;
+                    }
+                }
+            }
+        })?;
+        let mut out: Vec<(usize, usize, f64)> =
+            acc.into_iter().map(|((k, l), v)| (k, l, v)).collect();
+        out.sort_unstable_by_key(|e| (e.0, e.1));
+        Ok(out)
+    }
+
+    /// Visits every point of an `order`-point Gauss-Legendre rule per leaf where
+    /// `f = rule weight * pdf(x)` is not zero, with `f` and the weights `w_k(x)` there.
+    fn for_each_leaf_point(
+        &self,
+        pdf: impl Fn(&[f64]) -> f64,
+        order: usize,
+        mut visit: impl FnMut(f64, &[(usize, f64)]),
+    ) -> Result<()> {
         let mut w = Vec::new();
         for c in self.leaves() {
             let (a, b) = self.cell_bounds(c);
@@ -218,19 +230,10 @@ impl StochasticMesh {
                     continue;
                 }
                 self.cell_weights(c, x, &mut w);
-                for &(k, wk) in &w {
-                    for &(l, wl) in &w {
-                        if k <= l {
-                            *acc.entry((k, l)).or_insert(0.0) += f * wk * wl;
-                        }
-                    }
-                }
+                visit(f, &w);
             }
         }
-        let mut out: Vec<(usize, usize, f64)> =
-            acc.into_iter().map(|((k, l), v)| (k, l, v)).collect();
-        out.sort_unstable_by_key(|e| (e.0, e.1));
-        Ok(out)
+        Ok(())
     }
 
     pub(super) fn cell_weights(&self, c: CellId, xi: &[f64], w: &mut Vec<(usize, f64)>) {

@@ -1,14 +1,15 @@
-//! Shape functions and their reference derivatives for every cell type (no mesh involved).
+//! Shape functions and their reference derivatives for every cell type (no mesh involved), for
+//! the finite elements (`alea_fem::reference` is this module) and the cell geometry of meshes.
 //!
-//! Reference cells and node orders are those of `alea_mesh::CellType` (VTK order) and of
-//! [`crate::quadrature`]. Lagrange/serendipity functions:
+//! Reference cells and node orders are those of [`CellType`] (VTK order) and of
+//! `alea_fem::quadrature`. Lagrange/serendipity functions:
 //! - Line2 `(1 -+ xi)/2`; Line3 `xi(xi-1)/2, xi(xi+1)/2, 1 - xi^2`.
 //! - Tri3/Tet4 barycentric `L`; Tri6/Tet10 corners `L_i (2 L_i - 1)`, mid-edge `4 L_i L_j`.
 //! - Quad4/Hex8 (bi/tri)linear; Quad8 serendipity: corners
 //!   `(1 + xi xi_i)(1 + eta eta_i)(xi xi_i + eta eta_i - 1)/4`, mid-sides `(1 - xi^2)(1 + eta eta_i)/2`
 //!   and `(1 + xi xi_i)(1 - eta^2)/2`.
 
-use alea_mesh::CellType;
+use crate::CellType;
 
 const QUAD_CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
 const HEX_CORNERS: [[f64; 3]; 8] = [
@@ -250,55 +251,6 @@ mod tests {
                     let fd = (np[i] - nm[i]) / (2.0 * h);
                     assert!((fd - dn[i][k]).abs() < 1e-8, "{kind} dN{i}/dxi{k}");
                 }
-            }
-        }
-    }
-
-    #[test]
-    fn quadrature_integrates_monomials_exactly() {
-        use crate::quadrature::Quadrature;
-        // Triangle: int r^a s^b = a! b! / (a + b + 2)!.
-        let fact = |n: usize| (1..=n).product::<usize>() as f64;
-        for deg in 1..=8 {
-            let q = Quadrature::triangle(deg);
-            for a in 0..=deg {
-                let b = deg - a;
-                let got: f64 = q
-                    .points
-                    .iter()
-                    .zip(&q.weights)
-                    .map(|(p, w)| w * p[0].powi(a as i32) * p[1].powi(b as i32))
-                    .sum();
-                let want = fact(a) * fact(b) / fact(a + b + 2);
-                assert!((got - want).abs() < 1e-14, "tri deg {deg} r^{a} s^{b}");
-            }
-            let q = Quadrature::tetrahedron(deg);
-            for a in 0..=deg {
-                for b in 0..=deg - a {
-                    let c = deg - a - b;
-                    let got: f64 = q
-                        .points
-                        .iter()
-                        .zip(&q.weights)
-                        .map(|(p, w)| {
-                            w * p[0].powi(a as i32) * p[1].powi(b as i32) * p[2].powi(c as i32)
-                        })
-                        .sum();
-                    let want = fact(a) * fact(b) * fact(c) / fact(a + b + c + 3);
-                    assert!((got - want).abs() < 1e-14, "tet deg {deg}");
-                }
-            }
-        }
-        for n in 1..8 {
-            let (x, w) = crate::quadrature::gauss_legendre(n);
-            for d in 0..2 * n {
-                let got: f64 = x.iter().zip(&w).map(|(x, w)| w * x.powi(d as i32)).sum();
-                let want = if d % 2 == 1 {
-                    0.0
-                } else {
-                    2.0 / (d as f64 + 1.0)
-                };
-                assert!((got - want).abs() < 1e-13, "GL n={n} x^{d}");
             }
         }
     }
