@@ -40,7 +40,7 @@ pub struct Study {
     /// Outputs.
     pub output: OutputSpec,
     /// The `[[reliability]]` analyses, checked.
-    pub reliability: Vec<crate::reliability::ReliabilityTask>,
+    pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
 }
 
 impl std::fmt::Debug for Study {
@@ -77,7 +77,7 @@ impl Study {
             let names: Vec<String> = qois.iter().map(|q| q.name.clone()).collect();
             build_methods(&source, &file.method, &params, &names, seed)?
         };
-        let reliability = crate::reliability::build_reliability(
+        let reliability = crate::reliability::task::build_reliability(
             &source,
             &file.reliability,
             &qois,
