@@ -104,44 +104,34 @@ pub fn comparisons(
     };
     match &method.kind {
         MethodKind::MonteCarlo => Err("Monte Carlo on the model has no surrogate".into()),
-        MethodKind::PcRegression { degree } | MethodKind::PcProjection { degree } => {
+        MethodKind::PcRegression { degree }
+        | MethodKind::PcProjection { degree }
+        | MethodKind::Polynomial { degree } => {
+            let chaos = !matches!(method.kind, MethodKind::Polynomial { .. });
+            let what = if chaos { "chaos" } else { "polynomial" };
             if *degree == 0 {
-                return Err("a degree-0 chaos has no coarser surrogate".into());
+                return Err(format!("a degree-0 {what} has no coarser surrogate"));
             }
             let at = |p: usize| {
-                same(
-                    MethodKind::PcRegression { degree: p },
-                    format!("PC regression of degree {p}"),
-                    p < *degree,
-                )
+                if chaos {
+                    same(
+                        MethodKind::PcRegression { degree: p },
+                        format!("PC regression of degree {p}"),
+                        p < *degree,
+                    )
+                } else {
+                    same(
+                        MethodKind::Polynomial { degree: p },
+                        format!("standard polynomial of degree {p}"),
+                        p < *degree,
+                    )
+                }
             };
-            let terms = PcBasis::total_degree(&params.marginals, degree + 1)
-                .map_or(usize::MAX, |b| b.len());
-            let mut out = vec![at(degree - 1)?];
-            if *degree >= 2 {
-                out.push(at(degree - 2)?);
-            }
-            // The richer fit only where the runs determine it (a tensor design of p + 1 points
-            // per parameter cannot fit degree p + 1: rank deficient, left out).
-            if terms < used.len()
-                && let Ok(up) = at(degree + 1)
-            {
-                out.push(up);
-            }
-            Ok(out)
-        }
-        MethodKind::Polynomial { degree } => {
-            if *degree == 0 {
-                return Err("a degree-0 polynomial has no coarser surrogate".into());
-            }
-            let at = |p: usize| {
-                same(
-                    MethodKind::Polynomial { degree: p },
-                    format!("standard polynomial of degree {p}"),
-                    p < *degree,
-                )
+            let terms = if chaos {
+                PcBasis::total_degree(&params.marginals, degree + 1).map_or(usize::MAX, |b| b.len())
+            } else {
+                binomial(d + degree + 1, d)
             };
-            let terms = binomial(d + degree + 1, d);
             let mut out = vec![at(degree - 1)?];
             if *degree >= 2 {
                 out.push(at(degree - 2)?);
