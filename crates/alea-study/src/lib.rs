@@ -15,6 +15,7 @@ pub mod estimate;
 pub mod expr;
 pub mod fields;
 pub mod goal;
+mod goal_settings;
 pub mod limits;
 pub mod lock;
 pub mod method;
