@@ -407,6 +407,17 @@ pub struct MethodSpec {
     pub goal: Option<Spanned<GoalSpec>>,
 }
 
+/// `[budget]`: `refined_mesh = { params = { n_flank = 48 } }` (or `cells = [..]`, or
+/// `file = "fine.msh"`): the keys of `[mesh]` that make a mesh about twice as fine; the model is
+/// solved on both meshes at a few design points and the differences give the mesh part of every
+/// statistic's error budget (`crate::budget::mesh`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BudgetSpec {
+    /// Keys replacing those of `[mesh]` (`params` merged key by key).
+    pub refined_mesh: Spanned<toml::Table>,
+}
+
 /// `[[reliability]]`: `P(q > threshold)` of a quantity by FORM, SORM, importance sampling and
 /// subset simulation on the surrogate of one method (`crate::reliability`).
 #[derive(Clone, Debug, Deserialize)]
@@ -534,6 +545,9 @@ pub struct ModelFile {
     /// `[[reliability]]`: rare-event probabilities of a quantity on a method's surrogate.
     #[serde(default)]
     pub reliability: Vec<ReliabilitySpec>,
+    /// `[budget]`: how the error budget's mesh part is estimated.
+    #[serde(default)]
+    pub budget: Option<BudgetSpec>,
     /// Statistics settings (`[statistics]`).
     #[serde(default)]
     pub statistics: StatsSpec,

@@ -41,6 +41,8 @@ pub struct Study {
     pub output: OutputSpec,
     /// The `[[reliability]]` analyses, checked.
     pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
+    /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
+    pub refined: Option<Box<Study>>,
 }
 
 impl std::fmt::Debug for Study {
@@ -84,6 +86,10 @@ impl Study {
             &methods,
             &params,
         )?;
+        let refined = match &file.budget {
+            Some(b) => Some(Box::new(refined_study(&source, b)?)),
+            None => None,
+        };
         let hash = input_hash(&source, &file)?;
         let output = file.output.clone();
         let study = Study {
@@ -97,6 +103,7 @@ impl Study {
             hash,
             output,
             reliability,
+            refined,
         };
         check_built(&study)?;
         Ok(study)
@@ -257,4 +264,38 @@ pub fn check_built(study: &Study) -> Result<(), StudyError> {
         }
     }
     Ok(())
+}
+
+/// The study of `source` with `[mesh]` patched by `[budget] refined_mesh` (and no `[budget]`).
+///
+/// # Errors
+/// [`StudyError::Input`] at `budget.refined_mesh` when the patched study does not build.
+fn refined_study(source: &Source, spec: &crate::spec::BudgetSpec) -> Result<Study, StudyError> {
+    let span = spec.refined_mesh.span();
+    let field = "budget.refined_mesh";
+    let fail = |why: String| source.error(span.clone(), field, why);
+    let mut doc: toml::Table = toml::from_str(&source.text).map_err(|e| fail(e.to_string()))?;
+    doc.remove("budget");
+    let mesh = doc
+        .get_mut("mesh")
+        .and_then(|m| m.as_table_mut())
+        .ok_or_else(|| fail("the study has no [mesh] table to refine".into()))?;
+    for (key, value) in spec.refined_mesh.get_ref() {
+        match (key.as_str(), value, mesh.get_mut(key)) {
+            ("params", toml::Value::Table(new), Some(toml::Value::Table(old))) => {
+                for (k, v) in new {
+                    old.insert(k.clone(), v.clone());
+                }
+            }
+            _ => {
+                mesh.insert(key.clone(), value.clone());
+            }
+        }
+    }
+    let text = toml::to_string(&doc).map_err(|e| fail(e.to_string()))?;
+    let refined = Source {
+        path: source.path.clone(),
+        text,
+    };
+    Study::from_source(refined).map_err(|e| fail(format!("the refined study does not build: {e}")))
 }

@@ -17,10 +17,50 @@ pub fn analyse_all(
     runs: &StudyRuns,
     settings: &AnalysisSettings,
 ) -> Vec<MethodResult> {
-    runs.methods
+    let mut results: Vec<MethodResult> = runs
+        .methods
         .iter()
         .map(|m| analyse_method(study, m, &runs.records, settings))
-        .collect()
+        .collect();
+    if let Some(refined) = &study.refined {
+        apply_mesh_part(study, refined, &mut results);
+    }
+    results
+}
+
+/// The mesh part of every statistic's budget from the paired solves of `[budget]
+/// refined_mesh` (`alea_study::budget::mesh`), or why it is not estimated.
+fn apply_mesh_part(study: &Study, refined: &Study, results: &mut [MethodResult]) {
+    use alea_study::budget::mesh::{apply, mesh_check};
+    let check = mesh_check(study, refined);
+    for r in results.iter_mut() {
+        for (q, stats) in r.qois.iter_mut().enumerate() {
+            let samples = std::mem::take(&mut stats.samples);
+            if let Some(budget) = stats.budget.as_mut() {
+                match &check {
+                    Ok(c) => match c.bounds(q) {
+                        Some((d, s)) => apply(
+                            budget,
+                            &samples,
+                            (d, s),
+                            format!(
+                                "paired solves on this mesh ({} nodes) and the refined one ({} nodes) at {} design points: D = 2 max |q_h - q_h/2| = {d:.3e}, spread S = {s:.3e} (Richardson, first order)",
+                                c.nodes.0,
+                                c.nodes.1,
+                                c.points.len()
+                            ),
+                        ),
+                        None => {
+                            budget.mesh_basis =
+                                "not estimated: no paired solve converged on both meshes".into()
+                        }
+                    },
+                    Err(e) => budget.mesh_basis = format!("not estimated: {e}"),
+                }
+            }
+            stats.samples = samples;
+        }
+    }
 }
 
 /// The converged runs among `points`, in the order of `points`, each with its point.

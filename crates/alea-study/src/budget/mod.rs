@@ -15,10 +15,12 @@
 //!   kurtosis (delta method on `s^2`, whose variance is `s^4 (k + 2) / N`); quantile of order
 //!   `p` half the distance between the order statistics of ranks `N p -+ z sqrt(N p (1 - p))`
 //!   (the distribution-free binomial interval); `P(q > t)` half the Wilson interval.
-//! - **mesh** (space discretisation): not estimated yet for statistics (`None`); the runs'
-//!   energy-norm error is the CRE estimate's `I_geo`.
+//! - **mesh** (space discretisation): with `[budget] refined_mesh`, from paired solves on the
+//!   study's mesh and a mesh about twice as fine at a few design points ([`mesh`]); without
+//!   it, not estimated (`None`; the runs' energy-norm error is then the CRE estimate's `I_geo`).
 
 mod coarse;
+pub mod mesh;
 
 pub use coarse::{Comparison, comparisons};
 
@@ -173,7 +175,16 @@ pub fn qoi_budget(
                 });
             let tol = 1e-9 * (hi - lo).abs().max(hi.abs()).max(f64::MIN_POSITIVE);
             let differs = |c: &[f64]| c.iter().zip(samples).any(|(a, b)| (a - b).abs() > tol);
-            let first_coarser = c.iter().position(|(s, coarser, _)| *coarser && differs(s));
+            // When the next coarser surrogate equals the method's (its top terms vanish), the
+            // response may be exactly of lower degree (converged) or odd on a symmetric design
+            // (the even terms vanish, the next odd ones do not): a richer comparison tells them
+            // apart when there is one; without it, go down to the first coarser that differs.
+            let first = c.iter().position(|(_, coarser, _)| *coarser);
+            let has_richer = c.iter().any(|(_, coarser, _)| !coarser);
+            let first_coarser = match first {
+                Some(i) if !differs(c[i].0) && has_richer => None,
+                _ => c.iter().position(|(s, coarser, _)| *coarser && differs(s)),
+            };
             c.iter()
                 .enumerate()
                 .filter(|(i, (_, coarser, _))| !coarser || Some(*i) == first_coarser)

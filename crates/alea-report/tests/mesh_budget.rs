@@ -1,0 +1,166 @@
+//! The mesh part of the error budget (issue 19) against the TRUE mesh error: Kirsch's plate
+//! with a hole (Quad4, a deliberately coarse mesh), remote traction `100 P` MPa with
+//! `P ~ N(1, 0.1^2)`, quantity the maximum von Mises stress on the hole. The response is
+//! exactly linear in `P` on every mesh (linear elasticity), `q_h = K_h P`, so a chaos is
+//! exact (degree 2 on 10 runs: its degree-1 and degree-3 comparisons equal it, so the surrogate
+//! part is 0) and every error of the statistics is the mesh's (plus sampling): with `K` the value on
+//! an 8x finer mesh (the reference),
+//! mean `K`, std `0.1 K`, quantile `K (1 + 0.1 z_p)`, `P(q > t) = 1 - Phi((t / K - 1) / 0.1)`.
+//!
+//! `[budget] refined_mesh` doubles the mesh; the budget's total must cover the true error of
+//! each statistic and stay within 10x of it.
+
+use alea_study::Source;
+use alea_study::analysis::AnalysisSettings;
+use alea_study::runner::{NoProgress, Study, run_study};
+
+fn study(n: usize, budget: bool) -> Study {
+    let refined = if budget {
+        format!(
+            "[budget]\nrefined_mesh = {{ params = {{ n_arc = {}, n_radial = {} }} }}\n",
+            2 * n,
+            2 * n
+        )
+    } else {
+        String::new()
+    };
+    let text = format!(
+        r#"
+[study]
+title = "Kirsch plate, mesh budget"
+seed = 5
+
+[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "plate_with_hole"
+kind = "quad4"
+params = {{ radius = 10.0, half_width = 100.0, n_arc = {n}, n_radial = {n}, grading = 6.0 }}
+
+[analysis]
+type = "plane_stress"
+
+[[parameter]]
+name = "P"
+law = "normal"
+mean = 1.0
+std = 0.1
+
+[[substructure]]
+name = "plate"
+young = 210e3
+poisson = 0.3
+constraint = [ {{ group = "xsym", x = 0.0 }}, {{ group = "ysym", y = 0.0 }} ]
+load = [ {{ group = "right", traction = [100.0, 0.0], factor = "P" }} ]
+
+[[quantity]]
+name = "vm_hole"
+kind = "max_von_mises"
+substructure = "plate"
+group = "hole"
+unit = "MPa"
+thresholds = [330.0]
+
+[[method]]
+type = "pc_regression"
+degree = 2
+design = "lhs"
+runs = 10
+
+[statistics]
+samples = 100000
+
+{refined}"#
+    );
+    Study::from_source(Source::from_text("kirsch.toml", &text)).unwrap()
+}
+
+fn norm_cdf(x: f64) -> f64 {
+    alea_uq::special::norm_cdf(x)
+}
+
+#[test]
+fn mesh_part_covers_the_true_mesh_error_of_every_statistic() {
+    let dir = std::env::temp_dir().join(format!("alea-mesh-budget-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    // The reference: the same plate 8x finer, K = q / P.
+    let reference = study(48, false);
+    let runs = run_study(&reference, &dir.join("ref"), false, &NoProgress).unwrap();
+    let r = runs
+        .records
+        .iter()
+        .find(|r| r.converged())
+        .expect("a reference run");
+    let k = r.qois[0] / r.params[0];
+    // The study on the coarse mesh, with the refined mesh of its budget.
+    let s = study(6, true);
+    let runs = run_study(&s, &dir.join("coarse"), false, &NoProgress).unwrap();
+    let settings = AnalysisSettings {
+        samples: 100_000,
+        bandwidth: alea_uq::kde::Bandwidth::Silverman,
+        kde_points: 64,
+        confidence: 0.95,
+    };
+    let results = alea_report::study::analyse_all(&s, &runs, &settings);
+    let stats = &results[0].qois[0];
+    let budget = stats.budget.as_ref().unwrap();
+    assert!(
+        budget.mesh_basis.starts_with("paired solves"),
+        "{}",
+        budget.mesh_basis
+    );
+    let z95 = 1.644_853_626_951_472_2;
+    let truth = |name: &str| -> Option<f64> {
+        match name {
+            "mean" => Some(k),
+            "std" => Some(0.1 * k),
+            "q0.5" => Some(k),
+            "q0.95" => Some(k * (1.0 + 0.1 * z95)),
+            "P(> 330)" => Some(1.0 - norm_cdf((330.0 / k - 1.0) / 0.1)),
+            _ => None,
+        }
+    };
+    let mut checked = 0;
+    for row in &budget.rows {
+        let Some(t) = truth(&row.statistic) else {
+            continue;
+        };
+        let actual = (row.value - t).abs();
+        eprintln!(
+            "{:<10} value {:.5e} true {:.5e} error {:.3e} total {:.3e} (mesh {:.3e}, surrogate {:.3e}, sampling {:.3e})",
+            row.statistic,
+            row.value,
+            t,
+            actual,
+            row.total,
+            row.mesh.unwrap_or(f64::NAN),
+            row.surrogate.unwrap_or(f64::NAN),
+            row.sampling
+        );
+        assert!(
+            row.total >= actual,
+            "{}: total {} < true error {actual}",
+            row.statistic,
+            row.total
+        );
+        assert!(
+            row.total <= 10.0 * actual.max(row.sampling),
+            "{}: total {} > 10x true error {actual}",
+            row.statistic,
+            row.total
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 5);
+    // The mesh error is large here (a 6 x 6 Quad4 mesh around the hole).
+    let mean = &budget.rows[0];
+    assert!(
+        (mean.value - k).abs() > 0.02 * k,
+        "mean {} vs {k}",
+        mean.value
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
