@@ -8,7 +8,12 @@
 //! piecewise linear, so once the contact statuses settle the slow global modes (floating
 //! substructures, no coarse problem) are resolved in a few iterations instead of hundreds.
 //! The state is packed in the k-weighted norm of the error indicator (`sqrt(m k) W`,
-//! `sqrt(m / k) F`), so displacements and forces weigh alike. The caller resets the history
+//! `sqrt(m / k) F`), so displacements and forces weigh alike. The normal equations are
+//! regularised by `1e-10 max(tr(dG^T dG), |g|^2)`: where the iteration drifts without a fixed
+//! point yet (a floating block closing an initial gap moves by the same step every iteration,
+//! so `dG` is round-off while `g` is not), a regularisation relative to `dG` alone let `gamma`
+//! grow like `|g| / |dG|` and threw the block 1e5 model sizes away (issue 21); relative to
+//! `|g|` too, such a step stays a plain one. The caller resets the history
 //! when the indicator grows (safeguard); results are always the last true local stage.
 
 use std::collections::VecDeque;
@@ -79,8 +84,9 @@ impl Anderson {
             self.reset();
             return next;
         }
+        let reg = 1e-10 * trace.max(dot(&g, &g));
         for i in 0..m {
-            a[i * m + i] += 1e-10 * trace;
+            a[i * m + i] += reg;
         }
         for c in 0..m {
             let p = (c..m)

@@ -57,6 +57,20 @@
 //! acceleration the remaining oscillation needs some relaxation: the solver then relaxes the
 //! linear stage by at most 0.8 (`LatinOptions::coarse`).
 //!
+//! # Open interfaces
+//! The macro constraint `E^T (M_1 F_1 + M_2 F_2) = 0` lets an interface carry a macro force
+//! (`F_1 = -F_2 != 0`), which only a closed interface can: on a contact interface that is open
+//! at every point (initial gap, or every point open in the last local stage) the exact
+//! solution has `F_1 = F_2 = 0` there, and imposing the balance instead glues the sides at the
+//! macro level across the gap. A floating block with a uniform initial gap pressed onto a base
+//! was then moved rigidly by the macro correction against the drift that closes the gap, and
+//! the run stalled far from the contact ("no equilibrium"; issue 21). Such an interface's macro
+//! unknowns are therefore left out of the coarse problem (zero rows and columns in `L`, zero
+//! `lambda`) until a point of it closes again; the macro operator is re-inverted when this
+//! active set changes (a dense `n x n` eigendecomposition, `n` = 3 per interface in 2D, 6 in
+//! 3D). The first iteration, before any local stage, counts an interface open when its initial
+//! gap is positive at every point.
+//!
 //! # Search direction
 //! A large search direction `k` makes the micro (short-wavelength) interface modes converge in
 //! a mesh-independent number of iterations but leaves the long-wavelength (macro) ones to a
@@ -336,12 +350,21 @@ fn interpolate_homogeneous(dofs: &DofMap, proj: &SideProjection, u: &[f64]) -> V
 }
 
 /// The macro operator of a run: the pseudo-inverse of `L = sum_s alpha_s L_s^0` (row-major
-/// `n x n`); eigenvalues below `1e-10` of the largest are left out.
-pub(crate) fn macro_inverse(n: usize, subs: &[SubMacro], alpha: &[f64]) -> Vec<f64> {
+/// `n x n`) restricted to the active macro unknowns (`active[j]`; the rows and columns of the
+/// others are zero, so their `lambda` is zero: module doc, "Open interfaces"); eigenvalues
+/// below `1e-10` of the largest are left out.
+pub(crate) fn macro_inverse(
+    n: usize,
+    subs: &[SubMacro],
+    alpha: &[f64],
+    active: &[bool],
+) -> Vec<f64> {
     let mut l = Mat::<f64>::zeros(n, n);
     for (s, sm) in subs.iter().enumerate() {
         for &(r, c, v) in &sm.l0 {
-            l[(r, c)] += alpha[s] * v;
+            if active[r] && active[c] {
+                l[(r, c)] += alpha[s] * v;
+            }
         }
     }
     // Symmetric up to round-off: use the symmetric part.

@@ -13,7 +13,10 @@
 //! Each side-1 node is paired with the nearest side-2 node; the pairing must be one-to-one and
 //! every distance within the tolerance (default `1e-6` times the interface's bounding-box
 //! diagonal), otherwise [`LatinError::Unmatched`] names the interface and the worst distance
-//! ([`Pairing::Auto`] then falls back to the mortar pairing).
+//! ([`Pairing::Auto`] then falls back to the mortar pairing). Both sides of a node-to-node
+//! pairing carry side 1's weights, so paired forces are exactly equal and opposite also when
+//! the nodes only nearly coincide (within the tolerance; each side's own weights then differ
+//! slightly and the LATIN iteration had no fixed point, issue 21).
 //!
 //! The interface mass `M_Gamma,ij = int N_i N_j dS` (times the thickness in 2D) is lumped with
 //! the HRZ rule (diagonal proportional to the consistent diagonal, scaled to the facet measure),
@@ -397,7 +400,11 @@ pub fn pair_node_to_node(
     let x2: Vec<[f64; 3]> = g2.nodes.iter().map(|&n| sides[1].0.coords[n]).collect();
     let partner = pair_nodes(name, &x1, &x2, tol)?;
     let nodes2: Vec<usize> = partner.iter().map(|&j| g2.nodes[j]).collect();
-    let weights2: Vec<f64> = partner.iter().map(|&j| g2.weights[j]).collect();
+    // Both sides carry side 1's lumped weights: a pair's forces are then exactly equal and
+    // opposite. Each side's own weights differ where the nodes only nearly coincide (within the
+    // matching tolerance), and the run then had no fixed point (its indicator stalled at the
+    // relative weight difference, issue 21); on exactly matching sides they are the same.
+    let weights2 = g1.weights.clone();
     let n = x1.len();
     Ok(InterfacePairing {
         kind: PairingKind::NodeToNode,

@@ -1,18 +1,60 @@
 //! The coarse step of the two-scale LATIN (`LatinOptions::coarse`; macro space and
 //! substructure responses in module [`crate::coarse`]): the macro imbalance `b` of the plain
 //! linear stage's interface forces (resultants and moments per interface), the macro unknowns
-//! `lambda = (macro operator)^-1 b`, and the correction of every substructure's `u`, `W`, `F`.
+//! `lambda = (macro operator)^-1 b`, and the correction of every substructure's `u`, `W`, `F`;
+//! the active set of interfaces (those not open at every point, module `coarse`, "Open
+//! interfaces") and the re-inversion of the macro operator when it changes.
 
 use rayon::prelude::*;
 
-use super::{LatinSolver, Run, SubOperator, SubState};
-use crate::coarse::{InterfaceModes, SubMacro};
+use super::{Coarse, LatinSolver, Run, SubOperator, SubState};
+use crate::coarse::{InterfaceModes, SubMacro, macro_inverse};
+use crate::{PointData, PointStatus};
+
+impl Coarse {
+    /// Per macro unknown: whether its interface is active.
+    pub(super) fn mask(&self, active: &[bool]) -> Vec<bool> {
+        let mut mask = vec![false; self.n];
+        for (m, &a) in self.modes.iter().zip(active) {
+            mask[m.offset..m.offset + m.len()].fill(a);
+        }
+        mask
+    }
+}
 
 impl LatinSolver {
+    /// Per interface, before any local stage: false for a gap law whose initial gap is positive
+    /// at every point (open from the start), true otherwise.
+    pub(super) fn initially_closed(&self, points: &[Vec<PointData>]) -> Vec<bool> {
+        self.ifaces
+            .iter()
+            .zip(points)
+            .map(|(op, pts)| {
+                !(op.law.uses_gap() && !pts.is_empty() && pts.iter().all(|p| p.gap > 0.0))
+            })
+            .collect()
+    }
+
     /// Corrects the plain linear stage of every substructure so that its interface forces
-    /// balance macroscopically across every interface (nothing without the coarse problem).
-    pub(super) fn coarse_step(&self, run: &mut Run<'_>) {
-        let (Some(cs), Some(inv)) = (&self.coarse, &run.macro_inv) else {
+    /// balance macroscopically across every active interface (nothing without the coarse
+    /// problem). `first`: no local stage yet (the active set is the initial one).
+    pub(super) fn coarse_step(&self, run: &mut Run<'_>, first: bool) {
+        let Some(cs) = &self.coarse else {
+            return;
+        };
+        if !first {
+            let active: Vec<bool> = run
+                .istate
+                .iter()
+                .map(|st| st.status.iter().any(|s| *s != PointStatus::Open))
+                .collect();
+            if active != run.macro_active {
+                let mask = cs.mask(&active);
+                run.macro_inv = Some(macro_inverse(cs.n, &cs.subs, &run.alpha, &mask));
+                run.macro_active = active;
+            }
+        }
+        let Some(inv) = &run.macro_inv else {
             return;
         };
         let (sstate, alpha) = (&mut run.sstate, &run.alpha);

@@ -32,7 +32,7 @@ impl LatinSolver {
             .enumerate()
             .map(|(s, (op, st))| linear_stage(op, st, &run.istate, &run.base[s], run.alpha[s]))
             .sum();
-        self.coarse_step(run);
+        self.coarse_step(run, first);
         let r = if first { 1.0 } else { self.relaxation() };
         run.sstate.par_iter_mut().for_each(|st| relax(st, r));
         run.timings.linear += t0.elapsed().as_secs_f64();

@@ -305,6 +305,9 @@ struct Run<'a> {
     sstate: Vec<SubState>,
     /// Inverse of the macro operator at `alpha` (with the coarse problem).
     macro_inv: Option<Vec<f64>>,
+    /// Per interface: in the coarse problem (not open at every point; module `coarse`, "Open
+    /// interfaces"); `macro_inv` is the inverse for this active set.
+    macro_active: Vec<bool>,
     residuals: Vec<f64>,
     timings: RunTimings,
 }

@@ -70,10 +70,11 @@ impl LatinSolver {
         let points = self.run_points(input)?;
         let base = self.constant_rhs(input, &alpha);
         let (istate, warm) = self.initial_state(input)?;
-        let macro_inv = self
-            .coarse
-            .as_ref()
-            .map(|cs| macro_inverse(cs.n, &cs.subs, &alpha));
+        let macro_active = self.initially_closed(&points);
+        let macro_inv = self.coarse.as_ref().map(|cs| {
+            let mask = cs.mask(&macro_active);
+            macro_inverse(cs.n, &cs.subs, &alpha, &mask)
+        });
         Ok(Run {
             input,
             alpha,
@@ -83,6 +84,7 @@ impl LatinSolver {
             istate,
             sstate: self.sub_states(),
             macro_inv,
+            macro_active,
             residuals: Vec::new(),
             timings: RunTimings::default(),
         })
