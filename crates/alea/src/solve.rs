@@ -83,12 +83,29 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             ..sub.clone()
         };
         let sub = &sub;
-        let sol = solve_elastic(
+        let sol = match solve_elastic(
             &sub.model,
             &sub.constraints,
             &loads,
             alea_fem::Ordering::Metis,
-        )?;
+        ) {
+            // A single body is solved directly: a rigid-body motion its constraints leave free
+            // is an input error at its constraints (exit 2), not a failed computation.
+            Err(alea_fem::FemError::NotPositiveDefinite) => {
+                let spec = &file.substructure[0];
+                return Err(src
+                    .error(
+                        spec.name.span(),
+                        "substructure[0].constraint",
+                        format!(
+                            "substructure '{}' can move as a rigid body (its stiffness matrix is singular): a single body is solved directly and its constraints must hold every rigid-body motion (e.g. a fixed point and a roller, or the symmetry planes), even under a self-equilibrated load",
+                            spec.name.get_ref()
+                        ),
+                    )
+                    .into());
+            }
+            r => r?,
+        };
         let stresses = post::nodal_stresses(&sub.model, &sol.u)?;
         let vm: Vec<f64> = stresses.iter().map(von_mises).collect();
         let (imax, vmax) = vm

@@ -457,3 +457,51 @@ fn no_convergence_exits_4_after_writing_the_outputs() {
     assert!(text(&o).contains("no run converged"), "{}", text(&o));
     assert!(dir.join("study/summary.json").exists());
 }
+
+/// Issue 21, item 4: a single floating substructure under a self-equilibrated load (equal and
+/// opposite tractions on two faces, no constraint) is refused as an input error (exit 2) at
+/// its substructure, once, with the reason - not "stiffness matrix is not positive definite"
+/// with exit 4 and no location.
+#[test]
+fn a_single_floating_body_is_an_input_error_at_its_substructure() {
+    let case_text = r#"
+[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "rectangle"
+kind = "quad4"
+size = [10.0, 2.0]
+cells = [4, 2]
+
+[analysis]
+type = "plane_stress"
+
+[[substructure]]
+name = "bar"
+young = 1000.0
+poisson = 0.3
+load = [ { group = "xmax", traction = [1.0, 0.0] }, { group = "xmin", traction = [-1.0, 0.0] } ]
+"#;
+    let dir = tmp("floating");
+    let case = dir.join("floating.toml");
+    std::fs::write(&case, case_text).unwrap();
+    let o = alea()
+        .arg("solve")
+        .arg(&case)
+        .arg("--out")
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    let line = line_of(case_text, "name = \"bar\"");
+    assert!(
+        t.contains(&format!("floating.toml:{line}:")) && t.contains("substructure[0].constraint"),
+        "{t}"
+    );
+    assert!(t.contains("rigid body"), "{t}");
+    assert_eq!(t.matches("rigid body").count(), 1, "said once: {t}");
+}
