@@ -32,88 +32,18 @@ use crate::method::{Method, Surrogate};
 use crate::store::Store;
 use crate::study::Study;
 
-/// Settings of the `[error]` table.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ErrorSettings {
-    /// Warn when `i_geo` or `i_sto` exceeds this.
-    pub warn: f64,
-    /// Cells per parameter of the regular integration partition (global surrogates).
-    pub cells_per_dim: usize,
-    /// Gauss points per parameter per cell.
-    pub points_per_cell: usize,
-    /// Grid points per parameter of the density maps.
-    pub map_points: usize,
-}
+pub use crate::error_settings::ErrorSettings;
 
-/// Reads and checks the `[error]` table (defaults when absent).
+/// Reads and checks the `[error]` table of a loaded study (defaults when absent).
 ///
 /// # Errors
 /// [`StudyError::Input`] naming the bad field.
 pub fn error_settings(study: &Study) -> Result<ErrorSettings, StudyError> {
-    let d = study.params.names.len();
-    let e = study.file.error.clone().unwrap_or_default();
-    let src = &study.source;
-    let warn = match &e.warn {
-        Some(v) => {
-            let x = *v.get_ref();
-            if !(x > 0.0 && x.is_finite()) {
-                return Err(src.error(v.span(), "error.warn", format!("must be > 0, got {x}")));
-            }
-            x
-        }
-        None => 0.1,
-    };
-    let default_cells = match d {
-        0..=2 => 16,
-        3 => 8,
-        4 => 4,
-        _ => 2,
-    };
-    let cells_per_dim = match &e.cells_per_dim {
-        Some(v) => *v.get_ref(),
-        None => default_cells,
-    };
-    let points_per_cell = match &e.points_per_cell {
-        Some(v) => *v.get_ref(),
-        None => 4,
-    };
-    let total = (cells_per_dim as f64 * points_per_cell as f64).powi(d as i32);
-    if cells_per_dim == 0 || points_per_cell == 0 || total > alea_estimate::rule::MAX_POINTS as f64
-    {
-        let span = e
-            .cells_per_dim
-            .as_ref()
-            .or(e.points_per_cell.as_ref())
-            .map_or(0..0, |v| v.span());
-        return Err(src.error(
-            span,
-            "error.cells_per_dim",
-            format!(
-                "{cells_per_dim} cells x {points_per_cell} points per parameter in {d} parameters = {total:.0} integration points (need 1 to {})",
-                alea_estimate::rule::MAX_POINTS
-            ),
-        ));
-    }
-    let map_points = match &e.map_points {
-        Some(v) => {
-            let x = *v.get_ref();
-            if !(2..=1000).contains(&x) {
-                return Err(src.error(
-                    v.span(),
-                    "error.map_points",
-                    format!("must be in 2..=1000, got {x}"),
-                ));
-            }
-            x
-        }
-        None => 80,
-    };
-    Ok(ErrorSettings {
-        warn,
-        cells_per_dim,
-        points_per_cell,
-        map_points,
-    })
+    crate::error_settings::read(
+        &study.source,
+        study.file.error.as_ref(),
+        study.params.names.len(),
+    )
 }
 
 /// The error estimate of one surrogate.

@@ -11,6 +11,7 @@ pub mod cre;
 #[cfg(feature = "mpi")]
 pub mod distributed;
 mod error;
+mod error_settings;
 pub mod estimate;
 pub mod expr;
 pub mod fields;

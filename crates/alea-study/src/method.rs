@@ -147,6 +147,28 @@ pub fn build_methods(
             ));
         }
         let runs = m.runs.as_ref().map(|v| *v.get_ref());
+        if let Some(r) = &m.runs {
+            let least = if m.kind.get_ref() == "monte_carlo" {
+                2
+            } else {
+                1
+            };
+            if *r.get_ref() < least {
+                return Err(src.error(
+                    r.span(),
+                    f("runs"),
+                    format!(
+                        "must be at least {least} (got {}){}",
+                        r.get_ref(),
+                        if least == 2 {
+                            ": Monte Carlo statistics need two runs"
+                        } else {
+                            ""
+                        }
+                    ),
+                ));
+            }
+        }
         let design_name = m.design.as_ref().map(|s| s.get_ref().as_str());
         let design_span = m.design.as_ref().map_or(m.kind.span(), |s| s.span());
         let generic_design = |name: &str, default_runs: usize| -> Result<Design, StudyError> {

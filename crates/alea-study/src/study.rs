@@ -70,6 +70,9 @@ impl Study {
             return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
         }
         check_study_file(&source, &file, params.names.len())?;
+        if !params.names.is_empty() {
+            crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
+        }
         let model = build_model(&source, &file, &params)?;
         let qois = build_qois(&source, &file.quantity, &model)?;
         let seed = file.study.seed.unwrap_or(1);

@@ -553,6 +553,13 @@ pub fn check_quantities(
     qois: &[Qoi],
 ) -> Result<(), StudyError> {
     for (i, q) in specs.iter().enumerate() {
+        if q.name.get_ref().trim().is_empty() {
+            return Err(src.error(
+                q.name.span(),
+                format!("quantity[{i}].name"),
+                "is empty; names head the columns of samples.csv and the report's sections",
+            ));
+        }
         if let Some(j) = specs[..i]
             .iter()
             .position(|p| p.name.get_ref() == q.name.get_ref())
