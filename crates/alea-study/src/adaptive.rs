@@ -174,13 +174,21 @@ pub(crate) fn run_adaptive<'a>(
         let cells = merr.estimate.cells.clone();
         last_estimator = Some(est.clone());
         step_meshes.push(mesh.clone());
-        let goal_step = match settings.goal {
+        let goal_step = match &settings.goal {
             Some(g) => {
                 let values: Vec<f64> = records.iter().map(|r| r.qois[g.quantity]).collect();
+                if steps.is_empty() {
+                    let (lo, hi) = values
+                        .iter()
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                            (a.min(v), b.max(v))
+                        });
+                    g.check_threshold(lo, hi)?;
+                }
                 let coarse = comparison_mesh(&step_meshes, &mesh, params)?;
                 Some(goal::goal_step(
                     study,
-                    &g,
+                    g,
                     &mesh,
                     &coarse,
                     &values,
@@ -225,16 +233,30 @@ pub(crate) fn run_adaptive<'a>(
                 Criterion::Improved { fraction } => fraction,
                 Criterion::MaxError { .. } => 0.5,
             };
-            let mut marked = goal::marked_leaves(&g.indicators, fraction);
-            marked.truncate(settings.max_runs - runs);
+            let marked = goal::marked_leaves(&g.indicators, fraction);
             if marked.is_empty() {
                 break (format!("no leaf carries goal error ({budget})"), None);
             }
-            let full = (1u32 << params.lo.len()) - 1;
+            // Full splits (every new node a run), largest indicator first, within the budget.
             let before = mesh.num_runs();
-            let splits: Vec<_> = marked.iter().map(|&(c, _)| (c, full)).collect();
-            mesh.refine_directions(&splits).map_err(StudyError::from)?;
+            for &(c, _) in &marked {
+                let mut trial = mesh.clone();
+                trial.refine(&[c]).map_err(StudyError::from)?;
+                if trial.num_runs() > settings.max_runs {
+                    break;
+                }
+                mesh = trial;
+            }
             let new = mesh.num_runs() - before;
+            if new == 0 {
+                break (
+                    format!(
+                        "run budget of {} reached: the next split needs more runs (goal: {budget})",
+                        settings.max_runs
+                    ),
+                    None,
+                );
+            }
             if let Some(s) = steps.last_mut() {
                 s.new_runs = new;
             }

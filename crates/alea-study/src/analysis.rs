@@ -326,33 +326,60 @@ pub fn analyse_method(
                 .collect()
         })
         .collect();
+    // The smooth fits at the runs, for the check of their credibility per quantity.
+    let fits_at_runs: Vec<Vec<Vec<f64>>> = comparisons
+        .iter()
+        .flatten()
+        .map(|c| {
+            if !c.smooth {
+                return Vec::new();
+            }
+            let (mut t, mut w) = (vec![0.0; d], Vec::new());
+            used_points
+                .iter()
+                .map(|x| {
+                    c.surrogate.weights(x, &mut t, &mut w);
+                    (0..nq)
+                        .map(|q| w.iter().map(|&(k, wk)| wk * values[q][c.runs[k]]).sum())
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
     out.qois = (0..nq)
         .map(|q| {
+            let mine: Vec<f64> = per_draw.iter().map(|v| v[q]).collect();
             let coarse: Vec<Vec<f64>> = coarse_per_draw
                 .iter()
                 .map(|c| c.iter().map(|v| v[q]).collect())
                 .collect();
             let part = match &comparisons {
-                Ok(cs) => SurrogatePart::Comparison(
-                    coarse
-                        .iter()
-                        .zip(cs)
-                        .map(|(v, c)| (v.as_slice(), c.coarser, c.sees_mean))
-                        .collect(),
-                    cs.iter()
-                        .map(|c| c.description.as_str())
-                        .collect::<Vec<_>>()
-                        .join(" and "),
-                ),
+                Ok(cs) => {
+                    // A smooth fit counts for this quantity only where it follows the runs.
+                    let kept: Vec<usize> = (0..cs.len())
+                        .filter(|&i| {
+                            !cs[i].smooth
+                                || budget::credible_fit(
+                                    &fits_at_runs[i].iter().map(|v| v[q]).collect::<Vec<_>>(),
+                                    &values[q],
+                                    &coarse[i],
+                                    &mine,
+                                )
+                        })
+                        .collect();
+                    SurrogatePart::Comparison(
+                        kept.iter()
+                            .map(|&i| (coarse[i].as_slice(), cs[i].coarser, cs[i].sees_mean))
+                            .collect(),
+                        kept.iter()
+                            .map(|&i| cs[i].description.as_str())
+                            .collect::<Vec<_>>()
+                            .join(" and "),
+                    )
+                }
                 Err(why) => SurrogatePart::Unavailable(why),
             };
-            qoi_stats(
-                study,
-                q,
-                per_draw.iter().map(|v| v[q]).collect(),
-                s,
-                Some(part),
-            )
+            qoi_stats(study, q, mine, s, Some(part))
         })
         .collect();
     out.monte_carlo_seconds = t0.elapsed().as_secs_f64();

@@ -4,26 +4,31 @@
 //!
 //! At each step, on `N` Monte Carlo draws `xi_i` (at most 100 000, seeded):
 //! - **budget** of the goal statistic `S` (`P(q > t)`, or the mean and the standard deviation):
-//!   its surrogate part against the mesh of the last step with at most half the runs and the
-//!   mesh one level coarser (the comparisons of the final budget, so the loop stops on the
-//!   number the report gives) plus its sampling part;
-//! - **leaf indicators** from `delta(xi) = max(|q~ - q~_P|, |q~ - q~_c|)`, what the budget's
-//!   comparisons say the surrogate may be off by at `xi` (`q~_P` the interpolant over each
-//!   leaf's parent, `alea_uq::surrogate::ParentLevel`; `q~_c` the earlier step), summed over
-//!   the draws in the leaf and divided by `N`:
+//!   its surrogate part against the mesh of the last step with at most half the runs, the
+//!   mesh one level coarser and the smooth fits on the same runs (the comparisons of the final
+//!   budget, so the loop stops on the number the report gives) plus its sampling part;
+//! - **leaf indicators** from `delta(xi) = max(|q~ - q~_P|, |q~ - q~_c|, |q~ - q~_s|)`, what the
+//!   budget's comparisons say the surrogate may be off by at `xi` (`q~_P` the interpolant over
+//!   each leaf's parent, `alea_uq::surrogate::ParentLevel`; `q~_c` the earlier step; `q~_s` the
+//!   smooth fits, [`crate::budget::smooth_fits`]), summed over the draws in the leaf and divided
+//!   by `N`:
 //!   - mean / std goal: `eta_L = (1/N) sum_{xi_i in L} delta(xi_i)`;
 //!   - failure-probability goal: `eta_L = (1/N) #{xi_i in L : |q~(xi_i) - t| <= delta(xi_i)}`,
 //!     the probability of the draws whose side of the limit state `q = t` the error could
 //!     change.
 //!
-//! The loop then splits (all directions, one run at the centre) every leaf with `eta_L` at
-//! least `fraction` (the improved criterion's, default 0.5) of the largest, within the run
-//! budget.
+//! The loop then splits every leaf with `eta_L` at least `fraction` (the improved criterion's,
+//! default 0.5) of the largest, largest first, while the run budget allows: a full split, every
+//! new node a run (`StochasticMesh::refine`: the centre and the edge midpoints in 2D), not the
+//! centred split of the estimate-driven criteria, whose edge midpoints stay interpolated and
+//! keep the parent's error along the edges. Measured on the 2D turbine (30 runs, goal
+//! `P(vm_fillet > 1165)`, reference 0.04123 from 225 runs): centred splits end at 0.0382,
+//! full splits at 0.0413 (BENCHMARKS.md "Error budget per quantity").
 
 use alea_uq::design;
 use alea_uq::surrogate::{CellId, LinearSurrogate, ParentLevel, StochasticMesh};
 
-use crate::budget::{SurrogatePart, qoi_budget};
+use crate::budget::{SurrogatePart, credible_fit, qoi_budget, smooth_fits};
 use crate::method::Goal;
 pub use crate::runs::GoalRecord;
 use crate::study::Study;
@@ -66,45 +71,74 @@ pub fn goal_step(
             .collect()
     };
     let parent = ParentLevel::new(mesh.clone());
+    // The surrogate, the earlier step, the parent level and the smooth fits of the final
+    // budget at the draws (no smooth fit below 6 runs in 2D).
+    let run_points: Vec<Vec<f64>> = (0..mesh.num_runs())
+        .map(|k| mesh.run_point(k).to_vec())
+        .collect();
+    let smooth = smooth_fits(&study.params, &run_points);
+    let (mut t, mut w) = (vec![0.0; d], Vec::new());
+    let mut fit = |s: &crate::budget::Comparison, x: &[f64]| -> f64 {
+        s.surrogate.weights(x, &mut t, &mut w);
+        w.iter().map(|&(k, wk)| wk * values[s.runs[k]]).sum()
+    };
     let mut fine = Vec::with_capacity(n);
     let mut earlier = Vec::with_capacity(n);
-    let mut eta = vec![0.0; 0];
-    let leaves = mesh.leaves();
-    let mut slot = std::collections::HashMap::new();
-    for (i, &c) in leaves.iter().enumerate() {
-        slot.insert(c, i);
-    }
-    eta.resize(leaves.len(), 0.0);
+    let mut parent_values = Vec::with_capacity(n);
+    let mut smoothed: Vec<Vec<f64>> = vec![Vec::with_capacity(n); smooth.len()];
+    let mut located = Vec::with_capacity(n);
     for x in pts.chunks(d) {
         let x = clamp(x);
-        let qf = mesh.interpolate(&x, values);
-        let qc = coarse.interpolate(&x, &values[..coarse.num_runs()]);
-        let qp = parent.eval(&x, values);
-        fine.push(qf);
-        earlier.push(qc);
-        // What the comparisons of the budget say the surrogate may be off by here.
-        let surplus = (qf - qp).abs().max((qf - qc).abs());
+        fine.push(mesh.interpolate(&x, values));
+        earlier.push(coarse.interpolate(&x, &values[..coarse.num_runs()]));
+        parent_values.push(parent.eval(&x, values));
+        for (s, column) in smooth.iter().zip(&mut smoothed) {
+            column.push(fit(s, &x));
+        }
+        located.push(mesh.locate(&x));
+    }
+    // The smooth fits that follow the runs (as in the final budget).
+    let smoothed: Vec<(&crate::budget::Comparison, Vec<f64>)> = smooth
+        .iter()
+        .zip(smoothed)
+        .filter(|(s, at_draws)| {
+            let at_runs: Vec<f64> = run_points.iter().map(|x| fit(s, x)).collect();
+            credible_fit(&at_runs, values, at_draws, &fine)
+        })
+        .collect();
+    // Leaf indicators: what the comparisons say the surrogate may be off by at each draw.
+    let leaves = mesh.leaves();
+    let slot: std::collections::HashMap<CellId, usize> =
+        leaves.iter().enumerate().map(|(i, &c)| (c, i)).collect();
+    let mut eta = vec![0.0; leaves.len()];
+    for (i, &qf) in fine.iter().enumerate() {
+        let mut surplus = (qf - parent_values[i]).abs().max((qf - earlier[i]).abs());
+        for (_, column) in &smoothed {
+            surplus = surplus.max((qf - column[i]).abs());
+        }
         let share = match goal.threshold {
             Some(t) => f64::from(u8::from((qf - t).abs() <= surplus && surplus > 0.0)),
             None => surplus,
         };
-        if let Some(leaf) = mesh.locate(&x) {
+        if let Some(leaf) = located[i] {
             eta[slot[&leaf]] += share / n as f64;
         }
     }
-    let what = format!(
-        "the stochastic mesh of {} runs and the mesh one level coarser",
+    let what = std::iter::once(format!(
+        "the stochastic mesh of {} runs, the mesh one level coarser",
         coarse.num_runs()
-    );
-    let parent_values: Vec<f64> = pts
-        .chunks(d)
-        .map(|x| parent.eval(&clamp(x), values))
-        .collect();
+    ))
+    .chain(smoothed.iter().map(|(s, _)| s.description.clone()))
+    .collect::<Vec<_>>()
+    .join(" and ");
     let thresholds: Vec<f64> = goal.threshold.into_iter().collect();
     let budget = qoi_budget(
         &fine,
         SurrogatePart::Comparison(
-            vec![(&earlier, true, true), (&parent_values, false, true)],
+            std::iter::once((&earlier[..], true, true))
+                .chain(std::iter::once((&parent_values[..], false, true)))
+                .chain(smoothed.iter().map(|(_, v)| (&v[..], false, true)))
+                .collect(),
             what,
         ),
         &[],

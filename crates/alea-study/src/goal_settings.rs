@@ -4,7 +4,7 @@
 use crate::{Source, StudyError};
 
 /// The goal of a goal-oriented adaptive method.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Goal {
     /// Index of the quantity.
     pub quantity: usize,
@@ -12,6 +12,33 @@ pub struct Goal {
     pub threshold: Option<f64>,
     /// When the statistic's budget is small enough.
     pub tolerance: Tolerance,
+    /// Where the threshold is written (file, line, field), for the check against the range of
+    /// the quantity over the start design ([`Goal::check_threshold`]).
+    pub threshold_at: Option<(std::path::PathBuf, usize, String)>,
+}
+
+impl Goal {
+    /// The threshold checked against the range `[lo, hi]` of the goal quantity over the start
+    /// design's runs: outside it, `P(q > t)` is 0 or 1 on every surrogate built on those runs
+    /// (a multilinear interpolant stays within its runs' range) and no refinement toward the
+    /// limit state can start - an input error at the threshold, once the range is known (the
+    /// earliest point: the quantity's range is not known before any run).
+    pub fn check_threshold(&self, lo: f64, hi: f64) -> Result<(), StudyError> {
+        match (self.threshold, &self.threshold_at) {
+            (Some(t), Some((file, line, field))) if !(lo < t && t < hi) => Err(StudyError::Input {
+                file: file.clone(),
+                line: *line,
+                field: field.clone(),
+                message: format!(
+                    "the threshold {t} is outside the range [{lo:.6e}, {hi:.6e}] of the quantity \
+                         over the start design's runs: P(q > {t}) would be {} on every \
+                         surrogate, with no limit state to refine along",
+                    if t >= hi { 0 } else { 1 }
+                ),
+            }),
+            _ => Ok(()),
+        }
+    }
 }
 
 /// A tolerance on an error budget.
@@ -58,6 +85,13 @@ pub(crate) fn goal(
         }
         t => t.as_ref().map(|t| *t.get_ref()),
     };
+    let threshold_at = spec.threshold.as_ref().map(|t| {
+        (
+            src.path.clone(),
+            src.line_of(t.span().start),
+            f("threshold"),
+        )
+    });
     let tolerance = match (&spec.tolerance, &spec.relative_tolerance) {
         (Some(t), None) => {
             let x = *t.get_ref();
@@ -103,5 +137,6 @@ pub(crate) fn goal(
         quantity,
         threshold,
         tolerance,
+        threshold_at,
     })
 }

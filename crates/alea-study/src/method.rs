@@ -67,7 +67,7 @@ pub enum Criterion {
 }
 
 /// Settings of an adaptive method.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct AdaptiveSettings {
     /// Refinement criterion.
     pub criterion: Criterion,
@@ -304,7 +304,7 @@ pub fn build_methods(
                     ),
                     Criterion::MaxError { .. } => "maximum-error criterion".to_string(),
                 };
-                let stop = match (settings.goal, settings.target) {
+                let stop = match (&settings.goal, settings.target) {
                     (Some(g), _) => {
                         let q = &quantities[g.quantity];
                         let stat = match g.threshold {
@@ -320,14 +320,14 @@ pub fn build_methods(
                     (None, Some(t)) => format!("i_sto <= {t}"),
                     (None, None) => "i_sto <= i_geo".to_string(),
                 };
+                let max_runs = settings.max_runs;
                 (
                     MethodKind::Adaptive(settings),
                     pts,
                     None,
                     format!(
-                        "adaptive piecewise multilinear from the {} corners and the centre, {crit}, until {stop} or {} runs",
+                        "adaptive piecewise multilinear from the {} corners and the centre, {crit}, until {stop} or {max_runs} runs",
                         1usize << d,
-                        settings.max_runs
                     ),
                 )
             }

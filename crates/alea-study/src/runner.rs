@@ -377,7 +377,7 @@ pub(crate) fn execute(
     let mut methods = study.methods.clone();
     let mut adaptive = Vec::new();
     for (m, method) in methods.iter_mut().enumerate() {
-        if let MethodKind::Adaptive(settings) = method.kind {
+        if let MethodKind::Adaptive(settings) = method.kind.clone() {
             let outcome = crate::adaptive::run_adaptive(&mut runner, m, &settings)?;
             method.points = (0..outcome.mesh.num_runs())
                 .map(|r| outcome.mesh.run_point(r).to_vec())

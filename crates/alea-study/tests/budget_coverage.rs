@@ -15,10 +15,12 @@
 //!
 //! Measured (`cargo test --release -p alea-study --test budget_coverage -- --nocapture` prints
 //! every triple): the total covers the true error in 50 of the 54 (function, method,
-//! statistic) triples (92.6 %) and is within 10 x of it in 39 (72 %). Asserted: coverage at
-//! least 90 % (the target) and within 10 x in at least 70 % (the target is
-//! 80 %, not met: the global polynomials' comparisons over-estimate the std of smooth and
-//! steep responses 20 - 300 x, because degree `p - 1` is much worse than `p`). The four misses:
+//! statistic) triples (92.6 %) and is within 10 x of it in 42 (78 %). Asserted: coverage at
+//! least 90 % (the target) and within 10 x in at least 75 % (the target, 80 %,
+//! is met over all cases of BENCHMARKS.md only at 79.5 %: here the degree-`p - 1` comparisons
+//! of the global polynomials over-estimate the mean of smooth responses 24 - 47 x and the std
+//! of smooth and steep responses up to 300 x, because degree `p - 1` is much worse than `p`).
+//! The four misses:
 //! chaos p = 3 on the kink, mean (1.4 x short: the fit of degree 2 has the same mean as that of
 //! degree 3, and degree 4 is rank deficient on the 4 x 4 design) and `P(q > t)` (by
 //! regression and projection, 1.6 - 1.7 x short); the 9 x 9 grid on the steep response, mean
@@ -224,5 +226,5 @@ fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
     let (cov, tig) = (covered as f64 / n as f64, tight as f64 / n as f64);
     println!("covered {covered}/{n} = {cov:.3}, within 10x {tight}/{n} = {tig:.3}");
     assert!(cov >= 0.9, "coverage {cov:.3} < 0.9\n{report}");
-    assert!(tig >= 0.7, "within 10x {tig:.3} < 0.7\n{report}");
+    assert!(tig >= 0.75, "within 10x {tig:.3} < 0.75\n{report}");
 }

@@ -492,8 +492,8 @@ fn closing_gap_estimate_tracks_the_true_error() {
     assert!(quad.efficiency() >= 1.0);
 }
 
-/// The error budget of the statistics of `T` (issue 19) against the reference: measured 37 and
-/// 38 of 45 (method, statistic) pairs covered on the two cases, 30 within 10x. Below the
+/// The error budget of the statistics of `T` (issue 19) against the reference: measured 37
+/// of 45 (method, statistic) pairs covered on each case, 30 within 10x. Below the
 /// issue's 90 % target; the misses: the two-node grid's mean (not estimated: no coarser
 /// surrogate has another mean), chaos p = 3 mean and median (its degree-2 comparison moves them
 /// 10 - 300x less than their error), the standard polynomials' 5 % and 95 % quantiles in the

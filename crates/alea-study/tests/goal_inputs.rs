@@ -139,3 +139,32 @@ fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget()
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A threshold outside the quantity's range over the start design (`tip` lies in
+/// `[10 / 250e3, 10 / 150e3] = [4e-5, 6.7e-5]` mm) is an input error at the threshold's line,
+/// raised after the start design's three runs, before any refinement (the range is not known
+/// before a run); those runs are stored.
+#[test]
+fn a_threshold_outside_the_quantity_range_is_refused_at_its_line() {
+    use alea_study::runner::{NoProgress, run_study};
+    let s = load(
+        "type = \"adaptive\"\ngoal = { quantity = \"tip\", threshold = 1.0, tolerance = 0.01 }\nmax_runs = 20\n",
+    )
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-goal-range-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let Err(e) = run_study(&s, &dir, false, &NoProgress) else {
+        panic!("a threshold outside the range was accepted");
+    };
+    let text = e.to_string();
+    let line = BASE.lines().count() + 2; // the goal is the second line of the method
+    assert!(matches!(e, StudyError::Input { .. }), "{text}");
+    assert!(
+        text.contains(&format!("goal.toml:{line}")),
+        "line {line} in {text}"
+    );
+    assert!(text.contains("method[0].goal.threshold"), "{text}");
+    assert!(text.contains("outside the range"), "{text}");
+    assert_eq!(e.exit_code(), 2, "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
