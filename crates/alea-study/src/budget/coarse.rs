@@ -90,16 +90,7 @@ pub fn comparisons(
                 MethodKind::PiecewiseLinear { .. }
             )
         );
-        let m = Method {
-            kind,
-            points: used.to_vec(),
-            rule: None,
-            mesh: None,
-            coarse_mesh: None,
-            label: String::new(),
-            description: String::new(),
-        };
-        let surrogate = m.surrogate(params, used)?;
+        let surrogate = global_surrogate(kind, params, used)?;
         Ok(Comparison {
             surrogate,
             runs: (0..used.len()).collect(),
@@ -234,16 +225,8 @@ pub fn smooth_fits(params: &ParamSpace, used: &[Vec<f64>]) -> Vec<Comparison> {
     (top.saturating_sub(1).max(1)..=top)
         .rev()
         .filter_map(|degree| {
-            let m = Method {
-                kind: MethodKind::PcRegression { degree },
-                points: used.to_vec(),
-                rule: None,
-                mesh: None,
-                coarse_mesh: None,
-                label: String::new(),
-                description: String::new(),
-            };
-            let surrogate = m.surrogate(params, used).ok()?;
+            let surrogate =
+                global_surrogate(MethodKind::PcRegression { degree }, params, used).ok()?;
             Some(Comparison {
                 surrogate,
                 runs: (0..used.len()).collect(),
@@ -257,6 +240,24 @@ pub fn smooth_fits(params: &ParamSpace, used: &[Vec<f64>]) -> Vec<Comparison> {
             })
         })
         .collect()
+}
+
+/// A global surrogate of `kind` (chaos or polynomial) fitted to all the runs at `used`.
+fn global_surrogate(
+    kind: MethodKind,
+    params: &ParamSpace,
+    used: &[Vec<f64>],
+) -> Result<Surrogate, crate::error::SurrogateError> {
+    Method {
+        kind,
+        points: used.to_vec(),
+        rule: None,
+        mesh: None,
+        coarse_mesh: None,
+        label: String::new(),
+        description: String::new(),
+    }
+    .surrogate(params, used)
 }
 
 /// Largest ratio of a smooth fit's root-mean-square misfit at the runs to its root-mean-square
