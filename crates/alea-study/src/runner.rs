@@ -387,6 +387,16 @@ pub(crate) fn execute(
             adaptive.push(outcome);
         }
     }
+    // Runs of the solver confirming surrogates' failure probabilities (`solver_runs`).
+    let confirmation = {
+        let by_key = &runner.by_key;
+        let lookup = |p: &[f64]| by_key.get(&point_key(p));
+        crate::reliability::solver::confirmation_points(study, &methods, &lookup)
+    };
+    if !confirmation.is_empty() {
+        runner.announce(confirmation.len());
+        runner.run_points(&confirmation)?;
+    }
     progress.end();
     let mut order: Vec<Vec<f64>> = fixed;
     let mut seen: std::collections::HashSet<String> = order.iter().map(|p| point_key(p)).collect();
@@ -400,6 +410,11 @@ pub(crate) fn execute(
             );
         }
     }
+    order.extend(
+        confirmation
+            .into_iter()
+            .filter(|p| seen.insert(point_key(p))),
+    );
     let records: Vec<RunRecord> = order
         .iter()
         .filter_map(|p| runner.by_key.get(&point_key(p)).cloned())

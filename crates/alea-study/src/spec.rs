@@ -437,6 +437,10 @@ pub struct ReliabilitySpec {
     /// Coefficient of variation at which importance sampling stops (default 0.05).
     #[serde(default)]
     pub target_cov: Option<Spanned<f64>>,
+    /// Runs of the solver itself for importance sampling at the surrogate's FORM design point,
+    /// confirming the surrogate's probability (default 0: none).
+    #[serde(default)]
+    pub solver_runs: Option<Spanned<i64>>,
 }
 
 /// `goal = { quantity = "vm_fillet", threshold = 1165.0, tolerance = 0.005 }` of an adaptive

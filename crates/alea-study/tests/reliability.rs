@@ -166,3 +166,61 @@ fn two_failure_modes_are_both_found_and_reported() {
         sub.upper
     );
 }
+
+/// `solver_runs`: importance sampling with runs of the solver itself, centred at the design
+/// point of a deliberately poor surrogate (a degree-1 chaos on 8 runs: `u = P s L / E` is
+/// convex in `E`, which a plane misses in the tail). The solver's estimate is unbiased whatever
+/// the centre: the exact probability lies within its interval, while the surrogate's own
+/// importance sampling is off by more than its interval.
+#[test]
+fn solver_runs_confirm_the_probability_that_a_poor_surrogate_misses() {
+    let t = 0.13;
+    let text = study("P", t)
+        .source
+        .text
+        .replace(
+            "degree = 4\ndesign = \"lhs\"\nruns = 40",
+            "degree = 1\ndesign = \"lhs\"\nruns = 8",
+        )
+        .replace("target_cov = 0.05", "target_cov = 0.05\nsolver_runs = 400");
+    let s = Study::from_source(Source::from_text("reliability.toml", &text)).unwrap();
+    assert_eq!(s.reliability[0].solver_runs, 400);
+    let r = analyse(&s, "solver");
+    let p = exact(t, false);
+    let c = r.solver.as_ref().expect("a solver confirmation");
+    let is = r.importance.as_ref().unwrap();
+    eprintln!(
+        "exact {p:.5e}; solver IS {:.5e} [{:.5e}, {:.5e}] CoV {:?} ({} runs); surrogate IS {:.5e} [{:.5e}, {:.5e}]",
+        c.pf, c.lower, c.upper, c.cov, c.runs, is.pf, is.lower, is.upper
+    );
+    assert_eq!((c.runs, c.failed), (400, 0));
+    assert!(
+        c.lower <= p && p <= c.upper,
+        "solver IS {} [{}, {}] vs exact {p}",
+        c.pf,
+        c.lower,
+        c.upper
+    );
+    assert!(c.cov.unwrap() < 0.15, "CoV {:?}", c.cov);
+    assert!(
+        p < is.lower || p > is.upper,
+        "the degree-1 surrogate's IS {} [{}, {}] covers the exact {p}: the test shows nothing",
+        is.pf,
+        is.lower,
+        is.upper
+    );
+}
+
+/// A confirmation of fewer than 10 runs is refused at its line.
+#[test]
+fn too_few_solver_runs_are_refused_at_load() {
+    let text = study("P", 0.13)
+        .source
+        .text
+        .replace("target_cov = 0.05", "target_cov = 0.05\nsolver_runs = 5");
+    let e = Study::from_source(Source::from_text("reliability.toml", &text)).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.contains("reliability.toml:"), "{msg}");
+    assert!(msg.contains("reliability[0].solver_runs"), "{msg}");
+    assert!(msg.contains("between 10 and 100000"), "{msg}");
+}

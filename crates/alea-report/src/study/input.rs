@@ -230,6 +230,22 @@ pub(super) fn reliability_report(
                     evaluations: e.evaluations,
                 });
             }
+            if let Some(c) = &r.solver {
+                rows.push(ReliabilityRow {
+                    algorithm: format!(
+                        "importance sampling on the solver (at beta {:.3}{})",
+                        c.beta,
+                        if c.failed > 0 {
+                            format!(", {} runs left out", c.failed)
+                        } else {
+                            String::new()
+                        }
+                    ),
+                    pf: c.pf,
+                    interval: Some((c.lower, c.upper)),
+                    evaluations: c.runs,
+                });
+            }
             ReliabilityReport {
                 quantity: r.quantity.clone(),
                 threshold: r.threshold,

@@ -124,5 +124,20 @@ pub(super) fn print_reliability(
                 ));
             }
         }
+        if let Some(c) = &r.solver {
+            console.line(&format!(
+                "  on the solver        {:.4e}  [{:.4e}, {:.4e}], {} runs (importance sampling at beta {:.3}){}",
+                c.pf,
+                c.lower,
+                c.upper,
+                c.runs,
+                c.beta,
+                if c.failed > 0 {
+                    format!("; {} runs missing or not converged, left out", c.failed)
+                } else {
+                    String::new()
+                }
+            ));
+        }
     }
 }

@@ -20,6 +20,7 @@ use alea_uq::reliability::{
 };
 use serde::Serialize;
 
+pub mod solver;
 pub mod task;
 
 pub use task::{Algorithm, ReliabilityTask, build_reliability};
@@ -88,6 +89,8 @@ pub struct ReliabilityResult {
     pub importance: Option<Probability>,
     /// Subset simulation.
     pub subset: Option<Probability>,
+    /// Importance sampling with runs of the solver itself (`solver_runs`).
+    pub solver: Option<solver::SolverConfirmation>,
     /// Warnings (several design points).
     pub warnings: Vec<String>,
     /// Algorithms that failed, with why.
@@ -107,7 +110,8 @@ pub fn analyse_reliability(
         records.iter().map(|r| (point_key(&r.params), r)).collect();
     tasks
         .iter()
-        .map(|task| {
+        .enumerate()
+        .map(|(t, task)| {
             let method = &methods[task.method];
             let mut out = ReliabilityResult {
                 quantity: study.qois[task.quantity].name.clone(),
@@ -118,36 +122,31 @@ pub fn analyse_reliability(
                 sorm: None,
                 importance: None,
                 subset: None,
+                solver: None,
                 warnings: Vec::new(),
                 errors: Vec::new(),
             };
-            let (points, values): (Vec<Vec<f64>>, Vec<f64>) = method
-                .points
-                .iter()
-                .filter_map(|p| {
-                    by_key
-                        .get(&point_key(p))
-                        .filter(|r| r.converged())
-                        .map(|r| (p.clone(), r.qois[task.quantity]))
-                })
-                .unzip();
-            let sur = match method.surrogate(&study.params, &points) {
-                Ok(s) => s,
-                Err(e) => {
-                    out.errors.push(format!("surrogate: {e}"));
-                    return out;
-                }
-            };
-            let d = study.params.names.len();
-            let q = |x: &[f64]| {
-                let mut t = vec![0.0; d];
-                let mut w = Vec::new();
-                sur.weights(x, &mut t, &mut w);
-                w.iter().map(|&(k, wk)| wk * values[k]).sum::<f64>()
-            };
+            let (sur, values) =
+                match surrogate_of(study, task, method, &|p| by_key.get(&point_key(p)).copied()) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        out.errors.push(e);
+                        return out;
+                    }
+                };
+            let q = |x: &[f64]| evaluate(study, &sur, &values, x);
             let law = study.params.joint.as_ref();
             let ls = LimitState::exceedance(law, q, task.threshold);
             run_algorithms(task, &ls, study.seed, confidence, &mut out);
+            if task.solver_runs > 0 {
+                let lookup = |p: &[f64]| by_key.get(&point_key(p)).copied();
+                match solver::plan(study, t, task, method, &lookup) {
+                    Ok(plan) => {
+                        out.solver = Some(solver::estimate(&plan, task, &lookup, confidence));
+                    }
+                    Err(e) => out.errors.push(format!("solver confirmation: {e}")),
+                }
+            }
             out
         })
         .collect()
@@ -160,54 +159,15 @@ fn run_algorithms(
     confidence: f64,
     out: &mut ReliabilityResult,
 ) {
-    let d = ls.dim();
     let wants = |a: Algorithm| task.algorithms.contains(&a);
     let needs_form =
         wants(Algorithm::Form) || wants(Algorithm::Sorm) || wants(Algorithm::Importance);
     let mut best: Option<(alea_uq::reliability::FormResult, FormOptions)> = None;
     if needs_form {
         let before = ls.calls();
-        let mut starts: Vec<Option<Vec<f64>>> = vec![None];
-        for j in 0..d {
-            for s in [3.0, -3.0] {
-                let mut u = vec![0.0; d];
-                u[j] = s;
-                starts.push(Some(u));
-            }
-        }
-        let mut found: Vec<alea_uq::reliability::FormResult> = Vec::new();
-        let mut first_error = None;
-        for start in starts {
-            let opts = FormOptions {
-                start: start.clone(),
-                ..FormOptions::default()
-            };
-            match form(ls, &opts) {
-                Ok(f) => {
-                    let distinct = found.iter().all(|g| {
-                        let dist: f64 = g
-                            .u_star
-                            .iter()
-                            .zip(&f.u_star)
-                            .map(|(a, b)| (a - b).powi(2))
-                            .sum::<f64>()
-                            .sqrt();
-                        dist > 0.1 * g.beta.min(f.beta).max(1e-3)
-                    });
-                    if distinct {
-                        found.push(f.clone());
-                    }
-                    if best.as_ref().is_none_or(|(b, _)| f.beta < b.beta) {
-                        best = Some((f, opts));
-                    }
-                }
-                Err(e) => {
-                    first_error.get_or_insert(e.to_string());
-                }
-            }
-        }
+        let (found, best_start, first_error) = form_from_starts(ls);
+        best = best_start;
         out.form_evaluations = ls.calls() - before;
-        found.sort_by(|a, b| a.beta.total_cmp(&b.beta));
         if let Some(b0) = found.first().map(|f| f.beta) {
             let close = found.iter().filter(|f| f.beta <= b0 + 1.0).count();
             if close > 1 {
@@ -272,6 +232,100 @@ fn run_algorithms(
             Err(e) => out.errors.push(format!("subset simulation: {e}")),
         }
     }
+}
+
+/// A run record by its parameter point.
+pub(crate) type Lookup<'a> = dyn Fn(&[f64]) -> Option<&'a RunRecord> + 'a;
+
+/// The surrogate of `method` for the task's quantity, on the method's converged runs, with
+/// the quantity's values at them.
+pub(crate) fn surrogate_of(
+    study: &Study,
+    task: &ReliabilityTask,
+    method: &Method,
+    lookup: &Lookup<'_>,
+) -> Result<(crate::method::Surrogate, Vec<f64>), String> {
+    let (points, values): (Vec<Vec<f64>>, Vec<f64>) = method
+        .points
+        .iter()
+        .filter_map(|p| {
+            lookup(p)
+                .filter(|r| r.converged())
+                .map(|r| (p.clone(), r.qois[task.quantity]))
+        })
+        .unzip();
+    let sur = method
+        .surrogate(&study.params, &points)
+        .map_err(|e| format!("surrogate: {e}"))?;
+    Ok((sur, values))
+}
+
+/// The surrogate's value at `x`.
+pub(crate) fn evaluate(
+    study: &Study,
+    sur: &crate::method::Surrogate,
+    values: &[f64],
+    x: &[f64],
+) -> f64 {
+    let mut t = vec![0.0; study.params.names.len()];
+    let mut w = Vec::new();
+    sur.weights(x, &mut t, &mut w);
+    w.iter().map(|&(k, wk)| wk * values[k]).sum::<f64>()
+}
+
+/// FORM from the median and `+-3` along every axis of the standard normal space: the distinct
+/// design points (smallest `beta` first), the best with its options, and the first error.
+#[allow(clippy::type_complexity)]
+pub(crate) fn form_from_starts(
+    ls: &LimitState,
+) -> (
+    Vec<alea_uq::reliability::FormResult>,
+    Option<(alea_uq::reliability::FormResult, FormOptions)>,
+    Option<String>,
+) {
+    let d = ls.dim();
+    let mut best: Option<(alea_uq::reliability::FormResult, FormOptions)> = None;
+    let mut starts: Vec<Option<Vec<f64>>> = vec![None];
+    for j in 0..d {
+        for s in [3.0, -3.0] {
+            let mut u = vec![0.0; d];
+            u[j] = s;
+            starts.push(Some(u));
+        }
+    }
+    let mut found: Vec<alea_uq::reliability::FormResult> = Vec::new();
+    let mut first_error = None;
+    for start in starts {
+        let opts = FormOptions {
+            start: start.clone(),
+            ..FormOptions::default()
+        };
+        match form(ls, &opts) {
+            Ok(f) => {
+                let distinct = found.iter().all(|g| {
+                    let dist: f64 = g
+                        .u_star
+                        .iter()
+                        .zip(&f.u_star)
+                        .map(|(a, b)| (a - b).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    dist > 0.1 * g.beta.min(f.beta).max(1e-3)
+                });
+                if distinct {
+                    found.push(f.clone());
+                }
+                if best.as_ref().is_none_or(|(b, _)| f.beta < b.beta) {
+                    best = Some((f, opts));
+                }
+            }
+            Err(e) => {
+                first_error.get_or_insert(e.to_string());
+            }
+        }
+    }
+    found.sort_by(|a, b| a.beta.total_cmp(&b.beta));
+    (found, best, first_error)
 }
 
 fn probability(e: &alea_uq::reliability::Estimate) -> Probability {

@@ -32,7 +32,14 @@ pub struct ReliabilityTask {
     pub algorithms: Vec<Algorithm>,
     /// Target coefficient of variation of importance sampling.
     pub target_cov: f64,
+    /// Importance-sampling runs of the solver at the surrogate's design point (0: none).
+    pub solver_runs: usize,
 }
+
+/// Fewest solver runs of a confirmation (below, its interval means little).
+pub const MIN_SOLVER_RUNS: i64 = 10;
+/// Most solver runs of a confirmation.
+pub const MAX_SOLVER_RUNS: i64 = 100_000;
 
 /// Checks the `[[reliability]]` tables of a study file (at load, before any run).
 ///
@@ -153,12 +160,30 @@ pub fn build_reliability(
             Some(v) => *v.get_ref(),
             None => 0.05,
         };
+        let solver_runs = match &r.solver_runs {
+            Some(v)
+                if *v.get_ref() != 0
+                    && !(MIN_SOLVER_RUNS..=MAX_SOLVER_RUNS).contains(v.get_ref()) =>
+            {
+                return Err(src.error(
+                    v.span(),
+                    f("solver_runs"),
+                    format!(
+                        "must be 0 (none) or between {MIN_SOLVER_RUNS} and {MAX_SOLVER_RUNS} (each is a solve), got {}",
+                        v.get_ref()
+                    ),
+                ));
+            }
+            Some(v) => *v.get_ref() as usize,
+            None => 0,
+        };
         out.push(ReliabilityTask {
             quantity,
             threshold,
             method,
             algorithms,
             target_cov,
+            solver_runs,
         });
     }
     Ok(out)
