@@ -107,3 +107,28 @@ pub fn run_history(steps: &[(&LatinSolver, RunInput)]) -> Result<Vec<RunResult>,
     }
     Ok(results)
 }
+
+/// Energy dissipated by friction within one load step on interface result `cur`:
+/// `-int ([W_hat] - j0)_t . Phi_t dS >= 0`, with `j0` the tangential jump at the end of the
+/// previous step (`prev`, the same interface; `None`: the unloaded state, `j0 = 0`). With
+/// `prev = None` this is [`crate::InterfaceResult::friction_dissipation`].
+pub fn step_friction_dissipation(
+    prev: Option<&crate::InterfaceResult>,
+    cur: &crate::InterfaceResult,
+) -> f64 {
+    let tangential = |it: &crate::InterfaceResult, i: usize| -> V3 {
+        let (a, b) = (it.what[0][i], it.what[1][i]);
+        let n = cur.points[i].normal;
+        let j = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let jn = dot(&j, &n);
+        [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]]
+    };
+    (0..cur.points.len())
+        .map(|i| {
+            let jt = tangential(cur, i);
+            let j0 = prev.map_or([0.0; 3], |p| tangential(p, i));
+            let d = [jt[0] - j0[0], jt[1] - j0[1], jt[2] - j0[2]];
+            -cur.weights[i] * dot(&d, &cur.fhat[1][i])
+        })
+        .sum()
+}

@@ -571,4 +571,7 @@ pub struct ModelFile {
     /// Solver settings.
     #[serde(default)]
     pub solver: SolverSpec,
+    /// `[[step]]`: a load history (module `steps`).
+    #[serde(default)]
+    pub step: Vec<Spanned<crate::steps::StepSpec>>,
 }

@@ -3,6 +3,7 @@
 
 mod exit;
 mod solve;
+mod solve_steps;
 mod study_cmd;
 
 use std::path::PathBuf;

@@ -39,6 +39,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     let file: ModelFile = src.parse()?;
     let params = build_params(src, &file)?;
     let built = build_model(src, &file, &params)?;
+    let plan = alea_study::steps::plan_steps(src, &file)?;
     let input = built.parametric.run_input(&params.nominal, vec![]);
     if !params.names.is_empty() {
         println!(
@@ -69,6 +70,15 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         built.assembly.interfaces.len()
     );
     if built.assembly.subs.len() == 1 && built.assembly.interfaces.is_empty() {
+        if plan.is_some() {
+            return Err(src
+                .error(
+                    file.step[0].span(),
+                    "step",
+                    "[[step]] load histories are for assemblies with interfaces: a single linear body does not depend on the path, so solve each load as its own case",
+                )
+                .into());
+        }
         let sub = &built.assembly.subs[0];
         let mut loads = Loads::new(&sub.model);
         for (case, factor) in sub.load_cases.iter().zip(&input.load_factors[0]) {
@@ -143,12 +153,50 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         );
         return Ok(());
     }
-    let mut solver = built.solver()?;
+    if let Some(plan) = plan {
+        return crate::solve_steps::solve_history(src, &file, &params, built, plan, out, &stem, t0);
+    }
+    let solver = built.solver()?;
     println!(
         "LATIN set-up (assembly + factorisations): {:.3} s",
         solver.setup_seconds
     );
-    let res = solver.run(&input)?;
+    let res = solver.run_shared(&input)?;
+    let path = out.join(format!("{stem}.vtm"));
+    report_run(&file, &built, &solver, &res, &input, &path)?;
+    println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+    if res.status != RunStatus::Converged {
+        return Err(not_converged(&solver, &res).into());
+    }
+    Ok(())
+}
+
+/// The error of a run that did not converge (exit 4).
+pub(crate) fn not_converged(
+    solver: &alea_latin::LatinSolver,
+    res: &alea_latin::RunResult,
+) -> alea_study::StudyError {
+    let last = res.residuals.last().copied().unwrap_or(0.0);
+    alea_study::StudyError::Failed(format!(
+        "the solve did not converge (status '{}' after {} iterations, error indicator {last:.2e}, tolerance {:.1e}); \
+         the files hold the last iterate",
+        res.status.label(),
+        res.iterations,
+        solver.options().tolerance
+    ))
+}
+
+/// Prints the status, stresses, interfaces and reactions of a LATIN run and writes its files
+/// (`path`: the `.vtm`, with the `.vtu` and interface `.csv` files beside it).
+pub(crate) fn report_run(
+    file: &ModelFile,
+    built: &alea_study::BuiltModel,
+    solver: &alea_latin::LatinSolver,
+    res: &alea_latin::RunResult,
+    input: &alea_latin::RunInput,
+    path: &Path,
+) -> Result<()> {
+    let u = &built.units;
     let last = res.residuals.last().copied().unwrap_or(0.0);
     match res.status {
         RunStatus::Converged => println!(
@@ -222,7 +270,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
                 *a += factor * b;
             }
         }
-        let r = alea_latin::reactions::nodal_reactions(&solver, &res, s, &loads)?;
+        let r = alea_latin::reactions::nodal_reactions(solver, res, s, &loads)?;
         for c in &file.substructure[s].constraint {
             let g = c.group.get_ref();
             let nodes = sub.model.mesh.group_nodes(g)?;
@@ -236,26 +284,13 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         }
         reactions.push(r);
     }
-    let path = out.join(format!("{stem}.vtm"));
     let written =
-        alea_latin::output::write_run_with_reactions(&path, &solver, &res, Some(&reactions))?;
+        alea_latin::output::write_run_with_reactions(path, solver, res, Some(&reactions))?;
     println!(
-        "wrote {} and {} file(s) in {} ({:.2} s in all)",
+        "wrote {} and {} file(s) beside it",
         path.display(),
         written.len(),
-        out.join(&stem).display(),
-        t0.elapsed().as_secs_f64()
     );
-    if res.status != RunStatus::Converged {
-        return Err(alea_study::StudyError::Failed(format!(
-            "the solve did not converge (status '{}' after {} iterations, error indicator {last:.2e}, tolerance {:.1e}); \
-             the files hold the last iterate",
-            res.status.label(),
-            res.iterations,
-            solver.options().tolerance
-        ))
-        .into());
-    }
     Ok(())
 }
 
