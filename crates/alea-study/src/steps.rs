@@ -268,3 +268,115 @@ pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyE
     let files = sets.iter().map(|v| with_values(file, v)).collect();
     Ok(Some(Plan { steps, files }))
 }
+
+/// The load history of a study: [`plan_steps`], plus what a study needs on top. Every run of
+/// a study uses one factorised solver, so its steps may change loads only (imposed
+/// displacements per step are for `alea solve`); each quantity gets the index of its step
+/// (`[[quantity]] step`, default the last) and its description names that step.
+pub fn study_steps(
+    src: &Source,
+    file: &ModelFile,
+    qois: &mut [crate::qoi::Qoi],
+) -> Result<Option<Plan>, StudyError> {
+    let plan = plan_steps(src, file)?;
+    let Some(plan) = plan else {
+        if let Some((i, s)) = file
+            .quantity
+            .iter()
+            .enumerate()
+            .find_map(|(i, q)| q.step.as_ref().map(|s| (i, s)))
+        {
+            return Err(src.error(
+                s.span(),
+                format!("quantity[{i}].step"),
+                "the file has no [[step]]: leave out step",
+            ));
+        }
+        return Ok(None);
+    };
+    if let Some((k, c)) = file
+        .step
+        .iter()
+        .enumerate()
+        .find_map(|(k, st)| st.get_ref().constraint.first().map(|c| (k, c)))
+    {
+        return Err(src.error(
+            c.substructure.span(),
+            format!("step[{k}].constraint"),
+            "in a study, steps change loads only (every run uses one factorised solver); \
+             imposed displacements per step are solved by `alea solve`",
+        ));
+    }
+    let names: Vec<&str> = plan.steps.iter().map(|s| s.name.as_str()).collect();
+    for (i, (q, spec)) in qois.iter_mut().zip(&file.quantity).enumerate() {
+        let k = match &spec.step {
+            Some(s) => names.iter().position(|n| n == s.get_ref()).ok_or_else(|| {
+                src.error(
+                    s.span(),
+                    format!("quantity[{i}].step"),
+                    format!(
+                        "no step is named '{}' (steps: {})",
+                        s.get_ref(),
+                        names.join(", ")
+                    ),
+                )
+            })?,
+            None => names.len() - 1,
+        };
+        q.step = Some(k);
+        q.what = format!("{}, at the end of step '{}'", q.what, names[k]);
+    }
+    Ok(Some(plan))
+}
+
+/// Runs the load history `plan` of one study run (loads only: one solver) from `input` (the
+/// run's parameters; its `initial` state is that of the first step). Returns the results of
+/// the steps run: the history stops after a step that does not converge.
+pub(crate) fn run_study_history(
+    plan: &Plan,
+    solver: &alea_latin::LatinSolver,
+    input: &alea_latin::RunInput,
+) -> Result<Vec<alea_latin::RunResult>, StudyError> {
+    let inputs: Vec<alea_latin::RunInput> = plan
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(k, step)| {
+            let mut i = input.clone();
+            if k > 0 {
+                i.initial = None;
+            }
+            for (f, sc) in i.load_factors.iter_mut().zip(&step.load_scale) {
+                for (a, b) in f.iter_mut().zip(sc) {
+                    *a *= b;
+                }
+            }
+            i
+        })
+        .collect();
+    Ok(solver.run_steps(&inputs)?)
+}
+
+/// The value of `q` for a run whose steps gave `results` (one result without steps): at its
+/// step's end state; NaN if the history stopped before that step. The friction dissipation
+/// of a step after the first is the step's own
+/// ([`alea_latin::steps::step_friction_dissipation`]).
+pub(crate) fn eval_qoi(
+    q: &crate::qoi::Qoi,
+    solver: &alea_latin::LatinSolver,
+    results: &[alea_latin::RunResult],
+) -> Result<f64, StudyError> {
+    let k = q.step.unwrap_or(results.len().saturating_sub(1));
+    let Some(res) = results.get(k) else {
+        return Ok(f64::NAN);
+    };
+    if let (crate::qoi::QoiKind::FrictionDissipation(i), Some(prev)) =
+        (&q.kind, k.checked_sub(1).and_then(|p| results.get(p)))
+    {
+        return Ok(alea_latin::steps::step_friction_dissipation(
+            Some(&prev.interfaces[*i]),
+            &res.interfaces[*i],
+        ));
+    }
+    q.eval(solver, res)
+}

@@ -121,11 +121,22 @@ fn variant(dir: &Path, name: &str, edits: &[(&str, &str)], tail: &str) -> (PathB
     (p, s)
 }
 
+/// Line (1-based) of the first line of `text` that contains `needle`, or that starts the
+/// first match of a multi-line `needle`.
 fn line_of(text: &str, needle: &str) -> usize {
-    text.lines()
-        .position(|l| l.contains(needle))
+    let first = needle.lines().next().unwrap_or(needle);
+    let lines: Vec<&str> = text.lines().collect();
+    (0..lines.len())
+        .find(|&i| {
+            lines[i].contains(first) && text[line_start(text, i)..].starts_with(needle.trim_start())
+                || !needle.contains('\n') && lines[i].contains(needle)
+        })
         .unwrap_or_else(|| panic!("'{needle}' not in the file"))
         + 1
+}
+
+fn line_start(text: &str, i: usize) -> usize {
+    text.split_inclusive('\n').take(i).map(str::len).sum()
 }
 
 fn expect_input_error(o: &Output, file: &Path, line: usize, field: &str, what: &str) {
@@ -214,5 +225,132 @@ fn bad_steps_are_refused_at_their_field() {
         t.contains(&format!("unknown_key.toml:{}:", line_of(&s, "loads ="))),
         "{t}"
     );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+fn run_study(study: &Path, dir: &Path) -> Output {
+    alea()
+        .args([
+            "run",
+            study.to_str().unwrap(),
+            "--dir",
+            dir.to_str().unwrap(),
+            "-q",
+        ])
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_study_with_steps_measures_each_quantity_at_its_step() {
+    let dir = tmp("study");
+    let study = root().join("examples/shear-unload-steps.toml");
+    let o = run_study(&study, &dir);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    for (q, step) in [
+        ("Fx_shear", "shear"),
+        ("Fx_unload", "unload"),
+        ("slip_left", "unload"),
+        ("dissipated_shear", "shear"),
+    ] {
+        assert!(
+            t.lines()
+                .any(|l| l.starts_with(q) && l.ends_with(&format!("at the end of step '{step}'"))),
+            "{q} names step '{step}': {t}"
+        );
+    }
+    let html = std::fs::read_to_string(dir.join("report/report.html")).unwrap();
+    assert!(
+        html.contains("at the end of step &#39;shear&#39;")
+            || html.contains("at the end of step 'shear'")
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 12);
+    let mut slipped = 0;
+    for r in runs {
+        assert_eq!(r["status"], "converged", "{r}");
+        let p: Vec<f64> = r["params"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let q: Vec<f64> = r["qois"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let shear = 40.0 * p[1];
+        // Force control: the friction resultant balances the load of each step.
+        assert!(
+            (q[0] + shear).abs() < 1e-6 * shear,
+            "Fx at 'shear' {} vs -{shear}",
+            q[0]
+        );
+        assert!(q[1].abs() < 1e-6 * shear, "Fx at 'unload' {}", q[1]);
+        // The slip of the shear step stays after unloading; it dissipated energy.
+        if q[2] > 1e-6 {
+            slipped += 1;
+            assert!(q[3] > 0.5 * q[2], "slip left {} vs {}", q[3], q[2]);
+            assert!(q[4] > 0.0, "dissipation {}", q[4]);
+        }
+        assert!(q[4] > -1e-12, "dissipation {}", q[4]);
+    }
+    assert!(slipped >= 3, "only {slipped} runs slipped");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn study_step_settings_are_checked_at_load() {
+    let dir = tmp("study-bad");
+    let base = std::fs::read_to_string(root().join("examples/shear-unload-steps.toml")).unwrap();
+    let cases: [(&str, &str, &str, &str, &str); 4] = [
+        (
+            "unknown_step",
+            "step = \"shear\"\nunit = \"N/mm\"",
+            "step = \"shaer\"\nunit = \"N/mm\"",
+            "step = \"shaer\"",
+            "quantity[0].step",
+        ),
+        (
+            "constraint_in_study",
+            "[[step]]\nname = \"unload\"\n",
+            "[[step]]\nname = \"unload\"\nconstraint = [ { substructure = \"base\", group = \"lower_bottom\", x = 1e-3 } ]\n",
+            "x = 1e-3 } ]",
+            "step[2].constraint",
+        ),
+        (
+            "error_estimate",
+            "[solver]\n",
+            "[error]\n\n[solver]\n",
+            "[[step]]\nname = \"press\"",
+            "step",
+        ),
+        (
+            "step_without_steps",
+            "[[step]]\nname = \"press\"\nload = { shear = 0.0 }\n\n[[step]]\nname = \"shear\"\nload = { shear = 1.0 }\n\n[[step]]\nname = \"unload\"\nload = { shear = 0.0 }\n",
+            "",
+            "step = \"shear\"",
+            "quantity[0].step",
+        ),
+    ];
+    for (name, from, to, needle, field) in cases {
+        assert!(base.contains(from), "{name}");
+        let s = base.replacen(from, to, 1);
+        let p = dir.join(format!("{name}.toml"));
+        std::fs::write(&p, &s).unwrap();
+        let o = run_study(&p, &dir.join(name));
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {t}");
+        let line = line_of(&s, needle);
+        assert!(
+            t.contains(&format!("{name}.toml:{line}: {field}")),
+            "{name}: '{name}.toml:{line}: {field}' expected in: {t}"
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
