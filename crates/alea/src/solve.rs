@@ -207,7 +207,7 @@ pub(crate) fn report_run(
             "NO STATIC EQUILIBRIUM after {} iterations (error indicator {last:.2e}): {}; results below are the last iterate",
             res.iterations,
             solver
-                .equilibrium_report(&res)
+                .equilibrium_report(res)
                 .unwrap_or_else(|| "a floating substructure drifts".into())
         ),
         _ => println!(
