@@ -576,5 +576,5 @@ pub struct ModelFile {
     pub solver: SolverSpec,
     /// `[[step]]`: a load history (module `steps`).
     #[serde(default)]
-    pub step: Vec<Spanned<crate::steps::StepSpec>>,
+    pub step: Vec<Spanned<crate::step_spec::StepSpec>>,
 }
