@@ -354,3 +354,42 @@ fn study_step_settings_are_checked_at_load() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn steps_on_a_single_body_are_an_input_error() {
+    let dir = tmp("single");
+    let case_text = r#"
+[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "rectangle"
+kind = "quad4"
+size = [10.0, 2.0]
+cells = [4, 2]
+
+[analysis]
+type = "plane_stress"
+
+[[substructure]]
+name = "bar"
+young = 1000.0
+poisson = 0.3
+constraint = [ { group = "xmin", x = 0.0, y = 0.0 } ]
+load = [ { name = "pull", group = "xmax", traction = [1.0, 0.0] } ]
+
+[[step]]
+name = "half"
+load = { pull = 0.5 }
+"#;
+    let case = dir.join("single.toml");
+    std::fs::write(&case, case_text).unwrap();
+    let o = solve(&case, &dir.join("out"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    let line = line_of(case_text, "[[step]]");
+    assert!(t.contains(&format!("single.toml:{line}: step")), "{t}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
