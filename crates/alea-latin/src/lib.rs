@@ -31,6 +31,7 @@ pub mod output;
 pub mod reactions;
 mod result;
 pub mod samples;
+pub mod sliding;
 mod solver;
 pub mod steps;
 

@@ -261,6 +261,23 @@ pub(crate) fn report_run(
             it.work()
         );
     }
+    for c in alea_latin::sliding::slide_checks(solver, res) {
+        if c.beyond_small_sliding() {
+            let it = &res.interfaces[c.interface];
+            let x = it.points[c.point].x;
+            println!(
+                "  warning: interface '{}' slid by {:.4e} {} at ({:.4}, {:.4}, {:.4}), {:.2} x the local mesh size: beyond small sliding (> {} x), the pairing of the initial configuration no longer pairs the points that face each other and the contact zone, gap and pressure may be wrong (the pairing is not updated during the solve)",
+                it.name,
+                c.slip,
+                u.length,
+                x[0],
+                x[1],
+                x[2],
+                c.ratio,
+                alea_latin::sliding::SMALL_SLIDING_LIMIT
+            );
+        }
+    }
     // Reactions on every constrained group (the forces the constraints exert).
     let mut reactions = Vec::new();
     for (s, sub) in built.assembly.subs.iter().enumerate() {

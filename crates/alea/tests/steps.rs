@@ -393,3 +393,39 @@ load = { pull = 0.5 }
     assert!(t.contains(&format!("single.toml:{line}: step")), "{t}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_slide_over_several_cells_is_warned_about() {
+    let dir = tmp("large-slide");
+    let (p, _) = variant(
+        &dir,
+        "large",
+        &[(
+            "group = \"upper_top\", x = 0.01 }",
+            "group = \"upper_top\", x = 6.0 }",
+        )],
+        "",
+    );
+    let o = solve(&p, &dir.join("out"));
+    let t = text(&o);
+    let warned: Vec<&str> = t
+        .lines()
+        .filter(|l| l.contains("beyond small sliding"))
+        .collect();
+    // Steps 1 and 2 slide by 2e-5 mm at most; step 3 by about 6 mm (3 cells of 2 mm), and step
+    // 4 slides back by about as much from the original position it still measures from.
+    assert!(!warned.is_empty(), "{t}");
+    let steps: Vec<&str> = t.lines().filter(|l| l.starts_with("step ")).collect();
+    let before_3 = t.split("step 3 'slide'").next().unwrap();
+    assert!(!before_3.contains("beyond small sliding"), "{t}");
+    let in_3 = t
+        .split("step 3 'slide'")
+        .nth(1)
+        .unwrap()
+        .split("step 4")
+        .next()
+        .unwrap();
+    assert!(in_3.contains("interface 'contact' slid by"), "{t}");
+    assert_eq!(steps.len(), 4, "{t}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
