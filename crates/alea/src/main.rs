@@ -2,6 +2,7 @@
 //! outputs and reports) and `alea-study`, printing.
 
 mod exit;
+mod run_report;
 mod solve;
 mod solve_steps;
 mod study_cmd;

@@ -10,7 +10,7 @@ use alea_study::steps::Plan;
 use alea_study::{BuiltModel, ParamSpace, Source, build_model, spec::ModelFile};
 use anyhow::Result;
 
-use crate::solve::{not_converged, report_run};
+use crate::run_report::{not_converged, report_run};
 
 /// Solves the steps of `plan` in order, each from the end of the previous one.
 #[allow(clippy::too_many_arguments)]
