@@ -159,6 +159,34 @@ impl InterfaceLaw for CoulombContact {
     }
 }
 
+/// The local stage of `law` within a load step that starts from the tangential jump `j0`
+/// (incremental Coulomb law, module [`crate::steps`]): slip is the increment of the tangential
+/// jump within the step, so "stick" means `[W_hat]_t = j0` rather than `0`.
+///
+/// With `j0` tangential (`j0 . n = 0`) and `Phi = R + kappa [W_hat]`, write
+/// `[W_hat] = j0 + d`; then `Phi = R' + kappa d` with `R' = R + kappa j0`, and `d` obeys the
+/// law of the step (stick `d_t = 0`, slip `d_t` opposite to `Phi_t`, the normal part unchanged
+/// since `R'_n = R_n`). So the law's own closed form at `R'` gives `(Phi, d)`, and
+/// `[W_hat] = j0 + d`. With `j0 = 0` this is [`InterfaceLaw::local_stage`].
+pub fn local_stage_from(
+    law: &dyn InterfaceLaw,
+    p: &PointData,
+    r: [f64; 3],
+    kappa: f64,
+    j0: [f64; 3],
+) -> LocalSolution {
+    let shifted = [
+        r[0] + kappa * j0[0],
+        r[1] + kappa * j0[1],
+        r[2] + kappa * j0[2],
+    ];
+    let mut sol = law.local_stage(p, shifted, kappa);
+    for c in 0..3 {
+        sol.jump[c] += j0[c];
+    }
+    sol
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -254,6 +282,38 @@ mod tests {
         assert!((s.force[0] - 0.3 * 2.0 * 0.6).abs() < 1e-14);
         assert!((s.force[1] + 0.3 * 2.0 * 0.8).abs() < 1e-14);
         check_law(&p3, r, kappa, &s);
+    }
+
+    #[test]
+    fn a_step_starting_from_a_slipped_state_sticks_at_that_state() {
+        let kappa = 2.5;
+        let p = point(0.4, 0.0);
+        let n = p.normal;
+        let t = [n[1], -n[0], 0.0];
+        // The previous step slipped by j0 along t; this step's R would slip back without it.
+        let j0 = [0.7 * t[0], 0.7 * t[1], 0.0];
+        let r = [10.0 * n[0] - 1.0 * t[0], 10.0 * n[1] - 1.0 * t[1], 0.0];
+        let s = local_stage_from(&CoulombContact, &p, r, kappa, j0);
+        // R' = R + kappa j0 = 10 n + 0.75 t: |R'_t| = 0.75 <= 0.4 * 10, stick at j0.
+        assert_eq!(s.status, PointStatus::Stick);
+        for c in 0..3 {
+            assert!((s.jump[c] - j0[c]).abs() < 1e-14);
+            assert!((s.force[c] - r[c] - kappa * s.jump[c]).abs() < 1e-12);
+        }
+        // A large reverse R slips back, on the cone, by an increment opposite to Phi_t.
+        let r = [10.0 * n[0] - 20.0 * t[0], 10.0 * n[1] - 20.0 * t[1], 0.0];
+        let s = local_stage_from(&CoulombContact, &p, r, kappa, j0);
+        assert_eq!(s.status, PointStatus::Slip);
+        assert!((dot(&s.force, &t) + 4.0).abs() < 1e-12);
+        let d = [s.jump[0] - j0[0], s.jump[1] - j0[1], 0.0];
+        assert!(
+            dot(&d, &t) > 0.0,
+            "slip increment opposite to the friction force"
+        );
+        // Without j0 the same R sticks at zero jump: the step matters.
+        let r = [10.0 * n[0] - 1.0 * t[0], 10.0 * n[1] - 1.0 * t[1], 0.0];
+        let s0 = local_stage_from(&CoulombContact, &p, r, kappa, [0.0; 3]);
+        assert_eq!(s0, CoulombContact.local_stage(&p, r, kappa));
     }
 
     #[test]

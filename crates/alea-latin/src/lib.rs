@@ -13,6 +13,9 @@
 //! displacement of every substructure, the interface fields of both stages, the contact status
 //! per point, the residual history and the quantities of interest.
 //!
+//! Load histories ([`steps`]): a sequence of load steps, each warm-started from the previous
+//! one's interface state, with the Coulomb law applied incrementally.
+//!
 //! This crate knows nothing about probability.
 
 mod anderson;
@@ -28,7 +31,9 @@ pub mod output;
 pub mod reactions;
 mod result;
 pub mod samples;
+pub mod sliding;
 mod solver;
+pub mod steps;
 
 pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
 pub use equilibrium::SubEquilibrium;

@@ -52,7 +52,8 @@
 //! stick zone pins the rigid tangential motion of the floating cylinder). So
 //! one static solve with both load cases applied (load factors `[1, Q'/(mu P')]`) gives the
 //! Cattaneo-Mindlin state. It would not for non-monotonic or non-proportional-after-normal paths
-//! (unloading, oblique loading with dissimilar materials), which need an incremental law.
+//! (unloading, oblique loading with dissimilar materials), which need the incremental law of
+//! a load history (`alea_latin::steps`; unloading and reverse loading in `tests/load_history.rs`).
 //!
 //! Goal: for `Q'/(mu P') = 0.25, 0.5, 0.75` (three runs of one solver: the load factor is a run
 //! parameter, no refactorisation), the stick-zone half-width `c` from the stick/slip status

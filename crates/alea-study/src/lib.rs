@@ -30,6 +30,8 @@ pub mod runs;
 mod source;
 mod spatial;
 pub mod spec;
+mod step_spec;
+pub mod steps;
 pub mod store;
 pub mod study;
 

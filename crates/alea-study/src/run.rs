@@ -85,38 +85,50 @@ impl RunContext<'_> {
         let theta = job.theta.as_slice();
         let mut input = study.model.parametric.run_input(theta, vec![]);
         input.initial = job.start.clone();
-        let res = solver.run_shared(&input)?;
+        // With [[step]]s, one result per step run (module `steps`); the last is the run's.
+        let results = match &study.steps {
+            None => vec![solver.run_shared(&input)?],
+            Some(plan) => crate::steps::run_study_history(plan, solver, &input)?,
+        };
+        let res = results
+            .last()
+            .ok_or(StudyError::Failed("no load step ran".into()))?;
         let qois = study
             .qois
             .iter()
-            .map(|q| q.eval(solver, &res))
+            .map(|q| crate::steps::eval_qoi(q, solver, &results))
             .collect::<Result<Vec<_>, _>>()?;
-        let status = match (res.status, solver.equilibrium_report(&res)) {
+        let mut status = match (res.status, solver.equilibrium_report(res)) {
             (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
             (st, _) => st.label().to_string(),
         };
-        let state = LocalState {
-            what: res.interfaces.iter().map(|it| it.what.clone()).collect(),
-            fhat: res.interfaces.iter().map(|it| it.fhat.clone()).collect(),
-        };
+        if let Some(plan) = &study.steps
+            && res.status != RunStatus::Converged
+        {
+            let k = results.len() - 1;
+            status = format!("step {} '{}': {status}", k + 1, plan.steps[k].name);
+        }
+        // The state later runs start from: that of the first step (every later step starts
+        // from its own run's previous step).
+        let state = results[0].end_state();
         let rec = RunRecord {
             params: theta.to_vec(),
             status,
-            iterations: res.iterations,
+            iterations: results.iter().map(|r| r.iterations).sum(),
             residual: res
                 .residuals
                 .last()
                 .copied()
                 .filter(|v| v.is_finite())
                 .unwrap_or(f64::MAX),
-            seconds: res.timings.total,
+            seconds: results.iter().map(|r| r.timings.total).sum(),
             qois: qois
                 .iter()
                 .map(|&v| if v.is_finite() { v } else { f64::NAN })
                 .collect(),
-            history: res
-                .residuals
+            history: results
                 .iter()
+                .flat_map(|r| &r.residuals)
                 .map(|v| if v.is_finite() { *v } else { f64::MAX })
                 .collect(),
             state: state.to_vec(),
@@ -128,7 +140,7 @@ impl RunContext<'_> {
         }
         let (cre, estimate_seconds) = match (self.cre, rec.converged()) {
             (Some(setup), true) => {
-                let c = setup.estimate_run(study, solver, theta, &res)?;
+                let c = setup.estimate_run(study, solver, theta, res)?;
                 let s = c.seconds;
                 (Some(c.to_values()), s)
             }
@@ -136,11 +148,19 @@ impl RunContext<'_> {
         };
         let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
         if study.output.vtu.unwrap_or(false) {
-            let path = self
-                .dir
-                .join("vtu")
-                .join(format!("{}.vtm", run_file_stem(theta)));
-            alea_latin::output::write_run(&path, solver, &res)?;
+            let stem = run_file_stem(theta);
+            match &study.steps {
+                None => {
+                    let path = self.dir.join("vtu").join(format!("{stem}.vtm"));
+                    alea_latin::output::write_run(&path, solver, res)?;
+                }
+                Some(plan) => {
+                    for (k, r) in results.iter().enumerate() {
+                        let name = format!("{stem}-{}-{}.vtm", k + 1, plan.steps[k].name);
+                        alea_latin::output::write_run(self.dir.join("vtu").join(name), solver, r)?;
+                    }
+                }
+            }
         }
         Ok(RunOutcome {
             rec,

@@ -313,6 +313,9 @@ pub struct DefineSpec {
 pub struct QuantitySpec {
     /// Name.
     pub name: Spanned<String>,
+    /// With `[[step]]`s: the step whose end state the quantity measures (default the last).
+    #[serde(default)]
+    pub step: Option<Spanned<String>>,
     /// `interface_work` (int ([W] + g0 n) . F dS), `friction_dissipation`,
     /// `interface_force` (resultant component), `max_von_mises`, `mean_von_mises`,
     /// `displacement`, `contact_pressure`, `contact_slip`, `contact_status`.
@@ -575,4 +578,7 @@ pub struct ModelFile {
     /// Solver settings.
     #[serde(default)]
     pub solver: SolverSpec,
+    /// `[[step]]`: a load history (module `steps`).
+    #[serde(default)]
+    pub step: Vec<Spanned<crate::step_spec::StepSpec>>,
 }

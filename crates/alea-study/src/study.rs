@@ -43,6 +43,8 @@ pub struct Study {
     pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
     /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
     pub refined: Option<Box<Study>>,
+    /// `[[step]]`: the load history of every run (module `steps`; loads only in a study).
+    pub steps: Option<crate::steps::Plan>,
 }
 
 impl std::fmt::Debug for Study {
@@ -74,7 +76,8 @@ impl Study {
             crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
         }
         let model = build_model(&source, &file, &params)?;
-        let qois = build_qois(&source, &file.quantity, &model)?;
+        let mut qois = build_qois(&source, &file.quantity, &model)?;
+        let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
         let seed = file.study.seed.unwrap_or(1);
         let methods = if params.names.is_empty() {
             vec![Method::deterministic()]
@@ -107,7 +110,15 @@ impl Study {
             output,
             reliability,
             refined,
+            steps,
         };
+        if study.steps.is_some() && estimates_error(&study) {
+            return Err(study.source.error(
+                study.file.step[0].span(),
+                "step",
+                "the error estimate (an [error] table or an adaptive method) is for single-step runs: leave out [error] and adaptive methods, or the [[step]]s",
+            ));
+        }
         check_built(&study)?;
         Ok(study)
     }

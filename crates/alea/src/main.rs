@@ -2,7 +2,9 @@
 //! outputs and reports) and `alea-study`, printing.
 
 mod exit;
+mod run_report;
 mod solve;
+mod solve_steps;
 mod study_cmd;
 
 use std::path::PathBuf;

@@ -39,6 +39,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     let file: ModelFile = src.parse()?;
     let params = build_params(src, &file)?;
     let built = build_model(src, &file, &params)?;
+    let plan = alea_study::steps::plan_steps(src, &file)?;
     let input = built.parametric.run_input(&params.nominal, vec![]);
     if !params.names.is_empty() {
         println!(
@@ -69,6 +70,15 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         built.assembly.interfaces.len()
     );
     if built.assembly.subs.len() == 1 && built.assembly.interfaces.is_empty() {
+        if plan.is_some() {
+            return Err(src
+                .error(
+                    file.step[0].span(),
+                    "step",
+                    "[[step]] load histories are for assemblies with interfaces: a single linear body does not depend on the path, so solve each load as its own case",
+                )
+                .into());
+        }
         let sub = &built.assembly.subs[0];
         let mut loads = Loads::new(&sub.model);
         for (case, factor) in sub.load_cases.iter().zip(&input.load_factors[0]) {
@@ -143,151 +153,20 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         );
         return Ok(());
     }
-    let mut solver = built.solver()?;
+    if let Some(plan) = plan {
+        return crate::solve_steps::solve_history(src, &file, &params, built, plan, out, &stem, t0);
+    }
+    let solver = built.solver()?;
     println!(
         "LATIN set-up (assembly + factorisations): {:.3} s",
         solver.setup_seconds
     );
-    let res = solver.run(&input)?;
-    let last = res.residuals.last().copied().unwrap_or(0.0);
-    match res.status {
-        RunStatus::Converged => println!(
-            "converged in {} iterations (error indicator {last:.2e}, every substructure in equilibrium), {:.3} s",
-            res.iterations, res.timings.total
-        ),
-        RunStatus::NoEquilibrium => println!(
-            "NO STATIC EQUILIBRIUM after {} iterations (error indicator {last:.2e}): {}; results below are the last iterate",
-            res.iterations,
-            solver
-                .equilibrium_report(&res)
-                .unwrap_or_else(|| "a floating substructure drifts".into())
-        ),
-        _ => println!(
-            "NOT CONVERGED after {} iterations: error indicator {last:.2e} (tolerance {:.1e}); results below are the last iterate",
-            res.iterations,
-            solver.options().tolerance
-        ),
-    }
-    if res.status != RunStatus::Converged {
-        let h = &res.residuals;
-        let shown: Vec<String> = h
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| (i + 1).is_power_of_two() || *i + 1 == h.len())
-            .map(|(i, v)| format!("{}: {v:.2e}", i + 1))
-            .collect();
-        println!("  error indicator by iteration: {}", shown.join(", "));
-    }
-    for (s, sub) in built.assembly.subs.iter().enumerate() {
-        let all = (0..sub.model.mesh.num_cells()).collect::<Vec<_>>();
-        let mut m = res.scaled_model(solver.model(s), s);
-        m.mesh.cell_groups.insert("__all".into(), all);
-        let vm = res.max_von_mises(&m, s, "__all")?;
-        let eq = &res.equilibrium[s];
-        let balance = if eq.free_modes > 0 {
-            format!(
-                "; {} free rigid mode(s): unbalanced load {:.2e} of its load, rigid motion {:.2e} x the model size",
-                eq.free_modes, eq.relative_imbalance, eq.relative_rigid_motion
-            )
-        } else {
-            String::new()
-        };
-        println!(
-            "  substructure {:>10}: max von Mises {vm:.4} {}{balance}",
-            sub.name, u.stress
-        );
-    }
-    let dim = built.mesh.dim;
-    for it in &res.interfaces {
-        let c = it.status_counts();
-        let dim = solver.model(it.subs[1]).mesh.dim;
-        println!(
-            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({}) {}; work of interface forces {:e}",
-            it.name,
-            it.law,
-            c[1],
-            c[2],
-            c[3],
-            labelled(it.resultant(), dim, "F"),
-            u.force,
-            it.work()
-        );
-    }
-    // Reactions on every constrained group (the forces the constraints exert).
-    let mut reactions = Vec::new();
-    for (s, sub) in built.assembly.subs.iter().enumerate() {
-        let mut loads = vec![0.0; sub.model.mesh.num_nodes() * dim];
-        for (case, factor) in sub.load_cases.iter().zip(&input.load_factors[s]) {
-            for (a, b) in loads.iter_mut().zip(case) {
-                *a += factor * b;
-            }
-        }
-        let r = alea_latin::reactions::nodal_reactions(&solver, &res, s, &loads)?;
-        for c in &file.substructure[s].constraint {
-            let g = c.group.get_ref();
-            let nodes = sub.model.mesh.group_nodes(g)?;
-            let sum = alea_latin::reactions::group_sum(&r, dim, &nodes);
-            println!(
-                "  reaction on {:>10} / {g}: {} {}",
-                sub.name,
-                labelled(sum, dim, "R"),
-                u.force
-            );
-        }
-        reactions.push(r);
-    }
+    let res = solver.run_shared(&input)?;
     let path = out.join(format!("{stem}.vtm"));
-    let written =
-        alea_latin::output::write_run_with_reactions(&path, &solver, &res, Some(&reactions))?;
-    println!(
-        "wrote {} and {} file(s) in {} ({:.2} s in all)",
-        path.display(),
-        written.len(),
-        out.join(&stem).display(),
-        t0.elapsed().as_secs_f64()
-    );
+    crate::run_report::report_run(&file, &built, &solver, &res, &input, &path)?;
+    println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     if res.status != RunStatus::Converged {
-        return Err(alea_study::StudyError::Failed(format!(
-            "the solve did not converge (status '{}' after {} iterations, error indicator {last:.2e}, tolerance {:.1e}); \
-             the files hold the last iterate",
-            res.status.label(),
-            res.iterations,
-            solver.options().tolerance
-        ))
-        .into());
+        return Err(crate::run_report::not_converged(&solver, &res).into());
     }
     Ok(())
-}
-
-/// The components of a resultant force, labelled, at full precision (the shortest decimal that
-/// reads back to the same `f64`): `Fx = .., Fy = ..` in 2D, `.., Fz = ..` in 3D (`prefix` "F"),
-/// `Rx = ..` for reactions.
-fn labelled(r: [f64; 3], dim: usize, prefix: &str) -> String {
-    ["x", "y", "z"]
-        .iter()
-        .zip(r)
-        .take(dim)
-        .map(|(axis, v)| format!("{prefix}{axis} = {v:e}"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::labelled;
-
-    #[test]
-    fn resultants_are_labelled_and_read_back_exactly() {
-        let r = [1.0 / 3.0, -2.5e-7, 3846.153856573441];
-        let t3 = labelled(r, 3, "F");
-        assert!(t3.starts_with("Fx = ") && t3.contains(", Fy = ") && t3.contains(", Fz = "));
-        let back: Vec<f64> = t3
-            .split(", ")
-            .map(|p| p.split(" = ").nth(1).unwrap().parse().unwrap())
-            .collect();
-        assert_eq!(back, r.to_vec());
-        let t2 = labelled(r, 2, "F");
-        assert!(!t2.contains("Fz"), "{t2}");
-        assert_eq!(t2.split(", ").count(), 2);
-    }
 }

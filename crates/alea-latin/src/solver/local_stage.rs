@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use super::{InterfaceOperator, InterfaceState, LatinSolver, Run, SubOperator, SubState};
 use crate::PointData;
+use crate::law::local_stage_from;
 
 impl LatinSolver {
     /// The local stage of every interface from the last linear stage; returns the error
@@ -20,7 +21,11 @@ impl LatinSolver {
             .par_iter()
             .zip(run.istate.par_iter_mut())
             .zip(run.points.par_iter())
-            .map(|((op, st), pts)| local_stage(op, st, pts, &self.subs, &run.sstate, &run.alpha))
+            .enumerate()
+            .map(|(i, ((op, st), pts))| {
+                let origin = run.slip_origin.get(i).map(Vec::as_slice);
+                local_stage(op, st, pts, origin, &self.subs, &run.sstate, &run.alpha)
+            })
             .collect();
         run.timings.local += t0.elapsed().as_secs_f64();
         indicator(&sums)
@@ -38,11 +43,13 @@ fn indicator(sums: &[[f64; 3]]) -> f64 {
 }
 
 /// Local stage on one interface; returns the interface's parts of `||s - s_hat||^2`,
-/// `||s||^2` and `||s_hat||^2`.
+/// `||s||^2` and `||s_hat||^2`. `origin`: the tangential jump of each point at the start of the
+/// load step (incremental law, [`crate::law::local_stage_from`]), `None` for a single step.
 fn local_stage(
     op: &InterfaceOperator,
     st: &mut InterfaceState,
     pts: &[PointData],
+    origin: Option<&[[f64; 3]]>,
     subs: &[SubOperator],
     sstate: &[SubState],
     alpha: &[f64],
@@ -74,7 +81,10 @@ fn local_stage(
             kappa * (a[1][1] / k[1] - a[0][1] / k[0]),
             kappa * (a[1][2] / k[1] - a[0][2] / k[0]),
         ];
-        let sol = op.law.local_stage(p, r, kappa);
+        let sol = match origin {
+            Some(j0) => local_stage_from(op.law.as_ref(), p, r, kappa, j0[i]),
+            None => op.law.local_stage(p, r, kappa),
+        };
         st.status[i] = sol.status;
         let m = op.weights[i];
         for c in 0..3 {

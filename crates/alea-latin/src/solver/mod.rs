@@ -156,6 +156,11 @@ pub struct RunInput {
     pub params: Vec<f64>,
     /// Explicit initial local-stage state (takes precedence over the nearest stored run).
     pub initial: Option<Arc<LocalState>>,
+    /// The local-stage state at the end of the previous load step (module [`crate::steps`]):
+    /// the run starts from it (before `initial` and the stored runs) and applies the Coulomb
+    /// law incrementally, slip being measured from its tangential jump. `None`: one static
+    /// step from the unloaded state.
+    pub previous_step: Option<Arc<LocalState>>,
 }
 
 /// The local-stage state `(W_hat, F_hat)` on both sides of every interface: everything a run
@@ -308,6 +313,9 @@ struct Run<'a> {
     /// Per interface: in the coarse problem (not open at every point; module `coarse`, "Open
     /// interfaces"); `macro_inv` is the inverse for this active set.
     macro_active: Vec<bool>,
+    /// Per interface, per point: the tangential jump the load step starts from (empty without
+    /// a previous step; module [`crate::steps`]).
+    slip_origin: Vec<Vec<V3>>,
     residuals: Vec<f64>,
     timings: RunTimings,
 }

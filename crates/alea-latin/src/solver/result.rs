@@ -58,6 +58,7 @@ impl LatinSolver {
         if status == RunStatus::Converged
             && !run.input.params.is_empty()
             && run.input.initial.is_none()
+            && run.input.previous_step.is_none()
             && let Ok(mut store) = self.store.lock()
         {
             store.push(StoredRun {

@@ -71,6 +71,10 @@ impl LatinSolver {
         let base = self.constant_rhs(input, &alpha);
         let (istate, warm) = self.initial_state(input)?;
         let macro_active = self.initially_closed(&points);
+        let slip_origin = match &input.previous_step {
+            Some(prev) => crate::steps::slip_origins(prev, &points),
+            None => Vec::new(),
+        };
         let macro_inv = self.coarse.as_ref().map(|cs| {
             let mask = cs.mask(&macro_active);
             macro_inverse(cs.n, &cs.subs, &alpha, &mask)
@@ -85,6 +89,7 @@ impl LatinSolver {
             sstate: self.sub_states(),
             macro_inv,
             macro_active,
+            slip_origin,
             residuals: Vec::new(),
             timings: RunTimings::default(),
         })
@@ -168,7 +173,7 @@ impl LatinSolver {
                 }
             })
             .collect();
-        if let Some(init) = &input.initial {
+        if let Some(init) = input.previous_step.as_ref().or(input.initial.as_ref()) {
             if init.what.len() != istate.len()
                 || init
                     .what
@@ -177,7 +182,8 @@ impl LatinSolver {
                     .any(|(w, st)| w[0].len() != st.what[0].len())
             {
                 return Err(LatinError::Invalid(
-                    "initial local-stage state does not match the interfaces".into(),
+                    "initial (or previous-step) local-stage state does not match the interfaces"
+                        .into(),
                 ));
             }
             for (i, st) in istate.iter_mut().enumerate() {

@@ -98,6 +98,7 @@ impl Parametric {
                 .collect(),
             params,
             initial: None,
+            previous_step: None,
         }
     }
 }

@@ -64,8 +64,11 @@ pub struct Qoi {
     /// Failure thresholds.
     pub thresholds: Vec<f64>,
     /// What it measures, in words, with the names of its interface or substructure and the
-    /// labelled component (`resultant Fz on side 2 of interface 'I2'`), for the reports.
+    /// labelled component (`resultant Fz on side 2 of interface 'I2'`), for the reports;
+    /// with `[[step]]`s it ends with the step (`at the end of step 'slide'`).
     pub what: String,
+    /// With `[[step]]`s: the index of the step it measures (module `steps`).
+    pub step: Option<usize>,
 }
 
 const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip or contact_status";
@@ -433,6 +436,7 @@ pub fn build_qois(
             kind,
             thresholds: q.thresholds.clone(),
             what,
+            step: None,
         });
     }
     check_quantities(src, specs, model, &out)?;

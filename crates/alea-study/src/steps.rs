@@ -1,0 +1,344 @@
+//! `[[step]]` load histories in a model file: the schema, its checks at load (file, line and
+//! field of every bad entry) and the plan the solve follows (the mechanics are in
+//! `alea_latin::steps`: each step is a LATIN solve from the end state of the previous one, with
+//! the Coulomb law applied incrementally).
+//!
+//! ```toml
+//! [[step]]
+//! name = "press"
+//! load = { shear = 0.0 }            # factor of each named load in this step
+//! [[step]]
+//! name = "slide"
+//! load = { shear = 1.0 }
+//! constraint = [ { substructure = "block", group = "block_top", x = 0.01 } ]
+//! ```
+//!
+//! **Loads.** `load = { NAME = f }` multiplies every load named `NAME` (`[[substructure.load]]`
+//! `name`) by `f` on top of its own `factor`. A load keeps its step factor until a later step
+//! changes it; before any step names it, its step factor is 1.
+//!
+//! **Imposed displacements.** `constraint = [{ substructure, group, x / y / z / normal }]`
+//! gives new values to components that a `[[substructure]]` constraint on that group already
+//! imposes (the constrained degrees of freedom are those of the model for the whole history;
+//! only their values change). A value holds until a later step changes it. Each distinct set
+//! of imposed values is one factorised solver.
+
+use toml::Spanned;
+
+pub use crate::step_spec::{StepConstraintSpec, StepSpec};
+
+use crate::spec::ModelFile;
+use crate::{Source, StudyError};
+
+/// One step of the plan.
+#[derive(Clone, Debug)]
+pub struct StepPlan {
+    /// Step name.
+    pub name: String,
+    /// Step factor of each load case of each substructure (multiplies the load's own factor).
+    pub load_scale: Vec<Vec<f64>>,
+    /// Index of this step's model file in [`Plan::files`] (its imposed values).
+    pub file: usize,
+}
+
+/// The steps of a model file and the model files of their distinct imposed values.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// The steps, in order.
+    pub steps: Vec<StepPlan>,
+    /// `files[0]` is the file as written; the others differ only by constraint values.
+    pub files: Vec<ModelFile>,
+}
+
+type Values = Vec<Vec<[Option<f64>; 4]>>;
+
+fn values_of(file: &ModelFile) -> Values {
+    file.substructure
+        .iter()
+        .map(|s| {
+            s.constraint
+                .iter()
+                .map(|c| [&c.x, &c.y, &c.z, &c.normal].map(|v| v.as_ref().map(|v| *v.get_ref())))
+                .collect()
+        })
+        .collect()
+}
+
+fn with_values(file: &ModelFile, values: &Values) -> ModelFile {
+    let mut f = file.clone();
+    for (s, sub) in f.substructure.iter_mut().enumerate() {
+        for (j, c) in sub.constraint.iter_mut().enumerate() {
+            for (k, slot) in [&mut c.x, &mut c.y, &mut c.z, &mut c.normal]
+                .into_iter()
+                .enumerate()
+            {
+                if let (Some(old), Some(v)) = (slot.as_ref(), values[s][j][k]) {
+                    *slot = Some(Spanned::new(old.span(), v));
+                }
+            }
+        }
+    }
+    f
+}
+
+/// Checks the `[[step]]` entries of `file` and returns their plan (`None` without steps).
+pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyError> {
+    if file.step.is_empty() {
+        return Ok(None);
+    }
+    let mut names: Vec<String> = Vec::new();
+    let mut scale: Vec<Vec<f64>> = file
+        .substructure
+        .iter()
+        .map(|s| vec![1.0; s.load.len()])
+        .collect();
+    let load_names: Vec<String> = file
+        .substructure
+        .iter()
+        .flat_map(|s| s.load.iter().filter_map(|l| l.name.as_ref()))
+        .map(|n| n.get_ref().clone())
+        .collect();
+    let mut values = values_of(file);
+    let mut sets: Vec<Values> = vec![values.clone()];
+    let mut steps = Vec::new();
+    for (k, st) in file.step.iter().enumerate() {
+        let st = st.get_ref();
+        let f = |key: &str| format!("step[{k}].{key}");
+        let name = match &st.name {
+            Some(n) => {
+                let v = n.get_ref().trim().to_string();
+                if v.is_empty()
+                    || !v
+                        .chars()
+                        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+                {
+                    return Err(src.error(
+                        n.span(),
+                        f("name"),
+                        format!("'{v}' is not a usable step name (letters, digits, '_' and '-')"),
+                    ));
+                }
+                if names.contains(&v) {
+                    return Err(src.error(n.span(), f("name"), format!("duplicate step '{v}'")));
+                }
+                v
+            }
+            None => format!("step-{}", k + 1),
+        };
+        names.push(name.clone());
+        for (lname, v) in &st.load {
+            let field = f(&format!("load.{lname}"));
+            if !load_names.contains(lname) {
+                return Err(src.error(
+                    v.span(),
+                    field,
+                    format!(
+                        "no load is named '{lname}' (named loads: {})",
+                        if load_names.is_empty() {
+                            "none; give a [[substructure.load]] a name".to_string()
+                        } else {
+                            load_names.join(", ")
+                        }
+                    ),
+                ));
+            }
+            if !v.get_ref().is_finite() {
+                return Err(src.error(v.span(), field, "the factor must be finite"));
+            }
+            for (s, sub) in file.substructure.iter().enumerate() {
+                for (j, l) in sub.load.iter().enumerate() {
+                    if l.name.as_ref().is_some_and(|n| n.get_ref() == lname) {
+                        scale[s][j] = *v.get_ref();
+                    }
+                }
+            }
+        }
+        for (j, c) in st.constraint.iter().enumerate() {
+            let cf = |key: &str| f(&format!("constraint[{j}].{key}"));
+            let sname = c.substructure.get_ref();
+            let s = file
+                .substructure
+                .iter()
+                .position(|s| s.name.get_ref() == sname)
+                .ok_or_else(|| {
+                    src.error(
+                        c.substructure.span(),
+                        cf("substructure"),
+                        format!("no substructure is named '{sname}'"),
+                    )
+                })?;
+            let g = c.group.get_ref();
+            let e = file.substructure[s]
+                .constraint
+                .iter()
+                .position(|sc| sc.group.get_ref() == g)
+                .ok_or_else(|| {
+                    src.error(
+                        c.group.span(),
+                        cf("group"),
+                        format!(
+                            "substructure '{sname}' has no constraint on group '{g}': a step \
+                             changes the values of existing constraints (the constrained \
+                             components are those of the model for the whole history)"
+                        ),
+                    )
+                })?;
+            let mut any = false;
+            for (comp, (key, v)) in [("x", &c.x), ("y", &c.y), ("z", &c.z), ("normal", &c.normal)]
+                .into_iter()
+                .enumerate()
+            {
+                let Some(v) = v else { continue };
+                if values[s][e][comp].is_none() {
+                    return Err(src.error(
+                        v.span(),
+                        cf(key),
+                        format!(
+                            "the constraint of '{sname}' on '{g}' does not impose {key}; add \
+                             {key} to it in [[substructure]] (its value before the steps) to \
+                             change it in a step"
+                        ),
+                    ));
+                }
+                if !v.get_ref().is_finite() {
+                    return Err(src.error(v.span(), cf(key), "the value must be finite"));
+                }
+                values[s][e][comp] = Some(*v.get_ref());
+                any = true;
+            }
+            if !any {
+                return Err(src.error(
+                    c.group.span(),
+                    cf("group"),
+                    "the step changes nothing here; give x, y, z and/or normal",
+                ));
+            }
+        }
+        let file_index = match sets.iter().position(|v| *v == values) {
+            Some(i) => i,
+            None => {
+                sets.push(values.clone());
+                sets.len() - 1
+            }
+        };
+        steps.push(StepPlan {
+            name,
+            load_scale: scale.clone(),
+            file: file_index,
+        });
+    }
+    let files = sets.iter().map(|v| with_values(file, v)).collect();
+    Ok(Some(Plan { steps, files }))
+}
+
+/// The load history of a study: [`plan_steps`], plus what a study needs on top. Every run of
+/// a study uses one factorised solver, so its steps may change loads only (imposed
+/// displacements per step are for `alea solve`); each quantity gets the index of its step
+/// (`[[quantity]] step`, default the last) and its description names that step.
+pub fn study_steps(
+    src: &Source,
+    file: &ModelFile,
+    qois: &mut [crate::qoi::Qoi],
+) -> Result<Option<Plan>, StudyError> {
+    let plan = plan_steps(src, file)?;
+    let Some(plan) = plan else {
+        if let Some((i, s)) = file
+            .quantity
+            .iter()
+            .enumerate()
+            .find_map(|(i, q)| q.step.as_ref().map(|s| (i, s)))
+        {
+            return Err(src.error(
+                s.span(),
+                format!("quantity[{i}].step"),
+                "the file has no [[step]]: leave out step",
+            ));
+        }
+        return Ok(None);
+    };
+    if let Some((k, c)) = file
+        .step
+        .iter()
+        .enumerate()
+        .find_map(|(k, st)| st.get_ref().constraint.first().map(|c| (k, c)))
+    {
+        return Err(src.error(
+            c.substructure.span(),
+            format!("step[{k}].constraint"),
+            "in a study, steps change loads only (every run uses one factorised solver); \
+             imposed displacements per step are solved by `alea solve`",
+        ));
+    }
+    let names: Vec<&str> = plan.steps.iter().map(|s| s.name.as_str()).collect();
+    for (i, (q, spec)) in qois.iter_mut().zip(&file.quantity).enumerate() {
+        let k = match &spec.step {
+            Some(s) => names.iter().position(|n| n == s.get_ref()).ok_or_else(|| {
+                src.error(
+                    s.span(),
+                    format!("quantity[{i}].step"),
+                    format!(
+                        "no step is named '{}' (steps: {})",
+                        s.get_ref(),
+                        names.join(", ")
+                    ),
+                )
+            })?,
+            None => names.len() - 1,
+        };
+        q.step = Some(k);
+        q.what = format!("{}, at the end of step '{}'", q.what, names[k]);
+    }
+    Ok(Some(plan))
+}
+
+/// Runs the load history `plan` of one study run (loads only: one solver) from `input` (the
+/// run's parameters; its `initial` state is that of the first step). Returns the results of
+/// the steps run: the history stops after a step that does not converge.
+pub(crate) fn run_study_history(
+    plan: &Plan,
+    solver: &alea_latin::LatinSolver,
+    input: &alea_latin::RunInput,
+) -> Result<Vec<alea_latin::RunResult>, StudyError> {
+    let inputs: Vec<alea_latin::RunInput> = plan
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(k, step)| {
+            let mut i = input.clone();
+            if k > 0 {
+                i.initial = None;
+            }
+            for (f, sc) in i.load_factors.iter_mut().zip(&step.load_scale) {
+                for (a, b) in f.iter_mut().zip(sc) {
+                    *a *= b;
+                }
+            }
+            i
+        })
+        .collect();
+    Ok(solver.run_steps(&inputs)?)
+}
+
+/// The value of `q` for a run whose steps gave `results` (one result without steps): at its
+/// step's end state; NaN if the history stopped before that step. The friction dissipation
+/// of a step after the first is the step's own
+/// ([`alea_latin::steps::step_friction_dissipation`]).
+pub(crate) fn eval_qoi(
+    q: &crate::qoi::Qoi,
+    solver: &alea_latin::LatinSolver,
+    results: &[alea_latin::RunResult],
+) -> Result<f64, StudyError> {
+    let k = q.step.unwrap_or(results.len().saturating_sub(1));
+    let Some(res) = results.get(k) else {
+        return Ok(f64::NAN);
+    };
+    if let (crate::qoi::QoiKind::FrictionDissipation(i), Some(prev)) =
+        (&q.kind, k.checked_sub(1).and_then(|p| results.get(p)))
+    {
+        return Ok(alea_latin::steps::step_friction_dissipation(
+            Some(&prev.interfaces[*i]),
+            &res.interfaces[*i],
+        ));
+    }
+    q.eval(solver, res)
+}
