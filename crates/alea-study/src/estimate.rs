@@ -186,20 +186,46 @@ fn stored_runs(
     Ok((records, fields))
 }
 
+/// What the stochastic error of one method is computed from: the study, its estimator set-up
+/// and solver, the store of its runs, the method, the converged runs `points` its surrogate
+/// `sur` is built on, and the `[error]` settings.
+#[derive(Clone, Copy)]
+pub struct MethodEstimateInput<'a> {
+    /// The study.
+    pub study: &'a Study,
+    /// The estimator set-up of its substructures.
+    pub setup: &'a CreSetup,
+    /// The LATIN solver the runs were made with.
+    pub solver: &'a LatinSolver,
+    /// The store holding the runs' records and fields.
+    pub store: &'a Store,
+    /// The method.
+    pub method: &'a Method,
+    /// The converged runs the surrogate is built on.
+    pub points: &'a [Vec<f64>],
+    /// The method's surrogate.
+    pub sur: &'a Surrogate,
+    /// The `[error]` settings.
+    pub settings: &'a ErrorSettings,
+}
+
 /// The stochastic error of `method`'s surrogate `sur` built on the converged runs `points`.
 ///
 /// # Errors
 /// As [`build_estimator`] and [`integration_rule`].
 pub fn estimate_method(
-    study: &Study,
-    setup: &CreSetup,
-    solver: &LatinSolver,
-    store: &Store,
-    method: &Method,
-    points: &[Vec<f64>],
-    sur: &Surrogate,
-    settings: &ErrorSettings,
+    input: &MethodEstimateInput<'_>,
 ) -> Result<(Estimator, SurrogateEstimate), StudyError> {
+    let MethodEstimateInput {
+        study,
+        setup,
+        solver,
+        store,
+        method,
+        points,
+        sur,
+        settings,
+    } = *input;
     let t0 = Instant::now();
     let params = StudyParameters::new(&study.model.parametric, solver);
     let est = build_estimator(setup, solver, store, points, &params)?;
@@ -377,19 +403,21 @@ pub fn interface_cell_terms(
 ///
 /// # Errors
 /// Store, sample or write errors.
-#[allow(clippy::too_many_arguments)]
 pub fn write_error_fields(
-    study: &Study,
-    setup: &CreSetup,
-    solver: &LatinSolver,
-    store: &Store,
-    method: &Method,
-    points: &[Vec<f64>],
-    sur: &Surrogate,
-    settings: &ErrorSettings,
+    input: &MethodEstimateInput<'_>,
     est: Option<&Estimator>,
     dir: &std::path::Path,
 ) -> Result<Option<std::path::PathBuf>, StudyError> {
+    let MethodEstimateInput {
+        study,
+        setup,
+        solver,
+        store,
+        method,
+        points,
+        sur,
+        settings,
+    } = *input;
     use alea_mesh::vtu::{VtuWriter, write_vtm};
     let ns = solver.num_subs();
     let estimated: Vec<bool> = setup.layout.subs.iter().map(|l| l.is_estimated()).collect();
