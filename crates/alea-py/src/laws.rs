@@ -409,6 +409,21 @@ impl JointPy {
         })
     }
 
+    /// A copula of one parameter `theta` built by `new` (no correlation matrix).
+    fn one_parameter<C: JointLaw + 'static>(
+        marginals: &Bound<'_, PyAny>,
+        theta: f64,
+        new: fn(Vec<Arc<dyn Marginal>>, f64) -> alea_uq::error::Result<C>,
+        kind: &'static str,
+    ) -> PyResult<Self> {
+        Self::build(
+            marginals,
+            move |m| Ok(Arc::new(new(m, theta).map_err(uq_err)?)),
+            None,
+            kind,
+        )
+    }
+
     fn dim(&self) -> usize {
         self.marginals.len()
     }
@@ -478,34 +493,19 @@ impl JointPy {
     /// Clayton copula with parameter `theta > 0` (any dimension).
     #[staticmethod]
     fn clayton(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
-        Self::build(
-            marginals,
-            move |m| Ok(Arc::new(ClaytonCopula::new(m, theta).map_err(uq_err)?)),
-            None,
-            "clayton copula",
-        )
+        Self::one_parameter(marginals, theta, ClaytonCopula::new, "clayton copula")
     }
 
     /// Gumbel copula with parameter `theta >= 1` (two variables).
     #[staticmethod]
     fn gumbel(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
-        Self::build(
-            marginals,
-            move |m| Ok(Arc::new(GumbelCopula::new(m, theta).map_err(uq_err)?)),
-            None,
-            "gumbel copula",
-        )
+        Self::one_parameter(marginals, theta, GumbelCopula::new, "gumbel copula")
     }
 
     /// Frank copula with parameter `theta != 0` (two variables).
     #[staticmethod]
     fn frank(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
-        Self::build(
-            marginals,
-            move |m| Ok(Arc::new(FrankCopula::new(m, theta).map_err(uq_err)?)),
-            None,
-            "frank copula",
-        )
+        Self::one_parameter(marginals, theta, FrankCopula::new, "frank copula")
     }
 
     /// Number of variables.
