@@ -216,31 +216,27 @@ pub struct MethodEstimateInput<'a> {
 pub fn estimate_method(
     input: &MethodEstimateInput<'_>,
 ) -> Result<(Estimator, SurrogateEstimate), StudyError> {
-    let MethodEstimateInput {
-        study,
-        setup,
-        solver,
-        store,
-        method,
-        points,
-        sur,
-        settings,
-    } = *input;
     let t0 = Instant::now();
-    let params = StudyParameters::new(&study.model.parametric, solver);
-    let est = build_estimator(setup, solver, store, points, &params)?;
-    let (cells, rule) = integration_rule(study, method, settings)?;
-    let estimate = est.expectation(&rule, sur, &params);
-    let load_defect = load_defect(study, points, &rule, sur);
+    let params = StudyParameters::new(&input.study.model.parametric, input.solver);
+    let est = build_estimator(
+        input.setup,
+        input.solver,
+        input.store,
+        input.points,
+        &params,
+    )?;
+    let (cells, rule) = integration_rule(input.study, input.method, input.settings)?;
+    let estimate = est.expectation(&rule, input.sur, &params);
+    let load_defect = load_defect(input.study, input.points, &rule, input.sur);
     Ok((
         est,
         SurrogateEstimate {
             estimate,
-            runs: points.len(),
+            runs: input.points.len(),
             rule_points: rule.len(),
             cells,
             load_defect,
-            substructures_estimated: setup.substructures_estimated(),
+            substructures_estimated: input.setup.substructures_estimated(),
             seconds: t0.elapsed().as_secs_f64(),
         },
     ))
