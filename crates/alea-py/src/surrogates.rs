@@ -26,6 +26,22 @@ fn basis(m: &[Arc<dyn Marginal>], degree: usize, q: Option<f64>) -> PyResult<PcB
     PcBasis::new(m, set).map_err(uq_err)
 }
 
+/// The chaos basis of total degree `degree` (q-norm `q`) on the marginals of `law`, and the runs
+/// `points` (`(K, d)`) with their `values` (`(K,)`).
+fn basis_and_runs(
+    law: &Bound<'_, PyAny>,
+    degree: usize,
+    q: Option<f64>,
+    points: &ArrayIn<'_>,
+    values: &ArrayIn<'_>,
+) -> PyResult<(PcBasis, Vec<f64>, Vec<f64>)> {
+    let m = independent_marginals(law, "PolynomialChaos law")?;
+    let b = basis(&m, degree, q)?;
+    let (p, k) = self::points(points, m.len(), "PolynomialChaos points")?;
+    let v = vector(values, Some(k), "PolynomialChaos values")?;
+    Ok((b, p, v))
+}
+
 /// Dense weights `w_k(x)` of a linear surrogate at each point, `(n, K)`.
 fn dense_weights(sur: &(dyn LinearSurrogate + Sync), pts: &[f64], d: usize) -> Vec<f64> {
     let k = sur.num_runs();
@@ -104,10 +120,7 @@ impl PolynomialChaos {
         values: ArrayIn<'_>,
         q: Option<f64>,
     ) -> PyResult<Self> {
-        let m = independent_marginals(law, "PolynomialChaos law")?;
-        let b = basis(&m, degree, q)?;
-        let (p, k) = self::points(&points, m.len(), "PolynomialChaos points")?;
-        let v = vector(&values, Some(k), "PolynomialChaos values")?;
+        let (b, p, v) = basis_and_runs(law, degree, q, &points, &values)?;
         let sur = py
             .detach(|| PcSurrogate::regression(b, &p))
             .map_err(uq_err)?;
@@ -153,10 +166,7 @@ impl PolynomialChaos {
         max_terms_fraction: f64,
         stop_factor: f64,
     ) -> PyResult<Self> {
-        let m = independent_marginals(law, "PolynomialChaos law")?;
-        let b = basis(&m, degree, q)?;
-        let (p, k) = self::points(&points, m.len(), "PolynomialChaos points")?;
-        let v = vector(&values, Some(k), "PolynomialChaos values")?;
+        let (b, p, v) = basis_and_runs(law, degree, q, &points, &values)?;
         let opts = LarsOptions {
             max_terms_fraction,
             stop_factor,
