@@ -25,6 +25,7 @@ use alea_estimate::density::{PairMap, pair_maps};
 use alea_estimate::rule::{CellBox, Rule};
 use alea_estimate::{Estimate, Estimator, EstimatorOptions, Weights};
 use alea_latin::LatinSolver;
+use alea_latin::interface::{distribute_to_cells, facet_shares};
 
 use crate::StudyError;
 use crate::cre::{CreRecord, CreSetup, StudyParameters};
@@ -353,30 +354,15 @@ pub fn interface_cell_terms(
         for (side, group) in [&spec.group1, &spec.group2].into_iter().enumerate() {
             let s = subs[side];
             let model = solver.model(s);
-            let mut density: std::collections::HashMap<usize, [f64; 2]> =
-                std::collections::HashMap::with_capacity(nodes[side].len());
-            for (p, (&node, t)) in nodes[side].iter().zip(terms).enumerate() {
-                if weights[p] > 0.0 {
-                    density.insert(node, [t[0] / weights[p], t[1] / weights[p]]);
-                }
-            }
             let facets =
-                alea_latin::interface::facet_shares(&model.mesh, group, model.analysis.thickness())
-                    .map_err(|error| StudyError::InterfaceFacets {
+                facet_shares(&model.mesh, group, model.analysis.thickness()).map_err(|error| {
+                    StudyError::InterfaceFacets {
                         interface: spec.name.clone(),
                         sub: solver.sub_name(s).to_string(),
                         error: Box::new(error),
-                    })?;
-            for f in facets {
-                let c = &mut cells[s][f.cell];
-                c[2] += f.measure;
-                for (node, share) in f.shares {
-                    if let Some(d) = density.get(&node) {
-                        c[0] += share * d[0];
-                        c[1] += share * d[1];
                     }
-                }
-            }
+                })?;
+            distribute_to_cells(facets, &nodes[side], terms, weights, &mut cells[s]);
         }
     }
     Ok(cells)
