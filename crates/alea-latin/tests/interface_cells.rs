@@ -27,13 +27,22 @@ fn cell_terms_add_up_to_the_point_terms_on_the_cells_of_the_side() {
         for k in 0..2 {
             let want: f64 = terms.iter().map(|t| t[k]).sum();
             let got: f64 = cells.iter().map(|c| c[k]).sum();
-            assert!((got - want).abs() < 1e-12 * want, "{kind:?} term {k}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < 1e-12 * want,
+                "{kind:?} term {k}: {got} vs {want}"
+            );
         }
         let measure: f64 = cells.iter().map(|c| c[2]).sum();
-        assert!((measure - lx * th).abs() < 1e-12, "{kind:?}: measure {measure}");
+        assert!(
+            (measure - lx * th).abs() < 1e-12,
+            "{kind:?}: measure {measure}"
+        );
         for (c, v) in cells.iter().enumerate() {
             if on_side.contains(&c) {
-                assert!(v[1] > 0.0 && v[2] > 0.0, "{kind:?}: cell {c} on the side got {v:?}");
+                assert!(
+                    v[1] > 0.0 && v[2] > 0.0,
+                    "{kind:?}: cell {c} on the side got {v:?}"
+                );
                 // The density 1 gives each cell its facet measure.
                 assert!((v[1] - v[2]).abs() < 1e-12, "{kind:?}: cell {c} {v:?}");
             } else {

@@ -83,14 +83,12 @@ pub(super) fn estimate_all(
         let (result, maps, vtu) = match computed {
             Ok((est, merr)) => {
                 let (mut maps, mut vtu) = (Vec::new(), None);
-                if Some(m) == main {
-                    if let Ok(input) = &input {
-                        if let (Some(est), true) = (&est, study.params.names.len() >= 2) {
-                            maps = density_maps(study, &runs.solver, est, input.sur, &settings)
-                                .unwrap_or_default();
-                        }
-                        vtu = write_error_fields(input, est.as_ref(), dir)?;
+                if let (true, Ok(input)) = (Some(m) == main, &input) {
+                    if let (Some(est), true) = (&est, study.params.names.len() >= 2) {
+                        maps = density_maps(study, &runs.solver, est, input.sur, &settings)
+                            .unwrap_or_default();
                     }
+                    vtu = write_error_fields(input, est.as_ref(), dir)?;
                 }
                 (Ok(merr), maps, vtu)
             }
