@@ -48,18 +48,14 @@ surf_names = list(surfaces)
 vol_names = list(volumes)
 out = ["$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$PhysicalNames",
        str(len(surf_names) + len(vol_names))]
-for t, n in enumerate(surf_names, 1):
-    out.append(f'2 {t} "{n}"')
-for t, n in enumerate(vol_names, 1):
-    out.append(f'3 {t} "{n}"')
+out += [f'{dim} {t} "{n}"' for dim, names in ((2, surf_names), (3, vol_names))
+        for t, n in enumerate(names, 1)]
 out.append("$EndPhysicalNames")
 # Entities: one surface entity per surface group, one volume entity per volume group (the
 # bounding boxes are not used by the reader; the bounding lists are left empty).
 out += ["$Entities", f"0 0 {len(surf_names)} {len(vol_names)}"]
-for t, _ in enumerate(surf_names, 1):
-    out.append(f"{t} 0 0 0 0 0 0 1 {t} 0")
-for t, _ in enumerate(vol_names, 1):
-    out.append(f"{t} 0 0 0 0 0 0 1 {t} 0")
+out += [f"{t} 0 0 0 0 0 0 1 {t} 0" for names in (surf_names, vol_names)
+        for t in range(1, len(names) + 1)]
 out.append("$EndEntities")
 # Nodes: all in the volume entity of their body.
 out += ["$Nodes", f"{len(vol_names)} {len(nodes)} 1 {len(nodes)}"]

@@ -23,25 +23,16 @@ use alea_cre::{CreOptions, LoadData, estimate_latin};
 use alea_latin::samples::{PULL, SHEAR};
 use alea_latin::{Assembly, LatinOptions, LatinSolver, RunInput, RunStatus};
 
+#[path = "../../../benches/support/timing.rs"]
+mod timing;
+use timing::{cpu_seconds, with_threads};
+
 fn assembly(refine: usize) -> Assembly {
     alea_latin::samples::four_part_dovetail(refine).expect("the sample assembly builds")
 }
 
 fn options() -> LatinOptions {
     alea_latin::samples::four_part_dovetail_options()
-}
-
-/// CPU seconds used so far by all threads of the process (sum of `/proc/self/task/*/schedstat`
-/// run times; threads that have exited are not counted, rayon's pool threads persist).
-fn cpu_seconds() -> f64 {
-    let Ok(dir) = std::fs::read_dir("/proc/self/task") else {
-        return f64::NAN;
-    };
-    dir.filter_map(|e| e.ok())
-        .filter_map(|e| std::fs::read_to_string(e.path().join("schedstat")).ok())
-        .filter_map(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .sum::<f64>()
-        * 1e-9
 }
 
 /// The 3D case: every substructure of the 2D assembly extruded into Hex8.
@@ -115,11 +106,7 @@ fn main() {
     }
     let data = loads();
     for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        with_threads(threads, || {
             let mut best = [f64::INFINITY; 3];
             let mut summary = String::new();
             for _ in 0..3 {
@@ -158,7 +145,10 @@ fn main() {
                         .map(|i| format!("{:.2e}", i.term))
                         .collect::<Vec<_>>(),
                     est.compatibility_defect(),
-                    est.interfaces.iter().map(|i| i.violations).collect::<Vec<_>>()
+                    est.interfaces
+                        .iter()
+                        .map(|i| i.violations)
+                        .collect::<Vec<_>>()
                 );
             }
             println!("\n## {threads} thread(s) (best of 3)");

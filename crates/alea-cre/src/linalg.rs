@@ -1,5 +1,7 @@
 //! Small dense linear algebra: Cholesky factor and solve, and the least-norm solution of small (possibly
-//! singular) systems through a symmetric eigendecomposition (cyclic Jacobi).
+//! singular) systems through a symmetric eigendecomposition (cyclic Jacobi, [`alea_uq::eigen`]).
+
+use alea_uq::eigen::{JacobiStop, jacobi_sweeps};
 
 /// Solves `a x = b` in place for a symmetric positive definite row-major `n x n` matrix `a`
 /// (overwritten by its Cholesky factor). Returns `false` if `a` is not positive definite.
@@ -67,50 +69,23 @@ pub fn sym_eigen(a: &[f64], n: usize) -> (Vec<f64>, Vec<f64>) {
     for i in 0..n {
         v[i * n + i] = 1.0;
     }
-    for _sweep in 0..60 {
-        let mut off = 0.0;
-        let mut diag = 0.0;
-        for i in 0..n {
-            diag += a[i * n + i] * a[i * n + i];
-            for j in i + 1..n {
-                off += a[i * n + j] * a[i * n + j];
-            }
-        }
-        if off <= 1e-30 * diag || off == 0.0 {
-            break;
-        }
-        for p in 0..n {
-            for q in p + 1..n {
-                let apq = a[p * n + q];
-                if apq == 0.0 {
-                    continue;
-                }
-                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for k in 0..n {
-                    let akp = a[k * n + p];
-                    let akq = a[k * n + q];
-                    a[k * n + p] = c * akp - s * akq;
-                    a[k * n + q] = s * akp + c * akq;
-                }
-                for k in 0..n {
-                    let apk = a[p * n + k];
-                    let aqk = a[q * n + k];
-                    a[p * n + k] = c * apk - s * aqk;
-                    a[q * n + k] = s * apk + c * aqk;
-                }
-                for k in 0..n {
-                    let vkp = v[k * n + p];
-                    let vkq = v[k * n + q];
-                    v[k * n + p] = c * vkp - s * vkq;
-                    v[k * n + q] = s * vkp + c * vkq;
+    let stop = JacobiStop {
+        max_sweeps: 60,
+        // |a_pq| < the smallest subnormal: only an exact zero is skipped.
+        skip_below: f64::from_bits(1),
+        converged: |a: &[f64]| {
+            let mut off = 0.0;
+            let mut diag = 0.0;
+            for i in 0..n {
+                diag += a[i * n + i] * a[i * n + i];
+                for j in i + 1..n {
+                    off += a[i * n + j] * a[i * n + j];
                 }
             }
-        }
-    }
+            off <= 1e-30 * diag || off == 0.0
+        },
+    };
+    jacobi_sweeps(&mut a, Some(&mut v), n, &stop);
     ((0..n).map(|i| a[i * n + i]).collect(), v)
 }
 

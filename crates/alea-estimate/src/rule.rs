@@ -26,9 +26,8 @@ pub const MAX_POINTS: usize = 4_000_000;
 /// An integration rule with cell tags.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rule {
-    dim: usize,
-    points: Vec<f64>,
-    weights: Vec<f64>,
+    /// The points and their normalised weights.
+    points: QuadratureRule,
     cells: Vec<usize>,
     captured: f64,
 }
@@ -74,10 +73,10 @@ impl Rule {
             ));
         }
         let weights = weights.into_iter().map(|w| w / total).collect();
+        let points = QuadratureRule::new(dim, points, weights)
+            .map_err(|e| EstimateError::Invalid(e.to_string()))?;
         Ok(Rule {
-            dim,
             points,
-            weights,
             cells,
             captured: total,
         })
@@ -248,32 +247,32 @@ impl Rule {
 
     /// Number of parameters.
     pub fn dim(&self) -> usize {
-        self.dim
+        self.points.dim()
     }
 
     /// Number of points.
     pub fn len(&self) -> usize {
-        self.weights.len()
+        self.points.len()
     }
 
     /// True if there is no point.
     pub fn is_empty(&self) -> bool {
-        self.weights.is_empty()
+        self.points.is_empty()
     }
 
     /// Point `q`.
     pub fn point(&self, q: usize) -> &[f64] {
-        &self.points[q * self.dim..(q + 1) * self.dim]
+        self.points.node(q)
     }
 
     /// Probability weight of point `q`.
     pub fn weight(&self, q: usize) -> f64 {
-        self.weights[q]
+        self.points.weights()[q]
     }
 
     /// All weights.
     pub fn weights(&self) -> &[f64] {
-        &self.weights
+        self.points.weights()
     }
 
     /// Cell tag of point `q`.

@@ -97,6 +97,38 @@ pub fn facet_shares(
         .collect())
 }
 
+/// Distributes per-point terms of one interface side to the cells whose facets carry them:
+/// point `p` (mesh node `nodes[p]`, weight `m_p = weights[p]`, terms `t_p = terms[p]`) has the
+/// density `t_p / m_p` at its node (points of zero weight carry none); each facet of `facets`
+/// (from [`facet_shares`] on that side) adds its measure to `cells[f.cell][2]` and
+/// `share * t_p / m_p` at each of its nodes to `cells[f.cell][0..2]`. Over the cells of a side
+/// the terms add up to `sum_p t_p` when the side's lumped weights are the points' weights.
+pub fn distribute_to_cells(
+    facets: Vec<FacetShare>,
+    nodes: &[usize],
+    terms: &[[f64; 2]],
+    weights: &[f64],
+    cells: &mut [[f64; 3]],
+) {
+    let mut density: std::collections::HashMap<usize, [f64; 2]> =
+        std::collections::HashMap::with_capacity(nodes.len());
+    for (p, (&node, t)) in nodes.iter().zip(terms).enumerate() {
+        if weights[p] > 0.0 {
+            density.insert(node, [t[0] / weights[p], t[1] / weights[p]]);
+        }
+    }
+    for f in facets {
+        let c = &mut cells[f.cell];
+        c[2] += f.measure;
+        for (node, share) in f.shares {
+            if let Some(d) = density.get(&node) {
+                c[0] += share * d[0];
+                c[1] += share * d[1];
+            }
+        }
+    }
+}
+
 /// Computes the side geometry of facet group `group` of `mesh`.
 pub fn side_geometry(
     mesh: &Mesh,

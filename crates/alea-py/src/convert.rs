@@ -19,6 +19,9 @@ use pyo3::types::PyFloat;
 /// Any array-like input, converted to `float64`.
 pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 
+/// A new two-dimensional NumPy array of `f64` handed to Python, or the Python error.
+pub type MatrixResult<'py> = PyResult<Bound<'py, PyArray2<f64>>>;
+
 /// `ValueError(message)`.
 pub fn value_error(message: impl Into<String>) -> PyErr {
     PyValueError::new_err(message.into())

@@ -9,7 +9,7 @@ use alea_uq::quadrature::QuadratureRule;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
-use crate::convert::{ArrayIn, array1, array2, uq_err, value_error, vector};
+use crate::convert::{ArrayIn, MatrixResult, array1, array2, uq_err, value_error, vector};
 use crate::laws::{independent_marginals, law_arg};
 
 /// `n` independent draws of `law` (a `Joint`, a `Law` or a list of `Law`s), shape `(n, d)`.
@@ -21,7 +21,7 @@ pub fn monte_carlo<'py>(
     law: &Bound<'py, PyAny>,
     n: usize,
     seed: u64,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+) -> MatrixResult<'py> {
     let l = law_arg(law, "monte_carlo law")?.joint;
     let d = l.dim();
     let design = py.detach(move || mc(l.as_ref(), n, seed));
@@ -39,7 +39,7 @@ pub fn lhs<'py>(
     n: usize,
     seed: u64,
     maximin: Option<usize>,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+) -> MatrixResult<'py> {
     let l = law_arg(law, "lhs law")?.joint;
     let d = l.dim();
     let design = py.detach(move || match maximin {
@@ -59,7 +59,7 @@ pub fn sobol<'py>(
     law: &Bound<'py, PyAny>,
     n: usize,
     scramble_seed: Option<u64>,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+) -> MatrixResult<'py> {
     let l = law_arg(law, "sobol law")?.joint;
     let d = l.dim();
     let design = py
@@ -76,7 +76,7 @@ pub fn grid<'py>(
     lo: ArrayIn<'py>,
     hi: ArrayIn<'py>,
     counts: Vec<usize>,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+) -> MatrixResult<'py> {
     let lo = vector(&lo, None, "grid lo")?;
     let hi = vector(&hi, Some(lo.len()), "grid hi")?;
     let design = tensor_grid(&lo, &hi, &counts).map_err(uq_err)?;
@@ -92,7 +92,7 @@ pub fn pc_collocation<'py>(
     law: &Bound<'py, PyAny>,
     degree: usize,
     n: usize,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+) -> MatrixResult<'py> {
     let m = independent_marginals(law, "pc_collocation law")?;
     let design = pcc(&m, degree, n).map_err(uq_err)?;
     array2(py, design.points().to_vec(), n, m.len())

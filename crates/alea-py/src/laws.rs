@@ -24,7 +24,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::convert::{
-    ArrayIn, array1, array2, elementwise, points, square, uq_err, value_error, vector,
+    ArrayIn, MatrixResult, array1, array2, elementwise, points, square, uq_err, value_error, vector,
 };
 
 /// A one-dimensional probability law (base class of `Normal`, `Uniform`, ...).
@@ -409,6 +409,21 @@ impl JointPy {
         })
     }
 
+    /// A copula of one parameter `theta` built by `new` (no correlation matrix).
+    fn one_parameter<C: JointLaw + 'static>(
+        marginals: &Bound<'_, PyAny>,
+        theta: f64,
+        new: fn(Vec<Arc<dyn Marginal>>, f64) -> alea_uq::error::Result<C>,
+        kind: &'static str,
+    ) -> PyResult<Self> {
+        Self::build(
+            marginals,
+            move |m| Ok(Arc::new(new(m, theta).map_err(uq_err)?)),
+            None,
+            kind,
+        )
+    }
+
     fn dim(&self) -> usize {
         self.marginals.len()
     }
@@ -419,7 +434,7 @@ impl JointPy {
         x: ArrayIn<'py>,
         what: &str,
         f: impl Fn(&dyn JointLaw, &[f64], &mut [f64]) + Sync,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    ) -> MatrixResult<'py> {
         let d = self.dim();
         let (v, n) = points(&x, d, what)?;
         let law = self.inner.as_ref();
@@ -478,34 +493,19 @@ impl JointPy {
     /// Clayton copula with parameter `theta > 0` (any dimension).
     #[staticmethod]
     fn clayton(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
-        Self::build(
-            marginals,
-            move |m| Ok(Arc::new(ClaytonCopula::new(m, theta).map_err(uq_err)?)),
-            None,
-            "clayton copula",
-        )
+        Self::one_parameter(marginals, theta, ClaytonCopula::new, "clayton copula")
     }
 
     /// Gumbel copula with parameter `theta >= 1` (two variables).
     #[staticmethod]
     fn gumbel(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
-        Self::build(
-            marginals,
-            move |m| Ok(Arc::new(GumbelCopula::new(m, theta).map_err(uq_err)?)),
-            None,
-            "gumbel copula",
-        )
+        Self::one_parameter(marginals, theta, GumbelCopula::new, "gumbel copula")
     }
 
     /// Frank copula with parameter `theta != 0` (two variables).
     #[staticmethod]
     fn frank(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
-        Self::build(
-            marginals,
-            move |m| Ok(Arc::new(FrankCopula::new(m, theta).map_err(uq_err)?)),
-            None,
-            "frank copula",
-        )
+        Self::one_parameter(marginals, theta, FrankCopula::new, "frank copula")
     }
 
     /// Number of variables.
@@ -557,50 +557,29 @@ impl JointPy {
     }
     /// `n` independent draws, shape `(n, d)` (seeded; identical for any number of threads).
     #[pyo3(signature = (n, seed = 0))]
-    fn sample<'py>(
-        &self,
-        py: Python<'py>,
-        n: usize,
-        seed: u64,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn sample<'py>(&self, py: Python<'py>, n: usize, seed: u64) -> MatrixResult<'py> {
         let law = self.inner.clone();
         let d = py.detach(move || monte_carlo(law.as_ref(), n, seed));
         array2(py, d.points().to_vec(), n, self.dim())
     }
     /// Map points `x` to independent uniforms on the unit cube.
-    fn to_unit<'py>(
-        &self,
-        py: Python<'py>,
-        x: ArrayIn<'py>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn to_unit<'py>(&self, py: Python<'py>, x: ArrayIn<'py>) -> MatrixResult<'py> {
         self.map_points(py, x, "to_unit points", |l, p, o| l.x_to_unit(p, o))
     }
     /// Map unit-cube points `u` to the law's space.
     #[pyo3(name = "from_unit")]
-    fn unit_to_x<'py>(
-        &self,
-        py: Python<'py>,
-        u: ArrayIn<'py>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn unit_to_x<'py>(&self, py: Python<'py>, u: ArrayIn<'py>) -> MatrixResult<'py> {
         self.map_points(py, u, "from_unit points", |l, p, o| l.unit_to_x(p, o))
     }
     /// Map points `x` to independent standard normal variables.
-    fn to_standard_normal<'py>(
-        &self,
-        py: Python<'py>,
-        x: ArrayIn<'py>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn to_standard_normal<'py>(&self, py: Python<'py>, x: ArrayIn<'py>) -> MatrixResult<'py> {
         self.map_points(py, x, "to_standard_normal points", |l, p, o| {
             l.x_to_standard_normal(p, o)
         })
     }
     /// Map independent standard normal points `y` to the law's space.
     #[pyo3(name = "from_standard_normal")]
-    fn standard_normal_to_x<'py>(
-        &self,
-        py: Python<'py>,
-        y: ArrayIn<'py>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn standard_normal_to_x<'py>(&self, py: Python<'py>, y: ArrayIn<'py>) -> MatrixResult<'py> {
         self.map_points(py, y, "from_standard_normal points", |l, p, o| {
             l.standard_normal_to_x(p, o)
         })

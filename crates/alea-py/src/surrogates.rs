@@ -18,12 +18,28 @@ use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::sync::Arc;
 
-use crate::convert::{ArrayIn, array1, array2, points, uq_err, value_error, vector};
+use crate::convert::{ArrayIn, MatrixResult, array1, array2, points, uq_err, value_error, vector};
 use crate::laws::{independent_marginals, law_arg};
 
 fn basis(m: &[Arc<dyn Marginal>], degree: usize, q: Option<f64>) -> PyResult<PcBasis> {
     let set = MultiIndexSet::hyperbolic(m.len(), degree, q.unwrap_or(1.0)).map_err(uq_err)?;
     PcBasis::new(m, set).map_err(uq_err)
+}
+
+/// The chaos basis of total degree `degree` (q-norm `q`) on the marginals of `law`, and the runs
+/// `points` (`(K, d)`) with their `values` (`(K,)`).
+fn basis_and_runs(
+    law: &Bound<'_, PyAny>,
+    degree: usize,
+    q: Option<f64>,
+    points: &ArrayIn<'_>,
+    values: &ArrayIn<'_>,
+) -> PyResult<(PcBasis, Vec<f64>, Vec<f64>)> {
+    let m = independent_marginals(law, "PolynomialChaos law")?;
+    let b = basis(&m, degree, q)?;
+    let (p, k) = self::points(points, m.len(), "PolynomialChaos points")?;
+    let v = vector(values, Some(k), "PolynomialChaos values")?;
+    Ok((b, p, v))
 }
 
 /// Dense weights `w_k(x)` of a linear surrogate at each point, `(n, K)`.
@@ -47,7 +63,7 @@ fn weights_array<'py>(
     sur: &(dyn LinearSurrogate + Sync),
     points: &ArrayIn<'py>,
     d: usize,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+) -> MatrixResult<'py> {
     let (p, n) = self::points(points, d, "weights points")?;
     let out = py.detach(|| dense_weights(sur, &p, d));
     array2(py, out, n, sur.num_runs())
@@ -104,10 +120,7 @@ impl PolynomialChaos {
         values: ArrayIn<'_>,
         q: Option<f64>,
     ) -> PyResult<Self> {
-        let m = independent_marginals(law, "PolynomialChaos law")?;
-        let b = basis(&m, degree, q)?;
-        let (p, k) = self::points(&points, m.len(), "PolynomialChaos points")?;
-        let v = vector(&values, Some(k), "PolynomialChaos values")?;
+        let (b, p, v) = basis_and_runs(law, degree, q, &points, &values)?;
         let sur = py
             .detach(|| PcSurrogate::regression(b, &p))
             .map_err(uq_err)?;
@@ -153,10 +166,7 @@ impl PolynomialChaos {
         max_terms_fraction: f64,
         stop_factor: f64,
     ) -> PyResult<Self> {
-        let m = independent_marginals(law, "PolynomialChaos law")?;
-        let b = basis(&m, degree, q)?;
-        let (p, k) = self::points(&points, m.len(), "PolynomialChaos points")?;
-        let v = vector(&values, Some(k), "PolynomialChaos values")?;
+        let (b, p, v) = basis_and_runs(law, degree, q, &points, &values)?;
         let opts = LarsOptions {
             max_terms_fraction,
             stop_factor,
@@ -205,11 +215,7 @@ impl PolynomialChaos {
 
     /// Dense weights `w_k(x)` at `points` (`(n, d)`), shape `(n, K)`: `predict(x) = w @ values`
     /// and `w @ F` interpolates any per-run array `F` (`(K, m)`) the same way.
-    fn weights<'py>(
-        &self,
-        py: Python<'py>,
-        points: ArrayIn<'py>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn weights<'py>(&self, py: Python<'py>, points: ArrayIn<'py>) -> MatrixResult<'py> {
         weights_array(py, &self.sur, &points, self.dim())
     }
 
@@ -248,7 +254,7 @@ impl PolynomialChaos {
         Ok(self.exp.sobol_index(&variables))
     }
     /// Second-order interaction indices `S_ij`, symmetric `(d, d)` with a zero diagonal.
-    fn sobol_second_order<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn sobol_second_order<'py>(&self, py: Python<'py>) -> MatrixResult<'py> {
         let d = self.dim();
         array2(py, self.exp.sobol_second_order(), d, d)
     }
@@ -428,7 +434,7 @@ impl PiecewiseLinear {
         lo: ArrayIn<'py>,
         hi: ArrayIn<'py>,
         cells: Vec<usize>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    ) -> MatrixResult<'py> {
         let (m, lo, _) = mesh(&lo, &hi, &cells)?;
         array2(py, m.run_points().to_vec(), m.num_runs(), lo.len())
     }
@@ -460,11 +466,7 @@ impl PiecewiseLinear {
     }
 
     /// Dense weights `w_k(x)` at `points`, shape `(n, K)` (at most `2^d` non-zero per row).
-    fn weights<'py>(
-        &self,
-        py: Python<'py>,
-        points: ArrayIn<'py>,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn weights<'py>(&self, py: Python<'py>, points: ArrayIn<'py>) -> MatrixResult<'py> {
         weights_array(py, &self.mesh, &points, self.lo.len())
     }
 

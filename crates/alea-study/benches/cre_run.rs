@@ -29,17 +29,9 @@ use alea_study::Source;
 use alea_study::cre::CreSetup;
 use alea_study::runner::Study;
 
-/// CPU seconds used so far by all threads of the process (`/proc/self/task/*/schedstat`).
-fn cpu_seconds() -> f64 {
-    let Ok(dir) = std::fs::read_dir("/proc/self/task") else {
-        return f64::NAN;
-    };
-    dir.filter_map(|e| e.ok())
-        .filter_map(|e| std::fs::read_to_string(e.path().join("schedstat")).ok())
-        .filter_map(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .sum::<f64>()
-        * 1e-9
-}
+#[path = "../../../benches/support/timing.rs"]
+mod timing;
+use timing::{cpu_seconds, with_threads};
 
 fn state_of(r: &RunResult) -> Arc<LocalState> {
     Arc::new(LocalState {
@@ -82,7 +74,16 @@ fn extra(setup: f64, bytes: usize, cells: usize, direct: (f64, f64), est: f64) {
     );
 }
 
-fn report(name: &str, threads: usize, iterations: usize, solve: (f64, f64), est: (f64, f64)) {
+/// One table row (warm solve and estimate, wall and CPU seconds) and the estimate's
+/// `(theta, relative)` with the cold run's iteration count under it.
+fn report(
+    name: &str,
+    threads: usize,
+    (iterations, cold_iterations): (usize, usize),
+    solve: (f64, f64),
+    est: (f64, f64),
+    (theta, relative): (f64, f64),
+) {
     println!(
         "| {name} | {threads} | {iterations} | {:.4} s ({:.4} CPU) | {:.4} s ({:.4} CPU) | {:.2} | {:.2} |",
         solve.0,
@@ -91,6 +92,9 @@ fn report(name: &str, threads: usize, iterations: usize, solve: (f64, f64), est:
         est.1,
         est.0 / solve.0,
         est.1 / solve.1
+    );
+    println!(
+        "    theta = {theta:.6e}, relative {relative:.4e}, cold run {cold_iterations} iterations"
     );
 }
 
@@ -121,13 +125,10 @@ fn blade(reps: usize, threads: usize) {
     report(
         "blade root (11.5k dof)",
         threads,
-        res.iterations,
+        (res.iterations, first.iterations),
         (sw, sc),
         (ew, ec),
-    );
-    println!(
-        "    theta = {:.6e}, relative {:.4e}, cold run {} iterations",
-        rec.theta, rec.relative, first.iterations
+        (rec.theta, rec.relative),
     );
     // The same estimate through the direct path (loads of the study: no load factors here).
     let ctx = LatinEstimator::new(&study.model.assembly, &setup.options).expect("context");
@@ -204,13 +205,10 @@ fn dovetail(reps: usize, threads: usize) {
     report(
         "four-part dovetail (23k dof)",
         threads,
-        res.iterations,
+        (res.iterations, first.iterations),
         (sw, sc),
         (ew, ec),
-    );
-    println!(
-        "    theta = {:.6e}, relative {:.4e}, cold run {} iterations",
-        est.theta, est.relative, first.iterations
+        (est.theta, est.relative),
     );
     let (p1, p2) = phases(&est);
     println!("    context estimate: phase 1 {p1:.4} s, phase 2 {p2:.4} s (last repetition)");
@@ -237,11 +235,7 @@ fn main() {
     );
     println!("|---|---|---|---|---|---|---|");
     for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("thread pool");
-        pool.install(|| {
+        with_threads(threads, || {
             if wanted("blade") {
                 blade(reps, threads);
             }

@@ -21,6 +21,9 @@ use alea_study::store::{RunRecord, Store};
 use alea_study::{Source, StudyError};
 use rayon::prelude::*;
 
+mod support;
+use support::synthetic_record;
+
 fn root() -> std::path::PathBuf {
     std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
@@ -259,16 +262,7 @@ fn commit_cost(values: usize, dir: &Path) -> Result<(), StudyError> {
     let n = 200;
     let t0 = Instant::now();
     for r in 0..n {
-        let rec = RunRecord {
-            params: vec![r as f64, 0.5],
-            status: "converged".into(),
-            iterations: 40,
-            residual: 1e-7,
-            seconds: 0.01,
-            qois: vec![1.0, 2.0],
-            history: vec![1.0; 40],
-            state: vec![0.0; 400],
-        };
+        let rec = synthetic_record(r, 40, 2, 400);
         store.commit(&rec, &fields, None)?;
     }
     println!(

@@ -7,7 +7,10 @@
 
 use std::time::Instant;
 
-use alea_study::store::{RunRecord, Store, study_hash};
+use alea_study::store::{Store, study_hash};
+
+mod support;
+use support::synthetic_record;
 
 fn main() {
     let base = std::env::temp_dir().join(format!("alea-bench-store-{}", std::process::id()));
@@ -29,16 +32,7 @@ fn main() {
                 let fields = vec![0.25; values];
                 let t0 = Instant::now();
                 for i in 0..n {
-                    let rec = RunRecord {
-                        params: vec![i as f64, 0.5],
-                        status: "converged".into(),
-                        iterations: 100,
-                        residual: 1e-7,
-                        seconds: 0.01,
-                        qois: vec![1.0, 2.0, 3.0],
-                        history: vec![1e-3; 100],
-                        state: vec![0.1; 4 * 3 * 200],
-                    };
+                    let rec = synthetic_record(i, 100, 3, 4 * 3 * 200);
                     store.commit(&rec, &fields, None).unwrap();
                 }
                 times.push(t0.elapsed().as_secs_f64() / n as f64);

@@ -36,7 +36,7 @@ use alea_latin::LatinSolver;
 use alea_study::Source;
 use alea_study::adaptive::AdaptiveOutcome;
 use alea_study::cre::StudyParameters;
-use alea_study::estimate::{error_settings, estimate_method};
+use alea_study::estimate::{MethodEstimateInput, error_settings, estimate_method};
 use alea_study::method::MethodKind;
 use alea_study::method::Surrogate;
 use alea_study::runner::{NoProgress, Study, StudyRuns, run_study};
@@ -148,16 +148,16 @@ fn run(study: &Study, dir: &Path) -> (StudyRuns, Vec<Row>, f64) {
             assert!(ok, "{}: a run at {p:?} did not converge", m.label);
         }
         let sur = m.surrogate(&study.params, &m.points).unwrap();
-        let (_, me) = estimate_method(
+        let (_, me) = estimate_method(&MethodEstimateInput {
             study,
-            &setup,
-            &runs.solver,
-            &store,
-            m,
-            &m.points,
-            &sur,
-            &settings,
-        )
+            setup: &setup,
+            solver: &runs.solver,
+            store: &store,
+            method: m,
+            points: &m.points,
+            sur: &sur,
+            settings: &settings,
+        })
         .unwrap();
         let est = &me.estimate;
         rows.push(Row {

@@ -35,7 +35,7 @@ use alea_uq::surrogate::StochasticMesh;
 use crate::StudyError;
 use crate::analysis::{AnalysisSettings, analyse_method};
 use crate::cre::{CreSetup, StudyParameters};
-use crate::estimate::{ErrorSettings, error_settings, estimate_method};
+use crate::estimate::{ErrorSettings, MethodEstimateInput, error_settings, estimate_method};
 use crate::goal;
 use crate::method::{AdaptiveSettings, Criterion, Method};
 pub use crate::runs::{AdaptiveOutcome, StepQoi, StepRecord};
@@ -140,16 +140,16 @@ pub(crate) fn run_adaptive<'a>(
         let sur = method.surrogate(params, &points)?;
         let (est, merr) = {
             let store = runner.store()?;
-            estimate_method(
+            estimate_method(&MethodEstimateInput {
                 study,
-                &setup,
-                runner.solver(),
-                &store,
-                &method,
-                &points,
-                &sur,
-                &err_settings,
-            )?
+                setup: &setup,
+                solver: runner.solver(),
+                store: &store,
+                method: &method,
+                points: &points,
+                sur: &sur,
+                settings: &err_settings,
+            })?
         };
         estimates += 1;
         let records: Vec<_> = points

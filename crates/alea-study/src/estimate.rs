@@ -25,6 +25,7 @@ use alea_estimate::density::{PairMap, pair_maps};
 use alea_estimate::rule::{CellBox, Rule};
 use alea_estimate::{Estimate, Estimator, EstimatorOptions, Weights};
 use alea_latin::LatinSolver;
+use alea_latin::interface::{distribute_to_cells, facet_shares};
 
 use crate::StudyError;
 use crate::cre::{CreRecord, CreSetup, StudyParameters};
@@ -186,35 +187,57 @@ fn stored_runs(
     Ok((records, fields))
 }
 
+/// What the stochastic error of one method is computed from: the study, its estimator set-up
+/// and solver, the store of its runs, the method, the converged runs `points` its surrogate
+/// `sur` is built on, and the `[error]` settings.
+#[derive(Clone, Copy)]
+pub struct MethodEstimateInput<'a> {
+    /// The study.
+    pub study: &'a Study,
+    /// The estimator set-up of its substructures.
+    pub setup: &'a CreSetup,
+    /// The LATIN solver the runs were made with.
+    pub solver: &'a LatinSolver,
+    /// The store holding the runs' records and fields.
+    pub store: &'a Store,
+    /// The method.
+    pub method: &'a Method,
+    /// The converged runs the surrogate is built on.
+    pub points: &'a [Vec<f64>],
+    /// The method's surrogate.
+    pub sur: &'a Surrogate,
+    /// The `[error]` settings.
+    pub settings: &'a ErrorSettings,
+}
+
 /// The stochastic error of `method`'s surrogate `sur` built on the converged runs `points`.
 ///
 /// # Errors
 /// As [`build_estimator`] and [`integration_rule`].
 pub fn estimate_method(
-    study: &Study,
-    setup: &CreSetup,
-    solver: &LatinSolver,
-    store: &Store,
-    method: &Method,
-    points: &[Vec<f64>],
-    sur: &Surrogate,
-    settings: &ErrorSettings,
+    input: &MethodEstimateInput<'_>,
 ) -> Result<(Estimator, SurrogateEstimate), StudyError> {
     let t0 = Instant::now();
-    let params = StudyParameters::new(&study.model.parametric, solver);
-    let est = build_estimator(setup, solver, store, points, &params)?;
-    let (cells, rule) = integration_rule(study, method, settings)?;
-    let estimate = est.expectation(&rule, sur, &params);
-    let load_defect = load_defect(study, points, &rule, sur);
+    let params = StudyParameters::new(&input.study.model.parametric, input.solver);
+    let est = build_estimator(
+        input.setup,
+        input.solver,
+        input.store,
+        input.points,
+        &params,
+    )?;
+    let (cells, rule) = integration_rule(input.study, input.method, input.settings)?;
+    let estimate = est.expectation(&rule, input.sur, &params);
+    let load_defect = load_defect(input.study, input.points, &rule, input.sur);
     Ok((
         est,
         SurrogateEstimate {
             estimate,
-            runs: points.len(),
+            runs: input.points.len(),
             rule_points: rule.len(),
             cells,
             load_defect,
-            substructures_estimated: setup.substructures_estimated(),
+            substructures_estimated: input.setup.substructures_estimated(),
             seconds: t0.elapsed().as_secs_f64(),
         },
     ))
@@ -331,30 +354,15 @@ pub fn interface_cell_terms(
         for (side, group) in [&spec.group1, &spec.group2].into_iter().enumerate() {
             let s = subs[side];
             let model = solver.model(s);
-            let mut density: std::collections::HashMap<usize, [f64; 2]> =
-                std::collections::HashMap::with_capacity(nodes[side].len());
-            for (p, (&node, t)) in nodes[side].iter().zip(terms).enumerate() {
-                if weights[p] > 0.0 {
-                    density.insert(node, [t[0] / weights[p], t[1] / weights[p]]);
-                }
-            }
             let facets =
-                alea_latin::interface::facet_shares(&model.mesh, group, model.analysis.thickness())
-                    .map_err(|error| StudyError::InterfaceFacets {
+                facet_shares(&model.mesh, group, model.analysis.thickness()).map_err(|error| {
+                    StudyError::InterfaceFacets {
                         interface: spec.name.clone(),
                         sub: solver.sub_name(s).to_string(),
                         error: Box::new(error),
-                    })?;
-            for f in facets {
-                let c = &mut cells[s][f.cell];
-                c[2] += f.measure;
-                for (node, share) in f.shares {
-                    if let Some(d) = density.get(&node) {
-                        c[0] += share * d[0];
-                        c[1] += share * d[1];
                     }
-                }
-            }
+                })?;
+            distribute_to_cells(facets, &nodes[side], terms, weights, &mut cells[s]);
         }
     }
     Ok(cells)
@@ -377,19 +385,21 @@ pub fn interface_cell_terms(
 ///
 /// # Errors
 /// Store, sample or write errors.
-#[allow(clippy::too_many_arguments)]
 pub fn write_error_fields(
-    study: &Study,
-    setup: &CreSetup,
-    solver: &LatinSolver,
-    store: &Store,
-    method: &Method,
-    points: &[Vec<f64>],
-    sur: &Surrogate,
-    settings: &ErrorSettings,
+    input: &MethodEstimateInput<'_>,
     est: Option<&Estimator>,
     dir: &std::path::Path,
 ) -> Result<Option<std::path::PathBuf>, StudyError> {
+    let MethodEstimateInput {
+        study,
+        setup,
+        solver,
+        store,
+        method,
+        points,
+        sur,
+        settings,
+    } = *input;
     use alea_mesh::vtu::{VtuWriter, write_vtm};
     let ns = solver.num_subs();
     let estimated: Vec<bool> = setup.layout.subs.iter().map(|l| l.is_estimated()).collect();

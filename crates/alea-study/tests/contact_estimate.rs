@@ -38,7 +38,7 @@ use alea_estimate::rule::Rule;
 use alea_estimate::{Estimate, Weights};
 use alea_study::Source;
 use alea_study::cre::{CreRecord, StudyParameters};
-use alea_study::estimate::{error_settings, estimate_method};
+use alea_study::estimate::{MethodEstimateInput, error_settings, estimate_method};
 use alea_study::method::MethodKind;
 use alea_study::runner::{NoProgress, Study, StudyRuns, run_study};
 use alea_study::store::Store;
@@ -303,8 +303,17 @@ fn outcome(s: &Study, name: &str) -> Outcome {
             m.label
         );
         let sur = m.surrogate(&s.params, &m.points).unwrap();
-        let (_, e) =
-            estimate_method(s, &setup, solver, &store, m, &m.points, &sur, &settings).unwrap();
+        let (_, e) = estimate_method(&MethodEstimateInput {
+            study: s,
+            setup: &setup,
+            solver,
+            store: &store,
+            method: m,
+            points: &m.points,
+            sur: &sur,
+            settings: &settings,
+        })
+        .unwrap();
         let (sur_samples, sur_recs) = samples(&m.points);
         let grams: Vec<Option<CrossGram>> = ref_samples
             .iter()

@@ -14,7 +14,7 @@
 
 use alea_estimate::Weights;
 use alea_study::Source;
-use alea_study::estimate::{error_settings, estimate_method};
+use alea_study::estimate::{MethodEstimateInput, error_settings, estimate_method};
 use alea_study::method::MethodKind;
 use alea_study::runner::{NoProgress, Study, run_study};
 use alea_study::store::Store;
@@ -124,16 +124,16 @@ fn wide_range_young_modulus_estimate_is_the_true_error_over_sqrt_two() {
             continue;
         }
         let sur = m.surrogate(&s.params, &m.points).unwrap();
-        let (_, est) = estimate_method(
-            &s,
-            &setup,
-            &runs.solver,
-            &store,
-            m,
-            &m.points,
-            &sur,
-            &settings,
-        )
+        let (_, est) = estimate_method(&MethodEstimateInput {
+            study: &s,
+            setup: &setup,
+            solver: &runs.solver,
+            store: &store,
+            method: m,
+            points: &m.points,
+            sur: &sur,
+            settings: &settings,
+        })
         .unwrap();
         let est = est.estimate;
         // The true error from the closed form, on 64 cells x 64 Gauss points.
@@ -236,16 +236,16 @@ fn adaptive_criteria_beat_the_regular_grid_on_a_response_bending_in_one_paramete
     let settings = error_settings(&s).unwrap();
     let grid = &runs.methods[0];
     let sur = grid.surrogate(&s.params, &grid.points).unwrap();
-    let (_, e) = estimate_method(
-        &s,
-        &setup,
-        &runs.solver,
-        &store,
-        grid,
-        &grid.points,
-        &sur,
-        &settings,
-    )
+    let (_, e) = estimate_method(&MethodEstimateInput {
+        study: &s,
+        setup: &setup,
+        solver: &runs.solver,
+        store: &store,
+        method: grid,
+        points: &grid.points,
+        sur: &sur,
+        settings: &settings,
+    })
     .unwrap();
     let target = e.estimate.i_sto();
     let grid_true = true_error(&s, grid);

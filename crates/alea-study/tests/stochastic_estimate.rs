@@ -18,7 +18,7 @@
 use alea_cre::{CreOptions, LoadData, estimate_latin};
 use alea_latin::{LatinSolver, RunStatus};
 use alea_study::Source;
-use alea_study::estimate::{error_settings, estimate_method};
+use alea_study::estimate::{MethodEstimateInput, error_settings, estimate_method};
 use alea_study::method::MethodKind;
 use alea_study::runner::{NoProgress, Study, run_study};
 use alea_study::store::{Store, point_key};
@@ -141,8 +141,17 @@ fn estimates(s: &Study, dir: &std::path::Path) -> Vec<(String, alea_estimate::Es
             m.label
         );
         let sur = m.surrogate(&s.params, &used).unwrap();
-        let (_, e) =
-            estimate_method(s, &setup, &runs.solver, &store, m, &used, &sur, &settings).unwrap();
+        let (_, e) = estimate_method(&MethodEstimateInput {
+            study: s,
+            setup: &setup,
+            solver: &runs.solver,
+            store: &store,
+            method: m,
+            points: &used,
+            sur: &sur,
+            settings: &settings,
+        })
+        .unwrap();
         out.push((m.label.clone(), e.estimate));
     }
     drop(runs);

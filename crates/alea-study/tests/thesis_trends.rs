@@ -14,7 +14,7 @@
 //!   grid's `i_sto` the regular grids need fewer runs, see BENCHMARKS.md.)
 
 use alea_study::Source;
-use alea_study::estimate::{error_settings, estimate_method};
+use alea_study::estimate::{MethodEstimateInput, error_settings, estimate_method};
 use alea_study::method::MethodKind;
 use alea_study::runner::{NoProgress, Study, StudyRuns, run_study};
 use alea_study::store::{Store, point_key};
@@ -87,16 +87,16 @@ fn estimates(s: &Study, name: &str) -> (StudyRuns, Vec<(String, usize, alea_esti
             );
         }
         let sur = m.surrogate(&s.params, &m.points).unwrap();
-        let (_, e) = estimate_method(
-            s,
-            &setup,
-            &runs.solver,
-            &store,
-            m,
-            &m.points,
-            &sur,
-            &settings,
-        )
+        let (_, e) = estimate_method(&MethodEstimateInput {
+            study: s,
+            setup: &setup,
+            solver: &runs.solver,
+            store: &store,
+            method: m,
+            points: &m.points,
+            sur: &sur,
+            settings: &settings,
+        })
         .unwrap();
         out.push((m.label.clone(), m.points.len(), e.estimate));
     }

@@ -26,18 +26,9 @@ use std::hint::black_box;
 use std::sync::Arc;
 use std::time::Instant;
 
-/// Process CPU time (all threads) in seconds: sum of the run times in
-/// `/proc/self/task/*/schedstat` (Linux, nanoseconds; 0 elsewhere).
-fn cpu_now() -> f64 {
-    let Ok(dir) = std::fs::read_dir("/proc/self/task") else {
-        return 0.0;
-    };
-    dir.filter_map(|e| e.ok())
-        .filter_map(|e| std::fs::read_to_string(e.path().join("schedstat")).ok())
-        .filter_map(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .sum::<f64>()
-        * 1e-9
-}
+#[path = "../../../benches/support/timing.rs"]
+mod timing;
+use timing::{cpu_seconds, with_threads};
 
 /// Median wall time, minimum wall time and mean process CPU time of `reps` runs (the CPU
 /// time is read once around the whole loop: schedstat is only updated at scheduler events).
@@ -45,14 +36,14 @@ fn time(reps: usize, mut f: impl FnMut()) -> (f64, f64, f64) {
     f(); // warm-up
     let mut wall = Vec::with_capacity(reps);
     std::thread::yield_now();
-    let c0 = cpu_now();
+    let c0 = cpu_seconds();
     for _ in 0..reps {
         let s = Instant::now();
         f();
         wall.push(s.elapsed().as_secs_f64());
     }
     std::thread::yield_now();
-    let cpu = (cpu_now() - c0) / reps as f64;
+    let cpu = (cpu_seconds() - c0) / reps as f64;
     wall.sort_by(f64::total_cmp);
     (wall[reps / 2], wall[0], cpu)
 }
@@ -102,11 +93,7 @@ fn main() {
     println!("| case | threads | wall median | wall min | CPU mean (all threads) |");
     println!("|---|---|---|---|---|");
     for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        with_threads(threads, || {
             // 1. PC regression.
             let mut seed = 0;
             let (med, min, cpu) = time(2000, || {

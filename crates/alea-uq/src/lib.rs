@@ -61,6 +61,7 @@
 pub mod basis;
 pub mod copula;
 pub mod design;
+pub mod eigen;
 pub mod error;
 pub mod fit;
 pub mod io;

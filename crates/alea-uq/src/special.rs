@@ -151,22 +151,10 @@ pub fn erfcx(x: f64) -> f64 {
 #[cfg(test)]
 fn erfc_cf(x: f64) -> f64 {
     // exp(-x^2)/sqrt(pi) * 1 / (x + a1/(x + a2/(x + ...))), a_n = n/2.
-    let tiny = 1e-300;
     let mut f = x;
-    let mut c = x;
-    let mut d = 0.0;
+    let mut lentz = Lentz { c: x, d: 0.0 };
     for n in 1..200_000 {
-        let a = n as f64 * 0.5;
-        d = x + a * d;
-        if d.abs() < tiny {
-            d = tiny;
-        }
-        c = x + a / c;
-        if c.abs() < tiny {
-            c = tiny;
-        }
-        d = 1.0 / d;
-        let delta = c * d;
+        let delta = lentz.step(n as f64 * 0.5, x);
         f *= delta;
         if (delta - 1.0).abs() <= 2.5e-16 {
             break;
@@ -429,43 +417,49 @@ pub fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
     }
 }
 
+/// Floor that keeps the Lentz quotients `C_n`, `D_n` away from zero.
+const LENTZ_TINY: f64 = 1e-300;
+
+/// State of the modified Lentz evaluation of a continued fraction
+/// `f = b_0 + a_1/(b_1 + a_2/(b_2 + ...))`: `D_n = 1/(b_n + a_n D_{n-1})`,
+/// `C_n = b_n + a_n/C_{n-1}` (each kept at least `LENTZ_TINY` in size) and `f_n = f_{n-1} C_n D_n`.
+struct Lentz {
+    c: f64,
+    d: f64,
+}
+
+impl Lentz {
+    /// Takes the term `(a_n, b_n)`; returns the factor `Delta_n = C_n D_n` of the convergent.
+    fn step(&mut self, a: f64, b: f64) -> f64 {
+        let mut d = b + a * self.d;
+        if d.abs() < LENTZ_TINY {
+            d = LENTZ_TINY;
+        }
+        let mut c = b + a / self.c;
+        if c.abs() < LENTZ_TINY {
+            c = LENTZ_TINY;
+        }
+        self.c = c;
+        self.d = 1.0 / d;
+        self.d * c
+    }
+}
+
 fn beta_cf(x: f64, a: f64, b: f64) -> f64 {
-    let tiny = 1e-300;
     let qab = a + b;
     let qap = a + 1.0;
     let qam = a - 1.0;
-    let mut c = 1.0;
     let mut d = 1.0 - qab * x / qap;
-    if d.abs() < tiny {
-        d = tiny;
+    if d.abs() < LENTZ_TINY {
+        d = LENTZ_TINY;
     }
-    d = 1.0 / d;
-    let mut h = d;
+    let mut lentz = Lentz { c: 1.0, d: 1.0 / d };
+    let mut h = lentz.d;
     for m in 1..1000 {
         let m = m as f64;
         let m2 = 2.0 * m;
-        let aa = m * (b - m) * x / ((qam + m2) * (a + m2));
-        d = 1.0 + aa * d;
-        if d.abs() < tiny {
-            d = tiny;
-        }
-        c = 1.0 + aa / c;
-        if c.abs() < tiny {
-            c = tiny;
-        }
-        d = 1.0 / d;
-        h *= d * c;
-        let aa = -(a + m) * (qab + m) * x / ((a + m2) * (qap + m2));
-        d = 1.0 + aa * d;
-        if d.abs() < tiny {
-            d = tiny;
-        }
-        c = 1.0 + aa / c;
-        if c.abs() < tiny {
-            c = tiny;
-        }
-        d = 1.0 / d;
-        let del = d * c;
+        h *= lentz.step(m * (b - m) * x / ((qam + m2) * (a + m2)), 1.0);
+        let del = lentz.step(-(a + m) * (qab + m) * x / ((a + m2) * (qap + m2)), 1.0);
         h *= del;
         if (del - 1.0).abs() < 1e-16 {
             break;
@@ -546,24 +540,15 @@ pub fn inc_gamma_p(a: f64, x: f64) -> f64 {
         }
         sum * ln_front.exp()
     } else {
-        let tiny = 1e-300;
         let mut b = x + 1.0 - a;
-        let mut c = 1.0 / tiny;
-        let mut d = 1.0 / b;
-        let mut h = d;
+        let mut lentz = Lentz {
+            c: 1.0 / LENTZ_TINY,
+            d: 1.0 / b,
+        };
+        let mut h = lentz.d;
         for i in 1..10_000 {
-            let an = -(i as f64) * (i as f64 - a);
             b += 2.0;
-            d = an * d + b;
-            if d.abs() < tiny {
-                d = tiny;
-            }
-            c = b + an / c;
-            if c.abs() < tiny {
-                c = tiny;
-            }
-            d = 1.0 / d;
-            let del = d * c;
+            let del = lentz.step(-(i as f64) * (i as f64 - a), b);
             h *= del;
             if (del - 1.0).abs() < 1e-16 {
                 break;

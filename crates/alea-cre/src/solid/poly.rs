@@ -230,14 +230,9 @@ mod tests {
                 let dv = (pp.val[j] - pm.val[j]) / (2.0 * h);
                 assert!((dv - p.grad[j][d]).abs() < 1e-6 * (1.0 + dv.abs()));
                 // d/dx_d of grad: the hessian column d.
-                let idx = |a: usize, b: usize| match (a.min(b), a.max(b)) {
-                    (0, 0) => 0,
-                    (1, 1) => 1,
-                    (2, 2) => 2,
-                    (1, 2) => 3,
-                    (0, 2) => 4,
-                    _ => 5,
-                };
+                // Voigt positions written out as a table, independent of `voigt_index`.
+                const VOIGT: [[usize; 3]; 3] = [[0, 5, 4], [5, 1, 3], [4, 3, 2]];
+                let idx = |a: usize, b: usize| VOIGT[a][b];
                 for e in 0..3 {
                     let dg = (pp.grad[j][e] - pm.grad[j][e]) / (2.0 * h);
                     let want = p.hess[j][idx(d, e)];

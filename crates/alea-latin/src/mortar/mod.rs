@@ -136,16 +136,10 @@ mod tests {
                     [0.0, 1.5, 0.0],
                 ],
             ),
+            // The reference Tri6 (straight sides, mid-side nodes at the middles).
             (
                 CellType::Tri6,
-                vec![
-                    [0.0, 0.0, 0.0],
-                    [1.0, 0.0, 0.0],
-                    [0.0, 1.0, 0.0],
-                    [0.5, 0.0, 0.0],
-                    [0.5, 0.5, 0.0],
-                    [0.0, 0.5, 0.0],
-                ],
+                alea_mesh::reference::node_coords(CellType::Tri6),
             ),
         ] {
             let f = SideFacet {

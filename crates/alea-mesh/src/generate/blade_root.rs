@@ -181,6 +181,7 @@ pub fn blade_root_simple(p: &BladeRootParams, kind: CellType) -> Result<Mesh, Me
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::generate::test_checks::{assert_coincident, group_measure};
 
     #[test]
     fn default_flanks_are_at_45_degrees_and_the_corner_arc_is_tangent_where_stated() {
@@ -202,13 +203,7 @@ mod tests {
         };
         for kind in [CellType::Quad4, CellType::Quad8] {
             let m = blade_root_simple(&p, kind).unwrap();
-            let area = |g: &str| -> f64 {
-                m.cell_group(g)
-                    .unwrap()
-                    .iter()
-                    .map(|&c| m.cell_measure(c))
-                    .sum()
-            };
+            let area = |g: &str| group_measure(&m, g);
             let (w, b, n, h, hs) = (38.0, 18.0, 8.0, 10.0, 15.0);
             let side = w * h - 0.5 * (b + n) * h;
             assert!((area("S1") - side).abs() < 1e-9 * side);
@@ -217,20 +212,7 @@ mod tests {
             assert!((area("S2") - root).abs() < 1e-9 * root);
             // Flanks: same positions on both sides, distinct nodes.
             for (a, c) in [("G1_disk", "G1_root"), ("G2_root", "G2_disk")] {
-                let na = m.group_nodes(a).unwrap();
-                let nc = m.group_nodes(c).unwrap();
-                assert_eq!(na.len(), nc.len());
-                assert!(na.iter().all(|x| !nc.contains(x)));
-                for &i in &na {
-                    let d = nc
-                        .iter()
-                        .map(|&j| {
-                            let (u, v) = (m.coords[i], m.coords[j]);
-                            ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2)).sqrt()
-                        })
-                        .fold(f64::INFINITY, f64::min);
-                    assert!(d < 1e-12, "{a}: node {i} has no partner on {c}");
-                }
+                assert_coincident(&m, a, c, 1e-12, true);
             }
             // Positive Jacobians everywhere.
             for c in 0..m.num_cells() {

@@ -8,6 +8,8 @@ mod hexblock;
 mod multiblock;
 mod shapes;
 mod structured;
+#[cfg(test)]
+mod test_checks;
 mod turbine;
 mod turbine_3d;
 mod two_body;

@@ -433,6 +433,7 @@ pub fn turbine_2d(p: &TurbineParams, kind: CellType) -> Result<Mesh, MeshError> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::generate::test_checks::{assert_coincident, group_measure};
 
     fn group_length(m: &Mesh, g: &str) -> f64 {
         m.facet_group(g)
@@ -466,13 +467,7 @@ mod tests {
             assert!(m.cell_min_jacobian(c) > 0.0);
         }
         // Mirror symmetry of the areas; the root area is the trapezoid plus the shank.
-        let area = |g: &str| -> f64 {
-            m.cell_group(g)
-                .unwrap()
-                .iter()
-                .map(|&c| m.cell_measure(c))
-                .sum()
-        };
+        let area = |g: &str| group_measure(&m, g);
         assert!((area("D1") - area("D2")).abs() < 1e-9 * area("D2"));
         let (a, b) = (p.neck(), p.contact_end());
         let root = (a[0] + b[0]) * (a[1] - b[1]) + 2.0 * a[0] * p.shank_height;
@@ -484,19 +479,7 @@ mod tests {
             ("D1_cut", "D2_cut"),
             ("A1_cut", "A2_cut"),
         ] {
-            let (na, nb) = (m.group_nodes(s1).unwrap(), m.group_nodes(s2).unwrap());
-            assert_eq!(na.len(), nb.len(), "{s1} / {s2}");
-            for &i in &na {
-                assert!(!nb.contains(&i));
-                let d = nb
-                    .iter()
-                    .map(|&j| {
-                        let (u, v) = (m.coords[i], m.coords[j]);
-                        (u[0] - v[0]).hypot(u[1] - v[1])
-                    })
-                    .fold(f64::INFINITY, f64::min);
-                assert!(d < 1e-9, "{s1}: node {i} has no partner on {s2}");
-            }
+            assert_coincident(&m, s1, s2, 1e-9, true);
         }
         // Lengths: contact line, runout, fillet arc (chords of the arc: slightly shorter).
         let sweep = p.flank_angle + FRAC_PI_2;

@@ -30,6 +30,7 @@ pub fn turbine_3d(p: &TurbineParams, depth: f64, layers: usize) -> Result<Mesh, 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::generate::test_checks::{assert_coincident, group_measure};
 
     #[test]
     fn extruded_turbine_has_coincident_interfaces_and_the_prism_volume() {
@@ -51,18 +52,8 @@ mod tests {
         assert_eq!(m.num_nodes(), plane.num_nodes() * (layers + 1));
         assert_eq!(m.num_cells(), plane.num_cells() * layers);
         for g in ["D1", "D2", "A1", "A2"] {
-            let vol: f64 = m
-                .cell_group(g)
-                .unwrap()
-                .iter()
-                .map(|&c| m.cell_measure(c))
-                .sum();
-            let area: f64 = plane
-                .cell_group(g)
-                .unwrap()
-                .iter()
-                .map(|&c| plane.cell_measure(c))
-                .sum();
+            let vol = group_measure(&m, g);
+            let area = group_measure(&plane, g);
             assert!(
                 (vol - depth * area).abs() < 1e-9 * vol,
                 "{g}: {vol} vs {area}"
@@ -77,19 +68,7 @@ mod tests {
             ("D1_cut", "D2_cut"),
             ("A1_cut", "A2_cut"),
         ] {
-            let (na, nb) = (m.group_nodes(s1).unwrap(), m.group_nodes(s2).unwrap());
-            assert_eq!(na.len(), nb.len(), "{s1} / {s2}");
-            for &i in &na {
-                let d = nb
-                    .iter()
-                    .map(|&j| {
-                        let (u, v) = (m.coords[i], m.coords[j]);
-                        ((u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2) + (u[2] - v[2]).powi(2))
-                            .sqrt()
-                    })
-                    .fold(f64::INFINITY, f64::min);
-                assert!(d < 1e-9, "{s1}: node {i} has no partner on {s2}");
-            }
+            assert_coincident(&m, s1, s2, 1e-9, false);
             assert_eq!(
                 m.facet_group(s1).unwrap().len(),
                 plane.facet_group(s1).unwrap().len() * layers

@@ -171,23 +171,15 @@ pub struct QoiReport {
     pub surface: Option<Surface>,
     /// The error budget of each statistic (empty when not estimated).
     #[serde(default)]
-    pub budget: Vec<BudgetLine>,
+    pub budget: Vec<BudgetRow>,
     /// How the budget's parts were estimated (one sentence each).
     #[serde(default)]
     pub budget_basis: Vec<String>,
 }
 
-/// The error budget of one statistic: each part estimated, `None` when not.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct BudgetLine {
-    /// `mean`, `std`, `q0.05`, `P(> t)`.
-    pub statistic: String,
-    pub value: f64,
-    pub mesh: Option<f64>,
-    pub surrogate: Option<f64>,
-    pub sampling: f64,
-    pub total: f64,
-}
+/// The error budget of one statistic (each part estimated, `None` when not): the study's own
+/// row type, drawn as it is.
+pub use alea_study::budget::BudgetRow;
 
 /// The failure probability by one algorithm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

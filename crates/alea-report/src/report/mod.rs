@@ -30,7 +30,7 @@ use std::path::{Path, PathBuf};
 // The whole input type family is public API for the study runner (and the tests).
 #[allow(unused_imports)]
 pub use data::{
-    AdaptiveReport, BudgetLine, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow,
+    AdaptiveReport, BudgetRow, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow,
     FailureInfo, ParamInfo, QoiReport, ReliabilityReport, ReliabilityRow, ReportInput, RunInfo,
     StepRow, Surface,
 };

@@ -9,7 +9,8 @@ use alea_study::StudyError;
 use alea_study::adaptive::AdaptiveOutcome;
 use alea_study::analysis::MethodResult;
 use alea_study::estimate::{
-    ErrorSettings, SurrogateEstimate, density_maps, error_settings, estimate_method,
+    ErrorSettings, MethodEstimateInput, SurrogateEstimate, density_maps, error_settings,
+    estimate_method, write_error_fields,
 };
 use alea_study::method::{Method, MethodKind};
 use alea_study::runner::{Study, StudyRuns};
@@ -51,6 +52,18 @@ pub(super) fn estimate_all(
             continue;
         }
         let adaptive = runs.adaptive.iter().find(|a| a.method == m);
+        let used = used_points(method, runs);
+        let sur = method.surrogate(&study.params, &used);
+        let input = sur.as_ref().map(|sur| MethodEstimateInput {
+            study,
+            setup,
+            solver: &runs.solver,
+            store: &store,
+            method,
+            points: &used,
+            sur,
+            settings: &settings,
+        });
         let computed =
             (|| -> Result<(Option<alea_estimate::Estimator>, SurrogateEstimate), String> {
                 if let Some(a) = adaptive {
@@ -63,44 +76,19 @@ pub(super) fn estimate_all(
                         .clone()
                         .unwrap_or_else(|| "no statistics".into()));
                 }
-                let used = used_points(method, runs);
-                let sur = method.surrogate(&study.params, &used)?;
-                let (est, merr) = estimate_method(
-                    study,
-                    setup,
-                    &runs.solver,
-                    &store,
-                    method,
-                    &used,
-                    &sur,
-                    &settings,
-                )
-                .map_err(|e| e.to_string())?;
+                let input = input.as_ref().map_err(|e| e.to_string())?;
+                let (est, merr) = estimate_method(input).map_err(|e| e.to_string())?;
                 Ok((Some(est), merr))
             })();
         let (result, maps, vtu) = match computed {
             Ok((est, merr)) => {
                 let (mut maps, mut vtu) = (Vec::new(), None);
-                if Some(m) == main {
-                    let used = used_points(method, runs);
-                    if let Ok(sur) = method.surrogate(&study.params, &used) {
-                        if let (Some(est), true) = (&est, study.params.names.len() >= 2) {
-                            maps = density_maps(study, &runs.solver, est, &sur, &settings)
-                                .unwrap_or_default();
-                        }
-                        vtu = alea_study::estimate::write_error_fields(
-                            study,
-                            setup,
-                            &runs.solver,
-                            &store,
-                            method,
-                            &used,
-                            &sur,
-                            &settings,
-                            est.as_ref(),
-                            dir,
-                        )?;
+                if let (true, Ok(input)) = (Some(m) == main, &input) {
+                    if let (Some(est), true) = (&est, study.params.names.len() >= 2) {
+                        maps = density_maps(study, &runs.solver, est, input.sur, &settings)
+                            .unwrap_or_default();
                     }
+                    vtu = write_error_fields(input, est.as_ref(), dir)?;
                 }
                 (Ok(merr), maps, vtu)
             }

@@ -7,7 +7,7 @@ use alea_study::runner::Study;
 use alea_study::store::RunRecord;
 
 use crate::report::{
-    BudgetLine, Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
+    Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
     ReliabilityRow, ReportInput, RunInfo, Surface,
 };
 
@@ -76,19 +76,7 @@ pub(super) fn report_input(
                     })
                     .collect(),
                 surface,
-                budget: s.budget.as_ref().map_or_else(Vec::new, |b| {
-                    b.rows
-                        .iter()
-                        .map(|r| BudgetLine {
-                            statistic: r.statistic.clone(),
-                            value: r.value,
-                            mesh: r.mesh,
-                            surrogate: r.surrogate,
-                            sampling: r.sampling,
-                            total: r.total,
-                        })
-                        .collect()
-                }),
+                budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
                 budget_basis: s.budget.as_ref().map_or_else(Vec::new, |b| {
                     vec![
                         format!("Surrogate: {}.", b.surrogate_basis),

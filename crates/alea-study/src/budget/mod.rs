@@ -26,10 +26,10 @@ pub use coarse::{Comparison, comparisons, credible_fit, smooth_fits};
 
 use alea_uq::special::norm_quantile;
 use alea_uq::stats::{Summary, failure_probability, quantile_sorted};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The budget of one statistic.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BudgetRow {
     /// The statistic: `mean`, `std`, `q0.05` (quantile of order 0.05), `P(> t)`.
     pub statistic: String,

@@ -19,6 +19,7 @@
 //! Both need `1 + beta kappa_i > 0`.
 
 use super::LimitState;
+use crate::eigen::{JacobiStop, jacobi_sweeps};
 use crate::error::{Result, UqError, invalid};
 use crate::special::{norm_cdf, norm_pdf};
 use rayon::prelude::*;
@@ -347,39 +348,19 @@ fn frame_with_last_axis(a: &[f64]) -> Vec<f64> {
 
 /// Eigenvalues of a symmetric `n x n` matrix (row-major) by cyclic Jacobi rotations, ascending.
 pub(crate) fn symmetric_eigenvalues(mut a: Vec<f64>, n: usize) -> Vec<f64> {
-    for _sweep in 0..100 {
-        let off: f64 = (0..n)
-            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
-            .map(|(i, j)| a[i * n + j].powi(2))
-            .sum();
-        let diag: f64 = (0..n).map(|i| a[i * n + i].powi(2)).sum();
-        if off <= 1e-30 * diag.max(1e-300) {
-            break;
-        }
-        for p in 0..n {
-            for q in (p + 1)..n {
-                let apq = a[p * n + q];
-                if apq.abs() < 1e-300 {
-                    continue;
-                }
-                let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for k in 0..n {
-                    let (akp, akq) = (a[k * n + p], a[k * n + q]);
-                    a[k * n + p] = c * akp - s * akq;
-                    a[k * n + q] = s * akp + c * akq;
-                }
-                for k in 0..n {
-                    let (apk, aqk) = (a[p * n + k], a[q * n + k]);
-                    a[p * n + k] = c * apk - s * aqk;
-                    a[q * n + k] = s * apk + c * aqk;
-                }
-            }
-        }
-    }
+    let stop = JacobiStop {
+        max_sweeps: 100,
+        skip_below: 1e-300,
+        converged: |a: &[f64]| {
+            let off: f64 = (0..n)
+                .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
+                .map(|(i, j)| a[i * n + j].powi(2))
+                .sum();
+            let diag: f64 = (0..n).map(|i| a[i * n + i].powi(2)).sum();
+            off <= 1e-30 * diag.max(1e-300)
+        },
+    };
+    jacobi_sweeps(&mut a, None, n, &stop);
     let mut e: Vec<f64> = (0..n).map(|i| a[i * n + i]).collect();
     e.sort_by(f64::total_cmp);
     e

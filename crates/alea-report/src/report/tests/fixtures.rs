@@ -147,7 +147,7 @@ pub(super) fn synthetic() -> ReportInput {
                     points,
                 }),
                 budget: vec![
-                    BudgetLine {
+                    BudgetRow {
                         statistic: "mean".into(),
                         value: 2.5e-3,
                         mesh: None,
@@ -155,7 +155,7 @@ pub(super) fn synthetic() -> ReportInput {
                         sampling: 1.0e-6,
                         total: 4.1e-5,
                     },
-                    BudgetLine {
+                    BudgetRow {
                         statistic: "P(> 0.004)".into(),
                         value: 1.2e-4,
                         mesh: None,
