@@ -59,6 +59,9 @@ pub trait Progress: Sync {
 pub struct NoProgress;
 impl Progress for NoProgress {}
 
+/// Runs handed to the executor at once (a generation may hold half the design).
+const JOBS_PER_CALL: usize = 256;
+
 /// One generation of a plan: `(point, parents)` with the parents as `(position in the plan's
 /// run order, weight)`.
 pub type PlannedGeneration = Vec<(usize, Vec<(usize, f64)>)>;
@@ -179,39 +182,11 @@ impl<'a> Runner<'a> {
                 self.missing += pending.len();
                 pending.clear();
             }
-            let mut jobs = Vec::with_capacity(pending.len());
-            for &i in &pending {
-                let start = self.start_state(&parents(&sources, &refs, &normalised[i]))?;
-                jobs.push(RunJob {
-                    theta: todo[i].clone(),
-                    start,
-                });
+            // The runs of a generation start from earlier generations only: they go to the
+            // executor in chunks (memory of the start states bounded), which changes nothing.
+            for chunk in pending.chunks(JOBS_PER_CALL) {
+                self.run_chunk(&ctx, chunk, &todo, &normalised, &sources, &refs)?;
             }
-            let done: Mutex<Vec<(RunRecord, f64)>> = Mutex::new(Vec::with_capacity(jobs.len()));
-            let store = &self.store;
-            let progress = self.progress;
-            let commit = |out: RunOutcome| -> Result<(), StudyError> {
-                store
-                    .lock()
-                    .map_err(|_| StudyError::Poisoned("store"))?
-                    .commit(&out.rec, &out.fields, out.cre.as_deref())?;
-                progress.finished(&out.rec);
-                done.lock()
-                    .map_err(|_| StudyError::Poisoned("run list"))?
-                    .push((out.rec, out.estimate_seconds));
-                Ok(())
-            };
-            let result = self.exec.execute(&ctx, &jobs, &commit);
-            // Whatever finished is committed: keep it even when a run failed.
-            for (rec, est) in done
-                .into_inner()
-                .map_err(|_| StudyError::Poisoned("run list"))?
-            {
-                self.computed += 1;
-                self.estimate_seconds += est;
-                self.by_key.insert(point_key(&rec.params), rec);
-            }
-            result?;
             for &i in members {
                 let k = self.finished.len();
                 self.finished.push(todo[i].clone());
@@ -223,6 +198,52 @@ impl<'a> Runner<'a> {
         }
         self.solve_seconds += t0.elapsed().as_secs_f64();
         Ok(())
+    }
+
+    /// Solves the runs `chunk` (indices into `todo`) of one generation, warm-started from
+    /// their parents among the live `sources`, and commits each as it finishes.
+    fn run_chunk(
+        &mut self,
+        ctx: &RunContext<'_>,
+        chunk: &[usize],
+        todo: &[Vec<f64>],
+        normalised: &[Vec<f64>],
+        sources: &KdTree,
+        refs: &[&[f64]],
+    ) -> Result<(), StudyError> {
+        let mut jobs = Vec::with_capacity(chunk.len());
+        for &i in chunk {
+            let start = self.start_state(&parents(sources, refs, &normalised[i]))?;
+            jobs.push(RunJob {
+                theta: todo[i].clone(),
+                start,
+            });
+        }
+        let done: Mutex<Vec<(RunRecord, f64)>> = Mutex::new(Vec::with_capacity(jobs.len()));
+        let store = &self.store;
+        let progress = self.progress;
+        let commit = |out: RunOutcome| -> Result<(), StudyError> {
+            store
+                .lock()
+                .map_err(|_| StudyError::Poisoned("store"))?
+                .commit(&out.rec, &out.fields, out.cre.as_deref())?;
+            progress.finished(&out.rec);
+            done.lock()
+                .map_err(|_| StudyError::Poisoned("run list"))?
+                .push((out.rec, out.estimate_seconds));
+            Ok(())
+        };
+        let result = self.exec.execute(ctx, &jobs, &commit);
+        // Whatever finished is committed: keep it even when a run failed.
+        for (rec, est) in done
+            .into_inner()
+            .map_err(|_| StudyError::Poisoned("run list"))?
+        {
+            self.computed += 1;
+            self.estimate_seconds += est;
+            self.by_key.insert(point_key(&rec.params), rec);
+        }
+        result
     }
 
     /// Whether the run at `p` is a warm-start source: finished, converged, with a state of
