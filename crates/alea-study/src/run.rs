@@ -20,8 +20,8 @@ use crate::study::{Study, estimates_error};
 pub struct RunJob {
     /// Parameter point (physical values).
     pub theta: Vec<f64>,
-    /// Local-stage state of the nearest converged run of the earlier batches (`None`: cold
-    /// start).
+    /// Local-stage state interpolated from converged runs of the earlier generations
+    /// (`None`: cold start).
     pub start: Option<Arc<LocalState>>,
 }
 
@@ -152,7 +152,7 @@ impl RunContext<'_> {
 }
 
 /// Solves the pending runs of one batch. Every run of a batch is independent of the others
-/// (they start from runs of earlier batches only), so an executor may solve them in any order,
+/// (they start from runs of earlier generations only), so an executor may solve them in any order,
 /// on any thread or process: the outcomes do not change.
 pub trait BatchExecutor: Sync {
     /// Solves every job and hands each outcome to `commit` (from any thread, in any order).

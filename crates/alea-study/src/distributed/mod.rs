@@ -3,16 +3,18 @@
 //! Every rank loads the study file and builds its solver (and the error estimator's set-up)
 //! once, in the same order as a single process does ([`RunSetup::build`]), so every rank holds
 //! bit-identical factorisations. Rank 0 (the *leader*) runs the study as a single process would
-//! (the store, the fixed batch schedule, the adaptive decisions, the analysis and every output
-//! are its alone) except that the runs of each batch go through [`MpiExecutor`]: they are handed
+//! (the store, the schedule, the adaptive decisions, the analysis and every output
+//! are its alone) except that the runs of each generation of the schedule (a batch) go through
+//! [`MpiExecutor`]: they are handed
 //! out one at a time to whichever rank has a free solver thread (the other ranks first, rank 0
 //! last), each with the warm-start state it starts from. A rank sends back the run's store row,
 //! field file and error-estimate data; rank 0 commits them as they arrive.
 //!
 //! **Same results for every rank count.** A run is a pure function of its point and its
-//! warm-start state (the nearest converged run of the *earlier* batches), and the batches and
-//! their warm starts depend only on the design ([`crate::runner`]). Which rank solves a run, and
-//! when, changes nothing: `summary.json` is byte-identical to a single-process run's.
+//! warm-start state (interpolated from converged runs of *earlier* generations), and the
+//! generations and their warm starts depend only on the design ([`crate::runner`],
+//! `schedule.rs`: the one schedule, for one process and for any number of ranks). Which rank
+//! solves a run, and when, changes nothing: `summary.json` is byte-identical to a single-process run's.
 //!
 //! **Warm starts travel with the work.** A job carries its start state (`12 x` interface points
 //! `f64`s); the alternative - every rank keeping every converged state - costs `N - 1` copies of
