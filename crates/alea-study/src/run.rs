@@ -80,12 +80,34 @@ impl RunContext<'_> {
     /// files if asked; commits nothing. A pure function of the job: the same on every thread and
     /// every MPI rank.
     pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
+        let res = self.solver.run_shared(&self.input(job))?;
+        self.outcome(job, res)
+    }
+
+    /// Solves the runs of `jobs` as one batch of the solver ([`LatinSolver::run_batch`]: one
+    /// multi-column solve per substructure and iteration for all of them), then each run's
+    /// quantities, estimate and files as [`RunContext::solve`] does; the outcomes in job order.
+    pub fn solve_batch(&self, jobs: &[RunJob]) -> Vec<Result<RunOutcome, StudyError>> {
+        let inputs: Vec<_> = jobs.iter().map(|job| self.input(job)).collect();
+        let results = self.solver.run_batch(&inputs);
+        jobs.par_iter()
+            .zip(results.into_par_iter())
+            .map(|(job, res)| self.outcome(job, res?))
+            .collect()
+    }
+
+    /// The solver input of a job.
+    fn input(&self, job: &RunJob) -> alea_latin::RunInput {
+        let mut input = self.study.model.parametric.run_input(&job.theta, vec![]);
+        input.initial = job.start.clone();
+        input
+    }
+
+    /// The outcome of a job from its solver result.
+    fn outcome(&self, job: &RunJob, res: alea_latin::RunResult) -> Result<RunOutcome, StudyError> {
         let study = self.study;
         let solver = self.solver;
         let theta = job.theta.as_slice();
-        let mut input = study.model.parametric.run_input(theta, vec![]);
-        input.initial = job.start.clone();
-        let res = solver.run_shared(&input)?;
         let qois = study
             .qois
             .iter()
@@ -166,7 +188,12 @@ pub trait BatchExecutor: Sync {
     ) -> Result<(), StudyError>;
 }
 
-/// The single-process executor: the runs of a batch in parallel on the rayon pool.
+/// Runs solved together by the single-process executor ([`RunContext::solve_batch`]): the
+/// runs of a generation in consecutive groups of this many (fixed, whatever the thread count).
+pub const RUNS_PER_BATCH: usize = 8;
+
+/// The single-process executor: the runs of a generation in groups of [`RUNS_PER_BATCH`]
+/// solved together, the groups in parallel on the rayon pool.
 pub struct LocalExecutor;
 
 impl BatchExecutor for LocalExecutor {
@@ -176,8 +203,15 @@ impl BatchExecutor for LocalExecutor {
         jobs: &[RunJob],
         commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
     ) -> Result<(), StudyError> {
-        let results: Vec<Result<(), StudyError>> =
-            jobs.par_iter().map(|job| commit(ctx.solve(job)?)).collect();
+        let results: Vec<Result<(), StudyError>> = jobs
+            .par_chunks(RUNS_PER_BATCH)
+            .flat_map_iter(|group| {
+                ctx.solve_batch(group)
+                    .into_iter()
+                    .map(|out| commit(out?))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
         results.into_iter().collect()
     }
 }

@@ -14,7 +14,9 @@
 //! answers (ties to the earliest point).
 //!
 //! A generation's runs are independent of each other, so a [`BatchExecutor`] may solve them
-//! anywhere: [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
+//! anywhere, in the fixed groups of [`crate::run::RUNS_PER_BATCH`] consecutive runs that share
+//! their LATIN iterations' triangular solves ([`alea_latin::LatinSolver::run_batch`]):
+//! [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
 //! the `distributed` module) on other ranks. Each finished run is committed to the [`Store`] at
 //! once, by this process only; `run_study` on a directory that already holds runs skips them (a
 //! resume) and loads their local-stage states for the warm starts.
