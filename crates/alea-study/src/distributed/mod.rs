@@ -40,16 +40,16 @@
 //! Threads per rank: `--threads` if given, else the node's cores divided by the ranks on the
 //! node (from `MPI_Comm_split_type(SHARED)`).
 
+mod stats;
+mod transport;
 mod wire;
 
 use std::collections::VecDeque;
 use std::io::Write;
 use std::path::Path;
 use std::sync::{Arc, Mutex, mpsc};
-use std::time::Duration;
 
 use mpi::Threading;
-use mpi::point_to_point::MatchedReceiveVec;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
@@ -57,6 +57,8 @@ use crate::StudyError;
 use crate::run::{BatchExecutor, RUNS_PER_BATCH, RunContext, RunJob, RunOutcome, RunSetup};
 use crate::store::run_file_stem;
 use crate::study::Study;
+pub use stats::Stats;
+use transport::{Incoming, Nap, send, try_receive};
 
 const TAG_READY: i32 = 11;
 const TAG_JOB: i32 = 12;
@@ -164,85 +166,6 @@ impl World {
     }
 }
 
-/// Sleeps between polls: 20 us, doubling to 1 ms while nothing happens.
-struct Nap(Duration);
-
-impl Nap {
-    fn new() -> Self {
-        Nap(Duration::from_micros(20))
-    }
-    fn reset(&mut self) {
-        self.0 = Duration::from_micros(20);
-    }
-    fn sleep(&mut self) {
-        std::thread::sleep(self.0);
-        self.0 = (self.0 * 2).min(Duration::from_millis(1));
-    }
-    /// After a round of a polling loop: no wait if it did something (`busy`), else a nap.
-    fn pace(&mut self, busy: bool) {
-        if busy {
-            self.reset();
-        } else {
-            self.sleep();
-        }
-    }
-}
-
-/// A received message: source rank, tag, bytes.
-type Incoming = (usize, i32, Vec<u8>);
-
-/// Receives one message with `tag` (any tag if `None`) from `from` (any rank if `None`) if one
-/// has arrived.
-fn try_receive(
-    world: &SimpleCommunicator,
-    from: Option<usize>,
-    tag: Option<i32>,
-) -> Option<Incoming> {
-    let probe = match (from, tag) {
-        (Some(r), Some(t)) => world
-            .process_at_rank(r as i32)
-            .immediate_matched_probe_with_tag(t),
-        (Some(r), None) => world.process_at_rank(r as i32).immediate_matched_probe(),
-        (None, Some(t)) => world.any_process().immediate_matched_probe_with_tag(t),
-        (None, None) => world.any_process().immediate_matched_probe(),
-    }?;
-    let (bytes, status) = probe.matched_receive_vec::<u8>();
-    Some((status.source_rank() as usize, status.tag(), bytes))
-}
-
-/// Sends `bytes` to `dest` without blocking the exchange: while the send is under way, messages
-/// with `expect` from any rank are received and returned (so two ranks sending to each other at
-/// once cannot deadlock).
-fn send(
-    world: &SimpleCommunicator,
-    dest: usize,
-    tag: i32,
-    bytes: &[u8],
-    expect: Option<i32>,
-) -> Vec<Incoming> {
-    let mut got = Vec::new();
-    let mut nap = Nap::new();
-    mpi::request::scope(|scope| {
-        let mut req = world
-            .process_at_rank(dest as i32)
-            .immediate_send_with_tag(scope, bytes, tag);
-        loop {
-            match req.test() {
-                Ok(_) => break,
-                Err(r) => req = r,
-            }
-            match try_receive(world, None, expect) {
-                Some(m) => {
-                    got.push(m);
-                    nap.reset();
-                }
-                None => nap.sleep(),
-            }
-        }
-    });
-    got
-}
-
 /// Solves a group of runs together ([`RunContext::solve_batch`]), turning an error or a panic
 /// into a message per run.
 fn solve_caught(
@@ -293,50 +216,6 @@ fn solver_thread(
                 return;
             }
         }
-    }
-}
-
-/// Traffic and work of an MPI job, as seen by rank 0.
-#[derive(Clone, Debug, Default)]
-pub struct Stats {
-    /// Ranks.
-    pub ranks: usize,
-    /// Solver threads of each rank.
-    pub threads: Vec<usize>,
-    /// Runs solved by each rank.
-    pub runs: Vec<usize>,
-    /// Bytes of the jobs sent to other ranks.
-    pub job_bytes: u64,
-    /// Of which warm-start states.
-    pub state_bytes: u64,
-    /// Bytes of the results received from other ranks.
-    pub result_bytes: u64,
-    /// Batches that went through the executor.
-    pub batches: usize,
-}
-
-impl Stats {
-    /// Runs solved on ranks other than 0.
-    pub fn remote_runs(&self) -> usize {
-        self.runs.iter().skip(1).sum()
-    }
-
-    /// One line for the log: ranks, runs per rank, bytes per remote run each way.
-    pub fn summary(&self) -> String {
-        let per = |b: u64| b as f64 / self.remote_runs().max(1) as f64;
-        format!(
-            "MPI: {} ranks x {:?} solver threads, runs per rank {:?}, {} batches; per remote run: \
-             {:.0} bytes sent (warm-start state {:.0}), {:.0} bytes back (a state kept on every \
-             rank instead would cost {:.0} bytes per run)",
-            self.ranks,
-            self.threads,
-            self.runs,
-            self.batches,
-            per(self.job_bytes),
-            per(self.state_bytes),
-            per(self.result_bytes),
-            per(self.state_bytes) * (self.ranks.saturating_sub(1)) as f64,
-        )
     }
 }
 
