@@ -1,8 +1,9 @@
 //! How a study's bookkeeping grows with its number of runs (`cargo bench -p alea-study --bench
 //! scale`; `-- quick` stops at 10^4 runs):
 //! - start-up: loading a Monte Carlo study of `n` runs and building its solver, then the
-//!   nearest-neighbour order and the warm-start look-ups of the fixed schedule (what happens
-//!   before and between batches), for n = 10^3, 10^4, 10^5;
+//!   generations of the schedule and the warm-start parents of every run (what happens before
+//!   and between generations; their number is the study's critical path, their sizes its
+//!   parallel width), for n = 10^3, 10^4, 10^5;
 //! - the mean / std fields of a piecewise-linear study on a `k x k` grid of runs (K = k^2 =
 //!   1 024, 10 000, 99 856) from synthetic run fields written to a study directory (the runs
 //!   are not solved: the fields' cost does not depend on where the fields came from), against the
@@ -62,9 +63,11 @@ fn startup(n: usize) {
     let t2 = Instant::now();
     let plan = alea_study::runner::warm_start_plan(&study, &study.all_points());
     let walk = secs(t2);
+    let widths: Vec<usize> = plan.iter().map(Vec::len).collect();
     println!(
-        "start-up n = {n:>6}: study file + design {load:.3} s, solver {build:.3} s, order + warm-start look-ups of all batches {walk:.3} s ({} runs)",
-        plan.len()
+        "start-up n = {n:>6}: study file + design {load:.3} s, solver {build:.3} s, generations + warm-start parents {walk:.3} s ({} runs; critical path {} generations, widths {widths:?})",
+        widths.iter().sum::<usize>(),
+        widths.len()
     );
 }
 

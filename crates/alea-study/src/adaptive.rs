@@ -3,7 +3,7 @@
 //!
 //! 1. Start from the corners of the parameter box and its centre (`2^d + 1` runs).
 //! 2. Run every node of the mesh that is a run and not finished yet (warm-started from the
-//!    nearest converged runs of earlier batches and steps; a resumed study finds them in the
+//!    nearest converged runs of earlier generations and steps; a resumed study finds them in the
 //!    store).
 //! 3. Estimate (crate `alea-estimate`): `e~`, `I_geo`, `I_sto` on the mesh's cells; the
 //!    statistics of every quantity of interest on the current surrogate.

@@ -27,6 +27,7 @@ pub mod reopen;
 pub mod run;
 pub mod runner;
 pub mod runs;
+mod schedule;
 mod source;
 mod spatial;
 pub mod spec;

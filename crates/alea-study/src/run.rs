@@ -20,8 +20,8 @@ use crate::study::{Study, estimates_error};
 pub struct RunJob {
     /// Parameter point (physical values).
     pub theta: Vec<f64>,
-    /// Local-stage state of the nearest converged run of the earlier batches (`None`: cold
-    /// start).
+    /// Local-stage state interpolated from converged runs of the earlier generations
+    /// (`None`: cold start).
     pub start: Option<Arc<LocalState>>,
 }
 
@@ -80,16 +80,48 @@ impl RunContext<'_> {
     /// files if asked; commits nothing. A pure function of the job: the same on every thread and
     /// every MPI rank.
     pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
+        let input = self.input(job);
+        // With [[step]]s, one result per step run (module `steps`); the last is the run's.
+        let results = match &self.study.steps {
+            None => vec![self.solver.run_shared(&input)?],
+            Some(plan) => crate::steps::run_study_history(plan, self.solver, &input)?,
+        };
+        self.outcome(job, results)
+    }
+
+    /// Solves the runs of `jobs` as one batch of the solver ([`LatinSolver::run_batch`]: one
+    /// multi-column solve per substructure and iteration for all of them), then each run's
+    /// quantities, estimate and files as [`RunContext::solve`] does; the outcomes in job order.
+    /// Runs with [[step]]s are solved one at a time (each is a history of solves).
+    pub fn solve_batch(&self, jobs: &[RunJob]) -> Vec<Result<RunOutcome, StudyError>> {
+        if self.study.steps.is_some() {
+            return jobs.par_iter().map(|job| self.solve(job)).collect();
+        }
+        let inputs: Vec<_> = jobs.iter().map(|job| self.input(job)).collect();
+        let results = self.solver.run_batch(&inputs);
+        jobs.par_iter()
+            .zip(results.into_par_iter())
+            .map(|(job, res)| self.outcome(job, vec![res?]))
+            .collect()
+    }
+
+    /// The solver input of a job.
+    fn input(&self, job: &RunJob) -> alea_latin::RunInput {
+        let mut input = self.study.model.parametric.run_input(&job.theta, vec![]);
+        input.initial = job.start.clone();
+        input
+    }
+
+    /// The outcome of a job from its solver results (one per load step; the last is the
+    /// run's).
+    fn outcome(
+        &self,
+        job: &RunJob,
+        results: Vec<alea_latin::RunResult>,
+    ) -> Result<RunOutcome, StudyError> {
         let study = self.study;
         let solver = self.solver;
         let theta = job.theta.as_slice();
-        let mut input = study.model.parametric.run_input(theta, vec![]);
-        input.initial = job.start.clone();
-        // With [[step]]s, one result per step run (module `steps`); the last is the run's.
-        let results = match &study.steps {
-            None => vec![solver.run_shared(&input)?],
-            Some(plan) => crate::steps::run_study_history(plan, solver, &input)?,
-        };
         let res = results
             .last()
             .ok_or(StudyError::Failed("no load step ran".into()))?;
@@ -172,7 +204,7 @@ impl RunContext<'_> {
 }
 
 /// Solves the pending runs of one batch. Every run of a batch is independent of the others
-/// (they start from runs of earlier batches only), so an executor may solve them in any order,
+/// (they start from runs of earlier generations only), so an executor may solve them in any order,
 /// on any thread or process: the outcomes do not change.
 pub trait BatchExecutor: Sync {
     /// Solves every job and hands each outcome to `commit` (from any thread, in any order).
@@ -186,7 +218,12 @@ pub trait BatchExecutor: Sync {
     ) -> Result<(), StudyError>;
 }
 
-/// The single-process executor: the runs of a batch in parallel on the rayon pool.
+/// Runs solved together by the single-process executor ([`RunContext::solve_batch`]): the
+/// runs of a generation in consecutive groups of this many (fixed, whatever the thread count).
+pub const RUNS_PER_BATCH: usize = 8;
+
+/// The single-process executor: the runs of a generation in groups of [`RUNS_PER_BATCH`]
+/// solved together, the groups in parallel on the rayon pool.
 pub struct LocalExecutor;
 
 impl BatchExecutor for LocalExecutor {
@@ -196,8 +233,15 @@ impl BatchExecutor for LocalExecutor {
         jobs: &[RunJob],
         commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
     ) -> Result<(), StudyError> {
-        let results: Vec<Result<(), StudyError>> =
-            jobs.par_iter().map(|job| commit(ctx.solve(job)?)).collect();
+        let results: Vec<Result<(), StudyError>> = jobs
+            .par_chunks(RUNS_PER_BATCH)
+            .flat_map_iter(|group| {
+                ctx.solve_batch(group)
+                    .into_iter()
+                    .map(|out| commit(out?))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
         results.into_iter().collect()
     }
 }

@@ -2,18 +2,21 @@
 //!
 //! The union of all methods' design points is run once (points shared by several methods are
 //! run once). Runs go through one multiresolution [`LatinSolver`] (set-up and factorisations
-//! shared) in **batches of a fixed schedule** (sizes 1, 2, 4, then 8): the runs of a batch are
-//! solved in parallel, each warm-started from the nearest converged run of the earlier batches
-//! (distance in the parameter box scaled to the unit cube). The schedule depends only on the
-//! design, never on the thread count, the number of MPI ranks or on what a previous,
-//! interrupted invocation finished, so results are identical with 1 or 2 threads, 1 or 3 ranks
-//! and after a resume. Points are ordered by a greedy nearest-neighbour walk from the nominal
-//! point, so each batch starts near finished runs. The walk and the warm-start lookup use a
+//! shared) **generation by generation** of the schedule of [`crate::schedule`]: a tree grown
+//! from the nominal point over the design, coarse to fine, generation `k` holding up to `2^k`
+//! runs. The runs of a generation are solved in parallel, each warm-started from the interface
+//! fields of its nearest converged runs of the earlier generations interpolated at its point
+//! (moving least-squares weights, distances in the parameter box scaled to the unit cube). The
+//! generations and the parents depend only on the design, never on the thread count, the number
+//! of MPI ranks or on what a previous, interrupted invocation finished, so results are
+//! identical with 1 or 2 threads, 1 or 3 ranks and after a resume. The parent look-up uses a
 //! kd-tree ([`crate::spatial`]): `O(n log n)` for `n` runs, with exactly the brute-force
 //! answers (ties to the earliest point).
 //!
-//! A batch's runs are independent of each other, so a [`BatchExecutor`] may solve them
-//! anywhere: [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
+//! A generation's runs are independent of each other, so a [`BatchExecutor`] may solve them
+//! anywhere, in the fixed groups of [`crate::run::RUNS_PER_BATCH`] consecutive runs that share
+//! their LATIN iterations' triangular solves ([`alea_latin::LatinSolver::run_batch`]):
+//! [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
 //! the `distributed` module) on other ranks. Each finished run is committed to the [`Store`] at
 //! once, by this process only; `run_study` on a directory that already holds runs skips them (a
 //! resume) and loads their local-stage states for the warm starts.
@@ -35,8 +38,8 @@ pub use crate::run::{
     BatchExecutor, LocalExecutor, RunContext, RunJob, RunOutcome, RunSetup, install_executor,
 };
 pub use crate::runs::StudyRuns;
+use crate::schedule::{combine, generations, parents};
 use crate::spatial::KdTree;
-use crate::spatial::nn_order;
 use crate::store::{RunRecord, Store, point_key};
 pub use crate::study::{Study, estimates_error};
 
@@ -58,47 +61,48 @@ pub trait Progress: Sync {
 pub struct NoProgress;
 impl Progress for NoProgress {}
 
-/// The batches of the fixed schedule: indices into the ordered points.
-fn schedule(n: usize) -> Vec<std::ops::Range<usize>> {
-    let mut out = Vec::new();
-    let mut start = 0;
-    let mut size = 1;
-    while start < n {
-        let end = (start + size).min(n);
-        out.push(start..end);
-        start = end;
-        size = (size * 2).min(8);
-    }
-    out
-}
+/// Runs handed to the executor at once (a generation may hold half the design).
+const JOBS_PER_CALL: usize = 256;
 
-/// The plan of a fresh study over `points` (all runs assumed to converge): the points in run
-/// order with, for each, the position in that order of the run it warm-starts from. What
-/// [`run_study`] computes before and between its batches, without solving anything (for
-/// benchmarks and checks).
-pub fn warm_start_plan(study: &Study, points: &[Vec<f64>]) -> Vec<(usize, Option<usize>)> {
+/// One generation of a plan: `(point, parents)` with the parents as `(position in the plan's
+/// run order, weight)`.
+pub type PlannedGeneration = Vec<(usize, Vec<(usize, f64)>)>;
+
+/// The plan of a fresh study over `points` (all runs assumed to converge): its generations
+/// ([`crate::schedule`]), each a list of the points it solves with their warm-start parents
+/// (positions in the run order: generation by generation) and weights. What [`run_study`]
+/// computes before and between its batches, without solving anything (for benchmarks and
+/// checks: the generations' sizes are the study's parallel width, their number its critical
+/// path).
+pub fn warm_start_plan(study: &Study, points: &[Vec<f64>]) -> Vec<PlannedGeneration> {
     let normalised: Vec<Vec<f64>> = points.iter().map(|p| study.normalise(p)).collect();
     let centre = study.normalise(&study.params.nominal);
-    let order = nn_order(&normalised, &centre);
-    let refs: Vec<&[f64]> = order.iter().map(|&i| normalised[i].as_slice()).collect();
+    let gens = generations(&normalised, &centre);
+    let refs: Vec<&[f64]> = gens
+        .iter()
+        .flatten()
+        .map(|&i| normalised[i].as_slice())
+        .collect();
     let mut sources = KdTree::new(centre.len(), &refs);
-    let mut plan = Vec::with_capacity(order.len());
-    for batch in schedule(order.len()) {
-        for j in batch.clone() {
-            plan.push((
-                order[j],
-                sources.nearest(&normalised[order[j]]).map(|(_, k)| k),
-            ));
+    let mut plan = Vec::with_capacity(gens.len());
+    let mut at = 0;
+    for generation in &gens {
+        plan.push(
+            generation
+                .iter()
+                .map(|&i| (i, parents(&sources, &refs, &normalised[i])))
+                .collect(),
+        );
+        for k in at..at + generation.len() {
+            sources.set_live(k, true);
         }
-        for j in batch {
-            sources.set_live(j, true);
-        }
+        at += generation.len();
     }
     plan
 }
 
 /// Runs the deterministic solves of a study and keeps the state they share: the solver, the
-/// store, the finished runs (warm-start sources, in completion order of the fixed schedule).
+/// store, the finished runs (warm-start sources, in the order of the schedule's generations).
 pub(crate) struct Runner<'a> {
     pub(crate) study: &'a Study,
     pub(crate) dir: &'a Path,
@@ -108,8 +112,7 @@ pub(crate) struct Runner<'a> {
     /// Points finished by this invocation (run or found in the store), in schedule order.
     finished: Vec<Vec<f64>>,
     finished_keys: HashSet<String>,
-    /// Warm-start states of the finished runs (decoded once, on first use).
-    states: Vec<Option<Arc<LocalState>>>,
+    /// Points per interface (the shape of a warm-start state).
     sizes: Vec<usize>,
     progress: &'a dyn Progress,
     exec: &'a dyn BatchExecutor,
@@ -125,9 +128,9 @@ pub(crate) struct Runner<'a> {
 }
 
 impl<'a> Runner<'a> {
-    /// Runs (or finds in the store) every point of `points` that is not finished yet, in
-    /// batches of the fixed schedule, each warm-started from the nearest converged run of the
-    /// earlier batches.
+    /// Runs (or finds in the store) every point of `points` that is not finished yet, one
+    /// generation of the schedule after the other, each run warm-started from its parents among
+    /// the converged runs of the earlier generations and calls ([`crate::schedule`]).
     pub(crate) fn run_points(&mut self, points: &[Vec<f64>]) -> Result<(), StudyError> {
         let study = self.study;
         let mut seen = HashSet::new();
@@ -146,24 +149,19 @@ impl<'a> Runner<'a> {
         check.into_iter().collect::<Result<(), _>>()?;
         let normalised: Vec<Vec<f64>> = todo.iter().map(|p| study.normalise(p)).collect();
         let centre = study.normalise(&study.params.nominal);
-        let order = nn_order(&normalised, &centre);
-        // Warm-start sources: the finished runs so far, then this call's in schedule order (tree
-        // index = position in `finished`, so ties go to the earliest finished, as before);
-        // a source is live once its batch is over and it converged.
-        let prior = self.finished.len();
+        let gens = generations(&normalised, &centre);
+        // Warm-start sources: the finished runs so far, then this call's generation by
+        // generation (tree index = position in `finished`); a source is live once its
+        // generation is over and it converged.
         let prior_norm: Vec<Vec<f64>> = self.finished.iter().map(|p| study.normalise(p)).collect();
         let refs: Vec<&[f64]> = prior_norm
             .iter()
             .map(|p| p.as_slice())
-            .chain(order.iter().map(|&i| normalised[i].as_slice()))
+            .chain(gens.iter().flatten().map(|&i| normalised[i].as_slice()))
             .collect();
         let mut sources = KdTree::new(centre.len(), &refs);
-        for (k, p) in self.finished.iter().enumerate() {
-            if self
-                .by_key
-                .get(&point_key(p))
-                .is_some_and(|r| r.converged())
-            {
+        for k in 0..self.finished.len() {
+            if self.is_source(&self.finished[k]) {
                 sources.set_live(k, true);
             }
         }
@@ -175,8 +173,7 @@ impl<'a> Runner<'a> {
             cre: cre.as_deref(),
             dir: self.dir,
         };
-        for batch in schedule(order.len()) {
-            let members: Vec<usize> = order[batch.clone()].to_vec();
+        for members in &gens {
             let mut pending: Vec<usize> = members
                 .iter()
                 .copied()
@@ -187,52 +184,16 @@ impl<'a> Runner<'a> {
                 self.missing += pending.len();
                 pending.clear();
             }
-            let mut jobs = Vec::with_capacity(pending.len());
-            for &i in &pending {
-                let start = match sources.nearest(&normalised[i]) {
-                    Some((_, k)) => self.state_of(k)?,
-                    None => None,
-                };
-                jobs.push(RunJob {
-                    theta: todo[i].clone(),
-                    start,
-                });
+            // The runs of a generation start from earlier generations only: they go to the
+            // executor in chunks (memory of the start states bounded), which changes nothing.
+            for chunk in pending.chunks(JOBS_PER_CALL) {
+                self.run_chunk(&ctx, chunk, &todo, &normalised, &sources, &refs)?;
             }
-            let done: Mutex<Vec<(RunRecord, f64)>> = Mutex::new(Vec::with_capacity(jobs.len()));
-            let store = &self.store;
-            let progress = self.progress;
-            let commit = |out: RunOutcome| -> Result<(), StudyError> {
-                store
-                    .lock()
-                    .map_err(|_| StudyError::Poisoned("store"))?
-                    .commit(&out.rec, &out.fields, out.cre.as_deref())?;
-                progress.finished(&out.rec);
-                done.lock()
-                    .map_err(|_| StudyError::Poisoned("run list"))?
-                    .push((out.rec, out.estimate_seconds));
-                Ok(())
-            };
-            let result = self.exec.execute(&ctx, &jobs, &commit);
-            // Whatever finished is committed: keep it even when a run failed.
-            for (rec, est) in done
-                .into_inner()
-                .map_err(|_| StudyError::Poisoned("run list"))?
-            {
-                self.computed += 1;
-                self.estimate_seconds += est;
-                self.by_key.insert(point_key(&rec.params), rec);
-            }
-            result?;
-            for (j, &i) in members.iter().enumerate() {
-                let k = prior + batch.start + j;
+            for &i in members {
+                let k = self.finished.len();
                 self.finished.push(todo[i].clone());
                 self.finished_keys.insert(point_key(&todo[i]));
-                self.states.push(None);
-                if self
-                    .by_key
-                    .get(&point_key(&todo[i]))
-                    .is_some_and(|r| r.converged())
-                {
+                if self.is_source(&todo[i]) {
                     sources.set_live(k, true);
                 }
             }
@@ -241,16 +202,76 @@ impl<'a> Runner<'a> {
         Ok(())
     }
 
-    /// The warm-start state of the `k`-th finished run (decoded from its record once).
-    fn state_of(&mut self, k: usize) -> Result<Option<Arc<LocalState>>, StudyError> {
-        if self.states[k].is_none() {
+    /// Solves the runs `chunk` (indices into `todo`) of one generation, warm-started from
+    /// their parents among the live `sources`, and commits each as it finishes.
+    fn run_chunk(
+        &mut self,
+        ctx: &RunContext<'_>,
+        chunk: &[usize],
+        todo: &[Vec<f64>],
+        normalised: &[Vec<f64>],
+        sources: &KdTree,
+        refs: &[&[f64]],
+    ) -> Result<(), StudyError> {
+        let mut jobs = Vec::with_capacity(chunk.len());
+        for &i in chunk {
+            let start = self.start_state(&parents(sources, refs, &normalised[i]))?;
+            jobs.push(RunJob {
+                theta: todo[i].clone(),
+                start,
+            });
+        }
+        let done: Mutex<Vec<(RunRecord, f64)>> = Mutex::new(Vec::with_capacity(jobs.len()));
+        let store = &self.store;
+        let progress = self.progress;
+        let commit = |out: RunOutcome| -> Result<(), StudyError> {
+            store
+                .lock()
+                .map_err(|_| StudyError::Poisoned("store"))?
+                .commit(&out.rec, &out.fields, out.cre.as_deref())?;
+            progress.finished(&out.rec);
+            done.lock()
+                .map_err(|_| StudyError::Poisoned("run list"))?
+                .push((out.rec, out.estimate_seconds));
+            Ok(())
+        };
+        let result = self.exec.execute(ctx, &jobs, &commit);
+        // Whatever finished is committed: keep it even when a run failed.
+        for (rec, est) in done
+            .into_inner()
+            .map_err(|_| StudyError::Poisoned("run list"))?
+        {
+            self.computed += 1;
+            self.estimate_seconds += est;
+            self.by_key.insert(point_key(&rec.params), rec);
+        }
+        result
+    }
+
+    /// Whether the run at `p` is a warm-start source: finished, converged, with a state of
+    /// this solver's shape.
+    fn is_source(&self, p: &[f64]) -> bool {
+        let len: usize = self.sizes.iter().map(|n| 12 * n).sum();
+        self.by_key
+            .get(&point_key(p))
+            .is_some_and(|r| r.converged() && r.state.len() == len)
+    }
+
+    /// The warm-start state interpolated from `parents` (`(finished index, weight)`; `None`:
+    /// cold start).
+    fn start_state(&self, parents: &[(usize, f64)]) -> Result<Option<Arc<LocalState>>, StudyError> {
+        let mut states = Vec::with_capacity(parents.len());
+        for &(k, w) in parents {
             let rec = self
                 .by_key
                 .get(&point_key(&self.finished[k]))
                 .ok_or_else(|| StudyError::Internal("a finished run is missing".into()))?;
-            self.states[k] = LocalState::from_slice(&self.sizes, &rec.state).map(Arc::new);
+            states.push((rec.state.as_slice(), w));
         }
-        Ok(self.states[k].clone())
+        if states.is_empty() {
+            return Ok(None);
+        }
+        Ok(LocalState::from_slice(&self.sizes, &combine(&states)).map(Arc::new))
     }
 
     /// The store (locked).
@@ -362,7 +383,6 @@ pub(crate) fn execute(
         by_key,
         finished: Vec::new(),
         finished_keys: HashSet::new(),
-        states: Vec::new(),
         progress,
         exec: executor(),
         cre,

@@ -1,6 +1,6 @@
 //! Nearest-neighbour search among a fixed set of points that are switched on and off: the
-//! runner's greedy nearest-neighbour walk (points leave the set as they are visited) and its
-//! warm-start lookup (finished runs join the set batch by batch).
+//! runner's warm-start look-up (finished runs join the set generation by generation, and a
+//! run's parents are its `k` nearest live points).
 //!
 //! A balanced kd-tree over the points, built once (`O(n log n)`), stored implicitly in a
 //! permutation (the node of the range `[lo, hi)` sits at its middle position), with the number
@@ -11,7 +11,7 @@
 //! `sum_j (x_j - q_j)^2` (summed in coordinate order, as the brute force does), ties to the
 //! least index. Pruning a subtree whose splitting plane is at `delta` uses `delta^2 <= best`,
 //! exact in floating point (rounding is monotone, and a sum of non-negative terms is never
-//! below one of them), so the study's run order and warm starts do not change.
+//! below one of them), so a study's warm starts do not depend on the tree's shape.
 //!
 //! Written here rather than taken from a crate: `kiddo` and `rstar` fix the dimension at
 //! compile time (a study's is read from its file), and the order of the runs - and so the
@@ -67,11 +67,6 @@ impl KdTree {
         }
     }
 
-    /// Number of points (live or not).
-    pub(crate) fn len(&self) -> usize {
-        self.live.len()
-    }
-
     fn point(&self, i: usize) -> &[f64] {
         &self.coords[i * self.dim..(i + 1) * self.dim]
     }
@@ -100,21 +95,26 @@ impl KdTree {
         }
     }
 
-    /// The live point nearest to `q` as `(squared distance, index)`, ties to the least index;
-    /// `None` if no point is live.
-    pub(crate) fn nearest(&self, q: &[f64]) -> Option<(f64, usize)> {
-        if self.dim == 0 {
-            // Points of no coordinate are all at distance 0: the least live index.
-            return (0..self.live.len())
-                .find(|&i| self.live[i])
-                .map(|i| (0.0, i));
+    /// The `k` live points nearest to `q` as `(squared distance, index)`, nearest first (ties
+    /// to the least index); fewer if fewer are live. Exactly the first `k` of the brute-force
+    /// sort.
+    pub(crate) fn nearest_k(&self, q: &[f64], k: usize) -> Vec<(f64, usize)> {
+        let mut best: Vec<(f64, usize)> = Vec::with_capacity(k + 1);
+        if k == 0 {
+            return best;
         }
-        let mut best: Option<(f64, usize)> = None;
-        self.search(q, 0, self.perm.len(), &mut best);
+        if self.dim == 0 {
+            return (0..self.live.len())
+                .filter(|&i| self.live[i])
+                .take(k)
+                .map(|i| (0.0, i))
+                .collect();
+        }
+        self.search_k(q, 0, self.perm.len(), k, &mut best);
         best
     }
 
-    fn search(&self, q: &[f64], lo: usize, hi: usize, best: &mut Option<(f64, usize)>) {
+    fn search_k(&self, q: &[f64], lo: usize, hi: usize, k: usize, best: &mut Vec<(f64, usize)>) {
         if lo >= hi {
             return;
         }
@@ -125,12 +125,11 @@ impl KdTree {
         let i = self.perm[m];
         if self.live[i] {
             let d = dist2(self.point(i), q);
-            let better = match *best {
-                None => true,
-                Some((bd, bi)) => d < bd || (d == bd && i < bi),
-            };
-            if better {
-                *best = Some((d, i));
+            let before = |a: &(f64, usize)| a.0 < d || (a.0 == d && a.1 < i);
+            let at = best.iter().position(|a| !before(a)).unwrap_or(best.len());
+            if at < k {
+                best.insert(at, (d, i));
+                best.truncate(k);
             }
         }
         let a = self.axis[m] as usize;
@@ -140,9 +139,9 @@ impl KdTree {
         } else {
             ((m + 1, hi), (lo, m))
         };
-        self.search(q, first.0, first.1, best);
-        if best.is_none_or(|(bd, _)| delta * delta <= bd) {
-            self.search(q, second.0, second.1, best);
+        self.search_k(q, first.0, first.1, k, best);
+        if best.len() < k || best.last().is_some_and(|&(bd, _)| delta * delta <= bd) {
+            self.search_k(q, second.0, second.1, k, best);
         }
     }
 }
@@ -183,46 +182,9 @@ fn build(coords: &[f64], dim: usize, perm: &mut [usize], axis: &mut [u8], depth:
     build(coords, dim, &mut rest[1..], &mut rest_axis[1..], depth + 1);
 }
 
-/// Greedy nearest-neighbour walk: start at the point nearest to `origin`, then repeatedly go to
-/// the nearest point not yet visited (ties to the least index). `O(n log n)` on spread points.
-pub(crate) fn nn_order(points: &[Vec<f64>], origin: &[f64]) -> Vec<usize> {
-    let dim = origin.len();
-    let refs: Vec<&[f64]> = points.iter().map(|p| p.as_slice()).collect();
-    let mut tree = KdTree::new(dim, &refs);
-    for i in 0..tree.len() {
-        tree.set_live(i, true);
-    }
-    let mut order = Vec::with_capacity(points.len());
-    let mut cur = origin.to_vec();
-    while let Some((_, i)) = tree.nearest(&cur) {
-        tree.set_live(i, false);
-        cur.clone_from(&points[i]);
-        order.push(i);
-    }
-    order
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The definition: the brute-force walk (as the runner did it before the tree).
-    fn brute_order(points: &[Vec<f64>], origin: &[f64]) -> Vec<usize> {
-        let mut left: Vec<usize> = (0..points.len()).collect();
-        let mut order = Vec::new();
-        let mut cur = origin.to_vec();
-        while !left.is_empty() {
-            let (k, _) = left
-                .iter()
-                .enumerate()
-                .map(|(k, &i)| (k, dist2(&points[i], &cur)))
-                .fold((0, f64::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
-            let i = left.remove(k);
-            cur = points[i].clone();
-            order.push(i);
-        }
-        order
-    }
 
     fn lcg(state: &mut u64) -> f64 {
         *state = state
@@ -232,43 +194,27 @@ mod tests {
     }
 
     #[test]
-    fn walk_equals_brute_force_on_random_points() {
-        let mut s = 7u64;
-        for (n, d) in [(1, 1), (2, 2), (50, 1), (300, 2), (400, 3), (200, 6)] {
-            let pts: Vec<Vec<f64>> = (0..n)
-                .map(|_| (0..d).map(|_| lcg(&mut s)).collect())
+    fn k_nearest_equals_the_brute_force_sort() {
+        let mut s = 13u64;
+        let pts: Vec<Vec<f64>> = (0..400)
+            .map(|_| (0..2).map(|_| (lcg(&mut s) * 6.0).floor() / 6.0).collect())
+            .collect();
+        let refs: Vec<&[f64]> = pts.iter().map(|p| p.as_slice()).collect();
+        let mut tree = KdTree::new(2, &refs);
+        let mut live = vec![false; pts.len()];
+        for step in 0..600 {
+            let i = (lcg(&mut s) * pts.len() as f64) as usize;
+            tree.set_live(i, step % 4 != 0);
+            live[i] = step % 4 != 0;
+            let q: Vec<f64> = (0..2).map(|_| lcg(&mut s)).collect();
+            let mut brute: Vec<(f64, usize)> = (0..pts.len())
+                .filter(|&k| live[k])
+                .map(|k| (dist2(&pts[k], &q), k))
                 .collect();
-            let origin = vec![0.5; d];
-            assert_eq!(
-                nn_order(&pts, &origin),
-                brute_order(&pts, &origin),
-                "{n} {d}"
-            );
+            brute.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            brute.truncate(5);
+            assert_eq!(tree.nearest_k(&q, 5), brute, "step {step}");
         }
-    }
-
-    #[test]
-    fn walk_equals_brute_force_on_grids_with_ties_and_duplicates() {
-        // Regular grids are full of equidistant neighbours: the tie rule decides the order.
-        let mut pts = Vec::new();
-        for i in 0..13 {
-            for j in 0..11 {
-                pts.push(vec![i as f64 / 12.0, j as f64 / 10.0]);
-            }
-        }
-        pts.push(pts[40].clone()); // a duplicate point
-        let origin = vec![0.5, 0.5];
-        assert_eq!(nn_order(&pts, &origin), brute_order(&pts, &origin));
-        let mut cube = Vec::new();
-        for i in 0..5 {
-            for j in 0..5 {
-                for k in 0..5 {
-                    cube.push(vec![i as f64, j as f64, k as f64]);
-                }
-            }
-        }
-        let o = vec![2.0, 2.0, 2.0];
-        assert_eq!(nn_order(&cube, &o), brute_order(&cube, &o));
     }
 
     #[test]
@@ -279,7 +225,7 @@ mod tests {
             .collect();
         let refs: Vec<&[f64]> = pts.iter().map(|p| p.as_slice()).collect();
         let mut tree = KdTree::new(3, &refs);
-        assert_eq!(tree.nearest(&[0.0, 0.0, 0.0]), None);
+        assert_eq!(tree.nearest_k(&[0.0, 0.0, 0.0], 1), vec![]);
         let mut live = vec![false; pts.len()];
         for step in 0..2000 {
             let i = (lcg(&mut s) * pts.len() as f64) as usize;
@@ -291,7 +237,7 @@ mod tests {
                 .filter(|&k| live[k])
                 .map(|k| (dist2(&pts[k], &q), k))
                 .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            assert_eq!(tree.nearest(&q), brute, "step {step}");
+            assert_eq!(tree.nearest_k(&q, 1).first().copied(), brute, "step {step}");
         }
     }
 }

@@ -32,11 +32,17 @@ impl LatinSolver {
             .enumerate()
             .map(|(s, (op, st))| linear_stage(op, st, &run.istate, &run.base[s], run.alpha[s]))
             .sum();
+        self.correct_and_relax(run, first);
+        run.timings.linear += t0.elapsed().as_secs_f64();
+        run.timings.triangular_solves += solve_time;
+    }
+
+    /// After the plain solves: the coarse correction and the relaxation (none in the first
+    /// iteration).
+    pub(super) fn correct_and_relax(&self, run: &mut Run<'_>, first: bool) {
         self.coarse_step(run, first);
         let r = if first { 1.0 } else { self.relaxation() };
         run.sstate.par_iter_mut().for_each(|st| relax(st, r));
-        run.timings.linear += t0.elapsed().as_secs_f64();
-        run.timings.triangular_solves += solve_time;
     }
 }
 
@@ -50,7 +56,24 @@ fn linear_stage(
     base: &[f64],
     alpha: f64,
 ) -> f64 {
-    st.rhs.copy_from_slice(base);
+    assemble_rhs(op, istate, base, alpha, &mut st.rhs);
+    let t0 = Instant::now();
+    op.chol.solve_with(&mut st.rhs, &mut st.scratch);
+    let t = t0.elapsed().as_secs_f64();
+    interface_fields(op, st, istate, alpha);
+    t
+}
+
+/// The right-hand side `(f + M_Gamma (F_hat + k W_hat)) / alpha - A0 u_p` of one substructure
+/// into `rhs` (`base` holds its constant part).
+pub(super) fn assemble_rhs(
+    op: &SubOperator,
+    istate: &[InterfaceState],
+    base: &[f64],
+    alpha: f64,
+    rhs: &mut [f64],
+) {
+    rhs.copy_from_slice(base);
     for l in &op.links {
         let is = &istate[l.iface];
         let k = alpha * l.k0;
@@ -64,13 +87,20 @@ fn linear_stage(
             ];
             for (n, c) in l.proj.row(p) {
                 let cv = [c * v[0], c * v[1], c * v[2]];
-                op.dofs.add_node_force(n, &cv, &mut st.rhs);
+                op.dofs.add_node_force(n, &cv, rhs);
             }
         }
     }
-    let t0 = Instant::now();
-    op.chol.solve_with(&mut st.rhs, &mut st.scratch);
-    let t = t0.elapsed().as_secs_f64();
+}
+
+/// `W = Pi u|Gamma` and `F = F_hat - k (W - W_hat)` of one substructure from its solved `u`
+/// (`st.rhs`) into `w_new`, `f_new`.
+pub(super) fn interface_fields(
+    op: &SubOperator,
+    st: &mut SubState,
+    istate: &[InterfaceState],
+    alpha: f64,
+) {
     for (li, l) in op.links.iter().enumerate() {
         let is = &istate[l.iface];
         let k = alpha * l.k0;
@@ -90,7 +120,6 @@ fn linear_stage(
             }
         }
     }
-    t
 }
 
 /// Relaxation of the linear stage: `(W, F) <- r (W, F)_new + (1 - r) (W, F)_previous`.

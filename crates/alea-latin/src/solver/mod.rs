@@ -51,6 +51,7 @@
 //! (`result.rs`).
 
 mod acceleration;
+mod batch;
 mod coarse;
 mod convergence;
 mod linear_stage;

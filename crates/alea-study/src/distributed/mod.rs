@@ -3,16 +3,21 @@
 //! Every rank loads the study file and builds its solver (and the error estimator's set-up)
 //! once, in the same order as a single process does ([`RunSetup::build`]), so every rank holds
 //! bit-identical factorisations. Rank 0 (the *leader*) runs the study as a single process would
-//! (the store, the fixed batch schedule, the adaptive decisions, the analysis and every output
-//! are its alone) except that the runs of each batch go through [`MpiExecutor`]: they are handed
-//! out one at a time to whichever rank has a free solver thread (the other ranks first, rank 0
-//! last), each with the warm-start state it starts from. A rank sends back the run's store row,
-//! field file and error-estimate data; rank 0 commits them as they arrive.
+//! (the store, the schedule, the adaptive decisions, the analysis and every output
+//! are its alone) except that the runs of each generation of the schedule go through
+//! [`MpiExecutor`]: in the groups of [`RUNS_PER_BATCH`] consecutive runs that one process
+//! solves together ([`RunContext::solve_batch`]: the LATIN runs of a group share their
+//! triangular solves, so a run's result depends on its group), each group handed to whichever
+//! rank has a free solver thread (the other ranks first, rank 0 last), each run with the
+//! warm-start state it starts from. A rank sends back each run's store row, field file and
+//! error-estimate data; rank 0 commits them as they arrive.
 //!
-//! **Same results for every rank count.** A run is a pure function of its point and its
-//! warm-start state (the nearest converged run of the *earlier* batches), and the batches and
-//! their warm starts depend only on the design ([`crate::runner`]). Which rank solves a run, and
-//! when, changes nothing: `summary.json` is byte-identical to a single-process run's.
+//! **Same results for every rank count.** A run is a pure function of its group's points and
+//! warm-start states (interpolated from converged runs of *earlier* generations), and the
+//! generations and their warm starts depend only on the design ([`crate::runner`],
+//! `schedule.rs`: the one schedule, for one process and for any number of ranks), and so do
+//! the groups. Which rank solves a group, and when, changes nothing: `summary.json` is
+//! byte-identical to a single-process run's.
 //!
 //! **Warm starts travel with the work.** A job carries its start state (`12 x` interface points
 //! `f64`s); the alternative - every rank keeping every converged state - costs `N - 1` copies of
@@ -35,23 +40,25 @@
 //! Threads per rank: `--threads` if given, else the node's cores divided by the ranks on the
 //! node (from `MPI_Comm_split_type(SHARED)`).
 
+mod stats;
+mod transport;
 mod wire;
 
 use std::collections::VecDeque;
 use std::io::Write;
 use std::path::Path;
 use std::sync::{Arc, Mutex, mpsc};
-use std::time::Duration;
 
 use mpi::Threading;
-use mpi::point_to_point::MatchedReceiveVec;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
 use crate::StudyError;
-use crate::run::{BatchExecutor, RunContext, RunJob, RunOutcome, RunSetup};
+use crate::run::{BatchExecutor, RUNS_PER_BATCH, RunContext, RunJob, RunOutcome, RunSetup};
 use crate::store::run_file_stem;
 use crate::study::Study;
+pub use stats::Stats;
+use transport::{Incoming, Nap, send, try_receive};
 
 const TAG_READY: i32 = 11;
 const TAG_JOB: i32 = 12;
@@ -159,104 +166,43 @@ impl World {
     }
 }
 
-/// Sleeps between polls: 20 us, doubling to 1 ms while nothing happens.
-struct Nap(Duration);
-
-impl Nap {
-    fn new() -> Self {
-        Nap(Duration::from_micros(20))
-    }
-    fn reset(&mut self) {
-        self.0 = Duration::from_micros(20);
-    }
-    fn sleep(&mut self) {
-        std::thread::sleep(self.0);
-        self.0 = (self.0 * 2).min(Duration::from_millis(1));
-    }
-    /// After a round of a polling loop: no wait if it did something (`busy`), else a nap.
-    fn pace(&mut self, busy: bool) {
-        if busy {
-            self.reset();
-        } else {
-            self.sleep();
+/// Solves a group of runs together ([`RunContext::solve_batch`]), turning an error or a panic
+/// into a message per run.
+fn solve_caught(
+    ctx: &RunContext<'_>,
+    group: &[(u64, RunJob)],
+) -> Vec<(u64, Result<RunOutcome, String>)> {
+    let jobs: Vec<RunJob> = group.iter().map(|(_, j)| j.clone()).collect();
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| ctx.solve_batch(&jobs))) {
+        Ok(outs) => group
+            .iter()
+            .zip(outs)
+            .map(|((id, _), out)| (*id, out.map_err(|e| e.to_string())))
+            .collect(),
+        Err(p) => {
+            let why = format!(
+                "panicked: {}",
+                p.downcast_ref::<String>()
+                    .map(String::as_str)
+                    .or_else(|| p.downcast_ref::<&str>().copied())
+                    .unwrap_or("(no message)")
+            );
+            group
+                .iter()
+                .map(|(id, _)| (*id, Err(why.clone())))
+                .collect()
         }
     }
 }
 
-/// A received message: source rank, tag, bytes.
-type Incoming = (usize, i32, Vec<u8>);
+/// A group of runs for a solver thread: `(job id, job)` each.
+type Group = Vec<(u64, RunJob)>;
 
-/// Receives one message with `tag` (any tag if `None`) from `from` (any rank if `None`) if one
-/// has arrived.
-fn try_receive(
-    world: &SimpleCommunicator,
-    from: Option<usize>,
-    tag: Option<i32>,
-) -> Option<Incoming> {
-    let probe = match (from, tag) {
-        (Some(r), Some(t)) => world
-            .process_at_rank(r as i32)
-            .immediate_matched_probe_with_tag(t),
-        (Some(r), None) => world.process_at_rank(r as i32).immediate_matched_probe(),
-        (None, Some(t)) => world.any_process().immediate_matched_probe_with_tag(t),
-        (None, None) => world.any_process().immediate_matched_probe(),
-    }?;
-    let (bytes, status) = probe.matched_receive_vec::<u8>();
-    Some((status.source_rank() as usize, status.tag(), bytes))
-}
-
-/// Sends `bytes` to `dest` without blocking the exchange: while the send is under way, messages
-/// with `expect` from any rank are received and returned (so two ranks sending to each other at
-/// once cannot deadlock).
-fn send(
-    world: &SimpleCommunicator,
-    dest: usize,
-    tag: i32,
-    bytes: &[u8],
-    expect: Option<i32>,
-) -> Vec<Incoming> {
-    let mut got = Vec::new();
-    let mut nap = Nap::new();
-    mpi::request::scope(|scope| {
-        let mut req = world
-            .process_at_rank(dest as i32)
-            .immediate_send_with_tag(scope, bytes, tag);
-        loop {
-            match req.test() {
-                Ok(_) => break,
-                Err(r) => req = r,
-            }
-            match try_receive(world, None, expect) {
-                Some(m) => {
-                    got.push(m);
-                    nap.reset();
-                }
-                None => nap.sleep(),
-            }
-        }
-    });
-    got
-}
-
-/// Solves a run, turning an error or a panic into a message.
-fn solve_caught(ctx: &RunContext<'_>, job: &RunJob) -> Result<RunOutcome, String> {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| ctx.solve(job))) {
-        Ok(Ok(out)) => Ok(out),
-        Ok(Err(e)) => Err(e.to_string()),
-        Err(p) => Err(format!(
-            "panicked: {}",
-            p.downcast_ref::<String>()
-                .map(String::as_str)
-                .or_else(|| p.downcast_ref::<&str>().copied())
-                .unwrap_or("(no message)")
-        )),
-    }
-}
-
-/// A solver thread of a rank: takes jobs from `rx` until it closes, sends each outcome to `tx`.
+/// A solver thread of a rank: takes groups of jobs from `rx` until it closes, sends each run's
+/// outcome to `tx`.
 fn solver_thread(
     ctx: &RunContext<'_>,
-    rx: &Mutex<mpsc::Receiver<(u64, RunJob)>>,
+    rx: &Mutex<mpsc::Receiver<Group>>,
     tx: mpsc::Sender<(u64, Result<RunOutcome, String>)>,
 ) {
     loop {
@@ -264,54 +210,12 @@ fn solver_thread(
             Ok(r) => r.recv(),
             Err(_) => return,
         };
-        let Ok((id, job)) = next else { return };
-        if tx.send((id, solve_caught(ctx, &job))).is_err() {
-            return;
+        let Ok(group) = next else { return };
+        for out in solve_caught(ctx, &group) {
+            if tx.send(out).is_err() {
+                return;
+            }
         }
-    }
-}
-
-/// Traffic and work of an MPI job, as seen by rank 0.
-#[derive(Clone, Debug, Default)]
-pub struct Stats {
-    /// Ranks.
-    pub ranks: usize,
-    /// Solver threads of each rank.
-    pub threads: Vec<usize>,
-    /// Runs solved by each rank.
-    pub runs: Vec<usize>,
-    /// Bytes of the jobs sent to other ranks.
-    pub job_bytes: u64,
-    /// Of which warm-start states.
-    pub state_bytes: u64,
-    /// Bytes of the results received from other ranks.
-    pub result_bytes: u64,
-    /// Batches that went through the executor.
-    pub batches: usize,
-}
-
-impl Stats {
-    /// Runs solved on ranks other than 0.
-    pub fn remote_runs(&self) -> usize {
-        self.runs.iter().skip(1).sum()
-    }
-
-    /// One line for the log: ranks, runs per rank, bytes per remote run each way.
-    pub fn summary(&self) -> String {
-        let per = |b: u64| b as f64 / self.remote_runs().max(1) as f64;
-        format!(
-            "MPI: {} ranks x {:?} solver threads, runs per rank {:?}, {} batches; per remote run: \
-             {:.0} bytes sent (warm-start state {:.0}), {:.0} bytes back (a state kept on every \
-             rank instead would cost {:.0} bytes per run)",
-            self.ranks,
-            self.threads,
-            self.runs,
-            self.batches,
-            per(self.job_bytes),
-            per(self.state_bytes),
-            per(self.result_bytes),
-            per(self.state_bytes) * (self.ranks.saturating_sub(1)) as f64,
-        )
     }
 }
 
@@ -452,7 +356,14 @@ impl BatchExecutor for MpiExecutor {
             st.log = Some(w);
         }
         let size = inner.size;
-        let mut queue: VecDeque<usize> = (0..jobs.len()).collect();
+        // The runs go out in the groups the local executor solves together (consecutive runs,
+        // `RUNS_PER_BATCH` each): a group is one job of a solver thread, wherever it runs.
+        let ngroups = jobs.len().div_ceil(RUNS_PER_BATCH);
+        let group = |g: usize| g * RUNS_PER_BATCH..((g + 1) * RUNS_PER_BATCH).min(jobs.len());
+        let mut queue: VecDeque<usize> = (0..ngroups).collect();
+        // Runs of each group not back yet; groups in flight per rank.
+        let mut left: Vec<usize> = (0..ngroups).map(|g| group(g).len()).collect();
+        let mut groups_out = vec![0usize; size];
         // In flight per rank: (job id, index in `jobs`).
         let mut inflight: Vec<Vec<(u64, usize)>> = vec![Vec::new(); size];
         let mut first_err: Option<StudyError> = None;
@@ -464,7 +375,7 @@ impl BatchExecutor for MpiExecutor {
                 describe(study, &jobs[i].theta)
             ))
         };
-        let (job_tx, job_rx) = mpsc::channel::<(u64, RunJob)>();
+        let (job_tx, job_rx) = mpsc::channel::<Group>();
         let job_rx = Mutex::new(job_rx);
         std::thread::scope(|s| -> Result<(), StudyError> {
             let (res_tx, res_rx) = mpsc::channel::<(u64, Result<RunOutcome, String>)>();
@@ -477,6 +388,8 @@ impl BatchExecutor for MpiExecutor {
                           id: u64,
                           out: Result<RunOutcome, String>,
                           inflight: &mut Vec<Vec<(u64, usize)>>,
+                          left: &mut Vec<usize>,
+                          groups_out: &mut Vec<usize>,
                           first_err: &mut Option<StudyError>,
                           stats: &mut Stats|
              -> Result<(), StudyError> {
@@ -487,6 +400,11 @@ impl BatchExecutor for MpiExecutor {
                         StudyError::Mpi(format!("rank {r} returned a run it was not given"))
                     })?;
                 let (_, i) = inflight[r].swap_remove(k);
+                let g = i / RUNS_PER_BATCH;
+                left[g] -= 1;
+                if left[g] == 0 {
+                    groups_out[r] -= 1;
+                }
                 match out {
                     Ok(o) => {
                         if o.rec.params != jobs[i].theta {
@@ -509,30 +427,37 @@ impl BatchExecutor for MpiExecutor {
                 let mut arrived: Vec<Incoming> = Vec::new();
                 if first_err.is_none() {
                     for r in (1..size).chain([0]) {
-                        while inflight[r].len() < st.capacity[r] {
-                            let Some(i) = queue.pop_front() else { break };
-                            let id = st.next_id;
-                            st.next_id += 1;
-                            if let Some(log) = st.log.as_mut() {
-                                let _ = writeln!(
-                                    log,
-                                    "{} {r} <- {} ({})",
-                                    st.batches,
-                                    run_file_stem(&jobs[i].theta),
-                                    describe(study, &jobs[i].theta)
-                                );
+                        while groups_out[r] < st.capacity[r] {
+                            let Some(g) = queue.pop_front() else { break };
+                            let mut out: Group = Vec::with_capacity(group(g).len());
+                            for i in group(g) {
+                                let id = st.next_id;
+                                st.next_id += 1;
+                                if let Some(log) = st.log.as_mut() {
+                                    let _ = writeln!(
+                                        log,
+                                        "{} {r} <- {} ({})",
+                                        st.batches,
+                                        run_file_stem(&jobs[i].theta),
+                                        describe(study, &jobs[i].theta)
+                                    );
+                                }
+                                out.push((id, jobs[i].clone()));
+                                inflight[r].push((id, i));
                             }
+                            groups_out[r] += 1;
                             if r == 0 {
-                                job_tx.send((id, jobs[i].clone())).map_err(|_| {
+                                job_tx.send(out).map_err(|_| {
                                     StudyError::Mpi("rank 0's solver threads stopped".into())
                                 })?;
                             } else {
-                                let (bytes, state) = wire::encode_job(id, &jobs[i]);
+                                let refs: Vec<(u64, &RunJob)> =
+                                    out.iter().map(|(id, j)| (*id, j)).collect();
+                                let (bytes, state) = wire::encode_group(&refs);
                                 st.stats.job_bytes += bytes.len() as u64;
                                 st.stats.state_bytes += state as u64;
                                 arrived.extend(send(world, r, TAG_JOB, &bytes, Some(TAG_RESULT)));
                             }
-                            inflight[r].push((id, i));
                         }
                     }
                     if let Some(log) = st.log.as_mut() {
@@ -549,11 +474,29 @@ impl BatchExecutor for MpiExecutor {
                     let (id, out) = wire::decode_result(&bytes).map_err(|e| {
                         StudyError::Mpi(format!("a result from rank {r} does not decode: {}", e.0))
                     })?;
-                    handle(r, id, out, &mut inflight, &mut first_err, &mut st.stats)?;
+                    handle(
+                        r,
+                        id,
+                        out,
+                        &mut inflight,
+                        &mut left,
+                        &mut groups_out,
+                        &mut first_err,
+                        &mut st.stats,
+                    )?;
                 }
                 while let Ok((id, out)) = res_rx.try_recv() {
                     busy = true;
-                    handle(0, id, out, &mut inflight, &mut first_err, &mut st.stats)?;
+                    handle(
+                        0,
+                        id,
+                        out,
+                        &mut inflight,
+                        &mut left,
+                        &mut groups_out,
+                        &mut first_err,
+                        &mut st.stats,
+                    )?;
                 }
                 if inflight.iter().all(Vec::is_empty) && (queue.is_empty() || first_err.is_some()) {
                     break Ok(());
@@ -621,7 +564,7 @@ impl Worker {
             dir,
         };
         let sizes = s.solver.interface_sizes();
-        let (job_tx, job_rx) = mpsc::channel::<(u64, RunJob)>();
+        let (job_tx, job_rx) = mpsc::channel::<Group>();
         let job_rx = Mutex::new(job_rx);
         std::thread::scope(|sc| -> Result<(), StudyError> {
             let (res_tx, res_rx) = mpsc::channel::<(u64, Result<RunOutcome, String>)>();
@@ -644,21 +587,31 @@ impl Worker {
                     match m.1 {
                         TAG_STOP => stop = true,
                         TAG_JOB => {
-                            let job = match wire::decode_job(&m.2, &sizes) {
-                                Ok(j) => j,
-                                Err(e) => {
-                                    // Answer for the id if it can be read, so rank 0 names the run.
-                                    let id = wire::Reader::new(&m.2).u64().unwrap_or(u64::MAX);
-                                    let bytes = wire::encode_result(
-                                        id,
-                                        &Err(format!("its job does not decode: {}", e.0)),
-                                    );
-                                    stash.extend(send(world, 0, TAG_RESULT, &bytes, None));
-                                    continue;
-                                }
+                            // A group of runs solved together; a run that does not decode is
+                            // answered at once (with its id if it can be read, so rank 0 names
+                            // the run), the others are solved.
+                            let entries = match wire::decode_group(&m.2, &sizes) {
+                                Ok(v) => v,
+                                Err(e) => vec![Err((None, e))],
                             };
-                            in_flight += 1;
-                            if job_tx.send(job).is_err() {
+                            let mut group: Group = Vec::with_capacity(entries.len());
+                            for entry in entries {
+                                match entry {
+                                    Ok(job) => group.push(job),
+                                    Err((id, e)) => {
+                                        let bytes = wire::encode_result(
+                                            id.unwrap_or(u64::MAX),
+                                            &Err(format!("its job does not decode: {}", e.0)),
+                                        );
+                                        stash.extend(send(world, 0, TAG_RESULT, &bytes, None));
+                                    }
+                                }
+                            }
+                            if group.is_empty() {
+                                continue;
+                            }
+                            in_flight += group.len();
+                            if job_tx.send(group).is_err() {
                                 break 'serve Err(StudyError::Mpi(format!(
                                     "rank {}: its solver threads stopped",
                                     self.rank

@@ -41,6 +41,11 @@ impl Writer {
         self.buf.extend_from_slice(s.as_bytes());
         self
     }
+    fn bytes(&mut self, b: &[u8]) -> &mut Self {
+        self.u64(b.len() as u64);
+        self.buf.extend_from_slice(b);
+        self
+    }
 }
 
 /// Reads values back in the order they were written.
@@ -89,6 +94,10 @@ impl<'a> Reader<'a> {
         Ok(b.chunks_exact(8)
             .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
             .collect())
+    }
+    fn bytes(&mut self) -> Result<&'a [u8], WireError> {
+        let n = self.len(1)?;
+        self.take(n)
     }
     pub(crate) fn str(&mut self) -> Result<String, WireError> {
         let n = self.len(1)?;
@@ -142,6 +151,38 @@ pub(crate) fn decode_job(buf: &[u8], sizes: &[usize]) -> Result<(u64, RunJob), W
     };
     r.end()?;
     Ok((id, RunJob { theta, start }))
+}
+
+/// A group of jobs solved together (`RunContext::solve_batch`): their number, then each job
+/// as [`encode_job`] writes it. Returns the bytes and how many of them are states.
+pub(crate) fn encode_group(jobs: &[(u64, &RunJob)]) -> (Vec<u8>, usize) {
+    let mut w = Writer::default();
+    w.u64(jobs.len() as u64);
+    let mut state = 0;
+    for (id, job) in jobs {
+        let (bytes, s) = encode_job(*id, job);
+        w.bytes(&bytes);
+        state += s;
+    }
+    (w.buf, state)
+}
+
+/// Decodes a group of jobs: each job, or its id (when it can be read) and why it does not
+/// decode.
+#[allow(clippy::type_complexity)]
+pub(crate) fn decode_group(
+    buf: &[u8],
+    sizes: &[usize],
+) -> Result<Vec<Result<(u64, RunJob), (Option<u64>, WireError)>>, WireError> {
+    let mut r = Reader::new(buf);
+    let n = r.len(8)?;
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n {
+        let b = r.bytes()?;
+        out.push(decode_job(b, sizes).map_err(|e| (Reader::new(b).u64().ok(), e)));
+    }
+    r.end()?;
+    Ok(out)
 }
 
 /// A result: the job id, then either the outcome or the error message of the failed run.
@@ -259,5 +300,25 @@ mod tests {
         assert_eq!(back.theta, job.theta);
         assert_eq!(back.start.as_deref(), Some(&state));
         assert!(decode_job(&b, &[2]).is_err());
+        let cold = RunJob {
+            theta: vec![3.0],
+            start: None,
+        };
+        let (g, gs) = encode_group(&[(7, &job), (8, &cold)]);
+        assert_eq!(gs, state_bytes + 8);
+        let back = decode_group(&g, &sizes).unwrap();
+        assert_eq!(back.len(), 2);
+        let (i7, j7) = back[0].as_ref().unwrap();
+        assert_eq!((*i7, j7.start.as_deref()), (7, Some(&state)));
+        let (i8, j8) = back[1].as_ref().unwrap();
+        assert_eq!(
+            (*i8, j8.theta.clone(), j8.start.is_none()),
+            (8, vec![3.0], true)
+        );
+        let bad = decode_group(&g, &[2]).unwrap();
+        assert!(matches!(bad[0], Err((Some(7), _))) && bad[1].is_ok());
+        for cut in [0, 7, 20, g.len() - 1] {
+            assert!(decode_group(&g[..cut], &sizes).is_err());
+        }
     }
 }

@@ -1,0 +1,114 @@
+//! What a batch of LATIN runs would gain per linear stage (issue 20, item 1): the cost per
+//! right-hand side of one triangular solve `L L^T x = b` with `k` columns at once (one pass over
+//! the factor for all of them) against `k` single-column solves, with the same factor, for
+//! substructure-sized plane-strain Q8 models (a quarter of the 2D turbine, ~5 600 dofs, and
+//! the whole of it, ~22 000 dofs) and a 3D Hex8 box of ~59 000 dofs.
+//!
+//! Run (release; prints a Markdown table):
+//!
+//! ```text
+//! cargo bench -p alea-fem --bench multi_rhs
+//! ```
+//! One thread; each timing is the fastest of several repetitions (the machine may be shared);
+//! the ratio column (per-column time of the `k`-column solve over the single solve) is the
+//! robust figure. Every solve's relative residual is checked.
+
+use std::time::Instant;
+
+use alea_fem::{
+    Analysis, Cholesky, Constraints, DofMap, Loads, Material, Model, Ordering, SolveScratch,
+    assemble_stiffness,
+};
+use alea_mesh::{CellType, generate};
+
+/// Fastest of `reps` runs of `f`, in seconds.
+fn best(reps: usize, mut f: impl FnMut()) -> f64 {
+    let mut t_best = f64::INFINITY;
+    for _ in 0..reps {
+        let t0 = Instant::now();
+        f();
+        t_best = t_best.min(t0.elapsed().as_secs_f64());
+    }
+    t_best
+}
+
+fn case(name: &str, model: Model, reps: usize) {
+    let mut cons = Constraints::new();
+    cons.clamp(&model.mesh, "xmin").unwrap();
+    let mut loads = Loads::new(&model);
+    loads
+        .traction(&model, "xmax", |_, _| [100.0, 10.0, 0.0])
+        .unwrap();
+    let dofs = DofMap::for_mesh(&model.mesh, &cons).unwrap();
+    let asm = assemble_stiffness(&model, &dofs).unwrap();
+    let blocks = dofs.node_of_dof();
+    let mut chol = Cholesky::new(&asm.k, Ordering::Metis, Some(&blocks)).unwrap();
+    chol.factorize(&asm.k).unwrap();
+    let b = dofs.reduce(&loads.f);
+    let n = b.len();
+    // Columns: the load scaled differently, so no two are equal.
+    let columns = |k: usize| -> Vec<f64> {
+        (0..k)
+            .flat_map(|j| b.iter().map(move |v| v * (1.0 + 0.1 * j as f64)))
+            .collect()
+    };
+    let mut scratch: SolveScratch = chol.solve_scratch(16);
+    let single = {
+        let x0 = columns(1);
+        let mut x = x0.clone();
+        best(reps, || {
+            x.copy_from_slice(&x0);
+            chol.solve_with(&mut x, &mut scratch);
+        })
+    };
+    for k in [1usize, 2, 4, 8, 16] {
+        let x0 = columns(k);
+        let mut x = x0.clone();
+        let t = best(reps, || {
+            x.copy_from_slice(&x0);
+            chol.solve_with(&mut x, &mut scratch);
+        });
+        let mut worst: f64 = 0.0;
+        for j in 0..k {
+            let xj = &x[j * n..(j + 1) * n];
+            let mut ax = vec![0.0; n];
+            asm.k.mul_vec(xj, &mut ax);
+            let bj = &x0[j * n..(j + 1) * n];
+            let num: f64 = ax.iter().zip(bj).map(|(a, c)| (a - c).powi(2)).sum::<f64>();
+            let den: f64 = bj.iter().map(|c| c * c).sum::<f64>();
+            worst = worst.max((num / den).sqrt());
+        }
+        assert!(worst < 1e-8, "{name}: residual {worst:e}");
+        println!(
+            "| {name} | {n} | {k} | {:.3} | {:.3} | {:.2} | {worst:.0e} |",
+            t * 1e3,
+            t * 1e3 / k as f64,
+            t / k as f64 / single
+        );
+    }
+}
+
+fn main() {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        println!(
+            "| model | dofs | columns k | solve ms | ms per column | per column / single solve | worst residual |"
+        );
+        println!("|---|---|---|---|---|---|---|");
+        let q8 = |nx: usize, ny: usize| {
+            let mesh = generate::rectangle(2.0, 1.0, nx, ny, CellType::Quad8).unwrap();
+            let mut m = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
+            m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
+            m
+        };
+        case("2D Q8 (turbine quarter)", q8(42, 21), 30);
+        case("2D Q8 (turbine whole)", q8(84, 42), 20);
+        let mesh = generate::box_mesh([1.0; 3], [26; 3], CellType::Hex8).unwrap();
+        let mut m = Model::new(mesh, Analysis::Solid).unwrap();
+        m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
+        case("3D Hex8", m, 3);
+    });
+}
