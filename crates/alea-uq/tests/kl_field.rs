@@ -437,3 +437,26 @@ fn triangles_capture_the_trace_and_modes_are_orthonormal() {
         assert!((got - want).abs() < 5e-3 * want, "{got} vs {want}");
     }
 }
+
+/// The nodal-interpolation formulation (`C = M K M`, OpenTURNS's `KarhunenLoeveP1Algorithm`)
+/// converges at second order only, and stays below the quadrature one's accuracy.
+#[test]
+fn nodal_interpolation_converges_at_second_order() {
+    let (a, len) = (1.0, 1.0);
+    let exact = exact_exponential_kl(a, len, 20);
+    let cov = Covariance::new(KernelShape::Exponential, 1.0, len).unwrap();
+    let err = |cells: usize, integration: KernelIntegration| {
+        let mesh = FieldMesh::interval(-a, a, cells).unwrap();
+        let kl =
+            KlExpansion::galerkin_with(&mesh, &cov, Truncation::Modes(20), integration).unwrap();
+        max_rel_error(&kl, &exact)
+    };
+    let (e1, e2) = (
+        err(100, KernelIntegration::NodalInterpolation),
+        err(200, KernelIntegration::NodalInterpolation),
+    );
+    let rate = (e1 / e2).log2();
+    println!("nodal interpolation: {e1:.3e} (100 cells), {e2:.3e} (200 cells), rate {rate:.3}");
+    assert!((1.8..2.3).contains(&rate), "rate {rate}");
+    assert!(err(100, KernelIntegration::Quadrature) < 0.05 * e1);
+}

@@ -140,9 +140,96 @@ fn segment_self_block(cov: &Covariance, mesh: &FieldMesh, c: usize, n: usize) ->
     blk
 }
 
+/// How the double integral `C_ij` is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KernelIntegration {
+    /// Quadrature per cell pair with the kink-aware rule on diagonal pairs (the default;
+    /// eigenvalue error `O(h^4)`).
+    Quadrature,
+    /// The kernel replaced by its P1 interpolant `k_h(x, y) = sum_ij k(x_i, x_j) phi_i(x)
+    /// phi_j(y)`, so `C = M K M` with `K_ij = k(x_i, x_j)`: the formulation of OpenTURNS's
+    /// `KarhunenLoeveP1Algorithm` (eigenvalue error `O(h^2)`), kept for comparisons.
+    NodalInterpolation,
+}
+
+/// `C` by quadrature over cell pairs (dense `n x n`).
+fn assemble_by_quadrature(mesh: &FieldMesh, cov: &Covariance) -> Mat<f64> {
+    let n = mesh.num_nodes();
+    let nc = mesh.num_cells();
+    let (rule, self_rule, segments) = match mesh.cells() {
+        FieldCells::Segments(_) => (CellRule::segment(4), None, true),
+        FieldCells::Triangles(_) => (
+            CellRule::triangle(),
+            Some(CellRule::triangle_subdivided()),
+            false,
+        ),
+    };
+    let nv = if segments { 2 } else { 3 };
+    let points: Vec<CellPoints> = (0..nc)
+        .map(|c| physical(mesh, c, &rule.bary, &rule.weights))
+        .collect();
+    // Blocks (c, d) for d >= c, computed in parallel, assembled in a fixed order.
+    let blocks: Vec<Vec<[[f64; 3]; 3]>> = (0..nc)
+        .into_par_iter()
+        .map(|c| {
+            (c..nc)
+                .map(|d| {
+                    if d != c {
+                        pair_block(cov, &points[c], &points[d], nv)
+                    } else if segments {
+                        segment_self_block(cov, mesh, c, 5)
+                    } else {
+                        let r = self_rule
+                            .as_ref()
+                            .expect("triangle meshes have a self rule");
+                        let p = physical(mesh, c, &r.bary, &r.weights);
+                        pair_block(cov, &p, &p, nv)
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let mut cmat = Mat::<f64>::zeros(n, n);
+    for (c, row) in blocks.iter().enumerate() {
+        let ci = mesh.cell(c);
+        for (off, blk) in row.iter().enumerate() {
+            let d = c + off;
+            let di = mesh.cell(d);
+            for (a, &i) in ci.iter().enumerate() {
+                for (b, &j) in di.iter().enumerate() {
+                    cmat[(i, j)] += blk[a][b];
+                    if d != c {
+                        cmat[(j, i)] += blk[a][b];
+                    }
+                }
+            }
+        }
+    }
+    cmat
+}
+
+/// `C = M K M` with `K_ij = k(x_i, x_j)`.
+fn assemble_by_nodal_interpolation(mesh: &FieldMesh, cov: &Covariance, mass: &[f64]) -> Mat<f64> {
+    let n = mesh.num_nodes();
+    let nodes = mesh.nodes();
+    let kmat = Mat::<f64>::from_fn(n, n, |i, j| cov.eval(&nodes[i], &nodes[j]));
+    let mmat = Mat::<f64>::from_fn(n, n, |i, j| mass[i * n + j]);
+    &mmat * &kmat * &mmat
+}
+
 impl KlExpansion {
-    /// Galerkin KL of `cov` on `mesh`, truncated by `truncation`.
+    /// Galerkin KL of `cov` on `mesh`, truncated by `truncation` (`C` by quadrature).
     pub fn galerkin(mesh: &FieldMesh, cov: &Covariance, truncation: Truncation) -> Result<Self> {
+        Self::galerkin_with(mesh, cov, truncation, KernelIntegration::Quadrature)
+    }
+
+    /// Galerkin KL with a chosen way of computing `C`.
+    pub fn galerkin_with(
+        mesh: &FieldMesh,
+        cov: &Covariance,
+        truncation: Truncation,
+        integration: KernelIntegration,
+    ) -> Result<Self> {
         match truncation {
             Truncation::Modes(m) if m == 0 || m > mesh.num_nodes() => {
                 return Err(invalid(
@@ -158,58 +245,13 @@ impl KlExpansion {
             _ => {}
         }
         let n = mesh.num_nodes();
-        let nc = mesh.num_cells();
-        let (rule, self_rule, segments) = match mesh.cells() {
-            FieldCells::Segments(_) => (CellRule::segment(4), None, true),
-            FieldCells::Triangles(_) => (
-                CellRule::triangle(),
-                Some(CellRule::triangle_subdivided()),
-                false,
-            ),
-        };
-        let nv = if segments { 2 } else { 3 };
-        let points: Vec<CellPoints> = (0..nc)
-            .map(|c| physical(mesh, c, &rule.bary, &rule.weights))
-            .collect();
-        // Blocks (c, d) for d >= c, computed in parallel, assembled in a fixed order.
-        let blocks: Vec<Vec<[[f64; 3]; 3]>> = (0..nc)
-            .into_par_iter()
-            .map(|c| {
-                (c..nc)
-                    .map(|d| {
-                        if d != c {
-                            pair_block(cov, &points[c], &points[d], nv)
-                        } else if segments {
-                            segment_self_block(cov, mesh, c, 5)
-                        } else {
-                            let r = self_rule
-                                .as_ref()
-                                .expect("triangle meshes have a self rule");
-                            let p = physical(mesh, c, &r.bary, &r.weights);
-                            pair_block(cov, &p, &p, nv)
-                        }
-                    })
-                    .collect()
-            })
-            .collect();
-        let mut cmat = Mat::<f64>::zeros(n, n);
-        for (c, row) in blocks.iter().enumerate() {
-            let ci = mesh.cell(c);
-            for (off, blk) in row.iter().enumerate() {
-                let d = c + off;
-                let di = mesh.cell(d);
-                for (a, &i) in ci.iter().enumerate() {
-                    for (b, &j) in di.iter().enumerate() {
-                        cmat[(i, j)] += blk[a][b];
-                        if d != c {
-                            cmat[(j, i)] += blk[a][b];
-                        }
-                    }
-                }
-            }
-        }
-        drop(blocks);
         let mass = mesh.mass_matrix();
+        let mut cmat = match integration {
+            KernelIntegration::Quadrature => assemble_by_quadrature(mesh, cov),
+            KernelIntegration::NodalInterpolation => {
+                assemble_by_nodal_interpolation(mesh, cov, &mass)
+            }
+        };
         let mmat = Mat::<f64>::from_fn(n, n, |i, j| mass[i * n + j]);
         let llt = mmat.llt(Side::Lower).map_err(|_| UqError::Invalid {
             what: "KL expansion",

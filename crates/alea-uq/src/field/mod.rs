@@ -38,6 +38,6 @@ pub mod mesh;
 pub mod transform;
 
 pub use covariance::{Covariance, KernelShape};
-pub use kl::{KlExpansion, Truncation};
+pub use kl::{KernelIntegration, KlExpansion, Truncation};
 pub use mesh::{FieldCells, FieldMesh};
 pub use transform::{FieldTransform, RandomField, lognormal_gaussian_parameters};
