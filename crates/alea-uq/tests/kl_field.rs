@@ -460,3 +460,20 @@ fn nodal_interpolation_converges_at_second_order() {
     assert!((1.8..2.3).contains(&rate), "rate {rate}");
     assert!(err(100, KernelIntegration::Quadrature) < 0.05 * e1);
 }
+
+/// Same mesh and kernel: bit-identical eigenpairs whatever the number of threads.
+#[test]
+fn expansion_does_not_depend_on_the_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| kl_on(1.0, 0.7, 300, 15))
+    };
+    let (one, two) = (run(1), run(2));
+    assert_eq!(one.eigenvalues(), two.eigenvalues());
+    for k in 0..15 {
+        assert_eq!(one.mode(k), two.mode(k));
+    }
+}

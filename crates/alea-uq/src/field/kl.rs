@@ -20,6 +20,10 @@
 //! (the square of the `h^2` L2 error of the modes); tests/kl_field.rs measures both rates
 //! against the closed-form KL of the exponential kernel.
 //!
+//! Determinism: the cell-pair blocks are computed in parallel but assembled in a fixed order,
+//! and the dense Cholesky, products and eigensolver run sequentially, so the expansion is
+//! bit-identical whatever the number of threads.
+//!
 //! Truncation keeps the `m` largest eigenvalues, `m` given or the smallest count with
 //! `sum_{k<m} lambda_k >= f int_D sigma^2(x) dx` for a stated variance fraction `f` (the total
 //! `int_D k(x, x) dx = sigma^2 |D|` is the trace of the covariance operator).
@@ -31,10 +35,15 @@
 use super::covariance::Covariance;
 use super::mesh::{CellRule, FieldCells, FieldMesh, gauss_legendre01};
 use crate::error::{Result, UqError, check_len, invalid};
+use faer::diag::Diag;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::evd::{ComputeEigenvectors, self_adjoint_evd, self_adjoint_evd_scratch};
+use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::{Mat, Par, Side};
+use faer::{Accum, Mat, Par};
 use rayon::prelude::*;
 
 /// Where to cut the KL series.
@@ -214,7 +223,25 @@ fn assemble_by_nodal_interpolation(mesh: &FieldMesh, cov: &Covariance, mass: &[f
     let nodes = mesh.nodes();
     let kmat = Mat::<f64>::from_fn(n, n, |i, j| cov.eval(&nodes[i], &nodes[j]));
     let mmat = Mat::<f64>::from_fn(n, n, |i, j| mass[i * n + j]);
-    &mmat * &kmat * &mmat
+    let mut km = Mat::<f64>::zeros(n, n);
+    matmul(
+        km.as_mut(),
+        Accum::Replace,
+        kmat.as_ref(),
+        mmat.as_ref(),
+        1.0,
+        Par::Seq,
+    );
+    let mut c = Mat::<f64>::zeros(n, n);
+    matmul(
+        c.as_mut(),
+        Accum::Replace,
+        mmat.as_ref(),
+        km.as_ref(),
+        1.0,
+        Par::Seq,
+    );
+    c
 }
 
 impl KlExpansion {
@@ -252,12 +279,29 @@ impl KlExpansion {
                 assemble_by_nodal_interpolation(mesh, cov, &mass)
             }
         };
-        let mmat = Mat::<f64>::from_fn(n, n, |i, j| mass[i * n + j]);
-        let llt = mmat.llt(Side::Lower).map_err(|_| UqError::Invalid {
+        // Sequential dense kernels throughout: the result does not depend on the thread count.
+        let mut lmat = Mat::<f64>::from_fn(n, n, |i, j| if j <= i { mass[i * n + j] } else { 0.0 });
+        cholesky_in_place(
+            lmat.as_mut(),
+            Default::default(),
+            Par::Seq,
+            MemStack::new(&mut MemBuffer::new(cholesky_in_place_scratch::<f64>(
+                n,
+                Par::Seq,
+                Default::default(),
+            ))),
+            Default::default(),
+        )
+        .map_err(|_| UqError::Invalid {
             what: "KL expansion",
             message: "the P1 mass matrix is not positive definite".into(),
         })?;
-        let l = llt.L();
+        for i in 0..n {
+            for j in i + 1..n {
+                lmat[(i, j)] = 0.0;
+            }
+        }
+        let l = lmat.as_ref();
         // A = L^-1 C L^-T: solve L X = C, then L A = X^T (C symmetric).
         solve_lower_triangular_in_place(l, cmat.as_mut(), Par::Seq);
         let mut a = cmat.transpose().to_owned();
@@ -269,13 +313,27 @@ impl KlExpansion {
                 a[(j, i)] = v;
             }
         }
-        let evd = a
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|_| UqError::Invalid {
-                what: "KL expansion",
-                message: "the dense eigensolver did not converge".into(),
-            })?;
-        let (s, u) = (evd.S(), evd.U());
+        let mut u = Mat::<f64>::zeros(n, n);
+        let mut sdiag = Diag::<f64>::zeros(n);
+        let compute = ComputeEigenvectors::Yes;
+        self_adjoint_evd(
+            a.as_ref(),
+            sdiag.as_mut(),
+            Some(u.as_mut()),
+            Par::Seq,
+            MemStack::new(&mut MemBuffer::new(self_adjoint_evd_scratch::<f64>(
+                n,
+                compute,
+                Par::Seq,
+                Default::default(),
+            ))),
+            Default::default(),
+        )
+        .map_err(|_| UqError::Invalid {
+            what: "KL expansion",
+            message: "the dense eigensolver did not converge".into(),
+        })?;
+        let s = sdiag.column_vector();
         // Descending order; only positive eigenvalues are kept.
         let order: Vec<usize> = (0..n).rev().filter(|&k| s[k] > 0.0).collect();
         let discrete_variance: f64 = order.iter().map(|&k| s[k]).sum();
