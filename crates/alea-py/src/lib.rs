@@ -12,6 +12,8 @@
 //! * [`designs`]: `monte_carlo`, `lhs`, `sobol`, `grid`, `pc_collocation`, `quadrature`;
 //! * [`surrogates`]: `PolynomialChaos` (regression, projection, LARS; statistics, Sobol'
 //!   indices, LOO errors, save/load) and `PiecewiseLinear`;
+//! * [`fields`]: `KarhunenLoeve` (Galerkin KL of a random field on a P1 mesh, realisations with
+//!   Gaussian, lognormal or bounded transforms);
 //! * [`study`]: running a study file, reading a study directory's store and rebuilding its
 //!   outputs (summary, samples, fields, HTML report), through `alea-report` as the CLI does.
 
@@ -19,6 +21,7 @@ use pyo3::prelude::*;
 
 mod convert;
 mod designs;
+mod fields;
 mod laws;
 mod study;
 mod surrogates;
@@ -49,6 +52,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(designs::quadrature, m)?)?;
     m.add_class::<surrogates::PolynomialChaos>()?;
     m.add_class::<surrogates::PiecewiseLinear>()?;
+    m.add_class::<fields::KarhunenLoeve>()?;
     m.add_function(wrap_pyfunction!(study::run_study_file, m)?)?;
     m.add_function(wrap_pyfunction!(study::read_store, m)?)?;
     m.add_function(wrap_pyfunction!(study::rebuild_outputs, m)?)?;

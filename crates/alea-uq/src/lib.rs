@@ -18,7 +18,9 @@
 //!   probabilities and Sobol' indices;
 //! * [`reliability::LimitState`]: rare events on a model or surrogate (FORM, SORM, importance
 //!   and subset sampling, goal-oriented refinement); [`validation`]: Q2, K-fold; [`fit`],
-//!   [`copula`], [`io`]: laws from data, more copulas, CSV.
+//!   [`copula`], [`io`]: laws from data, more copulas, CSV;
+//! * [`field`]: random fields on a P1 mesh (covariance models, Galerkin Karhunen-Loeve
+//!   expansion truncated at a variance fraction, lognormal and bounded transforms).
 //!
 //! ```
 //! use alea_uq::{basis::PcBasis, design::latin_hypercube, joint::Independent, law::*};
@@ -63,6 +65,7 @@ pub mod copula;
 pub mod design;
 pub mod eigen;
 pub mod error;
+pub mod field;
 pub mod fit;
 pub mod io;
 pub mod joint;

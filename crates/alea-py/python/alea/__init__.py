@@ -22,6 +22,11 @@ Surrogates
     ``predict(points)``, ``weights(points)``, ``mean``, ``variance``, Sobol' indices, corrected
     leave-one-out error.
 
+Random fields
+    ``KarhunenLoeve(nodes, cells, kernel, variance, length, variance_fraction=... | modes=...)``:
+    Galerkin Karhunen-Loeve expansion on a P1 mesh (segments or triangles); ``eigenvalues``,
+    ``modes``, ``realise(xi, mean, transform="gaussian" | "lognormal" | "bounded")``.
+
 Wherever a law is expected, a ``Joint``, a single ``Law`` or a list of ``Law`` objects
 (independent variables) may be given. Random routines take a ``seed`` and give the same result
 whatever the number of threads.
@@ -32,6 +37,7 @@ from ._core import (
     Empirical,
     Gamma,
     Joint,
+    KarhunenLoeve,
     Kde,
     Law,
     Lognormal,
@@ -57,6 +63,7 @@ __all__ = [
     "Empirical",
     "Gamma",
     "Joint",
+    "KarhunenLoeve",
     "Kde",
     "Law",
     "Lognormal",
