@@ -88,37 +88,10 @@ impl Anderson {
         for i in 0..m {
             a[i * m + i] += reg;
         }
-        for c in 0..m {
-            let p = (c..m)
-                .max_by(|&r, &s| a[r * m + c].abs().total_cmp(&a[s * m + c].abs()))
-                .unwrap_or(c);
-            if a[p * m + c].abs() == 0.0 {
-                self.reset();
-                return next;
-            }
-            if p != c {
-                for k in 0..m {
-                    a.swap(p * m + k, c * m + k);
-                }
-                b.swap(p, c);
-            }
-            for r in c + 1..m {
-                let l = a[r * m + c] / a[c * m + c];
-                for k in c..m {
-                    a[r * m + k] -= l * a[c * m + k];
-                }
-                b[r] -= l * b[c];
-            }
-        }
-        let mut gamma = vec![0.0; m];
-        for r in (0..m).rev() {
-            let s: f64 = (r + 1..m).map(|k| a[r * m + k] * gamma[k]).sum();
-            gamma[r] = (b[r] - s) / a[r * m + r];
-        }
-        if gamma.iter().any(|v| !v.is_finite()) {
+        let Some(gamma) = crate::dense::solve_pivoted(&mut a, &mut b, m, 0.0) else {
             self.reset();
             return next;
-        }
+        };
         for (j, gj) in gamma.iter().enumerate() {
             for (n, d) in next.iter_mut().zip(&self.df[j]) {
                 *n -= gj * d;

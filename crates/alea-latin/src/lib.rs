@@ -22,6 +22,7 @@ mod anderson;
 mod assembly;
 mod coarse;
 pub mod contact;
+pub mod dense;
 mod equilibrium;
 mod error;
 pub mod interface;

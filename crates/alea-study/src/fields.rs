@@ -407,12 +407,7 @@ mod tests {
     use super::*;
     use alea_uq::surrogate::{LinearSurrogate, StochasticMesh};
 
-    fn lcg(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng::lcg;
 
     /// Draws in the box `[0, 1] x [0, 2]`.
     fn draws(n: usize) -> Vec<f64> {

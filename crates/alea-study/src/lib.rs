@@ -35,6 +35,8 @@ mod step_spec;
 pub mod steps;
 pub mod store;
 pub mod study;
+#[cfg(test)]
+mod test_rng;
 
 pub use build::{BuiltModel, InterfaceSite, Parametric, build_mesh, build_model};
 pub use error::StudyError;

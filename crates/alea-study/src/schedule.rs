@@ -173,37 +173,9 @@ fn mls_weights(x: &[f64], pts: &[&[f64]], d2: &[f64]) -> Option<Vec<f64>> {
     let scale = mat.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let mut rhs = vec![0.0; m];
     rhs[0] = 1.0;
-    // Gaussian elimination with partial pivoting; a pivot below 1e-10 of the largest entry
-    // means the parents do not determine an affine function.
-    for col in 0..m {
-        let piv = (col..m).max_by(|&a, &b| {
-            mat[a * m + col]
-                .abs()
-                .total_cmp(&mat[b * m + col].abs())
-                .then(b.cmp(&a))
-        })?;
-        if mat[piv * m + col].abs() <= 1e-10 * scale {
-            return None;
-        }
-        if piv != col {
-            for c in 0..m {
-                mat.swap(piv * m + c, col * m + c);
-            }
-            rhs.swap(piv, col);
-        }
-        for r in col + 1..m {
-            let f = mat[r * m + col] / mat[col * m + col];
-            for c in col..m {
-                mat[r * m + c] -= f * mat[col * m + c];
-            }
-            rhs[r] -= f * rhs[col];
-        }
-    }
-    let mut coef = vec![0.0; m];
-    for r in (0..m).rev() {
-        let s: f64 = (r + 1..m).map(|c| mat[r * m + c] * coef[c]).sum();
-        coef[r] = (rhs[r] - s) / mat[r * m + r];
-    }
+    // A pivot below 1e-10 of the largest entry means the parents do not determine an affine
+    // function.
+    let coef = alea_latin::dense::solve_pivoted(&mut mat, &mut rhs, m, 1e-10 * scale)?;
     let w: Vec<f64> = pts
         .iter()
         .zip(d2)
@@ -245,12 +217,7 @@ mod tests {
         pts
     }
 
-    fn lcg(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng::lcg;
 
     #[test]
     fn generations_partition_the_design_and_double() {

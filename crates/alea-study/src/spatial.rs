@@ -186,12 +186,7 @@ fn build(coords: &[f64], dim: usize, perm: &mut [usize], axis: &mut [u8], depth:
 mod tests {
     use super::*;
 
-    fn lcg(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_rng::lcg;
 
     #[test]
     fn k_nearest_equals_the_brute_force_sort() {

@@ -56,6 +56,17 @@ impl std::fmt::Debug for Study {
 }
 
 impl Study {
+    /// A parameter point in words for messages: `a = 0.25, b = 1`.
+    pub fn describe_point(&self, theta: &[f64]) -> String {
+        self.params
+            .names
+            .iter()
+            .zip(theta)
+            .map(|(n, v)| format!("{n} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// Loads and checks a study from its source text.
     pub fn from_source(source: Source) -> Result<Self, StudyError> {
         let file: ModelFile = source.parse()?;
@@ -168,15 +179,7 @@ impl Study {
         theta: &[f64],
     ) -> Result<(), StudyError> {
         let src = &self.source;
-        let at = || {
-            self.params
-                .names
-                .iter()
-                .zip(theta)
-                .map(|(n, v)| format!("{n} = {v}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
+        let at = || self.describe_point(theta);
         let par = &self.model.parametric;
         for (s, e) in par.young.iter().enumerate() {
             let v = e.eval(theta);

@@ -308,18 +308,6 @@ fn wait_ready(world: &SimpleCommunicator, size: usize, st: &mut LeaderState) -> 
     res
 }
 
-/// `a = 0.25, b = 1` for error messages.
-fn describe(study: &Study, theta: &[f64]) -> String {
-    study
-        .params
-        .names
-        .iter()
-        .zip(theta)
-        .map(|(n, v)| format!("{n} = {v}"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 impl BatchExecutor for MpiExecutor {
     fn execute(
         &self,
@@ -372,7 +360,7 @@ impl BatchExecutor for MpiExecutor {
             StudyError::Mpi(format!(
                 "rank {r} failed on the run at {}: {why} (the runs that finished are committed: \
                  run the same command again, with any number of ranks, to resume)",
-                describe(study, &jobs[i].theta)
+                study.describe_point(&jobs[i].theta)
             ))
         };
         let (job_tx, job_rx) = mpsc::channel::<Group>();
@@ -439,7 +427,7 @@ impl BatchExecutor for MpiExecutor {
                                         "{} {r} <- {} ({})",
                                         st.batches,
                                         run_file_stem(&jobs[i].theta),
-                                        describe(study, &jobs[i].theta)
+                                        study.describe_point(&jobs[i].theta)
                                     );
                                 }
                                 out.push((id, jobs[i].clone()));
@@ -469,26 +457,22 @@ impl BatchExecutor for MpiExecutor {
                     arrived.push(m);
                     busy = true;
                 }
+                // The other ranks' results, then rank 0's own, in that order.
+                let mut done = Vec::with_capacity(arrived.len());
                 for (r, _, bytes) in arrived {
                     st.stats.result_bytes += bytes.len() as u64;
                     let (id, out) = wire::decode_result(&bytes).map_err(|e| {
                         StudyError::Mpi(format!("a result from rank {r} does not decode: {}", e.0))
                     })?;
-                    handle(
-                        r,
-                        id,
-                        out,
-                        &mut inflight,
-                        &mut left,
-                        &mut groups_out,
-                        &mut first_err,
-                        &mut st.stats,
-                    )?;
+                    done.push((r, id, out));
                 }
                 while let Ok((id, out)) = res_rx.try_recv() {
                     busy = true;
+                    done.push((0, id, out));
+                }
+                for (r, id, out) in done {
                     handle(
-                        0,
+                        r,
                         id,
                         out,
                         &mut inflight,
