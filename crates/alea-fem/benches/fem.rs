@@ -12,6 +12,9 @@
 //! Set-up: unit-density steel-like material, plane stress (2D), `xmin` clamped, uniform traction
 //! on `xmax`; the mesh and the load vector are built outside the timed region.
 
+#[path = "support/cantilever.rs"]
+mod support;
+
 use std::time::Instant;
 
 use alea_fem::{
@@ -42,12 +45,7 @@ fn case_3d(name: &'static str, n: usize, reps: usize) -> Case {
 }
 
 fn finish(name: &'static str, model: Model, reps: usize) -> Case {
-    let mut cons = Constraints::new();
-    cons.clamp(&model.mesh, "xmin").unwrap();
-    let mut loads = Loads::new(&model);
-    loads
-        .traction(&model, "xmax", |_, _| [100.0, 10.0, 0.0])
-        .unwrap();
+    let (cons, loads) = support::cantilever(&model);
     Case {
         name,
         model,

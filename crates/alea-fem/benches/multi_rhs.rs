@@ -13,11 +13,13 @@
 //! the ratio column (per-column time of the `k`-column solve over the single solve) is the
 //! robust figure. Every solve's relative residual is checked.
 
+#[path = "support/cantilever.rs"]
+mod support;
+
 use std::time::Instant;
 
 use alea_fem::{
-    Analysis, Cholesky, Constraints, DofMap, Loads, Material, Model, Ordering, SolveScratch,
-    assemble_stiffness,
+    Analysis, Cholesky, DofMap, Material, Model, Ordering, SolveScratch, assemble_stiffness,
 };
 use alea_mesh::{CellType, generate};
 
@@ -33,12 +35,7 @@ fn best(reps: usize, mut f: impl FnMut()) -> f64 {
 }
 
 fn case(name: &str, model: Model, reps: usize) {
-    let mut cons = Constraints::new();
-    cons.clamp(&model.mesh, "xmin").unwrap();
-    let mut loads = Loads::new(&model);
-    loads
-        .traction(&model, "xmax", |_, _| [100.0, 10.0, 0.0])
-        .unwrap();
+    let (cons, loads) = support::cantilever(&model);
     let dofs = DofMap::for_mesh(&model.mesh, &cons).unwrap();
     let asm = assemble_stiffness(&model, &dofs).unwrap();
     let blocks = dofs.node_of_dof();
