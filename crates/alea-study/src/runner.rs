@@ -325,7 +325,7 @@ pub(crate) fn execute(
 ) -> Result<(StudyRuns, usize), StudyError> {
     let store = Store::open(dir, &study.hash, restart)?;
     store.save_study(&study.source.path, &study.source.text)?;
-    let previous = store.runs()?;
+    let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, progress);
     let by_key: HashMap<String, RunRecord> = previous
         .into_iter()
         .map(|r| (point_key(&r.params), r))
