@@ -265,7 +265,9 @@ fuzz_target!(|input: Input| {
     }
     let Value::Table(t) = doc else { return };
     // Values TOML cannot write (a key of an inline table after a table, ...) are not cases.
-    let Ok(text) = toml::to_string(&t) else { return };
+    let Ok(text) = toml::to_string(&t) else {
+        return;
+    };
     let source = Source {
         path: c.dir.join(name),
         text,

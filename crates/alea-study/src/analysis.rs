@@ -438,3 +438,25 @@ pub fn left_out_words(left_out: &[(Vec<f64>, String)]) -> String {
         format!(" ({})", parts.join(", "))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::left_out_words;
+
+    #[test]
+    fn missing_runs_are_not_called_runs_that_did_not_converge() {
+        let missing = |n: usize| vec![(vec![0.0], "missing".to_string()); n];
+        let words = left_out_words(&missing(19));
+        assert!(words.contains("19 runs are missing"), "{words}");
+        assert!(!words.contains("converge"), "{words}");
+        let mut both = missing(1);
+        both.push((vec![1.0], "not converged".into()));
+        both.push((vec![2.0], "diverged".into()));
+        assert_eq!(
+            left_out_words(&both),
+            " (2 runs did not converge, 1 run is missing from the study directory (the study was \
+             stopped before it finished: `alea run` computes them))"
+        );
+        assert_eq!(left_out_words(&[]), "");
+    }
+}

@@ -10,8 +10,8 @@
 //! replaced on commit) and `alea report` counts it as missing; either way the run is named in a
 //! note. A study is never blocked by one lost file.
 
-use crate::runner::{Progress, Study, estimates_error};
 use crate::store::{RunRecord, Store};
+use crate::study::{Study, estimates_error};
 
 /// Number of values of a run's field file: every substructure's nodes times the dimension.
 pub fn field_values(study: &Study) -> usize {
@@ -25,14 +25,14 @@ pub fn field_values(study: &Study) -> usize {
 }
 
 /// The runs of `records` whose stored files can be used; each converged run with a damaged
-/// file is left out and named to `progress` (`compute`: it is computed again; else it is
-/// missing from the outputs).
+/// file is left out and named to `note` (`compute`: it is computed again; else it is missing
+/// from the outputs).
 pub fn usable_runs(
     study: &Study,
     store: &Store,
     records: Vec<RunRecord>,
     compute: bool,
-    progress: &dyn Progress,
+    note: &dyn Fn(&str),
 ) -> Vec<RunRecord> {
     let values = field_values(study);
     let estimate = estimates_error(study);
@@ -44,7 +44,7 @@ pub fn usable_runs(
         }
         match store.damaged_files(&r.params, values, estimate) {
             None => kept.push(r),
-            Some(why) => progress.note(&format!(
+            Some(why) => note(&format!(
                 "the run at {} cannot be used: {why}; {}",
                 describe_point(study, &r.params),
                 if compute {

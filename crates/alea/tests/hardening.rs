@@ -84,14 +84,18 @@ fn devices_and_non_text_study_files_fail_fast_as_input_errors() {
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    // A mesh file that is a device.
+    // A mesh file that is a device (in a case file: the same loader as a study's).
     let study = std::fs::read_to_string(root().join("examples/block-on-plane-3d.toml"))
         .unwrap()
         .replace("block-on-plane-3d.msh", "/dev/zero");
     assert!(study.contains("/dev/zero"));
     std::fs::write(base.join("dev.toml"), study).unwrap();
     let t = std::time::Instant::now();
-    let o = run_in(&base, "dev.toml", "out");
+    let o = alea()
+        .current_dir(&base)
+        .args(["solve", "dev.toml", "--out", "out"])
+        .output()
+        .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
         text(&o).contains("mesh.file") && text(&o).contains("a device"),
