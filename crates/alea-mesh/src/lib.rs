@@ -10,6 +10,7 @@
 //! - [`Mesh::extract`] splits a mesh into substructures (sub-meshes of cell groups with a node
 //!   map); [`Mesh::append`] joins meshes without merging nodes.
 //! - [`read_msh`]: Gmsh `.msh` 4.1 reader (ASCII and binary, physical groups become groups).
+//! - [`input::read_input`]: input files are read only if they are regular files of bounded size.
 //! - [`VtuWriter`] / [`write_vtm`]: ParaView output with point and cell fields.
 //! - [`atomic::write_atomic`]: every output file is written to a temporary and renamed.
 //! - [`Mesh::cell_measure`], [`Mesh::cell_min_jacobian`]: geometric checks (areas, volumes,
@@ -24,6 +25,7 @@ mod extract;
 pub mod generate;
 mod geometry;
 pub mod gmsh;
+pub mod input;
 mod mesh;
 pub mod reference;
 pub mod vec3;

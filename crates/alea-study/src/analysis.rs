@@ -261,7 +261,10 @@ pub fn analyse_method(
         // Two runs at least, except the single run of a study without parameters.
         let needed = if study.params.names.is_empty() { 1 } else { 2 };
         if used_points.len() < needed {
-            out.error = Some(format!("fewer than {needed} converged runs"));
+            out.error = Some(format!(
+                "fewer than {needed} converged runs{}",
+                left_out_words(&out.left_out)
+            ));
             return out;
         }
         let has_params = !study.params.names.is_empty();
@@ -276,11 +279,11 @@ pub fn analyse_method(
     let sur = match method.surrogate(&study.params, &used_points) {
         Ok(sur) => sur,
         Err(e) => {
-            out.error = Some(if out.left_out.is_empty() {
-                e.into()
-            } else {
-                format!("{e} ({} runs did not converge)", out.left_out.len())
-            });
+            out.error = Some(format!(
+                "{}{}",
+                String::from(e),
+                left_out_words(&out.left_out)
+            ));
             return out;
         }
     };
@@ -435,4 +438,52 @@ pub fn response_surface(
         }
     }
     Some((xs, ys, z))
+}
+
+/// Why runs were left out, for a method's error: ` (3 runs did not converge, 19 runs are
+/// missing: ...)`; empty if none was.
+pub fn left_out_words(left_out: &[(Vec<f64>, String)]) -> String {
+    let missing = left_out.iter().filter(|(_, s)| s == "missing").count();
+    let failed = left_out.len() - missing;
+    let mut parts = Vec::new();
+    if failed > 0 {
+        parts.push(format!(
+            "{failed} run{} did not converge",
+            if failed == 1 { "" } else { "s" }
+        ));
+    }
+    if missing > 0 {
+        parts.push(format!(
+            "{missing} run{} missing from the study directory (the study was stopped before it \
+             finished: `alea run` computes them)",
+            if missing == 1 { " is" } else { "s are" }
+        ));
+    }
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", parts.join(", "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::left_out_words;
+
+    #[test]
+    fn missing_runs_are_not_called_runs_that_did_not_converge() {
+        let missing = |n: usize| vec![(vec![0.0], "missing".to_string()); n];
+        let words = left_out_words(&missing(19));
+        assert!(words.contains("19 runs are missing"), "{words}");
+        assert!(!words.contains("converge"), "{words}");
+        let mut both = missing(1);
+        both.push((vec![1.0], "not converged".into()));
+        both.push((vec![2.0], "diverged".into()));
+        assert_eq!(
+            left_out_words(&both),
+            " (2 runs did not converge, 1 run is missing from the study directory (the study was \
+             stopped before it finished: `alea run` computes them))"
+        );
+        assert_eq!(left_out_words(&[]), "");
+    }
 }

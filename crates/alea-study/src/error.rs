@@ -229,12 +229,17 @@ pub enum StudyError {
 
 impl StudyError {
     /// Process exit code for this kind of error (the table is in `docs/study-file.md`): 2 for
-    /// input errors (including sizes beyond the limits), 3 for file-system errors, 4 for
+    /// input errors (including sizes beyond the limits), 3 for file-system and store errors (a
+    /// corrupt `study.db`, a damaged or foreign stored file), 4 for
     /// computation failures, 5 for a study directory in use by another process.
     pub fn exit_code(&self) -> i32 {
         match self {
             StudyError::Input { .. } | StudyError::Usage(_) | StudyError::TooLarge(_) => 2,
-            StudyError::Io { .. } => 3,
+            // The store: its database or a stored file that cannot be used.
+            StudyError::Io { .. }
+            | StudyError::Database { .. }
+            | StudyError::Corrupt { .. }
+            | StudyError::ForeignFile { .. } => 3,
             StudyError::Mesh(alea_mesh::MeshError::Io { .. })
             | StudyError::Latin(alea_latin::LatinError::Io { .. })
             | StudyError::Latin(alea_latin::LatinError::Mesh {
@@ -300,15 +305,6 @@ mod tests {
                 "a stored error estimate does not match the model",
             ),
             (
-                StudyError::ForeignFile {
-                    path: "d/f.bin".into(),
-                    hash: "abc".into(),
-                    study: "def".into(),
-                },
-                "d/f.bin belongs to another study (hash abc, this study def); run again with \
-                 --restart",
-            ),
-            (
                 StudyError::FieldSize {
                     params: vec![0.25],
                     found: 3,
@@ -326,5 +322,22 @@ mod tests {
             assert_eq!(e.to_string(), text);
             assert_eq!(e.exit_code(), 4);
         }
+        // Errors of the store are file-system errors (3), like a failing disk.
+        let foreign = StudyError::ForeignFile {
+            path: "d/f.bin".into(),
+            hash: "abc".into(),
+            study: "def".into(),
+        };
+        assert_eq!(
+            foreign.to_string(),
+            "d/f.bin belongs to another study (hash abc, this study def); run again with --restart"
+        );
+        assert_eq!(foreign.exit_code(), 3);
+        assert_eq!(StudyError::Corrupt { path: "f".into() }.exit_code(), 3);
+        let db = StudyError::Database {
+            dir: "d".into(),
+            error: rusqlite::Error::InvalidQuery,
+        };
+        assert_eq!(db.exit_code(), 3);
     }
 }

@@ -212,7 +212,7 @@ impl<'a> Parser<'a> {
                     Ok(v) => Ok((Node::Num(v), 1)),
                     Err(_) => {
                         self.pos = start;
-                        self.err(format!("malformed number '{text}'"))
+                        self.err(format!("malformed number '{}'", abbreviate(text)))
                     }
                 }
             }
@@ -249,13 +249,14 @@ impl<'a> Parser<'a> {
                         (n, f1, f2) if f1.is_some() || f2.is_some() => {
                             self.pos = start;
                             self.err(format!(
-                                "function '{name}' takes {} argument(s), got {n}",
+                                "function '{}' takes {} argument(s), got {n}",
+                                abbreviate(name),
                                 if f1.is_some() { 1 } else { 2 }
                             ))
                         }
                         _ => {
                             self.pos = start;
-                            self.err(format!("unknown function '{name}'; known: exp ln log10 sqrt abs sin cos tan atan tanh min max pow atan2"))
+                            self.err(format!("unknown function '{}'; known: exp ln log10 sqrt abs sin cos tan atan tanh min max pow atan2", abbreviate(name)))
                         }
                     };
                 }
@@ -267,7 +268,8 @@ impl<'a> Parser<'a> {
                     None => {
                         self.pos = start;
                         self.err(format!(
-                            "unknown name '{name}'; available: {}",
+                            "unknown name '{}'; available: {}",
+                            abbreviate(name),
                             if self.vars.is_empty() {
                                 "none".to_string()
                             } else {
@@ -279,6 +281,27 @@ impl<'a> Parser<'a> {
             }
             Some(c) => self.err(format!("unexpected character '{}'", c as char)),
         }
+    }
+}
+
+/// `text` cut at 5 x [`MAX_QUOTED`] characters (a message that quotes no value but could be
+/// long), with its length said.
+pub fn abbreviate_long(text: &str) -> String {
+    match text.char_indices().nth(5 * MAX_QUOTED) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}... ({} characters)", &text[..end], text.chars().count()),
+    }
+}
+
+/// Characters of a text quoted in an error message, at most.
+pub const MAX_QUOTED: usize = 200;
+
+/// `text` as quoted in an error message: whole up to [`MAX_QUOTED`] characters, else its first
+/// ones and how long it is (an error line never echoes a 200 kB expression).
+pub fn abbreviate(text: &str) -> String {
+    match text.char_indices().nth(MAX_QUOTED) {
+        None => text.to_string(),
+        Some((end, _)) => format!("{}... ({} characters)", &text[..end], text.chars().count()),
     }
 }
 

@@ -17,6 +17,7 @@ pub mod expr;
 pub mod fields;
 pub mod goal;
 mod goal_settings;
+mod integrity;
 pub mod limits;
 pub mod lock;
 pub mod method;
@@ -28,6 +29,7 @@ pub mod run;
 pub mod runner;
 pub mod runs;
 mod schedule;
+mod settings_check;
 mod source;
 mod spatial;
 pub mod spec;
@@ -35,6 +37,7 @@ mod step_spec;
 pub mod steps;
 pub mod store;
 pub mod study;
+pub mod temporaries;
 #[cfg(test)]
 mod test_rng;
 

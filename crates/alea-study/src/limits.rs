@@ -44,15 +44,7 @@ pub const MAX_THREADS: usize = 1024;
 
 /// Bytes of memory available to this process: `MemAvailable` (Linux), else 8 GiB.
 pub fn available_memory() -> u64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|v| v.parse::<u64>().ok())
-        })
-        .map_or(8 << 30, |kb| kb * 1024)
+    alea_mesh::input::available_memory()
 }
 
 /// A byte count for messages: `1.5 GB`.

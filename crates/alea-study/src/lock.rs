@@ -1,8 +1,12 @@
 //! One process at a time in a study directory.
 //!
 //! [`StudyLock::acquire`] takes an exclusive advisory lock (`flock` on Unix, `LockFileEx` on
-//! Windows, through `std::fs::File::try_lock`) on `<dir>/lock` and writes who holds it: process
-//! id, host name, start time (UTC) and command. A second process finds the lock held and
+//! Windows, through `std::fs::File::try_lock`) on an open descriptor of the study directory
+//! itself (Unix) and on `<dir>/lock`, and writes who holds it in the lock file: process id, host
+//! name, start time (UTC) and command. The lock on the directory is what holds: deleting or
+//! replacing the lock file during a run does not free the directory for a second process (it
+//! is refused, busy, even if it cannot say who holds the lock then); a directory removed and
+//! created again is another directory, whose store starts empty. A second process finds the lock held and
 //! refuses with [`StudyError::Busy`], naming the holder. The operating system releases the lock
 //! when the holder exits, however it exits (SIGKILL, crash, power loss), so a lock file left by
 //! a dead process is never an obstacle: the next process takes the lock, reports the previous
@@ -26,6 +30,8 @@ use crate::StudyError;
 /// The exclusive lock of a study directory, held until dropped.
 #[derive(Debug)]
 pub struct StudyLock {
+    /// The open study directory (locked on Unix; `None` elsewhere).
+    _dir: Option<File>,
     file: File,
     path: PathBuf,
     previous: Option<String>,
@@ -46,8 +52,16 @@ impl StudyLock {
             let p = p.to_path_buf();
             move |source| StudyError::Io { path: p, source }
         };
+        if dir.exists() && !dir.is_dir() {
+            return Err(StudyError::Usage(format!(
+                "{} is a file, not a study directory: give --dir a directory (it is created if \
+                 missing)",
+                dir.display()
+            )));
+        }
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         let path = dir.join(LOCK_FILE);
+        let dir_handle = lock_directory(dir, &path)?;
         let mut file = OpenOptions::new()
             .read(true)
             .write(true)
@@ -81,7 +95,9 @@ impl StudyLock {
         file.seek(SeekFrom::Start(0)).map_err(io(&path))?;
         file.write_all(record.as_bytes()).map_err(io(&path))?;
         file.sync_all().map_err(io(&path))?;
+        crate::temporaries::remove_stale(dir);
         Ok(StudyLock {
+            _dir: dir_handle,
             file,
             path,
             previous,
@@ -116,10 +132,50 @@ impl StudyLock {
 
 impl Drop for StudyLock {
     fn drop(&mut self) {
+        // Whatever ends the command (success or error), no temporary of it stays behind.
+        if let Some(dir) = self.path.parent() {
+            crate::temporaries::remove_stale(dir);
+        }
         // Empty record = released cleanly; the lock itself goes with the file handle.
         let _ = self.file.set_len(0);
         let _ = self.file.unlock();
     }
+}
+
+/// Locks the study directory through an open descriptor of it (Unix): the lock that holds even
+/// if the lock file is removed. `Busy` names the holder from the lock file when it still can.
+#[cfg(unix)]
+fn lock_directory(dir: &Path, lock_file: &Path) -> Result<Option<File>, StudyError> {
+    let handle = File::open(dir).map_err(|source| StudyError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    match handle.try_lock() {
+        Ok(()) => Ok(Some(handle)),
+        Err(TryLockError::WouldBlock) => {
+            let holder = File::open(lock_file)
+                .map(|mut f| read_record(&mut f))
+                .unwrap_or_default();
+            Err(StudyError::Busy {
+                dir: dir.to_path_buf(),
+                holder: if holder.is_empty() {
+                    "another process (its lock file is empty or was removed)".into()
+                } else {
+                    holder
+                },
+            })
+        }
+        Err(TryLockError::Error(source)) => Err(StudyError::Io {
+            path: dir.to_path_buf(),
+            source,
+        }),
+    }
+}
+
+/// Elsewhere a directory cannot be opened as a file: the lock file alone.
+#[cfg(not(unix))]
+fn lock_directory(_dir: &Path, _lock_file: &Path) -> Result<Option<File>, StudyError> {
+    Ok(None)
 }
 
 fn read_record(file: &mut File) -> String {
@@ -218,6 +274,40 @@ mod tests {
         );
         drop(lock);
         assert_eq!(std::fs::read_to_string(d.join(LOCK_FILE)).unwrap(), "");
+    }
+
+    #[test]
+    #[cfg(unix)]
+    fn the_lock_holds_when_its_file_is_removed() {
+        let d = dir("removed");
+        let first = StudyLock::acquire(&d, "alea run a.toml").unwrap();
+        std::fs::remove_file(d.join(LOCK_FILE)).unwrap();
+        let err = StudyLock::acquire(&d, "alea run --restart b.toml").unwrap_err();
+        assert_eq!(err.exit_code(), 5, "{err}");
+        assert!(err.to_string().contains("was removed"), "{err}");
+        // Replaced by an empty file: still refused.
+        std::fs::write(d.join(LOCK_FILE), "").unwrap();
+        assert_eq!(
+            StudyLock::acquire(&d, "alea run b.toml")
+                .unwrap_err()
+                .exit_code(),
+            5
+        );
+        drop(first);
+        StudyLock::acquire(&d, "alea run b.toml").unwrap();
+    }
+
+    #[test]
+    fn a_file_named_as_the_directory_is_a_usage_error() {
+        let d = dir("file");
+        std::fs::write(&d, "not a directory").unwrap();
+        let err = StudyLock::acquire(&d, "alea run a.toml").unwrap_err();
+        assert_eq!(err.exit_code(), 2, "{err}");
+        assert!(
+            err.to_string().contains("is a file, not a study directory"),
+            "{err}"
+        );
+        let _ = std::fs::remove_file(&d);
     }
 
     #[test]

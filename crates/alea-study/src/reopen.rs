@@ -22,8 +22,23 @@ pub struct Reopened {
     /// Its finished runs (in [`Study::all_points`] order, missing ones left out), the solver
     /// (for field outputs) and the directory's lock.
     pub runs: StudyRuns,
-    /// Design points without a finished run.
+    /// Design points without a finished run (runs whose stored files are damaged included).
     pub missing: usize,
+    /// What was found on the way: each run left out because a stored file of it is damaged,
+    /// named.
+    pub notes: Vec<String>,
+}
+
+/// Collects the notes of a replay.
+#[derive(Default)]
+struct Notes(std::sync::Mutex<Vec<String>>);
+
+impl crate::runner::Progress for Notes {
+    fn note(&self, message: &str) {
+        if let Ok(mut v) = self.0.lock() {
+            v.push(message.to_string());
+        }
+    }
 }
 
 /// Reopens study directory `dir` for `command` (taking its lock).
@@ -49,11 +64,12 @@ pub fn reopen(dir: &Path, command: &str) -> Result<Reopened, StudyError> {
             study.hash
         )));
     }
-    let (runs, missing) =
-        crate::runner::execute(&study, dir, false, &crate::runner::NoProgress, lock, false)?;
+    let notes = Notes::default();
+    let (runs, missing) = crate::runner::execute(&study, dir, false, &notes, lock, false)?;
     Ok(Reopened {
         runs,
         study,
         missing,
+        notes: notes.0.into_inner().unwrap_or_default(),
     })
 }

@@ -346,7 +346,8 @@ pub(crate) fn execute(
 ) -> Result<(StudyRuns, usize), StudyError> {
     let store = Store::open(dir, &study.hash, restart)?;
     store.save_study(&study.source.path, &study.source.text)?;
-    let previous = store.runs()?;
+    let note = |m: &str| progress.note(m);
+    let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, &note);
     let by_key: HashMap<String, RunRecord> = previous
         .into_iter()
         .map(|r| (point_key(&r.params), r))

@@ -340,6 +340,11 @@ impl Store {
     /// Commits a finished run: its fields and, if given, its error estimate (each with the
     /// study-hash header, then f64 little-endian; synced and atomically renamed into place),
     /// then its row. A committed row therefore always has its files.
+    ///
+    /// # Errors
+    /// [`StudyError::Busy`] if the database now holds another study (another process started
+    /// one in the directory): the row is refused, never mixed with the other study's; on I/O
+    /// or database errors.
     pub fn commit(
         &self,
         rec: &RunRecord,
@@ -350,8 +355,31 @@ impl Store {
         if let Some(c) = cre {
             self.write_tagged(&self.cre_path(&rec.params), c)?;
         }
-        self.conn
-            .execute(
+        // One write transaction, taken at once: the study the directory holds is checked and
+        // the row inserted with no other writer in between.
+        let tx = rusqlite::Transaction::new_unchecked(
+            &self.conn,
+            rusqlite::TransactionBehavior::Immediate,
+        )
+        .map_err(db_err(&self.dir))?;
+        let now: Option<String> = tx
+            .query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
+                r.get(0)
+            })
+            .optional()
+            .map_err(db_err(&self.dir))?;
+        if now.as_deref() != Some(self.hash.as_str()) {
+            return Err(StudyError::Busy {
+                dir: self.dir.clone(),
+                holder: format!(
+                    "another study (hash {}, this study {}), started in it by another process; \
+                     this run is not stored",
+                    now.as_deref().unwrap_or("none"),
+                    self.hash
+                ),
+            });
+        }
+        tx.execute(
                 "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
                  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
                 params![
@@ -368,7 +396,64 @@ impl Store {
                 ],
             )
             .map_err(db_err(&self.dir))?;
-        Ok(())
+        tx.commit().map_err(db_err(&self.dir))
+    }
+
+    /// Why the stored files of the run at `params` cannot be used, `None` if they can: its
+    /// field file must exist with `field_values` values (after the study-hash header of this
+    /// study, or none for a directory written before headers), and with `estimate` its
+    /// error-estimate file must exist with this study's header and whole values. Reads the
+    /// headers only.
+    pub fn damaged_files(
+        &self,
+        params: &[f64],
+        field_values: usize,
+        estimate: bool,
+    ) -> Option<String> {
+        let header = 8 + 16;
+        let name = |p: &Path| p.strip_prefix(&self.dir).unwrap_or(p).display().to_string();
+        let fields = self.field_path(params);
+        let expected = [header + 8 * field_values as u64, 8 * field_values as u64];
+        match std::fs::metadata(&fields) {
+            Err(_) => return Some(format!("{} is missing", name(&fields))),
+            Ok(m) if !expected.contains(&m.len()) => {
+                return Some(format!(
+                    "{} has {} bytes, expected {} (truncated or damaged)",
+                    name(&fields),
+                    m.len(),
+                    expected[0]
+                ));
+            }
+            Ok(m) if m.len() == expected[0] && !self.header_ok(&fields) => {
+                return Some(format!("{} has a damaged header", name(&fields)));
+            }
+            Ok(_) => {}
+        }
+        if estimate {
+            let cre = self.cre_path(params);
+            match std::fs::metadata(&cre) {
+                Err(_) => return Some(format!("{} is missing", name(&cre))),
+                Ok(m) if m.len() < header || (m.len() - header) % 8 != 0 => {
+                    return Some(format!("{} is truncated", name(&cre)));
+                }
+                Ok(_) if !self.header_ok(&cre) => {
+                    return Some(format!("{} has a damaged header", name(&cre)));
+                }
+                Ok(_) => {}
+            }
+        }
+        None
+    }
+
+    /// True if `path` starts with the header of this study.
+    fn header_ok(&self, path: &Path) -> bool {
+        use std::io::Read;
+        let mut head = [0u8; 24];
+        std::fs::File::open(path)
+            .and_then(|mut f| f.read_exact(&mut head))
+            .is_ok()
+            && &head[..8] == FIELD_MAGIC
+            && &head[8..] == self.hash.as_bytes()
     }
 
     /// Reads a run's error-estimate file (`None` if the run has none).
@@ -518,6 +603,26 @@ mod tests {
         assert_eq!(e.exit_code(), 2, "{e}");
         let s = Store::open(&d, &b, true).unwrap();
         assert!(s.runs().unwrap().is_empty());
+    }
+
+    #[test]
+    fn a_run_of_a_study_replaced_in_the_store_is_refused() {
+        let d = dir("replaced");
+        let (a, b) = (study_hash("study A", &[]), study_hash("study B", &[]));
+        let first = Store::open(&d, &a, false).unwrap();
+        first.commit(&record(1.0), &[1.0], None).unwrap();
+        // A second process (its lock defeated) restarts the directory with study B.
+        let second = Store::open(&d, &b, true).unwrap();
+        second.commit(&record(2.0), &[2.0], None).unwrap();
+        let err = first.commit(&record(3.0), &[3.0], None).unwrap_err();
+        assert_eq!(err.exit_code(), 5, "{err}");
+        assert!(err.to_string().contains("another study"), "{err}");
+        assert_eq!(second.runs().unwrap(), vec![record(2.0)]);
+        let rows: i64 = second
+            .conn
+            .query_row("SELECT COUNT(*) FROM runs", [], |r| r.get(0))
+            .unwrap();
+        assert_eq!(rows, 1, "no row of study A in study B's store");
     }
 
     #[test]

@@ -83,6 +83,7 @@ impl Study {
             return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
         }
         check_study_file(&source, &file, params.names.len())?;
+        crate::settings_check::check(&source, &file)?;
         if !params.names.is_empty() {
             crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
         }
@@ -137,6 +138,16 @@ impl Study {
     /// Loads a study file.
     pub fn load(path: &Path) -> Result<Self, StudyError> {
         Self::from_source(Source::read(path)?)
+    }
+
+    /// The study file's name as written in the outputs (`summary.json`, the report): its file
+    /// name only, so that `alea run` (path as given) and `alea report` (the path kept in the
+    /// store, absolute) write the same outputs, and no output depends on where the study was.
+    pub fn file_name(&self) -> String {
+        self.source.path.file_name().map_or_else(
+            || self.source.path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        )
     }
 
     /// The title (from `[study]`, else the file name).

@@ -138,3 +138,161 @@ fn an_empty_quantity_name_and_too_few_monte_carlo_runs_are_refused() {
         "two runs",
     );
 }
+
+/// The study with a second parameter and a joint law table (for the joint-law checks).
+fn with_joint(joint: &str) -> String {
+    study("", "tip", PL).replace(
+        "[[substructure]]",
+        &format!(
+            "[[parameter]]\nname = \"P\"\nlaw = \"uniform\"\nlo = 0.5\nhi = 1.5\n\n{joint}\n\n[[substructure]]"
+        ),
+    )
+}
+
+#[test]
+fn settings_that_would_be_ignored_are_refused() {
+    refused(
+        &with_joint(
+            "[joint]\ntype = \"gaussian_copula\"\ncorrelation = [[1.0, 0.3], [0.3, 1.0]]\ndensity = \"E * P\"",
+        ),
+        "density = ",
+        "joint.density",
+        "type = \"density\" only",
+    );
+    refused(
+        &with_joint(
+            "[joint]\ntype = \"density\"\ndensity = \"E * P\"\ncorrelation = [[1.0, 0.3], [0.3, 1.0]]",
+        ),
+        "correlation = ",
+        "joint.correlation",
+        "gaussian_copula",
+    );
+    refused(
+        &study("", "tip", "type = \"adaptive\"\ndepth = 2"),
+        "depth = 2",
+        "method[0].depth",
+        "improved criterion",
+    );
+    refused(
+        &study(
+            "",
+            "tip",
+            "type = \"adaptive\"\ncriterion = \"max_error\"\nfraction = 0.3",
+        ),
+        "fraction = 0.3",
+        "method[0].fraction",
+        "max_error",
+    );
+    refused(
+        &study("", "tip", "type = \"pc_projection\"\nruns = 40"),
+        "runs = 40",
+        "method[0].runs",
+        "points_per_dim",
+    );
+    refused(
+        &study(
+            "",
+            "tip",
+            "type = \"pc_regression\"\ndesign = \"lhs\"\nruns = 20\npoints_per_dim = 4",
+        ),
+        "points_per_dim = 4",
+        "method[0].points_per_dim",
+        "not used",
+    );
+    refused(
+        &study(
+            "",
+            "tip",
+            "type = \"monte_carlo\"\nruns = 20\nmax_runs = 50",
+        ),
+        "max_runs = 50",
+        "method[0].max_runs",
+        "not adaptive",
+    );
+    refused(
+        &study("", "tip", "type = \"piecewise_linear\"\ndegree = 3"),
+        "degree = 3",
+        "method[0].degree",
+        "no polynomial degree",
+    );
+    // What the settings are for still loads.
+    for method in [
+        "type = \"adaptive\"\ncriterion = \"max_error\"\ndepth = 2\nmax_runs = 20",
+        "type = \"adaptive\"\nfraction = 0.3",
+        "type = \"pc_projection\"\npoints_per_dim = 3",
+        "type = \"pc_regression\"\ndesign = \"grid\"\npoints_per_dim = 4",
+        "type = \"monte_carlo\"\nruns = 20",
+    ] {
+        Study::from_source(Source::from_text("checks.toml", &study("", "tip", method)))
+            .unwrap_or_else(|e| panic!("{method}: {e}"));
+    }
+    Study::from_source(Source::from_text(
+        "checks.toml",
+        &with_joint("[joint]\ntype = \"gaussian_copula\"\ncorrelation = [[1.0, 0.3], [0.3, 1.0]]"),
+    ))
+    .unwrap();
+}
+
+#[test]
+fn names_that_would_share_a_file_name_are_refused() {
+    let two = study("", "tip", PL)
+        .replace("name = \"plate\"", "name = \"é\"")
+        .replace("substructure = \"plate\"", "substructure = \"é\"")
+        + "\n[[substructure]]\nname = \"è\"\nyoung = 1.0\npoisson = 0.0\n";
+    refused(
+        &two,
+        "name = \"è\"",
+        "substructure[1].name",
+        "same file name '_'",
+    );
+}
+
+#[test]
+fn study_files_that_are_not_text_files_are_input_errors_with_a_location() {
+    let dir = std::env::temp_dir().join(format!("alea-load-checks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Invalid UTF-8 on line 3: an input error (exit code 2) at that line.
+    let path = dir.join("latin1.toml");
+    std::fs::write(&path, b"[study]\ntitle = \"ok\"\n# caf\xe9\n").unwrap();
+    let e = Study::load(&path).unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(e.to_string().contains("latin1.toml:3: (text)"), "{e}");
+    assert!(e.to_string().contains("column 6"), "{e}");
+    // A device: refused before reading a byte.
+    let t = std::time::Instant::now();
+    let e = Study::load(std::path::Path::new("/dev/zero")).unwrap_err();
+    assert_eq!(e.exit_code(), 2, "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("/dev/zero:0: (file): not a regular file (a device"),
+        "{e}"
+    );
+    assert!(t.elapsed().as_secs_f64() < 1.0);
+    // A mesh file that is a device: refused at mesh.file, with its line.
+    let text = study("", "tip", PL).replace(
+        "generator = \"rectangle\"\nkind = \"quad4\"\nsize = [10.0, 2.0]\ncells = [2, 1]",
+        "generator = \"gmsh\"\nfile = \"/dev/zero\"",
+    );
+    let t = std::time::Instant::now();
+    refused(
+        &text,
+        "file = \"/dev/zero\"",
+        "mesh.file",
+        "not a regular file",
+    );
+    assert!(t.elapsed().as_secs_f64() < 1.0);
+    // A very long expression is quoted abbreviated in the message.
+    let long = format!("E * {}", "x".repeat(200_000));
+    let text = study("", "tip", PL).replace("young = \"E\"", &format!("young = \"{long}\""));
+    let e = Study::from_source(Source::from_text("checks.toml", &text)).unwrap_err();
+    assert!(
+        e.to_string().len() < 1000,
+        "{} characters",
+        e.to_string().len()
+    );
+    assert!(
+        e.to_string().contains("(200004 characters)"),
+        "{}",
+        &e.to_string()[..300]
+    );
+}

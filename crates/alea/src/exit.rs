@@ -1,15 +1,69 @@
-//! Exit codes of `alea` (the table in `docs/study-file.md`, section "Exit codes"):
-//!
-//! | code | meaning |
-//! |---|---|
-//! | 0 | success |
-//! | 1 | internal error (a bug: please report it with the input) |
-//! | 2 | input error: the study or case file, a file it names (Gmsh mesh), a size beyond the limits, or the command line; the message names file:line:field |
-//! | 3 | file-system error: a file or directory cannot be read or written (missing study file, permissions, disk full) |
-//! | 4 | computation failed: a solve that did not converge, a study where no run converged or no method produced statistics, a numerical failure |
-//! | 5 | the study directory is in use by another process (the message names it) |
+//! Exit codes of `alea`: [`TABLE`], printed by `alea --help` and copied in `docs/study-file.md`
+//! (section "Exit codes") and `README.md` (a test checks that the three agree), and the message
+//! of an error ([`message`]: its chain of causes, each said once).
 
 use alea_study::StudyError;
+
+/// Every exit code and its meaning: the one table of `--help`, the docs and the README.
+pub const TABLE: &[(u8, &str)] = &[
+    (SUCCESS, "success"),
+    (
+        INTERNAL,
+        "internal error (a bug: please report it with the input), including a report plot that cannot be drawn",
+    ),
+    (
+        INPUT,
+        "input error: the study or case file (not a regular file, too large, not UTF-8, a bad value), a file it names (every Gmsh error is reported at `mesh.file`, with the mesh file's own line), interface pairing, a size beyond the limits, a study directory holding another study, or the command line (a `--dir` that is a file); the message names `file:line: field`",
+    ),
+    (
+        FILES,
+        "file-system or store error: a file or directory that cannot be read or written (missing study file, permissions, disk full), a corrupt `study.db`, a stored file of another study",
+    ),
+    (
+        COMPUTATION,
+        "computation failed: `alea solve` did not converge (the files hold the last iterate), or a study in which no run converged or no method produced statistics (its outputs are written first)",
+    ),
+    (
+        BUSY,
+        "the study directory is in use by another process (the message names it)",
+    ),
+];
+
+/// The exit-code table as printed by `alea --help`.
+pub fn help() -> String {
+    let mut s = String::from("Exit codes:\n");
+    for (code, meaning) in TABLE {
+        s.push_str(&format!("  {code}  {meaning}\n"));
+    }
+    s
+}
+
+/// The exit-code table as a Markdown table (as in `docs/study-file.md` and `README.md`).
+#[cfg(test)]
+pub fn markdown() -> String {
+    let mut s = String::from("| code | meaning |\n|---|---|\n");
+    for (code, meaning) in TABLE {
+        s.push_str(&format!("| {code} | {meaning} |\n"));
+    }
+    s
+}
+
+/// The message of an error: its causes joined by `: `, a cause whose text is already in the
+/// message (an OS error that a layer above quotes) said once.
+pub fn message(e: &anyhow::Error) -> String {
+    let mut out = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if out.contains(&text) {
+            continue;
+        }
+        if !out.is_empty() {
+            out.push_str(": ");
+        }
+        out.push_str(&text);
+    }
+    out
+}
 
 /// Success.
 pub const SUCCESS: u8 = 0;
@@ -134,6 +188,36 @@ mod tests {
             assert_eq!(code(&e.into()), own);
         }
         assert_eq!(SUCCESS, 0);
+    }
+
+    #[test]
+    fn the_exit_code_table_is_the_same_in_the_help_the_docs_and_the_readme() {
+        let table = markdown();
+        for (name, text) in [
+            (
+                "docs/study-file.md",
+                include_str!("../../../docs/study-file.md"),
+            ),
+            ("README.md", include_str!("../../../README.md")),
+        ] {
+            assert!(text.contains(&table), "{name} has not the table:\n{table}");
+        }
+        let codes: Vec<u8> = TABLE.iter().map(|(c, _)| *c).collect();
+        assert_eq!(codes, [0, 1, 2, 3, 4, 5]);
+        assert!(help().starts_with("Exit codes:\n  0  success\n"));
+    }
+
+    #[test]
+    fn an_os_cause_is_said_once() {
+        let io = StudyError::Io {
+            path: "study.toml".into(),
+            source: std::io::Error::from_raw_os_error(2),
+        };
+        let text = message(&anyhow::Error::from(io));
+        assert_eq!(text.matches("os error 2").count(), 1, "{text}");
+        assert!(text.starts_with("study.toml: "), "{text}");
+        let wrapped = anyhow::Error::from(std::io::Error::other("disk full")).context("writing x");
+        assert_eq!(message(&wrapped), "writing x: disk full");
     }
 
     #[test]

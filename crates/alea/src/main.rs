@@ -18,8 +18,7 @@ use clap::{Parser, Subcommand};
     version,
     about,
     long_about = None,
-    after_help = "Exit codes: 0 success; 1 internal error; 2 input error (file:line:field named); \
-3 file-system error; 4 computation failed (no convergence, no statistics); 5 study directory in use."
+    after_help = exit::help()
 )]
 struct Cli {
     #[command(subcommand)]
@@ -154,7 +153,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::from(exit::SUCCESS),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", exit::message(&e));
             ExitCode::from(exit::code(&e))
         }
     }

@@ -43,12 +43,13 @@ use reader::Reader;
 /// Reads a Gmsh `.msh` 4.1 file (ASCII or binary).
 ///
 /// # Errors
-/// [`MeshError::Io`] if the file cannot be read; [`MeshError::Parse`] for malformed or
+/// [`MeshError::Io`] if the file cannot be read, is not a regular file or is larger than
+/// [`crate::input::max_input_bytes`]; [`MeshError::Parse`] for malformed or
 /// unsupported content; [`MeshError::Invalid`] for a mesh that cannot be built (2D mesh out of
 /// the xy plane, degenerate cells, a facet that bounds no cell).
 pub fn read_msh(path: impl AsRef<Path>) -> Result<Mesh, MeshError> {
     let path = path.as_ref();
-    let data = std::fs::read(path).map_err(|source| MeshError::Io {
+    let data = crate::input::read_input(path).map_err(|source| MeshError::Io {
         path: path.to_path_buf(),
         source,
     })?;

@@ -54,7 +54,7 @@ pub(super) fn write_summary(
         .collect();
     let v = serde_json::json!({
         "title": study.title(),
-        "study_file": study.source.path.display().to_string(),
+        "study_file": study.file_name(),
         "study_hash": study.hash,
         "seed": study.seed,
         "units": {

@@ -126,7 +126,7 @@ pub(super) fn report_input(
     }
     ReportInput {
         title: study.title(),
-        study_file: study.source.path.display().to_string(),
+        study_file: study.file_name(),
         units: unit_list,
         method: main_index.map_or_else(
             || "no method produced statistics (see the notes)".to_string(),

@@ -154,10 +154,15 @@ pub fn rebuild(dir: &Path, command: &str, console: &dyn Console) -> Result<Outpu
         dir.display(),
         re.runs.records.len()
     ));
+    for n in &re.notes {
+        console.warning(n);
+        notes.push(n.clone());
+    }
     if re.missing > 0 {
         let msg = format!(
-            "{} of {total} runs are not in the study directory (the study was stopped before it finished): \
-             these results use the finished runs only; resume with `alea run {} --dir {}`",
+            "{} of {total} runs are missing from the study directory (the study was stopped before it finished, \
+             or a stored file of the run is damaged): these results use the finished runs only; \
+             compute them with `alea run {} --dir {}`",
             re.missing,
             re.study.source.path.display(),
             dir.display()

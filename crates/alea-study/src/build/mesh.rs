@@ -111,7 +111,7 @@ pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> 
     match (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
         (Some(f), "gmsh") => {
             let path = mesh_file_path(src, f);
-            let bytes = std::fs::read(&path).map_err(|e| {
+            let bytes = alea_mesh::input::read_input(&path).map_err(|e| {
                 src.error(f.span(), "mesh.file", format!("{}: {e}", path.display()))
             })?;
             Ok(crate::store::study_hash(&src.text, &[&bytes]))

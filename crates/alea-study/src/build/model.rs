@@ -27,8 +27,10 @@ fn compile(
             }
             Ok(Expr::constant(*x))
         }
-        NumOrExpr::Expr(t) => Expr::parse(t, vars)
-            .map_err(|e| src.error(v.span(), field, format!("expression '{t}': {e}"))),
+        NumOrExpr::Expr(t) => Expr::parse(t, vars).map_err(|e| {
+            let t = crate::expr::abbreviate(t);
+            src.error(v.span(), field, format!("expression '{t}': {e}"))
+        }),
     }
 }
 

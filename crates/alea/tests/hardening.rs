@@ -1,0 +1,233 @@
+//! The command line under misuse, round two (issue 23): bounded inputs, temporary files,
+//! damaged stored files, messages and exit codes, `summary.json` of `alea report`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn alea() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_alea"))
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("alea-hard-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The shipped plate study, smaller (a few tenths of a second).
+fn small_study(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/plate-random-E.toml"))
+        .unwrap()
+        .replace("runs = 400", "runs = 30")
+        + "\n[statistics]\nsamples = 4000\n";
+    let path = dir.join("plate.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn run_in(cwd: &Path, study: &str, dir: &str) -> Output {
+    alea()
+        .current_dir(cwd)
+        .args(["run", study, "--dir", dir, "-q"])
+        .output()
+        .unwrap()
+}
+
+/// Every file under `dir` whose name holds `.tmp-`.
+fn temporaries(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            if e.file_type().unwrap().is_dir() {
+                stack.push(e.path());
+            } else if e.file_name().to_string_lossy().contains(".tmp-") {
+                out.push(e.path());
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn devices_and_non_text_study_files_fail_fast_as_input_errors() {
+    let base = tmp("inputs");
+    let t = std::time::Instant::now();
+    let o = alea()
+        .args(["run", "/dev/zero", "--dir"])
+        .arg(base.join("o"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("/dev/zero:0: (file): not a regular file (a device"),
+        "{}",
+        text(&o)
+    );
+    assert!(t.elapsed().as_secs_f64() < 5.0);
+    let o = alea()
+        .args(["solve", "/dev/urandom", "--out"])
+        .arg(base.join("s"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    // A mesh file that is a device (in a case file: the same loader as a study's).
+    let study = std::fs::read_to_string(root().join("examples/block-on-plane-3d.toml"))
+        .unwrap()
+        .replace("block-on-plane-3d.msh", "/dev/zero");
+    assert!(study.contains("/dev/zero"));
+    std::fs::write(base.join("dev.toml"), study).unwrap();
+    let t = std::time::Instant::now();
+    let o = alea()
+        .current_dir(&base)
+        .args(["solve", "dev.toml", "--out", "out"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("mesh.file") && text(&o).contains("a device"),
+        "{}",
+        text(&o)
+    );
+    assert!(t.elapsed().as_secs_f64() < 5.0);
+    // Invalid UTF-8: exit 2 at its line.
+    std::fs::write(base.join("bad.toml"), b"[study]\n\xff\n").unwrap();
+    let o = run_in(&base, "bad.toml", "out");
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("bad.toml:2: (text)"), "{}", text(&o));
+    // A missing study file: the OS cause once, exit 3.
+    let o = run_in(&base, "missing.toml", "out");
+    assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+    assert_eq!(
+        text(&o).matches("No such file or directory").count(),
+        1,
+        "{}",
+        text(&o)
+    );
+    // --dir naming a file.
+    let study = small_study(&base);
+    std::fs::write(base.join("afile"), "x").unwrap();
+    let o = alea()
+        .arg("run")
+        .arg(&study)
+        .arg("--dir")
+        .arg(base.join("afile"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("is a file, not a study directory"),
+        "{}",
+        text(&o)
+    );
+    assert!(!text(&o).contains("File exists"), "{}", text(&o));
+}
+
+#[test]
+fn a_corrupt_store_is_a_store_error() {
+    let base = tmp("corrupt");
+    let study = small_study(&base);
+    let dir = base.join("out");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("study.db"), vec![0x5a; 8192]).unwrap();
+    for o in [
+        alea()
+            .arg("run")
+            .arg(&study)
+            .arg("--dir")
+            .arg(&dir)
+            .arg("-q")
+            .output()
+            .unwrap(),
+        alea().arg("report").arg(&dir).output().unwrap(),
+    ] {
+        assert_eq!(o.status.code(), Some(3), "{}", text(&o));
+        assert!(
+            text(&o).contains("study.db") || text(&o).contains("database"),
+            "{}",
+            text(&o)
+        );
+    }
+}
+
+#[test]
+fn help_prints_the_exit_code_table() {
+    let o = alea().arg("--help").output().unwrap();
+    let t = text(&o);
+    assert!(
+        t.contains("Exit codes:\n  0  success\n  1  internal error"),
+        "{t}"
+    );
+    assert!(
+        t.contains("  3  file-system or store error")
+            && t.contains("  5  the study directory is in use"),
+        "{t}"
+    );
+}
+
+#[test]
+fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
+    let base = tmp("resume");
+    small_study(&base);
+    // A relative study path, as a user types it.
+    let o = run_in(&base, "plate.toml", "out");
+    assert!(o.status.success(), "{}", text(&o));
+    let dir = base.join("out");
+    let summary = std::fs::read(dir.join("summary.json")).unwrap();
+    assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
+    // `alea report` rebuilds summary.json byte for byte (no absolute study path in it).
+    let o = alea().arg("report").arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
+    // What kills leave: temporaries of a dead process (pid above Linux's pid_max).
+    let fields: Vec<PathBuf> = std::fs::read_dir(dir.join("fields"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let stale = [
+        dir.join(".samples.csv.tmp-4000000"),
+        dir.join("report/.report-input.json.tmp-4000000"),
+        dir.join("fields/.run_0000000000000000.bin.tmp-4000000"),
+    ];
+    for s in &stale {
+        std::fs::write(s, vec![0u8; 4096]).unwrap();
+    }
+    // One field file lost, one truncated.
+    std::fs::remove_file(&fields[0]).unwrap();
+    let bytes = std::fs::read(&fields[1]).unwrap();
+    std::fs::write(&fields[1], &bytes[..bytes.len() / 2]).unwrap();
+    // `alea report`: the two runs named and counted missing, not "did not converge".
+    let o = alea().arg("report").arg(&dir).output().unwrap();
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("68 of 70 runs finished"), "{t}");
+    assert_eq!(t.matches("cannot be used").count(), 2, "{t}");
+    assert!(t.contains("is missing") && t.contains("truncated"), "{t}");
+    assert!(t.contains("2 of 70 runs are missing"), "{t}");
+    assert!(!t.contains("did not converge"), "{t}");
+    assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
+    for s in &stale {
+        std::fs::write(s, vec![0u8; 4096]).unwrap();
+    }
+    // `alea run` (resume): the two runs computed again, everything as before.
+    let o = run_in(&base, "plate.toml", "out");
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("runs: 2 computed, 68 resumed"), "{t}");
+    assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
+    assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
+    assert_eq!(std::fs::read(&fields[1]).unwrap(), bytes);
+}

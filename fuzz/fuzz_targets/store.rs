@@ -1,0 +1,145 @@
+//! The study directory's store reader. A valid store (a `study.db` with three committed runs,
+//! and a run's field file) is made once; each case changes bytes of both at offsets chosen by
+//! the fuzzer, may cut them short, or replaces the database by arbitrary bytes, then reads
+//! them as `alea run` and `alea report` do (`Store::saved_study`, `Store::open`, `Store::runs`,
+//! `Store::damaged_files`, `Store::fields`, `Store::cre`, `store::read_values`): an error or
+//! values, never a panic.
+#![no_main]
+
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use alea_study::store::{RunRecord, Store, read_values};
+use arbitrary::Arbitrary;
+use libfuzzer_sys::fuzz_target;
+
+const HASH: &str = "0123456789abcdef";
+
+fn record(p: f64) -> RunRecord {
+    RunRecord {
+        params: vec![p, 2.0 * p],
+        status: if p > 2.0 {
+            "not converged"
+        } else {
+            "converged"
+        }
+        .into(),
+        iterations: 7,
+        residual: 1e-7,
+        seconds: 0.1,
+        qois: vec![p * p, -p],
+        history: vec![1.0, 0.1, 0.01],
+        state: vec![0.5; 6],
+    }
+}
+
+struct Template {
+    dir: PathBuf,
+    db: Vec<u8>,
+    field: Vec<u8>,
+}
+
+/// The valid store, and one scratch directory per fuzzing process.
+fn template() -> &'static Template {
+    static T: OnceLock<Template> = OnceLock::new();
+    T.get_or_init(|| {
+        let root = std::env::temp_dir().join(format!("alea-fuzz-store-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        let made = root.join("template");
+        {
+            let store = Store::open(&made, HASH, false).expect("template store");
+            store
+                .save_study(&made.join("s.toml"), "[study]\ntitle = \"t\"\n")
+                .expect("study text");
+            for p in [1.0, 2.0, 3.0] {
+                store
+                    .commit(&record(p), &[p; 6], Some(&[p; 3]))
+                    .expect("commit");
+            }
+        }
+        let db = std::fs::read(made.join("study.db")).expect("template database");
+        let field = std::fs::read(
+            Store::open(&made, HASH, false)
+                .expect("reopen")
+                .field_path(&[1.0, 2.0]),
+        )
+        .expect("template field file");
+        let dir = root.join("scratch");
+        std::fs::create_dir_all(dir.join("fields")).expect("scratch directory");
+        Template { dir, db, field }
+    })
+}
+
+#[derive(Arbitrary, Debug)]
+struct Input<'a> {
+    /// Byte changes of the database: (offset modulo its length, new byte).
+    db_edits: Vec<(u32, u8)>,
+    /// Cut the database to this many bytes (modulo its length + 1).
+    db_cut: Option<u32>,
+    /// Arbitrary bytes instead of the database.
+    db_raw: Option<&'a [u8]>,
+    /// Byte changes of the field file.
+    field_edits: Vec<(u16, u8)>,
+    /// Cut the field file.
+    field_cut: Option<u16>,
+    /// Values expected in a field file (the model's size).
+    field_values: u8,
+}
+
+fn mutate(bytes: &[u8], edits: impl Iterator<Item = (usize, u8)>, cut: Option<usize>) -> Vec<u8> {
+    let mut b = bytes.to_vec();
+    if !b.is_empty() {
+        for (at, v) in edits {
+            let n = b.len();
+            b[at % n] = v;
+        }
+    }
+    if let Some(c) = cut {
+        b.truncate(c % (bytes.len() + 1));
+    }
+    b
+}
+
+fuzz_target!(|input: Input| {
+    let t = template();
+    let dir = &t.dir;
+    for name in ["study.db", "study.db-wal", "study.db-shm"] {
+        let _ = std::fs::remove_file(dir.join(name));
+    }
+    let db = match input.db_raw {
+        Some(raw) => raw.to_vec(),
+        None => mutate(
+            &t.db,
+            input
+                .db_edits
+                .iter()
+                .take(64)
+                .map(|&(o, v)| (o as usize, v)),
+            input.db_cut.map(|c| c as usize),
+        ),
+    };
+    std::fs::write(dir.join("study.db"), db).expect("write study.db");
+    let _ = Store::saved_study(dir);
+    let Ok(store) = Store::open(dir, HASH, false) else {
+        return;
+    };
+    let runs = store.runs().unwrap_or_default();
+    let field = mutate(
+        &t.field,
+        input
+            .field_edits
+            .iter()
+            .take(16)
+            .map(|&(o, v)| (o as usize, v)),
+        input.field_cut.map(|c| c as usize),
+    );
+    for r in runs.iter().take(4) {
+        let path = store.field_path(&r.params);
+        std::fs::write(&path, &field).expect("write field file");
+        let _ = store.damaged_files(&r.params, input.field_values as usize, true);
+        let _ = store.fields(&r.params);
+        let _ = store.cre(&r.params);
+        let _ = read_values(&path);
+        let _ = std::fs::remove_file(&path);
+    }
+});
