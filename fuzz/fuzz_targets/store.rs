@@ -86,6 +86,14 @@ struct Input<'a> {
     field_values: u8,
 }
 
+/// The first `n` byte edits of `list`, as (offset, value).
+fn edits<T: Copy + Into<u64>>(
+    list: &[(T, u8)],
+    n: usize,
+) -> impl Iterator<Item = (usize, u8)> + '_ {
+    list.iter().take(n).map(|&(o, v)| (o.into() as usize, v))
+}
+
 fn mutate(bytes: &[u8], edits: impl Iterator<Item = (usize, u8)>, cut: Option<usize>) -> Vec<u8> {
     let mut b = bytes.to_vec();
     if !b.is_empty() {
@@ -110,11 +118,7 @@ fuzz_target!(|input: Input| {
         Some(raw) => raw.to_vec(),
         None => mutate(
             &t.db,
-            input
-                .db_edits
-                .iter()
-                .take(64)
-                .map(|&(o, v)| (o as usize, v)),
+            edits(&input.db_edits, 64),
             input.db_cut.map(|c| c as usize),
         ),
     };
@@ -126,11 +130,7 @@ fuzz_target!(|input: Input| {
     let runs = store.runs().unwrap_or_default();
     let field = mutate(
         &t.field,
-        input
-            .field_edits
-            .iter()
-            .take(16)
-            .map(|&(o, v)| (o as usize, v)),
+        edits(&input.field_edits, 16),
         input.field_cut.map(|c| c as usize),
     );
     for r in runs.iter().take(4) {

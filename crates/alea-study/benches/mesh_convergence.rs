@@ -54,15 +54,7 @@ fn run_case(case: &Case) {
         let src = Source::from_text(&path.to_string_lossy(), &refined(&text, f));
         let study = Study::from_source(src).expect("study builds");
         names = study.qois.iter().map(|q| q.name.clone()).collect();
-        dofs.push(
-            study
-                .model
-                .assembly
-                .subs
-                .iter()
-                .map(|s| s.model.mesh.num_nodes() * s.model.mesh.dim)
-                .sum::<usize>(),
-        );
+        dofs.push(study.field_values());
         let t0 = Instant::now();
         let solver = LatinSolver::new(study.model.assembly.clone(), study.model.options.clone())
             .expect("solver set-up");

@@ -13,15 +13,9 @@
 use crate::store::{RunRecord, Store};
 use crate::study::{Study, estimates_error};
 
-/// Number of values of a run's field file: every substructure's nodes times the dimension.
+/// Number of values of a run's field file ([`Study::field_values`]).
 pub fn field_values(study: &Study) -> usize {
-    study
-        .model
-        .assembly
-        .subs
-        .iter()
-        .map(|s| s.model.mesh.num_nodes() * s.model.mesh.dim)
-        .sum()
+    study.field_values()
 }
 
 /// The runs of `records` whose stored files can be used; each converged run with a damaged

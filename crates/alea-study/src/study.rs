@@ -56,6 +56,17 @@ impl std::fmt::Debug for Study {
 }
 
 impl Study {
+    /// Number of values of a run's displacement field (its field file): every substructure's
+    /// nodes times the dimension.
+    pub fn field_values(&self) -> usize {
+        self.model
+            .assembly
+            .subs
+            .iter()
+            .map(|s| s.model.mesh.num_nodes() * s.model.mesh.dim)
+            .sum()
+    }
+
     /// A parameter point in words for messages: `a = 0.25, b = 1`.
     pub fn describe_point(&self, theta: &[f64]) -> String {
         self.params
