@@ -22,6 +22,23 @@ pub type ArrayIn<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
 /// A new two-dimensional NumPy array of `f64` handed to Python, or the Python error.
 pub type MatrixResult<'py> = PyResult<Bound<'py, PyArray2<f64>>>;
 
+/// A non-negative integer argument (a size, a count, a seed): a negative value, or one too
+/// large for `T`, is a `ValueError` naming the value, not pyo3's bare `OverflowError`.
+pub struct NonNegative<T>(pub T);
+
+impl<'a, 'py, T: TryFrom<i128>> FromPyObject<'a, 'py> for NonNegative<T> {
+    type Error = PyErr;
+
+    fn extract(obj: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let v: i128 = obj.extract()?;
+        T::try_from(v).map(NonNegative).map_err(|_| {
+            value_error(format!(
+                "expected a non-negative integer within range, got {v}"
+            ))
+        })
+    }
+}
+
 /// `ValueError(message)`.
 pub fn value_error(message: impl Into<String>) -> PyErr {
     PyValueError::new_err(message.into())

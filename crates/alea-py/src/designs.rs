@@ -9,19 +9,24 @@ use alea_uq::quadrature::QuadratureRule;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
-use crate::convert::{ArrayIn, MatrixResult, array1, array2, uq_err, value_error, vector};
+use crate::convert::{
+    ArrayIn, MatrixResult, NonNegative, array1, array2, uq_err, value_error, vector,
+};
 use crate::laws::{independent_marginals, law_arg};
 
 /// `n` independent draws of `law` (a `Joint`, a `Law` or a list of `Law`s), shape `(n, d)`.
 /// Seeded: the same `seed` gives the same points for any number of threads.
 #[pyfunction]
-#[pyo3(signature = (law, n, seed = 0))]
+#[pyo3(signature = (law, n, seed = NonNegative(0)))]
+#[pyo3(text_signature = "(law, n, seed=0)")]
 pub fn monte_carlo<'py>(
     py: Python<'py>,
     law: &Bound<'py, PyAny>,
-    n: usize,
-    seed: u64,
+    n: NonNegative<usize>,
+    seed: NonNegative<u64>,
 ) -> MatrixResult<'py> {
+    let n = n.0;
+    let seed = seed.0;
     let l = law_arg(law, "monte_carlo law")?.joint;
     let d = l.dim();
     let design = py.detach(move || mc(l.as_ref(), n, seed));
@@ -32,14 +37,18 @@ pub fn monte_carlo<'py>(
 /// direction, mapped through the law's isoprobabilistic map (so dependent laws work too).
 /// `maximin=k` keeps the best of `k` hypercubes for the smallest pairwise distance.
 #[pyfunction]
-#[pyo3(signature = (law, n, seed = 0, maximin = None))]
+#[pyo3(signature = (law, n, seed = NonNegative(0), maximin = None))]
+#[pyo3(text_signature = "(law, n, seed=0, maximin=None)")]
 pub fn lhs<'py>(
     py: Python<'py>,
     law: &Bound<'py, PyAny>,
-    n: usize,
-    seed: u64,
-    maximin: Option<usize>,
+    n: NonNegative<usize>,
+    seed: NonNegative<u64>,
+    maximin: Option<NonNegative<usize>>,
 ) -> MatrixResult<'py> {
+    let n = n.0;
+    let seed = seed.0;
+    let maximin = maximin.map(|v| v.0);
     let l = law_arg(law, "lhs law")?.joint;
     let d = l.dim();
     let design = py.detach(move || match maximin {
@@ -57,9 +66,10 @@ pub fn lhs<'py>(
 pub fn sobol<'py>(
     py: Python<'py>,
     law: &Bound<'py, PyAny>,
-    n: usize,
+    n: NonNegative<usize>,
     scramble_seed: Option<u64>,
 ) -> MatrixResult<'py> {
+    let n = n.0;
     let l = law_arg(law, "sobol law")?.joint;
     let d = l.dim();
     let design = py
@@ -90,9 +100,11 @@ pub fn grid<'py>(
 pub fn pc_collocation<'py>(
     py: Python<'py>,
     law: &Bound<'py, PyAny>,
-    degree: usize,
-    n: usize,
+    degree: NonNegative<usize>,
+    n: NonNegative<usize>,
 ) -> MatrixResult<'py> {
+    let degree = degree.0;
+    let n = n.0;
     let m = independent_marginals(law, "pc_collocation law")?;
     let design = pcc(&m, degree, n).map_err(uq_err)?;
     array2(py, design.points().to_vec(), n, m.len())
@@ -114,9 +126,10 @@ pub fn quadrature<'py>(
     py: Python<'py>,
     law: &Bound<'py, PyAny>,
     order: Option<&Bound<'py, PyAny>>,
-    level: Option<usize>,
+    level: Option<NonNegative<usize>>,
     nested: bool,
 ) -> PyResult<NodesWeights<'py>> {
+    let level = level.map(|v| v.0);
     let m = independent_marginals(law, "quadrature law")?;
     let rule = quadrature_rule(&m, order, level, nested)?;
     let (n, d) = (rule.len(), rule.dim());

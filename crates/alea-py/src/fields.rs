@@ -8,7 +8,7 @@ use alea_uq::field::{
 use numpy::{PyArray1, PyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
-use crate::convert::{ArrayIn, array1, array2, points, uq_err, value_error, vector};
+use crate::convert::{ArrayIn, NonNegative, array1, array2, points, uq_err, value_error, vector};
 
 /// Karhunen-Loeve expansion of a stationary Gaussian field on a P1 mesh.
 ///
@@ -52,9 +52,10 @@ impl KarhunenLoeve {
         variance: f64,
         length: &Bound<'_, PyAny>,
         variance_fraction: Option<f64>,
-        modes: Option<usize>,
+        modes: Option<NonNegative<usize>>,
         integration: &str,
     ) -> PyResult<Self> {
+        let modes = modes.map(|v| v.0);
         let d = match nodes.shape() {
             [_, d] if (1..=3).contains(d) => *d,
             [_] => 1,

@@ -24,7 +24,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::convert::{
-    ArrayIn, MatrixResult, array1, array2, elementwise, points, square, uq_err, value_error, vector,
+    ArrayIn, MatrixResult, NonNegative, array1, array2, elementwise, points, square, uq_err,
+    value_error, vector,
 };
 
 /// A one-dimensional probability law (base class of `Normal`, `Uniform`, ...).
@@ -58,18 +59,27 @@ impl Law {
     fn sf<'py>(&self, py: Python<'py>, x: ArrayIn<'py>) -> PyResult<Bound<'py, PyAny>> {
         elementwise(py, &x, |v| self.inner.sf(v))
     }
-    /// Inverse distribution function at probabilities `p` in `[0, 1]` (NaN outside).
+    /// Inverse distribution function at probabilities `p` in `[0, 1]`; a probability outside
+    /// it (or NaN) is a `ValueError` naming it, not a silent NaN.
     fn quantile<'py>(&self, py: Python<'py>, p: ArrayIn<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if let Some(bad) = p.as_array().iter().find(|v| !(0.0..=1.0).contains(*v)) {
+            return Err(value_error(format!(
+                "quantile: probabilities must be in [0, 1], got {bad}"
+            )));
+        }
         elementwise(py, &p, |v| self.inner.quantile(v))
     }
     /// `n` independent draws (seeded: the same `seed` gives the same draws).
-    #[pyo3(signature = (n, seed = 0))]
+    #[pyo3(signature = (n, seed = NonNegative(0)))]
+    #[pyo3(text_signature = "($self, n, seed=0)")]
     fn sample<'py>(
         &self,
         py: Python<'py>,
-        n: usize,
-        seed: u64,
+        n: NonNegative<usize>,
+        seed: NonNegative<u64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let n = n.0;
+        let seed = seed.0;
         let joint = Independent::new(vec![self.inner.clone()]).map_err(uq_err)?;
         let d = py.detach(|| monte_carlo(&joint, n, seed));
         Ok(array1(py, d.points().to_vec()))
@@ -556,8 +566,15 @@ impl JointPy {
         Ok(array1(py, out))
     }
     /// `n` independent draws, shape `(n, d)` (seeded; identical for any number of threads).
-    #[pyo3(signature = (n, seed = 0))]
-    fn sample<'py>(&self, py: Python<'py>, n: usize, seed: u64) -> MatrixResult<'py> {
+    #[pyo3(signature = (n, seed = NonNegative(0)))]
+    #[pyo3(text_signature = "($self, n, seed=0)")]
+    fn sample<'py>(
+        &self,
+        py: Python<'py>,
+        n: NonNegative<usize>,
+        seed: NonNegative<u64>,
+    ) -> MatrixResult<'py> {
+        let (n, seed) = (n.0, seed.0);
         let law = self.inner.clone();
         let d = py.detach(move || monte_carlo(law.as_ref(), n, seed));
         array2(py, d.points().to_vec(), n, self.dim())

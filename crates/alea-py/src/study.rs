@@ -20,7 +20,7 @@ use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::convert::{array1, array2, study_err, value_error};
+use crate::convert::{NonNegative, array1, array2, study_err, value_error};
 
 /// An error of the study orchestration as a Python exception: study errors as `study_err`
 /// does, files that cannot be read or written as `OSError` (`FileNotFoundError` for a
@@ -318,9 +318,10 @@ pub fn run_study_file<'py>(
     path: PathBuf,
     directory: PathBuf,
     restart: bool,
-    threads: Option<usize>,
+    threads: Option<NonNegative<usize>>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let threads = threads.map(|v| v.0);
     if threads == Some(0) {
         return Err(value_error("threads must be at least 1"));
     }

@@ -18,7 +18,9 @@ use pyo3::prelude::*;
 use rayon::prelude::*;
 use std::sync::Arc;
 
-use crate::convert::{ArrayIn, MatrixResult, array1, array2, points, uq_err, value_error, vector};
+use crate::convert::{
+    ArrayIn, MatrixResult, NonNegative, array1, array2, points, uq_err, value_error, vector,
+};
 use crate::laws::{independent_marginals, law_arg};
 
 fn basis(m: &[Arc<dyn Marginal>], degree: usize, q: Option<f64>) -> PyResult<PcBasis> {
@@ -115,11 +117,12 @@ impl PolynomialChaos {
     fn regression(
         py: Python<'_>,
         law: &Bound<'_, PyAny>,
-        degree: usize,
+        degree: NonNegative<usize>,
         points: ArrayIn<'_>,
         values: ArrayIn<'_>,
         q: Option<f64>,
     ) -> PyResult<Self> {
+        let degree = degree.0;
         let (b, p, v) = basis_and_runs(law, degree, q, &points, &values)?;
         let sur = py
             .detach(|| PcSurrogate::regression(b, &p))
@@ -133,12 +136,13 @@ impl PolynomialChaos {
     #[pyo3(signature = (law, degree, nodes, weights, values, q = None))]
     fn projection(
         law: &Bound<'_, PyAny>,
-        degree: usize,
+        degree: NonNegative<usize>,
         nodes: ArrayIn<'_>,
         weights: ArrayIn<'_>,
         values: ArrayIn<'_>,
         q: Option<f64>,
     ) -> PyResult<Self> {
+        let degree = degree.0;
         let m = independent_marginals(law, "PolynomialChaos law")?;
         let b = basis(&m, degree, q)?;
         let (p, k) = points(&nodes, m.len(), "PolynomialChaos nodes")?;
@@ -159,13 +163,14 @@ impl PolynomialChaos {
     fn lars(
         py: Python<'_>,
         law: &Bound<'_, PyAny>,
-        degree: usize,
+        degree: NonNegative<usize>,
         points: ArrayIn<'_>,
         values: ArrayIn<'_>,
         q: Option<f64>,
         max_terms_fraction: f64,
         stop_factor: f64,
     ) -> PyResult<Self> {
+        let degree = degree.0;
         let (b, p, v) = basis_and_runs(law, degree, q, &points, &values)?;
         let opts = LarsOptions {
             max_terms_fraction,

@@ -58,3 +58,19 @@ def test_pc_collocation_at_hermite_roots():
     x = alea.pc_collocation(alea.Normal(1.0, 2.0), 2, 3)
     np.testing.assert_allclose(np.sort(x[:, 0]), [1 - 2 * math.sqrt(3), 1, 1 + 2 * math.sqrt(3)], rtol=1e-13)
     assert x[0, 0] == pytest.approx(1.0, abs=1e-13)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda law: alea.lhs(law, -5),
+        lambda law: alea.monte_carlo(law, -1),
+        lambda law: alea.sobol(law, -3),
+        lambda law: alea.monte_carlo(law, 10, seed=-1),
+        lambda law: alea.Normal(0.0, 1.0).sample(-2),
+    ],
+)
+def test_negative_sizes_and_seeds_are_value_errors_naming_the_value(call):
+    law = [alea.Normal(0.0, 1.0), alea.Uniform(0.0, 1.0)]
+    with pytest.raises(ValueError, match="non-negative integer.*got -"):
+        call(law)

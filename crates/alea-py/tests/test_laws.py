@@ -180,3 +180,9 @@ def test_class_names_are_the_exported_names():
         cls = getattr(alea, name)
         assert cls.__name__ == name and cls.__module__ == "alea"
     assert "Normal law" in alea.Normal.__doc__
+
+
+@pytest.mark.parametrize("p", [[1.5], [-0.1], [0.2, float("nan")], 2.0])
+def test_quantile_outside_zero_one_is_a_value_error_not_nan(p):
+    with pytest.raises(ValueError, match=r"probabilities must be in \[0, 1\]"):
+        alea.Normal(0.0, 1.0).quantile(p)

@@ -1,0 +1,460 @@
+"""Type stubs of ``alea._core`` (written by ``tools/stubgen.py`` from the built module: do not
+edit by hand)."""
+import os
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+from numpy.typing import ArrayLike
+
+Matrix = npt.NDArray[np.float64]
+Vector = npt.NDArray[np.float64]
+LawLike = Union["Joint", "Law", Sequence["Law"]]
+
+__version__: str
+
+class Joint:
+    """
+    A joint law of `d` random variables: independent marginals (`correlation=None`) or a
+    Gaussian copula (Nataf) with the given correlation matrix of the normal scores. Other
+    copulas: `Joint.student`, `Joint.clayton`, `Joint.gumbel`, `Joint.frank`.
+
+    Points are `(n, d)` arrays. `to_unit` / `from_unit` are the isoprobabilistic map to
+    independent uniforms on `[0, 1]^d` and back; `to_standard_normal` / `from_standard_normal`
+    map to independent standard normals (the Nataf transform for the Gaussian copula).
+    """
+    def __init__(self, marginals: Sequence[Law], correlation: Optional[ArrayLike] = None) -> None: ...
+    @property
+    def bounds(self) -> Any: ...
+    @staticmethod
+    def clayton(marginals: Sequence[Law], theta: Any) -> Any:
+        """
+        Clayton copula with parameter `theta > 0` (any dimension).
+        """
+        ...
+    @property
+    def correlation(self) -> Any: ...
+    @property
+    def dim(self) -> Any: ...
+    @staticmethod
+    def frank(marginals: Sequence[Law], theta: Any) -> Any:
+        """
+        Frank copula with parameter `theta != 0` (two variables).
+        """
+        ...
+    def from_standard_normal(self, y: Any) -> Any:
+        """
+        Map independent standard normal points `y` to the law's space.
+        """
+        ...
+    def from_unit(self, u: Any) -> Any:
+        """
+        Map unit-cube points `u` to the law's space.
+        """
+        ...
+    @staticmethod
+    def gumbel(marginals: Sequence[Law], theta: Any) -> Any:
+        """
+        Gumbel copula with parameter `theta >= 1` (two variables).
+        """
+        ...
+    @property
+    def kind(self) -> Any: ...
+    @property
+    def marginals(self) -> Any: ...
+    def pdf(self, x: ArrayLike) -> Any:
+        """
+        Joint density at the points `x` (`(n, d)`), shape `(n,)`.
+        """
+        ...
+    def sample(self, n: int, seed: int = 0) -> Any:
+        """
+        `n` independent draws, shape `(n, d)` (seeded; identical for any number of threads).
+        """
+        ...
+    @staticmethod
+    def student(marginals: Sequence[Law], correlation: ArrayLike, nu: Any) -> Any:
+        """
+        Student copula with correlation matrix `correlation` and `nu` degrees of freedom.
+        """
+        ...
+    def to_standard_normal(self, x: ArrayLike) -> Any:
+        """
+        Map points `x` to independent standard normal variables.
+        """
+        ...
+    def to_unit(self, x: ArrayLike) -> Any:
+        """
+        Map points `x` to independent uniforms on the unit cube.
+        """
+        ...
+
+class KarhunenLoeve:
+    """
+    Karhunen-Loeve expansion of a stationary Gaussian field on a P1 mesh.
+
+    `nodes`: `(n, d)` coordinates (`d` = 1 to 3, or a 1-D array of abscissae); `cells`: lists of
+    2 node indices (segments, e.g. along a contact line) or 3 (triangles); `kernel`:
+    `"exponential"`, `"squared-exponential"`, `"matern32"` or `"matern52"`; `variance` (sigma^2)
+    and `length` (one correlation length, or one per coordinate). Exactly one of
+    `variance_fraction` (keep the fewest modes whose eigenvalues reach this fraction of
+    sigma^2 |D|) and `modes` (a mode count) must be given. `integration="nodal"` interpolates the
+    kernel at the nodes as OpenTURNS's `KarhunenLoeveP1Algorithm` does (default: quadrature).
+    """
+    def __init__(self, nodes: ArrayLike, cells: ArrayLike, kernel: str, variance: float, length: float, *, variance_fraction: Optional[float] = None, modes: Optional[int] = None, integration: str = 'quadrature') -> None: ...
+    @property
+    def captured_fraction(self) -> Any: ...
+    @property
+    def eigenvalues(self) -> Any: ...
+    @property
+    def modes(self) -> Any: ...
+    @property
+    def num_modes(self) -> Any: ...
+    def realise(self, xi: ArrayLike, mean: float = 0.0, transform: str = 'gaussian', bounds: Optional[Tuple[float, float]] = None) -> Any:
+        """
+        The field at the nodes for KL variables `xi` (shape `(num_modes,)`, or `(s, num_modes)`
+        for `s` realisations): `g = mean + sum_k sqrt(lambda_k) phi_k xi_k`, then
+        `transform` `"gaussian"` (g), `"lognormal"` (exp g) or `"bounded"`
+        (`lower + (upper - lower) Phi((g - mean) / sigma)`, needs `bounds=(lower, upper)`).
+        """
+        ...
+    @property
+    def total_variance(self) -> Any: ...
+
+class Law:
+    """
+    A one-dimensional probability law (base class of `Normal`, `Uniform`, ...).
+
+    Methods work elementwise on scalars and arrays of any shape: `pdf`, `cdf`, `sf`
+    (`1 - cdf`, accurate in the upper tail), `quantile`. `sample(n, seed)` draws `n` values by
+    inversion from seeded streams (same result for any number of threads).
+    """
+    def cdf(self, x: ArrayLike) -> Any:
+        """
+        Distribution function `P(X <= x)`.
+        """
+        ...
+    @property
+    def mean(self) -> Any: ...
+    @property
+    def name(self) -> Any: ...
+    def pdf(self, x: ArrayLike) -> Any:
+        """
+        Probability density at `x` (0 outside the support).
+        """
+        ...
+    def quantile(self, p: ArrayLike) -> Any:
+        """
+        Inverse distribution function at probabilities `p` in `[0, 1]`; a probability outside
+        it (or NaN) is a `ValueError` naming it, not a silent NaN.
+        """
+        ...
+    def sample(self, n: int, seed: int = 0) -> Any:
+        """
+        `n` independent draws (seeded: the same `seed` gives the same draws).
+        """
+        ...
+    def sf(self, x: ArrayLike) -> Any:
+        """
+        Survival function `P(X > x)`.
+        """
+        ...
+    @property
+    def std(self) -> Any: ...
+    @property
+    def support(self) -> Any: ...
+    @property
+    def variance(self) -> Any: ...
+
+class PiecewiseLinear:
+    """
+    Piecewise multilinear interpolation on a regular grid of the box `[lo, hi]` with `cells[j]`
+    cells in direction `j` (the thesis's stochastic finite elements; 1 to 6 variables).
+
+    The runs are the grid's nodes in the order of `PiecewiseLinear.nodes(lo, hi, cells)`
+    (first direction fastest): evaluate the model there and pass the values.
+    """
+    def __init__(self, lo: ArrayLike, hi: ArrayLike, cells: ArrayLike, values: ArrayLike) -> None: ...
+    def mean(self, law: LawLike, order: int = 4) -> Any:
+        """
+        `E[q~]` under `law` (supported in the box): `sum_k E[w_k] q_k`, each `E[w_k]` integrated
+        with an `order`-point Gauss-Legendre rule per cell, divided by the computed mass of the
+        law on the box.
+        """
+        ...
+    @staticmethod
+    def nodes(lo: ArrayLike, hi: ArrayLike, cells: ArrayLike) -> Any:
+        """
+        The grid's nodes (the runs), shape `(prod(cells[j] + 1), d)`, first direction fastest.
+        """
+        ...
+    @property
+    def num_runs(self) -> Any: ...
+    def predict(self, points: ArrayLike) -> Any:
+        """
+        Interpolated values at `points` (`(n, d)`, inside the box), shape `(n,)`.
+        """
+        ...
+    def variance(self, law: LawLike, order: int = 4) -> Any:
+        """
+        `Var[q~]` under `law` (supported in the box), from `E[w_k w_l]` integrated as in `mean`.
+        """
+        ...
+    def weights(self, points: ArrayLike) -> Any:
+        """
+        Dense weights `w_k(x)` at `points`, shape `(n, K)` (at most `2^d` non-zero per row).
+        """
+        ...
+
+class PolynomialChaos:
+    """
+    A polynomial chaos expansion `q~(x) = sum_a s_a Psi_a(x)` in the orthonormal polynomials of
+    independent marginals, fitted to run values.
+
+    Build it with `PolynomialChaos.regression`, `.projection` or `.lars`, or `.load` a saved
+    one. Statistics come from the coefficients: `mean = s_0`, `variance = sum_{a != 0} s_a^2`,
+    Sobol' indices from sums of squared coefficients.
+    """
+    @property
+    def coefficients(self) -> Any: ...
+    @property
+    def condition_estimate(self) -> Any: ...
+    @property
+    def corrected_loo_error(self) -> Any: ...
+    @property
+    def dim(self) -> Any: ...
+    @staticmethod
+    def lars(law: LawLike, degree: int, points: ArrayLike, values: ArrayLike, q: Optional[float] = None, max_terms_fraction: float = 0.5, stop_factor: float = 2.0) -> Any:
+        """
+        Sparse chaos by hybrid least-angle regression (Blatman & Sudret 2011): LARS orders the
+        candidate terms of the degree-`degree` basis, each prefix is scored by its corrected
+        leave-one-out error and the best one is refitted by least squares.
+        `max_terms_fraction`: largest number of terms as a fraction of the runs;
+        `stop_factor`: stop once the error exceeds this factor times the best so far.
+        """
+        ...
+    @property
+    def lars_path(self) -> Any: ...
+    @staticmethod
+    def load(path: Union[str, os.PathLike[str]]) -> Any:
+        """
+        Loads a chaos saved by `save` (JSON: basis, linear map, runs).
+        """
+        ...
+    @property
+    def loo_error(self) -> Any: ...
+    @property
+    def mean(self) -> Any: ...
+    @property
+    def method(self) -> Any: ...
+    @property
+    def multi_indices(self) -> Any: ...
+    @property
+    def num_runs(self) -> Any: ...
+    def predict(self, points: ArrayLike) -> Any:
+        """
+        Values of the expansion at `points` (`(n, d)`), shape `(n,)`.
+        """
+        ...
+    @staticmethod
+    def projection(law: LawLike, degree: int, nodes: ArrayLike, weights: Any, values: ArrayLike, q: Optional[float] = None) -> Any:
+        """
+        Chaos by quadrature projection, `s_a = sum_k w_k q_k Psi_a(x_k)`, on a rule with nodes
+        `nodes` (`(K, d)`) and weights `weights` (`(K,)`, summing to 1; see `alea.quadrature`).
+        """
+        ...
+    @staticmethod
+    def regression(law: LawLike, degree: int, points: ArrayLike, values: ArrayLike, q: Optional[float] = None) -> Any:
+        """
+        Least-squares chaos on the runs `points` (`(K, d)`) with values `values` (`(K,)`): basis
+        of total degree `degree` (hyperbolic with q-norm `q` if given, `0 < q <= 1`) in the
+        orthonormal polynomials of the marginals of `law` (independent variables).
+        """
+        ...
+    def save(self, path: Union[str, os.PathLike[str]]) -> Any:
+        """
+        Saves the chaos and its runs as JSON (every float round-trips exactly).
+        """
+        ...
+    def sobol_first(self) -> Any:
+        """
+        First-order Sobol' indices, shape `(d,)`.
+        """
+        ...
+    def sobol_index(self, variables: Sequence[int]) -> Any:
+        """
+        Sobol' index of exactly the group `variables` (e.g. `[0, 2]` is `S_13`); all groups sum
+        to 1.
+        """
+        ...
+    def sobol_second_order(self) -> Any:
+        """
+        Second-order interaction indices `S_ij`, symmetric `(d, d)` with a zero diagonal.
+        """
+        ...
+    def sobol_total(self) -> Any:
+        """
+        Total Sobol' indices, shape `(d,)`.
+        """
+        ...
+    @property
+    def std(self) -> Any: ...
+    @property
+    def variance(self) -> Any: ...
+    @property
+    def warnings(self) -> Any: ...
+    def weights(self, points: ArrayLike) -> Any:
+        """
+        Dense weights `w_k(x)` at `points` (`(n, d)`), shape `(n, K)`: `predict(x) = w @ values`
+        and `w @ F` interpolates any per-run array `F` (`(K, m)`) the same way.
+        """
+        ...
+
+class Beta(Law):
+    """
+    Beta law with shapes `alpha`, `beta` on `[lo, hi]`.
+    """
+    def __init__(self, alpha: float, beta: float, lo: ArrayLike = 0.0, hi: ArrayLike = 1.0) -> None: ...
+
+class Empirical(Law):
+    """
+    Empirical law of data (linearly interpolated empirical distribution function).
+    """
+    def __init__(self, data: ArrayLike) -> None: ...
+
+class Gamma(Law):
+    """
+    Gamma law with shape `k`, scale `theta` and location `loc`.
+    """
+    def __init__(self, shape: float, scale: float, loc: float = 0.0) -> None: ...
+
+class Kde(Law):
+    """
+    A Gaussian kernel density estimate of data used as a law; `bandwidth` is `"isj"`
+    (improved Sheather-Jones, the default), `"silverman"` or a number.
+    """
+    def __init__(self, data: ArrayLike, bandwidth: Optional[float] = None) -> None: ...
+    @property
+    def bandwidth(self) -> Any: ...
+
+class Lognormal(Law):
+    """
+    Lognormal law: `ln X ~ N(mu, sigma^2)`. `Lognormal.from_mean_std(mean, std)` gives the law
+    with those moments.
+    """
+    def __init__(self, mu: float, sigma: float) -> None: ...
+    @staticmethod
+    def from_mean_std(mean: float, std: float) -> Any:
+        """
+        The lognormal law of mean `mean` and standard deviation `std`.
+        """
+        ...
+
+class Normal(Law):
+    """
+    Normal law `N(mean, std^2)`.
+    """
+    def __init__(self, mean: float = 0.0, std: float = 1.0) -> None: ...
+
+class Triangular(Law):
+    """
+    Triangular law on `[lo, hi]` with mode `mode`.
+    """
+    def __init__(self, lo: ArrayLike, mode: float, hi: ArrayLike) -> None: ...
+
+class TruncatedNormal(Law):
+    """
+    Normal law `N(mean, std^2)` truncated to `[lo, hi]` (bounds may be infinite; far tails are
+    handled in log space).
+    """
+    def __init__(self, mean: float, std: float, lo: ArrayLike, hi: ArrayLike) -> None: ...
+
+class Uniform(Law):
+    """
+    Uniform law on `[lo, hi]`.
+    """
+    def __init__(self, lo: ArrayLike, hi: ArrayLike) -> None: ...
+
+def fit(data: ArrayLike, families: Optional[Sequence[str]] = None) -> Any:
+    """
+    Fits the usual families to `data` by maximum likelihood and ranks them by BIC (best first).
+
+    `families`: names among `"normal"`, `"lognormal"`, `"uniform"`, `"gamma"` and
+    `("beta", lo, hi)` (beta on given bounds); default: the first four. Returns a list of dicts
+    with `law` (a `Law`), `family`, `parameters`, `log_likelihood`, `aic`, `bic`, `ks`
+    (Kolmogorov-Smirnov statistic), `ks_pvalue` (conservative with estimated parameters) and
+    `anderson_darling`.
+    """
+    ...
+
+def grid(lo: ArrayLike, hi: ArrayLike, counts: Sequence[int]) -> Matrix:
+    """
+    Tensor grid on the box `[lo, hi]` with `counts[j]` equispaced nodes in direction `j`
+    (bounds included; one node is the centre); the last direction varies fastest.
+    """
+    ...
+
+def lhs(law: LawLike, n: int, seed: int = 0, maximin: Optional[int] = None) -> Matrix:
+    """
+    Latin hypercube of `n` points of `law`: one point per stratum of probability `1/n` in each
+    direction, mapped through the law's isoprobabilistic map (so dependent laws work too).
+    `maximin=k` keeps the best of `k` hypercubes for the smallest pairwise distance.
+    """
+    ...
+
+def monte_carlo(law: LawLike, n: int, seed: int = 0) -> Matrix:
+    """
+    `n` independent draws of `law` (a `Joint`, a `Law` or a list of `Law`s), shape `(n, d)`.
+    Seeded: the same `seed` gives the same points for any number of threads.
+    """
+    ...
+
+def pc_collocation(law: LawLike, degree: int, n: int) -> Matrix:
+    """
+    `n` collocation points for a chaos of degree `degree` (Berveiller, Sudret & Lemaire): the
+    roots of the degree `degree + 1` orthonormal polynomial of each marginal, tensorised, the
+    `n` of highest density first. `law`: independent variables.
+    """
+    ...
+
+def quadrature(law: LawLike, order: Optional[int] = None, level: Optional[int] = None, nested: bool = False) -> Tuple[Matrix, Vector]:
+    """
+    A quadrature rule for the independent variables of `law`: `(nodes (n, d), weights (n,))`,
+    weights summing to 1 (expectations under the law).
+
+    Exactly one of: `order` (tensor Gauss rule, an int or one per variable); `level` (Smolyak
+    sparse grid on Gauss rules, `level >= d`, exact for total degree `2 (level - d) + 1`); or
+    `level` with `nested=True` (Smolyak on nested Clenshaw-Curtis / Genz-Keister rules, uniform
+    and normal variables, `level >= 0`).
+    """
+    ...
+
+def read_store(directory: Union[str, os.PathLike[str]], study: Optional[Union[str, os.PathLike[str]]] = None) -> Dict[str, Any]:
+    """
+    Reads the runs stored in a study directory without running anything. With `study` (the
+    study file), the store must hold that version of it and names come from it.
+    """
+    ...
+
+def rebuild_outputs(directory: Union[str, os.PathLike[str]]) -> Dict[str, Any]:
+    """
+    Rebuilds every output of a study directory from its store, computing no run (as
+    `alea report DIR`); returns the files written and the warnings (see the `alea` package's
+    `report`).
+    """
+    ...
+
+def run_study_file(path: Union[str, os.PathLike[str]], directory: Union[str, os.PathLike[str]], restart: bool = False, threads: Optional[int] = None, progress: Optional[Callable[..., Any]] = None) -> Dict[str, Any]:
+    """
+    Runs (or resumes) the study file `path` in the study directory `directory` and analyses
+    every method; returns a dict of arrays (see the `alea` package's `run`).
+    """
+    ...
+
+def sobol(law: LawLike, n: int, scramble_seed: Optional[int] = None) -> Matrix:
+    """
+    First `n` points of the Sobol' sequence (Joe-Kuo directions, up to 40 variables) mapped
+    through `law`; scrambled (linear matrix scramble and digital shift) when `scramble_seed` is
+    given.
+    """
+    ...

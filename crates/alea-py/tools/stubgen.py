@@ -1,0 +1,189 @@
+"""Writes ``python/alea/_core.pyi``, the type stubs of the extension module, from the built
+module itself (names, signatures and docstrings from ``inspect``) and a table of argument and
+return types by name. Run after ``maturin develop``:
+
+    python tools/stubgen.py            # writes the stub
+    python tools/stubgen.py --check    # exits 1 if the committed stub is out of date
+
+``tests/test_stubs.py`` runs the check, so a new function or argument cannot ship without its
+stub.
+"""
+import inspect
+import sys
+from pathlib import Path
+
+import alea._core as core
+
+STUB = Path(__file__).resolve().parent.parent / "python" / "alea" / "_core.pyi"
+
+ARG_TYPES = {
+    "law": "LawLike",
+    "marginals": "Sequence[Law]",
+    "correlation": "ArrayLike",
+    "n": "int",
+    "seed": "int",
+    "scramble_seed": "int",
+    "degree": "int",
+    "order": "int",
+    "level": "int",
+    "maximin": "int",
+    "modes": "int",
+    "threads": "int",
+    "counts": "Sequence[int]",
+    "cells": "ArrayLike",
+    "nodes": "ArrayLike",
+    "points": "ArrayLike",
+    "values": "ArrayLike",
+    "data": "ArrayLike",
+    "x": "ArrayLike",
+    "p": "ArrayLike",
+    "xi": "ArrayLike",
+    "lo": "ArrayLike",
+    "hi": "ArrayLike",
+    "path": "Union[str, os.PathLike[str]]",
+    "directory": "Union[str, os.PathLike[str]]",
+    "study": "Union[str, os.PathLike[str]]",
+    "restart": "bool",
+    "nested": "bool",
+    "progress": "Callable[..., Any]",
+    "kernel": "str",
+    "transform": "str",
+    "integration": "str",
+    "families": "Sequence[str]",
+    "bandwidth": "float",
+    "variables": "Sequence[int]",
+    "bounds": "Tuple[float, float]",
+}
+FLOAT_ARGS = {
+    "mean", "std", "alpha", "beta", "mu", "sigma", "shape", "scale", "loc", "mode",
+    "variance", "variance_fraction", "q", "max_terms_fraction", "stop_factor",
+    "length",
+}
+RETURNS = {
+    "monte_carlo": "Matrix", "lhs": "Matrix", "sobol": "Matrix", "grid": "Matrix",
+    "pc_collocation": "Matrix", "quadrature": "Tuple[Matrix, Vector]", "fit": "Any",
+    "read_store": "Dict[str, Any]", "rebuild_outputs": "Dict[str, Any]",
+    "run_study_file": "Dict[str, Any]",
+}
+HEADER = '''"""Type stubs of ``alea._core`` (written by ``tools/stubgen.py`` from the built module: do not
+edit by hand)."""
+import os
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+from numpy.typing import ArrayLike
+
+Matrix = npt.NDArray[np.float64]
+Vector = npt.NDArray[np.float64]
+LawLike = Union["Joint", "Law", Sequence["Law"]]
+
+__version__: str
+'''
+
+
+def arg_type(name):
+    if name in ARG_TYPES:
+        return ARG_TYPES[name]
+    if name in FLOAT_ARGS:
+        return "float"
+    return "Any"
+
+
+def params(sig, method):
+    out = ["self"] if method else []
+    star = False
+    for p in sig.parameters.values():
+        if p.name == "self":
+            continue
+        if p.kind == p.KEYWORD_ONLY and not star:
+            out.append("*")
+            star = True
+        t = arg_type(p.name)
+        if p.default is p.empty:
+            out.append(f"{p.name}: {t}")
+        elif p.default is None:
+            out.append(f"{p.name}: Optional[{t}] = None")
+        else:
+            out.append(f"{p.name}: {t} = {p.default!r}")
+    return ", ".join(out)
+
+
+def doc(obj, indent):
+    d = inspect.getdoc(obj)
+    if not d:
+        return ""
+    d = d.replace('"""', "'''").replace("\\", "\\\\")
+    pad = " " * indent
+    body = "\n".join(pad + line if line else "" for line in d.splitlines())
+    return f'{pad}"""\n{body}\n{pad}"""\n'
+
+
+def signature(obj):
+    try:
+        return inspect.signature(obj)
+    except (TypeError, ValueError):
+        return None
+
+
+def function(name, f, indent=0, method=False, decorator=None):
+    sig = signature(f)
+    pad = " " * indent
+    ps = params(sig, method) if sig else ("self, *args: Any, **kwargs: Any" if method else "*args: Any, **kwargs: Any")
+    ret = RETURNS.get(name, "Any")
+    head = f"{pad}@{decorator}\n" if decorator else ""
+    d = doc(f, indent + 4)
+    return f"{head}{pad}def {name}({ps}) -> {ret}:\n{d}{pad}    ...\n"
+
+
+def klass(name, cls):
+    base = ""
+    mro = [b for b in cls.__mro__[1:] if getattr(core, b.__name__, None) is b]
+    if mro:
+        base = f"({mro[0].__name__})"
+    out = f"class {name}{base}:\n{doc(cls, 4)}"
+    init = signature(cls)
+    if init is not None:
+        out += f"    def __init__({params(init, True)}) -> None: ...\n"
+    for attr, raw in sorted(cls.__dict__.items()):
+        if attr.startswith("_"):
+            continue
+        if isinstance(raw, staticmethod) or type(raw).__name__ == "builtin_function_or_method":
+            out += function(attr, getattr(cls, attr), 4, False, "staticmethod")
+        elif isinstance(raw, classmethod) or type(raw).__name__ == "classmethod_descriptor":
+            out += function(attr, getattr(cls, attr), 4, False, "staticmethod")
+        elif type(raw).__name__ == "getset_descriptor" or isinstance(raw, property):
+            out += f"    @property\n    def {attr}(self) -> Any: ...\n"
+        elif callable(raw):
+            out += function(attr, raw, 4, True)
+    return out
+
+
+def render():
+    parts = [HEADER]
+    names = sorted(n for n in dir(core) if not n.startswith("_"))
+    classes = [n for n in names if isinstance(getattr(core, n), type)]
+    # Base classes first.
+    classes.sort(key=lambda n: (len(getattr(core, n).__mro__), n))
+    for n in classes:
+        parts.append("\n" + klass(n, getattr(core, n)))
+    for n in names:
+        if n not in classes and callable(getattr(core, n)):
+            parts.append("\n" + function(n, getattr(core, n)))
+    return "".join(parts)
+
+
+def main():
+    text = render()
+    if "--check" in sys.argv:
+        if not STUB.exists() or STUB.read_text() != text:
+            print(f"{STUB} is out of date: run python tools/stubgen.py", file=sys.stderr)
+            sys.exit(1)
+        return
+    STUB.write_text(text)
+    (STUB.parent / "py.typed").write_text("")
+    print(f"wrote {STUB}")
+
+
+if __name__ == "__main__":
+    main()
