@@ -8,6 +8,7 @@ pub mod analysis;
 pub mod budget;
 mod build;
 pub mod cre;
+pub mod data_law;
 #[cfg(feature = "mpi")]
 pub mod distributed;
 mod error;

@@ -100,6 +100,18 @@ fn marginal(
         )
     };
     let law = p.law.get_ref().as_str();
+    if crate::data_law::DATA_LAWS.contains(&law) {
+        return crate::data_law::data_law(src, p, i);
+    }
+    if let Some(d) = &p.data {
+        return Err(src.error(
+            d.span(),
+            format!("parameter[{i}].data"),
+            format!(
+                "law '{law}' takes no data; data goes with law = \"empirical\", \"kde\" or \"fit\""
+            ),
+        ));
+    }
     let (m, d): (Arc<dyn Marginal>, String) = match law {
         "uniform" => {
             let (a, b) = (f("lo")?, f("hi")?);
@@ -147,7 +159,7 @@ fn marginal(
             return Err(src.error(
                 p.law.span(),
                 format!("parameter[{i}].law"),
-                format!("unknown law '{other}'; expected uniform, normal, truncated_normal, lognormal, beta or triangular"),
+                format!("unknown law '{other}'; expected uniform, normal, truncated_normal, lognormal, beta, triangular, or from data: empirical, kde, fit"),
             ));
         }
     };

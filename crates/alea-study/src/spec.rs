@@ -275,6 +275,18 @@ pub struct ParameterSpec {
     /// Shape parameters (beta).
     #[serde(default)]
     pub beta: Option<Spanned<f64>>,
+    /// Measured values (`empirical`, `kde`, `fit`): a CSV file relative to the study file.
+    #[serde(default)]
+    pub data: Option<Spanned<String>>,
+    /// The column of `data` (by its header name) when it has several.
+    #[serde(default)]
+    pub column: Option<Spanned<String>>,
+    /// Candidate families of `fit` (default normal, lognormal, gamma, uniform).
+    #[serde(default)]
+    pub families: Option<Spanned<Vec<String>>>,
+    /// Bandwidth of `kde` (default: Silverman's rule).
+    #[serde(default)]
+    pub bandwidth: Option<Spanned<f64>>,
     /// Unit (for the report).
     #[serde(default)]
     pub unit: Option<String>,

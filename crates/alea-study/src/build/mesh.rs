@@ -105,19 +105,22 @@ fn mesh_file_path(src: &Source, f: &Spanned<String>) -> std::path::PathBuf {
         .join(f.get_ref())
 }
 
-/// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes
-/// (a changed mesh file makes a different study).
+/// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes,
+/// and the data files of laws from data (a changed input file makes a different study).
 pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> {
-    match (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
-        (Some(f), "gmsh") => {
-            let path = mesh_file_path(src, f);
-            let bytes = alea_mesh::input::read_input(&path).map_err(|e| {
+    let mut inputs: Vec<Vec<u8>> = Vec::new();
+    if let (Some(f), "gmsh") = (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
+        let path = mesh_file_path(src, f);
+        inputs.push(
+            alea_mesh::input::read_input(&path).map_err(|e| {
                 src.error(f.span(), "mesh.file", format!("{}: {e}", path.display()))
-            })?;
-            Ok(crate::store::study_hash(&src.text, &[&bytes]))
-        }
-        _ => Ok(crate::store::study_hash(&src.text, &[])),
+            })?,
+        );
     }
+    // The data files of laws from data (a changed file makes a different study).
+    inputs.extend(crate::data_law::data_bytes(src, &file.parameter)?);
+    let refs: Vec<&[u8]> = inputs.iter().map(|b| b.as_slice()).collect();
+    Ok(crate::store::study_hash(&src.text, &refs))
 }
 
 /// Geometry and in-plane counts of the turbine generators (`mesh.params`).
