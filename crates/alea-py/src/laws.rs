@@ -500,7 +500,8 @@ impl JointPy {
         )
     }
 
-    /// Clayton copula with parameter `theta > 0` (any dimension).
+    /// Clayton copula with parameter `theta > 0` (any dimension), or `-1 < theta < 0` (negative
+    /// dependence, two variables).
     #[staticmethod]
     fn clayton(marginals: &Bound<'_, PyAny>, theta: f64) -> PyResult<Self> {
         Self::one_parameter(marginals, theta, ClaytonCopula::new, "clayton copula")

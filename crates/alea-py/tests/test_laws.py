@@ -186,3 +186,15 @@ def test_class_names_are_the_exported_names():
 def test_quantile_outside_zero_one_is_a_value_error_not_nan(p):
     with pytest.raises(ValueError, match=r"probabilities must be in \[0, 1\]"):
         alea.Normal(0.0, 1.0).quantile(p)
+
+
+def test_clayton_takes_negative_theta_for_two_variables_only():
+    m = [alea.Normal(0.0, 1.0), alea.Normal(0.0, 1.0)]
+    j = alea.Joint.clayton(m, -0.5)
+    x = alea.monte_carlo(j, 2000, seed=3)
+    # Kendall's tau theta / (theta + 2) = -1/3: the draws are negatively dependent.
+    assert np.corrcoef(x[:, 0], x[:, 1])[0, 1] < -0.3
+    with pytest.raises(ValueError, match="theta"):
+        alea.Joint.clayton(m + [alea.Normal(0.0, 1.0)], -0.5)
+    with pytest.raises(ValueError, match="theta"):
+        alea.Joint.clayton(m, -1.0)

@@ -10,7 +10,9 @@
 //!   multivariate t), so `v_k = T_{nu+k}(w_k sqrt((nu + k)/(nu + q_k)))`. Density
 //!   `c = t_{R,nu}(z) / prod t_nu(z_i)`, `ln t_{R,nu}(z) = ln Gamma((nu+d)/2) - ln Gamma(nu/2)
 //!   - (d/2) ln(nu pi) - ln|L| - (nu+d)/2 ln(1 + |w|^2/nu)`. Kendall's tau `(2/pi) asin rho`.
-//! * **Clayton** (`theta > 0`): `C(u) = (S_d)^(-1/theta)`, `S_k = sum_{i<=k} u_i^-theta - k + 1`;
+//! * **Clayton** (`theta > 0`, or `-1 < theta < 0` for two variables, where
+//!   `C = max(S_2, 0)^(-1/theta)` and the density and the conditional laws vanish where
+//!   `S_2 <= 0`): `C(u) = (S_d)^(-1/theta)`, `S_k = sum_{i<=k} u_i^-theta - k + 1`;
 //!   `v_k = (S_k / S_{k-1})^(-1/theta - (k-1))` (1-based `k`), inverse
 //!   `u_k = (S_{k-1} (v_k^(-1/(1/theta + k - 1)) - 1) + 1)^(-1/theta)`; density
 //!   `c = prod_{k<d} (1 + k theta) prod u_i^(-theta-1) S_d^(-1/theta - d)`. Tau `theta/(theta+2)`.
@@ -162,20 +164,35 @@ pub struct ClaytonCopula {
 }
 
 impl ClaytonCopula {
+    /// `theta > 0` in any dimension; `-1 < theta < 0` (negative dependence, Kendall's tau down
+    /// to -1/3 at theta = -1/2 and towards -1 as theta -> -1) for two variables, where
+    /// `C = max(S_2, 0)^(-1/theta)` is a copula (it is not one in higher dimensions).
+    ///
     /// # Errors
-    /// If `theta <= 0` or there are no marginals.
+    /// If `theta` is 0, not finite, `<= -1`, negative with more than two marginals, or there
+    /// are no marginals.
     pub fn new(marginals: Vec<Arc<dyn Marginal>>, theta: f64) -> Result<Self> {
         let what = "clayton copula";
         check_marginals(what, &marginals, None)?;
-        if !(theta > 0.0 && theta.is_finite()) {
-            return Err(invalid(what, "theta", "> 0", theta));
+        let valid = theta.is_finite()
+            && (theta > 0.0 || (theta > -1.0 && theta < 0.0 && marginals.len() == 2));
+        if !valid {
+            return Err(invalid(
+                what,
+                "theta",
+                "> 0, or in (-1, 0) for two variables",
+                theta,
+            ));
         }
         Ok(Self { marginals, theta })
     }
-    /// `C(u)` on the unit cube.
+    /// `C(u)` on the unit cube (`max(S_d, 0)^(-1/theta)`: 0 where `S_d <= 0`, for `theta < 0`).
     pub fn copula_cdf(&self, u: &[f64]) -> f64 {
         let s: f64 =
             u.iter().map(|&v| clamp01(v).powf(-self.theta)).sum::<f64>() - u.len() as f64 + 1.0;
+        if s <= 0.0 {
+            return 0.0;
+        }
         s.powf(-1.0 / self.theta)
     }
 }
@@ -198,6 +215,10 @@ impl JointLaw for ClaytonCopula {
             ln += f.ln() + (1.0 + k as f64 * t).ln() - (t + 1.0) * u.ln();
             s += u.powf(-t);
         }
+        // theta < 0: no mass where S_2 <= 0.
+        if s <= 0.0 {
+            return 0.0;
+        }
         (ln - (1.0 / t + d as f64) * s.ln()).exp()
     }
     fn x_to_unit(&self, x: &[f64], v: &mut [f64]) {
@@ -208,6 +229,9 @@ impl JointLaw for ClaytonCopula {
             let s = s_prev + u.powf(-t) - 1.0;
             v[k] = if k == 0 {
                 u
+            } else if s <= 0.0 {
+                // theta < 0, below the support's boundary: C(v | u) = 0.
+                0.0
             } else {
                 (s / s_prev).powf(-1.0 / t - k as f64)
             };

@@ -29,7 +29,8 @@ class Joint:
     @staticmethod
     def clayton(marginals: Sequence[Law], theta: Any) -> Any:
         """
-        Clayton copula with parameter `theta > 0` (any dimension).
+        Clayton copula with parameter `theta > 0` (any dimension), or `-1 < theta < 0` (negative
+        dependence, two variables).
         """
         ...
     @property
