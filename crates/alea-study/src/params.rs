@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use alea_uq::copula::{ClaytonCopula, FrankCopula, GumbelCopula, StudentCopula};
 use alea_uq::joint::{BoxDensity, GaussianCopula, Independent, JointLaw};
 use alea_uq::law::{Beta, LogNormal, Marginal, Normal, Triangular, TruncatedNormal, Uniform};
 use toml::Spanned;
@@ -212,26 +213,41 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
             "independent" => {
                 Arc::new(Independent::new(marginals.clone()).map_err(StudyError::from)?)
             }
-            "gaussian_copula" => {
-                let c = j.correlation.as_ref().ok_or_else(|| {
+            kind @ ("clayton" | "gumbel" | "frank") => {
+                let t = j.theta.as_ref().ok_or_else(|| {
                     src.error(
                         j.kind.span(),
-                        "joint.correlation",
-                        "a Gaussian copula needs a correlation matrix",
+                        "joint.theta",
+                        format!("a {kind} copula needs theta"),
                     )
                 })?;
-                let rows = c.get_ref();
-                if rows.len() != d || rows.iter().any(|r| r.len() != d) {
-                    return Err(src.error(
-                        c.span(),
-                        "joint.correlation",
-                        format!("expected a {d} x {d} matrix (one row per parameter)"),
-                    ));
+                let theta = *t.get_ref();
+                let err = |e: alea_uq::UqError| src.error(t.span(), "joint.theta", e.to_string());
+                match kind {
+                    "clayton" => {
+                        Arc::new(ClaytonCopula::new(marginals.clone(), theta).map_err(err)?)
+                            as Arc<dyn JointLaw>
+                    }
+                    "gumbel" => Arc::new(GumbelCopula::new(marginals.clone(), theta).map_err(err)?),
+                    _ => Arc::new(FrankCopula::new(marginals.clone(), theta).map_err(err)?),
                 }
-                let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+            }
+            "student" => {
+                let nu = j.nu.as_ref().ok_or_else(|| {
+                    src.error(j.kind.span(), "joint.nu", "a Student copula needs nu")
+                })?;
+                let flat = correlation(src, j, d, "a Student copula")?;
+                Arc::new(
+                    StudentCopula::new(marginals.clone(), flat, *nu.get_ref())
+                        .map_err(|e| src.error(nu.span(), "joint", e.to_string()))?,
+                )
+            }
+            "gaussian_copula" => {
+                let flat = correlation(src, j, d, "a Gaussian copula")?;
+                let span = j.correlation.as_ref().map_or(j.kind.span(), |c| c.span());
                 Arc::new(
                     GaussianCopula::new(marginals.clone(), flat)
-                        .map_err(|e| src.error(c.span(), "joint.correlation", e.to_string()))?,
+                        .map_err(|e| src.error(span, "joint.correlation", e.to_string()))?,
                 )
             }
             "density" => {
@@ -261,7 +277,7 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
                 return Err(src.error(
                     j.kind.span(),
                     "joint.type",
-                    format!("unknown joint law '{other}'; expected independent, gaussian_copula or density"),
+                    format!("unknown joint law '{other}'; expected independent, gaussian_copula, student, clayton, gumbel, frank or density"),
                 ));
             }
         },
@@ -280,4 +296,29 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
         lo,
         hi,
     })
+}
+
+/// The `[joint] correlation` matrix of `d` parameters, row-major, checked for its shape.
+fn correlation(
+    src: &Source,
+    j: &crate::spec::JointSpec,
+    d: usize,
+    what: &str,
+) -> Result<Vec<f64>, StudyError> {
+    let c = j.correlation.as_ref().ok_or_else(|| {
+        src.error(
+            j.kind.span(),
+            "joint.correlation",
+            format!("{what} needs a correlation matrix"),
+        )
+    })?;
+    let rows = c.get_ref();
+    if rows.len() != d || rows.iter().any(|r| r.len() != d) {
+        return Err(src.error(
+            c.span(),
+            "joint.correlation",
+            format!("expected a {d} x {d} matrix (one row per parameter)"),
+        ));
+    }
+    Ok(rows.iter().flatten().copied().collect())
 }

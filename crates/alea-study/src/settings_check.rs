@@ -1,7 +1,8 @@
 //! Settings that a study file may give but that would be ignored, refused at load with
 //! `file:line: field` (a value that is silently ignored is a value the user believes in):
 //!
-//! - `[joint]`: `correlation` only with `type = "gaussian_copula"`, `density` only with
+//! - `[joint]`: `correlation` only with `type = "gaussian_copula"` or `"student"`, `theta`
+//!   only with the Archimedean copulas, `nu` only with `"student"`, `density` only with
 //!   `type = "density"`;
 //! - `[[method]]`: each key only for the types (and designs, criteria) that read it - `degree`
 //!   for the polynomial methods, `design` where a design can be chosen, `runs` for the random
@@ -37,13 +38,34 @@ fn check_joint(src: &Source, file: &ModelFile) -> Result<(), StudyError> {
     let kind = j.kind.get_ref().as_str();
     if let Some(c) = &j.correlation
         && kind != "gaussian_copula"
+        && kind != "student"
     {
         return Err(src.error(
             c.span(),
             "joint.correlation",
             format!(
-                "a correlation matrix is used by type = \"gaussian_copula\" only; this joint law is '{kind}' (remove it, or change the type)"
+                "a correlation matrix is used by type = \"gaussian_copula\" or \"student\" only; this joint law is '{kind}' (remove it, or change the type)"
             ),
+        ));
+    }
+    if let Some(t) = &j.theta
+        && !["clayton", "gumbel", "frank"].contains(&kind)
+    {
+        return Err(src.error(
+            t.span(),
+            "joint.theta",
+            format!(
+                "theta is used by the clayton, gumbel and frank copulas only; this joint law is '{kind}'"
+            ),
+        ));
+    }
+    if let Some(n) = &j.nu
+        && kind != "student"
+    {
+        return Err(src.error(
+            n.span(),
+            "joint.nu",
+            format!("nu is used by type = \"student\" only; this joint law is '{kind}'"),
         ));
     }
     if let Some(d) = &j.density

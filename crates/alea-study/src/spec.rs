@@ -296,7 +296,7 @@ pub struct ParameterSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct JointSpec {
-    /// `independent`, `gaussian_copula` or `density`.
+    /// `independent`, `gaussian_copula`, `student`, `clayton`, `gumbel`, `frank` or `density`.
     #[serde(rename = "type")]
     pub kind: Spanned<String>,
     /// Correlation matrix of the Gaussian copula (rows).
@@ -306,6 +306,12 @@ pub struct JointSpec {
     /// not be normalised). The marginal laws then only give the box.
     #[serde(default)]
     pub density: Option<Spanned<String>>,
+    /// Parameter of the `clayton`, `gumbel` and `frank` copulas.
+    #[serde(default)]
+    pub theta: Option<Spanned<f64>>,
+    /// Degrees of freedom of the `student` copula.
+    #[serde(default)]
+    pub nu: Option<Spanned<f64>>,
 }
 
 /// `[[define]]`: a named helper quantity for interface profiles, e.g. an abscissa along the
