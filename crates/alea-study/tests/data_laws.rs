@@ -2,6 +2,8 @@
 //! "kde"` with `data = "file.csv"`, against the law that generated the data, and their bad
 //! inputs refused at load with the study file's field and the data file's line.
 
+mod common;
+
 use alea_study::Source;
 use alea_study::runner::Study;
 use alea_uq::special::norm_quantile;
@@ -31,47 +33,10 @@ fn setup(name: &str, csv: &str) -> Dir {
 }
 
 fn load(dir: &Dir, parameter: &str) -> Result<Study, alea_study::StudyError> {
-    let text = format!(
-        r#"
-[study]
-title = "laws from data"
-
-[units]
-length = "mm"
-force = "N"
-stress = "MPa"
-
-[mesh]
-generator = "rectangle"
-kind = "quad4"
-size = [10.0, 2.0]
-cells = [2, 1]
-
-[analysis]
-type = "plane_stress"
-
-[[parameter]]
-name = "E"
-{parameter}
-
-[[substructure]]
-name = "plate"
-young = "E"
-poisson = 0.0
-constraint = [ {{ group = "xmin", x = 0.0 }}, {{ group = "ymin", y = 0.0 }} ]
-load = [ {{ group = "xmax", traction = [1.0, 0.0] }} ]
-
-[[quantity]]
-name = "tip"
-kind = "displacement"
-substructure = "plate"
-point = [10.0, 2.0]
-component = 0
-
-[[method]]
-type = "monte_carlo"
-runs = 4
-"#
+    let text = common::plate_study(
+        "laws from data",
+        &format!("[[parameter]]\nname = \"E\"\n{parameter}"),
+        "E",
     );
     let path = dir.0.join("study.toml");
     std::fs::write(&path, &text).unwrap();

@@ -3,60 +3,21 @@
 //! with `nu` and a correlation matrix; their draws against Kendall's tau in closed form, and
 //! their bad settings refused at load with the field.
 
+mod common;
+
 use alea_study::Source;
 use alea_study::runner::Study;
 use alea_uq::rng::chunk_rng;
 
 fn load(params: usize, joint: &str) -> Result<Study, alea_study::StudyError> {
-    let mut text = String::from(
-        r#"
-[study]
-title = "copulas"
-
-[units]
-length = "mm"
-force = "N"
-stress = "MPa"
-
-[mesh]
-generator = "rectangle"
-kind = "quad4"
-size = [10.0, 2.0]
-cells = [2, 1]
-
-[analysis]
-type = "plane_stress"
-"#,
-    );
+    let mut laws = String::new();
     for k in 0..params {
-        text.push_str(&format!(
+        laws.push_str(&format!(
             "\n[[parameter]]\nname = \"p{k}\"\nlaw = \"uniform\"\nlo = 1.0\nhi = 2.0\n"
         ));
     }
-    text.push_str(&format!(
-        r#"
-[joint]
-{joint}
-
-[[substructure]]
-name = "plate"
-young = "200e3 * p0"
-poisson = 0.0
-constraint = [ {{ group = "xmin", x = 0.0 }}, {{ group = "ymin", y = 0.0 }} ]
-load = [ {{ group = "xmax", traction = [1.0, 0.0] }} ]
-
-[[quantity]]
-name = "tip"
-kind = "displacement"
-substructure = "plate"
-point = [10.0, 2.0]
-component = 0
-
-[[method]]
-type = "monte_carlo"
-runs = 4
-"#
-    ));
+    laws.push_str(&format!("\n[joint]\n{joint}\n"));
+    let text = common::plate_study("copulas", &laws, "200e3 * p0");
     Study::from_source(Source::from_text("copulas.toml", &text))
 }
 
