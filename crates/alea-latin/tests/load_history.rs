@@ -77,30 +77,7 @@ fn edge(
     inside: impl Fn(&Sample) -> bool,
     margin: impl Fn(&Sample) -> f64,
 ) -> f64 {
-    let centre = prof
-        .iter()
-        .position(|p| p.0.abs() < 1e-12)
-        .expect("node at x = 0");
-    assert!(inside(&prof[centre]), "the zone contains x = 0");
-    let step = |i: usize| -> Option<usize> {
-        if dir > 0 {
-            (i + 1 < prof.len()).then_some(i + 1)
-        } else {
-            i.checked_sub(1)
-        }
-    };
-    let mut i = centre;
-    while let Some(j) = step(i) {
-        if !inside(&prof[j]) {
-            break;
-        }
-        i = j;
-    }
-    let o = step(i).expect("zone edge inside the interface");
-    let prev = if dir > 0 { i - 1 } else { i + 1 };
-    let (xi, xo) = (prof[i].0.abs(), prof[o].0.abs());
-    let (di, dp) = (margin(&prof[i]).powi(2), margin(&prof[prev]).powi(2));
-    (xi + (xo - xi) * di / (dp - di)).clamp(xi, xo)
+    zone_edge(prof, |p| p.0, dir, inside, margin, EdgeStep::Outward)
 }
 
 /// Mean half-width of the closed zone (`b`) and of the stick zone around the centre.

@@ -87,3 +87,54 @@ pub fn solid(mesh: Mesh, young: f64, poisson: f64) -> Model {
     m.set_material_all(Material::new(young, poisson, 0.0).unwrap());
     m
 }
+
+/// The spacing a zone edge is extrapolated over ([`zone_edge`]).
+pub enum EdgeStep {
+    /// To the first node outside the zone (2D profiles).
+    Outward,
+    /// Between the last two nodes inside (3D profiles along a radius).
+    Inward,
+}
+
+/// The edge of a zone (stick, slip, reverse slip) of a profile of interface nodes sorted by
+/// their abscissa `x`, walking from the node at `x = 0` (which must be inside) in direction
+/// `dir` (+1 or -1): the last node inside, plus the extrapolation to zero of `margin^2` (which
+/// vanishes like the distance to the edge) from the last two nodes inside, over the spacing
+/// `step`, clamped to the interval between the last node inside and the first outside.
+pub fn zone_edge<T>(
+    prof: &[T],
+    x: impl Fn(&T) -> f64,
+    dir: i32,
+    inside: impl Fn(&T) -> bool,
+    margin: impl Fn(&T) -> f64,
+    step: EdgeStep,
+) -> f64 {
+    let centre = prof
+        .iter()
+        .position(|p| x(p).abs() < 1e-12)
+        .expect("node at the origin");
+    assert!(inside(&prof[centre]), "the zone contains the origin");
+    let next = |i: usize| -> Option<usize> {
+        if dir > 0 {
+            (i + 1 < prof.len()).then_some(i + 1)
+        } else {
+            i.checked_sub(1)
+        }
+    };
+    let mut i = centre;
+    while let Some(j) = next(i) {
+        if !inside(&prof[j]) {
+            break;
+        }
+        i = j;
+    }
+    let o = next(i).expect("zone edge inside the interface");
+    let prev = if dir > 0 { i - 1 } else { i + 1 };
+    let (xi, xo) = (x(&prof[i]).abs(), x(&prof[o]).abs());
+    let (di, dp) = (margin(&prof[i]).powi(2), margin(&prof[prev]).powi(2));
+    let h = match step {
+        EdgeStep::Outward => xo - xi,
+        EdgeStep::Inward => (x(&prof[i]) - x(&prof[prev])).abs(),
+    };
+    (xi + h * di / (dp - di)).clamp(xi, xo)
+}
