@@ -26,6 +26,35 @@ use crate::{Source, StudyError};
 /// The laws that take `data`.
 pub const DATA_LAWS: &[&str] = &["empirical", "kde", "fit"];
 
+/// Refuses the keys of laws from data that parameter `i`'s law would ignore: `families` but
+/// with `fit`, `bandwidth` but with `kde`, `column` without `data`.
+pub fn check_data_keys(src: &Source, p: &ParameterSpec, i: usize) -> Result<(), StudyError> {
+    let law = p.law.get_ref().as_str();
+    let misplaced = |span: std::ops::Range<usize>, key: &str, used: &str| {
+        Err(src.error(
+            span,
+            format!("parameter[{i}].{key}"),
+            format!("'{key}' is used by {used} only; this parameter's law is '{law}'"),
+        ))
+    };
+    if let Some(f) = &p.families
+        && law != "fit"
+    {
+        return misplaced(f.span(), "families", "law = \"fit\"");
+    }
+    if let Some(b) = &p.bandwidth
+        && law != "kde"
+    {
+        return misplaced(b.span(), "bandwidth", "law = \"kde\"");
+    }
+    if let Some(c) = &p.column
+        && p.data.is_none()
+    {
+        return misplaced(c.span(), "column", "a law with data = \"...\"");
+    }
+    Ok(())
+}
+
 /// The data file of a parameter, relative to the study file.
 pub fn data_path(src: &Source, data: &str) -> PathBuf {
     src.path.parent().unwrap_or(Path::new(".")).join(data)

@@ -101,6 +101,7 @@ fn marginal(
         )
     };
     let law = p.law.get_ref().as_str();
+    crate::data_law::check_data_keys(src, p, i)?;
     if crate::data_law::DATA_LAWS.contains(&law) {
         return crate::data_law::data_law(src, p, i);
     }

@@ -132,6 +132,23 @@ fn bad_data_is_refused_at_load_with_the_line() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("at least 3"), "{e}");
+    let e = load(
+        &dir,
+        "law = \"empirical\"\ndata = \"mu.csv\"\nbandwidth = 2.0",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("parameter[0].bandwidth") && e.contains("used by law = \"kde\" only"),
+        "{e}"
+    );
+    let e = load(
+        &dir,
+        "law = \"kde\"\ndata = \"mu.csv\"\nfamilies = [\"normal\"]",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("parameter[0].families"), "{e}");
     let e = load(&dir, "law = \"kde\"\ndata = \"missing.csv\"")
         .unwrap_err()
         .to_string();
