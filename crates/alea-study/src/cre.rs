@@ -26,6 +26,7 @@ use alea_cre::{AffineBody, CreOptions, EnergySampler, FeEnergySampler, LatinEsti
 use alea_estimate::{InterfaceKind, InterfaceLayout, Layout, Parameters, SubLayout};
 use alea_latin::{LatinSolver, RunResult};
 
+use crate::build::ProfileTable;
 use crate::spec::LoadSpec;
 use crate::study::Study;
 use crate::{Parametric, StudyError};
@@ -522,7 +523,8 @@ fn sub_estimator(solver: &LatinSolver, s: usize, error: alea_cre::CreError) -> S
 /// at any parameter point.
 pub struct StudyParameters<'a> {
     parametric: &'a Parametric,
-    points: Vec<Vec<[f64; 3]>>,
+    /// The friction profile of each interface tabulated on its points.
+    friction: Vec<ProfileTable>,
 }
 
 impl<'a> StudyParameters<'a> {
@@ -530,8 +532,12 @@ impl<'a> StudyParameters<'a> {
     pub fn new(parametric: &'a Parametric, solver: &LatinSolver) -> Self {
         StudyParameters {
             parametric,
-            points: (0..solver.num_interfaces())
-                .map(|i| solver.interface_points(i).iter().map(|p| p.x).collect())
+            friction: (0..solver.num_interfaces())
+                .map(|i| {
+                    let xs: Vec<[f64; 3]> =
+                        solver.interface_points(i).iter().map(|p| p.x).collect();
+                    parametric.profile_table(&parametric.mu[i], &xs)
+                })
                 .collect(),
         }
     }
@@ -549,8 +555,7 @@ impl Parameters for StudyParameters<'_> {
     }
 
     fn friction(&self, xi: &[f64], interface: usize, out: &mut [f64]) {
-        let p = self.parametric;
-        p.eval_profile(&p.mu[interface], xi, &self.points[interface], out);
+        self.friction[interface].eval(xi, out);
     }
 }
 

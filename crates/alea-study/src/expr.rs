@@ -352,35 +352,126 @@ impl Expr {
 
     /// Evaluates with `vars[i]` the value of slot `i`.
     pub fn eval(&self, vars: &[f64]) -> f64 {
-        fn ev(n: &Node, v: &[f64]) -> f64 {
+        ev(&self.node, vars)
+    }
+
+    /// The expression with the slots `known[i] = Some(value)` substituted and every subtree
+    /// that then depends on no free slot replaced by its value. The values are computed by the
+    /// arithmetic of [`Expr::eval`] in the same order, so for any values of the free slots the
+    /// folded expression evaluates to the same bits as the original (slots beyond `known`
+    /// stay free). What a profile tabulated on a point set uses: the parts that depend on the
+    /// point only are evaluated once per point, not once per parameter point.
+    pub fn fold(&self, known: &[Option<f64>]) -> Expr {
+        fn fold(n: &Node, k: &[Option<f64>]) -> Node {
+            let num = |n: &Node| match n {
+                Node::Num(x) => Some(*x),
+                _ => None,
+            };
             match n {
-                Node::Num(x) => *x,
-                Node::Var(i) => v[*i],
-                Node::Neg(a) => -ev(a, v),
+                Node::Num(x) => Node::Num(*x),
+                Node::Var(i) => k
+                    .get(*i)
+                    .copied()
+                    .flatten()
+                    .map_or(Node::Var(*i), Node::Num),
+                Node::Neg(a) => {
+                    let a = fold(a, k);
+                    num(&a).map_or_else(|| Node::Neg(Box::new(a)), |x| Node::Num(-x))
+                }
                 Node::Bin(op, a, b) => {
-                    let (a, b) = (ev(a, v), ev(b, v));
-                    match op {
-                        '+' => a + b,
-                        '-' => a - b,
-                        '*' => a * b,
-                        '/' => a / b,
-                        // Squares, the most common power in profiles: `a * a` is correctly
-                        // rounded, as `powf` is, hence the same value, several times faster.
-                        _ if b == 2.0 => a * a,
-                        _ => a.powf(b),
+                    let (a, b) = (fold(a, k), fold(b, k));
+                    match (num(&a), num(&b)) {
+                        (Some(x), Some(y)) => Node::Num(binary(*op, x, y)),
+                        _ => Node::Bin(*op, Box::new(a), Box::new(b)),
                     }
                 }
-                Node::Call1(f, a) => f(ev(a, v)),
-                Node::Call2(f, a, b) => f(ev(a, v), ev(b, v)),
+                Node::Call1(f, a) => {
+                    let a = fold(a, k);
+                    num(&a).map_or_else(|| Node::Call1(*f, Box::new(a)), |x| Node::Num(f(x)))
+                }
+                Node::Call2(f, a, b) => {
+                    let (a, b) = (fold(a, k), fold(b, k));
+                    match (num(&a), num(&b)) {
+                        (Some(x), Some(y)) => Node::Num(f(x, y)),
+                        _ => Node::Call2(*f, Box::new(a), Box::new(b)),
+                    }
+                }
             }
         }
-        ev(&self.node, vars)
+        Expr {
+            node: fold(&self.node, known),
+            text: self.text.clone(),
+        }
+    }
+
+    /// The value, when the expression is a constant (as after [`Expr::fold`] of all its slots).
+    pub fn as_constant(&self) -> Option<f64> {
+        match self.node {
+            Node::Num(x) => Some(x),
+            _ => None,
+        }
+    }
+}
+
+/// The value of node `n` with slot values `v`.
+fn ev(n: &Node, v: &[f64]) -> f64 {
+    match n {
+        Node::Num(x) => *x,
+        Node::Var(i) => v[*i],
+        Node::Neg(a) => -ev(a, v),
+        Node::Bin(op, a, b) => binary(*op, ev(a, v), ev(b, v)),
+        Node::Call1(f, a) => f(ev(a, v)),
+        Node::Call2(f, a, b) => f(ev(a, v), ev(b, v)),
+    }
+}
+
+/// The binary operator `op` (`+ - * /`, else the power) on `a` and `b`.
+fn binary(op: char, a: f64, b: f64) -> f64 {
+    match op {
+        '+' => a + b,
+        '-' => a - b,
+        '*' => a * b,
+        '/' => a / b,
+        // Squares, the most common power in profiles: `a * a` is correctly rounded, as `powf`
+        // is, hence the same value, several times faster.
+        _ if b == 2.0 => a * a,
+        _ => a.powf(b),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Folding known slots keeps the value bit for bit at any value of the free ones, and
+    /// folding all of them leaves a constant.
+    #[test]
+    fn folding_known_slots_keeps_the_bits() {
+        let v = ["a", "b", "x"];
+        let texts = [
+            "0.2 + 0.6 * (a * exp(-(x - 0.7)^2 / 0.13) + b * exp(-(x - 1.5)^2 / 0.13))",
+            "-x^3 / (1 + a) + max(b, sin(x)) * pow(x, 0.5) - (x - 2) ^ 2",
+        ];
+        for t in texts {
+            let e = Expr::parse(t, &v).unwrap();
+            for x in [0.1, 0.77, 1.9] {
+                let folded = e.fold(&[None, None, Some(x)]);
+                let all = e.fold(&[Some(0.3), Some(0.9), Some(x)]);
+                assert_eq!(
+                    all.as_constant().map(f64::to_bits),
+                    Some(e.eval(&[0.3, 0.9, x]).to_bits())
+                );
+                for (a, b) in [(0.0, 1.0), (0.3, 0.9), (-2.5, 1e-3)] {
+                    assert_eq!(
+                        folded.eval(&[a, b, 0.0]).to_bits(),
+                        e.eval(&[a, b, x]).to_bits(),
+                        "{t} at {x}"
+                    );
+                }
+                assert!(folded.as_constant().is_none());
+            }
+        }
+    }
 
     #[test]
     fn precedence_associativity_and_functions() {

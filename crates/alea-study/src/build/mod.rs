@@ -15,4 +15,5 @@ mod parametric;
 
 pub use mesh::{build_mesh, input_hash};
 pub use model::build_model;
+pub(crate) use parametric::ProfileTable;
 pub use parametric::{BuiltModel, InterfaceSite, Parametric};

@@ -46,28 +46,39 @@ impl Parametric {
         })
     }
 
-    /// `e` (an interface profile expression) at `theta` at every point of `xs`, into `out`:
-    /// the values of [`Parametric::profile`], with one buffer for all points and only the
-    /// defines `e` needs (directly or through later defines) evaluated - what the error
-    /// estimate calls for every interface at every parameter point of its rules and maps.
-    pub(crate) fn eval_profile(&self, e: &Expr, theta: &[f64], xs: &[[f64; 3]], out: &mut [f64]) {
-        let first = theta.len() + 3;
+    /// Interface profile `e` tabulated on the points `xs` ([`ProfileTable`]).
+    pub(crate) fn profile_table(&self, e: &Expr, xs: &[[f64; 3]]) -> ProfileTable {
+        let first = self.nparams + 3;
         let nd = self.defines.len();
         let mut needed = vec![false; nd];
         for j in (0..nd).rev() {
             needed[j] = e.uses(first + j)
                 || (j + 1..nd).any(|k| needed[k] && self.defines[k].uses(first + j));
         }
-        let mut v = Vec::with_capacity(first + nd);
-        v.extend_from_slice(theta);
-        for (o, x) in out.iter_mut().zip(xs) {
-            v.truncate(theta.len());
-            v.extend_from_slice(x);
-            for (d, &need) in self.defines.iter().zip(&needed) {
-                let val = if need { d.eval(&v) } else { 0.0 };
-                v.push(val);
-            }
-            *o = e.eval(&v);
+        let points = xs
+            .iter()
+            .map(|x| {
+                let mut known: Vec<Option<f64>> = vec![None; first + nd];
+                for (slot, &xi) in known[self.nparams..first].iter_mut().zip(x) {
+                    *slot = Some(xi);
+                }
+                let mut defines = Vec::new();
+                for (j, d) in self.defines.iter().enumerate().filter(|&(j, _)| needed[j]) {
+                    let folded = d.fold(&known);
+                    match folded.as_constant() {
+                        Some(v) => known[first + j] = Some(v),
+                        None => defines.push((first + j, folded)),
+                    }
+                }
+                TabulatedPoint {
+                    defines,
+                    value: e.fold(&known),
+                }
+            })
+            .collect();
+        ProfileTable {
+            slots: first + nd,
+            points,
         }
     }
 
@@ -174,12 +185,49 @@ impl BuiltModel {
     }
 }
 
+/// An interface profile `e(theta, x, defines)` tabulated on a fixed point set (issue 20,
+/// item 4): at each point, what depends on the point only - its coordinates, the defines that
+/// do not depend on the parameters, every such subtree of `e` and of the parameter-dependent
+/// defines - is evaluated once ([`Expr::fold`]), so that a parameter point costs the
+/// parameter-dependent operations only. The error estimate evaluates the friction profile of
+/// every interface at every point of its integration rules and maps (on the 3D turbine, 962
+/// interface points at each of ~10^5 map points); the values are those of
+/// [`Parametric::profile`], bit for bit (the folded parts are computed by the same
+/// arithmetic in the same order).
+pub(crate) struct ProfileTable {
+    /// Length of the slot vector: parameters, `x, y, z`, the defines.
+    slots: usize,
+    points: Vec<TabulatedPoint>,
+}
+
+/// One point of a [`ProfileTable`].
+struct TabulatedPoint {
+    /// The defines that depend on the parameters, folded, with their slots, in order.
+    defines: Vec<(usize, Expr)>,
+    /// The profile, folded.
+    value: Expr,
+}
+
+impl ProfileTable {
+    /// The profile at parameter point `theta` at every point, into `out`.
+    pub(crate) fn eval(&self, theta: &[f64], out: &mut [f64]) {
+        let mut v = vec![0.0; self.slots];
+        v[..theta.len()].copy_from_slice(theta);
+        for (o, p) in out.iter_mut().zip(&self.points) {
+            for (slot, d) in &p.defines {
+                v[*slot] = d.eval(&v);
+            }
+            *o = p.value.eval(&v);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// `eval_profile` skips the defines a profile does not need and gives the values of
-    /// `profile`, bit for bit.
+    /// The profile tabulated on a point set (`profile_table`: point-only parts folded, the
+    /// defines it does not need skipped) gives the values of `profile`, bit for bit.
     #[test]
     fn profiles_evaluated_in_bulk_are_the_pointwise_ones() {
         let vars = ["a", "b", "x", "y", "z", "s", "xr", "xl", "zw"];
@@ -209,9 +257,10 @@ mod tests {
                 [3.0 + t, 199.8 - 6.5 * t, 20.0 * t * t]
             })
             .collect();
+        let table = p.profile_table(&mu, &xs);
         for theta in [[0.0, 1.0], [0.3, 0.8], [1.0, 0.0]] {
             let mut out = vec![0.0; xs.len()];
-            p.eval_profile(&mu, &theta, &xs, &mut out);
+            table.eval(&theta, &mut out);
             let f = p.profile(&mu, &theta);
             for (x, o) in xs.iter().zip(&out) {
                 assert_eq!(f(*x).to_bits(), o.to_bits(), "{x:?}");
