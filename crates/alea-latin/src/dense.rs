@@ -61,3 +61,13 @@ mod tests {
         assert!(solve_pivoted(&mut s, &mut bs, 2, 1e-12).is_none());
     }
 }
+
+/// Makes faer's dense kernels that take their parallelism from the global setting (`llt`,
+/// `self_adjoint_eigen` on `Mat`: the coarse problem, the equilibrium check, the 3D
+/// equilibrated tractions) run sequentially. By default faer splits them over every rayon
+/// thread, and the blocked sums then round differently with the thread count; alea
+/// parallelises over runs instead, so that the same inputs give the same bits whatever
+/// `--threads` is. Called once by the programs (the `alea` binary, the Python module).
+pub fn use_sequential_dense_kernels() {
+    faer::set_global_parallelism(faer::Par::Seq);
+}

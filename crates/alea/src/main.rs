@@ -127,6 +127,7 @@ fn run_distributed(
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    alea_latin::dense::use_sequential_dense_kernels();
     let result = match cli.command {
         Command::Solve { case, out } => solve::solve_file(&case, &out),
         Command::Demo { name, out } => solve::demo(&name, &out),
