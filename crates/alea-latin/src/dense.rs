@@ -40,6 +40,16 @@ pub fn solve_pivoted(a: &mut [f64], b: &mut [f64], m: usize, pivot_floor: f64) -
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
+/// Makes faer's dense kernels that take their parallelism from the global setting (`llt`,
+/// `self_adjoint_eigen` on `Mat`: the coarse problem, the equilibrium check, the 3D
+/// equilibrated tractions) run sequentially. By default faer splits them over every rayon
+/// thread, and the blocked sums then round differently with the thread count; alea
+/// parallelises over runs instead, so that the same inputs give the same bits whatever
+/// `--threads` is. Called once by the programs (the `alea` binary, the Python module).
+pub fn use_sequential_dense_kernels() {
+    faer::set_global_parallelism(faer::Par::Seq);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -60,14 +70,4 @@ mod tests {
         let mut bs = vec![1.0, 2.0];
         assert!(solve_pivoted(&mut s, &mut bs, 2, 1e-12).is_none());
     }
-}
-
-/// Makes faer's dense kernels that take their parallelism from the global setting (`llt`,
-/// `self_adjoint_eigen` on `Mat`: the coarse problem, the equilibrium check, the 3D
-/// equilibrated tractions) run sequentially. By default faer splits them over every rayon
-/// thread, and the blocked sums then round differently with the thread count; alea
-/// parallelises over runs instead, so that the same inputs give the same bits whatever
-/// `--threads` is. Called once by the programs (the `alea` binary, the Python module).
-pub fn use_sequential_dense_kernels() {
-    faer::set_global_parallelism(faer::Par::Seq);
 }
