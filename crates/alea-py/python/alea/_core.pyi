@@ -12,6 +12,7 @@ Vector = npt.NDArray[np.float64]
 LawLike = Union["Joint", "Law", Sequence["Law"]]
 
 __version__: str
+SOLVER: bool
 
 class Joint:
     """
