@@ -5,6 +5,7 @@
 //! 1-D array of `n` values is accepted as `n` points only when `d == 1`, so a shape is never
 //! guessed. Sizes and finiteness are checked here, before any Rust routine sees the data.
 
+#[cfg(feature = "solver")]
 use alea_study::StudyError;
 use alea_uq::UqError;
 use numpy::ndarray::{Array2, IxDyn};
@@ -12,7 +13,9 @@ use numpy::{
     AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLikeDyn,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyValueError};
+#[cfg(feature = "solver")]
+use pyo3::exceptions::PyFileNotFoundError;
+use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyFloat;
 
@@ -56,6 +59,7 @@ pub fn uq_err(e: UqError) -> PyErr {
 /// A study error as a Python exception: I/O errors as `OSError` (`FileNotFoundError` for a
 /// missing file), input and computation errors as `ValueError` (input errors name the file,
 /// line and field).
+#[cfg(feature = "solver")]
 pub fn study_err(e: StudyError) -> PyErr {
     match &e {
         StudyError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {

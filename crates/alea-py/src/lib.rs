@@ -16,6 +16,10 @@
 //!   Gaussian, lognormal or bounded transforms);
 //! * [`study`]: running a study file, reading a study directory's store and rebuilding its
 //!   outputs (summary, samples, fields, HTML report), through `alea-report` as the CLI does.
+//!   Only with the cargo feature `solver` (default): without it (`--no-default-features`) the
+//!   module is the UQ toolkit of `alea-uq` alone, `_core.SOLVER` is `False`, and the Python
+//!   functions that need a solver (`alea.run`, `open_store`, `report`) raise
+//!   `alea.SolverNotBuilt`.
 
 use pyo3::prelude::*;
 
@@ -23,12 +27,14 @@ mod convert;
 mod designs;
 mod fields;
 mod laws;
+#[cfg(feature = "solver")]
 mod study;
 mod surrogates;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("SOLVER", cfg!(feature = "solver"))?;
     m.add_class::<laws::Law>()?;
     m.add("Normal", m.py().get_type::<laws::NormalLaw>())?;
     m.add("Uniform", m.py().get_type::<laws::UniformLaw>())?;
@@ -53,8 +59,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<surrogates::PolynomialChaos>()?;
     m.add_class::<surrogates::PiecewiseLinear>()?;
     m.add_class::<fields::KarhunenLoeve>()?;
-    m.add_function(wrap_pyfunction!(study::run_study_file, m)?)?;
-    m.add_function(wrap_pyfunction!(study::read_store, m)?)?;
-    m.add_function(wrap_pyfunction!(study::rebuild_outputs, m)?)?;
+    #[cfg(feature = "solver")]
+    {
+        m.add_function(wrap_pyfunction!(study::run_study_file, m)?)?;
+        m.add_function(wrap_pyfunction!(study::read_store, m)?)?;
+        m.add_function(wrap_pyfunction!(study::rebuild_outputs, m)?)?;
+    }
     Ok(())
 }

@@ -156,10 +156,12 @@ impl PolynomialChaos {
     /// Sparse chaos by hybrid least-angle regression (Blatman & Sudret 2011): LARS orders the
     /// candidate terms of the degree-`degree` basis, each prefix is scored by its corrected
     /// leave-one-out error and the best one is refitted by least squares.
-    /// `max_terms_fraction`: largest number of terms as a fraction of the runs;
-    /// `stop_factor`: stop once the error exceeds this factor times the best so far.
+    /// The path is OpenTURNS' (raw orthonormal columns, constant first): on the same points
+    /// it keeps the same terms. `max_terms_fraction`: largest number of terms as a fraction of
+    /// the runs (1: up to `runs - 1`); `stop_factor`: beyond 10 terms, stop once the error
+    /// exceeds this factor times the best so far (or 0.5).
     #[staticmethod]
-    #[pyo3(signature = (law, degree, points, values, q = None, max_terms_fraction = 0.5, stop_factor = 2.0))]
+    #[pyo3(signature = (law, degree, points, values, q = None, max_terms_fraction = 1.0, stop_factor = 2.0))]
     fn lars(
         py: Python<'_>,
         law: &Bound<'_, PyAny>,

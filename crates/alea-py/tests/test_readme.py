@@ -8,6 +8,10 @@ from pathlib import Path
 
 import pytest
 
+import alea
+
+pytestmark = pytest.mark.skipif(not alea.SOLVER, reason="toolkit-only build (no solver)")
+
 ROOT = Path(__file__).resolve().parents[3]
 
 

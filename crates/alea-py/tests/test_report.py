@@ -13,6 +13,8 @@ import pytest
 
 import alea
 
+pytestmark = pytest.mark.skipif(not alea.SOLVER, reason="toolkit-only build (no solver)")
+
 DATA = Path(__file__).parent / "data"
 
 

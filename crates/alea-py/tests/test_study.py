@@ -19,6 +19,8 @@ import pytest
 
 import alea
 
+pytestmark = pytest.mark.skipif(not alea.SOLVER, reason="toolkit-only build (no solver)")
+
 DATA = Path(__file__).parent / "data"
 A, B, S, L, T = 150e3, 250e3, 200.0, 100.0, 0.13
 MEAN = S * L * math.log(B / A) / (B - A)

@@ -6,7 +6,8 @@ return types by name. Run after ``maturin develop``:
     python tools/stubgen.py --check    # exits 1 if the committed stub is out of date
 
 ``tests/test_stubs.py`` runs the check, so a new function or argument cannot ship without its
-stub.
+stub. The stub describes the full build (feature ``solver``): on a toolkit-only build
+(``_core.SOLVER`` false) the script refuses to run.
 """
 import inspect
 import sys
@@ -79,6 +80,7 @@ Vector = npt.NDArray[np.float64]
 LawLike = Union["Joint", "Law", Sequence["Law"]]
 
 __version__: str
+SOLVER: bool
 '''
 
 
@@ -174,6 +176,10 @@ def render():
 
 
 def main():
+    if not core.SOLVER:
+        print("alea._core was built without the feature `solver`: the stub is written from the "
+              "full build (maturin develop --release)", file=sys.stderr)
+        sys.exit(2)
     text = render()
     if "--check" in sys.argv:
         if not STUB.exists() or STUB.read_text() != text:

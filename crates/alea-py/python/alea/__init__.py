@@ -9,6 +9,8 @@ Studies
     (``.runs``, ``.statistics``, ``.failure``, ``.samples``); ``open_store(directory)`` reads
     the runs of a study directory without running anything; ``report(directory)`` writes its
     outputs (``summary.json``, ``samples.csv``, fields, the HTML report) as ``alea report``.
+    A toolkit-only build (cargo ``--no-default-features``: no solver, ``SOLVER`` false) raises
+    :class:`SolverNotBuilt` from these three; everything below works in both builds.
 Laws
     ``Normal``, ``Uniform``, ``TruncatedNormal``, ``Lognormal``, ``Beta``, ``Gamma``,
     ``Triangular``, ``Empirical``, ``Kde`` (all subclasses of ``Law``: ``pdf``, ``cdf``,
@@ -44,6 +46,7 @@ from ._core import (
     Normal,
     PiecewiseLinear,
     PolynomialChaos,
+    SOLVER,
     Triangular,
     TruncatedNormal,
     Uniform,
@@ -56,7 +59,7 @@ from ._core import (
     quadrature,
     sobol,
 )
-from ._study import StoredRuns, StudyOutputs, StudyResult, open_store, report, run
+from ._study import SolverNotBuilt, StoredRuns, StudyOutputs, StudyResult, open_store, report, run
 
 __all__ = [
     "Beta",
@@ -70,6 +73,8 @@ __all__ = [
     "Normal",
     "PiecewiseLinear",
     "PolynomialChaos",
+    "SOLVER",
+    "SolverNotBuilt",
     "StoredRuns",
     "StudyOutputs",
     "StudyResult",

@@ -12,6 +12,7 @@ Vector = npt.NDArray[np.float64]
 LawLike = Union["Joint", "Law", Sequence["Law"]]
 
 __version__: str
+SOLVER: bool
 
 class Joint:
     """
@@ -225,13 +226,15 @@ class PolynomialChaos:
     @property
     def dim(self) -> Any: ...
     @staticmethod
-    def lars(law: LawLike, degree: int, points: ArrayLike, values: ArrayLike, q: Optional[float] = None, max_terms_fraction: float = 0.5, stop_factor: float = 2.0) -> Any:
+    def lars(law: LawLike, degree: int, points: ArrayLike, values: ArrayLike, q: Optional[float] = None, max_terms_fraction: float = 1.0, stop_factor: float = 2.0) -> Any:
         """
         Sparse chaos by hybrid least-angle regression (Blatman & Sudret 2011): LARS orders the
         candidate terms of the degree-`degree` basis, each prefix is scored by its corrected
         leave-one-out error and the best one is refitted by least squares.
-        `max_terms_fraction`: largest number of terms as a fraction of the runs;
-        `stop_factor`: stop once the error exceeds this factor times the best so far.
+        The path is OpenTURNS' (raw orthonormal columns, constant first): on the same points
+        it keeps the same terms. `max_terms_fraction`: largest number of terms as a fraction of
+        the runs (1: up to `runs - 1`); `stop_factor`: beyond 10 terms, stop once the error
+        exceeds this factor times the best so far (or 0.5).
         """
         ...
     @property

@@ -284,6 +284,22 @@ def _names_from_summary(directory: Path, study_hash: str, d: int, m: int) -> Tup
     return params, quantities
 
 
+class SolverNotBuilt(RuntimeError):
+    """A study function (:func:`run`, :func:`open_store`, :func:`report`) was called on a
+    toolkit-only build of alea (built without the cargo feature ``solver``)."""
+
+
+def _require_solver(function: str) -> None:
+    if not _core.SOLVER:
+        raise SolverNotBuilt(
+            f"alea.{function} needs the solver (finite elements, LATIN, study store), which this "
+            "build of alea leaves out: it was built with --no-default-features (the UQ toolkit "
+            "only: laws, designs, surrogates, random fields). Install the full package, e.g. "
+            "`pip install <alea source>/crates/alea-py` or `maturin develop --release` "
+            "(default features)"
+        )
+
+
 def run(
     study: PathLike,
     directory: Optional[PathLike] = None,
@@ -327,6 +343,7 @@ def run(
     returns; every finished run is already committed to the store, so killing the process
     (or restarting a notebook kernel) loses nothing and the next call resumes.
     """
+    _require_solver("run")
     study = Path(study)
     if directory is None:
         directory = Path("out") / study.stem
@@ -348,6 +365,7 @@ def open_store(directory: PathLike, study: Optional[PathLike] = None) -> StoredR
     ValueError
         The store belongs to another version of ``study``.
     """
+    _require_solver("open_store")
     raw = _core.read_store(str(directory), None if study is None else str(study))
     return StoredRuns(raw)
 
@@ -404,6 +422,7 @@ def report(directory: PathLike) -> StudyOutputs:
     OSError
         A file cannot be read or written.
     """
+    _require_solver("report")
     raw = _core.rebuild_outputs(str(directory))
 
     def path(p: Optional[str]) -> Optional[Path]:

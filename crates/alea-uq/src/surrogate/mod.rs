@@ -23,7 +23,7 @@ mod multilinear;
 mod pc;
 mod saved;
 
-pub use lars::{LarsOptions, LarsReport};
+pub use lars::{LARS_MAXIMUM_ERROR, LARS_SMALL_BASIS, LarsOptions, LarsReport};
 pub use monomial::MonomialSurface;
 pub use multilinear::{CellId, MAX_DIM, MAX_LEVEL, NewRun, ParentLevel, StochasticMesh};
 pub use pc::corrected_loo_factor;
