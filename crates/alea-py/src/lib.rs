@@ -35,6 +35,9 @@ mod surrogates;
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("SOLVER", cfg!(feature = "solver"))?;
+    // Results independent of the thread count (faer's global dense kernels sequential).
+    #[cfg(feature = "solver")]
+    alea_study::use_sequential_dense_kernels();
     m.add_class::<laws::Law>()?;
     m.add("Normal", m.py().get_type::<laws::NormalLaw>())?;
     m.add("Uniform", m.py().get_type::<laws::UniformLaw>())?;

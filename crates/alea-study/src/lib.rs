@@ -42,6 +42,9 @@ pub mod temporaries;
 #[cfg(test)]
 mod test_rng;
 
+/// Sequential dense kernels of faer (results independent of the thread count); called by the
+/// programs that run studies (the `alea` binary, the Python module).
+pub use alea_latin::dense::use_sequential_dense_kernels;
 pub use build::{BuiltModel, InterfaceSite, Parametric, build_mesh, build_model};
 pub use error::StudyError;
 pub use params::{ParamSpace, build_params};
