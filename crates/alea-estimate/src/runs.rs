@@ -77,8 +77,9 @@ impl Estimator {
     /// ([`Gram::fe_only`]), none for a substructure left out of `layout`.
     ///
     /// # Errors
-    /// The source's errors; [`EstimateError::Invalid`] (as the source's error) on inconsistent
-    /// counts or non-finite data ([`Estimator::from_parts`]).
+    /// The source's errors; [`EstimateError::Invalid`] (as the source's error) on samples whose
+    /// lengths are not the layout's, inconsistent counts or non-finite data
+    /// ([`Estimator::from_parts`]).
     pub fn from_runs<R: RunSource>(
         layout: Layout,
         runs: &R,
@@ -101,6 +102,19 @@ impl Estimator {
                 continue;
             }
             let [a, h] = sub_samples(runs, s)?;
+            if let Some(k) =
+                (0..n).find(|&k| a[k].len() != sub.admissible_len() || h[k].len() != sub.len())
+            {
+                return Err(EstimateError::Invalid(format!(
+                    "run {k}: samples of substructure '{}' of lengths {} (admissible) and {} (FE) for a layout of {} and {}",
+                    sub.name,
+                    a[k].len(),
+                    h[k].len(),
+                    sub.admissible_len(),
+                    sub.len()
+                ))
+                .into());
+            }
             grams.push(Some(if sub.admissible {
                 Gram::new(&slices(&a), &slices(&h))
             } else {
@@ -119,17 +133,38 @@ impl Estimator {
 /// `moments`.
 ///
 /// # Errors
-/// The source's errors.
+/// The source's errors; [`EstimateError::Invalid`] (as the source's error) on samples that do
+/// not cover the cells or moments that are not `K x K` for the `K` runs.
 pub fn sub_cell_terms<R: RunSource>(
     runs: &R,
     s: usize,
     cell_offsets: &[usize],
     moments: &SubstructureMoments,
 ) -> Result<Vec<(f64, f64)>, R::Error> {
+    let n = runs.num_runs();
     let [a, h] = sub_samples(runs, s)?;
-    let young = (0..runs.num_runs())
+    let young = (0..n)
         .map(|k| runs.young(k, s))
         .collect::<Result<Vec<f64>, _>>()?;
+    let len = cell_offsets.last().copied().unwrap_or(0);
+    let kk = n * n;
+    if let Some(k) = (0..n).find(|&k| a[k].len() != len || h[k].len() != len) {
+        return Err(EstimateError::Invalid(format!(
+            "run {k}: samples of substructure {s} of lengths {} and {} for cells covering {len}",
+            a[k].len(),
+            h[k].len()
+        ))
+        .into());
+    }
+    if [&moments.inv_alpha, &moments.one, &moments.alpha]
+        .iter()
+        .any(|m| m.len() != kk)
+    {
+        return Err(EstimateError::Invalid(format!(
+            "weight moments of substructure {s} are not {n} x {n}"
+        ))
+        .into());
+    }
     Ok(cell_terms(
         &slices(&a),
         &slices(&h),
