@@ -92,36 +92,46 @@ pub enum Admissible {
 }
 
 impl DomainEstimate {
-    /// Phase-1 edge tractions of a 2D estimate.
-    pub fn edge_tractions(&self) -> Option<&EdgeTractions> {
+    /// Phase-1 edge tractions and phase-2 element stresses of a 2D estimate.
+    fn plane(&self) -> Option<(&EdgeTractions, &[ElementStress])> {
         match &self.admissible {
-            Admissible::Plane { tractions, .. } => Some(tractions),
+            Admissible::Plane {
+                tractions,
+                stresses,
+            } => Some((tractions, stresses)),
             Admissible::Solid { .. } => None,
         }
+    }
+
+    /// Phase-1 face tractions and phase-2 element stresses of a 3D estimate.
+    fn solid(&self) -> Option<(&FaceTractions, &[SolidElementStress])> {
+        match &self.admissible {
+            Admissible::Solid {
+                tractions,
+                stresses,
+            } => Some((tractions, stresses)),
+            Admissible::Plane { .. } => None,
+        }
+    }
+
+    /// Phase-1 edge tractions of a 2D estimate.
+    pub fn edge_tractions(&self) -> Option<&EdgeTractions> {
+        self.plane().map(|(tractions, _)| tractions)
     }
 
     /// Phase-2 element stresses of a 2D estimate.
     pub fn plane_stresses(&self) -> Option<&[ElementStress]> {
-        match &self.admissible {
-            Admissible::Plane { stresses, .. } => Some(stresses),
-            Admissible::Solid { .. } => None,
-        }
+        self.plane().map(|(_, stresses)| stresses)
     }
 
     /// Phase-1 face tractions of a 3D estimate.
     pub fn face_tractions(&self) -> Option<&FaceTractions> {
-        match &self.admissible {
-            Admissible::Solid { tractions, .. } => Some(tractions),
-            Admissible::Plane { .. } => None,
-        }
+        self.solid().map(|(tractions, _)| tractions)
     }
 
     /// Phase-2 element stresses of a 3D estimate.
     pub fn solid_stresses(&self) -> Option<&[SolidElementStress]> {
-        match &self.admissible {
-            Admissible::Solid { stresses, .. } => Some(stresses),
-            Admissible::Plane { .. } => None,
-        }
+        self.solid().map(|(_, stresses)| stresses)
     }
 
     /// The estimate of a domain from its element sums, phase-1 defect, timings and admissible

@@ -147,6 +147,7 @@ pub mod reference;
 pub mod refine;
 pub mod results;
 pub mod rule;
+pub mod runs;
 
 pub use data::{InterfaceKind, InterfaceLayout, Layout, RunData, SubLayout};
 pub use error::EstimateError;
@@ -154,3 +155,4 @@ pub use estimator::{Estimator, Options as EstimatorOptions, Parameters, Weights}
 pub use moments::{SubstructureMoments, cell_terms, weight_moments};
 pub use results::{EntityEstimate, Estimate, InterfacePoint, PointEstimate, SubPoint};
 pub use rule::{CellBox, Rule};
+pub use runs::{InterfaceVectors, RunSource, load_defect, sub_cell_terms};

@@ -1,6 +1,6 @@
 //! Studies: the binding glue over `alea-report`'s study orchestration, the same that `alea run`
 //! and `alea report` call: running a study file and analysing every method
-//! (`alea_report::study::run_runs`, `analyse_all`), reading the runs of a study directory's
+//! (`alea_report::study::run_runs`, `analyse`), reading the runs of a study directory's
 //! store (`stored_runs`), and rebuilding every output of a study directory (`rebuild`).
 //!
 //! The results cross to Python as plain dicts of NumPy arrays; the `alea` package turns them
@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use alea_report::study::{analyse_all, run_runs, sample_points, stored_runs};
+use alea_report::study::{analyse, run_runs, sample_points, stored_runs};
 use alea_report::{Error as OutputError, Silent, report::ReportError};
 use alea_study::analysis::MethodResult;
 use alea_study::runner::{Progress, Study};
@@ -153,20 +153,13 @@ fn run(
     progress: &PyProgress,
 ) -> Result<StudyOutput, OutputError> {
     let ran = run_runs(path, dir, restart, progress, &Silent)?;
-    let results = analyse_all(&ran.study, &ran.runs, &ran.settings);
-    let reliability = alea_study::reliability::analyse_reliability(
-        &ran.study,
-        &ran.study.reliability,
-        &ran.runs.methods,
-        &ran.runs.records,
-        ran.settings.confidence,
-    );
-    let reliability = serde_json::to_string(&reliability).unwrap_or_else(|_| "[]".into());
+    let analysis = analyse(&ran.study, &ran.runs, &ran.settings);
+    let reliability = serde_json::to_string(&analysis.reliability).unwrap_or_else(|_| "[]".into());
     let methods = ran
         .runs
         .methods
         .iter()
-        .zip(results)
+        .zip(analysis.results)
         .map(|(m, r)| {
             let points = sample_points(m, &ran.runs.records, &r);
             (r, points)

@@ -10,8 +10,9 @@
 //!   statistics; the stochastic error estimates; `summary.json`, `samples.csv`, mean / std
 //!   fields, the report); [`study::rebuild`] rebuilds every output from the store alone
 //!   (`alea report DIR`, Python's `alea.report(dir)`); [`study::run_runs`] with
-//!   [`study::analyse_all`] and [`study::stored_runs`] give the results without writing outputs
-//!   (Python's `alea.run` and `alea.open_store`).
+//!   [`study::analyse`] (the statistics and reliability results that [`study::write_outputs`]
+//!   writes) and [`study::stored_runs`] give the results without writing outputs (Python's
+//!   `alea.run` and `alea.open_store`).
 //!
 //! What a study prints goes through a [`Console`] (the CLI prints to stdout / stderr, Python
 //! stays silent); errors are typed ([`Error`]), the front ends map them to exit codes or

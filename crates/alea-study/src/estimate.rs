@@ -23,7 +23,10 @@ use std::time::Instant;
 
 use alea_estimate::density::{PairMap, pair_maps};
 use alea_estimate::rule::{CellBox, Rule};
-use alea_estimate::{Estimate, Estimator, EstimatorOptions, Weights};
+use alea_estimate::{
+    Estimate, Estimator, EstimatorOptions, InterfaceVectors, RunSource, Weights, load_defect,
+    sub_cell_terms,
+};
 use alea_latin::LatinSolver;
 use alea_latin::interface::{distribute_to_cells, facet_shares};
 
@@ -68,7 +71,8 @@ pub struct SurrogateEstimate {
 }
 
 /// Builds the estimator of the runs at `points` (converged, with their error estimates in the
-/// store; surrogate run order), substructure by substructure to bound memory.
+/// store; surrogate run order), substructure by substructure to bound memory
+/// ([`Estimator::from_runs`]).
 ///
 /// # Errors
 /// [`StudyError::NoEstimate`], [`StudyError::DamagedEstimate`] or
@@ -80,52 +84,16 @@ pub fn build_estimator(
     points: &[Vec<f64>],
     params: &dyn alea_estimate::Parameters,
 ) -> Result<Estimator, StudyError> {
-    let (records, fields) = stored_runs(store, points, true)?;
-    let ns = solver.num_subs();
-    let mut young = vec![Vec::with_capacity(points.len()); ns];
-    for r in &records {
-        for s in 0..ns {
-            young[s].push(*r.young.get(s).ok_or(StudyError::StaleEstimate {
-                restart_hint: false,
-            })?);
-        }
-    }
-    let mut grams = Vec::with_capacity(ns);
-    for s in 0..ns {
-        if setup.layout.subs[s].is_empty() {
-            grams.push(None);
-            continue;
-        }
-        let mut a = Vec::with_capacity(records.len());
-        let mut h = Vec::with_capacity(records.len());
-        for (r, f) in records.iter().zip(&fields) {
-            let (ya, yh) = setup.sub_samples(solver, s, r, f)?;
-            a.push(ya);
-            h.push(yh);
-        }
-        let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
-        let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
-        grams.push(Some(if setup.layout.subs[s].admissible {
-            alea_estimate::gram::Gram::new(&ar, &hr)
-        } else {
-            alea_estimate::gram::Gram::fe_only(&hr)
-        }));
-    }
-    let jump = records.iter().map(|r| r.jump.clone()).collect();
-    let force = records.iter().map(|r| r.force.clone()).collect();
-    Estimator::from_parts(
+    let runs = stored_runs(setup, solver, store, points, true)?;
+    Estimator::from_runs(
         setup.layout.clone(),
-        young,
-        grams,
-        jump,
-        force,
+        &runs,
         points,
         params,
         EstimatorOptions {
             admissibility_tolerance: setup.options.admissibility_tolerance,
         },
     )
-    .map_err(StudyError::from)
 }
 
 /// The integration rule of a method (module doc): its cells and the rule.
@@ -167,11 +135,13 @@ pub fn integration_rule(
 
 /// The stored error estimates and displacement fields of the runs at `points`
 /// (`restart_hint`: a missing estimate's message says to run again with `--restart`).
-fn stored_runs(
+fn stored_runs<'a>(
+    setup: &'a CreSetup,
+    solver: &'a LatinSolver,
     store: &Store,
     points: &[Vec<f64>],
     restart_hint: bool,
-) -> Result<(Vec<CreRecord>, Vec<Vec<f64>>), StudyError> {
+) -> Result<StoredRuns<'a>, StudyError> {
     let mut records = Vec::with_capacity(points.len());
     let mut fields = Vec::with_capacity(points.len());
     for p in points {
@@ -184,7 +154,49 @@ fn stored_runs(
         records.push(rec);
         fields.push(store.fields(p)?);
     }
-    Ok((records, fields))
+    Ok(StoredRuns {
+        setup,
+        solver,
+        records,
+        fields,
+    })
+}
+
+/// The stored runs of a method as the estimator reads them: each run's CRE record and
+/// displacement fields, sampled through the estimator set-up ([`CreSetup::sub_samples`]).
+struct StoredRuns<'a> {
+    setup: &'a CreSetup,
+    solver: &'a LatinSolver,
+    records: Vec<CreRecord>,
+    fields: Vec<Vec<f64>>,
+}
+
+impl RunSource for StoredRuns<'_> {
+    type Error = StudyError;
+
+    fn num_runs(&self) -> usize {
+        self.records.len()
+    }
+
+    fn young(&self, k: usize, s: usize) -> Result<f64, StudyError> {
+        self.records[k]
+            .young
+            .get(s)
+            .copied()
+            .ok_or(StudyError::StaleEstimate {
+                restart_hint: false,
+            })
+    }
+
+    fn samples(&self, k: usize, s: usize) -> Result<(Vec<f64>, Vec<f64>), StudyError> {
+        self.setup
+            .sub_samples(self.solver, s, &self.records[k], &self.fields[k])
+    }
+
+    fn interface_fields(&self, k: usize) -> (InterfaceVectors, InterfaceVectors) {
+        let r = &self.records[k];
+        (r.jump.clone(), r.force.clone())
+    }
 }
 
 /// What the stochastic error of one method is computed from: the study, its estimator set-up
@@ -228,7 +240,19 @@ pub fn estimate_method(
     )?;
     let (cells, rule) = integration_rule(input.study, input.method, input.settings)?;
     let estimate = est.expectation(&rule, input.sur, &params);
-    let load_defect = load_defect(input.study, input.points, &rule, input.sur);
+    let load_defect = load_defect(
+        &rule,
+        input.sur,
+        input.points,
+        input
+            .study
+            .model
+            .parametric
+            .load_factors
+            .iter()
+            .flatten()
+            .map(|e| |x: &[f64]| e.eval(x)),
+    );
     Ok((
         est,
         SurrogateEstimate {
@@ -241,29 +265,6 @@ pub fn estimate_method(
             seconds: t0.elapsed().as_secs_f64(),
         },
     ))
-}
-
-/// Largest relative error of the surrogate's interpolation of every load factor on the rule.
-fn load_defect(study: &Study, points: &[Vec<f64>], rule: &Rule, sur: &Surrogate) -> f64 {
-    let par = &study.model.parametric;
-    let mut worst: f64 = 0.0;
-    let mut w = Vec::new();
-    for s in &par.load_factors {
-        for e in s {
-            let vals: Vec<f64> = points.iter().map(|p| e.eval(p)).collect();
-            let scale = vals.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            if !(scale > 0.0) {
-                continue;
-            }
-            for q in 0..rule.len() {
-                let xi = rule.point(q);
-                Weights::weights(sur, xi, &mut w);
-                let interp: f64 = w.iter().map(|&(k, wk)| wk * vals[k]).sum();
-                worst = worst.max((interp - e.eval(xi)).abs() / scale);
-            }
-        }
-    }
-    worst
 }
 
 /// Largest work of the error-density maps, in interface-point x weight products (one evaluation
@@ -411,26 +412,9 @@ pub fn write_error_fields(
     let mut cell_fields: Vec<Option<[Vec<f64>; 4]>> = vec![None; ns];
     if estimated.contains(&true) {
         let moments = alea_estimate::weight_moments(&rule, sur, &params, ns, points.len());
-        let (records, fields) = stored_runs(store, points, false)?;
+        let runs = stored_runs(setup, solver, store, points, false)?;
         for s in (0..ns).filter(|&s| estimated[s]) {
-            let mut a = Vec::with_capacity(points.len());
-            let mut h = Vec::with_capacity(points.len());
-            let mut young = Vec::with_capacity(points.len());
-            for (r, f) in records.iter().zip(&fields) {
-                let (ya, yh) = setup.sub_samples(solver, s, r, f)?;
-                a.push(ya);
-                h.push(yh);
-                young.push(r.young[s]);
-            }
-            let ar: Vec<&[f64]> = a.iter().map(|v| v.as_slice()).collect();
-            let hr: Vec<&[f64]> = h.iter().map(|v| v.as_slice()).collect();
-            let terms = alea_estimate::cell_terms(
-                &ar,
-                &hr,
-                &young,
-                &setup.layout.subs[s].cell_offsets,
-                &moments[s],
-            );
+            let terms = sub_cell_terms(&runs, s, &setup.layout.subs[s].cell_offsets, &moments[s])?;
             let model = solver.model(s);
             let th = model.analysis.thickness();
             let area: Vec<f64> = (0..model.mesh.num_cells())

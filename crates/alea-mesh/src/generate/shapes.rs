@@ -7,7 +7,7 @@
 use std::f64::consts::FRAC_1_SQRT_2;
 use std::sync::Arc;
 
-use super::multiblock::{Block, Curve, distribution, multiblock};
+use super::multiblock::{Block, Curve, Prepared, distribution, multiblock};
 use crate::{CellType, Mesh, MeshError};
 
 pub(super) fn positive(name: &str, v: f64) -> Result<(), MeshError> {
@@ -448,25 +448,25 @@ pub fn dovetail_root_and_disk(p: &DovetailParams, kind: CellType) -> Result<Mesh
         .collect();
     let upper = path(
         vec![
-            Seg::Line(b, [wb, ys + rf]),
-            Seg::Arc {
-                centre: oc,
+            Prepared::Line(b, [wb, ys + rf]),
+            Prepared::Arc {
+                c: oc,
                 r: rf,
-                from: 0.0,
-                to: -quarter,
+                th0: 0.0,
+                sweep: -quarter,
             },
         ],
         &upper_nodes,
     );
     let lower = path(
         vec![
-            Seg::Arc {
-                centre: oc,
+            Prepared::Arc {
+                c: oc,
                 r: rf,
-                from: -quarter,
-                to: -2.0 * quarter,
+                th0: -quarter,
+                sweep: -quarter,
             },
-            Seg::Line(d, e),
+            Prepared::Line(d, e),
         ],
         &lower_nodes,
     );
@@ -534,50 +534,16 @@ pub fn dovetail_root_and_disk(p: &DovetailParams, kind: CellType) -> Result<Mesh
     Ok(mesh)
 }
 
-/// A piece of a composite curve.
-enum Seg {
-    Line([f64; 2], [f64; 2]),
-    /// Arc of centre `centre`, radius `r`, from angle `from` to angle `to` (radians).
-    Arc {
-        centre: [f64; 2],
-        r: f64,
-        from: f64,
-        to: f64,
-    },
-}
-
-impl Seg {
-    fn len(&self) -> f64 {
-        match self {
-            Seg::Line(a, b) => (b[0] - a[0]).hypot(b[1] - a[1]),
-            Seg::Arc { r, from, to, .. } => r * (to - from).abs(),
-        }
-    }
-
-    fn at(&self, u: f64) -> [f64; 2] {
-        match self {
-            Seg::Line(a, b) => [a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])],
-            Seg::Arc {
-                centre,
-                r,
-                from,
-                to,
-            } => {
-                let t = from + u * (to - from);
-                [centre[0] + r * t.cos(), centre[1] + r * t.sin()]
-            }
-        }
-    }
-}
-
-/// A parametric curve through consecutive segments (zero-length ones dropped), uniform in arc
+/// A parametric curve through consecutive segments (lines and arcs; zero-length ones dropped), uniform in arc
 /// length within each segment. The junctions between segments are moved to the nearest of the
 /// parameters `nodes` (increasing, from 0 to 1: where the mesh will have nodes) so that they
 /// are mesh nodes (no cell straddles a change of curvature), when there are enough of them;
 /// otherwise the curve is uniform in arc length overall.
-fn path(segs: Vec<Seg>, nodes: &[f64]) -> Curve {
-    let segs: Vec<Seg> = segs.into_iter().filter(|s| s.len() > 0.0).collect();
-    let lens: Vec<f64> = segs.iter().map(Seg::len).collect();
+fn path(segs: Vec<Prepared>, nodes: &[f64]) -> Curve {
+    let (segs, lens): (Vec<Prepared>, Vec<f64>) = segs
+        .into_iter()
+        .filter_map(|s| s.length().filter(|&l| l > 0.0).map(|l| (s, l)))
+        .unzip();
     let total: f64 = lens.iter().sum();
     // Breakpoints u_k of the segments: arc-length fractions, snapped to node parameters.
     let mut breaks = vec![0.0];
@@ -623,7 +589,7 @@ fn path(segs: Vec<Seg>, nodes: &[f64]) -> Curve {
         let last = segs.len() - 1;
         let i = (0..=last).find(|&i| u <= breaks[i + 1]).unwrap_or(last);
         let w = (u - breaks[i]) / (breaks[i + 1] - breaks[i]);
-        segs[i].at(w.clamp(0.0, 1.0))
+        segs[i].eval(w.clamp(0.0, 1.0))
     }))
 }
 

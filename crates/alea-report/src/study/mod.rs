@@ -23,7 +23,9 @@ use alea_study::analysis::{AnalysisSettings, analysis_settings};
 use alea_study::runner::{Progress, Study, StudyRuns, run_study};
 
 pub use outputs::{Outputs, write_outputs};
-pub use results::{StoredRuns, analyse_all, converged_runs, sample_points, stored_runs};
+pub use results::{
+    Analysis, StoredRuns, analyse, analyse_all, converged_runs, sample_points, stored_runs,
+};
 
 use crate::{Console, Error};
 

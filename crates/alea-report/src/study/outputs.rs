@@ -14,7 +14,7 @@ use super::estimate_report::report_error;
 use super::estimate_text::print_estimates;
 use super::files::{write_samples, write_summary};
 use super::input::{reliability_report, report_input};
-use super::results::analyse_all;
+use super::results::{Analysis, analyse};
 use super::table::{print_reliability, print_table};
 use crate::report::{self, ReportFiles};
 use crate::{Console, Error};
@@ -74,22 +74,17 @@ pub fn write_outputs(
     for w in alea_study::qoi::warnings::corner_warnings(study, &runs.records, dir)? {
         warn(w.to_string());
     }
-    let t0 = Instant::now();
-    let results = analyse_all(study, runs, settings);
-    let analysis_seconds = t0.elapsed().as_secs_f64();
+    let Analysis {
+        results,
+        seconds: analysis_seconds,
+        reliability,
+    } = analyse(study, runs, settings);
     for r in &results {
         if let Some(e) = &r.error {
             warn(format!("method '{}' gave no statistics: {e}", r.label));
         }
     }
     print_table(study, &results, settings.confidence, console);
-    let reliability = alea_study::reliability::analyse_reliability(
-        study,
-        &study.reliability,
-        &runs.methods,
-        &runs.records,
-        settings.confidence,
-    );
     print_reliability(&reliability, console);
     for r in &reliability {
         for w in r.warnings.iter().chain(&r.errors) {

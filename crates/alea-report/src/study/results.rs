@@ -1,15 +1,50 @@
-//! What a study gives without writing any output: the statistics of every method, the parameter
-//! points of their draws, and the runs kept in a study directory's store.
+//! What a study gives without writing any output: the statistics of every method and the
+//! results of its reliability tables ([`analyse`], the same for `alea run`, `alea report` and
+//! Python's `alea.run`), the parameter points of their draws, and the runs kept in a study
+//! directory's store.
 
 use std::collections::HashMap;
 use std::path::Path;
+use std::time::Instant;
 
 use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method};
 use alea_study::method::{Method, MethodKind};
+use alea_study::reliability::{ReliabilityResult, analyse_reliability};
 use alea_study::runner::{Study, StudyRuns};
 use alea_study::store::{RunRecord, Store, point_key};
 
 use crate::Error;
+
+/// The analysis of a study whose runs are done.
+pub struct Analysis {
+    /// The surrogate and Monte Carlo statistics of every method, in method order
+    /// ([`analyse_all`]).
+    pub results: Vec<MethodResult>,
+    /// Seconds of `results`.
+    pub seconds: f64,
+    /// The results of the `[[reliability]]` tables, in table order.
+    pub reliability: Vec<ReliabilityResult>,
+}
+
+/// The statistics of every method ([`analyse_all`]) and the results of the reliability tables
+/// of a study whose runs are done.
+pub fn analyse(study: &Study, runs: &StudyRuns, settings: &AnalysisSettings) -> Analysis {
+    let t0 = Instant::now();
+    let results = analyse_all(study, runs, settings);
+    let seconds = t0.elapsed().as_secs_f64();
+    let reliability = analyse_reliability(
+        study,
+        &study.reliability,
+        &runs.methods,
+        &runs.records,
+        settings.confidence,
+    );
+    Analysis {
+        results,
+        seconds,
+        reliability,
+    }
+}
 
 /// The surrogate and Monte Carlo statistics of every method of a study, in method order.
 pub fn analyse_all(

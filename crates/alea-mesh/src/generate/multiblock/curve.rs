@@ -6,8 +6,9 @@ use std::f64::consts::PI;
 use super::block::{Curve, CurveFn};
 use crate::MeshError;
 
-/// A curve ready for evaluation between known ends.
-pub(super) enum Prepared {
+/// A curve ready for evaluation between known ends (also the pieces of the composite curves
+/// of [`crate::generate::shapes`]).
+pub(crate) enum Prepared {
     Line([f64; 2], [f64; 2]),
     Arc {
         c: [f64; 2],
@@ -161,7 +162,18 @@ impl Prepared {
         })
     }
 
-    pub(super) fn eval(&self, u: f64) -> [f64; 2] {
+    /// Length of a line or an arc (`None` for the other curves, whose parametrisation does not
+    /// need it).
+    pub(crate) fn length(&self) -> Option<f64> {
+        match self {
+            Prepared::Line(a, b) => Some((b[0] - a[0]).hypot(b[1] - a[1])),
+            Prepared::Arc { r, sweep, .. } => Some(r * sweep.abs()),
+            Prepared::Poly { .. } | Prepared::Spline { .. } | Prepared::Param(_) => None,
+        }
+    }
+
+    /// The point of parameter `u in [0, 1]`.
+    pub(crate) fn eval(&self, u: f64) -> [f64; 2] {
         match self {
             Prepared::Line(a, b) => lerp(*a, *b, u),
             Prepared::Arc { c, r, th0, sweep } => {

@@ -49,4 +49,5 @@ mod mapping;
 
 pub use assemble::multiblock;
 pub use block::{Block, Curve, CurveFn};
+pub(crate) use curve::Prepared;
 pub(crate) use mapping::distribution;
