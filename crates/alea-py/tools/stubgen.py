@@ -66,22 +66,31 @@ RETURNS = {
     "read_store": "Dict[str, Any]", "rebuild_outputs": "Dict[str, Any]",
     "run_study_file": "Dict[str, Any]",
 }
-HEADER = '''"""Type stubs of ``alea._core`` (written by ``tools/stubgen.py`` from the built module: do not
-edit by hand)."""
-import os
-from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
-
-import numpy as np
-import numpy.typing as npt
-from numpy.typing import ArrayLike
-
-Matrix = npt.NDArray[np.float64]
-Vector = npt.NDArray[np.float64]
-LawLike = Union["Joint", "Law", Sequence["Law"]]
-
-__version__: str
-SOLVER: bool
-'''
+# The stub's preamble, composed from what it declares: the typing names it imports, the array
+# aliases and the module attributes.
+TYPING_NAMES = ["Any", "Callable", "Dict", "Optional", "Sequence", "Tuple", "Union"]
+ALIASES = [
+    ("Matrix", "npt.NDArray[np.float64]"),
+    ("Vector", "npt.NDArray[np.float64]"),
+    ("LawLike", 'Union["Joint", "Law", Sequence["Law"]]'),
+]
+ATTRIBUTES = [("__version__", "str"), ("SOLVER", "bool")]
+HEADER = "\n".join(
+    [
+        '"""Type stubs of ``alea._core`` (written by ``tools/stubgen.py`` from the built module: '
+        "do not\nedit by hand).\"\"\"",
+        "import os",
+        "from typing import " + ", ".join(TYPING_NAMES),
+        "",
+        "import numpy as np",
+        "import numpy.typing as npt",
+        "from numpy.typing import ArrayLike",
+        "",
+    ]
+    + [f"{name} = {value}" for name, value in ALIASES]
+    + [""]
+    + [f"{name}: {kind}" for name, kind in ATTRIBUTES]
+) + "\n"
 
 
 def arg_type(name):
