@@ -7,6 +7,7 @@ use alea_mesh::Mesh;
 
 use crate::StudyError;
 use crate::expr::Expr;
+use crate::random_field::StudyField;
 
 /// How the parameters enter the model: expressions evaluated for each run.
 #[derive(Clone, Debug)]
@@ -26,22 +27,56 @@ pub struct Parametric {
     pub gap: Vec<Expr>,
     /// The `[[define]]` expressions, evaluated in order after `x, y, z`.
     pub defines: Vec<Expr>,
+    /// The `[[field]]`s, whose values at the point are the profile variables after the
+    /// defines (module `random_field`).
+    pub fields: Vec<Arc<StudyField>>,
 }
 
 impl Parametric {
-    /// The field `x -> e(theta, x, defines)` of an interface profile expression at `theta`.
+    /// The nodal values at `theta` of the fields `e` uses (empty for the others): the slots
+    /// after the parameters, `x, y, z` and the defines.
+    fn field_values(&self, e: &Expr, theta: &[f64]) -> Vec<Vec<f64>> {
+        let first = theta.len() + 3 + self.defines.len();
+        self.fields
+            .iter()
+            .enumerate()
+            .map(|(j, f)| {
+                if e.uses(first + j) {
+                    f.at_nodes(theta)
+                } else {
+                    Vec::new()
+                }
+            })
+            .collect()
+    }
+
+    /// Appends the fields' values at `x` (0 for those `e` does not use) to `v`.
+    fn push_fields(&self, nodal: &[Vec<f64>], x: [f64; 3], v: &mut Vec<f64>) {
+        for (f, n) in self.fields.iter().zip(nodal) {
+            v.push(if n.is_empty() {
+                0.0
+            } else {
+                f.interpolate(n, x)
+            });
+        }
+    }
+
+    /// The field `x -> e(theta, x, defines, fields)` of an interface profile expression at
+    /// `theta`.
     pub(crate) fn profile(&self, e: &Expr, theta: &[f64]) -> PointField {
+        let nodal = self.field_values(e, theta);
+        let p = self.clone();
         let e = e.clone();
-        let defines = self.defines.clone();
         let theta = theta.to_vec();
         Arc::new(move |x: [f64; 3]| {
-            let mut v = Vec::with_capacity(theta.len() + 3 + defines.len());
+            let mut v = Vec::with_capacity(theta.len() + 3 + p.defines.len() + p.fields.len());
             v.extend_from_slice(&theta);
             v.extend_from_slice(&x);
-            for d in &defines {
+            for d in &p.defines {
                 let val = d.eval(&v);
                 v.push(val);
             }
+            p.push_fields(&nodal, x, &mut v);
             e.eval(&v)
         })
     }
@@ -58,7 +93,8 @@ impl Parametric {
             needed[j] = e.uses(first + j)
                 || (j + 1..nd).any(|k| needed[k] && self.defines[k].uses(first + j));
         }
-        let mut v = Vec::with_capacity(first + nd);
+        let nodal = self.field_values(e, theta);
+        let mut v = Vec::with_capacity(first + nd + self.fields.len());
         v.extend_from_slice(theta);
         for (o, x) in out.iter_mut().zip(xs) {
             v.truncate(theta.len());
@@ -67,6 +103,7 @@ impl Parametric {
                 let val = if need { d.eval(&v) } else { 0.0 };
                 v.push(val);
             }
+            self.push_fields(&nodal, *x, &mut v);
             *o = e.eval(&v);
         }
     }
@@ -202,6 +239,7 @@ mod tests {
             mu: vec![mu.clone()],
             gap: vec![],
             defines,
+            fields: vec![],
         };
         let xs: Vec<[f64; 3]> = (0..50)
             .map(|i| {
