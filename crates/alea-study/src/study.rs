@@ -95,7 +95,14 @@ impl Study {
         }
         check_study_file(&source, &file, params.names.len())?;
         crate::settings_check::check(&source, &file)?;
-        if !params.names.is_empty() {
+        // The error estimate's settings, when it runs: an [error] table not disabled, or an
+        // adaptive method (a study without either may have more parameters than its rules take).
+        let estimates = file
+            .error
+            .as_ref()
+            .is_some_and(|e| e.enabled.unwrap_or(true))
+            || file.method.iter().any(|m| m.kind.get_ref() == "adaptive");
+        if !params.names.is_empty() && estimates {
             crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
         }
         let model = build_model(&source, &file, &params)?;
