@@ -32,6 +32,7 @@ pub mod run;
 pub mod runner;
 pub mod runs;
 mod schedule;
+pub mod sensitivity;
 mod settings_check;
 mod source;
 mod spatial;

@@ -169,6 +169,8 @@ pub(super) fn synthetic() -> ReportInput {
                         .into(),
                     "mesh: not estimated".into(),
                 ],
+                sobol: vec![],
+                sobol_basis: String::new(),
             },
             // Degenerate: every sample equal, zero std, no KDE, no threshold.
             QoiReport {
@@ -185,6 +187,8 @@ pub(super) fn synthetic() -> ReportInput {
                 surface: None,
                 budget: vec![],
                 budget_basis: vec![],
+                sobol: vec![],
+                sobol_basis: String::new(),
             },
         ],
         comparison: Some(Comparison {
