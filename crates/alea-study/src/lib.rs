@@ -35,6 +35,7 @@ mod schedule;
 pub mod sensitivity;
 mod settings_check;
 mod source;
+mod sparse;
 mod spatial;
 pub mod spec;
 mod step_spec;

@@ -2,7 +2,7 @@
 //! surrogate, written for studies with random fields (`[[field]]`): which modes of which field
 //! drive a quantity.
 //!
-//! * Polynomial chaos (regression, projection): exact for the expansion `q~ = sum_a c_a
+//! * Polynomial chaos (regression, sparse, projection): exact for the expansion `q~ = sum_a c_a
 //!   Psi_a`, `S_i = sum_{a: only xi_i} c_a^2 / V`, `S_Ti = sum_{a: xi_i in a} c_a^2 / V`, `V =
 //!   sum_{a != 0} c_a^2` (`alea_uq::surrogate::PcExpansion`); per field, the closed index of its
 //!   KL variables `S_F = sum_{a: only F's variables} c_a^2 / V` and the total `T_F = 1 - (closed
@@ -81,6 +81,13 @@ pub fn sobol_stats(
         MethodKind::PcRegression { degree } => {
             let flat: Vec<f64> = points.iter().flatten().copied().collect();
             let basis = PcBasis::total_degree(&params.marginals, *degree).ok()?;
+            Some(PcSurrogate::regression(basis, &flat).ok()?)
+        }
+        MethodKind::PcSparse { .. } => {
+            let flat: Vec<f64> = points.iter().flatten().copied().collect();
+            let set = alea_uq::basis::MultiIndexSet::from_indices(d, method.sparse_basis.as_ref()?)
+                .ok()?;
+            let basis = PcBasis::new(&params.marginals, set).ok()?;
             Some(PcSurrogate::regression(basis, &flat).ok()?)
         }
         MethodKind::PcProjection { degree } => {
