@@ -204,10 +204,11 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
         for k in 0..f.num_variables() {
             marginals.push(Arc::new(Normal::new(0.0, 1.0).map_err(StudyError::from)?));
             descriptions.push(format!(
-                "standard normal: KL variable {} of field '{}' (eigenvalue {:.4e})",
+                "standard normal: KL variable {} of field '{}' (eigenvalue {:.4e}; {})",
                 k + 1,
                 f.name,
-                f.field.kl().eigenvalues()[k]
+                f.field.kl().eigenvalues()[k],
+                f.description
             ));
         }
     }

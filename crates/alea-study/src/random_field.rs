@@ -442,11 +442,17 @@ pub(crate) fn build_fields(
         let kl = KlExpansion::galerkin(&fmesh, &cov, trunc).map_err(bad)?;
         let field = RandomField::new(mean, variance.sqrt(), tr, kl).map_err(bad)?;
         let m = field.num_variables();
+        let unit = f.unit.clone().unwrap_or_default();
         let description = format!(
-            "{} field on interface '{it}', {} covariance, correlation length {length}; {m} KL modes, {:.1} % of the variance, {} nodes",
+            "{} field{} on interface '{it}', {} covariance, correlation length {length}; {m} KL modes, {:.1} % of the variance, {} nodes",
             f.transform
                 .as_ref()
                 .map_or("gaussian", |t| t.get_ref().as_str()),
+            if unit.is_empty() {
+                String::new()
+            } else {
+                format!(" ({unit})")
+            },
             f.covariance.get_ref(),
             100.0 * field.kl().captured_fraction(),
             fmesh.num_nodes(),
@@ -469,7 +475,7 @@ pub(crate) fn build_fields(
             interface: k,
             field,
             first_variable: first_variable + variables.len() - m,
-            unit: f.unit.clone().unwrap_or_default(),
+            unit,
             description,
         }));
     }
