@@ -85,23 +85,28 @@ impl StudyField {
 
     /// The P1 interpolant of the nodal values `nodal` at `x` (in the nearest cell).
     pub fn interpolate(&self, nodal: &[f64], x: [f64; 3]) -> f64 {
-        let mesh = self.field.kl().mesh();
-        let mut best = (f64::INFINITY, 0.0);
-        for c in 0..mesh.num_cells() {
-            let cell = mesh.cell(c);
-            let pts: Vec<[f64; 3]> = cell.iter().map(|&i| mesh.nodes()[i]).collect();
-            let (d2, w) = if pts.len() == 2 {
-                closest_on_segment(&pts[0], &pts[1], &x)
-            } else {
-                closest_on_triangle(&pts, &x)
-            };
-            if d2 < best.0 {
-                let v = cell.iter().zip(&w).map(|(&i, wi)| wi * nodal[i]).sum();
-                best = (d2, v);
-            }
-        }
-        best.1
+        interpolate_on(self.field.kl().mesh(), nodal, x)
     }
+}
+
+/// The P1 interpolant on `mesh` of the nodal values `nodal` at the point of the nearest cell
+/// closest to `x` (ties to the lowest cell index).
+fn interpolate_on(mesh: &FieldMesh, nodal: &[f64], x: [f64; 3]) -> f64 {
+    let mut best = (f64::INFINITY, 0.0);
+    for c in 0..mesh.num_cells() {
+        let cell = mesh.cell(c);
+        let pts: Vec<[f64; 3]> = cell.iter().map(|&i| mesh.nodes()[i]).collect();
+        let (d2, w) = if pts.len() == 2 {
+            closest_on_segment(&pts[0], &pts[1], &x)
+        } else {
+            closest_on_triangle(&pts, &x)
+        };
+        if d2 < best.0 {
+            let v = cell.iter().zip(&w).map(|(&i, wi)| wi * nodal[i]).sum();
+            best = (d2, v);
+        }
+    }
+    best.1
 }
 
 fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
@@ -480,4 +485,59 @@ pub(crate) fn build_fields(
         }));
     }
     Ok((fields, variables))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// P1 interpolation reproduces a linear function inside the cells, at the projection of a
+    /// point off the surface, and at the closest boundary point of a point beyond the mesh.
+    #[test]
+    fn interpolation_is_exact_for_linear_functions_and_projects_onto_the_nearest_cell() {
+        let lin = |p: &[f64; 3]| 1.0 + 2.0 * p[0] - 3.0 * p[1] + 0.5 * p[2];
+        // Two triangles of the unit square in the plane z = 0.
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let nodal: Vec<f64> = nodes.iter().map(lin).collect();
+        let tri = FieldMesh::new(nodes, FieldCells::Triangles(vec![[0, 1, 2], [0, 2, 3]])).unwrap();
+        for (x, want) in [
+            ([0.3, 0.1, 0.0], [0.3, 0.1, 0.0]),
+            ([0.2, 0.7, 0.0], [0.2, 0.7, 0.0]),
+            ([0.6, 0.4, 0.25], [0.6, 0.4, 0.0]),
+            ([1.5, 0.5, 0.0], [1.0, 0.5, 0.0]),
+            ([-1.0, -1.0, 0.0], [0.0, 0.0, 0.0]),
+        ] {
+            let v = interpolate_on(&tri, &nodal, x);
+            assert!(
+                (v - lin(&want)).abs() < 1e-12,
+                "{x:?}: {v} vs {}",
+                lin(&want)
+            );
+        }
+        // A polyline along a 45-degree flank.
+        let nodes: Vec<[f64; 3]> = (0..5).map(|i| [i as f64, i as f64, 0.0]).collect();
+        let nodal: Vec<f64> = nodes.iter().map(lin).collect();
+        let seg = FieldMesh::new(
+            nodes,
+            FieldCells::Segments((0..4).map(|i| [i, i + 1]).collect()),
+        )
+        .unwrap();
+        for (x, want) in [
+            ([1.25, 1.25, 0.0], [1.25, 1.25, 0.0]),
+            ([2.0, 3.0, 0.0], [2.5, 2.5, 0.0]),
+            ([9.0, 9.0, 0.0], [4.0, 4.0, 0.0]),
+        ] {
+            let v = interpolate_on(&seg, &nodal, x);
+            assert!(
+                (v - lin(&want)).abs() < 1e-12,
+                "{x:?}: {v} vs {}",
+                lin(&want)
+            );
+        }
+    }
 }

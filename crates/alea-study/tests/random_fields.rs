@@ -581,3 +581,45 @@ fn sparse_chaos_selects_a_reproducible_basis_and_matches_monte_carlo() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A lognormal field has the stated mean and std pointwise: at the mean field (KL variables
+/// 0) it is its median `mean / sqrt(1 + cv^2)` everywhere, and it stays positive at the
+/// corners of the KL variables' box.
+#[test]
+fn a_lognormal_field_is_its_median_at_zero_and_positive_everywhere() {
+    let lognormal = r#"covariance = "matern52"
+correlation_length = 4.0
+transform = "lognormal"
+mean = 0.5
+std = 0.1
+modes = 3"#;
+    let study = load(
+        "blade-root-simple-field.toml",
+        &[
+            (EXAMPLE_FIELD, lognormal),
+            (EXAMPLE_FIELD, lognormal),
+            NO_ADAPTIVE,
+        ],
+    );
+    let d = study.params.names.len();
+    assert_eq!(d, 6);
+    let solver =
+        LatinSolver::new(study.model.assembly.clone(), study.model.options.clone()).unwrap();
+    let median = 0.5 / (1.0f64 + 0.04).sqrt();
+    for theta in [
+        vec![0.0; d],
+        study.params.lo.clone(),
+        study.params.hi.clone(),
+    ] {
+        let input = study.model.parametric.run_input(&theta, vec![]);
+        for i in 0..2 {
+            for p in solver.interface_points(i) {
+                let mu = input.mu[i].as_ref().unwrap()(p.x);
+                assert!(mu > 0.0 && mu.is_finite(), "{mu}");
+                if theta[0] == 0.0 {
+                    assert!((mu - median).abs() < 1e-14, "{mu} vs {median}");
+                }
+            }
+        }
+    }
+}
