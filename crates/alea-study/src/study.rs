@@ -123,7 +123,23 @@ impl Study {
             &params,
         )?;
         let refined = match &file.budget {
-            Some(b) => Some(Box::new(refined_study(&source, b)?)),
+            Some(b) => {
+                let r = refined_study(&source, b)?;
+                // A field truncated by variance fraction may keep another number of modes on
+                // the finer mesh: the paired solves need the same parameters.
+                if r.params.names != params.names {
+                    return Err(source.error(
+                        b.refined_mesh.span(),
+                        "budget.refined_mesh",
+                        format!(
+                            "the refined study's parameters ({}) differ from the study's ({}): a [[field]] keeps another number of KL modes on the finer mesh; give its `modes`",
+                            r.params.names.join(", "),
+                            params.names.join(", ")
+                        ),
+                    ));
+                }
+                Some(Box::new(r))
+            }
             None => None,
         };
         let hash = input_hash(&source, &file)?;

@@ -623,3 +623,43 @@ modes = 3"#;
         }
     }
 }
+
+/// With `[budget] refined_mesh`, a field truncated by variance fraction must keep the same
+/// number of modes on the finer mesh: a fraction between the one-mode fractions of the two
+/// meshes (Galerkin eigenvalues grow with refinement) is refused at `budget.refined_mesh`.
+#[test]
+fn a_refined_mesh_that_changes_the_number_of_kl_modes_is_refused() {
+    let one_mode_fraction = |edits: &[(&str, &str)]| {
+        let s = load("blade-root-simple-field.toml", edits);
+        let kl = s.params.fields[0].field.kl();
+        kl.eigenvalues()[0] / kl.total_variance()
+    };
+    let coarse = one_mode_fraction(&[NO_ADAPTIVE]);
+    let fine = one_mode_fraction(&[NO_ADAPTIVE, ("n_flank = 12", "n_flank = 24")]);
+    assert!(fine > coarse, "{coarse} {fine}");
+    let f = format!("variance_fraction = {}", 0.5 * (coarse + fine));
+    let budget = "[budget]\nrefined_mesh = { params = { n_flank = 24 } }\n\n[[substructure]]";
+    refused(
+        &[
+            NO_ADAPTIVE,
+            ("variance_fraction = 0.9", &f),
+            ("variance_fraction = 0.9", &f),
+            ("[[substructure]]", budget),
+        ],
+        "refined_mesh = ",
+        "budget.refined_mesh",
+        "KL modes",
+    );
+    // With a mode count the refined study has the same parameters.
+    let t = text(
+        "blade-root-simple-field.toml",
+        &[
+            NO_ADAPTIVE,
+            ("variance_fraction = 0.9", "modes = 2"),
+            ("variance_fraction = 0.9", "modes = 2"),
+            ("[[substructure]]", budget),
+        ],
+    );
+    let s = Study::from_source(Source::from_text("f.toml", &t)).unwrap();
+    assert_eq!(s.refined.unwrap().params.names, s.params.names);
+}

@@ -32,6 +32,18 @@ pub struct Parametric {
     pub fields: Vec<Arc<StudyField>>,
 }
 
+/// Appends the values at `x` of `fields` (0 for those whose `nodal` values are empty: not used
+/// by the expression) to `v`.
+fn push_fields(fields: &[Arc<StudyField>], nodal: &[Vec<f64>], x: [f64; 3], v: &mut Vec<f64>) {
+    for (f, n) in fields.iter().zip(nodal) {
+        v.push(if n.is_empty() {
+            0.0
+        } else {
+            f.interpolate(n, x)
+        });
+    }
+}
+
 impl Parametric {
     /// The nodal values at `theta` of the fields `e` uses (empty for the others): the slots
     /// after the parameters, `x, y, z` and the defines.
@@ -50,33 +62,23 @@ impl Parametric {
             .collect()
     }
 
-    /// Appends the fields' values at `x` (0 for those `e` does not use) to `v`.
-    fn push_fields(&self, nodal: &[Vec<f64>], x: [f64; 3], v: &mut Vec<f64>) {
-        for (f, n) in self.fields.iter().zip(nodal) {
-            v.push(if n.is_empty() {
-                0.0
-            } else {
-                f.interpolate(n, x)
-            });
-        }
-    }
-
     /// The field `x -> e(theta, x, defines, fields)` of an interface profile expression at
     /// `theta`.
     pub(crate) fn profile(&self, e: &Expr, theta: &[f64]) -> PointField {
         let nodal = self.field_values(e, theta);
-        let p = self.clone();
         let e = e.clone();
+        let defines = self.defines.clone();
+        let fields = self.fields.clone();
         let theta = theta.to_vec();
         Arc::new(move |x: [f64; 3]| {
-            let mut v = Vec::with_capacity(theta.len() + 3 + p.defines.len() + p.fields.len());
+            let mut v = Vec::with_capacity(theta.len() + 3 + defines.len() + fields.len());
             v.extend_from_slice(&theta);
             v.extend_from_slice(&x);
-            for d in &p.defines {
+            for d in &defines {
                 let val = d.eval(&v);
                 v.push(val);
             }
-            p.push_fields(&nodal, x, &mut v);
+            push_fields(&fields, &nodal, x, &mut v);
             e.eval(&v)
         })
     }
@@ -103,7 +105,7 @@ impl Parametric {
                 let val = if need { d.eval(&v) } else { 0.0 };
                 v.push(val);
             }
-            self.push_fields(&nodal, *x, &mut v);
+            push_fields(&self.fields, &nodal, *x, &mut v);
             *o = e.eval(&v);
         }
     }
