@@ -60,6 +60,9 @@ pub struct QoiStats {
     /// The error budget of each statistic (none for a study without random parameters).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub budget: Option<QoiBudget>,
+    /// Sobol' indices of every parameter (studies with random fields; `crate::sensitivity`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sobol: Option<crate::sensitivity::SobolStats>,
     /// The samples (not serialised).
     #[serde(skip)]
     pub samples: Vec<f64>,
@@ -215,6 +218,7 @@ fn qoi_stats(
         kde: kde_curve,
         failure,
         budget,
+        sobol: None,
         samples,
     }
 }
@@ -385,6 +389,10 @@ pub fn analyse_method(
             qoi_stats(study, q, mine, s, Some(part))
         })
         .collect();
+    for (q, stats) in out.qois.iter_mut().enumerate() {
+        stats.sobol =
+            crate::sensitivity::sobol_stats(study, method, &sur, &used_points, &values[q]);
+    }
     out.monte_carlo_seconds = t0.elapsed().as_secs_f64();
     out.draws = s.samples;
     out.points = pts.to_vec();

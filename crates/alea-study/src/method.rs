@@ -27,6 +27,13 @@ pub enum MethodKind {
         /// Degree.
         degree: usize,
     },
+    /// Sparse PC: for each quantity LARS (corrected leave-one-out) selects terms of the
+    /// total-degree-`degree` basis; the union of the selections is fitted by least squares
+    /// (`crate::sparse`).
+    PcSparse {
+        /// Degree of the candidate basis.
+        degree: usize,
+    },
     /// PC of total degree `degree`, coefficients by projection on a tensor Gauss rule.
     PcProjection {
         /// Degree.
@@ -98,6 +105,8 @@ pub struct Method {
     /// Adaptive methods: the mesh of an earlier step, the comparison of the surrogate part of
     /// the error budget (`crate::budget`).
     pub coarse_mesh: Option<StochasticMesh>,
+    /// Sparse chaos: the multi-indices selected once the runs are done (`crate::sparse`).
+    pub sparse_basis: Option<Vec<Vec<u16>>>,
 }
 
 impl Method {
@@ -112,6 +121,7 @@ impl Method {
             description: "one deterministic run (the study has no random parameter)".into(),
             mesh: None,
             coarse_mesh: None,
+            sparse_basis: None,
         }
     }
 }
@@ -226,6 +236,29 @@ pub fn build_methods(
                     None,
                     format!(
                         "polynomial chaos of degree {p} ({basis_len} terms), least squares on {n} runs"
+                    ),
+                )
+            }
+            "pc_sparse" => {
+                let p = degree.unwrap_or(3);
+                let basis_len = PcBasis::total_degree(&params.marginals, p)
+                    .map_err(uq)?
+                    .len();
+                let des = generic_design(design_name.unwrap_or("lhs"), 10 * d)?;
+                if des.len() < 3 {
+                    return Err(src.error(
+                        m.kind.span(),
+                        f("runs"),
+                        "sparse chaos needs at least 3 runs",
+                    ));
+                }
+                let n = des.len();
+                (
+                    MethodKind::PcSparse { degree: p },
+                    rows(&des),
+                    None,
+                    format!(
+                        "sparse polynomial chaos of degree {p} ({basis_len} candidate terms): terms selected by LARS with the corrected leave-one-out error for each quantity, their union fitted by least squares on {n} runs"
                     ),
                 )
             }
@@ -345,12 +378,13 @@ pub fn build_methods(
                 return Err(src.error(
                     m.kind.span(),
                     f("type"),
-                    format!("unknown method '{other}'; expected pc_regression, pc_projection, polynomial, piecewise_linear, adaptive or monte_carlo"),
+                    format!("unknown method '{other}'; expected pc_regression, pc_sparse, pc_projection, polynomial, piecewise_linear, adaptive or monte_carlo"),
                 ));
             }
         };
         let label = m.label.clone().unwrap_or_else(|| match &kind {
             MethodKind::PcRegression { degree } => format!("PC regression p={degree}"),
+            MethodKind::PcSparse { degree } => format!("sparse PC p={degree}"),
             MethodKind::PcProjection { degree } => format!("PC projection p={degree}"),
             MethodKind::Polynomial { degree } => format!("polynomial p={degree}"),
             MethodKind::PiecewiseLinear { nodes } => format!("piecewise linear {nodes}^{d}"),
@@ -368,6 +402,7 @@ pub fn build_methods(
             description,
             mesh: None,
             coarse_mesh: None,
+            sparse_basis: None,
         });
     }
     Ok(out)
@@ -558,6 +593,18 @@ impl Method {
         let (inner, (shift, scale), clamp): (Box<dyn LinearSurrogate>, _, _) = match &self.kind {
             MethodKind::PcRegression { degree } => {
                 let basis = PcBasis::total_degree(&params.marginals, *degree)?;
+                (
+                    Box::new(PcSurrogate::regression(basis, &flat)?),
+                    identity(),
+                    None,
+                )
+            }
+            MethodKind::PcSparse { .. } => {
+                let set = self.sparse_basis.as_ref().ok_or(SurrogateError::Unavailable(
+                    "no sparse basis: it is selected once the runs are done, and none is kept when LARS fails or the union of the selections has as many terms as runs",
+                ))?;
+                let set = alea_uq::basis::MultiIndexSet::from_indices(d, set)?;
+                let basis = PcBasis::new(&params.marginals, set)?;
                 (
                     Box::new(PcSurrogate::regression(basis, &flat)?),
                     identity(),

@@ -53,6 +53,8 @@ pub struct ParamSpace {
     pub lo: Vec<f64>,
     /// Upper corner.
     pub hi: Vec<f64>,
+    /// Random fields (`[[field]]`): their KL variables are the last parameters.
+    pub fields: Vec<Arc<crate::random_field::StudyField>>,
 }
 
 fn need(
@@ -195,6 +197,22 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
         marginals.push(m);
         descriptions.push(d);
     }
+    let mut taken = names.clone();
+    taken.extend(file.define.iter().map(|d| d.name.get_ref().clone()));
+    let (fields, variables) = crate::random_field::build_fields(src, file, &taken, names.len())?;
+    for f in &fields {
+        for k in 0..f.num_variables() {
+            marginals.push(Arc::new(Normal::new(0.0, 1.0).map_err(StudyError::from)?));
+            descriptions.push(format!(
+                "standard normal: KL variable {} of field '{}' (eigenvalue {:.4e}; {})",
+                k + 1,
+                f.name,
+                f.field.kl().eigenvalues()[k],
+                f.description
+            ));
+        }
+    }
+    names.extend(variables);
     let d = names.len();
     let nominal: Vec<f64> = marginals.iter().map(|m| m.mean()).collect();
     let (mut lo, mut hi) = (Vec::new(), Vec::new());
@@ -283,12 +301,15 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
             }
         },
     };
+    let mut units: Vec<String> = file
+        .parameter
+        .iter()
+        .map(|p| p.unit.clone().unwrap_or_default())
+        .collect();
+    units.resize(names.len(), String::new());
     Ok(ParamSpace {
-        units: file
-            .parameter
-            .iter()
-            .map(|p| p.unit.clone().unwrap_or_default())
-            .collect(),
+        units,
+        fields,
         names,
         descriptions,
         marginals,

@@ -396,6 +396,7 @@ pub(crate) fn execute(
     };
     runner.run_points(&fixed)?;
     let mut methods = study.methods.clone();
+    crate::sparse::select_bases(study, &mut methods, &runner.by_key);
     let mut adaptive = Vec::new();
     for (m, method) in methods.iter_mut().enumerate() {
         if let MethodKind::Adaptive(settings) = method.kind.clone() {

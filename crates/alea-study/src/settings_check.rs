@@ -87,6 +87,7 @@ fn design_of(m: &MethodSpec) -> Option<String> {
     let given = m.design.as_ref().map(|d| d.get_ref().clone());
     match m.kind.get_ref().as_str() {
         "pc_regression" => Some(given.unwrap_or_else(|| "pc_collocation".into())),
+        "pc_sparse" => Some(given.unwrap_or_else(|| "lhs".into())),
         "polynomial" => Some(given.unwrap_or_else(|| "grid".into())),
         "monte_carlo" => Some(given.unwrap_or_else(|| "monte_carlo".into())),
         _ => given,
@@ -97,6 +98,7 @@ fn check_method(src: &Source, i: usize, m: &MethodSpec) -> Result<(), StudyError
     let kind = m.kind.get_ref().as_str();
     let known = [
         "pc_regression",
+        "pc_sparse",
         "pc_projection",
         "polynomial",
         "piecewise_linear",
@@ -122,7 +124,12 @@ fn check_method(src: &Source, i: usize, m: &MethodSpec) -> Result<(), StudyError
         let of_type = format!("a {kind} method");
         let d = design.as_deref().unwrap_or("none");
         match key {
-            "degree" if !matches!(kind, "pc_regression" | "pc_projection" | "polynomial") => {
+            "degree"
+                if !matches!(
+                    kind,
+                    "pc_regression" | "pc_sparse" | "pc_projection" | "polynomial"
+                ) =>
+            {
                 Some(format!("{of_type} has no polynomial degree"))
             }
             "design" if kind == "pc_projection" => Some(format!(

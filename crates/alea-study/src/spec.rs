@@ -561,6 +561,9 @@ pub struct ModelFile {
     /// Helper quantities for interface profiles.
     #[serde(default)]
     pub define: Vec<DefineSpec>,
+    /// Random fields along interfaces (module `random_field`).
+    #[serde(default)]
+    pub field: Vec<crate::field_spec::FieldSpec>,
     /// Quantities of interest.
     #[serde(default)]
     pub quantity: Vec<QuantitySpec>,

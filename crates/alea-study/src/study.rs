@@ -95,7 +95,14 @@ impl Study {
         }
         check_study_file(&source, &file, params.names.len())?;
         crate::settings_check::check(&source, &file)?;
-        if !params.names.is_empty() {
+        // The error estimate's settings, when it runs: an [error] table not disabled, or an
+        // adaptive method (a study without either may have more parameters than its rules take).
+        let estimates = file
+            .error
+            .as_ref()
+            .is_some_and(|e| e.enabled.unwrap_or(true))
+            || file.method.iter().any(|m| m.kind.get_ref() == "adaptive");
+        if !params.names.is_empty() && estimates {
             crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
         }
         let model = build_model(&source, &file, &params)?;
@@ -116,7 +123,23 @@ impl Study {
             &params,
         )?;
         let refined = match &file.budget {
-            Some(b) => Some(Box::new(refined_study(&source, b)?)),
+            Some(b) => {
+                let r = refined_study(&source, b)?;
+                // A field truncated by variance fraction may keep another number of modes on
+                // the finer mesh: the paired solves need the same parameters.
+                if r.params.names != params.names {
+                    return Err(source.error(
+                        b.refined_mesh.span(),
+                        "budget.refined_mesh",
+                        format!(
+                            "the refined study's parameters ({}) differ from the study's ({}): a [[field]] keeps another number of KL modes on the finer mesh; give its `modes`",
+                            r.params.names.join(", "),
+                            params.names.join(", ")
+                        ),
+                    ));
+                }
+                Some(Box::new(r))
+            }
             None => None,
         };
         let hash = input_hash(&source, &file)?;

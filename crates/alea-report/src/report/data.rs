@@ -175,6 +175,13 @@ pub struct QoiReport {
     /// How the budget's parts were estimated (one sentence each).
     #[serde(default)]
     pub budget_basis: Vec<String>,
+    /// Sobol' indices `(parameter, first order, total)` of the main method's surrogate
+    /// (studies with random fields; empty otherwise).
+    #[serde(default)]
+    pub sobol: Vec<(String, f64, f64)>,
+    /// How they were computed (one sentence).
+    #[serde(default)]
+    pub sobol_basis: String,
 }
 
 /// The error budget of one statistic (each part estimated, `None` when not): the study's own

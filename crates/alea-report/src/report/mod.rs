@@ -240,6 +240,10 @@ pub fn validate(input: &ReportInput) -> Result<(), ReportError> {
             finite(|| f(&format!("quantiles[{i}].value")), v)?;
         }
         pdf_curve(&f("kde"), &q.kde)?;
+        for (i, (_, first, total)) in q.sobol.iter().enumerate() {
+            finite(|| f(&format!("sobol[{i}].first")), *first)?;
+            finite(|| f(&format!("sobol[{i}].total")), *total)?;
+        }
         for (i, fl) in q.failure.iter().enumerate() {
             finite(|| f(&format!("failure[{i}].threshold")), fl.threshold)?;
             probability(|| f(&format!("failure[{i}].probability")), fl.probability)?;

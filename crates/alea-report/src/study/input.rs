@@ -87,6 +87,26 @@ pub(super) fn report_input(
                         format!("Mesh: {}.", b.mesh_basis),
                     ]
                 }),
+                sobol: s.sobol.as_ref().map_or_else(Vec::new, |so| {
+                    study
+                        .params
+                        .names
+                        .iter()
+                        .zip(so.first.iter().zip(&so.total))
+                        .map(|(n, (f, t))| (n.clone(), *f, *t))
+                        .collect()
+                }),
+                sobol_basis: s.sobol.as_ref().map_or_else(String::new, |so| {
+                    if so.estimator == "pc_expansion" {
+                        format!("From the coefficients of the chaos expansion of method '{}' (exact for the surrogate).", results[m].label)
+                    } else {
+                        format!(
+                            "Saltelli / Jansen pick-freeze estimators on {} base draws of the surrogate of method '{}'.",
+                            alea_study::sensitivity::PICK_FREEZE_SAMPLES,
+                            results[m].label
+                        )
+                    }
+                }),
             })
         })
         .collect();

@@ -103,6 +103,7 @@ pub fn comparisons(
     match &method.kind {
         MethodKind::MonteCarlo => Err("Monte Carlo on the model has no surrogate".into()),
         MethodKind::PcRegression { degree }
+        | MethodKind::PcSparse { degree }
         | MethodKind::PcProjection { degree }
         | MethodKind::Polynomial { degree } => {
             let chaos = !matches!(method.kind, MethodKind::Polynomial { .. });
@@ -254,6 +255,7 @@ fn global_surrogate(
         rule: None,
         mesh: None,
         coarse_mesh: None,
+        sparse_basis: None,
         label: String::new(),
         description: String::new(),
     }
@@ -319,6 +321,7 @@ fn on_mesh(
         rule: None,
         mesh: Some(mesh),
         coarse_mesh: None,
+        sparse_basis: None,
         label: String::new(),
         description: String::new(),
     };

@@ -176,6 +176,7 @@ pub fn build_model(
         profile_vars.push(name);
         defines.push(e);
     }
+    profile_vars.extend(params.fields.iter().map(|f| f.name.as_str()));
     let mut young_e = Vec::new();
     let mut young_nominal = Vec::new();
     let mut load_factors = Vec::new();
@@ -323,6 +324,7 @@ pub fn build_model(
         mu: Vec::new(),
         gap: Vec::new(),
         defines,
+        fields: params.fields.clone(),
     };
     let mut interfaces = Vec::new();
     let mut interface_sites = Vec::new();
@@ -383,6 +385,22 @@ pub fn build_model(
             Some(g) => compile(src, g, &profile_vars, &f("gap"))?,
             None => Expr::constant(0.0),
         };
+        let first_field = profile_vars.len() - params.fields.len();
+        for (j, fld) in params.fields.iter().enumerate() {
+            for (e, key, v) in [(&mu, "mu", &it.mu), (&gap, "gap", &it.gap)] {
+                if fld.interface != i && e.uses(first_field + j) {
+                    return Err(src.error(
+                        v.as_ref().map_or(it.name.span(), |v| v.span()),
+                        f(key),
+                        format!(
+                            "field '{}' lives on interface '{}', not on '{name}'",
+                            fld.name,
+                            file.interface[fld.interface].name.get_ref()
+                        ),
+                    ));
+                }
+            }
+        }
         if let Some(p) = &it.pairing {
             spec.pairing = match p.get_ref().as_str() {
                 "auto" => Pairing::Auto,

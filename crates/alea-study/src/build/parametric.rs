@@ -7,6 +7,7 @@ use alea_mesh::Mesh;
 
 use crate::StudyError;
 use crate::expr::Expr;
+use crate::random_field::{FieldPoint, StudyField};
 
 /// How the parameters enter the model: expressions evaluated for each run.
 #[derive(Clone, Debug)]
@@ -26,22 +27,58 @@ pub struct Parametric {
     pub gap: Vec<Expr>,
     /// The `[[define]]` expressions, evaluated in order after `x, y, z`.
     pub defines: Vec<Expr>,
+    /// The `[[field]]`s, whose values at the point are the profile variables after the
+    /// defines (module `random_field`).
+    pub fields: Vec<Arc<StudyField>>,
+}
+
+/// Appends the values at `x` of `fields` (0 for those whose `nodal` values are empty: not used
+/// by the expression) to `v`.
+fn push_fields(fields: &[Arc<StudyField>], nodal: &[Vec<f64>], x: [f64; 3], v: &mut Vec<f64>) {
+    for (f, n) in fields.iter().zip(nodal) {
+        v.push(if n.is_empty() {
+            0.0
+        } else {
+            f.interpolate(n, x)
+        });
+    }
 }
 
 impl Parametric {
-    /// The field `x -> e(theta, x, defines)` of an interface profile expression at `theta`.
+    /// The nodal values at `theta` of the fields `e` uses (empty for the others): the slots
+    /// after the parameters, `x, y, z` and the defines.
+    fn field_values(&self, e: &Expr, theta: &[f64]) -> Vec<Vec<f64>> {
+        let first = theta.len() + 3 + self.defines.len();
+        self.fields
+            .iter()
+            .enumerate()
+            .map(|(j, f)| {
+                if e.uses(first + j) {
+                    f.at_nodes(theta)
+                } else {
+                    Vec::new()
+                }
+            })
+            .collect()
+    }
+
+    /// The field `x -> e(theta, x, defines, fields)` of an interface profile expression at
+    /// `theta`.
     pub(crate) fn profile(&self, e: &Expr, theta: &[f64]) -> PointField {
+        let nodal = self.field_values(e, theta);
         let e = e.clone();
         let defines = self.defines.clone();
+        let fields = self.fields.clone();
         let theta = theta.to_vec();
         Arc::new(move |x: [f64; 3]| {
-            let mut v = Vec::with_capacity(theta.len() + 3 + defines.len());
+            let mut v = Vec::with_capacity(theta.len() + 3 + defines.len() + fields.len());
             v.extend_from_slice(&theta);
             v.extend_from_slice(&x);
             for d in &defines {
                 let val = d.eval(&v);
                 v.push(val);
             }
+            push_fields(&fields, &nodal, x, &mut v);
             e.eval(&v)
         })
     }
@@ -55,6 +92,14 @@ impl Parametric {
             needed[j] = e.uses(first + j)
                 || (j + 1..nd).any(|k| needed[k] && self.defines[k].uses(first + j));
         }
+        // The fields `e` uses (their slots follow the defines; the others stay 0, as in
+        // `profile`).
+        let used: Vec<Option<Arc<StudyField>>> = self
+            .fields
+            .iter()
+            .enumerate()
+            .map(|(j, f)| e.uses(first + nd + j).then(|| f.clone()))
+            .collect();
         let points = xs
             .iter()
             .map(|x| {
@@ -72,12 +117,18 @@ impl Parametric {
                 }
                 TabulatedPoint {
                     defines,
+                    fields: used
+                        .iter()
+                        .map(|f| f.as_ref().map(|f| f.locate(*x)))
+                        .collect(),
                     value: e.fold(&known),
                 }
             })
             .collect();
         ProfileTable {
-            slots: first + nd,
+            slots: first + nd + self.fields.len(),
+            first_field: first + nd,
+            fields: used,
             points,
         }
     }
@@ -195,8 +246,12 @@ impl BuiltModel {
 /// [`Parametric::profile`], bit for bit (the folded parts are computed by the same
 /// arithmetic in the same order).
 pub(crate) struct ProfileTable {
-    /// Length of the slot vector: parameters, `x, y, z`, the defines.
+    /// Length of the slot vector: parameters, `x, y, z`, the defines, the fields.
     slots: usize,
+    /// Slot of the first field.
+    first_field: usize,
+    /// The fields the profile uses (`None`: not used, its slot stays 0).
+    fields: Vec<Option<Arc<StudyField>>>,
     points: Vec<TabulatedPoint>,
 }
 
@@ -204,6 +259,8 @@ pub(crate) struct ProfileTable {
 struct TabulatedPoint {
     /// The defines that depend on the parameters, folded, with their slots, in order.
     defines: Vec<(usize, Expr)>,
+    /// Where the point falls in the mesh of each field the profile uses.
+    fields: Vec<Option<FieldPoint>>,
     /// The profile, folded.
     value: Expr,
 }
@@ -213,9 +270,19 @@ impl ProfileTable {
     pub(crate) fn eval(&self, theta: &[f64], out: &mut [f64]) {
         let mut v = vec![0.0; self.slots];
         v[..theta.len()].copy_from_slice(theta);
+        let nodal: Vec<Option<Vec<f64>>> = self
+            .fields
+            .iter()
+            .map(|f| f.as_ref().map(|f| f.at_nodes(theta)))
+            .collect();
         for (o, p) in out.iter_mut().zip(&self.points) {
             for (slot, d) in &p.defines {
                 v[*slot] = d.eval(&v);
+            }
+            for (j, (at, values)) in p.fields.iter().zip(&nodal).enumerate() {
+                if let (Some(at), Some(values)) = (at, values) {
+                    v[self.first_field + j] = at.value(values);
+                }
             }
             *o = p.value.eval(&v);
         }
@@ -250,6 +317,7 @@ mod tests {
             mu: vec![mu.clone()],
             gap: vec![],
             defines,
+            fields: vec![],
         };
         let xs: Vec<[f64; 3]> = (0..50)
             .map(|i| {
@@ -266,6 +334,46 @@ mod tests {
                 assert_eq!(f(*x).to_bits(), o.to_bits(), "{x:?}");
             }
             assert!(out.iter().all(|v| v.is_finite()));
+        }
+    }
+
+    /// With random fields in the profiles (`examples/blade-root-simple-field.toml`, mu a
+    /// bounded field on each flank, its mesh coarsened): the table (fields located once per
+    /// point) gives the values of `profile`, bit for bit, at the solver's interface points.
+    #[test]
+    fn profiles_with_random_fields_tabulated_are_the_pointwise_ones() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/blade-root-simple-field.toml"
+        );
+        let text = std::fs::read_to_string(path).unwrap().replace(
+            "n_flank = 36, n_side = 45, n_root = 36, n_shank = 27",
+            "n_flank = 12, n_side = 15, n_root = 12, n_shank = 9",
+        );
+        let study =
+            crate::study::Study::from_source(crate::Source::from_text(path, &text)).unwrap();
+        let p = &study.model.parametric;
+        assert!(!p.fields.is_empty());
+        let solver =
+            alea_latin::LatinSolver::new(study.model.assembly.clone(), study.model.options.clone())
+                .unwrap();
+        let n = p.nparams;
+        for i in 0..solver.num_interfaces() {
+            let xs: Vec<[f64; 3]> = solver.interface_points(i).iter().map(|q| q.x).collect();
+            for e in [&p.mu[i], &p.gap[i]] {
+                let table = p.profile_table(e, &xs);
+                for k in 0..4 {
+                    let theta: Vec<f64> = (0..n)
+                        .map(|j| 0.6 * (((j + 3 * k) % 7) as f64 - 3.0) + 0.1 * k as f64)
+                        .collect();
+                    let mut out = vec![0.0; xs.len()];
+                    table.eval(&theta, &mut out);
+                    let f = p.profile(e, &theta);
+                    for (x, o) in xs.iter().zip(&out) {
+                        assert_eq!(f(*x).to_bits(), o.to_bits(), "interface {i} at {x:?}");
+                    }
+                }
+            }
         }
     }
 }

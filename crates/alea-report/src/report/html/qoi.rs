@@ -84,6 +84,7 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
     }
     o.push_str("</div>\n</div>\n");
     budget_table(o, q, &unit);
+    sobol_table(o, q);
     put_figure(
         o,
         figures,
@@ -119,6 +120,32 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         );
     }
     o.push_str("</section>\n");
+}
+
+/// Sobol' indices of every parameter (KL variables of random fields included).
+fn sobol_table(o: &mut String, q: &QoiReport) {
+    if q.sobol.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        o,
+        "<div class=\"budget\"><h3>Sobol' indices</h3><p class=\"hint\">Share of the variance \
+         of {} due to each parameter alone (first order) and with its interactions (total). {}</p>\
+         <table><thead><tr><th>Parameter</th><th class=\"n\">First order</th>\
+         <th class=\"n\">Total</th></tr></thead><tbody>",
+        esc(&q.name),
+        esc(&q.sobol_basis)
+    );
+    for (name, first, total) in &q.sobol {
+        let _ = writeln!(
+            o,
+            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td></tr>",
+            esc(name),
+            num(*first, 3),
+            num(*total, 3)
+        );
+    }
+    o.push_str("</tbody></table></div>\n");
 }
 
 /// The error budget of each statistic: value, mesh, surrogate, sampling and total parts.

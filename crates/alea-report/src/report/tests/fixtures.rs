@@ -169,6 +169,11 @@ pub(super) fn synthetic() -> ReportInput {
                         .into(),
                     "mesh: not estimated".into(),
                 ],
+                sobol: vec![
+                    ("MU_G1_1".into(), 0.41, 0.52),
+                    ("E2 <x>".into(), 0.30, 0.36),
+                ],
+                sobol_basis: "From the chaos expansion <exact>.".into(),
             },
             // Degenerate: every sample equal, zero std, no KDE, no threshold.
             QoiReport {
@@ -185,6 +190,8 @@ pub(super) fn synthetic() -> ReportInput {
                 surface: None,
                 budget: vec![],
                 budget_basis: vec![],
+                sobol: vec![],
+                sobol_basis: String::new(),
             },
         ],
         comparison: Some(Comparison {

@@ -82,6 +82,8 @@ fn degenerate_inputs_give_a_report() {
             surface: None,
             budget: vec![],
             budget_basis: vec![],
+            sobol: vec![],
+            sobol_basis: String::new(),
         }],
         comparison: Some(Comparison {
             qoi: "compliance".into(),

@@ -112,6 +112,10 @@ fn full_report_is_written() {
     assert!(html.contains("not converged"));
     assert!(html.contains("0.02275") && html.contains("[0.0207, 0.0248]"));
     assert!(html.contains("reference (11 x 11 grid)"));
+    // Sobol' indices per parameter, names and basis escaped.
+    assert!(html.contains("<h3>Sobol' indices</h3>"));
+    assert!(html.contains("<td>MU_G1_1</td><td class=\"n\">0.41</td><td class=\"n\">0.52</td>"));
+    assert!(html.contains("E2 &lt;x&gt;") && html.contains("expansion &lt;exact&gt;."));
     assert!(!html.contains("NaN"));
     // 250 000 samples, yet a light page (plots are subsampled or binned).
     assert!(

@@ -1,0 +1,47 @@
+//! The `[[field]]` tables of a model file (schema only; the checks, the Karhunen-Loeve
+//! expansion and the evaluation along the contact are in module `random_field`).
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// `[[field]]`: a random field along an interface, discretised by Karhunen-Loeve; its KL
+/// variables `<name>_1 .. <name>_m` (independent standard normal) become study parameters, and
+/// `<name>` is the field's value at the point in the interface's `mu` and `gap` expressions.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldSpec {
+    /// Name (used in `mu` / `gap` expressions; its KL variables are `<name>_1`, ...).
+    pub name: Spanned<String>,
+    /// The `[[interface]]` the field lives on: over the facets of its side 1, parametrised by
+    /// their points.
+    pub interface: Spanned<String>,
+    /// `squared_exponential`, `exponential`, `matern32` or `matern52`.
+    pub covariance: Spanned<String>,
+    /// Correlation length (length, the unit of `[units] length`).
+    pub correlation_length: Spanned<f64>,
+    /// `gaussian` (default), `lognormal` or `bounded`.
+    #[serde(default)]
+    pub transform: Option<Spanned<String>>,
+    /// Mean of the field (gaussian, lognormal), in the unit of the quantity it enters.
+    #[serde(default)]
+    pub mean: Option<Spanned<f64>>,
+    /// Pointwise standard deviation of the field (gaussian, lognormal).
+    #[serde(default)]
+    pub std: Option<Spanned<f64>>,
+    /// Lower bound of a bounded field.
+    #[serde(default)]
+    pub lower: Option<Spanned<f64>>,
+    /// Upper bound of a bounded field.
+    #[serde(default)]
+    pub upper: Option<Spanned<f64>>,
+    /// Keep the fewest modes holding at least this fraction, in (0, 1], of the variance
+    /// `int sigma^2` (exactly one of `variance_fraction` and `modes`).
+    #[serde(default)]
+    pub variance_fraction: Option<Spanned<f64>>,
+    /// Keep this many modes (at least 1, at most the number of the field mesh's nodes).
+    #[serde(default)]
+    pub modes: Option<Spanned<usize>>,
+    /// Unit of the field's values (for the report).
+    #[serde(default)]
+    pub unit: Option<String>,
+}

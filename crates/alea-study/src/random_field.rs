@@ -1,0 +1,575 @@
+//! Random fields along the contact (`[[field]]`): a Gaussian field, or its lognormal or
+//! bounded transform, over the facets of an interface's side 1, discretised by the Galerkin
+//! Karhunen-Loeve expansion of `alea_uq::field`:
+//!
+//! ```text
+//! g(x) = m + sum_{k<M} sqrt(lambda_k) phi_k(x) xi_k,   u(x) = T(g(x)),
+//! ```
+//!
+//! with `xi_k` independent standard normal. The KL variables `xi_1 .. xi_M` become study
+//! parameters named `<field>_1 .. <field>_M` (appended after the `[[parameter]]`s, law
+//! `normal (mean 0, std 1)`), and the field's name is a variable of the interface `mu` and `gap`
+//! expressions, worth `u(x)` at the point `x` where the solver evaluates them.
+//!
+//! * **Mesh of the field**: the corner nodes of the side-1 facets (segments in 2D; triangles
+//!   in 3D, a quadrilateral split along its first diagonal), with P1 interpolation: `u(x)` at a
+//!   point of the contact is interpolated in the nearest facet (the point projected onto it,
+//!   ties to the lowest facet index), so at the facets' nodes it is the nodal value exactly.
+//! * **Transforms** ([`alea_uq::field::FieldTransform`]): gaussian, `u = g` with `m` = mean and
+//!   `sigma` = std; lognormal, `u = exp(g)` with `sigma^2 = ln(1 + std^2 / mean^2)`, `m =
+//!   ln(mean) - sigma^2 / 2` (so that `u` has the stated mean and std); bounded, `u = a + (b -
+//!   a) Phi(g)` with `m = 0`, `sigma = 1` (uniform marginals on `(a, b)` when the expansion keeps
+//!   all the variance).
+//! * **Truncation**: a number of modes, or the fewest modes whose eigenvalues sum to a fraction
+//!   `f` of `int_D sigma^2 = sigma^2 |D|`; since the `xi_k` are independent with unit variance,
+//!   `int_D Var g = sum_{k<M} lambda_k`, the captured fraction reported in the summary.
+//! * **Checked at load**, each with the file, line and field: names (unique, not a parameter, a
+//!   define or `x, y, z, pi`; the KL variables' names free), the interface, the covariance, the
+//!   correlation length (finite, > 0), the transform's keys (mean and std for gaussian and
+//!   lognormal, lower < upper for bounded; the others refused), exactly one of
+//!   `variance_fraction` in (0, 1] and `modes` in 1 ..= nodes, and the size of the KL problem
+//!   (at most [`MAX_FIELD_NODES`] nodes: dense `n x n` matrices and an `O(n^3)` eigensolver)
+//!   before anything is computed. A `[joint]` other than independent is refused with fields
+//!   (the copula would have to span the KL variables).
+
+use std::sync::Arc;
+
+use alea_mesh::{CellType, Mesh};
+use alea_uq::field::{
+    Covariance, FieldCells, FieldMesh, FieldTransform, KernelShape, KlExpansion, RandomField,
+    Truncation, lognormal_gaussian_parameters,
+};
+
+use crate::field_spec::FieldSpec;
+use crate::spec::ModelFile;
+use crate::{Source, StudyError};
+
+/// Largest number of nodes of a field mesh (the KL problem is dense: three `n x n` matrices,
+/// about 100 MB at this size, and an `O(n^3)` eigensolver of a few seconds).
+pub const MAX_FIELD_NODES: usize = 2000;
+
+/// A random field of a study, ready to evaluate.
+#[derive(Clone, Debug)]
+pub struct StudyField {
+    /// Name (the variable of `mu` / `gap` expressions).
+    pub name: String,
+    /// Index of its interface in `[[interface]]`.
+    pub interface: usize,
+    /// The field: KL expansion and transform.
+    pub field: RandomField,
+    /// Index of its first KL variable among the study parameters.
+    pub first_variable: usize,
+    /// Unit of its values (for the report).
+    pub unit: String,
+    /// One line for the report: covariance, length, truncation.
+    pub description: String,
+}
+
+impl StudyField {
+    /// Number of KL variables.
+    pub fn num_variables(&self) -> usize {
+        self.field.num_variables()
+    }
+
+    /// The field at the nodes of its mesh for the parameter point `theta` (all the study's
+    /// parameters); `NaN` everywhere if the transform overflows (the check of a run's inputs
+    /// then refuses the point, naming the interface field).
+    pub fn at_nodes(&self, theta: &[f64]) -> Vec<f64> {
+        let m = self.num_variables();
+        let xi = theta.get(self.first_variable..self.first_variable + m);
+        match xi.map(|xi| self.field.at_nodes(xi)) {
+            Some(Ok(v)) => v,
+            _ => vec![f64::NAN; self.field.kl().mesh().num_nodes()],
+        }
+    }
+
+    /// The P1 interpolant of the nodal values `nodal` at `x` (in the nearest cell).
+    pub fn interpolate(&self, nodal: &[f64], x: [f64; 3]) -> f64 {
+        self.locate(x).value(nodal)
+    }
+
+    /// Where `x` falls in the field's mesh, for interpolating any nodal values there.
+    pub fn locate(&self, x: [f64; 3]) -> FieldPoint {
+        locate_on(self.field.kl().mesh(), x)
+    }
+}
+
+/// A point of a field's mesh: the nodes of the cell nearest to it and the P1 weights of its
+/// closest point in that cell ([`StudyField::locate`]).
+#[derive(Clone, Debug)]
+pub struct FieldPoint {
+    nodes: Vec<usize>,
+    weights: Vec<f64>,
+}
+
+impl FieldPoint {
+    /// The P1 interpolant of the nodal values `nodal` at the point.
+    pub fn value(&self, nodal: &[f64]) -> f64 {
+        self.nodes
+            .iter()
+            .zip(&self.weights)
+            .map(|(&i, wi)| wi * nodal[i])
+            .sum()
+    }
+}
+
+/// The nearest cell of `mesh` to `x` (ties to the lowest cell index) and the P1 weights of its
+/// point closest to `x`.
+fn locate_on(mesh: &FieldMesh, x: [f64; 3]) -> FieldPoint {
+    let mut best = (f64::INFINITY, 0, Vec::new());
+    if mesh.num_cells() == 0 {
+        return FieldPoint {
+            nodes: Vec::new(),
+            weights: Vec::new(),
+        };
+    }
+    for c in 0..mesh.num_cells() {
+        let cell = mesh.cell(c);
+        let pts: Vec<[f64; 3]> = cell.iter().map(|&i| mesh.nodes()[i]).collect();
+        let (d2, w) = if pts.len() == 2 {
+            closest_on_segment(&pts[0], &pts[1], &x)
+        } else {
+            closest_on_triangle(&pts, &x)
+        };
+        if d2 < best.0 {
+            best = (d2, c, w.to_vec());
+        }
+    }
+    FieldPoint {
+        nodes: mesh.cell(best.1).to_vec(),
+        weights: best.2,
+    }
+}
+
+fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Squared distance from `x` to the segment `[a, b]` and the P1 weights of the closest point.
+fn closest_on_segment(a: &[f64; 3], b: &[f64; 3], x: &[f64; 3]) -> (f64, [f64; 3]) {
+    let ab = sub(b, a);
+    let t = (dot(&sub(x, a), &ab) / dot(&ab, &ab)).clamp(0.0, 1.0);
+    let p = [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]];
+    let d = sub(x, &p);
+    (dot(&d, &d), [1.0 - t, t, 0.0])
+}
+
+/// Squared distance from `x` to the triangle `pts` and the barycentric weights of the closest
+/// point: the projection onto the plane when it falls inside, else the closest point of the
+/// nearest edge.
+fn closest_on_triangle(pts: &[[f64; 3]], x: &[f64; 3]) -> (f64, [f64; 3]) {
+    let (e1, e2, r) = (
+        sub(&pts[1], &pts[0]),
+        sub(&pts[2], &pts[0]),
+        sub(x, &pts[0]),
+    );
+    let (a, b, c) = (dot(&e1, &e1), dot(&e1, &e2), dot(&e2, &e2));
+    let (d, e) = (dot(&r, &e1), dot(&r, &e2));
+    let det = a * c - b * b;
+    let s = (c * d - b * e) / det;
+    let t = (a * e - b * d) / det;
+    if s >= 0.0 && t >= 0.0 && s + t <= 1.0 {
+        let p: Vec<f64> = (0..3).map(|k| pts[0][k] + s * e1[k] + t * e2[k]).collect();
+        let q = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+        return (dot(&q, &q), [1.0 - s - t, s, t]);
+    }
+    let mut best = (f64::INFINITY, [0.0; 3]);
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        let (d2, w) = closest_on_segment(&pts[i], &pts[j], x);
+        if d2 < best.0 {
+            let mut bw = [0.0; 3];
+            bw[i] = w[0];
+            bw[j] = w[1];
+            best = (d2, bw);
+        }
+    }
+    best
+}
+
+/// The P1 mesh of the corner nodes of the facets of `group` in `mesh`.
+fn facet_mesh(mesh: &Mesh, group: &str) -> Result<FieldMesh, String> {
+    let facets = mesh.facet_group(group).map_err(|e| e.to_string())?;
+    let mut index = std::collections::BTreeMap::new();
+    let mut nodes = Vec::new();
+    let mut id = |g: usize| {
+        *index.entry(g).or_insert_with(|| {
+            nodes.push(mesh.coords[g]);
+            nodes.len() - 1
+        })
+    };
+    let (mut segs, mut tris) = (Vec::new(), Vec::new());
+    for f in facets {
+        let c: Vec<usize> = f.nodes[..f.kind.num_corners()]
+            .iter()
+            .map(|&g| id(g))
+            .collect();
+        match f.kind {
+            CellType::Line2 | CellType::Line3 => segs.push([c[0], c[1]]),
+            _ if c.len() == 3 => tris.push([c[0], c[1], c[2]]),
+            _ => {
+                tris.push([c[0], c[1], c[2]]);
+                tris.push([c[0], c[2], c[3]]);
+            }
+        }
+    }
+    let cells = if tris.is_empty() {
+        FieldCells::Segments(segs)
+    } else {
+        FieldCells::Triangles(tris)
+    };
+    if nodes.len() > MAX_FIELD_NODES {
+        return Err(format!(
+            "the field's mesh has {} nodes; at most {MAX_FIELD_NODES} (the KL problem is dense)",
+            nodes.len()
+        ));
+    }
+    FieldMesh::new(nodes, cells).map_err(|e| e.to_string())
+}
+
+fn shape(src: &Source, f: &FieldSpec, i: usize) -> Result<KernelShape, StudyError> {
+    Ok(match f.covariance.get_ref().as_str() {
+        "squared_exponential" => KernelShape::SquaredExponential,
+        "exponential" => KernelShape::Exponential,
+        "matern32" => KernelShape::Matern32,
+        "matern52" => KernelShape::Matern52,
+        other => {
+            return Err(src.error(
+                f.covariance.span(),
+                format!("field[{i}].covariance"),
+                format!("unknown covariance '{other}'; expected squared_exponential, exponential, matern32 or matern52"),
+            ));
+        }
+    })
+}
+
+/// Mean and variance of the Gaussian field and the transform, with the keys checked.
+fn transform(
+    src: &Source,
+    f: &FieldSpec,
+    i: usize,
+) -> Result<(f64, f64, FieldTransform), StudyError> {
+    let key = |k: &str| format!("field[{i}].{k}");
+    let kind = f
+        .transform
+        .as_ref()
+        .map_or("gaussian", |t| t.get_ref().as_str());
+    let span = f.transform.as_ref().map_or(f.name.span(), |t| t.span());
+    let present = [
+        ("mean", f.mean.as_ref()),
+        ("std", f.std.as_ref()),
+        ("lower", f.lower.as_ref()),
+        ("upper", f.upper.as_ref()),
+    ];
+    let (needed, refused): (&[&str], &[&str]) = match kind {
+        "gaussian" | "lognormal" => (&["mean", "std"], &["lower", "upper"]),
+        "bounded" => (&["lower", "upper"], &["mean", "std"]),
+        other => {
+            return Err(src.error(
+                span,
+                key("transform"),
+                format!("unknown transform '{other}'; expected gaussian, lognormal or bounded"),
+            ));
+        }
+    };
+    for (k, v) in present {
+        if refused.contains(&k)
+            && let Some(v) = v
+        {
+            return Err(src.error(
+                v.span(),
+                key(k),
+                format!(
+                    "a {kind} field takes no '{k}' (it takes {})",
+                    needed.join(" and ")
+                ),
+            ));
+        }
+        if needed.contains(&k) {
+            match v {
+                None => {
+                    return Err(src.error(
+                        span.clone(),
+                        key(k),
+                        format!("a {kind} field needs '{k}'"),
+                    ));
+                }
+                Some(v) if !v.get_ref().is_finite() => {
+                    return Err(src.error(
+                        v.span(),
+                        key(k),
+                        format!("must be finite, got {}", v.get_ref()),
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
+    let val = |v: &Option<toml::Spanned<f64>>| v.as_ref().map_or(0.0, |s| *s.get_ref());
+    match kind {
+        "bounded" => {
+            let (a, b) = (val(&f.lower), val(&f.upper));
+            if b <= a {
+                let sp = f.upper.as_ref().map_or(span, |u| u.span());
+                return Err(src.error(sp, key("upper"), format!("must be > lower = {a}, got {b}")));
+            }
+            Ok((0.0, 1.0, FieldTransform::Bounded { lower: a, upper: b }))
+        }
+        _ => {
+            let (m, s) = (val(&f.mean), val(&f.std));
+            let sp = f.std.as_ref().map_or(span.clone(), |u| u.span());
+            if s <= 0.0 {
+                return Err(src.error(sp, key("std"), format!("must be > 0, got {s}")));
+            }
+            if kind == "gaussian" {
+                return Ok((m, s * s, FieldTransform::Gaussian));
+            }
+            let (gm, gv) = lognormal_gaussian_parameters(m, s).map_err(|e| {
+                let sp = f.mean.as_ref().map_or(span.clone(), |u| u.span());
+                src.error(sp, key("mean"), e.to_string())
+            })?;
+            Ok((gm, gv, FieldTransform::Lognormal))
+        }
+    }
+}
+
+fn truncation(src: &Source, f: &FieldSpec, i: usize) -> Result<Truncation, StudyError> {
+    let key = |k: &str| format!("field[{i}].{k}");
+    match (&f.variance_fraction, &f.modes) {
+        (Some(_), Some(m)) => Err(src.error(
+            m.span(),
+            key("modes"),
+            "give either variance_fraction or modes, not both",
+        )),
+        (None, None) => Err(src.error(
+            f.name.span(),
+            key("variance_fraction"),
+            "a field needs variance_fraction (in (0, 1]) or modes (>= 1)",
+        )),
+        (Some(v), None) => {
+            let x = *v.get_ref();
+            if !(x > 0.0 && x <= 1.0) {
+                return Err(src.error(
+                    v.span(),
+                    key("variance_fraction"),
+                    format!("must be in (0, 1], got {x}"),
+                ));
+            }
+            Ok(Truncation::VarianceFraction(x))
+        }
+        (None, Some(m)) => {
+            if *m.get_ref() == 0 {
+                return Err(src.error(m.span(), key("modes"), "must be >= 1, got 0"));
+            }
+            Ok(Truncation::Modes(*m.get_ref()))
+        }
+    }
+}
+
+/// Checks a field's name against the names already taken.
+fn check_name(src: &Source, f: &FieldSpec, i: usize, taken: &[String]) -> Result<(), StudyError> {
+    let n = f.name.get_ref();
+    let valid = n
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    let clash = ["x", "y", "z", "pi"].contains(&n.as_str()) || taken.contains(n);
+    if !valid || clash {
+        return Err(src.error(
+            f.name.span(),
+            format!("field[{i}].name"),
+            format!("'{n}' is not a usable name (letters, digits, '_'; not x, y, z, pi, a parameter, a define or another field)"),
+        ));
+    }
+    Ok(())
+}
+
+/// The random fields of a study file, their KL variables numbered from `first_variable`, and
+/// those variables' names. `taken` are the names in use (parameters, defines).
+pub(crate) fn build_fields(
+    src: &Source,
+    file: &ModelFile,
+    taken: &[String],
+    first_variable: usize,
+) -> Result<(Vec<Arc<StudyField>>, Vec<String>), StudyError> {
+    if file.field.is_empty() {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    if let Some(j) = &file.joint
+        && j.kind.get_ref() != "independent"
+    {
+        return Err(src.error(
+            j.kind.span(),
+            "joint.type",
+            "random fields ([[field]]) need independent parameters: their KL variables are independent of the [[parameter]]s, which a copula cannot say here",
+        ));
+    }
+    let mesh = crate::build::build_mesh(src, &file.mesh)?;
+    let mut taken: Vec<String> = taken.to_vec();
+    let (mut fields, mut variables) = (Vec::new(), Vec::new());
+    for (i, f) in file.field.iter().enumerate() {
+        let key = |k: &str| format!("field[{i}].{k}");
+        check_name(src, f, i, &taken)?;
+        let name = f.name.get_ref().clone();
+        let it = f.interface.get_ref();
+        let k = file
+            .interface
+            .iter()
+            .position(|s| s.name.get_ref() == it)
+            .ok_or_else(|| {
+                let names: Vec<&str> = file
+                    .interface
+                    .iter()
+                    .map(|s| s.name.get_ref().as_str())
+                    .collect();
+                src.error(
+                    f.interface.span(),
+                    key("interface"),
+                    format!("unknown interface '{it}'; defined: {}", names.join(", ")),
+                )
+            })?;
+        let shape = shape(src, f, i)?;
+        let length = *f.correlation_length.get_ref();
+        if !(length.is_finite() && length > 0.0) {
+            return Err(src.error(
+                f.correlation_length.span(),
+                key("correlation_length"),
+                format!("must be a finite length > 0, got {length}"),
+            ));
+        }
+        let (mean, variance, tr) = transform(src, f, i)?;
+        let trunc = truncation(src, f, i)?;
+        let side = &file.interface[k].side1;
+        let [sub, group] = side.get_ref();
+        let side_err = |m: String| src.error(side.span(), format!("interface[{k}].side1"), m);
+        let s = file
+            .substructure
+            .iter()
+            .find(|s| s.name.get_ref() == sub)
+            .ok_or_else(|| side_err(format!("unknown substructure '{sub}'")))?;
+        let sub_mesh = match &s.cells {
+            Some(c) => {
+                mesh.extract(&[c.get_ref().as_str()])
+                    .map_err(|e| side_err(e.to_string()))?
+                    .0
+            }
+            None => mesh.clone(),
+        };
+        let fmesh = facet_mesh(&sub_mesh, group)
+            .map_err(|m| src.error(f.interface.span(), key("interface"), m))?;
+        if let Truncation::Modes(m) = trunc
+            && m > fmesh.num_nodes()
+        {
+            return Err(src.error(
+                f.modes.as_ref().map_or(f.name.span(), |m| m.span()),
+                key("modes"),
+                format!(
+                    "must be at most the {} nodes of the field's mesh, got {m}",
+                    fmesh.num_nodes()
+                ),
+            ));
+        }
+        let bad =
+            |e: alea_uq::UqError| src.error(f.name.span(), format!("field[{i}]"), e.to_string());
+        let cov = Covariance::new(shape, variance, length).map_err(bad)?;
+        let kl = KlExpansion::galerkin(&fmesh, &cov, trunc).map_err(bad)?;
+        let field = RandomField::new(mean, variance.sqrt(), tr, kl).map_err(bad)?;
+        let m = field.num_variables();
+        let unit = f.unit.clone().unwrap_or_default();
+        let description = format!(
+            "{} field{} on interface '{it}', {} covariance, correlation length {length}; {m} KL modes, {:.1} % of the variance, {} nodes",
+            f.transform
+                .as_ref()
+                .map_or("gaussian", |t| t.get_ref().as_str()),
+            if unit.is_empty() {
+                String::new()
+            } else {
+                format!(" ({unit})")
+            },
+            f.covariance.get_ref(),
+            100.0 * field.kl().captured_fraction(),
+            fmesh.num_nodes(),
+        );
+        taken.push(name.clone());
+        for v in 1..=m {
+            let vname = format!("{name}_{v}");
+            if taken.contains(&vname) {
+                return Err(src.error(
+                    f.name.span(),
+                    key("name"),
+                    format!("its KL variable '{vname}' is already a name of the study"),
+                ));
+            }
+            taken.push(vname.clone());
+            variables.push(vname);
+        }
+        fields.push(Arc::new(StudyField {
+            name,
+            interface: k,
+            field,
+            first_variable: first_variable + variables.len() - m,
+            unit,
+            description,
+        }));
+    }
+    Ok((fields, variables))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// P1 interpolation reproduces a linear function inside the cells, at the projection of a
+    /// point off the surface, and at the closest boundary point of a point beyond the mesh.
+    #[test]
+    fn interpolation_is_exact_for_linear_functions_and_projects_onto_the_nearest_cell() {
+        let lin = |p: &[f64; 3]| 1.0 + 2.0 * p[0] - 3.0 * p[1] + 0.5 * p[2];
+        // Two triangles of the unit square in the plane z = 0.
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let nodal: Vec<f64> = nodes.iter().map(lin).collect();
+        let tri = FieldMesh::new(nodes, FieldCells::Triangles(vec![[0, 1, 2], [0, 2, 3]])).unwrap();
+        for (x, want) in [
+            ([0.3, 0.1, 0.0], [0.3, 0.1, 0.0]),
+            ([0.2, 0.7, 0.0], [0.2, 0.7, 0.0]),
+            ([0.6, 0.4, 0.25], [0.6, 0.4, 0.0]),
+            ([1.5, 0.5, 0.0], [1.0, 0.5, 0.0]),
+            ([-1.0, -1.0, 0.0], [0.0, 0.0, 0.0]),
+        ] {
+            let v = locate_on(&tri, x).value(&nodal);
+            assert!(
+                (v - lin(&want)).abs() < 1e-12,
+                "{x:?}: {v} vs {}",
+                lin(&want)
+            );
+        }
+        // A polyline along a 45-degree flank.
+        let nodes: Vec<[f64; 3]> = (0..5).map(|i| [i as f64, i as f64, 0.0]).collect();
+        let nodal: Vec<f64> = nodes.iter().map(lin).collect();
+        let seg = FieldMesh::new(
+            nodes,
+            FieldCells::Segments((0..4).map(|i| [i, i + 1]).collect()),
+        )
+        .unwrap();
+        for (x, want) in [
+            ([1.25, 1.25, 0.0], [1.25, 1.25, 0.0]),
+            ([2.0, 3.0, 0.0], [2.5, 2.5, 0.0]),
+            ([9.0, 9.0, 0.0], [4.0, 4.0, 0.0]),
+        ] {
+            let v = locate_on(&seg, x).value(&nodal);
+            assert!(
+                (v - lin(&want)).abs() < 1e-12,
+                "{x:?}: {v} vs {}",
+                lin(&want)
+            );
+        }
+    }
+}
