@@ -1,0 +1,381 @@
+//! Large sliding: the mortar pairing of a contact interface re-found from the deformed
+//! configuration during the solve, until it is the pairing of the solution.
+//!
+//! **What changes.** The substructures stay linear elastic in their initial configuration
+//! `X` (small strains); only the pairing of a contact interface with `Sliding::Large`
+//! follows the deformed configuration `y = X + c`, `c` a displacement of every substructure.
+//! The mortar pairing ([`crate::mortar`]) is computed on the facets at `y`: segments,
+//! weights `m_p`, projection rows `Pi_s(p, a)` and side-1 normals `n_p` are those of the
+//! deformed sides. The run then works with total displacements `u` as before, and the
+//! unilateral condition holds on the gap in the current configuration
+//!
+//! ```text
+//! g_p = (Pi_2 (X_2 + u_2) - Pi_1 (X_1 + u_1))(p) . n_p + g0(x_p)
+//!     = (Pi_2 X_2 - Pi_1 X_1)(p) . n_p  +  [W](p) . n_p  +  g0(x_p),
+//! ```
+//! so the pairing's geometric gap is `(Pi_2 X_2 - Pi_1 X_1) . n_p` with the rows found at
+//! `y` and the initial coordinates (its tangential part, the slide `c` itself, drops out), and
+//! the fields `mu(x)`, `g0(x)` are evaluated at the point's initial position
+//! `x_p = Pi_P X_P` (`P` the side carrying the points, kept from the first pairing so that
+//! points of successive pairings are the same multiplier nodes).
+//!
+//! **Outer fixed point (per load step).** A step starts with the pairing of the configuration
+//! it starts from (the initial one, or the end of the previous step) and is solved by LATIN;
+//! if the slide since that pairing, `max_p |[W_hat]_t - [Pi c]_t| / h` (module
+//! [`crate::sliding`]; `h` the median point size of the interface: a point at the edge of
+//! the covered zone may carry a sliver of weight, and its own size says nothing of the mesh),
+//! exceeds `tolerance` (default 0.01 of the mesh size), the
+//! interface is re-paired in the configuration of that solution and the step solved again,
+//! warm-started from it, until the slide since the last pairing is below the tolerance (the
+//! pairing is then that of the solution) or `max_pairings` pairings were made. A step whose
+//! pairing did not settle is reported **not converged** (its equilibrium is that of a pairing
+//! the solution no longer fits). A step that slides less than the tolerance is solved once,
+//! exactly as with small sliding but with the mortar pairing.
+//!
+//! Why a fixed point around the solve rather than re-pairing at step boundaries with
+//! sub-steps: the answer of a step must not depend on how many sub-steps the user chose
+//! (friction is already integrated with one backward-Euler increment per step, module
+//! [`crate::steps`], and the user writes more `[[step]]`s to follow a path); the fixed point
+//! gives the pairing of the step's end configuration whatever the slide, and its passes after
+//! the first start from the previous pass and cost few iterations (measured on the 0.8 mm
+//! slides of the tests: 2 pairings). Its cost is one set-up (assembly and factorisation) per
+//! pairing. What it does not see: side-2 material swept over *within* one step (a point that
+//! crosses a groove and leaves it in the same step never sees it); a path is followed by
+//! steps.
+//!
+//! **Friction state.** The state a step starts from is mapped to each pairing: `W_hat_s =
+//! Pi_s u_s` with the displacement `u` at the end of the previous step, so the slip origin of
+//! the incremental law, `j0 = [W_hat]_t` ([`crate::steps`]), is the tangential jump of that
+//! displacement between the material points the new pairing pairs; `F_hat` is carried over at
+//! the points of the same multiplier node (same initial position), zero at new points.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use alea_fem::DofMap;
+use alea_mesh::Mesh;
+use alea_mesh::vec3::{dot, sub};
+
+use crate::interface::InterfacePairing;
+use crate::mortar::pair_mortar_sided;
+use crate::sliding::point_slides;
+use crate::{
+    Assembly, InterfaceSpec, LatinError, LatinOptions, LatinSolver, LocalState, RunInput,
+    RunResult, RunStatus, Sliding,
+};
+
+type V3 = [f64; 3];
+
+/// Settings of the outer fixed point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Repairing {
+    /// Largest slide since the last pairing, over the median point size of the interface, for
+    /// the pairing to be that of the solution (default 0.01).
+    pub tolerance: f64,
+    /// Largest number of pairings per step (default 10).
+    pub max_pairings: usize,
+}
+
+impl Default for Repairing {
+    fn default() -> Self {
+        Repairing {
+            tolerance: 0.01,
+            max_pairings: 10,
+        }
+    }
+}
+
+/// One load step solved with large sliding.
+pub struct SlidingStep {
+    /// The solver of the last pairing (its interfaces are those of `result`).
+    pub solver: LatinSolver,
+    /// The run of the last pairing; not converged if the pairing did not settle.
+    pub result: RunResult,
+    /// Pairings made in this step (1: the pairing it started with was the solution's).
+    pub pairings: usize,
+    /// Slide since the last pairing over the median point size, largest over the re-paired
+    /// interfaces (0 if there is none).
+    pub mismatch: f64,
+    /// True if `mismatch <= tolerance`.
+    pub pairing_settled: bool,
+    /// LATIN iterations summed over the pairings.
+    pub iterations: usize,
+    /// Set-up seconds (pairing, assembly, factorisation) summed over the pairings.
+    pub setup_seconds: f64,
+    /// Side carrying the points of each re-paired interface (0 or 1; `None`: not re-paired).
+    pub point_sides: Vec<Option<usize>>,
+}
+
+/// True if interface `spec` is re-paired (large sliding on a contact law).
+pub fn is_repaired(spec: &InterfaceSpec) -> bool {
+    spec.sliding == Sliding::Large && spec.law.uses_gap()
+}
+
+/// True if some interface of `assembly` is re-paired.
+pub fn uses_large_sliding(assembly: &Assembly) -> bool {
+    assembly.interfaces.iter().any(is_repaired)
+}
+
+/// The mortar pairing of interface `i` of `assembly` found in the configuration `X + u`
+/// (`u[s]`: node-major displacement of substructure `s`), with the points on `point_side`
+/// (`None`: the coarser side), expressed for a run in total displacements (module doc):
+/// initial positions `x_p = Pi_P X_P` and geometric gaps `(Pi_2 X_2 - Pi_1 X_1) . n_p`. Returns
+/// the pairing and the side carrying its points.
+///
+/// # Errors
+/// A displacement of the wrong length, or the errors of [`pair_mortar_sided`].
+pub fn pair_in_configuration(
+    assembly: &Assembly,
+    i: usize,
+    u: &[Vec<f64>],
+    point_side: Option<usize>,
+) -> Result<(InterfacePairing, usize), LatinError> {
+    let spec = &assembly.interfaces[i];
+    let subs = [spec.sub1, spec.sub2];
+    let mut moved: Vec<Mesh> = Vec::with_capacity(2);
+    let mut held: Vec<DofMap> = Vec::with_capacity(2);
+    for &s in &subs {
+        let sub = assembly.subs.get(s).ok_or_else(|| {
+            LatinError::Invalid(format!(
+                "interface '{}' refers to substructure {s}, but there are {}",
+                spec.name,
+                assembly.subs.len()
+            ))
+        })?;
+        let mut mesh = sub.model.mesh.clone();
+        let d = mesh.dim;
+        let us = u.get(s).filter(|v| v.len() == mesh.num_nodes() * d);
+        let us = us.ok_or_else(|| {
+            LatinError::Invalid(format!(
+                "interface '{}': no displacement of {} values for substructure '{}' to re-pair in",
+                spec.name,
+                mesh.num_nodes() * d,
+                sub.name
+            ))
+        })?;
+        for (n, x) in mesh.coords.iter_mut().enumerate() {
+            for k in 0..d {
+                x[k] += us[n * d + k];
+            }
+        }
+        moved.push(mesh);
+        held.push(
+            DofMap::for_mesh(&sub.model.mesh, &sub.constraints).map_err(|source| {
+                LatinError::Fem {
+                    sub: sub.name.clone(),
+                    source,
+                }
+            })?,
+        );
+    }
+    let fixed1 = |n: usize| held[0].node_dofs(n).is_empty();
+    let fixed2 = |n: usize| held[1].node_dofs(n).is_empty();
+    let th = |s: usize| assembly.subs[subs[s]].model.analysis.thickness();
+    let (mut pairing, side) = pair_mortar_sided(
+        &spec.name,
+        [
+            (&moved[0], spec.group1.as_str(), th(0)),
+            (&moved[1], spec.group2.as_str(), th(1)),
+        ],
+        spec.search_distance,
+        true,
+        [&fixed1, &fixed2],
+        point_side,
+    )?;
+    let initial = |s: usize, p: usize| -> V3 {
+        let coords = &assembly.subs[subs[s]].model.mesh.coords;
+        let mut x = [0.0; 3];
+        for (a, c) in pairing.sides[s].row(p) {
+            for k in 0..3 {
+                x[k] += c * coords[a][k];
+            }
+        }
+        x
+    };
+    let (x, gap): (Vec<V3>, Vec<f64>) = (0..pairing.len())
+        .map(|p| {
+            let (x1, x2) = (initial(0, p), initial(1, p));
+            let xp = if side == 0 { x1 } else { x2 };
+            (xp, dot(&sub(&x2, &x1), &pairing.normals[p]))
+        })
+        .unzip();
+    pairing.x = x;
+    pairing.geometric_gap = gap;
+    Ok((pairing, side))
+}
+
+/// A solver for `assembly` with its re-paired interfaces paired in the configuration `X + u`
+/// (`point_sides` updated with the side carrying their points).
+fn solver_in(
+    assembly: &Assembly,
+    options: &LatinOptions,
+    u: &[Vec<f64>],
+    point_sides: &mut [Option<usize>],
+) -> Result<LatinSolver, LatinError> {
+    let mut pairings = Vec::with_capacity(assembly.interfaces.len());
+    for (i, spec) in assembly.interfaces.iter().enumerate() {
+        if is_repaired(spec) {
+            let (p, side) = pair_in_configuration(assembly, i, u, point_sides[i])?;
+            point_sides[i] = Some(side);
+            pairings.push(Some(p));
+        } else {
+            pairings.push(None);
+        }
+    }
+    LatinSolver::with_pairings(
+        assembly.clone(),
+        options.clone(),
+        pairings,
+        Some(u.to_vec()),
+    )
+}
+
+/// The local-stage state of `from` (a run on other pairings) on the interfaces of `solver`:
+/// `W_hat_s = Pi_s u_s` with the displacement `u`, `F_hat` of the point of `from` at the same
+/// initial position (zero if none).
+fn mapped_state(solver: &LatinSolver, u: &[Vec<f64>], from: &RunResult) -> LocalState {
+    let mut what = Vec::with_capacity(solver.num_interfaces());
+    let mut fhat = Vec::with_capacity(solver.num_interfaces());
+    for i in 0..solver.num_interfaces() {
+        let pairing = solver.interface_pairing(i);
+        let (subs, _) = solver.interface_nodes(i);
+        let w = [0, 1].map(|s| {
+            let dim = solver.model(subs[s]).mesh.dim;
+            pairing.sides[s].interpolate(&u[subs[s]], dim)
+        });
+        let key = |x: &V3| x.map(f64::to_bits);
+        let old = from.interfaces.get(i);
+        let index: HashMap<[u64; 3], usize> = old.map_or_else(HashMap::new, |it| {
+            it.points
+                .iter()
+                .enumerate()
+                .map(|(q, p)| (key(&p.x), q))
+                .collect()
+        });
+        let f = [0, 1].map(|s| {
+            pairing
+                .x
+                .iter()
+                .map(|x| match (old, index.get(&key(x))) {
+                    (Some(it), Some(&q)) => it.fhat[s][q],
+                    _ => [0.0; 3],
+                })
+                .collect::<Vec<V3>>()
+        });
+        what.push(w);
+        fhat.push(f);
+    }
+    LocalState { what, fhat }
+}
+
+/// The largest slide since the last pairing over the re-paired interfaces of `assembly`, each
+/// over its median point size (module doc).
+fn mismatch(assembly: &Assembly, solver: &LatinSolver, res: &RunResult) -> f64 {
+    let mut worst = 0.0f64;
+    for (i, spec) in assembly.interfaces.iter().enumerate() {
+        if !is_repaired(spec) {
+            continue;
+        }
+        let slides = point_slides(solver, res, i);
+        let mut h: Vec<f64> = slides.iter().map(|s| s.2).collect();
+        h.sort_by(f64::total_cmp);
+        let Some(&median) = h.get(h.len() / 2) else {
+            continue;
+        };
+        let slip = slides.iter().map(|s| s.1).fold(0.0, f64::max);
+        worst = worst.max(slip / median);
+    }
+    worst
+}
+
+/// Solves one load step of `assembly` (this step's imposed displacements and loads: `input`)
+/// with large sliding (module doc), from the end of step `start` (`None`: the unloaded
+/// initial configuration). `input.previous_step` and `input.initial` are set here.
+///
+/// # Errors
+/// A pairing or set-up error, or an invalid input.
+pub fn run_step(
+    assembly: &Assembly,
+    options: &LatinOptions,
+    settings: &Repairing,
+    start: Option<&SlidingStep>,
+    input: &RunInput,
+) -> Result<SlidingStep, LatinError> {
+    if !(settings.tolerance > 0.0 && settings.max_pairings >= 1) {
+        return Err(LatinError::Invalid(format!(
+            "large sliding: tolerance must be > 0 and at least one pairing allowed, got {} and {}",
+            settings.tolerance, settings.max_pairings
+        )));
+    }
+    let zero: Vec<Vec<f64>> = assembly
+        .subs
+        .iter()
+        .map(|s| vec![0.0; s.model.mesh.num_nodes() * s.model.mesh.dim])
+        .collect();
+    let mut sides = start.map_or_else(
+        || vec![None; assembly.interfaces.len()],
+        |s| s.point_sides.clone(),
+    );
+    let config = start.map_or(&zero, |s| &s.result.displacements);
+    let mut solver = solver_in(assembly, options, config, &mut sides)?;
+    let previous = |solver: &LatinSolver| {
+        start.map(|s| Arc::new(mapped_state(solver, &s.result.displacements, &s.result)))
+    };
+    let mut input = input.clone();
+    input.previous_step = previous(&solver);
+    input.initial = None;
+    let (mut pairings, mut iterations, mut setup) = (1, 0, solver.setup_seconds);
+    loop {
+        let mut result = solver.run_shared(&input)?;
+        iterations += result.iterations;
+        let gap = mismatch(assembly, &solver, &result);
+        let settled = gap <= settings.tolerance;
+        if result.status != RunStatus::Converged || settled || pairings >= settings.max_pairings {
+            if result.status == RunStatus::Converged && !settled {
+                result.status = RunStatus::NotConverged;
+            }
+            return Ok(SlidingStep {
+                solver,
+                result,
+                pairings,
+                mismatch: gap,
+                pairing_settled: settled,
+                iterations,
+                setup_seconds: setup,
+                point_sides: sides,
+            });
+        }
+        let u = result.displacements.clone();
+        solver = solver_in(assembly, options, &u, &mut sides)?;
+        setup += solver.setup_seconds;
+        pairings += 1;
+        input.previous_step = previous(&solver);
+        input.initial = Some(Arc::new(mapped_state(&solver, &u, &result)));
+    }
+}
+
+/// Runs a load history with large sliding: step `k` is `steps[k] = (assembly, input)` (the
+/// assemblies share meshes and interfaces and may differ by their imposed displacements),
+/// solved by [`run_step`] from the end of step `k - 1`. Stops after the first step that is
+/// not converged.
+///
+/// # Errors
+/// As [`run_step`].
+pub fn run_history(
+    steps: &[(&Assembly, RunInput)],
+    options: &LatinOptions,
+    settings: &Repairing,
+) -> Result<Vec<SlidingStep>, LatinError> {
+    let mut out: Vec<SlidingStep> = Vec::with_capacity(steps.len());
+    for (assembly, input) in steps {
+        if out
+            .last()
+            .is_some_and(|s| s.result.status != RunStatus::Converged)
+        {
+            break;
+        }
+        let step = run_step(assembly, options, settings, out.last(), input)?;
+        out.push(step);
+    }
+    Ok(out)
+}
