@@ -379,3 +379,37 @@ pub fn run_history(
     }
     Ok(out)
 }
+
+/// Energy dissipated by friction within step `step` on interface `i`:
+/// `-int ([W_hat] - j0)_t . Phi_t dS`, as [`crate::steps::step_friction_dissipation`] but with
+/// `j0 = [Pi u]_t` the tangential jump, between the points the step's last pairing pairs, of
+/// the displacement `u` at the end of `previous` (`None`: the unloaded state, `j0 = 0`).
+pub fn step_friction_dissipation(
+    step: &SlidingStep,
+    previous: Option<&SlidingStep>,
+    i: usize,
+) -> f64 {
+    let it = &step.result.interfaces[i];
+    let start: Option<[Vec<V3>; 2]> = previous.map(|p| {
+        [0, 1].map(|s| {
+            let sub = it.subs[s];
+            let dim = step.solver.model(sub).mesh.dim;
+            it.pairing.sides[s].interpolate(&p.result.displacements[sub], dim)
+        })
+    });
+    let tangential = |a: V3, b: V3, n: V3| -> V3 {
+        let j = sub(&b, &a);
+        let jn = dot(&j, &n);
+        [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]]
+    };
+    (0..it.points.len())
+        .map(|p| {
+            let n = it.points[p].normal;
+            let jt = tangential(it.what[0][p], it.what[1][p], n);
+            let j0 = start
+                .as_ref()
+                .map_or([0.0; 3], |u| tangential(u[0][p], u[1][p], n));
+            -it.weights[p] * dot(&sub(&jt, &j0), &it.fhat[1][p])
+        })
+        .sum()
+}
