@@ -131,15 +131,14 @@ fn base_load(solver: &LatinSolver, res: &RunResult, normal: usize) -> (f64, [f64
 
 /// Checks the closed form on a large-sliding step; `area`, `centre`: the block's face area and
 /// initial centre, `h`: the base cell size.
-fn check(step: &SlidingStep, normal: usize, area: f64, centre: [f64; 3], h: f64) {
+fn check(step: &SlidingStep, normal: usize, area: f64, centre: [f64; 3], h: f64, tol: f64) {
     let res = &step.result;
     eprintln!(
         "{} pairing(s), {} iterations, mismatch {:.2e}, set-up {:.3} s",
         step.pairings, step.iterations, step.mismatch, step.setup_seconds
     );
     assert_eq!(res.status, RunStatus::Converged);
-    assert!(step.pairing_settled && step.mismatch <= 0.01);
-    assert!(step.pairings >= 2, "a slide of 8 cells needs a re-pairing");
+    assert!(step.pairing_settled && step.mismatch <= tol);
     let (n, c, range) = base_load(&step.solver, res, normal);
     let t = res.interfaces[0].resultant()[0];
     let want = centre[0] + SLIDE + MU * H;
@@ -167,7 +166,7 @@ fn check(step: &SlidingStep, normal: usize, area: f64, centre: [f64; 3], h: f64)
     );
     // The detector measures the slide since the last pairing: within the tolerance.
     for c in slide_checks(&step.solver, res) {
-        assert!(c.ratio <= 0.01, "{c:?}");
+        assert!(c.ratio <= tol, "{c:?}");
     }
 }
 
@@ -194,8 +193,43 @@ fn block_slid_over_eight_cells_2d() {
         &RunInput::default(),
     )
     .unwrap();
-    check(&step, 1, 1.0, centre, 0.1);
+    check(&step, 1, 1.0, centre, 0.1, 0.01);
     check_small(assembly_2d(SLIDE, Sliding::Small), 1, centre);
+}
+
+#[test]
+fn a_tight_pairing_tolerance_re_pairs_until_settled_2d() {
+    // The predicted pairing (the block translated by its imposed slide) is off by the block's
+    // elastic shear; a tolerance below it makes the fixed point re-pair.
+    let tight = Repairing {
+        tolerance: 1e-5,
+        ..Repairing::default()
+    };
+    let step = run_step(
+        &assembly_2d(SLIDE, Sliding::Large),
+        &options(),
+        &tight,
+        None,
+        &RunInput::default(),
+    )
+    .unwrap();
+    assert!(step.pairings >= 2, "{} pairing(s)", step.pairings);
+    check(&step, 1, 1.0, [1.5, 0.0, 0.0], 0.1, 1e-5);
+    // Too few pairings allowed: the step is not converged, though LATIN converged.
+    let one = Repairing {
+        max_pairings: 1,
+        ..tight
+    };
+    let step = run_step(
+        &assembly_2d(SLIDE, Sliding::Large),
+        &options(),
+        &one,
+        None,
+        &RunInput::default(),
+    )
+    .unwrap();
+    assert!(!step.pairing_settled);
+    assert_eq!(step.result.status, RunStatus::NotConverged);
 }
 
 #[test]
@@ -214,7 +248,7 @@ fn press_then_slide_over_eight_cells_2d() {
     assert_eq!(steps.len(), 2);
     assert_eq!(steps[0].result.status, RunStatus::Converged);
     assert_eq!(steps[0].pairings, 1, "pressing does not slide");
-    check(&steps[1], 1, 1.0, [1.5, 0.0, 0.0], 0.1);
+    check(&steps[1], 1, 1.0, [1.5, 0.0, 0.0], 0.1, 0.01);
 }
 
 #[test]
@@ -228,6 +262,6 @@ fn block_slid_over_eight_cells_3d() {
         &RunInput::default(),
     )
     .unwrap();
-    check(&step, 2, 0.5, centre, 0.1);
+    check(&step, 2, 0.5, centre, 0.1, 0.01);
     check_small(assembly_3d(SLIDE, Sliding::Small), 2, centre);
 }
