@@ -3,8 +3,8 @@
 //! as a Gmsh 4.1 file. Large sliding pairs in the predicted slid configuration (one pairing
 //! settles) and keeps the closed-form resultants
 //! (N = 10 N/mm, T = mu N) with no small-sliding warning; small sliding warns and names the
-//! setting; a bad `sliding` value, large sliding on a perfect interface and large sliding in a
-//! study are refused at load (exit 2) at their line.
+//! setting, and so does a study; a bad `sliding` value, large sliding on a perfect interface and
+//! large sliding in a study are refused at load (exit 2) at their line.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -270,12 +270,23 @@ fn bad_sliding_settings_are_refused_at_their_line() {
         line_of(&s, "sliding ="),
         "interface[0].sliding",
     );
-    let (p, s) = case(
+    let study_tail = "\n[study]\ntitle = \"slide\"\n\n[[quantity]]\nname = \"fy\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 1\n";
+    // A study with small sliding: the run slides beyond it, and the study says so.
+    let (p, _) = case(
         &dir,
-        "study",
-        &[],
-        "\n[study]\ntitle = \"slide\"\n\n[[quantity]]\nname = \"fy\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 1\n",
+        "study-small",
+        &[("sliding = \"large\"", "")],
+        &format!("{study_tail}\n[solver]\nmax_iterations = 20000\n"),
     );
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(dir.join("study-small"))
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("beyond small sliding"), "{t}");
+    let (p, s) = case(&dir, "study", &[], study_tail);
     let o = alea()
         .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
         .arg(dir.join("study"))
