@@ -323,6 +323,21 @@ pub fn run_step(
         )));
     }
     let translation = prescribed_translation(assembly)?;
+    if let Some(s) = start {
+        let same = s.result.displacements.len() == assembly.subs.len()
+            && assembly
+                .subs
+                .iter()
+                .zip(&s.result.displacements)
+                .all(|(sub, u)| u.len() == sub.model.mesh.num_nodes() * sub.model.mesh.dim);
+        if !same {
+            return Err(LatinError::Invalid(
+                "large sliding: the step's substructures differ from those of the step it \
+                 starts from"
+                    .into(),
+            ));
+        }
+    }
     let mut sides = start.map_or_else(
         || vec![None; assembly.interfaces.len()],
         |s| s.point_sides.clone(),
