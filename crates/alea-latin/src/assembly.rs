@@ -58,6 +58,22 @@ pub struct InterfaceSpec {
     /// Mortar search distance: the largest normal distance between the sides at which they are
     /// paired (default: 5 % of the interface size; see [`crate::mortar`]).
     pub search_distance: Option<f64>,
+    /// Small sliding (the pairing of the initial configuration, default) or large sliding
+    /// (the pairing re-found from the deformed configuration during the solve, contact
+    /// interfaces only; module [`crate::large_sliding`]).
+    pub sliding: Sliding,
+}
+
+/// Whether a contact interface keeps the pairing of the initial configuration.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sliding {
+    /// The pairing of the initial configuration throughout (module [`crate::sliding`] says
+    /// when a slide exceeds what it can represent).
+    #[default]
+    Small,
+    /// The mortar pairing re-found from the deformed configuration until it is that of the
+    /// solution (module [`crate::large_sliding`]).
+    Large,
 }
 
 impl std::fmt::Debug for InterfaceSpec {
@@ -68,6 +84,7 @@ impl std::fmt::Debug for InterfaceSpec {
             .field("side2", &(self.sub2, &self.group2))
             .field("law", &self.law.name())
             .field("pairing", &self.pairing)
+            .field("sliding", &self.sliding)
             .finish()
     }
 }
@@ -87,6 +104,7 @@ impl InterfaceSpec {
             pairing: Pairing::Auto,
             match_tolerance: None,
             search_distance: None,
+            sliding: Sliding::Small,
         }
     }
 

@@ -26,6 +26,7 @@ pub mod dense;
 mod equilibrium;
 mod error;
 pub mod interface;
+pub mod large_sliding;
 pub mod law;
 pub mod mortar;
 pub mod output;
@@ -36,7 +37,7 @@ pub mod sliding;
 mod solver;
 pub mod steps;
 
-pub use assembly::{Assembly, InterfaceSpec, PointField, Substructure, constant};
+pub use assembly::{Assembly, InterfaceSpec, PointField, Sliding, Substructure, constant};
 pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
 pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};

@@ -36,6 +36,9 @@ pub struct RunOutcome {
     pub cre: Option<Vec<f64>>,
     /// Seconds of the run's error estimate.
     pub estimate_seconds: f64,
+    /// The largest slide beyond small sliding over the run's steps (module
+    /// `alea_latin::sliding`; `None`: every slide within it).
+    pub slide: Option<alea_latin::sliding::SlideCheck>,
 }
 
 /// The solver and error-estimator set-up of a study: built once per process (per MPI rank),
@@ -194,11 +197,17 @@ impl RunContext<'_> {
                 }
             }
         }
+        let slide = results
+            .iter()
+            .flat_map(|r| alea_latin::sliding::slide_checks(solver, r))
+            .filter(|c| c.beyond_small_sliding())
+            .max_by(|a, b| a.ratio.total_cmp(&b.ratio));
         Ok(RunOutcome {
             rec,
             fields,
             cre,
             estimate_seconds,
+            slide,
         })
     }
 }

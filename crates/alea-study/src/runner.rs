@@ -125,6 +125,8 @@ pub(crate) struct Runner<'a> {
     pub(crate) resumed: usize,
     pub(crate) solve_seconds: f64,
     pub(crate) estimate_seconds: f64,
+    /// A run slid beyond small sliding and the user was told (once per invocation).
+    slide_noted: std::sync::atomic::AtomicBool,
 }
 
 impl<'a> Runner<'a> {
@@ -224,12 +226,29 @@ impl<'a> Runner<'a> {
         let done: Mutex<Vec<(RunRecord, f64)>> = Mutex::new(Vec::with_capacity(jobs.len()));
         let store = &self.store;
         let progress = self.progress;
+        let slide_noted = &self.slide_noted;
         let commit = |out: RunOutcome| -> Result<(), StudyError> {
             store
                 .lock()
                 .map_err(|_| StudyError::Poisoned("store"))?
                 .commit(&out.rec, &out.fields, out.cre.as_deref())?;
             progress.finished(&out.rec);
+            if let Some(c) = &out.slide
+                && !slide_noted.swap(true, std::sync::atomic::Ordering::Relaxed)
+            {
+                progress.note(&format!(
+                    "warning: the run at {:?} slid by {:.4e} on interface {}, {:.2} x the local \
+                     mesh size: beyond small sliding (> {} x), the pairing of the initial \
+                     configuration no longer pairs the points that face each other and its \
+                     contact zone, gap and pressure may be wrong (further runs beyond small \
+                     sliding are not listed)",
+                    out.rec.params,
+                    c.slip,
+                    c.interface,
+                    c.ratio,
+                    alea_latin::sliding::SMALL_SLIDING_LIMIT
+                ));
+            }
             done.lock()
                 .map_err(|_| StudyError::Poisoned("run list"))?
                 .push((out.rec, out.estimate_seconds));
@@ -393,6 +412,7 @@ pub(crate) fn execute(
         resumed: 0,
         solve_seconds: 0.0,
         estimate_seconds: 0.0,
+        slide_noted: std::sync::atomic::AtomicBool::new(false),
     };
     runner.run_points(&fixed)?;
     let mut methods = study.methods.clone();

@@ -202,6 +202,11 @@ pub struct InterfaceSpecToml {
     /// they are paired. Default 5 % of the interface size.
     #[serde(default)]
     pub search_distance: Option<Spanned<f64>>,
+    /// `small` (the pairing of the initial configuration; the default) or `large` (contact
+    /// interfaces: the mortar pairing re-found from the deformed configuration during the
+    /// solve, module `alea_latin::large_sliding`).
+    #[serde(default)]
+    pub sliding: Option<Spanned<String>>,
 }
 
 /// `[solver]`.

@@ -102,8 +102,13 @@ pub(crate) fn report_run(
         if c.beyond_small_sliding() {
             let it = &res.interfaces[c.interface];
             let x = it.points[c.point].x;
+            let since = if solver.pairing_configuration().is_some() {
+                " since its last pairing"
+            } else {
+                ""
+            };
             println!(
-                "  warning: interface '{}' slid by {:.4e} {} at ({:.4}, {:.4}, {:.4}), {:.2} x the local mesh size: beyond small sliding (> {} x), the pairing of the initial configuration no longer pairs the points that face each other and the contact zone, gap and pressure may be wrong (the pairing is not updated during the solve)",
+                "  warning: interface '{}' slid{since} by {:.4e} {} at ({:.4}, {:.4}, {:.4}), {:.2} x the local mesh size: beyond small sliding (> {} x), the pairing no longer pairs the points that face each other and the contact zone, gap and pressure may be wrong (sliding = \"large\" on the interface re-pairs it in the deformed configuration during the solve)",
                 it.name,
                 c.slip,
                 u.length,

@@ -156,6 +156,17 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     if let Some(plan) = plan {
         return crate::solve_steps::solve_history(src, &file, &params, built, plan, out, &stem, t0);
     }
+    if alea_latin::large_sliding::uses_large_sliding(&built.assembly) {
+        let step = crate::solve_steps::large_sliding_step(&built, None, &input)?;
+        let (solver, res) = (&step.solver, &step.result);
+        let path = out.join(format!("{stem}.vtm"));
+        crate::run_report::report_run(&file, &built, solver, res, &input, &path)?;
+        println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+        if res.status != RunStatus::Converged {
+            return Err(crate::run_report::not_converged(solver, res).into());
+        }
+        return Ok(());
+    }
     let solver = built.solver()?;
     println!(
         "LATIN set-up (assembly + factorisations): {:.3} s",

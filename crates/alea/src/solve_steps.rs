@@ -5,6 +5,7 @@
 use std::path::Path;
 use std::time::Instant;
 
+use alea_latin::large_sliding::{self, Repairing, SlidingStep};
 use alea_latin::{LatinSolver, RunInput, RunStatus};
 use alea_study::steps::Plan;
 use alea_study::{BuiltModel, ParamSpace, Source, build_model, spec::ModelFile};
@@ -29,6 +30,9 @@ pub fn solve_history(
     for f in &plan.files[1..] {
         models.push(build_model(src, f, params)?);
     }
+    if alea_latin::large_sliding::uses_large_sliding(&models[0].assembly) {
+        return large_sliding_history(file, params, &models, &plan, out, stem, t0);
+    }
     let mut solvers: Vec<LatinSolver> = Vec::with_capacity(models.len());
     for m in &models {
         solvers.push(m.solver()?);
@@ -42,12 +46,7 @@ pub fn solve_history(
     let mut previous: Option<alea_latin::RunResult> = None;
     for (k, step) in plan.steps.iter().enumerate() {
         let (model, solver) = (&models[step.file], &solvers[step.file]);
-        let mut input: RunInput = model.parametric.run_input(&params.nominal, vec![]);
-        for (f, sc) in input.load_factors.iter_mut().zip(&step.load_scale) {
-            for (a, b) in f.iter_mut().zip(sc) {
-                *a *= b;
-            }
-        }
+        let mut input = step_input(model, params, step);
         if let Some(prev) = &previous {
             input.previous_step = Some(std::sync::Arc::new(prev.end_state()));
         }
@@ -55,16 +54,7 @@ pub fn solve_history(
         let res = solver.run_shared(&input)?;
         let path = out.join(format!("{stem}-{}-{}.vtm", k + 1, step.name));
         report_run(file, model, solver, &res, &input, &path)?;
-        for (i, it) in res.interfaces.iter().enumerate() {
-            if it.law != "perfect" {
-                let prev = previous.as_ref().map(|p| &p.interfaces[i]);
-                println!(
-                    "  interface {:>12}: friction dissipation in this step {:e} (the slip increment of the step against the friction force)",
-                    it.name,
-                    alea_latin::steps::step_friction_dissipation(prev, it)
-                );
-            }
-        }
+        print_dissipation(previous.as_ref(), &res);
         if res.status != RunStatus::Converged {
             println!(
                 "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",
@@ -75,6 +65,105 @@ pub fn solve_history(
             return Err(not_converged(solver, &res).into());
         }
         previous = Some(res);
+    }
+    println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// The run input of step `step` of a history on `model`: the nominal parameters, the loads
+/// scaled by the step's factors.
+fn step_input(
+    model: &BuiltModel,
+    params: &ParamSpace,
+    step: &alea_study::steps::StepPlan,
+) -> RunInput {
+    let mut input: RunInput = model.parametric.run_input(&params.nominal, vec![]);
+    for (f, sc) in input.load_factors.iter_mut().zip(&step.load_scale) {
+        for (a, b) in f.iter_mut().zip(sc) {
+            *a *= b;
+        }
+    }
+    input
+}
+
+/// Prints the friction dissipation of each contact interface within the step of `res`.
+fn print_dissipation(previous: Option<&alea_latin::RunResult>, res: &alea_latin::RunResult) {
+    for (i, it) in res.interfaces.iter().enumerate() {
+        if it.law != "perfect" {
+            let prev = previous.map(|p| &p.interfaces[i]);
+            println!(
+                "  interface {:>12}: friction dissipation in this step {:e} (the slip increment of the step against the friction force)",
+                it.name,
+                alea_latin::steps::step_friction_dissipation(prev, it)
+            );
+        }
+    }
+}
+
+/// One step of `model` with large sliding (module `alea_latin::large_sliding`) from the end of
+/// `start`, with its pairings printed.
+pub(crate) fn large_sliding_step(
+    model: &BuiltModel,
+    start: Option<&SlidingStep>,
+    input: &RunInput,
+) -> Result<SlidingStep> {
+    let settings = Repairing::default();
+    let step = large_sliding::run_step(&model.assembly, &model.options, &settings, start, input)?;
+    println!(
+        "large sliding: {} pairing(s) in the deformed configuration, {} LATIN iterations in all, set-up {:.3} s; slide since the last pairing {:.2e} x the mesh size (tolerance {:.0e}){}",
+        step.pairings,
+        step.iterations,
+        step.setup_seconds,
+        step.mismatch,
+        settings.tolerance,
+        if step.pairing_settled {
+            ""
+        } else {
+            ": the pairing did not settle, the step is not converged"
+        }
+    );
+    Ok(step)
+}
+
+/// [`solve_history`] with large sliding: each step solved by `alea_latin::large_sliding` from
+/// the end of the previous one, reported with the solver of its last pairing.
+fn large_sliding_history(
+    file: &ModelFile,
+    params: &ParamSpace,
+    models: &[BuiltModel],
+    plan: &Plan,
+    out: &Path,
+    stem: &str,
+    t0: Instant,
+) -> Result<()> {
+    println!("{} load step(s), large sliding", plan.steps.len());
+    let mut previous: Option<SlidingStep> = None;
+    for (k, step) in plan.steps.iter().enumerate() {
+        let model = &models[step.file];
+        let input = step_input(model, params, step);
+        println!("step {} '{}':", k + 1, step.name);
+        let done = large_sliding_step(model, previous.as_ref(), &input)?;
+        let path = out.join(format!("{stem}-{}-{}.vtm", k + 1, step.name));
+        report_run(file, model, &done.solver, &done.result, &input, &path)?;
+        for (i, it) in done.result.interfaces.iter().enumerate() {
+            if it.law != "perfect" {
+                println!(
+                    "  interface {:>12}: friction dissipation in this step {:e} (the slip increment of the step against the friction force)",
+                    it.name,
+                    large_sliding::step_friction_dissipation(&done, previous.as_ref(), i)
+                );
+            }
+        }
+        if done.result.status != RunStatus::Converged {
+            println!(
+                "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",
+                k + 1,
+                step.name,
+                t0.elapsed().as_secs_f64()
+            );
+            return Err(not_converged(&done.solver, &done.result).into());
+        }
+        previous = Some(done);
     }
     println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     Ok(())

@@ -79,7 +79,7 @@ mod dual;
 mod geometry;
 mod pairing;
 
-pub use pairing::pair_mortar;
+pub use pairing::{pair_mortar, pair_mortar_sided};
 
 #[cfg(test)]
 use alea_fem::Quadrature;

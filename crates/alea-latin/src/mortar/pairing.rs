@@ -38,6 +38,25 @@ pub fn pair_mortar(
     with_gap: bool,
     fixed: [&(dyn Fn(usize) -> bool + Sync); 2],
 ) -> Result<InterfacePairing, LatinError> {
+    pair_mortar_sided(name, sides, search, with_gap, fixed, None).map(|(p, _)| p)
+}
+
+/// [`pair_mortar`] with the side that carries the points chosen by the caller
+/// (`point_side`: 0 for side 1, 1 for side 2; `None`: the coarser side, as in
+/// [`pair_mortar`]). Returns the pairing and the side that carries its points (re-pairings
+/// of a sliding interface keep the side of the first pairing, module
+/// [`crate::large_sliding`]).
+///
+/// # Errors
+/// As [`pair_mortar`]; with a given side, the errors of that way.
+pub fn pair_mortar_sided(
+    name: &str,
+    sides: [(&Mesh, &str, f64); 2],
+    search: Option<f64>,
+    with_gap: bool,
+    fixed: [&(dyn Fn(usize) -> bool + Sync); 2],
+    point_side: Option<usize>,
+) -> Result<(InterfacePairing, usize), LatinError> {
     let fail = |message: String| LatinError::Pairing {
         interface: name.to_string(),
         message,
@@ -48,26 +67,35 @@ pub fn pair_mortar(
             sides[0].0.dim, sides[1].0.dim
         )));
     }
-    let forward = one_way(
-        name,
-        sides,
-        search,
-        with_gap,
-        fixed[0],
-        ["side 1", "side 2"],
-    );
-    let backward = one_way(
-        name,
-        [sides[1], sides[0]],
-        search,
-        with_gap,
-        fixed[1],
-        ["side 2", "side 1"],
-    );
-    match (forward, backward) {
-        (Ok(f), Ok(b)) if b.len() < f.len() => Ok(reversed(b)),
-        (Ok(f), _) => Ok(f),
-        (Err(_), Ok(b)) => Ok(reversed(b)),
+    let forward = || {
+        one_way(
+            name,
+            sides,
+            search,
+            with_gap,
+            fixed[0],
+            ["side 1", "side 2"],
+        )
+    };
+    let backward = || {
+        one_way(
+            name,
+            [sides[1], sides[0]],
+            search,
+            with_gap,
+            fixed[1],
+            ["side 2", "side 1"],
+        )
+    };
+    match point_side {
+        Some(0) => return forward().map(|f| (f, 0)),
+        Some(_) => return backward().map(|b| (reversed(b), 1)),
+        None => {}
+    }
+    match (forward(), backward()) {
+        (Ok(f), Ok(b)) if b.len() < f.len() => Ok((reversed(b), 1)),
+        (Ok(f), _) => Ok((f, 0)),
+        (Err(_), Ok(b)) => Ok((reversed(b), 1)),
         (Err(e), Err(_)) => Err(e),
     }
 }

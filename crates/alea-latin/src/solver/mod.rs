@@ -158,7 +158,8 @@ pub struct RunInput {
     /// Explicit initial local-stage state (takes precedence over the nearest stored run).
     pub initial: Option<Arc<LocalState>>,
     /// The local-stage state at the end of the previous load step (module [`crate::steps`]):
-    /// the run starts from it (before `initial` and the stored runs) and applies the Coulomb
+    /// the run starts from it (unless `initial` is given: a re-paired pass of a large-sliding
+    /// step, module [`crate::large_sliding`], starts from its previous pass) and applies the Coulomb
     /// law incrementally, slip being measured from its tangential jump. `None`: one static
     /// step from the unloaded state.
     pub previous_step: Option<Arc<LocalState>>,
@@ -284,6 +285,9 @@ pub struct LatinSolver {
     model_size: f64,
     /// The coarse problem (`LatinOptions::coarse`).
     coarse: Option<Coarse>,
+    /// Displacement of every substructure in the configuration the interfaces were paired in
+    /// (`None`: the initial configuration; module [`crate::large_sliding`]).
+    configuration: Option<Vec<Vec<f64>>>,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
 }
@@ -368,6 +372,13 @@ impl LatinSolver {
     /// The pairing of interface `i` (node to node or mortar, point weights, projections).
     pub fn interface_pairing(&self, i: usize) -> &InterfacePairing {
         &self.ifaces[i].pairing
+    }
+
+    /// Displacement of every substructure (node-major) in the configuration the interfaces
+    /// were paired in; `None`: the initial one ([`crate::large_sliding`] re-pairs in the
+    /// deformed configuration).
+    pub fn pairing_configuration(&self) -> Option<&[Vec<f64>]> {
+        self.configuration.as_deref()
     }
 
     /// Name of interface `i`.

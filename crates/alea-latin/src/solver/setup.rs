@@ -1,6 +1,7 @@
 //! Set-up of the solver (everything done once per assembly, thesis 5.1.3): validation of the
 //! options, pairing of every interface (node to node, or dual mortar: module
-//! [`crate::mortar`]), the search direction `k0 = factor E_side / L_interface`, the assembly and
+//! [`crate::mortar`]; or a pairing given by the caller, found in a deformed configuration by
+//! [`crate::large_sliding`]), the search direction `k0 = factor E_side / L_interface`, the assembly and
 //! factorisation of every substructure operator `A0 = T^T (K0 + sum k0 Pi^T M_Gamma Pi) T`, the
 //! rigid modes left free by the constraints (module `equilibrium`) and the macro space of the
 //! coarse problem (module `coarse`).
@@ -16,7 +17,7 @@ use super::{
 };
 use crate::coarse::{InterfaceModes, MacroLink, SubMacro};
 use crate::equilibrium::RigidModes;
-use crate::interface::{Pairing, pair_node_to_node, side_geometry};
+use crate::interface::{InterfacePairing, Pairing, pair_node_to_node, side_geometry};
 use crate::mortar::pair_mortar;
 use crate::{Assembly, InterfaceSpec, LatinError, PointData, Substructure};
 
@@ -38,6 +39,20 @@ impl LatinSolver {
     /// Sets up the assembly: pairs interfaces, assembles and factorises every substructure
     /// operator `A0 = K0 + sum k0 M_Gamma` once.
     pub fn new(assembly: Assembly, options: LatinOptions) -> Result<Self, LatinError> {
+        Self::with_pairings(assembly, options, Vec::new(), None)
+    }
+
+    /// [`LatinSolver::new`] with the pairing of some interfaces given (`pairings[i]`:
+    /// `Some` for interface `i`, found by the caller; missing or `None`: paired here as
+    /// `spec.pairing` asks), found in the configuration `X + configuration[s]` (node-major
+    /// displacement of every substructure; `None`: the initial configuration). Used by
+    /// [`crate::large_sliding`] to re-pair sliding interfaces in the deformed configuration.
+    pub fn with_pairings(
+        assembly: Assembly,
+        options: LatinOptions,
+        mut pairings: Vec<Option<InterfacePairing>>,
+        configuration: Option<Vec<Vec<f64>>>,
+    ) -> Result<Self, LatinError> {
         let t0 = Instant::now();
         check_options(&options)?;
         let Assembly { subs, interfaces } = assembly;
@@ -46,9 +61,11 @@ impl LatinSolver {
         let mut links: Vec<Vec<Link>> = vec![Vec::new(); nsub];
         let mut ifaces = Vec::new();
         for (i, spec) in interfaces.iter().enumerate() {
+            let given = pairings.get_mut(i).and_then(Option::take);
             ifaces.push(interface_operator(
                 i,
                 spec,
+                given,
                 &subs,
                 interfaces.len(),
                 &options.search_direction,
@@ -69,6 +86,7 @@ impl LatinSolver {
             store: Mutex::new(Vec::new()),
             model_size,
             coarse,
+            configuration,
             setup_seconds: t0.elapsed().as_secs_f64(),
         })
     }
@@ -103,6 +121,7 @@ fn check_options(options: &LatinOptions) -> Result<(), LatinError> {
 fn interface_operator(
     i: usize,
     spec: &InterfaceSpec,
+    given: Option<InterfacePairing>,
     subs: &[Substructure],
     num_interfaces: usize,
     search_direction: &SearchDirection,
@@ -159,10 +178,11 @@ fn interface_operator(
             [&fixed1, &fixed2],
         )
     };
-    let pairing = match spec.pairing {
-        Pairing::NodeToNode => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
-        Pairing::Mortar => mortar()?,
-        Pairing::Auto => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
+    let pairing = match (given, spec.pairing) {
+        (Some(p), _) => p,
+        (None, Pairing::NodeToNode) => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
+        (None, Pairing::Mortar) => mortar()?,
+        (None, Pairing::Auto) => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
             Ok(p) => p,
             Err(LatinError::Unmatched { .. }) => mortar()?,
             Err(e) => return Err(e),

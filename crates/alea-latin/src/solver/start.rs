@@ -152,8 +152,8 @@ impl LatinSolver {
             .collect()
     }
 
-    /// Initial local-stage state: the caller's, the nearest stored run (returned with its
-    /// index), or zero.
+    /// Initial local-stage state: the caller's (`initial`, else the previous step's end state),
+    /// the nearest stored run (returned with its index), or zero.
     fn initial_state(
         &self,
         input: &RunInput,
@@ -173,7 +173,7 @@ impl LatinSolver {
                 }
             })
             .collect();
-        if let Some(init) = input.previous_step.as_ref().or(input.initial.as_ref()) {
+        if let Some(init) = input.initial.as_ref().or(input.previous_step.as_ref()) {
             if init.what.len() != istate.len()
                 || init
                     .what

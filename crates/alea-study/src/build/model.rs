@@ -415,6 +415,26 @@ pub fn build_model(
                 }
             };
         }
+        if let Some(sl) = &it.sliding {
+            spec.sliding = match sl.get_ref().as_str() {
+                "small" => alea_latin::Sliding::Small,
+                "large" if spec.law.uses_gap() => alea_latin::Sliding::Large,
+                "large" => {
+                    return Err(src.error(
+                        sl.span(),
+                        f("sliding"),
+                        "large sliding applies to contact interfaces (law = \"coulomb\"); a perfect interface keeps its pairing".to_string(),
+                    ));
+                }
+                other => {
+                    return Err(src.error(
+                        sl.span(),
+                        f("sliding"),
+                        format!("unknown sliding '{other}'; expected small or large"),
+                    ));
+                }
+            };
+        }
         if let Some(t) = &it.tolerance {
             spec.match_tolerance = Some(positive(src, t, &f("tolerance"))?);
         }
@@ -437,6 +457,7 @@ pub fn build_model(
             side2: side2_line,
             tolerance: line_or(it.tolerance.as_ref().map(|t| t.span())),
             search_distance: line_or(it.search_distance.as_ref().map(|t| t.span())),
+            sliding: line_or(it.sliding.as_ref().map(|t| t.span())),
         });
         spec.mu = parametric.profile(&mu, &params.nominal);
         spec.gap = parametric.profile(&gap, &params.nominal);

@@ -195,6 +195,8 @@ pub struct InterfaceSite {
     pub tolerance: usize,
     /// Line of `search_distance` (of `side2` if not given).
     pub search_distance: usize,
+    /// Line of `sliding` (of `side2` if not given).
+    pub sliding: usize,
 }
 
 impl BuiltModel {

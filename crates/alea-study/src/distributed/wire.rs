@@ -243,6 +243,8 @@ pub(crate) fn decode_result(buf: &[u8]) -> Result<(u64, Result<RunOutcome, Strin
                 fields,
                 cre,
                 estimate_seconds,
+                // The slide check is not sent between processes (MPI runs do not warn).
+                slide: None,
             })
         }
     };
@@ -270,6 +272,7 @@ mod tests {
             fields: (0..100).map(|i| (i as f64).sin()).collect(),
             cre: Some(vec![1.5, 2.5]),
             estimate_seconds: 0.125,
+            slide: None,
         };
         let b = encode_result(9, &Ok(out.clone()));
         let (id, back) = decode_result(&b).unwrap();

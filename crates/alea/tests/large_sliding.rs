@@ -1,0 +1,297 @@
+//! `alea solve` with `sliding = "large"` (issue 21): a block pressed by 10 MPa on a clamped base
+//! and slid by 0.8 mm (8 base cells) by its top, friction 0.2, non-matching meshes written here
+//! as a Gmsh 4.1 file. Large sliding pairs in the predicted slid configuration (one pairing
+//! settles) and keeps the closed-form resultants
+//! (N = 10 N/mm, T = mu N) with no small-sliding warning; small sliding warns and names the
+//! setting, and so does a study; a bad `sliding` value, large sliding on a perfect interface and
+//! large sliding in a study are refused at load (exit 2) at their line.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn alea() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_alea"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("alea-large-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// Two structured Quad4 rectangles with their own nodes: base `[0, 4] x [-1, 0]` (40 x 10) and
+/// block `[1, 2] x [0, 0.5]` (12 x 6), curve groups `<body>_bottom` / `<body>_top`.
+fn write_msh(path: &Path) {
+    let bodies = [
+        ("base", [0.0, -1.0], [4.0, 1.0], [40usize, 10usize]),
+        ("block", [1.0, 0.0], [1.0, 0.5], [12, 6]),
+    ];
+    let mut nodes: Vec<Vec<(usize, f64, f64)>> = Vec::new();
+    let mut quads: Vec<Vec<[usize; 4]>> = Vec::new();
+    let mut lines: Vec<(String, Vec<[usize; 2]>)> = Vec::new();
+    let mut next = 1;
+    for (name, x0, l, n) in bodies {
+        let first = next;
+        let tag = |i: usize, j: usize| first + i + (n[0] + 1) * j;
+        let mut ns = Vec::new();
+        for j in 0..=n[1] {
+            for i in 0..=n[0] {
+                ns.push((
+                    tag(i, j),
+                    x0[0] + l[0] * i as f64 / n[0] as f64,
+                    x0[1] + l[1] * j as f64 / n[1] as f64,
+                ));
+            }
+        }
+        next += ns.len();
+        nodes.push(ns);
+        let mut qs = Vec::new();
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                qs.push([tag(i, j), tag(i + 1, j), tag(i + 1, j + 1), tag(i, j + 1)]);
+            }
+        }
+        quads.push(qs);
+        for (face, j) in [("bottom", 0), ("top", n[1])] {
+            let seg = (0..n[0]).map(|i| [tag(i, j), tag(i + 1, j)]).collect();
+            lines.push((format!("{name}_{face}"), seg));
+        }
+    }
+    let mut s = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n6\n");
+    for (t, (name, _)) in lines.iter().enumerate() {
+        writeln!(s, "1 {} \"{name}\"", t + 1).unwrap();
+    }
+    for (t, (name, ..)) in bodies.iter().enumerate() {
+        writeln!(s, "2 {} \"{name}\"", t + 1).unwrap();
+    }
+    s.push_str("$EndPhysicalNames\n$Entities\n0 4 2 0\n");
+    for t in 1..=4 {
+        writeln!(s, "{t} 0 0 0 0 0 0 1 {t} 0").unwrap();
+    }
+    for t in 1..=2 {
+        writeln!(s, "{t} 0 0 0 0 0 0 1 {t} 0").unwrap();
+    }
+    let total: usize = nodes.iter().map(Vec::len).sum();
+    writeln!(s, "$EndEntities\n$Nodes\n2 {total} 1 {total}").unwrap();
+    for (b, ns) in nodes.iter().enumerate() {
+        writeln!(s, "2 {} 0 {}", b + 1, ns.len()).unwrap();
+        for n in ns {
+            writeln!(s, "{}", n.0).unwrap();
+        }
+        for n in ns {
+            writeln!(s, "{:.17e} {:.17e} 0", n.1, n.2).unwrap();
+        }
+    }
+    let nelem: usize =
+        quads.iter().map(Vec::len).sum::<usize>() + lines.iter().map(|l| l.1.len()).sum::<usize>();
+    writeln!(s, "$EndNodes\n$Elements\n6 {nelem} 1 {nelem}").unwrap();
+    let mut e = 1;
+    for (t, (_, seg)) in lines.iter().enumerate() {
+        writeln!(s, "1 {} 1 {}", t + 1, seg.len()).unwrap();
+        for l in seg {
+            writeln!(s, "{e} {} {}", l[0], l[1]).unwrap();
+            e += 1;
+        }
+    }
+    for (t, qs) in quads.iter().enumerate() {
+        writeln!(s, "2 {} 3 {}", t + 1, qs.len()).unwrap();
+        for q in qs {
+            writeln!(s, "{e} {} {} {} {}", q[0], q[1], q[2], q[3]).unwrap();
+            e += 1;
+        }
+    }
+    s.push_str("$EndElements\n");
+    std::fs::write(path, s).unwrap();
+}
+
+const CASE: &str = r#"[units]
+length = "mm"
+force = "N"
+stress = "MPa"
+
+[mesh]
+generator = "gmsh"
+file = "slide.msh"
+
+[analysis]
+type = "plane_strain"
+thickness = 1.0
+
+[[substructure]]
+name = "base"
+cells = "base"
+young = 210e3
+poisson = 0.3
+constraint = [ { group = "base_bottom", x = 0.0, y = 0.0 } ]
+
+[[substructure]]
+name = "block"
+cells = "block"
+young = 210e3
+poisson = 0.3
+constraint = [ { group = "block_top", x = 0.8 } ]
+load = [ { name = "press", group = "block_top", traction = [0.0, -10.0] } ]
+
+[[interface]]
+name = "contact"
+side1 = ["base", "base_top"]
+side2 = ["block", "block_bottom"]
+law = "coulomb"
+mu = 0.2
+sliding = "large"
+"#;
+
+/// Writes the case with `edits` applied into `dir` (with the mesh); returns its path and text.
+fn case(dir: &Path, name: &str, edits: &[(&str, &str)], tail: &str) -> (PathBuf, String) {
+    write_msh(&dir.join("slide.msh"));
+    let mut s = CASE.to_string();
+    for (from, to) in edits {
+        assert!(s.contains(from), "{from}");
+        s = s.replacen(from, to, 1);
+    }
+    s.push_str(tail);
+    let p = dir.join(format!("{name}.toml"));
+    std::fs::write(&p, &s).unwrap();
+    (p, s)
+}
+
+fn solve(case: &Path, out: &Path) -> Output {
+    alea()
+        .args(["solve", case.to_str().unwrap(), "--out"])
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+/// `(Fx, Fy)` of the "resultant on side 2" line.
+fn resultant(t: &str) -> (f64, f64) {
+    let r = t
+        .lines()
+        .find_map(|l| l.split("resultant on side 2 (").nth(1))
+        .expect("a resultant line");
+    let num = |key: &str| -> f64 {
+        let rest = r.split(key).nth(1).unwrap();
+        rest.split([',', ')'])
+            .next()
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    (num("Fx = "), num("Fy = "))
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("'{needle}' not in the file"))
+        + 1
+}
+
+fn expect_input_error(o: &Output, file: &Path, line: usize, field: &str) {
+    let t = text(o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(!t.contains("panicked"), "{t}");
+    let name = file.file_name().unwrap().to_string_lossy();
+    assert!(
+        t.contains(&format!("{name}:{line}: {field}")),
+        "'{name}:{line}: {field}' expected in: {t}"
+    );
+}
+
+#[test]
+fn large_sliding_re_pairs_and_small_sliding_warns() {
+    let dir = tmp("solve");
+    let (p, _) = case(&dir, "large", &[], "");
+    let o = solve(&p, &dir.join("out-large"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("large sliding: 1 pairing(s)"), "{t}");
+    assert!(!t.contains("warning: interface"), "{t}");
+    let (fx, fy) = resultant(&t);
+    // N = 10 MPa x 1 mm; the block slides in +x: friction -mu N on it.
+    assert!((fy - 10.0).abs() < 1e-3, "{t}");
+    assert!((fx + 2.0).abs() < 1e-3, "{t}");
+    assert!(dir.join("out-large/large/interface_contact.csv").is_file());
+
+    // Small sliding from a cold start needs ~10 000 iterations on this slide (the default
+    // 2 000 end as "no equilibrium", issue 21); large sliding starts from the predicted slide.
+    let (p, _) = case(
+        &dir,
+        "small",
+        &[("sliding = \"large\"", "")],
+        "\n[solver]\nmax_iterations = 20000\n",
+    );
+    let o = solve(&p, &dir.join("out-small"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(!t.contains("large sliding:"), "{t}");
+    assert!(
+        t.contains("beyond small sliding") && t.contains("sliding = \"large\""),
+        "{t}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_sliding_settings_are_refused_at_their_line() {
+    let dir = tmp("misuse");
+    let (p, s) = case(
+        &dir,
+        "huge",
+        &[("sliding = \"large\"", "sliding = \"huge\"")],
+        "",
+    );
+    expect_input_error(
+        &solve(&p, &dir.join("o")),
+        &p,
+        line_of(&s, "sliding ="),
+        "interface[0].sliding",
+    );
+    let (p, s) = case(
+        &dir,
+        "perfect",
+        &[("law = \"coulomb\"", "law = \"perfect\"")],
+        "",
+    );
+    expect_input_error(
+        &solve(&p, &dir.join("o")),
+        &p,
+        line_of(&s, "sliding ="),
+        "interface[0].sliding",
+    );
+    let study_tail = "\n[study]\ntitle = \"slide\"\n\n[[quantity]]\nname = \"fy\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 1\n";
+    // A study with small sliding: the run slides beyond it, and the study says so.
+    let (p, _) = case(
+        &dir,
+        "study-small",
+        &[("sliding = \"large\"", "")],
+        &format!("{study_tail}\n[solver]\nmax_iterations = 20000\n"),
+    );
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(dir.join("study-small"))
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("beyond small sliding"), "{t}");
+    let (p, s) = case(&dir, "study", &[], study_tail);
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(dir.join("study"))
+        .output()
+        .unwrap();
+    expect_input_error(&o, &p, line_of(&s, "sliding ="), "interface[0].sliding");
+    let _ = std::fs::remove_dir_all(&dir);
+}
