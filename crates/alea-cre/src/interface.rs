@@ -33,6 +33,7 @@
 //! term decays with the LATIN residual instead of vanishing as soon as the statuses settle.
 
 use alea_latin::InterfaceResult;
+use alea_mesh::vec3::dot;
 
 use crate::CreError;
 
@@ -51,10 +52,6 @@ pub struct InterfaceEstimate {
     pub violations: usize,
     /// Largest relative violation (0 if none).
     pub max_violation: f64,
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Evaluates the interface term of a run's interface.

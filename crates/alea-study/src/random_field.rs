@@ -34,6 +34,7 @@
 
 use std::sync::Arc;
 
+use alea_mesh::vec3::{dot, sub};
 use alea_mesh::{CellType, Mesh};
 use alea_uq::field::{
     Covariance, FieldCells, FieldMesh, FieldTransform, KernelShape, KlExpansion, RandomField,
@@ -139,14 +140,6 @@ fn locate_on(mesh: &FieldMesh, x: [f64; 3]) -> FieldPoint {
         nodes: mesh.cell(best.1).to_vec(),
         weights: best.2,
     }
-}
-
-fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Squared distance from `x` to the segment `[a, b]` and the P1 weights of the closest point.

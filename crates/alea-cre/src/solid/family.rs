@@ -16,12 +16,9 @@ use crate::kernel::topology::{Incidence, Side, SideTopology};
 use crate::kernel::vector::{Frame, dot, identity};
 use crate::linalg::cholesky_solve;
 
+/// `a x b` (by value, for the frames below).
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    alea_mesh::vec3::cross(&a, &b)
 }
 
 fn unit(v: [f64; 3]) -> [f64; 3] {
