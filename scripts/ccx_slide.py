@@ -30,6 +30,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hexmsh import hex_box, write_msh41  # noqa: E402
+
 E, NU, P, MU, SLIDE = 210e3, 0.3, 10.0, 0.2, 0.8
 
 
@@ -42,67 +45,15 @@ def boxes(refine):
 
 
 def build(refine):
-    """Nodes (tag, x, y, z), hexes per body, quads per face group (bottom / top per body)."""
-    nodes, hexes, quads = [], {}, {}
+    """Nodes (tag, x, y, z) of both bodies, the nodes and hexes of each body, and the quads of
+    each face group (bottom / top per body)."""
+    nodes, volumes, quads = [], {}, {}
     for name, x0, l, n in boxes(refine):
-        nx, ny, nz = n
-        first = len(nodes) + 1
-
-        def tag(i, j, k, first=first, nx=nx, ny=ny):
-            return first + i + (nx + 1) * (j + (ny + 1) * k)
-
-        for k in range(nz + 1):
-            for j in range(ny + 1):
-                for i in range(nx + 1):
-                    nodes.append((tag(i, j, k), x0[0] + l[0] * i / nx, x0[1] + l[1] * j / ny,
-                                  x0[2] + l[2] * k / nz))
-        hexes[name] = [[tag(i, j, k), tag(i + 1, j, k), tag(i + 1, j + 1, k), tag(i, j + 1, k),
-                        tag(i, j, k + 1), tag(i + 1, j, k + 1), tag(i + 1, j + 1, k + 1),
-                        tag(i, j + 1, k + 1)]
-                       for k in range(nz) for j in range(ny) for i in range(nx)]
-        for face, k in (("bottom", 0), ("top", nz)):
-            quads[f"{name}_{face}"] = [
-                [tag(i, j, k), tag(i + 1, j, k), tag(i + 1, j + 1, k), tag(i, j + 1, k)]
-                for j in range(ny) for i in range(nx)]
-    return nodes, hexes, quads
-
-
-def write_msh(path, nodes, hexes, quads):
-    surf, vol = list(quads), list(hexes)
-    out = ["$MeshFormat", "4.1 0 8", "$EndMeshFormat", "$PhysicalNames", str(len(surf) + len(vol))]
-    out += [f'2 {t} "{n}"' for t, n in enumerate(surf, 1)]
-    out += [f'3 {t} "{n}"' for t, n in enumerate(vol, 1)]
-    out += ["$EndPhysicalNames", "$Entities", f"0 0 {len(surf)} {len(vol)}"]
-    out += [f"{t} 0 0 0 0 0 0 1 {t} 0" for names in (surf, vol) for t in range(1, len(names) + 1)]
-    out += ["$EndEntities"]
-    per_body = {}
-    for name, _, _, n in boxes_cache:
-        per_body[name] = (n[0] + 1) * (n[1] + 1) * (n[2] + 1)
-    out += ["$Nodes", f"{len(vol)} {len(nodes)} 1 {len(nodes)}"]
-    start = 0
-    for v, name in enumerate(vol, 1):
-        block = nodes[start:start + per_body[name]]
-        start += per_body[name]
-        out.append(f"3 {v} 0 {len(block)}")
-        out += [str(n[0]) for n in block]
-        out += [f"{n[1]:.17g} {n[2]:.17g} {n[3]:.17g}" for n in block]
-    out.append("$EndNodes")
-    nelem = sum(len(v) for v in hexes.values()) + sum(len(s) for s in quads.values())
-    out += ["$Elements", f"{len(surf) + len(vol)} {nelem} 1 {nelem}"]
-    tag = 1
-    for t, n in enumerate(surf, 1):
-        out.append(f"2 {t} 3 {len(quads[n])}")
-        for q in quads[n]:
-            out.append(" ".join(map(str, [tag] + q)))
-            tag += 1
-    for t, n in enumerate(vol, 1):
-        out.append(f"3 {t} 5 {len(hexes[n])}")
-        for h in hexes[n]:
-            out.append(" ".join(map(str, [tag] + h)))
-            tag += 1
-    out.append("$EndElements")
-    with open(path, "w") as f:
-        f.write("\n".join(out) + "\n")
+        start = len(nodes)
+        hexes, bottom, top = hex_box(nodes, x0, l, n)
+        volumes[name] = (nodes[start:], hexes)
+        quads[f"{name}_bottom"], quads[f"{name}_top"] = bottom, top
+    return nodes, volumes, quads
 
 
 TOML = """# Written by scripts/ccx_slide.py: a block pressed on a base and slid by {slide} mm (8 base
@@ -290,8 +241,9 @@ def main():
     global boxes_cache
     boxes_cache = boxes(a.refine)
     os.makedirs(a.outdir, exist_ok=True)
-    nodes, hexes, quads = build(a.refine)
-    write_msh(os.path.join(a.outdir, "slide.msh"), nodes, hexes, quads)
+    nodes, volumes, quads = build(a.refine)
+    write_msh41(os.path.join(a.outdir, "slide.msh"), volumes, quads)
+    hexes = {name: h for name, (_, h) in volumes.items()}
     with open(os.path.join(a.outdir, "slide.toml"), "w") as f:
         f.write(TOML.format(slide=SLIDE, e=E, nu=NU, p=P, mu=MU))
     write_inp(os.path.join(a.outdir, "slide.inp"), nodes, hexes, quads, a.refine, a.increment)
