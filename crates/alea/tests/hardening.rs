@@ -4,6 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod common;
+use common::text;
+
 fn alea() -> Command {
     Command::new(env!("CARGO_BIN_EXE_alea"))
 }
@@ -13,10 +16,7 @@ fn root() -> PathBuf {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("alea-hard-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::fresh_dir("alea-hard", name)
 }
 
 /// The shipped plate study, smaller (a few tenths of a second).
@@ -28,14 +28,6 @@ fn small_study(dir: &Path) -> PathBuf {
     let path = dir.join("plate.toml");
     std::fs::write(&path, text).unwrap();
     path
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}\n{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
 }
 
 fn run_in(cwd: &Path, study: &str, dir: &str) -> Output {

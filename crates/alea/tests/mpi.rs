@@ -12,6 +12,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
+mod common;
+use common::text;
+
 fn alea() -> &'static str {
     env!("CARGO_BIN_EXE_alea")
 }
@@ -21,10 +24,7 @@ fn root() -> PathBuf {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("alea-mpi-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::fresh_dir("alea-mpi", name)
 }
 
 /// The comparison study on a coarse mesh, 20 000 draws, plus an adaptive method (about 60

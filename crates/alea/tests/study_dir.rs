@@ -11,6 +11,9 @@ use std::process::{Command, Output};
 
 use alea_study::lock::StudyLock;
 
+mod common;
+use common::text;
+
 fn alea() -> Command {
     Command::new(env!("CARGO_BIN_EXE_alea"))
 }
@@ -20,10 +23,7 @@ fn root() -> PathBuf {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("alea-dir-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::fresh_dir("alea-dir", name)
 }
 
 /// The shipped plate study, smaller (a few tenths of a second).
@@ -48,14 +48,6 @@ fn run(study: &Path, dir: &Path, extra: &[&str]) -> Output {
         .args(extra)
         .output()
         .unwrap()
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}\n{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
 }
 
 #[test]
