@@ -230,6 +230,21 @@ impl RigidModes {
 
     /// The check, from the accumulated `(g, S)`, the full node-major displacement `u` (only
     /// read when a mode is free), the mesh coordinates and the model size.
+    /// Coordinates `V^T g` of the generalised force `g` (mode coordinates) in the free-mode
+    /// basis.
+    pub(crate) fn free_components(&self, g: &[f64]) -> Vec<f64> {
+        let m = self.modes;
+        (0..self.num_free)
+            .map(|k| {
+                self.free[k * m..(k + 1) * m]
+                    .iter()
+                    .zip(g)
+                    .map(|(a, b)| a * b)
+                    .sum()
+            })
+            .collect()
+    }
+
     pub(crate) fn finish(
         &self,
         g: &[f64],

@@ -265,3 +265,16 @@ fn block_slid_over_eight_cells_3d() {
     check(&step, 2, 0.5, centre, 0.1, 0.01);
     check_small(assembly_3d(SLIDE, Sliding::Small), 2, centre);
 }
+
+/// The same 8-cell slide with small sliding, the default options and a cold start: slow (the
+/// indicator stalls near 1e-4 for thousands of iterations, all points open at first), but a
+/// static solution exists (`check_small` reaches it), so at the iteration limit it is "not
+/// converged", never "no equilibrium" (issue 21: before the certificate of module
+/// `solver::existence`, its stagnating imbalance called it "no equilibrium").
+#[test]
+fn a_slow_small_sliding_run_is_not_converged_rather_than_without_equilibrium() {
+    let solver =
+        LatinSolver::new(assembly_2d(SLIDE, Sliding::Small), LatinOptions::default()).unwrap();
+    let res = solver.run_shared(&RunInput::default()).unwrap();
+    assert_eq!(res.status, RunStatus::NotConverged, "{:?}", res.equilibrium);
+}

@@ -3,8 +3,11 @@
 //! The simple blade root (thesis 2.3, `examples/blade-root-simple.toml`, coarse mesh) in two
 //! variants without a static solution for some or all parameter points:
 //! - **pulled out**: the pressure on the root's lower face reversed (-1000 MPa over the 30 mm
-//!   face: a net 30 000 N/mm pulling the root out of its slot, all contacts open): every run must
-//!   end as "no equilibrium" naming the root S2, none as converged;
+//!   face: a net 30 000 N/mm pulling the root out of its slot, all contacts open): no run
+//!   converges; at mu = 0.1 and 0.5 every run ends as "no equilibrium" naming the root S2 (the
+//!   pull is outside the cone of admissible flank forces: a certificate); at mu = 0.9 the
+//!   friction cones could hold it, no certificate exists, and "not converged" is the honest
+//!   status;
 //! - **lateral load 2000** instead of 500 on the root's vertical faces (both push the same way:
 //!   a net 2 x 2000 x 15 = 60 000 N/mm sideways): the flanks cannot hold it at low friction. Every
 //!   run reported converged must balance the loads on S2 with its interface forces (checked here
@@ -137,12 +140,23 @@ fn a_root_pulled_out_of_its_slot_never_converges() {
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(runs.records.len(), 9);
     for r in &runs.records {
-        assert!(
-            r.status.starts_with("no equilibrium") && r.status.contains("'S2'"),
-            "{:?}: {}",
-            r.params,
-            r.status
-        );
+        let mu = r.params[1];
+        let certified = r.status.starts_with("no equilibrium") && r.status.contains("'S2'");
+        if mu <= 0.5 {
+            // The pull lies outside every cone of compressive flank forces with friction
+            // (module `alea_latin::solver::existence`): certified.
+            assert!(certified, "{:?}: {}", r.params, r.status);
+        } else {
+            // mu = 0.9 (friction angle 42 degrees): forces inside the flanks' friction cones
+            // could hold the pull, so no rigid certificate exists; never converged, and
+            // "no equilibrium" only with the certificate.
+            assert!(
+                certified || r.status.starts_with("not converged"),
+                "{:?}: {}",
+                r.params,
+                r.status
+            );
+        }
     }
 }
 

@@ -217,7 +217,7 @@ fn large_sliding_re_pairs_and_small_sliding_warns() {
     assert!(dir.join("out-large/large/interface_contact.csv").is_file());
 
     // Small sliding from a cold start needs ~10 000 iterations on this slide (the default
-    // 2 000 end as "no equilibrium", issue 21); large sliding starts from the predicted slide.
+    // 2 000 end as "not converged"); large sliding starts from the predicted slide.
     let (p, _) = case(
         &dir,
         "small",

@@ -7,8 +7,10 @@
 //! otherwise it goes on for a few iterations ([`UNBALANCED_ITERATIONS`]) and ends as
 //! [`RunStatus::NoEquilibrium`]. A non-finite indicator ends it as [`RunStatus::Diverged`]. A
 //! run that reaches `max_iterations` is not converged, or has no equilibrium when a
-//! substructure drifts beyond the bound or its sampled imbalance did not decrease over the
-//! second half of the run ([`persistent_imbalance`]).
+//! substructure drifts beyond the bound, or when its sampled imbalance did not decrease over the
+//! second half of the run ([`persistent_imbalance`]) **and** no interface forces admitted by
+//! the laws can balance its loads in its free rigid modes (the certificate of module
+//! `existence`; without it a stagnating run is only "not converged").
 
 use rayon::prelude::*;
 
@@ -97,6 +99,9 @@ impl Monitor {
         // A run stopped by the iteration limit while a floating substructure drifts away, or
         // stays out of balance without improving, has no static equilibrium rather than a slow
         // convergence.
+        // A stagnating imbalance alone is no proof (a slow run stagnates too): it counts only
+        // with the certificate that no admissible interface forces can balance the loads
+        // (module `existence`).
         if status == RunStatus::NotConverged
             && (equilibrium
                 .iter()
@@ -105,7 +110,7 @@ impl Monitor {
                     &self.imbalance,
                     run.residuals.len(),
                     solver.options.equilibrium_tolerance,
-                ))
+                ) && solver.equilibrium_excluded(&run.points, &run.input.load_factors))
         {
             status = RunStatus::NoEquilibrium;
         }

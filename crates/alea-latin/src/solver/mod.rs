@@ -54,6 +54,7 @@ mod acceleration;
 mod batch;
 mod coarse;
 mod convergence;
+mod existence;
 mod linear_stage;
 mod local_stage;
 mod result;
