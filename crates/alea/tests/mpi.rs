@@ -13,7 +13,6 @@ use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::text;
 
 fn alea() -> &'static str {
     env!("CARGO_BIN_EXE_alea")
