@@ -146,15 +146,7 @@ sliding = "large"
 /// Writes the case with `edits` applied into `dir` (with the mesh); returns its path and text.
 fn case(dir: &Path, name: &str, edits: &[(&str, &str)], tail: &str) -> (PathBuf, String) {
     write_msh(&dir.join("slide.msh"));
-    let mut s = CASE.to_string();
-    for (from, to) in edits {
-        assert!(s.contains(from), "{from}");
-        s = s.replacen(from, to, 1);
-    }
-    s.push_str(tail);
-    let p = dir.join(format!("{name}.toml"));
-    std::fs::write(&p, &s).unwrap();
-    (p, s)
+    common::write_case(dir, name, CASE, edits, tail)
 }
 
 fn solve(case: &Path, out: &Path) -> Output {

@@ -102,15 +102,8 @@ fn press_nudge_slide_and_back_follow_coulomb_on_the_resultants() {
 
 /// Writes the example with `edit` applied (`from` replaced by `to`) and `tail` appended.
 fn variant(dir: &Path, name: &str, edits: &[(&str, &str)], tail: &str) -> (PathBuf, String) {
-    let mut s = std::fs::read_to_string(root().join("examples/press-then-slide.toml")).unwrap();
-    for (from, to) in edits {
-        assert!(s.contains(from), "{from}");
-        s = s.replacen(from, to, 1);
-    }
-    s.push_str(tail);
-    let p = dir.join(format!("{name}.toml"));
-    std::fs::write(&p, &s).unwrap();
-    (p, s)
+    let s = std::fs::read_to_string(root().join("examples/press-then-slide.toml")).unwrap();
+    common::write_case(dir, name, &s, edits, tail)
 }
 
 /// Line (1-based) of the first line of `text` that contains `needle`, or that starts the

@@ -1,6 +1,6 @@
 //! Helpers shared by the CLI tests: a fresh scratch directory and a command's whole output.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 /// An empty directory `<temp>/<prefix>-<pid>-<name>` (removed first if it exists).
@@ -20,4 +20,25 @@ pub fn text(o: &Output) -> String {
         String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr)
     )
+}
+
+/// Writes `<dir>/<name>.toml`: `text` with `edits` (`from`, `to`: each the first occurrence,
+/// which must exist) applied and `tail` appended; returns its path and text.
+#[allow(dead_code)]
+pub fn write_case(
+    dir: &Path,
+    name: &str,
+    text: &str,
+    edits: &[(&str, &str)],
+    tail: &str,
+) -> (PathBuf, String) {
+    let mut s = text.to_string();
+    for (from, to) in edits {
+        assert!(s.contains(from), "{from}");
+        s = s.replacen(from, to, 1);
+    }
+    s.push_str(tail);
+    let p = dir.join(format!("{name}.toml"));
+    std::fs::write(&p, &s).unwrap();
+    (p, s)
 }
