@@ -15,6 +15,8 @@
 //! - [`atomic::write_atomic`]: every output file is written to a temporary and renamed.
 //! - [`Mesh::cell_measure`], [`Mesh::cell_min_jacobian`]: geometric checks (areas, volumes,
 //!   orientation).
+//! - [`Mesh::refined`]: uniform refinement (every cell and grouped facet split into `2^dim`
+//!   children, curved quadratic edges kept), for mesh-convergence checks.
 //! - [`reference`]: shape functions of the reference cells, shared with the finite elements.
 //! - [`vec3`]: dot and cross products of 3-vectors, shared by the crates above.
 
@@ -28,6 +30,7 @@ pub mod gmsh;
 pub mod input;
 mod mesh;
 pub mod reference;
+mod refine;
 pub mod vec3;
 pub mod vtu;
 

@@ -251,6 +251,35 @@ pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
     Ok(())
 }
 
+/// Checks the size of a mesh of `nodes` nodes refined `split` times (`[mesh] split`), before
+/// refining it: each refinement multiplies the nodes by about `2^dim`.
+///
+/// # Errors
+/// [`StudyError::Input`] at `mesh.split`, with the node and memory estimates.
+pub fn check_split(
+    src: &Source,
+    span: std::ops::Range<usize>,
+    nodes: usize,
+    dim: usize,
+    split: usize,
+) -> Result<(), StudyError> {
+    let refined = nodes as f64 * power(1 << dim, split);
+    let need = mesh_memory(refined, dim);
+    let have = available_memory() as f64;
+    if need > have || !need.is_finite() {
+        return Err(src.error(
+            span,
+            "mesh.split",
+            format!(
+                "{split} refinements of this mesh ({nodes} nodes) would give about {refined:.3e} nodes and need about {} of memory; {} is available",
+                human_bytes(need),
+                human_bytes(have)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn span_of(spec: &MeshSpec) -> std::ops::Range<usize> {
     spec.params
         .as_ref()

@@ -56,6 +56,10 @@ pub struct MeshSpec {
     /// blade_root_simple and turbine_2d: any field of their parameter sets, angles in degrees).
     #[serde(default)]
     pub params: Option<Spanned<toml::Table>>,
+    /// Uniform refinements of the mesh once built (0 - 3; each splits every cell into `2^dim`
+    /// children: `alea_mesh::Mesh::refined`). Any generator or Gmsh file.
+    #[serde(default)]
+    pub split: Option<Spanned<i64>>,
 }
 
 /// `[analysis]`.

@@ -180,7 +180,48 @@ fn turbine_params(src: &Source, spec: &MeshSpec) -> Result<generate::TurbinePara
 }
 
 /// Builds the mesh of a `[mesh]` table.
+/// The largest `[mesh] split`: each refinement multiplies the cells by 4 (2D) or 8 (3D).
+pub const MAX_SPLIT: i64 = 3;
+
+/// `[mesh] split` checked (`0 ..= MAX_SPLIT`, default 0).
+///
+/// # Errors
+/// [`StudyError::Input`] at `mesh.split`.
+pub fn split_count(src: &Source, spec: &MeshSpec) -> Result<usize, StudyError> {
+    match &spec.split {
+        None => Ok(0),
+        Some(s) if (0..=MAX_SPLIT).contains(s.get_ref()) => Ok(*s.get_ref() as usize),
+        Some(s) => Err(src.error(
+            s.span(),
+            "mesh.split",
+            format!(
+                "expected 0 to {MAX_SPLIT} uniform refinements (each multiplies the cells by 4 in 2D, 8 in 3D), got {}",
+                s.get_ref()
+            ),
+        )),
+    }
+}
+
+/// The mesh of a `[mesh]` table: generated or read, then refined `split` times.
+///
+/// # Errors
+/// [`StudyError::Input`] naming the field of the table at fault.
 pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+    let split = split_count(src, spec)?;
+    let mesh = build_base_mesh(src, spec)?;
+    if split == 0 {
+        return Ok(mesh);
+    }
+    let span = spec
+        .split
+        .as_ref()
+        .map_or(spec.generator.span(), |s| s.span());
+    crate::limits::check_split(src, span.clone(), mesh.num_nodes(), mesh.dim, split)?;
+    mesh.refined(split)
+        .map_err(|e| src.error(span, "mesh.split", e.to_string()))
+}
+
+fn build_base_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
     crate::limits::check_mesh(src, spec)?;
     let kind = |default: CellType| -> Result<CellType, StudyError> {
         spec.kind
