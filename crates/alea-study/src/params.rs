@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use alea_uq::copula::{ClaytonCopula, FrankCopula, GumbelCopula, StudentCopula};
-use alea_uq::joint::{BoxDensity, GaussianCopula, Independent, JointLaw};
+use alea_uq::joint::{BoxDensity, GaussianCopula, Independent, JointLaw, ProductJoint};
 use alea_uq::law::{Beta, LogNormal, Marginal, Normal, Triangular, TruncatedNormal, Uniform};
 use toml::Spanned;
 
@@ -225,81 +225,31 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
             m.quantile(1.0 - 1e-6)
         });
     }
+    // A dependent `[joint]` spans the `[[parameter]]`s; the fields' KL variables are
+    // independent standard normal, a block of their own (`ProductJoint`).
+    let k = file.parameter.len();
     let joint: Arc<dyn JointLaw> = match &file.joint {
         None if d == 0 => Arc::new(NoParameters),
         None => Arc::new(Independent::new(marginals.clone()).map_err(StudyError::from)?),
-        Some(j) => match j.kind.get_ref().as_str() {
-            "independent" => {
-                Arc::new(Independent::new(marginals.clone()).map_err(StudyError::from)?)
+        Some(j) if j.kind.get_ref() == "independent" => {
+            Arc::new(Independent::new(marginals.clone()).map_err(StudyError::from)?)
+        }
+        Some(j) if k == 0 => {
+            return Err(src.error(
+                j.kind.span(),
+                "joint.type",
+                "a dependent [joint] needs [[parameter]]s (the KL variables of [[field]]s are independent)",
+            ));
+        }
+        Some(j) => {
+            let law = dependent_joint(src, j, &marginals[..k], &names[..k], &lo[..k], &hi[..k])?;
+            if d == k {
+                law
+            } else {
+                let kl = Independent::new(marginals[k..].to_vec()).map_err(StudyError::from)?;
+                Arc::new(ProductJoint::new(vec![law, Arc::new(kl)]).map_err(StudyError::from)?)
             }
-            kind @ ("clayton" | "gumbel" | "frank") => {
-                let t = j.theta.as_ref().ok_or_else(|| {
-                    src.error(
-                        j.kind.span(),
-                        "joint.theta",
-                        format!("a {kind} copula needs theta"),
-                    )
-                })?;
-                let theta = *t.get_ref();
-                let err = |e: alea_uq::UqError| src.error(t.span(), "joint.theta", e.to_string());
-                match kind {
-                    "clayton" => {
-                        Arc::new(ClaytonCopula::new(marginals.clone(), theta).map_err(err)?)
-                            as Arc<dyn JointLaw>
-                    }
-                    "gumbel" => Arc::new(GumbelCopula::new(marginals.clone(), theta).map_err(err)?),
-                    _ => Arc::new(FrankCopula::new(marginals.clone(), theta).map_err(err)?),
-                }
-            }
-            "student" => {
-                let nu = j.nu.as_ref().ok_or_else(|| {
-                    src.error(j.kind.span(), "joint.nu", "a Student copula needs nu")
-                })?;
-                let flat = correlation(src, j, d, "a Student copula")?;
-                Arc::new(
-                    StudentCopula::new(marginals.clone(), flat, *nu.get_ref())
-                        .map_err(|e| src.error(nu.span(), "joint", e.to_string()))?,
-                )
-            }
-            "gaussian_copula" => {
-                let flat = correlation(src, j, d, "a Gaussian copula")?;
-                let span = j.correlation.as_ref().map_or(j.kind.span(), |c| c.span());
-                Arc::new(
-                    GaussianCopula::new(marginals.clone(), flat)
-                        .map_err(|e| src.error(span, "joint.correlation", e.to_string()))?,
-                )
-            }
-            "density" => {
-                let t = j.density.as_ref().ok_or_else(|| {
-                    src.error(
-                        j.kind.span(),
-                        "joint.density",
-                        "a density joint law needs 'density' (an expression of the parameters)",
-                    )
-                })?;
-                let vars: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
-                let e = Expr::parse(t.get_ref(), &vars)
-                    .map_err(|e| src.error(t.span(), "joint.density", e.to_string()))?;
-                let n = if d <= 2 {
-                    256
-                } else if d == 3 {
-                    48
-                } else {
-                    12
-                };
-                Arc::new(
-                    BoxDensity::from_fn(lo.clone(), hi.clone(), n, move |x| e.eval(x))
-                        .map_err(|e| src.error(t.span(), "joint.density", e.to_string()))?,
-                )
-            }
-            other => {
-                return Err(src.error(
-                    j.kind.span(),
-                    "joint.type",
-                    format!("unknown joint law '{other}'; expected independent, gaussian_copula, student, clayton, gumbel, frank or density"),
-                ));
-            }
-        },
+        }
     };
     let mut units: Vec<String> = file
         .parameter
@@ -317,6 +267,89 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
         nominal,
         lo,
         hi,
+    })
+}
+
+/// The dependent joint law of `[joint]` (not `independent`) over the `[[parameter]]`s: their
+/// marginals, names and box `[lo, hi]`.
+fn dependent_joint(
+    src: &Source,
+    j: &crate::spec::JointSpec,
+    marginals: &[Arc<dyn Marginal>],
+    names: &[String],
+    lo: &[f64],
+    hi: &[f64],
+) -> Result<Arc<dyn JointLaw>, StudyError> {
+    let d = marginals.len();
+    let marginals = marginals.to_vec();
+    let (lo, hi) = (lo.to_vec(), hi.to_vec());
+    Ok(match j.kind.get_ref().as_str() {
+        kind @ ("clayton" | "gumbel" | "frank") => {
+            let t = j.theta.as_ref().ok_or_else(|| {
+                src.error(
+                    j.kind.span(),
+                    "joint.theta",
+                    format!("a {kind} copula needs theta"),
+                )
+            })?;
+            let theta = *t.get_ref();
+            let err = |e: alea_uq::UqError| src.error(t.span(), "joint.theta", e.to_string());
+            match kind {
+                "clayton" => Arc::new(ClaytonCopula::new(marginals.clone(), theta).map_err(err)?)
+                    as Arc<dyn JointLaw>,
+                "gumbel" => Arc::new(GumbelCopula::new(marginals.clone(), theta).map_err(err)?),
+                _ => Arc::new(FrankCopula::new(marginals.clone(), theta).map_err(err)?),
+            }
+        }
+        "student" => {
+            let nu = j
+                .nu
+                .as_ref()
+                .ok_or_else(|| src.error(j.kind.span(), "joint.nu", "a Student copula needs nu"))?;
+            let flat = correlation(src, j, d, "a Student copula")?;
+            Arc::new(
+                StudentCopula::new(marginals.clone(), flat, *nu.get_ref())
+                    .map_err(|e| src.error(nu.span(), "joint", e.to_string()))?,
+            )
+        }
+        "gaussian_copula" => {
+            let flat = correlation(src, j, d, "a Gaussian copula")?;
+            let span = j.correlation.as_ref().map_or(j.kind.span(), |c| c.span());
+            Arc::new(
+                GaussianCopula::new(marginals.clone(), flat)
+                    .map_err(|e| src.error(span, "joint.correlation", e.to_string()))?,
+            )
+        }
+        "density" => {
+            let t = j.density.as_ref().ok_or_else(|| {
+                src.error(
+                    j.kind.span(),
+                    "joint.density",
+                    "a density joint law needs 'density' (an expression of the parameters)",
+                )
+            })?;
+            let vars: Vec<&str> = names.iter().map(|s| s.as_str()).collect();
+            let e = Expr::parse(t.get_ref(), &vars)
+                .map_err(|e| src.error(t.span(), "joint.density", e.to_string()))?;
+            let n = if d <= 2 {
+                256
+            } else if d == 3 {
+                48
+            } else {
+                12
+            };
+            Arc::new(
+                BoxDensity::from_fn(lo.clone(), hi.clone(), n, move |x| e.eval(x))
+                    .map_err(|e| src.error(t.span(), "joint.density", e.to_string()))?,
+            )
+        }
+        other => {
+            return Err(src.error(
+                    j.kind.span(),
+                    "joint.type",
+                    format!("unknown joint law '{other}'; expected independent, gaussian_copula, student, clayton, gumbel, frank or density"),
+                ));
+        }
     })
 }
 

@@ -29,8 +29,10 @@
 //!   lognormal, lower < upper for bounded; the others refused), exactly one of
 //!   `variance_fraction` in (0, 1] and `modes` in 1 ..= nodes, and the size of the KL problem
 //!   (at most [`MAX_FIELD_NODES`] nodes: dense `n x n` matrices and an `O(n^3)` eigensolver)
-//!   before anything is computed. A `[joint]` other than independent is refused with fields
-//!   (the copula would have to span the KL variables).
+//!   before anything is computed.
+//! * **With a dependent `[joint]`**: the copula (or density) spans the `[[parameter]]`s only;
+//!   the KL variables are a block of independent standard normal variables beside it
+//!   (`alea_uq::joint::ProductJoint`), as the expansion requires.
 
 use std::sync::Arc;
 
@@ -391,15 +393,6 @@ pub(crate) fn build_fields(
 ) -> Result<(Vec<Arc<StudyField>>, Vec<String>), StudyError> {
     if file.field.is_empty() {
         return Ok((Vec::new(), Vec::new()));
-    }
-    if let Some(j) = &file.joint
-        && j.kind.get_ref() != "independent"
-    {
-        return Err(src.error(
-            j.kind.span(),
-            "joint.type",
-            "random fields ([[field]]) need independent parameters: their KL variables are independent of the [[parameter]]s, which a copula cannot say here",
-        ));
     }
     let mesh = crate::build::build_mesh(src, &file.mesh)?;
     let mut taken: Vec<String> = taken.to_vec();

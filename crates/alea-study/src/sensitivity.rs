@@ -14,7 +14,8 @@
 //!   need a group pick-freeze).
 //!
 //! A surrogate of zero variance (a constant quantity) has no indices: the quantity's entry is
-//! left out rather than written as 0 / 0.
+//! left out rather than written as 0 / 0. Neither has a study whose `[joint]` makes its
+//! parameters dependent: Sobol' indices split the variance among independent inputs.
 
 use serde::Serialize;
 
@@ -63,8 +64,8 @@ fn finite(v: &[f64]) -> bool {
 }
 
 /// The Sobol' indices of quantity values `values` (at `points`, the runs the surrogate `sur` of
-/// `method` is built on); `None` for a study without fields, a method without a surrogate, or
-/// a constant quantity.
+/// `method` is built on); `None` for a study without fields, with dependent parameters, a
+/// method without a surrogate, or a constant quantity.
 pub fn sobol_stats(
     study: &Study,
     method: &Method,
@@ -73,7 +74,9 @@ pub fn sobol_stats(
     values: &[f64],
 ) -> Option<SobolStats> {
     let params = &study.params;
-    if params.fields.is_empty() {
+    // With a dependent `[joint]` (a copula of the parameters beside the KL variables) the
+    // variance does not split into the shares of independent inputs: no classical indices.
+    if params.fields.is_empty() || !params.joint.is_independent() {
         return None;
     }
     let d = params.names.len();

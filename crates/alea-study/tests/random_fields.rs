@@ -377,6 +377,7 @@ fn bad_field_settings_are_refused_at_load_with_file_line_and_field() {
         "interface[1].mu",
         "MU_G3",
     );
+    // A dependent joint spans the [[parameter]]s; with none, there is nothing for it to join.
     refused(
         &[(
             "[[field]]",
@@ -384,7 +385,7 @@ fn bad_field_settings_are_refused_at_load_with_file_line_and_field() {
         )],
         "type = \"gaussian_copula\"",
         "joint.type",
-        "independent",
+        "needs [[parameter]]s",
     );
     refused(
         &[(vf, "variance_fraction = 0.9\nlength = 2.0")],
@@ -662,4 +663,88 @@ fn a_refined_mesh_that_changes_the_number_of_kl_modes_is_refused() {
     );
     let s = Study::from_source(Source::from_text("f.toml", &t)).unwrap();
     assert_eq!(s.refined.unwrap().params.names, s.params.names);
+}
+
+/// A Gaussian copula of the `[[parameter]]`s beside the fields' KL variables
+/// (`alea_uq::joint::ProductJoint`): the copula's correlation holds between the parameters (in
+/// normal scores), nothing links them to the KL variables, which stay independent standard
+/// normal; a run at a point uses every coordinate.
+#[test]
+fn a_copula_of_the_parameters_sits_beside_the_kl_variables() {
+    use alea_uq::special::norm_quantile;
+    let params = r#"[[parameter]]
+name = "E_root"
+law = "normal"
+mean = 240e3
+std = 20e3
+
+[[parameter]]
+name = "P"
+law = "uniform"
+lo = 0.8
+hi = 1.2
+
+[joint]
+type = "gaussian_copula"
+correlation = [[1.0, 0.7], [0.7, 1.0]]
+
+[[field]]"#;
+    let study = load(
+        "blade-root-simple-field.toml",
+        &[
+            ("[[field]]", params),
+            ("young = 240e3", "young = \"E_root\""),
+            ("pressure = 1000.0 }", "pressure = 1000.0, factor = \"P\" }"),
+            NO_ADAPTIVE,
+        ],
+    );
+    let joint = study.params.joint.as_ref();
+    let d = study.params.names.len();
+    assert_eq!(&study.params.names[..2], ["E_root", "P"]);
+    assert!(d > 2 && joint.dim() == d);
+    assert!(!joint.is_independent());
+    // Normal scores of 20 000 draws: z_i = Phi^-1(F_i(x_i)).
+    let draws = alea_uq::design::monte_carlo(joint, 20_000, 7);
+    let n = draws.len();
+    let scores: Vec<Vec<f64>> = draws
+        .iter()
+        .map(|x| {
+            x.iter()
+                .zip(&study.params.marginals)
+                .map(|(&v, m)| norm_quantile(m.cdf(v)))
+                .collect()
+        })
+        .collect();
+    let mean = |i: usize| scores.iter().map(|z| z[i]).sum::<f64>() / n as f64;
+    let cov = |i: usize, j: usize| {
+        let (mi, mj) = (mean(i), mean(j));
+        scores
+            .iter()
+            .map(|z| (z[i] - mi) * (z[j] - mj))
+            .sum::<f64>()
+            / n as f64
+    };
+    let corr = |i: usize, j: usize| cov(i, j) / (cov(i, i) * cov(j, j)).sqrt();
+    // Sampling standard errors: about 1 / sqrt(n) = 0.007 for a correlation near 0.
+    assert!(
+        (corr(0, 1) - 0.7).abs() < 0.02,
+        "corr(E, P) = {}",
+        corr(0, 1)
+    );
+    for j in 2..d {
+        assert!(
+            mean(j).abs() < 0.03 && (cov(j, j) - 1.0).abs() < 0.04,
+            "KL variable {j}"
+        );
+        for i in 0..2 {
+            assert!(corr(i, j).abs() < 0.03, "corr({i}, {j}) = {}", corr(i, j));
+        }
+    }
+    // The parameters reach the model: P scales the pressure, E_root the root's modulus.
+    let mut theta = study.params.nominal.clone();
+    theta[1] = 1.1;
+    let input = study.model.parametric.run_input(&theta, vec![]);
+    assert!((input.load_factors[1][0] - 1.1).abs() < 1e-15);
+    let (q, _) = run(&study, &theta);
+    assert!(q.iter().all(|v| v.is_finite()));
 }

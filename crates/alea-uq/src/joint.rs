@@ -13,6 +13,8 @@
 //!   `u_1 = F(x_1)`, `u_2 = F(x_2 | x_1)`, ... of a piecewise-constant approximation of the density
 //!   on a regular grid of `n^d` cells (exact for that approximation: conditional cdfs are piecewise
 //!   linear). `pdf` returns the normalised user density itself.
+//! * [`ProductJoint`]: mutually independent blocks of variables, each with its own joint law
+//!   (a study's copula of its parameters beside the independent KL variables of its fields).
 
 use crate::error::{Result, UqError, check_len, invalid};
 use crate::law::Marginal;
@@ -21,6 +23,9 @@ use crate::rng::open01;
 use crate::special::{norm_cdf, norm_quantile};
 use rand::RngCore;
 use std::sync::Arc;
+
+mod product;
+pub use product::ProductJoint;
 
 /// A probability law on `R^d` with an isoprobabilistic map to the unit cube.
 pub trait JointLaw: Send + Sync + std::fmt::Debug {
