@@ -29,6 +29,13 @@ Random fields
     Galerkin Karhunen-Loeve expansion on a P1 mesh (segments or triangles); ``eigenvalues``,
     ``modes``, ``realise(xi, mean, transform="gaussian" | "lognormal" | "bounded")``.
 
+Rare events
+    ``form``, ``sorm``, ``importance_sampling``, ``subset_simulation``: ``P(g(X) <= 0)``, or
+    ``P(q(X) > threshold)``, for a Python callable (vectorised: an ``(n, d)`` array of points in,
+    ``n`` values out) or a fitted ``PolynomialChaos`` / ``PiecewiseLinear`` (evaluated in Rust,
+    no Python calls); a :class:`ReliabilityResult` with ``pf``, ``interval``, ``cov``, ``beta``,
+    the design point(s), ``calls`` and ``warnings``.
+
 Wherever a law is expected, a ``Joint``, a single ``Law`` or a list of ``Law`` objects
 (independent variables) may be given. Random routines take a ``seed`` and give the same result
 whatever the number of threads.
@@ -46,18 +53,23 @@ from ._core import (
     Normal,
     PiecewiseLinear,
     PolynomialChaos,
+    ReliabilityResult,
     SOLVER,
     Triangular,
     TruncatedNormal,
     Uniform,
     __version__,
     fit,
+    form,
     grid,
+    importance_sampling,
     lhs,
     monte_carlo,
     pc_collocation,
     quadrature,
     sobol,
+    sorm,
+    subset_simulation,
 )
 from ._study import SolverNotBuilt, StoredRuns, StudyOutputs, StudyResult, open_store, report, run
 
@@ -73,6 +85,7 @@ __all__ = [
     "Normal",
     "PiecewiseLinear",
     "PolynomialChaos",
+    "ReliabilityResult",
     "SOLVER",
     "SolverNotBuilt",
     "StoredRuns",
@@ -83,7 +96,9 @@ __all__ = [
     "Uniform",
     "__version__",
     "fit",
+    "form",
     "grid",
+    "importance_sampling",
     "lhs",
     "monte_carlo",
     "open_store",
@@ -92,4 +107,6 @@ __all__ = [
     "report",
     "run",
     "sobol",
+    "sorm",
+    "subset_simulation",
 ]
