@@ -6,7 +6,9 @@ as NumPy arrays and pandas DataFrames.
 
 Studies
     ``run(study_file)`` runs (or resumes) a study file and returns a :class:`StudyResult`
-    (``.runs``, ``.statistics``, ``.failure``, ``.samples``); ``open_store(directory)`` reads
+    (``.runs``, ``.statistics``, ``.failure``, ``.samples``, the error budget ``.budget`` and
+    its ``.budget_bases``, ``.reliability_table``, the random fields ``.fields`` /
+    ``.field_modes`` and the Sobol' indices per parameter and KL mode ``.sensitivity``); ``open_store(directory)`` reads
     the runs of a study directory without running anything; ``report(directory)`` writes its
     outputs (``summary.json``, ``samples.csv``, fields, the HTML report) as ``alea report``.
     A toolkit-only build (cargo ``--no-default-features``: no solver, ``SOLVER`` false) raises
@@ -72,6 +74,7 @@ from ._core import (
     subset_simulation,
 )
 from ._study import SolverNotBuilt, StoredRuns, StudyOutputs, StudyResult, open_store, report, run
+from ._tables import RandomField
 
 __all__ = [
     "Beta",
@@ -85,6 +88,7 @@ __all__ = [
     "Normal",
     "PiecewiseLinear",
     "PolynomialChaos",
+    "RandomField",
     "ReliabilityResult",
     "SOLVER",
     "SolverNotBuilt",
