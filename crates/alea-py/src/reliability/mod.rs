@@ -138,7 +138,7 @@ impl<'a> Problem<'a> {
         for w in &r.warnings {
             let text = std::ffi::CString::new(w.replace('\0', " "))
                 .map_err(|e| value_error(e.to_string()))?;
-            PyErr::warn(py, &category, &text, 2)?;
+            PyErr::warn(py, &category, &text, 1)?;
         }
         Ok(r)
     }
