@@ -14,7 +14,7 @@
 //!   indices, LOO errors, save/load) and `PiecewiseLinear`;
 //! * [`fields`]: `KarhunenLoeve` (Galerkin KL of a random field on a P1 mesh, realisations with
 //!   Gaussian, lognormal or bounded transforms);
-//! * [`reliability`]: `form`, `sorm`, `importance_sampling`, `subset_simulation` of a Python
+//! * [`reliability`]: `form` (and SORM), `importance_sampling`, `subset_simulation` of a Python
 //!   callable (vectorised, `(n, d)` points to `n` values) or of a fitted `PolynomialChaos` /
 //!   `PiecewiseLinear` (evaluated in Rust), with `ReliabilityResult`;
 //! * [`study`]: running a study file, reading a study directory's store and rebuilding its
@@ -68,7 +68,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<fields::KarhunenLoeve>()?;
     m.add_class::<reliability::ReliabilityResult>()?;
     m.add_function(wrap_pyfunction!(reliability::form_py, m)?)?;
-    m.add_function(wrap_pyfunction!(reliability::sorm_py, m)?)?;
     m.add_function(wrap_pyfunction!(reliability::importance_sampling_py, m)?)?;
     m.add_function(wrap_pyfunction!(reliability::subset_simulation_py, m)?)?;
     #[cfg(feature = "solver")]

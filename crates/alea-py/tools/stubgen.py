@@ -61,6 +61,7 @@ ARG_TYPES = {
     "max_draws": "int",
     "samples_per_level": "int",
     "max_levels": "int",
+    "second_order": "bool",
 }
 # Arguments whose type depends on the function (`level`: a sparse-grid level elsewhere, a
 # confidence level in the reliability methods).
@@ -78,7 +79,7 @@ RETURNS = {
     "pc_collocation": "Matrix", "quadrature": "Tuple[Matrix, Vector]", "fit": "Any",
     "read_store": "Dict[str, Any]", "rebuild_outputs": "Dict[str, Any]",
     "run_study_file": "Dict[str, Any]",
-    "form": "ReliabilityResult", "sorm": "ReliabilityResult",
+    "form": "ReliabilityResult",
     "importance_sampling": "ReliabilityResult", "subset_simulation": "ReliabilityResult",
 }
 # Property types by class (others are `Any`).

@@ -70,10 +70,10 @@ from ._core import (
     pc_collocation,
     quadrature,
     sobol,
-    sorm,
     subset_simulation,
 )
 from ._study import SolverNotBuilt, StoredRuns, StudyOutputs, StudyResult, open_store, report, run
+from ._reliability import sorm
 from ._tables import RandomField
 
 __all__ = [

@@ -467,9 +467,10 @@ def fit(data: ArrayLike, families: Optional[Sequence[str]] = None) -> Any:
     """
     ...
 
-def form(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"], law: LawLike, *, threshold: Optional[float] = None, starts: Optional[ArrayLike] = None, tol: float = 1e-06, max_iter: int = 100, step: float = 0.0001) -> ReliabilityResult:
+def form(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"], law: LawLike, *, threshold: Optional[float] = None, starts: Optional[ArrayLike] = None, tol: float = 1e-06, max_iter: int = 100, step: float = 0.0001, second_order: bool = False) -> ReliabilityResult:
     """
-    FORM: the first-order reliability method, `pf ~ Phi(-beta)` at the design point.
+    FORM: the first-order reliability method, `pf ~ Phi(-beta)` at the design point; with
+    `second_order`, SORM there (`alea.sorm`).
 
     Parameters
     ----------
@@ -486,18 +487,24 @@ def form(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "Piecewi
         along every axis).
     tol, max_iter, step
         HL-RF tolerance, iteration limit and finite-difference step (standard normal space).
+    second_order : bool
+        SORM at the best design point: `pf` is then Breitung's formula
+        `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, with `pf_tvedt` Tvedt's three-term one and
+        the principal `curvatures`. It runs FORM again from the best start, then the Hessian
+        (`2 d^2 + 1` more calls).
 
     Returns
     -------
     ReliabilityResult
         `pf`, `beta`, the design point, importance factors, every distinct design point, calls
-        and warnings (no interval: FORM is an asymptotic approximation).
+        and warnings (no interval: FORM and SORM are asymptotic approximations).
 
     Raises
     ------
     ValueError
-        A bad argument, a model value that is not finite, or no FORM start converging. Any
-        exception the callable raises propagates unchanged.
+        A bad argument, a model value that is not finite, no FORM start converging, or (SORM)
+        a curvature with `1 + beta kappa <= 0`. Any exception the callable raises propagates
+        unchanged.
     """
     ...
 
@@ -596,17 +603,6 @@ def sobol(law: LawLike, n: int, scramble_seed: Optional[int] = None) -> Matrix:
     First `n` points of the Sobol' sequence (Joe-Kuo directions, up to 40 variables) mapped
     through `law`; scrambled (linear matrix scramble and digital shift) when `scramble_seed` is
     given.
-    """
-    ...
-
-def sorm(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"], law: LawLike, *, threshold: Optional[float] = None, starts: Optional[ArrayLike] = None, tol: float = 1e-06, max_iter: int = 100, step: float = 0.0001) -> ReliabilityResult:
-    """
-    SORM: second order at the FORM design point; `pf` is Breitung's formula
-    `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, `pf_tvedt` Tvedt's three-term one.
-
-    Arguments, result and errors as `form` (`curvatures`, `pf_breitung`, `pf_tvedt` are set);
-    also a `ValueError` if a curvature makes `1 + beta kappa <= 0`. The Hessian costs
-    `2 d^2 + 1` calls beyond FORM's.
     """
     ...
 

@@ -8,11 +8,13 @@
 //!
 //! * FORM is started from the median point and from `+-3` along every axis of the standard
 //!   normal space (`2 d + 1` starts, as `[[reliability]]` tables of study files do) or from the
-//!   given `starts`; the distinct design points (apart by more than 10 % of the smaller
-//!   `beta`) are all returned, the best is the one of smallest `beta`, and a warning says so
-//!   when more than one lies within `beta_min + 1`: FORM, SORM and importance sampling around
-//!   one design point then miss the others' share of the probability.
-//! * SORM (Breitung, Tvedt) at the best design point, from its start.
+//!   given `starts` (`alea_uq::reliability::form_from_starts`); the distinct design points
+//!   (apart by more than 10 % of the smaller `beta`) are all returned, the best is the one of
+//!   smallest `beta`, and a warning says so when more than one lies within `beta_min + 1`:
+//!   FORM, SORM and importance sampling around one design point then miss the others' share
+//!   of the probability.
+//! * SORM (Breitung, Tvedt) at the best design point, from its start (`form(...,
+//!   second_order=True)`, which the Python package calls `alea.sorm`).
 //! * Importance sampling centred at the best design point, drawn in rounds of 2 048 until its
 //!   coefficient of variation reaches `target_cov` (a warning if `max_draws` came first).
 //! * Subset simulation (Au & Beck) from the median, with its log-normal interval.
@@ -32,8 +34,8 @@ use std::sync::Arc;
 
 use alea_uq::joint::JointLaw;
 use alea_uq::reliability::{
-    FormOptions, FormResult, ImportanceOptions, LimitState, SubsetOptions, form,
-    importance_sampling, sorm, subset_simulation,
+    FormOptions, FormResult, ImportanceOptions, LimitState, SubsetOptions, axis_starts,
+    form_from_starts, importance_sampling, sorm, subset_simulation,
 };
 use pyo3::exceptions::{PyRuntimeWarning, PyTypeError};
 use pyo3::prelude::*;
@@ -172,17 +174,7 @@ impl FormSetup {
                 }
                 v.chunks(d).map(|u| Some(u.to_vec())).collect()
             }
-            None => {
-                let mut s = vec![None];
-                for j in 0..d {
-                    for sign in [3.0, -3.0] {
-                        let mut u = vec![0.0; d];
-                        u[j] = sign;
-                        s.push(Some(u));
-                    }
-                }
-                s
-            }
+            None => axis_starts(d),
         };
         Ok(Self { opts, starts })
     }
@@ -194,56 +186,16 @@ impl FormSetup {
         ls: &LimitState,
         method: &'static str,
     ) -> Result<(ReliabilityResult, FormOptions, FormResult), String> {
-        let mut found: Vec<FormResult> = Vec::new();
-        let mut best: Option<(FormResult, FormOptions)> = None;
-        let mut first_error = None;
-        for start in &self.starts {
-            let opts = FormOptions {
-                start: start.clone(),
-                ..self.opts.clone()
-            };
-            match form(ls, &opts) {
-                Ok(f) => {
-                    let distinct = found.iter().all(|g| {
-                        let dist = g
-                            .u_star
-                            .iter()
-                            .zip(&f.u_star)
-                            .map(|(a, b)| (a - b).powi(2))
-                            .sum::<f64>()
-                            .sqrt();
-                        dist > 0.1 * g.beta.min(f.beta).max(1e-3)
-                    });
-                    if distinct {
-                        found.push(f.clone());
-                    }
-                    if best.as_ref().is_none_or(|(b, _)| f.beta < b.beta) {
-                        best = Some((f, opts));
-                    }
-                }
-                Err(e) => {
-                    first_error.get_or_insert_with(|| e.to_string());
-                }
-            }
-        }
-        let Some((f, opts)) = best else {
+        let starts = form_from_starts(ls, &self.starts, &self.opts);
+        let warnings = starts.several_design_points().into_iter().collect();
+        let found = starts.found;
+        let Some((f, opts)) = starts.best else {
             return Err(format!(
                 "FORM: no start converged ({} starts): {}",
                 self.starts.len(),
-                first_error.unwrap_or_default()
+                starts.first_error.unwrap_or_default()
             ));
         };
-        found.sort_by(|a, b| a.beta.total_cmp(&b.beta));
-        let mut warnings = Vec::new();
-        let b0 = f.beta;
-        let close = found.iter().filter(|g| g.beta <= b0 + 1.0).count();
-        if close > 1 {
-            warnings.push(format!(
-                "{close} design points within beta {b0:.3} + 1: FORM, SORM and importance \
-                 sampling around the first miss the others' share of the probability; compare \
-                 with subset simulation"
-            ));
-        }
         let r = ReliabilityResult {
             method,
             pf: f.pf,
@@ -266,7 +218,8 @@ impl FormSetup {
     }
 }
 
-/// FORM: the first-order reliability method, `pf ~ Phi(-beta)` at the design point.
+/// FORM: the first-order reliability method, `pf ~ Phi(-beta)` at the design point; with
+/// `second_order`, SORM there (`alea.sorm`).
 ///
 /// Parameters
 /// ----------
@@ -283,21 +236,27 @@ impl FormSetup {
 ///     along every axis).
 /// tol, max_iter, step
 ///     HL-RF tolerance, iteration limit and finite-difference step (standard normal space).
+/// second_order : bool
+///     SORM at the best design point: `pf` is then Breitung's formula
+///     `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, with `pf_tvedt` Tvedt's three-term one and
+///     the principal `curvatures`. It runs FORM again from the best start, then the Hessian
+///     (`2 d^2 + 1` more calls).
 ///
 /// Returns
 /// -------
 /// ReliabilityResult
 ///     `pf`, `beta`, the design point, importance factors, every distinct design point, calls
-///     and warnings (no interval: FORM is an asymptotic approximation).
+///     and warnings (no interval: FORM and SORM are asymptotic approximations).
 ///
 /// Raises
 /// ------
 /// ValueError
-///     A bad argument, a model value that is not finite, or no FORM start converging. Any
-///     exception the callable raises propagates unchanged.
+///     A bad argument, a model value that is not finite, no FORM start converging, or (SORM)
+///     a curvature with `1 + beta kappa <= 0`. Any exception the callable raises propagates
+///     unchanged.
 #[pyfunction]
-#[pyo3(name = "form", signature = (model, law, *, threshold = None, starts = None, tol = 1e-6, max_iter = None, step = 1e-4),
-    text_signature = "(model, law, *, threshold=None, starts=None, tol=1e-06, max_iter=100, step=0.0001)")]
+#[pyo3(name = "form", signature = (model, law, *, threshold = None, starts = None, tol = 1e-6, max_iter = None, step = 1e-4, second_order = false),
+    text_signature = "(model, law, *, threshold=None, starts=None, tol=1e-06, max_iter=100, step=0.0001, second_order=False)")]
 #[allow(clippy::too_many_arguments)]
 pub fn form_py(
     py: Python<'_>,
@@ -308,10 +267,23 @@ pub fn form_py(
     tol: f64,
     max_iter: Option<&Bound<'_, PyAny>>,
     step: f64,
+    second_order: bool,
 ) -> PyResult<ReliabilityResult> {
-    let p = Problem::new(model, law, threshold, "form")?;
+    let what = if second_order { "sorm" } else { "form" };
+    let p = Problem::new(model, law, threshold, what)?;
     let setup = form_setup(py, p.law.dim(), starts, tol, max_iter, step)?;
-    p.run(py, |ls| setup.run(ls, "FORM").map(|r| r.0))
+    p.run(py, |ls| {
+        if !second_order {
+            return setup.run(ls, "FORM").map(|r| r.0);
+        }
+        let (mut r, opts, _) = setup.run(ls, "SORM")?;
+        let s = sorm(ls, &opts).map_err(|e| format!("SORM: {e}"))?;
+        r.pf = s.pf_breitung;
+        r.pf_breitung = Some(s.pf_breitung);
+        r.pf_tvedt = Some(s.pf_tvedt);
+        r.curvatures = Some(s.curvatures);
+        Ok(r)
+    })
 }
 
 fn form_setup(
@@ -324,39 +296,6 @@ fn form_setup(
 ) -> PyResult<FormSetup> {
     let default = pyo3::types::PyInt::new(py, FormOptions::default().max_iter);
     FormSetup::new(d, starts, tol, max_iter.unwrap_or(&default), step)
-}
-
-/// SORM: second order at the FORM design point; `pf` is Breitung's formula
-/// `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, `pf_tvedt` Tvedt's three-term one.
-///
-/// Arguments, result and errors as `form` (`curvatures`, `pf_breitung`, `pf_tvedt` are set);
-/// also a `ValueError` if a curvature makes `1 + beta kappa <= 0`. The Hessian costs
-/// `2 d^2 + 1` calls beyond FORM's.
-#[pyfunction]
-#[pyo3(name = "sorm", signature = (model, law, *, threshold = None, starts = None, tol = 1e-6, max_iter = None, step = 1e-4),
-    text_signature = "(model, law, *, threshold=None, starts=None, tol=1e-06, max_iter=100, step=0.0001)")]
-#[allow(clippy::too_many_arguments)]
-pub fn sorm_py(
-    py: Python<'_>,
-    model: &Bound<'_, PyAny>,
-    law: &Bound<'_, PyAny>,
-    threshold: Option<f64>,
-    starts: Option<ArrayIn<'_>>,
-    tol: f64,
-    max_iter: Option<&Bound<'_, PyAny>>,
-    step: f64,
-) -> PyResult<ReliabilityResult> {
-    let p = Problem::new(model, law, threshold, "sorm")?;
-    let setup = form_setup(py, p.law.dim(), starts, tol, max_iter, step)?;
-    p.run(py, |ls| {
-        let (mut r, opts, _) = setup.run(ls, "SORM")?;
-        let s = sorm(ls, &opts).map_err(|e| format!("SORM: {e}"))?;
-        r.pf = s.pf_breitung;
-        r.pf_breitung = Some(s.pf_breitung);
-        r.pf_tvedt = Some(s.pf_tvedt);
-        r.curvatures = Some(s.curvatures);
-        Ok(r)
-    })
 }
 
 /// Importance sampling centred at the FORM design point, `u ~ N(u*, I)`, drawn in rounds of
