@@ -35,7 +35,7 @@ mod multistart;
 mod refine;
 mod subset;
 
-pub use form::{FormOptions, FormResult, SormResult, breitung_tvedt, form, sorm};
+pub use form::{FormOptions, FormResult, SormResult, breitung_tvedt, form, sorm, sorm_at};
 pub use importance::{ImportanceOptions, importance_sampling};
 pub use multistart::{MultiStart, axis_starts, form_from_starts};
 pub use refine::{Proposal, RefineOptions, propose_runs};
