@@ -490,8 +490,8 @@ def form(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "Piecewi
     second_order : bool
         SORM at the best design point: `pf` is then Breitung's formula
         `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, with `pf_tvedt` Tvedt's three-term one and
-        the principal `curvatures`. It runs FORM again from the best start, then the Hessian
-        (`2 d^2 + 1` more calls).
+        the principal `curvatures`, from the Hessian at the best design point (`2 d^2 + 1`
+        more calls).
 
     Returns
     -------

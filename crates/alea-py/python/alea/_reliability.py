@@ -15,7 +15,7 @@ def sorm(model: Any, law: Any, **options: Any) -> _core.ReliabilityResult:
     Tvedt's three-term formula and ``curvatures`` the principal curvatures of the limit state
     there. ``model``, ``law`` and the keyword options (``threshold``, ``starts``, ``tol``,
     ``max_iter``, ``step``) are those of :func:`alea.form`; so are the result and the errors,
-    plus a ``ValueError`` when a curvature makes ``1 + beta kappa <= 0``. It costs FORM from
-    every start, FORM again from the best one, and ``2 d^2 + 1`` calls for the Hessian.
+    plus a ``ValueError`` when a curvature makes ``1 + beta kappa <= 0``. It costs FORM's calls
+    and ``2 d^2 + 1`` more for the Hessian at the best design point.
     """
     return _core.form(model, law, second_order=True, **options)

@@ -13,7 +13,7 @@
 //!   smallest `beta`, and a warning says so when more than one lies within `beta_min + 1`:
 //!   FORM, SORM and importance sampling around one design point then miss the others' share
 //!   of the probability.
-//! * SORM (Breitung, Tvedt) at the best design point, from its start (`form(...,
+//! * SORM (Breitung, Tvedt) at the best design point (`form(...,
 //!   second_order=True)`, which the Python package calls `alea.sorm`).
 //! * Importance sampling centred at the best design point, drawn in rounds of 2 048 until its
 //!   coefficient of variation reaches `target_cov` (a warning if `max_draws` came first).
@@ -35,7 +35,7 @@ use std::sync::Arc;
 use alea_uq::joint::JointLaw;
 use alea_uq::reliability::{
     FormOptions, FormResult, ImportanceOptions, LimitState, SubsetOptions, axis_starts,
-    form_from_starts, importance_sampling, sorm, subset_simulation,
+    form_from_starts, importance_sampling, sorm_at, subset_simulation,
 };
 use pyo3::exceptions::{PyRuntimeWarning, PyTypeError};
 use pyo3::prelude::*;
@@ -239,8 +239,8 @@ impl FormSetup {
 /// second_order : bool
 ///     SORM at the best design point: `pf` is then Breitung's formula
 ///     `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, with `pf_tvedt` Tvedt's three-term one and
-///     the principal `curvatures`. It runs FORM again from the best start, then the Hessian
-///     (`2 d^2 + 1` more calls).
+///     the principal `curvatures`, from the Hessian at the best design point (`2 d^2 + 1`
+///     more calls).
 ///
 /// Returns
 /// -------
@@ -276,8 +276,8 @@ pub fn form_py(
         if !second_order {
             return setup.run(ls, "FORM").map(|r| r.0);
         }
-        let (mut r, opts, _) = setup.run(ls, "SORM")?;
-        let s = sorm(ls, &opts).map_err(|e| format!("SORM: {e}"))?;
+        let (mut r, opts, f) = setup.run(ls, "SORM")?;
+        let s = sorm_at(ls, f, &opts).map_err(|e| format!("SORM: {e}"))?;
         r.pf = s.pf_breitung;
         r.pf_breitung = Some(s.pf_breitung);
         r.pf_tvedt = Some(s.pf_tvedt);
