@@ -80,6 +80,19 @@ def test_form_is_exact_through_a_lognormal_law():
     assert r.design_point == pytest.approx([math.exp(c / 2)] * 2, rel=1e-6)
 
 
+def test_form_is_exact_through_a_gaussian_copula():
+    # x ~ N(0, [[1, rho], [rho, 1]]): x1 + x2 ~ N(0, 2 + 2 rho), P(x1 + x2 > c) = Phi(-c / sqrt(2 + 2 rho)).
+    rho, c = 0.5, 5.0
+    law = alea.Joint([alea.Normal(0.0, 1.0), alea.Normal(0.0, 1.0)], correlation=[[1.0, rho], [rho, 1.0]])
+    r = alea.form(lambda x: x[:, 0] + x[:, 1], law, threshold=c)
+    beta = c / math.sqrt(2.0 + 2.0 * rho)
+    assert r.beta == pytest.approx(beta, abs=1e-6)
+    assert r.pf == pytest.approx(Phi(-beta), rel=1e-6)
+    assert r.design_point == pytest.approx([c / 2.0, c / 2.0], abs=1e-6)
+    s = alea.importance_sampling(lambda x: x[:, 0] + x[:, 1], law, threshold=c)
+    assert s.interval[0] <= Phi(-beta) <= s.interval[1]
+
+
 def test_sorm_gives_breitungs_closed_form_on_a_parabola():
     beta, k = 3.0, (0.2, -0.1)
     g = lambda u: beta + 0.5 * (k[0] * u[:, 0] ** 2 + k[1] * u[:, 1] ** 2) - u[:, 2]  # noqa: E731
