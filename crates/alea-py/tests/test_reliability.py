@@ -350,3 +350,9 @@ def test_subset_simulation_says_when_it_does_not_reach_the_failure_domain():
     with pytest.warns(RuntimeWarning, match="did not reach the failure domain in 2 levels"):
         s = alea.subset_simulation(lambda x: 10.0 - x[:, 0], normals(1), max_levels=2)
     assert s.pf == 0.0 and s.interval == (0.0, pytest.approx(0.01)) and s.cov is None
+
+
+def test_importance_sampling_says_when_max_draws_comes_before_its_target():
+    with pytest.warns(RuntimeWarning, match=r"stopped at max_draws \(2048 draws\)"):
+        r = alea.importance_sampling(linear_4d, normals(4), target_cov=0.001, max_draws=2048)
+    assert r.cov > 0.001 and r.interval[0] <= Phi(-BETA_1E5) <= r.interval[1]
