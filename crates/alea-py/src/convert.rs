@@ -33,7 +33,16 @@ impl<'a, 'py, T: TryFrom<i128>> FromPyObject<'a, 'py> for NonNegative<T> {
     type Error = PyErr;
 
     fn extract(obj: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        let v: i128 = obj.extract()?;
+        let v: i128 = obj.extract().map_err(|e: PyErr| {
+            if e.is_instance_of::<pyo3::exceptions::PyOverflowError>(obj.py()) {
+                value_error(format!(
+                    "expected a non-negative integer within range, got {} (too large)",
+                    obj.as_any()
+                ))
+            } else {
+                e
+            }
+        })?;
         T::try_from(v).map(NonNegative).map_err(|_| {
             value_error(format!(
                 "expected a non-negative integer within range, got {v}"

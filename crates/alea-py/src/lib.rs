@@ -14,6 +14,9 @@
 //!   indices, LOO errors, save/load) and `PiecewiseLinear`;
 //! * [`fields`]: `KarhunenLoeve` (Galerkin KL of a random field on a P1 mesh, realisations with
 //!   Gaussian, lognormal or bounded transforms);
+//! * [`reliability`]: `form` (and SORM), `importance_sampling`, `subset_simulation` of a Python
+//!   callable (vectorised, `(n, d)` points to `n` values) or of a fitted `PolynomialChaos` /
+//!   `PiecewiseLinear` (evaluated in Rust), with `ReliabilityResult`;
 //! * [`study`]: running a study file, reading a study directory's store and rebuilding its
 //!   outputs (summary, samples, fields, HTML report), through `alea-report` as the CLI does.
 //!   Only with the cargo feature `solver` (default): without it (`--no-default-features`) the
@@ -27,6 +30,7 @@ mod convert;
 mod designs;
 mod fields;
 mod laws;
+mod reliability;
 #[cfg(feature = "solver")]
 mod study;
 mod surrogates;
@@ -62,6 +66,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<surrogates::PolynomialChaos>()?;
     m.add_class::<surrogates::PiecewiseLinear>()?;
     m.add_class::<fields::KarhunenLoeve>()?;
+    m.add_class::<reliability::ReliabilityResult>()?;
+    m.add_function(wrap_pyfunction!(reliability::form_py, m)?)?;
+    m.add_function(wrap_pyfunction!(reliability::importance_sampling_py, m)?)?;
+    m.add_function(wrap_pyfunction!(reliability::subset_simulation_py, m)?)?;
     #[cfg(feature = "solver")]
     {
         m.add_function(wrap_pyfunction!(study::run_study_file, m)?)?;

@@ -107,7 +107,7 @@ struct StudyOutput {
     reliability: String,
 }
 
-/// Names and units of a study.
+/// Names and units of a study, its parameters' laws and its random fields.
 struct StudyInfo {
     title: String,
     file: String,
@@ -115,8 +115,84 @@ struct StudyInfo {
     seed: u64,
     parameters: Vec<String>,
     parameter_units: Vec<String>,
+    /// Each parameter's law as `summary.json` describes it, its box and nominal value.
+    parameter_laws: Vec<String>,
+    parameter_lo: Vec<f64>,
+    parameter_hi: Vec<f64>,
+    parameter_nominal: Vec<f64>,
     quantities: Vec<String>,
     quantity_units: Vec<String>,
+    fields: Vec<FieldInfo>,
+}
+
+/// A `[[field]]` of a study: its Karhunen-Loeve discretisation.
+struct FieldInfo {
+    name: String,
+    interface: String,
+    unit: String,
+    description: String,
+    transform: String,
+    /// Index of its first KL variable among the parameters.
+    first_variable: usize,
+    eigenvalues: Vec<f64>,
+    captured_fraction: f64,
+    total_variance: f64,
+    /// Node coordinates, `n x 3` row-major.
+    nodes: Vec<f64>,
+    /// Cells (segments or triangles) by node index.
+    cells: Vec<Vec<usize>>,
+    /// Modes at the nodes, `m x n` row-major (row `k`: mode `k`, L2-normalised), as
+    /// `alea.KarhunenLoeve.modes`.
+    modes: Vec<f64>,
+}
+
+impl FieldInfo {
+    fn of(study: &Study, f: &alea_study::random_field::StudyField) -> Self {
+        let kl = f.field.kl();
+        let mesh = kl.mesh();
+        let m = kl.num_modes();
+        let modes: Vec<f64> = (0..m).flat_map(|k| kl.mode(k).iter().copied()).collect();
+        Self {
+            name: f.name.clone(),
+            interface: study
+                .model
+                .assembly
+                .interfaces
+                .get(f.interface)
+                .map_or_else(|| f.interface.to_string(), |i| i.name.clone()),
+            unit: f.unit.clone(),
+            description: f.description.clone(),
+            transform: format!("{:?}", f.field.transform()),
+            first_variable: f.first_variable,
+            eigenvalues: kl.eigenvalues().to_vec(),
+            captured_fraction: kl.captured_fraction(),
+            total_variance: kl.total_variance(),
+            nodes: mesh.nodes().iter().flatten().copied().collect(),
+            cells: (0..mesh.num_cells())
+                .map(|c| mesh.cell(c).to_vec())
+                .collect(),
+            modes,
+        }
+    }
+
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("name", &self.name)?;
+        d.set_item("interface", &self.interface)?;
+        d.set_item("unit", &self.unit)?;
+        d.set_item("description", &self.description)?;
+        d.set_item("transform", &self.transform)?;
+        d.set_item("first_variable", self.first_variable)?;
+        d.set_item("eigenvalues", array1(py, self.eigenvalues.clone()))?;
+        d.set_item("captured_fraction", self.captured_fraction)?;
+        d.set_item("total_variance", self.total_variance)?;
+        let n = self.nodes.len() / 3;
+        d.set_item("nodes", array2(py, self.nodes.clone(), n, 3)?)?;
+        d.set_item("cells", self.cells.clone())?;
+        let m = self.eigenvalues.len();
+        d.set_item("modes", array2(py, self.modes.clone(), m, n)?)?;
+        Ok(d)
+    }
 }
 
 impl StudyInfo {
@@ -128,8 +204,18 @@ impl StudyInfo {
             seed: study.seed,
             parameters: study.params.names.clone(),
             parameter_units: study.params.units.clone(),
+            parameter_laws: study.params.descriptions.clone(),
+            parameter_lo: study.params.lo.clone(),
+            parameter_hi: study.params.hi.clone(),
+            parameter_nominal: study.params.nominal.clone(),
             quantities: study.qois.iter().map(|q| q.name.clone()).collect(),
             quantity_units: study.qois.iter().map(|q| q.unit.clone()).collect(),
+            fields: study
+                .params
+                .fields
+                .iter()
+                .map(|f| FieldInfo::of(study, f))
+                .collect(),
         }
     }
 
@@ -140,6 +226,18 @@ impl StudyInfo {
         out.set_item("seed", self.seed)?;
         out.set_item("parameters", PyList::new(py, &self.parameters)?)?;
         out.set_item("parameter_units", PyList::new(py, &self.parameter_units)?)?;
+        out.set_item("parameter_laws", PyList::new(py, &self.parameter_laws)?)?;
+        out.set_item("parameter_lo", array1(py, self.parameter_lo.clone()))?;
+        out.set_item("parameter_hi", array1(py, self.parameter_hi.clone()))?;
+        out.set_item(
+            "parameter_nominal",
+            array1(py, self.parameter_nominal.clone()),
+        )?;
+        let fields = PyList::empty(py);
+        for f in &self.fields {
+            fields.append(f.to_dict(py)?)?;
+        }
+        out.set_item("fields", fields)?;
         out.set_item("quantities", PyList::new(py, &self.quantities)?)?;
         out.set_item("quantity_units", PyList::new(py, &self.quantity_units)?)?;
         Ok(())
@@ -277,8 +375,16 @@ fn method_dict<'py>(
                 ))?;
             }
             q.set_item("surrogate_basis", &b.surrogate_basis)?;
+            q.set_item("mesh_basis", &b.mesh_basis)?;
+            q.set_item("budget_draws", b.draws)?;
         }
         q.set_item("budget", budget)?;
+        // Sobol' indices (studies with random fields), as in summary.json.
+        let sobol = match &s.sobol {
+            Some(v) => Some(serde_json::to_string(v).map_err(|e| value_error(e.to_string()))?),
+            None => None,
+        };
+        q.set_item("sobol_json", sobol)?;
         stats.append(q)?;
     }
     out.set_item("statistics", stats)?;

@@ -7,6 +7,7 @@
 //! computed per run (fields, other quantities).
 
 use alea_uq::basis::{MultiIndexSet, PcBasis};
+use alea_uq::joint::JointLaw;
 use alea_uq::law::Marginal;
 use alea_uq::quadrature::QuadratureRule;
 use alea_uq::surrogate::{
@@ -104,6 +105,10 @@ impl PolynomialChaos {
     }
     fn dim(&self) -> usize {
         self.sur.basis().dim()
+    }
+    /// The expansion as a function of a point (`dim` coordinates), for the reliability methods.
+    pub(crate) fn function(&self) -> (usize, impl Fn(&[f64]) -> f64 + Sync + '_) {
+        (self.dim(), |x: &[f64]| self.exp.eval(x))
     }
 }
 
@@ -370,12 +375,12 @@ fn mesh(
 }
 
 impl PiecewiseLinear {
-    /// Moments `(E[q~], E[q~^2])` under `law`, whose support must lie in the box.
-    fn moments(&self, law: &Bound<'_, PyAny>, order: usize) -> PyResult<(f64, f64)> {
-        let l = law_arg(law, "PiecewiseLinear law")?.joint;
+    /// Checks that `l` has the grid's dimension and a support inside the box (`what`: the
+    /// caller, for the message).
+    pub(crate) fn check_law(&self, l: &dyn JointLaw, what: &str) -> PyResult<()> {
         if l.dim() != self.lo.len() {
             return Err(value_error(format!(
-                "PiecewiseLinear law: {} variables, the grid has {}",
+                "{what}: the law has {} variables, the PiecewiseLinear grid has {}",
                 l.dim(),
                 self.lo.len()
             )));
@@ -385,12 +390,26 @@ impl PiecewiseLinear {
             let tol = 1e-12 * (self.hi[j] - self.lo[j]);
             if a[j] < self.lo[j] - tol || b[j] > self.hi[j] + tol {
                 return Err(value_error(format!(
-                    "PiecewiseLinear moments: variable {j} has support [{}, {}] outside the grid's \
+                    "{what}: variable {j} has support [{}, {}] outside the PiecewiseLinear grid's \
                      [{}, {}]; use a law supported in the box (uniform, truncated normal, ...)",
                     a[j], b[j], self.lo[j], self.hi[j]
                 )));
             }
         }
+        Ok(())
+    }
+
+    /// The interpolant as a function of a point inside the box, for the reliability methods.
+    pub(crate) fn function(&self) -> (usize, impl Fn(&[f64]) -> f64 + Sync + '_) {
+        (self.lo.len(), |x: &[f64]| {
+            self.mesh.interpolate(x, &self.values)
+        })
+    }
+
+    /// Moments `(E[q~], E[q~^2])` under `law`, whose support must lie in the box.
+    fn moments(&self, law: &Bound<'_, PyAny>, order: usize) -> PyResult<(f64, f64)> {
+        let l = law_arg(law, "PiecewiseLinear law")?.joint;
+        self.check_law(l.as_ref(), "PiecewiseLinear moments")?;
         let pdf = |x: &[f64]| l.pdf(x);
         let ew = self.mesh.expected_weights(pdf, order).map_err(uq_err)?;
         let mass: f64 = ew.iter().sum();

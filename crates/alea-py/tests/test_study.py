@@ -97,6 +97,34 @@ def test_reliability_table_matches_the_exact_probability(study):
     assert r["warnings"] == [] and r["errors"] == []
 
 
+def test_reliability_table_has_one_row_per_algorithm(study):
+    res, _, _ = study
+    t = res.reliability_table
+    assert list(t["algorithm"]) == ["FORM", "SORM", "importance sampling", "subset simulation"]
+    (r,) = res.reliability
+    assert (t["quantity"] == "tip").all() and (t["threshold"] == T).all()
+    assert t["pf"].iloc[2] == r["importance"]["pf"] and t["ci_high"].iloc[3] == r["subset"]["upper"]
+    assert t["evaluations"].iloc[0] == r["form_evaluations"]
+    assert t["beta"].iloc[0] == r["design_points"][0]["beta"] and np.isnan(t["beta"].iloc[3])
+    pf = exact_pf()
+    for _, row in t.iloc[2:].iterrows():
+        assert row["ci_low"] - 2e-3 <= pf <= row["ci_high"] + 2e-3
+
+
+def test_parameter_table_and_budget_bases(study):
+    res, _, _ = study
+    p = res.parameter_table
+    assert list(p.index) == ["E", "P"]
+    assert (p.loc["E", "lo"], p.loc["E", "hi"], p.loc["E", "nominal"]) == (A, B, 0.5 * (A + B))
+    assert p.loc["P", "nominal"] == 1.0 and "normal" in p.loc["P", "law"]
+    assert p["field"].isna().all() and res.fields == [] and res.field_modes.empty
+    assert res.sensitivity.empty  # Sobol' indices are written for studies with random fields
+    bases = res.budget_bases.set_index("method")
+    assert bases.loc["PC regression p=4", "surrogate"] == res.budget_basis[("PC regression p=4", "tip")]
+    assert bases.loc["Monte Carlo", "draws"] == 200
+    assert "not estimated" in bases.loc["Monte Carlo", "mesh"]
+
+
 def test_samples_are_the_main_methods_draws(study):
     res, _, _ = study
     assert res.main_method == "PC regression p=4"

@@ -54,21 +54,49 @@ ARG_TYPES = {
     "bandwidth": "float",
     "variables": "Sequence[int]",
     "bounds": "Tuple[float, float]",
+    "model": 'Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"]',
+    "threshold": "float",
+    "starts": "ArrayLike",
+    "max_iter": "int",
+    "max_draws": "int",
+    "samples_per_level": "int",
+    "max_levels": "int",
+    "second_order": "bool",
+}
+# Arguments whose type depends on the function (`level`: a sparse-grid level elsewhere, a
+# confidence level in the reliability methods).
+FUNCTION_ARG_TYPES = {
+    ("importance_sampling", "level"): "float",
+    ("subset_simulation", "level"): "float",
 }
 FLOAT_ARGS = {
     "mean", "std", "alpha", "beta", "mu", "sigma", "shape", "scale", "loc", "mode",
     "variance", "variance_fraction", "q", "max_terms_fraction", "stop_factor",
-    "length",
+    "length", "tol", "step", "target_cov", "p0", "rho",
 }
 RETURNS = {
     "monte_carlo": "Matrix", "lhs": "Matrix", "sobol": "Matrix", "grid": "Matrix",
     "pc_collocation": "Matrix", "quadrature": "Tuple[Matrix, Vector]", "fit": "Any",
     "read_store": "Dict[str, Any]", "rebuild_outputs": "Dict[str, Any]",
     "run_study_file": "Dict[str, Any]",
+    "form": "ReliabilityResult",
+    "importance_sampling": "ReliabilityResult", "subset_simulation": "ReliabilityResult",
+}
+# Property types by class (others are `Any`).
+PROPERTY_TYPES = {
+    "ReliabilityResult": {
+        "method": "str", "pf": "float", "interval": "Optional[Tuple[float, float]]",
+        "level": "Optional[float]", "cov": "Optional[float]", "beta": "Optional[float]",
+        "generalised_beta": "float", "design_point": "Optional[Vector]",
+        "design_point_u": "Optional[Vector]", "importance_factors": "Optional[Vector]",
+        "design_points": "Matrix", "design_point_betas": "Vector",
+        "curvatures": "Optional[Vector]", "pf_breitung": "Optional[float]",
+        "pf_tvedt": "Optional[float]", "calls": "int", "warnings": "List[str]",
+    },
 }
 # The stub's preamble, composed from what it declares: the typing names it imports, the array
 # aliases and the module attributes.
-TYPING_NAMES = ["Any", "Callable", "Dict", "Optional", "Sequence", "Tuple", "Union"]
+TYPING_NAMES = ["Any", "Callable", "Dict", "List", "Optional", "Sequence", "Tuple", "Union"]
 ALIASES = [
     ("Matrix", "npt.NDArray[np.float64]"),
     ("Vector", "npt.NDArray[np.float64]"),
@@ -93,7 +121,9 @@ HEADER = "\n".join(
 ) + "\n"
 
 
-def arg_type(name):
+def arg_type(name, function=None):
+    if (function, name) in FUNCTION_ARG_TYPES:
+        return FUNCTION_ARG_TYPES[(function, name)]
     if name in ARG_TYPES:
         return ARG_TYPES[name]
     if name in FLOAT_ARGS:
@@ -101,7 +131,7 @@ def arg_type(name):
     return "Any"
 
 
-def params(sig, method):
+def params(sig, method, function=None):
     out = ["self"] if method else []
     star = False
     for p in sig.parameters.values():
@@ -110,7 +140,7 @@ def params(sig, method):
         if p.kind == p.KEYWORD_ONLY and not star:
             out.append("*")
             star = True
-        t = arg_type(p.name)
+        t = arg_type(p.name, function)
         if p.default is p.empty:
             out.append(f"{p.name}: {t}")
         elif p.default is None:
@@ -140,7 +170,7 @@ def signature(obj):
 def function(name, f, indent=0, method=False, decorator=None):
     sig = signature(f)
     pad = " " * indent
-    ps = params(sig, method) if sig else ("self, *args: Any, **kwargs: Any" if method else "*args: Any, **kwargs: Any")
+    ps = params(sig, method, name) if sig else ("self, *args: Any, **kwargs: Any" if method else "*args: Any, **kwargs: Any")
     ret = RETURNS.get(name, "Any")
     head = f"{pad}@{decorator}\n" if decorator else ""
     d = doc(f, indent + 4)
@@ -164,7 +194,8 @@ def klass(name, cls):
         elif isinstance(raw, classmethod) or type(raw).__name__ == "classmethod_descriptor":
             out += function(attr, getattr(cls, attr), 4, False, "staticmethod")
         elif type(raw).__name__ == "getset_descriptor" or isinstance(raw, property):
-            out += f"    @property\n    def {attr}(self) -> Any: ...\n"
+            kind = PROPERTY_TYPES.get(name, {}).get(attr, "Any")
+            out += f"    @property\n    def {attr}(self) -> {kind}: ...\n"
         elif callable(raw):
             out += function(attr, raw, 4, True)
     return out

@@ -6,7 +6,9 @@ as NumPy arrays and pandas DataFrames.
 
 Studies
     ``run(study_file)`` runs (or resumes) a study file and returns a :class:`StudyResult`
-    (``.runs``, ``.statistics``, ``.failure``, ``.samples``); ``open_store(directory)`` reads
+    (``.runs``, ``.statistics``, ``.failure``, ``.samples``, the error budget ``.budget`` and
+    its ``.budget_bases``, ``.reliability_table``, the random fields ``.fields`` /
+    ``.field_modes`` and the Sobol' indices per parameter and KL mode ``.sensitivity``); ``open_store(directory)`` reads
     the runs of a study directory without running anything; ``report(directory)`` writes its
     outputs (``summary.json``, ``samples.csv``, fields, the HTML report) as ``alea report``.
     A toolkit-only build (cargo ``--no-default-features``: no solver, ``SOLVER`` false) raises
@@ -29,6 +31,13 @@ Random fields
     Galerkin Karhunen-Loeve expansion on a P1 mesh (segments or triangles); ``eigenvalues``,
     ``modes``, ``realise(xi, mean, transform="gaussian" | "lognormal" | "bounded")``.
 
+Rare events
+    ``form``, ``sorm``, ``importance_sampling``, ``subset_simulation``: ``P(g(X) <= 0)``, or
+    ``P(q(X) > threshold)``, for a Python callable (vectorised: an ``(n, d)`` array of points in,
+    ``n`` values out) or a fitted ``PolynomialChaos`` / ``PiecewiseLinear`` (evaluated in Rust,
+    no Python calls); a :class:`ReliabilityResult` with ``pf``, ``interval``, ``cov``, ``beta``,
+    the design point(s), ``calls`` and ``warnings``.
+
 Wherever a law is expected, a ``Joint``, a single ``Law`` or a list of ``Law`` objects
 (independent variables) may be given. Random routines take a ``seed`` and give the same result
 whatever the number of threads.
@@ -46,20 +55,26 @@ from ._core import (
     Normal,
     PiecewiseLinear,
     PolynomialChaos,
+    ReliabilityResult,
     SOLVER,
     Triangular,
     TruncatedNormal,
     Uniform,
     __version__,
     fit,
+    form,
     grid,
+    importance_sampling,
     lhs,
     monte_carlo,
     pc_collocation,
     quadrature,
     sobol,
+    subset_simulation,
 )
 from ._study import SolverNotBuilt, StoredRuns, StudyOutputs, StudyResult, open_store, report, run
+from ._reliability import sorm
+from ._tables import RandomField
 
 __all__ = [
     "Beta",
@@ -73,6 +88,8 @@ __all__ = [
     "Normal",
     "PiecewiseLinear",
     "PolynomialChaos",
+    "RandomField",
+    "ReliabilityResult",
     "SOLVER",
     "SolverNotBuilt",
     "StoredRuns",
@@ -83,7 +100,9 @@ __all__ = [
     "Uniform",
     "__version__",
     "fit",
+    "form",
     "grid",
+    "importance_sampling",
     "lhs",
     "monte_carlo",
     "open_store",
@@ -92,4 +111,6 @@ __all__ = [
     "report",
     "run",
     "sobol",
+    "sorm",
+    "subset_simulation",
 ]

@@ -1,7 +1,7 @@
 """Type stubs of ``alea._core`` (written by ``tools/stubgen.py`` from the built module: do not
 edit by hand)."""
 import os
-from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -314,6 +314,82 @@ class PolynomialChaos:
         """
         ...
 
+class ReliabilityResult:
+    """
+    The outcome of `alea.form`, `sorm`, `importance_sampling` or `subset_simulation`.
+
+    Attributes
+    ----------
+    method : str
+        `"FORM"`, `"SORM"`, `"importance sampling"` or `"subset simulation"`.
+    pf : float
+        The failure probability: `Phi(-beta)` (FORM), Breitung's formula (SORM), the estimate
+        (importance sampling, subset simulation).
+    interval : tuple of float or None
+        Its confidence interval at `level` (sampling methods; FORM and SORM are asymptotic
+        approximations without one).
+    level : float or None
+        Confidence level of `interval`.
+    cov : float or None
+        Coefficient of variation of the estimator (sampling methods; None when no failure was
+        drawn).
+    beta : float or None
+        FORM reliability index `|u*|` of the design point (negative when the median point
+        fails); None for subset simulation, which needs no design point.
+    generalised_beta : float
+        `-Phi^-1(pf)` (infinite when `pf` is 0).
+    design_point, design_point_u : ndarray or None
+        The design point in the law's variables and in the standard normal space.
+    importance_factors : ndarray or None
+        `alpha_i^2` at the design point (sum 1).
+    design_points, design_point_betas : ndarray
+        Every distinct design point FORM found from its starts, `(k, d)` in the law's
+        variables, smallest `beta` first, and their `beta`.
+    curvatures : ndarray or None
+        SORM's principal curvatures at the design point.
+    pf_breitung, pf_tvedt : float or None
+        SORM's two approximations.
+    calls : int
+        Evaluations of the model (every FORM start included).
+    warnings : list of str
+        Several design points, a target coefficient of variation not reached, no failure drawn
+        (each also issued as a `RuntimeWarning`).
+    """
+    @property
+    def beta(self) -> Optional[float]: ...
+    @property
+    def calls(self) -> int: ...
+    @property
+    def cov(self) -> Optional[float]: ...
+    @property
+    def curvatures(self) -> Optional[Vector]: ...
+    @property
+    def design_point(self) -> Optional[Vector]: ...
+    @property
+    def design_point_betas(self) -> Vector: ...
+    @property
+    def design_point_u(self) -> Optional[Vector]: ...
+    @property
+    def design_points(self) -> Matrix: ...
+    @property
+    def generalised_beta(self) -> float: ...
+    @property
+    def importance_factors(self) -> Optional[Vector]: ...
+    @property
+    def interval(self) -> Optional[Tuple[float, float]]: ...
+    @property
+    def level(self) -> Optional[float]: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def pf(self) -> float: ...
+    @property
+    def pf_breitung(self) -> Optional[float]: ...
+    @property
+    def pf_tvedt(self) -> Optional[float]: ...
+    @property
+    def warnings(self) -> List[str]: ...
+
 class Beta(Law):
     """
     Beta law with shapes `alpha`, `beta` on `[lo, hi]`.
@@ -391,10 +467,77 @@ def fit(data: ArrayLike, families: Optional[Sequence[str]] = None) -> Any:
     """
     ...
 
+def form(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"], law: LawLike, *, threshold: Optional[float] = None, starts: Optional[ArrayLike] = None, tol: float = 1e-06, max_iter: int = 100, step: float = 0.0001, second_order: bool = False) -> ReliabilityResult:
+    """
+    FORM: the first-order reliability method, `pf ~ Phi(-beta)` at the design point; with
+    `second_order`, SORM there (`alea.sorm`).
+
+    Parameters
+    ----------
+    model : callable, PolynomialChaos or PiecewiseLinear
+        A callable takes an `(n, d)` NumPy array of points and returns `n` values (e.g.
+        `lambda x: 3.0 - x[:, 0] - x[:, 1]`); at present it is called with one point at a time
+        (`n = 1`). A surrogate is evaluated in Rust, without Python calls.
+    law : Joint, Law or list of Law
+        The law of the `d` variables (a PiecewiseLinear needs a law supported in its box).
+    threshold : float, optional
+        Without it, failure is `model(x) <= 0`; with it, `model(x) > threshold`.
+    starts : array (k, d), optional
+        FORM starting points in the standard normal space (default: the median point and `+-3`
+        along every axis).
+    tol, max_iter, step
+        HL-RF tolerance, iteration limit and finite-difference step (standard normal space).
+    second_order : bool
+        SORM at the best design point: `pf` is then Breitung's formula
+        `Phi(-beta) prod_i (1 + beta kappa_i)^-1/2`, with `pf_tvedt` Tvedt's three-term one and
+        the principal `curvatures`, from the Hessian at the best design point (`2 d^2 + 1`
+        more calls).
+
+    Returns
+    -------
+    ReliabilityResult
+        `pf`, `beta`, the design point, importance factors, every distinct design point, calls
+        and warnings (no interval: FORM and SORM are asymptotic approximations).
+
+    Raises
+    ------
+    ValueError
+        A bad argument, a model value that is not finite, no FORM start converging, or (SORM)
+        a curvature with `1 + beta kappa <= 0`. Any exception the callable raises propagates
+        unchanged.
+    """
+    ...
+
 def grid(lo: ArrayLike, hi: ArrayLike, counts: Sequence[int]) -> Matrix:
     """
     Tensor grid on the box `[lo, hi]` with `counts[j]` equispaced nodes in direction `j`
     (bounds included; one node is the centre); the last direction varies fastest.
+    """
+    ...
+
+def importance_sampling(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"], law: LawLike, *, threshold: Optional[float] = None, target_cov: float = 0.05, max_draws: int = 1000000, level: float = 0.95, seed: int = 1, starts: Optional[ArrayLike] = None) -> ReliabilityResult:
+    """
+    Importance sampling centred at the FORM design point, `u ~ N(u*, I)`, drawn in rounds of
+    2 048 until the coefficient of variation is at most `target_cov`.
+
+    Parameters
+    ----------
+    model, law, threshold, starts
+        As `form` (FORM finds the design point first).
+    target_cov : float
+        Target coefficient of variation, in (0, 1) (default 0.05).
+    max_draws : int
+        Largest number of draws, >= 2048 (default 10^6; a warning if reached first).
+    level : float
+        Confidence level of the interval `pf +- z sd / sqrt(N)`, in (0, 1).
+    seed : int
+        Seed (the result does not depend on the thread count).
+
+    Returns
+    -------
+    ReliabilityResult
+        `pf`, `interval`, `cov`, `calls` (FORM's included), the design point(s) and warnings
+        (several design points: compare with `subset_simulation`).
     """
     ...
 
@@ -460,5 +603,35 @@ def sobol(law: LawLike, n: int, scramble_seed: Optional[int] = None) -> Matrix:
     First `n` points of the Sobol' sequence (Joe-Kuo directions, up to 40 variables) mapped
     through `law`; scrambled (linear matrix scramble and digital shift) when `scramble_seed` is
     given.
+    """
+    ...
+
+def subset_simulation(model: Union[Callable[[Matrix], ArrayLike], "PolynomialChaos", "PiecewiseLinear"], law: LawLike, *, threshold: Optional[float] = None, samples_per_level: int = 2000, p0: float = 0.1, rho: float = 0.8, max_levels: int = 30, level: float = 0.95, seed: int = 1) -> ReliabilityResult:
+    """
+    Subset simulation (Au & Beck 2001): nested failure domains at the `p0` quantile of each
+    level, conditional samples by the preconditioned Crank-Nicolson random walk.
+
+    Parameters
+    ----------
+    model, law, threshold
+        As `form`.
+    samples_per_level : int
+        Samples per level `N` (default 2000); `p0 N` must be a whole number dividing `N`.
+    p0 : float
+        Conditional probability of the intermediate levels, in (0, 0.5] (default 0.1).
+    rho : float
+        Correlation of the random-walk proposal, in [0, 1) (default 0.8).
+    max_levels : int
+        Largest number of levels, >= 1 (default 30; if the failure domain is not reached, `pf`
+        is 0, the interval `(0, p0^max_levels)` and a warning says so).
+    level : float
+        Confidence level of the interval `pf exp(+- z cov)`, in (0, 1).
+    seed : int
+        Seed (the result does not depend on the thread count).
+
+    Returns
+    -------
+    ReliabilityResult
+        `pf`, `interval`, `cov`, `calls` (no design point).
     """
     ...

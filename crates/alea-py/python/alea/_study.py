@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 
 from . import _core
+from ._tables import RandomField, _field_modes, _parameter_table, _reliability_table
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -75,10 +76,40 @@ class StudyResult:
         (``mean``, ``std``, ``q0.05``, ``P(> t)``...), ``value`` and its estimated error by
         source, ``mesh``, ``surrogate`` and ``sampling`` (NaN where not estimated), and
         ``total``. How the surrogate part was estimated: ``budget_basis[(method, quantity)]``.
+    budget_bases : pandas.DataFrame
+        How each budget was estimated: columns ``method``, ``quantity``, ``surrogate`` and
+        ``mesh`` (the basis of each part, or why it was not estimated) and ``draws`` (Monte
+        Carlo draws behind the statistics).
     reliability : list of dict
         The ``[[reliability]]`` analyses of the study file (as in ``summary.json``): the FORM
         design points, SORM, importance sampling and subset simulation with their intervals and
         evaluation counts, warnings and errors.
+    reliability_table : pandas.DataFrame
+        The same, one row per analysis and algorithm: ``quantity``, ``threshold``, ``method``
+        (whose surrogate), ``algorithm`` (``FORM``, ``SORM``, ``importance sampling``,
+        ``subset simulation``, ``solver`` for the confirmation by runs of the solver), ``pf``,
+        ``ci_low``, ``ci_high`` (NaN for FORM and SORM), ``cov``, ``evaluations`` (surrogate
+        evaluations, or solver runs) and ``beta`` (FORM's reliability index).
+    parameter_table : pandas.DataFrame
+        Indexed by parameter: ``law`` (its description, as in ``summary.json``), ``unit``,
+        ``lo``, ``hi`` (the box of the surrogates), ``nominal``, and for the Karhunen-Loeve
+        variables of a random field its ``field`` and ``mode`` (1-based; None / 0 otherwise).
+    fields : list of RandomField
+        The study's ``[[field]]`` tables: Karhunen-Loeve eigenvalues, captured variance
+        fraction, mode shapes at the nodes, and the parameters that are its KL variables.
+    field_modes : pandas.DataFrame
+        One row per KL mode: ``field``, ``mode``, ``variable`` (the parameter), ``eigenvalue``,
+        ``variance_share`` (``lambda_k`` over the field's total variance) and
+        ``cumulative_share``.
+    sensitivity : pandas.DataFrame
+        Sobol' indices of every parameter (studies with random fields, as ``summary.json``),
+        indexed by ``(method, quantity, parameter)``: ``first``, ``total``, their standard
+        errors ``first_se``, ``total_se`` (pick-freeze estimators; NaN for a chaos, whose
+        indices are exact), ``estimator``, and ``field`` / ``mode`` for KL variables: the
+        Sobol' indices per KL mode.
+    field_sensitivity : pandas.DataFrame
+        Per random field (chaos methods): ``method``, ``quantity``, ``field``, ``closed`` (the
+        share of variance of its KL variables alone) and ``total``.
     samples : numpy.ndarray
         The main method's Monte Carlo draws, ``(draws, d + m)``: the parameter point of each
         draw then the quantities' values there (columns named by ``sample_columns``). The main
@@ -120,7 +151,13 @@ class StudyResult:
         self.statistics = self._statistics()
         self.failure = self._failure()
         self.budget, self.budget_basis = self._budget()
+        self.budget_bases = self._budget_bases()
         self.reliability: List[dict] = json.loads(raw.get("reliability_json", "[]"))
+        self.reliability_table = _reliability_table(self.reliability)
+        self.fields = [RandomField.of(f, self.parameters) for f in raw.get("fields", [])]
+        self.parameter_table = _parameter_table(raw, self.fields)
+        self.field_modes = _field_modes(self.fields)
+        self.sensitivity, self.field_sensitivity = self._sensitivity()
         main = next((m for m in raw["methods"] if m["statistics"]), None)
         self.main_method: Optional[str] = main["label"] if main is not None else None
         if main is None:
@@ -175,6 +212,67 @@ class StudyResult:
                     )
         columns = ["method", "quantity", "statistic", "value", "mesh", "surrogate", "sampling", "total"]
         return pd.DataFrame(rows, columns=columns), basis
+
+    def _budget_bases(self) -> pd.DataFrame:
+        rows = [
+            {
+                "method": m["label"],
+                "quantity": s["quantity"],
+                "surrogate": s["surrogate_basis"],
+                "mesh": s.get("mesh_basis"),
+                "draws": s.get("budget_draws"),
+            }
+            for m in self._raw["methods"]
+            for s in m["statistics"]
+            if "surrogate_basis" in s
+        ]
+        return pd.DataFrame(rows, columns=["method", "quantity", "surrogate", "mesh", "draws"])
+
+    def _sensitivity(self) -> Tuple[pd.DataFrame, pd.DataFrame]:
+        of_variable = {}
+        for f in self.fields:
+            for k, v in enumerate(f.variables):
+                of_variable[v] = (f.name, k + 1)
+        rows, field_rows = [], []
+        nan = float("nan")
+        for m in self._raw["methods"]:
+            for s in m["statistics"]:
+                text = s.get("sobol_json")
+                if not text:
+                    continue
+                sob = json.loads(text)
+                first_se = sob.get("first_se") or [nan] * len(self.parameters)
+                total_se = sob.get("total_se") or [nan] * len(self.parameters)
+                for j, name in enumerate(self.parameters):
+                    field, mode = of_variable.get(name, (None, 0))
+                    rows.append(
+                        {
+                            "method": m["label"],
+                            "quantity": s["quantity"],
+                            "parameter": name,
+                            "first": sob["first"][j],
+                            "total": sob["total"][j],
+                            "first_se": first_se[j],
+                            "total_se": total_se[j],
+                            "estimator": sob["estimator"],
+                            "field": field,
+                            "mode": mode,
+                        }
+                    )
+                for f in sob.get("fields", []):
+                    field_rows.append(
+                        {
+                            "method": m["label"],
+                            "quantity": s["quantity"],
+                            "field": f["field"],
+                            "closed": f["closed"],
+                            "total": f["total"],
+                        }
+                    )
+        columns = ["method", "quantity", "parameter", "first", "total", "first_se", "total_se", "estimator", "field", "mode"]
+        sens = pd.DataFrame(rows, columns=columns).set_index(["method", "quantity", "parameter"])
+        fields = pd.DataFrame(field_rows, columns=["method", "quantity", "field", "closed", "total"])
+        return sens, fields
 
     def _failure(self) -> pd.DataFrame:
         rows = [

@@ -231,8 +231,19 @@ pub fn form(ls: &LimitState, opts: &FormOptions) -> Result<FormResult> {
 /// As [`form`], or if a curvature makes `1 + beta kappa <= 0` (the parabolic approximation
 /// does not exist).
 pub fn sorm(ls: &LimitState, opts: &FormOptions) -> Result<SormResult> {
-    let start = ls.calls();
     let f = form(ls, opts)?;
+    sorm_at(ls, f, opts)
+}
+
+/// SORM at a design point `f` that [`form`] found with the options `opts` (only `opts.step`
+/// is used): the Hessian there (`2 d^2 + 1` evaluations), the curvatures, Breitung and Tvedt.
+/// [`SormResult::evaluations`] counts `f`'s evaluations too.
+///
+/// # Errors
+/// If a curvature makes `1 + beta kappa <= 0`, or `f` has the wrong dimension.
+pub fn sorm_at(ls: &LimitState, f: FormResult, opts: &FormOptions) -> Result<SormResult> {
+    crate::error::check_len("SORM", "design point", ls.dim(), f.u_star.len())?;
+    let start = ls.calls();
     let d = ls.dim();
     let h = opts.step.max(1e-3) * 10.0;
     // Hessian by central differences of the values (second order, `2 d^2 + 1` evaluations;
@@ -287,12 +298,13 @@ pub fn sorm(ls: &LimitState, opts: &FormOptions) -> Result<SormResult> {
         }
     }
     let (pb, pt) = breitung_tvedt(beta, &curvatures);
+    let f_evaluations = f.evaluations;
     Ok(SormResult {
         form: f,
         curvatures,
         pf_breitung: pb,
         pf_tvedt: pt,
-        evaluations: ls.calls() - start,
+        evaluations: f_evaluations + ls.calls() - start,
     })
 }
 

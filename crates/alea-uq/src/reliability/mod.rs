@@ -18,6 +18,8 @@
 //!   (`u' = rho u + sqrt(1 - rho^2) xi`, accepted if it stays in the current failure domain;
 //!   it leaves `N(0, I)` invariant, Papaioannou et al. 2015), coefficient of variation from the
 //!   chain correlations (Au & Beck, eq. (29)-(30));
+//! * [`form_from_starts`]: FORM from several starting points ([`axis_starts`]: the median and
+//!   `+-3` on every axis), every distinct design point, and a warning when several are close;
 //! * [`propose_runs`]: goal-oriented placement of new runs of a linear surrogate near its limit state.
 //!
 //! Every estimate carries its interval: importance sampling the CLT interval
@@ -29,11 +31,13 @@
 
 mod form;
 mod importance;
+mod multistart;
 mod refine;
 mod subset;
 
-pub use form::{FormOptions, FormResult, SormResult, breitung_tvedt, form, sorm};
+pub use form::{FormOptions, FormResult, SormResult, breitung_tvedt, form, sorm, sorm_at};
 pub use importance::{ImportanceOptions, importance_sampling};
+pub use multistart::{MultiStart, axis_starts, form_from_starts};
 pub use refine::{Proposal, RefineOptions, propose_runs};
 pub use subset::{SubsetOptions, subset_simulation};
 
