@@ -15,7 +15,7 @@
 //! `P(q > t)` ([`crate::budget`]) gives it.
 
 use alea_uq::reliability::{
-    FormOptions, ImportanceOptions, LimitState, SubsetOptions, form, importance_sampling, sorm,
+    FormOptions, ImportanceOptions, LimitState, SubsetOptions, importance_sampling, sorm_at,
     subset_simulation,
 };
 use serde::Serialize;
@@ -165,17 +165,15 @@ fn run_algorithms(
     let mut best: Option<(alea_uq::reliability::FormResult, FormOptions)> = None;
     if needs_form {
         let before = ls.calls();
-        let (found, best_start, first_error) = form_from_starts(ls);
-        best = best_start;
+        let starts = form_from_starts(ls);
         out.form_evaluations = ls.calls() - before;
-        if let Some(b0) = found.first().map(|f| f.beta) {
-            let close = found.iter().filter(|f| f.beta <= b0 + 1.0).count();
-            if close > 1 {
-                out.warnings.push(format!(
-                    "{close} design points within beta {b0:.3} + 1: FORM, SORM and importance sampling around the first miss the others' share of the probability; compare with subset simulation"
-                ));
-            }
-        }
+        out.warnings.extend(starts.several_design_points());
+        let alea_uq::reliability::MultiStart {
+            found,
+            best: best_start,
+            first_error,
+        } = starts;
+        best = best_start;
         out.design_points = found
             .iter()
             .map(|f| DesignPoint {
@@ -193,9 +191,10 @@ fn run_algorithms(
         }
     }
     if wants(Algorithm::Sorm)
-        && let Some((_, opts)) = &best
+        && let Some((f, opts)) = &best
     {
-        match sorm(ls, opts) {
+        // At the design point FORM found (not FORM again: `2 d^2 + 1` evaluations in all).
+        match sorm_at(ls, f.clone(), opts) {
             Ok(s) => {
                 out.sorm = Some(Sorm {
                     pf_breitung: s.pf_breitung,
@@ -273,59 +272,14 @@ pub(crate) fn evaluate(
     w.iter().map(|&(k, wk)| wk * values[k]).sum::<f64>()
 }
 
-/// FORM from the median and `+-3` along every axis of the standard normal space: the distinct
-/// design points (smallest `beta` first), the best with its options, and the first error.
-#[allow(clippy::type_complexity)]
-pub(crate) fn form_from_starts(
-    ls: &LimitState,
-) -> (
-    Vec<alea_uq::reliability::FormResult>,
-    Option<(alea_uq::reliability::FormResult, FormOptions)>,
-    Option<String>,
-) {
-    let d = ls.dim();
-    let mut best: Option<(alea_uq::reliability::FormResult, FormOptions)> = None;
-    let mut starts: Vec<Option<Vec<f64>>> = vec![None];
-    for j in 0..d {
-        for s in [3.0, -3.0] {
-            let mut u = vec![0.0; d];
-            u[j] = s;
-            starts.push(Some(u));
-        }
-    }
-    let mut found: Vec<alea_uq::reliability::FormResult> = Vec::new();
-    let mut first_error = None;
-    for start in starts {
-        let opts = FormOptions {
-            start: start.clone(),
-            ..FormOptions::default()
-        };
-        match form(ls, &opts) {
-            Ok(f) => {
-                let distinct = found.iter().all(|g| {
-                    let dist: f64 = g
-                        .u_star
-                        .iter()
-                        .zip(&f.u_star)
-                        .map(|(a, b)| (a - b).powi(2))
-                        .sum::<f64>()
-                        .sqrt();
-                    dist > 0.1 * g.beta.min(f.beta).max(1e-3)
-                });
-                if distinct {
-                    found.push(f.clone());
-                }
-                if best.as_ref().is_none_or(|(b, _)| f.beta < b.beta) {
-                    best = Some((f, opts));
-                }
-            }
-            Err(e) => {
-                first_error.get_or_insert(e.to_string());
-            }
-        }
-    }
-    found.sort_by(|a, b| a.beta.total_cmp(&b.beta));
-    (found, best, first_error)
+/// FORM from the median and `+-3` along every axis of the standard normal space
+/// (`alea_uq::reliability::form_from_starts`, shared with the Python binding).
+pub(crate) fn form_from_starts(ls: &LimitState) -> alea_uq::reliability::MultiStart {
+    alea_uq::reliability::form_from_starts(
+        ls,
+        &alea_uq::reliability::axis_starts(ls.dim()),
+        &FormOptions::default(),
+    )
 }
 
 fn probability(e: &alea_uq::reliability::Estimate) -> Probability {

@@ -72,7 +72,9 @@ pub fn plan(
     let law = study.params.joint.as_ref();
     let q = |x: &[f64]| evaluate(study, &sur, &values, x);
     let ls = LimitState::exceedance(law, q, task.threshold);
-    let (_, best, first_error) = form_from_starts(&ls);
+    let alea_uq::reliability::MultiStart {
+        best, first_error, ..
+    } = form_from_starts(&ls);
     let Some((f, _)) = best else {
         return Err(format!(
             "no FORM design point on the surrogate ({})",
