@@ -478,36 +478,39 @@ pub fn run_history(
     Ok(out)
 }
 
+/// The slip origin `j0` of every point of every interface of `step`: `[Pi u]_t`, the
+/// tangential jump, between the points the step's last pairing pairs, of the displacement `u`
+/// at the end of `previous` (`None`: the unloaded state, `j0 = 0`), as the incremental law of
+/// the step measured it (module doc, "Friction state"). The counterpart of
+/// [`crate::steps::step_origins`] for re-paired interfaces.
+pub fn step_origins(step: &SlidingStep, previous: Option<&SlidingStep>) -> Vec<Vec<V3>> {
+    step.result
+        .interfaces
+        .iter()
+        .map(|it| {
+            let Some(p) = previous else {
+                return vec![[0.0; 3]; it.points.len()];
+            };
+            let u = [0, 1].map(|s| {
+                let sub = it.subs[s];
+                let dim = step.solver.model(sub).mesh.dim;
+                it.pairing.sides[s].interpolate(&p.result.displacements[sub], dim)
+            });
+            (0..it.points.len())
+                .map(|q| crate::steps::tangential(u[0][q], u[1][q], it.points[q].normal))
+                .collect()
+        })
+        .collect()
+}
+
 /// Energy dissipated by friction within step `step` on interface `i`:
 /// `-int ([W_hat] - j0)_t . Phi_t dS`, as [`crate::steps::step_friction_dissipation`] but with
-/// `j0 = [Pi u]_t` the tangential jump, between the points the step's last pairing pairs, of
-/// the displacement `u` at the end of `previous` (`None`: the unloaded state, `j0 = 0`).
+/// `j0` of [`step_origins`].
 pub fn step_friction_dissipation(
     step: &SlidingStep,
     previous: Option<&SlidingStep>,
     i: usize,
 ) -> f64 {
-    let it = &step.result.interfaces[i];
-    let start: Option<[Vec<V3>; 2]> = previous.map(|p| {
-        [0, 1].map(|s| {
-            let sub = it.subs[s];
-            let dim = step.solver.model(sub).mesh.dim;
-            it.pairing.sides[s].interpolate(&p.result.displacements[sub], dim)
-        })
-    });
-    let tangential = |a: V3, b: V3, n: V3| -> V3 {
-        let j = sub(&b, &a);
-        let jn = dot(&j, &n);
-        [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]]
-    };
-    (0..it.points.len())
-        .map(|p| {
-            let n = it.points[p].normal;
-            let jt = tangential(it.what[0][p], it.what[1][p], n);
-            let j0 = start
-                .as_ref()
-                .map_or([0.0; 3], |u| tangential(u[0][p], u[1][p], n));
-            -it.weights[p] * dot(&sub(&jt, &j0), &it.fhat[1][p])
-        })
-        .sum()
+    let origins = step_origins(step, previous);
+    step.result.interfaces[i].step_friction_dissipation(&origins[i])
 }

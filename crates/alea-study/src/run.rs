@@ -87,7 +87,10 @@ impl RunContext<'_> {
         // With [[step]]s, one result per step run (module `steps`); the last is the run's.
         let results = match &self.study.steps {
             None => vec![self.solver.run_shared(&input)?],
-            Some(plan) => crate::steps::run_study_history(plan, self.solver, &input)?,
+            Some(plan) => {
+                let others = self.study.step_solvers()?;
+                crate::steps::run_study_history(plan, self.solver, others, &input)?
+            }
         };
         self.outcome(job, results)
     }
@@ -192,7 +195,10 @@ impl RunContext<'_> {
                 Some(plan) => {
                     for (k, r) in results.iter().enumerate() {
                         let name = format!("{stem}-{}-{}.vtm", k + 1, plan.steps[k].name);
-                        alea_latin::output::write_run(self.dir.join("vtu").join(name), solver, r)?;
+                        let prev = k.checked_sub(1).map(|p| &results[p]);
+                        let origins = alea_latin::steps::step_origins(prev, r);
+                        let path = self.dir.join("vtu").join(name);
+                        alea_latin::output::write_step(path, solver, r, None, Some(&origins))?;
                     }
                 }
             }

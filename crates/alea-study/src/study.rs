@@ -43,8 +43,13 @@ pub struct Study {
     pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
     /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
     pub refined: Option<Box<Study>>,
-    /// `[[step]]`: the load history of every run (module `steps`; loads only in a study).
+    /// `[[step]]`: the load history of every run (module `steps`).
     pub steps: Option<crate::steps::Plan>,
+    /// The models of the steps' other sets of imposed displacements (`steps.files[1..]`),
+    /// built at load; empty without steps or when the steps change loads only.
+    pub step_models: Vec<BuiltModel>,
+    /// Their solvers, built (assembled and factorised) on the first run that needs them.
+    step_solvers: std::sync::OnceLock<Result<Vec<std::sync::Arc<LatinSolver>>, String>>,
 }
 
 impl std::fmt::Debug for Study {
@@ -126,6 +131,13 @@ impl Study {
         }
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
+        let step_models = match &steps {
+            Some(plan) => plan.files[1..]
+                .iter()
+                .map(|f| build_model(&source, f, &params))
+                .collect::<Result<Vec<_>, _>>()?,
+            None => Vec::new(),
+        };
         let seed = file.study.seed.unwrap_or(1);
         let methods = if params.names.is_empty() {
             vec![Method::deterministic()]
@@ -175,6 +187,8 @@ impl Study {
             reliability,
             refined,
             steps,
+            step_models,
+            step_solvers: std::sync::OnceLock::new(),
         };
         if study.steps.is_some() && estimates_error(&study) {
             return Err(study.source.error(
@@ -185,6 +199,27 @@ impl Study {
         }
         check_built(&study)?;
         Ok(study)
+    }
+
+    /// The solvers of [`Study::step_models`] (the steps' other sets of imposed displacements),
+    /// built on first use and then shared by every run.
+    ///
+    /// # Errors
+    /// A solver that cannot be built (as the study's own solver would fail).
+    pub fn step_solvers(&self) -> Result<&[std::sync::Arc<LatinSolver>], StudyError> {
+        let built = self.step_solvers.get_or_init(|| {
+            self.step_models
+                .iter()
+                .map(|m| {
+                    m.solver()
+                        .map(std::sync::Arc::new)
+                        .map_err(|e| e.to_string())
+                })
+                .collect()
+        });
+        built.as_deref().map_err(|e| {
+            StudyError::Failed(format!("the solver of a step's imposed displacements: {e}"))
+        })
     }
 
     /// Loads a study file.
