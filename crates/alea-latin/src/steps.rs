@@ -22,6 +22,11 @@
 //! is resolved only at its end, so a loop is followed by steps small enough for the slip
 //! direction to be constant within each.
 //!
+//! **What a step reports of the path is its own**: its slip `[W_hat]_t - j0`, its friction
+//! dissipation `-int ([W_hat]_t - j0) . Phi dS` and the work of its interface forces
+//! `int ([W_hat] + g0 n - j0) . Phi dS` are measured from the same origin `j0` the law used
+//! ([`step_origins`]; the output of a step writes the total jump `[W_hat]_t` beside its slip).
+//!
 //! The first step (no previous state) is the static, total-slip law of [`crate::law`], which is
 //! the incremental law from the unloaded state. A step that ends not converged stops the
 //! history: its state is not an equilibrium to start from, so the later steps are not run.

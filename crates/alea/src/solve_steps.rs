@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use alea_latin::large_sliding::{self, Repairing, SlidingStep};
+use alea_latin::large_sliding::{self, SlidingStep};
 use alea_latin::{LatinSolver, RunInput, RunStatus};
 use alea_study::steps::Plan;
 use alea_study::{BuiltModel, ParamSpace, Source, build_model, spec::ModelFile};
@@ -108,8 +108,8 @@ pub(crate) fn large_sliding_step(
     start: Option<&SlidingStep>,
     input: &RunInput,
 ) -> Result<SlidingStep> {
-    let settings = Repairing::default();
-    let step = large_sliding::run_step(&model.assembly, &model.options, &settings, start, input)?;
+    let settings = &model.repairing;
+    let step = large_sliding::run_step(&model.assembly, &model.options, settings, start, input)?;
     println!(
         "large sliding: {} pairing(s) in the deformed configuration, {} LATIN iterations in all, set-up {:.3} s; slide since the last pairing {:.2e} x the mesh size (tolerance {:.0e}){}",
         step.pairings,
@@ -118,9 +118,12 @@ pub(crate) fn large_sliding_step(
         step.mismatch,
         settings.tolerance,
         if step.pairing_settled {
-            ""
+            String::new()
         } else {
-            ": the pairing did not settle, the step is not converged"
+            format!(
+                ": the pairing did not settle within {} pairing(s) ([solver] max_pairings), the step is not converged",
+                settings.max_pairings
+            )
         }
     );
     Ok(step)

@@ -279,3 +279,55 @@ fn bad_sliding_settings_are_refused_at_their_line() {
     expect_input_error(&o, &p, line_of(&s, "sliding ="), "interface[0].sliding");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `[solver] repair_tolerance` and `max_pairings` drive the re-pairing: with a tolerance of
+/// 1e-5 of the mesh size the slide since the first pairing (5.8e-4 of it, measured) is too
+/// large and the step re-pairs once (2 pairings, as `alea-latin/tests/large_sliding.rs`
+/// measures), keeping the closed-form resultants; allowed a single pairing, the same step
+/// cannot settle and is not converged (exit 4). Out-of-range values, and either key without a
+/// large-sliding interface, are refused at their line (exit 2).
+#[test]
+fn re_pairing_settings_are_used_and_checked_at_load() {
+    let dir = tmp("settings");
+    let (p, _) = case(&dir, "tight", &[], "\n[solver]\nrepair_tolerance = 1e-5\n");
+    let o = solve(&p, &dir.join("out-tight"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("large sliding: 2 pairing(s)"), "{t}");
+    assert!(t.contains("(tolerance 1e-5)"), "{t}");
+    let (fx, fy) = resultant(&t);
+    assert!((fy - 10.0).abs() < 1e-3 && (fx + 2.0).abs() < 1e-3, "{t}");
+    let (p, _) = case(
+        &dir,
+        "one",
+        &[],
+        "\n[solver]\nrepair_tolerance = 1e-5\nmax_pairings = 1\n",
+    );
+    let o = solve(&p, &dir.join("out-one"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(4), "{t}");
+    assert!(
+        t.contains("large sliding: 1 pairing(s)")
+            && t.contains("did not settle within 1 pairing(s) ([solver] max_pairings)"),
+        "{t}"
+    );
+    for (name, setting, field) in [
+        ("zero", "repair_tolerance = 0.0", "solver.repair_tolerance"),
+        ("half", "repair_tolerance = 0.6", "solver.repair_tolerance"),
+        ("none", "max_pairings = 0", "solver.max_pairings"),
+        ("many", "max_pairings = 101", "solver.max_pairings"),
+    ] {
+        let (p, s) = case(&dir, name, &[], &format!("\n[solver]\n{setting}\n"));
+        expect_input_error(&solve(&p, &dir.join("o")), &p, line_of(&s, setting), field);
+    }
+    let (p, s) = case(
+        &dir,
+        "unused",
+        &[("sliding = \"large\"", "")],
+        "\n[solver]\nmax_pairings = 3\n",
+    );
+    let o = solve(&p, &dir.join("o"));
+    expect_input_error(&o, &p, line_of(&s, "max_pairings"), "solver.max_pairings");
+    assert!(text(&o).contains("no interface has sliding = \"large\""));
+    let _ = std::fs::remove_dir_all(&dir);
+}
