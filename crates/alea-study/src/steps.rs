@@ -279,6 +279,27 @@ pub fn study_steps(
     Ok(Some(plan))
 }
 
+/// The run input of every step of `plan` for a run whose input is `input` (its `initial`
+/// state is that of the first step only): the loads scaled by the step's factors.
+fn step_inputs(plan: &Plan, input: &alea_latin::RunInput) -> Vec<alea_latin::RunInput> {
+    plan.steps
+        .iter()
+        .enumerate()
+        .map(|(k, step)| {
+            let mut i = input.clone();
+            if k > 0 {
+                i.initial = None;
+            }
+            for (f, sc) in i.load_factors.iter_mut().zip(&step.load_scale) {
+                for (a, b) in f.iter_mut().zip(sc) {
+                    *a *= b;
+                }
+            }
+            i
+        })
+        .collect()
+}
+
 /// Runs the load history `plan` of one study run from `input` (the run's parameters; its
 /// `initial` state is that of the first step): each step on the solver of its imposed
 /// displacements (`solver` for those of the file as written, `others[j - 1]` for
@@ -300,17 +321,8 @@ pub(crate) fn run_study_history(
     let steps: Vec<(&alea_latin::LatinSolver, alea_latin::RunInput)> = plan
         .steps
         .iter()
-        .enumerate()
-        .map(|(k, step)| {
-            let mut i = input.clone();
-            if k > 0 {
-                i.initial = None;
-            }
-            for (f, sc) in i.load_factors.iter_mut().zip(&step.load_scale) {
-                for (a, b) in f.iter_mut().zip(sc) {
-                    *a *= b;
-                }
-            }
+        .zip(step_inputs(plan, input))
+        .map(|(step, i)| {
             let s: &alea_latin::LatinSolver = match step.file {
                 0 => solver,
                 j => &others[j - 1],
@@ -321,33 +333,67 @@ pub(crate) fn run_study_history(
     Ok(alea_latin::steps::run_history(&steps)?)
 }
 
-/// The value of `q` for a run whose steps gave `results` (one result without steps): at its
-/// step's end state; NaN if the history stopped before that step. The interface work and the
-/// friction dissipation of a step after the first are the step's own, on the jump from the
-/// step's start ([`alea_latin::steps::step_origins`]); the other quantities are states at the
-/// end of the step (`contact_slip` is the total tangential jump: the slip left by the history).
+/// Runs one study run with large sliding (`alea_latin::large_sliding`): the steps of `plan`
+/// (`None`: one step, `input` itself) on the assembly of their imposed displacements
+/// (`assemblies[j]` for `plan.files[j]`), each re-paired in its deformed configuration. Returns
+/// the steps run: the history stops after a step that does not converge.
+pub(crate) fn run_large_sliding(
+    plan: Option<&Plan>,
+    assemblies: &[&alea_latin::Assembly],
+    options: &alea_latin::LatinOptions,
+    repairing: &alea_latin::large_sliding::Repairing,
+    input: &alea_latin::RunInput,
+) -> Result<Vec<alea_latin::large_sliding::SlidingStep>, StudyError> {
+    let steps: Vec<(&alea_latin::Assembly, alea_latin::RunInput)> = match plan {
+        None => vec![(assemblies[0], input.clone())],
+        Some(plan) => plan
+            .steps
+            .iter()
+            .zip(step_inputs(plan, input))
+            .map(|(step, i)| {
+                assemblies
+                    .get(step.file)
+                    .map(|a| (*a, i))
+                    .ok_or_else(|| StudyError::Failed("a step's model was not built".into()))
+            })
+            .collect::<Result<_, _>>()?,
+    };
+    Ok(alea_latin::large_sliding::run_history(
+        &steps, options, repairing,
+    )?)
+}
+
+/// The value of `q` for a run whose steps gave `results` (one result without steps), each
+/// step `k` solved by `solvers[k]` and its slip measured from `origins[k]` (per interface and
+/// point, the tangential jump at the step's start: `alea_latin::steps::step_origins`, or
+/// `alea_latin::large_sliding::step_origins`): at its step's end state; NaN if the history
+/// stopped before that step. The interface work and the friction dissipation of a step after
+/// the first are the step's own, on the jump from the step's start; the other quantities are
+/// states at the end of the step (`contact_slip` is the total tangential jump: the slip left
+/// by the history).
 pub(crate) fn eval_qoi(
     q: &crate::qoi::Qoi,
-    solver: &alea_latin::LatinSolver,
+    solvers: &[&alea_latin::LatinSolver],
     results: &[alea_latin::RunResult],
+    origins: &[Vec<Vec<[f64; 3]>>],
 ) -> Result<f64, StudyError> {
     use crate::qoi::QoiKind;
     let k = q.step.unwrap_or(results.len().saturating_sub(1));
-    let Some(res) = results.get(k) else {
+    let (Some(res), Some(solver)) = (results.get(k), solvers.get(k)) else {
         return Ok(f64::NAN);
     };
-    let prev = k.checked_sub(1).and_then(|p| results.get(p));
-    match (&q.kind, prev) {
-        (QoiKind::FrictionDissipation(i), Some(prev)) => {
-            Ok(alea_latin::steps::step_friction_dissipation(
-                Some(&prev.interfaces[*i]),
-                &res.interfaces[*i],
-            ))
+    let origin = |i: usize| {
+        origins
+            .get(k)
+            .and_then(|o| o.get(i))
+            .map(Vec::as_slice)
+            .ok_or_else(|| StudyError::Internal(format!("no slip origin for step {}", k + 1)))
+    };
+    match (&q.kind, k > 0) {
+        (QoiKind::FrictionDissipation(i), true) => {
+            Ok(res.interfaces[*i].step_friction_dissipation(origin(*i)?))
         }
-        (QoiKind::InterfaceWork(i), Some(prev)) => {
-            let origins = alea_latin::steps::step_origins(Some(prev), res);
-            Ok(res.interfaces[*i].step_work(&origins[*i]))
-        }
+        (QoiKind::InterfaceWork(i), true) => Ok(res.interfaces[*i].step_work(origin(*i)?)),
         _ => q.eval(solver, res),
     }
 }

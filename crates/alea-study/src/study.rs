@@ -111,24 +111,6 @@ impl Study {
             crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
         }
         let model = build_model(&source, &file, &params)?;
-        if let Some(i) = model
-            .assembly
-            .interfaces
-            .iter()
-            .position(alea_latin::large_sliding::is_repaired)
-            && let Some(site) = model.interface_sites.get(i)
-        {
-            return Err(StudyError::Input {
-                file: site.file.clone(),
-                line: site.sliding,
-                field: format!("interface[{i}].sliding"),
-                message: "large sliding (the pairing re-found in the deformed configuration) is \
-                          solved by `alea solve`; studies keep the pairing of the initial \
-                          configuration and warn when a run slides beyond it: use sliding = \
-                          \"small\" in a study"
-                    .into(),
-            });
-        }
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
         let step_models = match &steps {
@@ -196,6 +178,27 @@ impl Study {
                 "step",
                 "the error estimate (an [error] table or an adaptive method) is for single-step runs: leave out [error] and adaptive methods, or the [[step]]s",
             ));
+        }
+        if estimates_error(&study)
+            && let Some(i) = study
+                .model
+                .assembly
+                .interfaces
+                .iter()
+                .position(alea_latin::large_sliding::is_repaired)
+            && let Some(site) = study.model.interface_sites.get(i)
+        {
+            return Err(StudyError::Input {
+                file: site.file.clone(),
+                line: site.sliding,
+                field: format!("interface[{i}].sliding"),
+                message: "large sliding (the pairing re-found in the deformed configuration of \
+                          each run) gives every run its own interface points, while the error \
+                          estimate ([error], adaptive methods) needs the same interface layout \
+                          in every run: leave out [error] and adaptive methods, or use \
+                          sliding = \"small\""
+                    .into(),
+            });
         }
         check_built(&study)?;
         Ok(study)

@@ -4,7 +4,8 @@
 //! settles) and keeps the closed-form resultants
 //! (N = 10 N/mm, T = mu N) with no small-sliding warning; small sliding warns and names the
 //! setting, and so does a study; a bad `sliding` value, large sliding on a perfect interface and
-//! large sliding in a study are refused at load (exit 2) at their line.
+//! large sliding in a study that estimates its error are refused at load (exit 2) at their
+//! line. A study with large sliding (random `mu`) keeps the closed form at every run.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -270,13 +271,16 @@ fn bad_sliding_settings_are_refused_at_their_line() {
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
     assert!(t.contains("beyond small sliding"), "{t}");
-    let (p, s) = case(&dir, "study", &[], study_tail);
+    // Large sliding in a study that estimates its error (which needs one interface layout for
+    // every run): refused at the interface's line.
+    let (p, s) = case(&dir, "study", &[], &format!("{study_tail}\n[error]\n"));
     let o = alea()
         .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
         .arg(dir.join("study"))
         .output()
         .unwrap();
     expect_input_error(&o, &p, line_of(&s, "sliding ="), "interface[0].sliding");
+    assert!(text(&o).contains("error estimate"), "{}", text(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -329,5 +333,48 @@ fn re_pairing_settings_are_used_and_checked_at_load() {
     let o = solve(&p, &dir.join("o"));
     expect_input_error(&o, &p, line_of(&s, "max_pairings"), "solver.max_pairings");
     assert!(text(&o).contains("no interface has sliding = \"large\""));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A study with large sliding: the 8-cell slide with a random friction coefficient
+/// `mu ~ U(0.1, 0.3)`, each run re-paired in its deformed configuration. Closed form at every
+/// run: `N = 10 N/mm`, friction `-mu N` on the block, and no slide beyond what its pairing
+/// represents (no small-sliding warning). On the old code the study was refused at load.
+#[test]
+fn a_study_with_large_sliding_keeps_the_closed_form_at_every_run() {
+    let dir = tmp("study-large");
+    let tail = "\n[study]\ntitle = \"slide, random mu\"\nseed = 2\n\n\
+                [[parameter]]\nname = \"mu\"\nlaw = \"uniform\"\nlo = 0.1\nhi = 0.3\n\n\
+                [[quantity]]\nname = \"fx\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 0\n\n\
+                [[quantity]]\nname = \"fy\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 1\n\n\
+                [[method]]\ntype = \"monte_carlo\"\nruns = 4\n";
+    let (p, _) = case(&dir, "study", &[("mu = 0.2", "mu = \"mu\"")], tail);
+    let out = dir.join("run");
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(!t.contains("beyond small sliding"), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 4);
+    for r in runs {
+        assert_eq!(r["status"], "converged", "{r}");
+        let mu = r["params"][0].as_f64().unwrap();
+        let (fx, fy) = (
+            r["qois"][0].as_f64().unwrap(),
+            r["qois"][1].as_f64().unwrap(),
+        );
+        assert!((fy - 10.0).abs() < 1e-3, "mu {mu}: N = {fy}");
+        assert!(
+            (fx + mu * 10.0).abs() < 1e-3,
+            "mu {mu}: T = {fx} vs {}",
+            -mu * 10.0
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
