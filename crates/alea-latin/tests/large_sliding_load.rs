@@ -1,20 +1,21 @@
-//! Large sliding driven by a load (module `alea_latin::large_sliding`, issue 21): the 8-cell
-//! slide of `large_sliding.rs` driven by a traction instead of an imposed displacement. The
-//! large-sliding step starts from the start configuration's pairing when no prescribed
-//! displacement drives the slide, so its first solve is a small-sliding solve of the whole
-//! slide. Both tests are **ignored: they fail today**, and record why item 4 of the issue (a
-//! predictor for load-driven slides) is not built:
-//! - a floating block held by a bonded elastic layer and pulled into gross slip does not
-//!   converge even with small sliding and a slide of 5e-5 (20 000 iterations, "not
-//!   converged", with or without the coarse problem or acceleration), so there is no solve to
-//!   take its rigid translation from;
-//! - a soft block held at one end and stretched over the base by a pull on the other (its right
-//!   end slides 0.93, 9 base cells): 2 pairings, 23 469 iterations in all, not converged.
+//! Large sliding driven by a load (module `alea_latin::large_sliding`, issue 21): slides of
+//! about 9 base cells driven by a traction instead of an imposed displacement. No prescribed
+//! displacement predicts such a slide: the step's first solve is on the start configuration's
+//! pairing, and its solution is the configuration the second pass is paired in.
+//! - A block 210 times softer than the base, held at one end and stretched over the base by a
+//!   pull on the other: 2 pairings (62 + 147 iterations), against the closed form.
+//! - Ignored, **failing today** (LATIN, not the pairing): the same block 2 100 times softer than
+//!   the base (3 469 iterations on the start pairing, then no convergence in 20 000), and a
+//!   floating block in gross slip held by a bonded elastic layer, which does not converge even
+//!   with small sliding and a slide of 5e-5 (20 000 iterations, "not converged", with or
+//!   without the coarse problem or acceleration). So no predictor from a floating body's free
+//!   rigid modes is built: there is no converged first solve to take its rigid translation from.
+//!   Run them with `cargo test --release -p alea-latin --test large_sliding_load -- --ignored
+//!   --nocapture`.
 //!
-//! Run them with `cargo test --release -p alea-latin --test large_sliding_load -- --ignored
-//! --nocapture`. Closed forms asserted (resultants, exact for any elastic stress field): the
-//! normal force on the base is `N = P w` (`w = 1` the block's width), the friction force at
-//! most `mu N`, and equal to it in gross slip.
+//! Closed forms asserted (resultants, exact for any elastic stress field): the normal force on
+//! the base is `N = P w` (`w = 1` the block's width), the friction force at most `mu N`, and
+//! equal to it in gross slip.
 
 mod common;
 
@@ -162,9 +163,74 @@ fn stretched(pull: f64, e: f64) -> Assembly {
     }
 }
 
+/// The base nodes loaded by more than 1e-9 N: their x range (initial coordinates).
+fn loaded_range(step: &SlidingStep) -> [f64; 2] {
+    let it = &step.result.interfaces[0];
+    let nodes = it.pairing.sides[0].side_nodes();
+    let forces = it.local_nodal_forces(0);
+    let coords = &step.solver.model(0).mesh.coords;
+    let mut range = [f64::INFINITY, f64::NEG_INFINITY];
+    for (&a, f) in nodes.iter().zip(&forces) {
+        if f[1].abs() > 1e-9 {
+            range[0] = range[0].min(coords[a][0]);
+            range[1] = range[1].max(coords[a][0]);
+        }
+    }
+    range
+}
+
+/// A block 210 times softer than the base, held in x on its left side and stretched by a pull
+/// on its right side: its right end slides 0.93 (9 base cells). The first solve (on the start
+/// configuration's pairing) predicts the configuration of the second; 2 pairings settle.
+/// Closed forms: `N = P w`, `|T| <= mu N`, and the base loaded under the stretched block,
+/// `[1, 2 + u_R]` (`u_R` the mean x displacement of the block's right side) within one base
+/// cell. The pairing of the initial configuration loads the base under `[1, 2]` only (checked,
+/// so the test can fail).
 #[test]
-#[ignore = "fails today: the first solve of a load-driven slide is on the start pairing and takes thousands of iterations (issue 21)"]
-fn a_soft_block_stretched_over_nine_cells() {
-    let step = check("stretched block", &stretched(100.0, 100.0), false);
+fn a_soft_block_stretched_over_nine_cells_by_a_load() {
+    let step = check("stretched block", &stretched(1000.0, 1000.0), false);
+    assert!(step.pairing_settled);
+    assert_eq!(step.pairings, 2);
+    // 62 + 147 iterations: the re-paired pass starts without the forces carried at the same
+    // material points (module doc); with them it took 332 (394 in all).
+    assert!(step.iterations <= 300, "{} iterations", step.iterations);
+    let m = &step.solver.model(1).mesh;
+    let right = m.group_nodes("xmax").unwrap();
+    let u = &step.result.displacements[1];
+    let ur = right.iter().map(|&n| u[2 * n]).sum::<f64>() / right.len() as f64;
+    let range = loaded_range(&step);
+    eprintln!("right end slid {ur}, loaded base x in {range:?}");
+    assert!(ur > 8.0 * CELL, "right end {ur}");
+    assert!((range[0] - 1.0).abs() <= CELL + 1e-9, "{range:?}");
+    assert!(
+        (range[1] - (2.0 + ur)).abs() <= CELL + 1e-9,
+        "{range:?} vs {}",
+        2.0 + ur
+    );
+    // Small sliding: the base is loaded under the block's initial footprint.
+    let mut small = stretched(1000.0, 1000.0);
+    small.interfaces[0].sliding = Sliding::Small;
+    let solver = alea_latin::LatinSolver::new(small, options()).unwrap();
+    let res = solver.run_shared(&RunInput::default()).unwrap();
+    assert_eq!(res.status, RunStatus::Converged);
+    let it = &res.interfaces[0];
+    let nodes = it.pairing.sides[0].side_nodes();
+    let forces = it.local_nodal_forces(0);
+    let coords = &solver.model(0).mesh.coords;
+    let far = nodes
+        .iter()
+        .zip(&forces)
+        .filter(|(a, f)| f[1].abs() > 1e-9 && coords[**a][0] > 2.0 + CELL + 1e-9)
+        .count();
+    assert_eq!(
+        far, 0,
+        "small sliding loads the base beyond the initial footprint"
+    );
+}
+
+#[test]
+#[ignore = "fails today: with a block 2 100 times softer than the base, LATIN takes 3 469 iterations on the start pairing and the re-paired solve does not converge in 20 000 (issue 21)"]
+fn a_very_soft_block_stretched_over_nine_cells() {
+    let step = check("very soft stretched block", &stretched(100.0, 100.0), false);
     assert!(step.pairing_settled);
 }
