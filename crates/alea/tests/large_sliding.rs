@@ -378,3 +378,72 @@ fn a_study_with_large_sliding_keeps_the_closed_form_at_every_run() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A study whose runs are load histories with large sliding and imposed displacements per step:
+/// press, then slide the block's top by 0.8 mm (8 base cells), random `mu ~ U(0.1, 0.3)`.
+/// Closed forms at every run: friction `-mu N` on the block at the end of the slide
+/// (`N = 10 N/mm`), and the slide step's own dissipation `mu N` times its slip, the imposed
+/// 0.8 mm less the block's elastic shear (about 4e-5 mm): within [0.799, 0.8] mu N; its
+/// interface work is minus that.
+#[test]
+fn a_study_of_press_then_slide_histories_with_large_sliding() {
+    let dir = tmp("study-steps");
+    let tail = "\n[study]\ntitle = \"press then slide, random mu\"\nseed = 4\n\n\
+                [[parameter]]\nname = \"mu\"\nlaw = \"uniform\"\nlo = 0.1\nhi = 0.3\n\n\
+                [[step]]\nname = \"press\"\n\n\
+                [[step]]\nname = \"slide\"\n\
+                constraint = [ { substructure = \"block\", group = \"block_top\", x = 0.8 } ]\n\n\
+                [[quantity]]\nname = \"fx\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 0\n\n\
+                [[quantity]]\nname = \"dissipated\"\nkind = \"friction_dissipation\"\ninterface = \"contact\"\n\n\
+                [[quantity]]\nname = \"work\"\nkind = \"interface_work\"\ninterface = \"contact\"\n\n\
+                [[method]]\ntype = \"monte_carlo\"\nruns = 3\n";
+    let (p, _) = case(
+        &dir,
+        "study",
+        &[
+            ("mu = 0.2", "mu = \"mu\""),
+            (
+                "group = \"block_top\", x = 0.8",
+                "group = \"block_top\", x = 0.0",
+            ),
+        ],
+        tail,
+    );
+    let out = dir.join("run");
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 3);
+    for r in runs {
+        assert_eq!(r["status"], "converged", "{r}");
+        let mu = r["params"][0].as_f64().unwrap();
+        let q: Vec<f64> = (0..3).map(|i| r["qois"][i].as_f64().unwrap()).collect();
+        let mu_n = mu * 10.0;
+        assert!(
+            (q[0] + mu_n).abs() < 1e-3,
+            "mu {mu}: T = {} vs {}",
+            q[0],
+            -mu_n
+        );
+        assert!(
+            q[1] > 0.799 * mu_n && q[1] < 0.8 * mu_n * (1.0 + 1e-3),
+            "mu {mu}: dissipation {} vs mu N x 0.8 = {}",
+            q[1],
+            0.8 * mu_n
+        );
+        assert!(
+            (q[1] + q[2]).abs() < 1e-6 * q[1],
+            "work {} vs {}",
+            q[2],
+            q[1]
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
