@@ -12,7 +12,12 @@
 //! - `traction_t = Phi - (Phi.n) n`, the tangential traction on side 2 (side 1 carries its
 //!   opposite);
 //! - `slip = [W_hat] - ([W_hat].n) n`, the tangential displacement of side 2 relative to side 1
-//!   (zero where sticking, opposite to `traction_t` where slipping);
+//!   (zero where sticking, opposite to `traction_t` where slipping); in a load history
+//!   ([`crate::steps`]) the **slip of the step**, `[W_hat]_t - j0` with `j0` the tangential jump
+//!   at the start of the step (the origin the incremental law measures slip from,
+//!   [`crate::steps::step_origins`]), and `total_slip = [W_hat]_t` the tangential jump since the
+//!   unloaded state (the CSV of a history step has both: `slip_*` then, after `status`,
+//!   `total_slip_*`; a single solve's CSV has `slip_*` only, which is then both);
 //! - `status`: `perfect`, `open`, `stick` or `slip`.
 //!
 //! The resultant on side 2 is `sum_i m_i (pressure_i n_i + traction_t_i)`
@@ -50,8 +55,11 @@ pub struct ContactRow {
     pub pressure: f64,
     /// Tangential traction on side 2.
     pub traction_t: [f64; 3],
-    /// Tangential jump `[W_hat]_t`.
+    /// Slip of the step: the tangential jump `[W_hat]_t` less its value at the start of the
+    /// step (module doc; a single solve: `[W_hat]_t`).
     pub slip: [f64; 3],
+    /// Tangential jump since the unloaded state, `[W_hat]_t`.
+    pub total_slip: [f64; 3],
     /// Contact status.
     pub status: PointStatus,
 }
@@ -63,6 +71,13 @@ fn tangential(v: [f64; 3], n: &[f64; 3]) -> [f64; 3] {
 
 /// The contact rows of an interface, in interface point order.
 pub fn contact_rows(it: &InterfaceResult) -> Vec<ContactRow> {
+    contact_rows_since(it, None)
+}
+
+/// The contact rows of an interface of one step of a load history, with the step's slip
+/// measured from `origin` (`j0` per point, [`crate::steps::step_origins`]; `None`: from the
+/// unloaded state).
+pub fn contact_rows_since(it: &InterfaceResult, origin: Option<&[[f64; 3]]>) -> Vec<ContactRow> {
     (0..it.points.len())
         .map(|i| {
             let p = &it.points[i];
@@ -71,6 +86,8 @@ pub fn contact_rows(it: &InterfaceResult) -> Vec<ContactRow> {
             let a = it.what[0][i];
             let b = it.what[1][i];
             let jump = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let total_slip = tangential(jump, &n);
+            let j0 = origin.and_then(|o| o.get(i)).copied().unwrap_or([0.0; 3]);
             ContactRow {
                 node1: it.nodes[0][i],
                 node2: it.nodes[1][i],
@@ -82,7 +99,8 @@ pub fn contact_rows(it: &InterfaceResult) -> Vec<ContactRow> {
                 gap: dot(&jump, &n) + p.gap,
                 pressure: dot(&phi, &n),
                 traction_t: tangential(phi, &n),
-                slip: tangential(jump, &n),
+                slip: [0, 1, 2].map(|k| total_slip[k] - j0[k]),
+                total_slip,
                 status: it.status[i],
             }
         })
@@ -118,14 +136,42 @@ pub fn csv_header(dim: usize) -> String {
     cols.join(",")
 }
 
+/// The CSV header of a load-history step: [`csv_header`] then `total_slip_*`.
+pub fn csv_header_history(dim: usize) -> String {
+    let mut h = csv_header(dim);
+    for c in &["x", "y", "z"][..dim] {
+        h.push_str(&format!(",total_slip_{c}"));
+    }
+    h
+}
+
 /// Writes the CSV of one interface (`dim` components per vector), atomically.
 ///
 /// # Errors
 /// On I/O failure.
 pub fn write_interface_csv(path: &Path, it: &InterfaceResult, dim: usize) -> std::io::Result<()> {
-    let rows = contact_rows(it);
+    write_interface_csv_since(path, it, dim, None)
+}
+
+/// [`write_interface_csv`] for one step of a load history: `slip_*` is the step's slip from
+/// `origin` (`Some`: `j0` per point, [`crate::steps::step_origins`]), and the columns
+/// `total_slip_*` ([`csv_header_history`]) are added; `None` is [`write_interface_csv`].
+///
+/// # Errors
+/// On I/O failure.
+pub fn write_interface_csv_since(
+    path: &Path,
+    it: &InterfaceResult,
+    dim: usize,
+    origin: Option<&[[f64; 3]]>,
+) -> std::io::Result<()> {
+    let rows = contact_rows_since(it, origin);
+    let header = match origin {
+        Some(_) => csv_header_history(dim),
+        None => csv_header(dim),
+    };
     alea_mesh::atomic::write_atomic(path, |w| {
-        writeln!(w, "{}", csv_header(dim))?;
+        writeln!(w, "{header}")?;
         for (i, r) in rows.iter().enumerate() {
             let mut line = format!("{i},{},{}", r.node1, r.node2);
             let mut num = |v: f64| line.push_str(&format!(",{v:e}"));
@@ -147,6 +193,11 @@ pub fn write_interface_csv(path: &Path, it: &InterfaceResult, dim: usize) -> std
             }
             line.push(',');
             line.push_str(status_name(r.status));
+            if origin.is_some() {
+                for c in 0..dim {
+                    line.push_str(&format!(",{:e}", r.total_slip[c]));
+                }
+            }
             writeln!(w, "{line}")?;
         }
         Ok(())

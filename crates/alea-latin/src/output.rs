@@ -11,8 +11,9 @@
 //! side 1 only for a mortar interface): `contact_weight`, `contact_normal` (side 1's outward
 //! normal), `contact_gap`, `contact_pressure` (`Phi.n >= 0` in compression),
 //! `contact_traction_t` (tangential traction on side 2), `contact_slip` (tangential jump of
-//! side 2 relative to side 1); with [`write_run_with_reactions`], `reaction` (nodal reaction
-//! forces, [`crate::reactions`]). Cell fields: one `group_<name>` indicator per cell group.
+//! side 2 relative to side 1; for a step of a load history, [`write_step`], the slip of the step,
+//! and `contact_total_slip` the tangential jump since the unloaded state); with
+//! [`write_run_with_reactions`], `reaction` (nodal reaction forces, [`crate::reactions`]). Cell fields: one `group_<name>` indicator per cell group.
 //! Beside the `.vtu` files, one `interface_<name>.csv` per interface
 //! ([`crate::contact::write_interface_csv`]).
 
@@ -39,6 +40,7 @@ struct SubFields {
     pressure: Vec<f64>,
     traction_t: Vec<f64>,
     slip: Vec<f64>,
+    total_slip: Vec<f64>,
 }
 
 /// Weighted sums of point values at one node of a mortar side.
@@ -80,6 +82,22 @@ pub fn write_run_with_reactions(
     result: &RunResult,
     reactions: Option<&[Vec<f64>]>,
 ) -> Result<Vec<PathBuf>, LatinError> {
+    write_step(path, solver, result, reactions, None)
+}
+
+/// [`write_run_with_reactions`] for one step of a load history: with `origins` (per interface
+/// and point, the tangential jump `j0` at the start of the step: [`crate::steps::step_origins`],
+/// [`crate::large_sliding::step_origins`]) the slip fields are the step's own and the total
+/// tangential jump is written beside them (`contact_total_slip`, the CSV's `total_slip_*`);
+/// `None` is [`write_run_with_reactions`].
+pub fn write_step(
+    path: impl AsRef<Path>,
+    solver: &LatinSolver,
+    result: &RunResult,
+    reactions: Option<&[Vec<f64>]>,
+    origins: Option<&[Vec<[f64; 3]>]>,
+) -> Result<Vec<PathBuf>, LatinError> {
+    let origin = |i: usize| origins.and_then(|o| o.get(i)).map(Vec::as_slice);
     let mut fields = Vec::new();
     for s in 0..solver.num_subs() {
         let model = result.scaled_model(solver.model(s), s);
@@ -109,9 +127,10 @@ pub fn write_run_with_reactions(
             pressure: vec![0.0; nn],
             traction_t: vec![0.0; nn * 3],
             slip: vec![0.0; nn * 3],
+            total_slip: vec![0.0; nn * 3],
         });
     }
-    for it in &result.interfaces {
+    for (ii, it) in result.interfaces.iter().enumerate() {
         for side in 0..2 {
             let f = &mut fields[it.subs[side]];
             let proj = &it.pairing.sides[side];
@@ -157,7 +176,7 @@ pub fn write_run_with_reactions(
             }
         }
         let node_to_node = it.pairing.sides[1].is_identity();
-        for r in crate::contact::contact_rows(it) {
+        for r in crate::contact::contact_rows_since(it, origin(ii)) {
             let sides = [(it.subs[0], r.node1), (it.subs[1], r.node2)];
             for &(side, node) in &sides[..if node_to_node { 2 } else { 1 }] {
                 let f = &mut fields[side];
@@ -167,6 +186,7 @@ pub fn write_run_with_reactions(
                 f.normal[node * 3..node * 3 + 3].copy_from_slice(&r.normal);
                 f.traction_t[node * 3..node * 3 + 3].copy_from_slice(&r.traction_t);
                 f.slip[node * 3..node * 3 + 3].copy_from_slice(&r.slip);
+                f.total_slip[node * 3..node * 3 + 3].copy_from_slice(&r.total_slip);
             }
         }
     }
@@ -191,6 +211,10 @@ pub fn write_run_with_reactions(
                 .point_scalar("contact_pressure", &f.pressure)
                 .point_vector("contact_traction_t", 3, &f.traction_t)
                 .point_vector("contact_slip", 3, &f.slip);
+            let w = match origins {
+                Some(_) => w.point_vector("contact_total_slip", 3, &f.total_slip),
+                None => w,
+            };
             let w = match reactions.and_then(|r| r.get(s)) {
                 Some(r) => w.point_vector("reaction", m.mesh.dim, r),
                 None => w,
@@ -208,13 +232,15 @@ pub fn write_run_with_reactions(
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "parts".into());
     let dir = path.parent().unwrap_or(Path::new("")).join(stem);
-    for it in &result.interfaces {
+    for (ii, it) in result.interfaces.iter().enumerate() {
         let safe = alea_mesh::atomic::safe_file_name(&it.name);
         let csv = dir.join(format!("interface_{safe}.csv"));
         let dim = solver.model(it.subs[0]).mesh.dim;
-        crate::contact::write_interface_csv(&csv, it, dim).map_err(|source| LatinError::Io {
-            path: csv.clone(),
-            source,
+        crate::contact::write_interface_csv_since(&csv, it, dim, origin(ii)).map_err(|source| {
+            LatinError::Io {
+                path: csv.clone(),
+                source,
+            }
         })?;
         written.push(csv);
     }

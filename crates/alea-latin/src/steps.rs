@@ -22,6 +22,11 @@
 //! is resolved only at its end, so a loop is followed by steps small enough for the slip
 //! direction to be constant within each.
 //!
+//! **What a step reports of the path is its own**: its slip `[W_hat]_t - j0`, its friction
+//! dissipation `-int ([W_hat]_t - j0) . Phi dS` and the work of its interface forces
+//! `int ([W_hat] + g0 n - j0) . Phi dS` are measured from the same origin `j0` the law used
+//! ([`step_origins`]; the output of a step writes the total jump `[W_hat]_t` beside its slip).
+//!
 //! The first step (no previous state) is the static, total-slip law of [`crate::law`], which is
 //! the incremental law from the unloaded state. A step that ends not converged stops the
 //! history: its state is not an equilibrium to start from, so the later steps are not run.
@@ -108,6 +113,66 @@ pub fn run_history(steps: &[(&LatinSolver, RunInput)]) -> Result<Vec<RunResult>,
     Ok(results)
 }
 
+/// The slip origin `j0` of every point of every interface of the step whose run is `cur`:
+/// the tangential jump `[W_hat]_t` at the end of the previous step `prev` (same pairing), with
+/// the normals of `cur`; zero for the first step (`prev = None`: the unloaded state). This is
+/// the origin the incremental law measured the step's slip from ([`crate::law::local_stage_from`]).
+pub fn step_origins(prev: Option<&RunResult>, cur: &RunResult) -> Vec<Vec<V3>> {
+    cur.interfaces
+        .iter()
+        .enumerate()
+        .map(|(i, it)| {
+            (0..it.points.len())
+                .map(|p| match prev.and_then(|r| r.interfaces.get(i)) {
+                    Some(old) => tangential(old.what[0][p], old.what[1][p], it.points[p].normal),
+                    None => [0.0; 3],
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Tangential part of `b - a` for the normal `n`.
+pub(crate) fn tangential(a: V3, b: V3, n: V3) -> V3 {
+    let j = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let jn = dot(&j, &n);
+    [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]]
+}
+
+impl crate::InterfaceResult {
+    /// The slip of point `p` within its step: `[W_hat]_t - j0`, with `j0 = origin[p]` the
+    /// tangential jump at the start of the step ([`step_origins`]; zero: since the unloaded
+    /// state, the total tangential jump).
+    pub fn step_slip(&self, p: usize, origin: &[V3]) -> V3 {
+        let jt = tangential(self.what[0][p], self.what[1][p], self.points[p].normal);
+        let j0 = origin.get(p).copied().unwrap_or([0.0; 3]);
+        [jt[0] - j0[0], jt[1] - j0[1], jt[2] - j0[2]]
+    }
+
+    /// Energy dissipated by friction within the step, `-int ([W_hat]_t - j0) . Phi dS >= 0`
+    /// (`origin`: `j0` per point, [`step_origins`]).
+    pub fn step_friction_dissipation(&self, origin: &[V3]) -> f64 {
+        (0..self.points.len())
+            .map(|p| -self.weights[p] * dot(&self.step_slip(p, origin), &self.fhat[1][p]))
+            .sum()
+    }
+
+    /// Work of the interface forces on the jump of the step,
+    /// `int ([W_hat] + g0 n - j0) . Phi dS` (`origin`: `j0` per point, [`step_origins`]): the
+    /// normal part vanishes by complementarity, so for Coulomb contact it is minus the step's
+    /// friction dissipation. With `j0 = 0` it is [`crate::InterfaceResult::work`].
+    pub fn step_work(&self, origin: &[V3]) -> f64 {
+        (0..self.points.len())
+            .map(|p| {
+                let j = self.jump(p);
+                let j0 = origin.get(p).copied().unwrap_or([0.0; 3]);
+                let d = [j[0] - j0[0], j[1] - j0[1], j[2] - j0[2]];
+                self.weights[p] * dot(&d, &self.fhat[1][p])
+            })
+            .sum()
+    }
+}
+
 /// Energy dissipated by friction within one load step on interface result `cur`:
 /// `-int ([W_hat] - j0)_t . Phi_t dS >= 0`, with `j0` the tangential jump at the end of the
 /// previous step (`prev`, the same interface; `None`: the unloaded state, `j0 = 0`). With
@@ -116,19 +181,11 @@ pub fn step_friction_dissipation(
     prev: Option<&crate::InterfaceResult>,
     cur: &crate::InterfaceResult,
 ) -> f64 {
-    let tangential = |it: &crate::InterfaceResult, i: usize| -> V3 {
-        let (a, b) = (it.what[0][i], it.what[1][i]);
-        let n = cur.points[i].normal;
-        let j = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let jn = dot(&j, &n);
-        [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]]
-    };
-    (0..cur.points.len())
-        .map(|i| {
-            let jt = tangential(cur, i);
-            let j0 = prev.map_or([0.0; 3], |p| tangential(p, i));
-            let d = [jt[0] - j0[0], jt[1] - j0[1], jt[2] - j0[2]];
-            -cur.weights[i] * dot(&d, &cur.fhat[1][i])
+    let origin: Vec<V3> = (0..cur.points.len())
+        .map(|i| match prev {
+            Some(p) => tangential(p.what[0][i], p.what[1][i], cur.points[i].normal),
+            None => [0.0; 3],
         })
-        .sum()
+        .collect();
+    cur.step_friction_dissipation(&origin)
 }

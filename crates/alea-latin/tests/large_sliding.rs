@@ -249,6 +249,33 @@ fn press_then_slide_over_eight_cells_2d() {
     assert_eq!(steps[0].result.status, RunStatus::Converged);
     assert_eq!(steps[0].pairings, 1, "pressing does not slide");
     check(&steps[1], 1, 1.0, [1.5, 0.0, 0.0], 0.1, 0.01);
+    // The slide step's own slip, from the jump at its start between the points its pairing
+    // pairs: the imposed slide less the block's elastic shear (about 4e-5 here), dissipating
+    // mu N times it; its work is minus its dissipation (complementarity kills the normal part).
+    let origins = alea_latin::large_sliding::step_origins(&steps[1], Some(&steps[0]));
+    let it = &steps[1].result.interfaces[0];
+    let d = it.step_friction_dissipation(&origins[0]);
+    let w = it.step_work(&origins[0]);
+    let mean_slip: f64 = (0..it.points.len())
+        .map(|p| it.weights[p] * it.step_slip(p, &origins[0])[0])
+        .sum::<f64>()
+        / it.weights.iter().sum::<f64>();
+    eprintln!("slide step: dissipation {d}, work {w}, mean slip {mean_slip}");
+    let mu_n = MU * P;
+    assert!(
+        d > mu_n * (SLIDE - 1e-3) && d <= mu_n * SLIDE,
+        "dissipation {d}"
+    );
+    assert!((d + w).abs() < 1e-6 * d, "work {w} vs dissipation {d}");
+    assert!(
+        mean_slip > SLIDE - 1e-3 && mean_slip <= SLIDE,
+        "mean slip {mean_slip}"
+    );
+    // `step_friction_dissipation` is the same count.
+    assert_eq!(
+        alea_latin::large_sliding::step_friction_dissipation(&steps[1], Some(&steps[0]), 0),
+        d
+    );
 }
 
 #[test]

@@ -84,12 +84,30 @@ impl RunContext<'_> {
     /// every MPI rank.
     pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
         let input = self.input(job);
+        let study = self.study;
+        if alea_latin::large_sliding::uses_large_sliding(&study.model.assembly) {
+            // Each step re-paired in its deformed configuration, on the assembly of its
+            // imposed displacements.
+            let mut assemblies = vec![&study.model.assembly];
+            assemblies.extend(study.step_models.iter().map(|m| &m.assembly));
+            let steps = crate::steps::run_large_sliding(
+                study.steps.as_ref(),
+                &assemblies,
+                &study.model.options,
+                &study.model.repairing,
+                &input,
+            )?;
+            return self.outcome(job, StepRuns::Repaired(&steps));
+        }
         // With [[step]]s, one result per step run (module `steps`); the last is the run's.
-        let results = match &self.study.steps {
+        let results = match &study.steps {
             None => vec![self.solver.run_shared(&input)?],
-            Some(plan) => crate::steps::run_study_history(plan, self.solver, &input)?,
+            Some(plan) => {
+                let others = study.step_solvers()?;
+                crate::steps::run_study_history(plan, self.solver, others, &input)?
+            }
         };
-        self.outcome(job, results)
+        self.outcome(job, StepRuns::Paired(results))
     }
 
     /// Solves the runs of `jobs` as one batch of the solver ([`LatinSolver::run_batch`]: one
@@ -97,14 +115,16 @@ impl RunContext<'_> {
     /// quantities, estimate and files as [`RunContext::solve`] does; the outcomes in job order.
     /// Runs with [[step]]s are solved one at a time (each is a history of solves).
     pub fn solve_batch(&self, jobs: &[RunJob]) -> Vec<Result<RunOutcome, StudyError>> {
-        if self.study.steps.is_some() {
+        if self.study.steps.is_some()
+            || alea_latin::large_sliding::uses_large_sliding(&self.study.model.assembly)
+        {
             return jobs.par_iter().map(|job| self.solve(job)).collect();
         }
         let inputs: Vec<_> = jobs.iter().map(|job| self.input(job)).collect();
         let results = self.solver.run_batch(&inputs);
         jobs.par_iter()
             .zip(results.into_par_iter())
-            .map(|(job, res)| self.outcome(job, vec![res?]))
+            .map(|(job, res)| self.outcome(job, StepRuns::Paired(vec![res?])))
             .collect()
     }
 
@@ -117,21 +137,41 @@ impl RunContext<'_> {
 
     /// The outcome of a job from its solver results (one per load step; the last is the
     /// run's).
-    fn outcome(
-        &self,
-        job: &RunJob,
-        results: Vec<alea_latin::RunResult>,
-    ) -> Result<RunOutcome, StudyError> {
+    fn outcome(&self, job: &RunJob, runs: StepRuns<'_>) -> Result<RunOutcome, StudyError> {
         let study = self.study;
-        let solver = self.solver;
         let theta = job.theta.as_slice();
-        let res = results
-            .last()
-            .ok_or(StudyError::Failed("no load step ran".into()))?;
+        let repaired = matches!(runs, StepRuns::Repaired(_));
+        // Per step: its result, its solver (large sliding: that of its last pairing) and the
+        // tangential jump at its start (where its slip, work and dissipation count from).
+        let (results, solvers, origins) = match runs {
+            StepRuns::Paired(results) => {
+                let origins = (0..results.len())
+                    .map(|k| {
+                        let prev = k.checked_sub(1).map(|p| &results[p]);
+                        alea_latin::steps::step_origins(prev, &results[k])
+                    })
+                    .collect::<Vec<_>>();
+                let solvers = vec![self.solver; results.len()];
+                (results, solvers, origins)
+            }
+            StepRuns::Repaired(steps) => (
+                steps.iter().map(|s| s.result.clone()).collect::<Vec<_>>(),
+                steps.iter().map(|s| &s.solver).collect::<Vec<_>>(),
+                (0..steps.len())
+                    .map(|k| {
+                        let prev = k.checked_sub(1).map(|p| &steps[p]);
+                        alea_latin::large_sliding::step_origins(&steps[k], prev)
+                    })
+                    .collect::<Vec<_>>(),
+            ),
+        };
+        let (Some(res), Some(&solver)) = (results.last(), solvers.last()) else {
+            return Err(StudyError::Failed("no load step ran".into()));
+        };
         let qois = study
             .qois
             .iter()
-            .map(|q| crate::steps::eval_qoi(q, solver, &results))
+            .map(|q| crate::steps::eval_qoi(q, &solvers, &results, &origins))
             .collect::<Result<Vec<_>, _>>()?;
         let mut status = match (res.status, solver.equilibrium_report(res)) {
             (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
@@ -144,8 +184,14 @@ impl RunContext<'_> {
             status = format!("step {} '{}': {status}", k + 1, plan.steps[k].name);
         }
         // The state later runs start from: that of the first step (every later step starts
-        // from its own run's previous step).
-        let state = results[0].end_state();
+        // from its own run's previous step). None with large sliding: the runs' pairings
+        // differ (an empty state is no warm-start source, and each step starts from its
+        // predicted configuration).
+        let state = if repaired {
+            Vec::new()
+        } else {
+            results[0].end_state().to_vec()
+        };
         let rec = RunRecord {
             params: theta.to_vec(),
             status,
@@ -166,7 +212,7 @@ impl RunContext<'_> {
                 .flat_map(|r| &r.residuals)
                 .map(|v| if v.is_finite() { *v } else { f64::MAX })
                 .collect(),
-            state: state.to_vec(),
+            state,
         };
         if rec.qois.iter().any(|v| v.is_nan()) && rec.converged() {
             return Err(StudyError::NonFiniteQoi {
@@ -175,7 +221,7 @@ impl RunContext<'_> {
         }
         let (cre, estimate_seconds) = match (self.cre, rec.converged()) {
             (Some(setup), true) => {
-                let c = setup.estimate_run(study, solver, theta, res)?;
+                let c = setup.estimate_run(study, self.solver, theta, res)?;
                 let s = c.seconds;
                 (Some(c.to_values()), s)
             }
@@ -192,14 +238,22 @@ impl RunContext<'_> {
                 Some(plan) => {
                     for (k, r) in results.iter().enumerate() {
                         let name = format!("{stem}-{}-{}.vtm", k + 1, plan.steps[k].name);
-                        alea_latin::output::write_run(self.dir.join("vtu").join(name), solver, r)?;
+                        let path = self.dir.join("vtu").join(name);
+                        alea_latin::output::write_step(
+                            path,
+                            solvers[k],
+                            r,
+                            None,
+                            Some(&origins[k]),
+                        )?;
                     }
                 }
             }
         }
         let slide = results
             .iter()
-            .flat_map(|r| alea_latin::sliding::slide_checks(solver, r))
+            .zip(&solvers)
+            .flat_map(|(r, s)| alea_latin::sliding::slide_checks(s, r))
             .filter(|c| c.beyond_small_sliding())
             .max_by(|a, b| a.ratio.total_cmp(&b.ratio));
         Ok(RunOutcome {
@@ -210,6 +264,15 @@ impl RunContext<'_> {
             slide,
         })
     }
+}
+
+/// The solver results of one run's steps.
+enum StepRuns<'s> {
+    /// On the solver of the study (and of its steps' imposed values): the pairing of the
+    /// initial configuration.
+    Paired(Vec<alea_latin::RunResult>),
+    /// With large sliding: each step on the solver of its last pairing.
+    Repaired(&'s [alea_latin::large_sliding::SlidingStep]),
 }
 
 /// Solves the pending runs of one batch. Every run of a batch is independent of the others

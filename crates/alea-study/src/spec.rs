@@ -241,6 +241,13 @@ pub struct SolverSpec {
     /// Largest rigid motion of a floating substructure relative to the model size. Default 10.
     #[serde(default)]
     pub max_rigid_motion: Option<Spanned<f64>>,
+    /// Large sliding: largest slide since the last pairing, over the median point size of the
+    /// interface, for the pairing to be the solution's, in (0, 0.5]. Default 0.01.
+    #[serde(default)]
+    pub repair_tolerance: Option<Spanned<f64>>,
+    /// Large sliding: largest number of pairings per load step, 1 - 100. Default 10.
+    #[serde(default)]
+    pub max_pairings: Option<Spanned<usize>>,
 }
 
 /// `[study]`.

@@ -231,10 +231,11 @@ pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyE
     Ok(Some(Plan { steps, files }))
 }
 
-/// The load history of a study: [`plan_steps`], plus what a study needs on top. Every run of
-/// a study uses one factorised solver, so its steps may change loads only (imposed
-/// displacements per step are for `alea solve`); each quantity gets the index of its step
-/// (`[[quantity]] step`, default the last) and its description names that step.
+/// The load history of a study: [`plan_steps`], plus what a study needs on top: each quantity
+/// gets the index of its step (`[[quantity]] step`, default the last) and its description
+/// names that step. Steps may change loads and imposed displacements, as in `alea solve`; each
+/// distinct set of imposed values is one solver, shared by every run
+/// (`Study::step_solvers`).
 pub fn study_steps(
     src: &Source,
     file: &ModelFile,
@@ -256,19 +257,6 @@ pub fn study_steps(
         }
         return Ok(None);
     };
-    if let Some((k, c)) = file
-        .step
-        .iter()
-        .enumerate()
-        .find_map(|(k, st)| st.get_ref().constraint.first().map(|c| (k, c)))
-    {
-        return Err(src.error(
-            c.substructure.span(),
-            format!("step[{k}].constraint"),
-            "in a study, steps change loads only (every run uses one factorised solver); \
-             imposed displacements per step are solved by `alea solve`",
-        ));
-    }
     let names: Vec<&str> = plan.steps.iter().map(|s| s.name.as_str()).collect();
     for (i, (q, spec)) in qois.iter_mut().zip(&file.quantity).enumerate() {
         let k = match &spec.step {
@@ -291,16 +279,10 @@ pub fn study_steps(
     Ok(Some(plan))
 }
 
-/// Runs the load history `plan` of one study run (loads only: one solver) from `input` (the
-/// run's parameters; its `initial` state is that of the first step). Returns the results of
-/// the steps run: the history stops after a step that does not converge.
-pub(crate) fn run_study_history(
-    plan: &Plan,
-    solver: &alea_latin::LatinSolver,
-    input: &alea_latin::RunInput,
-) -> Result<Vec<alea_latin::RunResult>, StudyError> {
-    let inputs: Vec<alea_latin::RunInput> = plan
-        .steps
+/// The run input of every step of `plan` for a run whose input is `input` (its `initial`
+/// state is that of the first step only): the loads scaled by the step's factors.
+fn step_inputs(plan: &Plan, input: &alea_latin::RunInput) -> Vec<alea_latin::RunInput> {
+    plan.steps
         .iter()
         .enumerate()
         .map(|(k, step)| {
@@ -315,30 +297,103 @@ pub(crate) fn run_study_history(
             }
             i
         })
-        .collect();
-    Ok(solver.run_steps(&inputs)?)
+        .collect()
 }
 
-/// The value of `q` for a run whose steps gave `results` (one result without steps): at its
-/// step's end state; NaN if the history stopped before that step. The friction dissipation
-/// of a step after the first is the step's own
-/// ([`alea_latin::steps::step_friction_dissipation`]).
+/// Runs the load history `plan` of one study run from `input` (the run's parameters; its
+/// `initial` state is that of the first step): each step on the solver of its imposed
+/// displacements (`solver` for those of the file as written, `others[j - 1]` for
+/// `plan.files[j]`: the study's step solvers), with its loads scaled. Returns the results of
+/// the steps run: the history stops after a step that does not converge.
+pub(crate) fn run_study_history(
+    plan: &Plan,
+    solver: &alea_latin::LatinSolver,
+    others: &[std::sync::Arc<alea_latin::LatinSolver>],
+    input: &alea_latin::RunInput,
+) -> Result<Vec<alea_latin::RunResult>, StudyError> {
+    if others.len() + 1 < plan.files.len() {
+        return Err(StudyError::Failed(format!(
+            "the steps need {} solvers, {} were built",
+            plan.files.len(),
+            others.len() + 1
+        )));
+    }
+    let steps: Vec<(&alea_latin::LatinSolver, alea_latin::RunInput)> = plan
+        .steps
+        .iter()
+        .zip(step_inputs(plan, input))
+        .map(|(step, i)| {
+            let s: &alea_latin::LatinSolver = match step.file {
+                0 => solver,
+                j => &others[j - 1],
+            };
+            (s, i)
+        })
+        .collect();
+    Ok(alea_latin::steps::run_history(&steps)?)
+}
+
+/// Runs one study run with large sliding (`alea_latin::large_sliding`): the steps of `plan`
+/// (`None`: one step, `input` itself) on the assembly of their imposed displacements
+/// (`assemblies[j]` for `plan.files[j]`), each re-paired in its deformed configuration. Returns
+/// the steps run: the history stops after a step that does not converge.
+pub(crate) fn run_large_sliding(
+    plan: Option<&Plan>,
+    assemblies: &[&alea_latin::Assembly],
+    options: &alea_latin::LatinOptions,
+    repairing: &alea_latin::large_sliding::Repairing,
+    input: &alea_latin::RunInput,
+) -> Result<Vec<alea_latin::large_sliding::SlidingStep>, StudyError> {
+    let steps: Vec<(&alea_latin::Assembly, alea_latin::RunInput)> = match plan {
+        None => vec![(assemblies[0], input.clone())],
+        Some(plan) => plan
+            .steps
+            .iter()
+            .zip(step_inputs(plan, input))
+            .map(|(step, i)| {
+                assemblies
+                    .get(step.file)
+                    .map(|a| (*a, i))
+                    .ok_or_else(|| StudyError::Failed("a step's model was not built".into()))
+            })
+            .collect::<Result<_, _>>()?,
+    };
+    Ok(alea_latin::large_sliding::run_history(
+        &steps, options, repairing,
+    )?)
+}
+
+/// The value of `q` for a run whose steps gave `results` (one result without steps), each
+/// step `k` solved by `solvers[k]` and its slip measured from `origins[k]` (per interface and
+/// point, the tangential jump at the step's start: `alea_latin::steps::step_origins`, or
+/// `alea_latin::large_sliding::step_origins`): at its step's end state; NaN if the history
+/// stopped before that step. The interface work and the friction dissipation of a step after
+/// the first are the step's own, on the jump from the step's start; the other quantities are
+/// states at the end of the step (`contact_slip` is the total tangential jump: the slip left
+/// by the history).
 pub(crate) fn eval_qoi(
     q: &crate::qoi::Qoi,
-    solver: &alea_latin::LatinSolver,
+    solvers: &[&alea_latin::LatinSolver],
     results: &[alea_latin::RunResult],
+    origins: &[Vec<Vec<[f64; 3]>>],
 ) -> Result<f64, StudyError> {
+    use crate::qoi::QoiKind;
     let k = q.step.unwrap_or(results.len().saturating_sub(1));
-    let Some(res) = results.get(k) else {
+    let (Some(res), Some(solver)) = (results.get(k), solvers.get(k)) else {
         return Ok(f64::NAN);
     };
-    if let (crate::qoi::QoiKind::FrictionDissipation(i), Some(prev)) =
-        (&q.kind, k.checked_sub(1).and_then(|p| results.get(p)))
-    {
-        return Ok(alea_latin::steps::step_friction_dissipation(
-            Some(&prev.interfaces[*i]),
-            &res.interfaces[*i],
-        ));
+    let origin = |i: usize| {
+        origins
+            .get(k)
+            .and_then(|o| o.get(i))
+            .map(Vec::as_slice)
+            .ok_or_else(|| StudyError::Internal(format!("no slip origin for step {}", k + 1)))
+    };
+    match (&q.kind, k > 0) {
+        (QoiKind::FrictionDissipation(i), true) => {
+            Ok(res.interfaces[*i].step_friction_dissipation(origin(*i)?))
+        }
+        (QoiKind::InterfaceWork(i), true) => Ok(res.interfaces[*i].step_work(origin(*i)?)),
+        _ => q.eval(solver, res),
     }
-    q.eval(solver, res)
 }

@@ -43,8 +43,13 @@ pub struct Study {
     pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
     /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
     pub refined: Option<Box<Study>>,
-    /// `[[step]]`: the load history of every run (module `steps`; loads only in a study).
+    /// `[[step]]`: the load history of every run (module `steps`).
     pub steps: Option<crate::steps::Plan>,
+    /// The models of the steps' other sets of imposed displacements (`steps.files[1..]`),
+    /// built at load; empty without steps or when the steps change loads only.
+    pub step_models: Vec<BuiltModel>,
+    /// Their solvers, built (assembled and factorised) on the first run that needs them.
+    step_solvers: std::sync::OnceLock<Result<Vec<std::sync::Arc<LatinSolver>>, String>>,
 }
 
 impl std::fmt::Debug for Study {
@@ -106,26 +111,15 @@ impl Study {
             crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
         }
         let model = build_model(&source, &file, &params)?;
-        if let Some(i) = model
-            .assembly
-            .interfaces
-            .iter()
-            .position(alea_latin::large_sliding::is_repaired)
-            && let Some(site) = model.interface_sites.get(i)
-        {
-            return Err(StudyError::Input {
-                file: site.file.clone(),
-                line: site.sliding,
-                field: format!("interface[{i}].sliding"),
-                message: "large sliding (the pairing re-found in the deformed configuration) is \
-                          solved by `alea solve`; studies keep the pairing of the initial \
-                          configuration and warn when a run slides beyond it: use sliding = \
-                          \"small\" in a study"
-                    .into(),
-            });
-        }
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
+        let step_models = match &steps {
+            Some(plan) => plan.files[1..]
+                .iter()
+                .map(|f| build_model(&source, f, &params))
+                .collect::<Result<Vec<_>, _>>()?,
+            None => Vec::new(),
+        };
         let seed = file.study.seed.unwrap_or(1);
         let methods = if params.names.is_empty() {
             vec![Method::deterministic()]
@@ -175,6 +169,8 @@ impl Study {
             reliability,
             refined,
             steps,
+            step_models,
+            step_solvers: std::sync::OnceLock::new(),
         };
         if study.steps.is_some() && estimates_error(&study) {
             return Err(study.source.error(
@@ -183,8 +179,50 @@ impl Study {
                 "the error estimate (an [error] table or an adaptive method) is for single-step runs: leave out [error] and adaptive methods, or the [[step]]s",
             ));
         }
+        if estimates_error(&study)
+            && let Some(i) = study
+                .model
+                .assembly
+                .interfaces
+                .iter()
+                .position(alea_latin::large_sliding::is_repaired)
+            && let Some(site) = study.model.interface_sites.get(i)
+        {
+            return Err(StudyError::Input {
+                file: site.file.clone(),
+                line: site.sliding,
+                field: format!("interface[{i}].sliding"),
+                message: "large sliding (the pairing re-found in the deformed configuration of \
+                          each run) gives every run its own interface points, while the error \
+                          estimate ([error], adaptive methods) needs the same interface layout \
+                          in every run: leave out [error] and adaptive methods, or use \
+                          sliding = \"small\""
+                    .into(),
+            });
+        }
         check_built(&study)?;
         Ok(study)
+    }
+
+    /// The solvers of [`Study::step_models`] (the steps' other sets of imposed displacements),
+    /// built on first use and then shared by every run.
+    ///
+    /// # Errors
+    /// A solver that cannot be built (as the study's own solver would fail).
+    pub fn step_solvers(&self) -> Result<&[std::sync::Arc<LatinSolver>], StudyError> {
+        let built = self.step_solvers.get_or_init(|| {
+            self.step_models
+                .iter()
+                .map(|m| {
+                    m.solver()
+                        .map(std::sync::Arc::new)
+                        .map_err(|e| e.to_string())
+                })
+                .collect()
+        });
+        built.as_deref().map_err(|e| {
+            StudyError::Failed(format!("the solver of a step's imposed displacements: {e}"))
+        })
     }
 
     /// Loads a study file.

@@ -24,7 +24,10 @@ pub(crate) fn not_converged(
 }
 
 /// Prints the status, stresses, interfaces and reactions of a LATIN run and writes its files
-/// (`path`: the `.vtm`, with the `.vtu` and interface `.csv` files beside it).
+/// (`path`: the `.vtm`, with the `.vtu` and interface `.csv` files beside it). For a step of a
+/// load history, `origins` holds the tangential jump of every interface point at the start of
+/// the step (`alea_latin::steps::step_origins`): the work and the slip written are then the
+/// step's own, and the total slip is written beside it.
 pub(crate) fn report_run(
     file: &ModelFile,
     built: &alea_study::BuiltModel,
@@ -32,6 +35,7 @@ pub(crate) fn report_run(
     res: &alea_latin::RunResult,
     input: &alea_latin::RunInput,
     path: &Path,
+    origins: Option<&[Vec<[f64; 3]>]>,
 ) -> Result<()> {
     let u = &built.units;
     let last = res.residuals.last().copied().unwrap_or(0.0);
@@ -83,11 +87,15 @@ pub(crate) fn report_run(
         );
     }
     let dim = built.mesh.dim;
-    for it in &res.interfaces {
+    for (i, it) in res.interfaces.iter().enumerate() {
         let c = it.status_counts();
         let dim = solver.model(it.subs[1]).mesh.dim;
+        let (work, within) = match origins.and_then(|o| o.get(i)) {
+            Some(o) => (it.step_work(o), " in this step"),
+            None => (it.work(), ""),
+        };
         println!(
-            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({}) {}; work of interface forces {:e}",
+            "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({}) {}; work of interface forces{within} {work:e}",
             it.name,
             it.law,
             c[1],
@@ -95,7 +103,6 @@ pub(crate) fn report_run(
             c[3],
             labelled(it.resultant(), dim, "F"),
             u.force,
-            it.work()
         );
     }
     for c in alea_latin::sliding::slide_checks(solver, res) {
@@ -143,8 +150,7 @@ pub(crate) fn report_run(
         }
         reactions.push(r);
     }
-    let written =
-        alea_latin::output::write_run_with_reactions(path, solver, res, Some(&reactions))?;
+    let written = alea_latin::output::write_step(path, solver, res, Some(&reactions), origins)?;
     println!(
         "wrote {} and {} file(s) beside it",
         path.display(),

@@ -160,7 +160,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         let step = crate::solve_steps::large_sliding_step(&built, None, &input)?;
         let (solver, res) = (&step.solver, &step.result);
         let path = out.join(format!("{stem}.vtm"));
-        crate::run_report::report_run(&file, &built, solver, res, &input, &path)?;
+        crate::run_report::report_run(&file, &built, solver, res, &input, &path, None)?;
         println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
         if res.status != RunStatus::Converged {
             return Err(crate::run_report::not_converged(solver, res).into());
@@ -174,7 +174,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     );
     let res = solver.run_shared(&input)?;
     let path = out.join(format!("{stem}.vtm"));
-    crate::run_report::report_run(&file, &built, &solver, &res, &input, &path)?;
+    crate::run_report::report_run(&file, &built, &solver, &res, &input, &path, None)?;
     println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     if res.status != RunStatus::Converged {
         return Err(crate::run_report::not_converged(&solver, &res).into());

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use alea_latin::large_sliding::{self, Repairing, SlidingStep};
+use alea_latin::large_sliding::{self, SlidingStep};
 use alea_latin::{LatinSolver, RunInput, RunStatus};
 use alea_study::steps::Plan;
 use alea_study::{BuiltModel, ParamSpace, Source, build_model, spec::ModelFile};
@@ -53,8 +53,9 @@ pub fn solve_history(
         println!("step {} '{}':", k + 1, step.name);
         let res = solver.run_shared(&input)?;
         let path = out.join(format!("{stem}-{}-{}.vtm", k + 1, step.name));
-        report_run(file, model, solver, &res, &input, &path)?;
-        print_dissipation(previous.as_ref(), &res);
+        let origins = alea_latin::steps::step_origins(previous.as_ref(), &res);
+        report_run(file, model, solver, &res, &input, &path, Some(&origins))?;
+        print_dissipation(&res, &origins);
         if res.status != RunStatus::Converged {
             println!(
                 "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",
@@ -86,15 +87,15 @@ fn step_input(
     input
 }
 
-/// Prints the friction dissipation of each contact interface within the step of `res`.
-fn print_dissipation(previous: Option<&alea_latin::RunResult>, res: &alea_latin::RunResult) {
-    for (i, it) in res.interfaces.iter().enumerate() {
+/// Prints the friction dissipation of each contact interface within the step of `res`, whose
+/// slip starts from `origins` (per interface and point, `alea_latin::steps::step_origins`).
+fn print_dissipation(res: &alea_latin::RunResult, origins: &[Vec<[f64; 3]>]) {
+    for (it, origin) in res.interfaces.iter().zip(origins) {
         if it.law != "perfect" {
-            let prev = previous.map(|p| &p.interfaces[i]);
             println!(
                 "  interface {:>12}: friction dissipation in this step {:e} (the slip increment of the step against the friction force)",
                 it.name,
-                alea_latin::steps::step_friction_dissipation(prev, it)
+                it.step_friction_dissipation(origin)
             );
         }
     }
@@ -107,8 +108,8 @@ pub(crate) fn large_sliding_step(
     start: Option<&SlidingStep>,
     input: &RunInput,
 ) -> Result<SlidingStep> {
-    let settings = Repairing::default();
-    let step = large_sliding::run_step(&model.assembly, &model.options, &settings, start, input)?;
+    let settings = &model.repairing;
+    let step = large_sliding::run_step(&model.assembly, &model.options, settings, start, input)?;
     println!(
         "large sliding: {} pairing(s) in the deformed configuration, {} LATIN iterations in all, set-up {:.3} s; slide since the last pairing {:.2e} x the mesh size (tolerance {:.0e}){}",
         step.pairings,
@@ -117,9 +118,12 @@ pub(crate) fn large_sliding_step(
         step.mismatch,
         settings.tolerance,
         if step.pairing_settled {
-            ""
+            String::new()
         } else {
-            ": the pairing did not settle, the step is not converged"
+            format!(
+                ": the pairing did not settle within {} pairing(s) ([solver] max_pairings), the step is not converged",
+                settings.max_pairings
+            )
         }
     );
     Ok(step)
@@ -144,16 +148,17 @@ fn large_sliding_history(
         println!("step {} '{}':", k + 1, step.name);
         let done = large_sliding_step(model, previous.as_ref(), &input)?;
         let path = out.join(format!("{stem}-{}-{}.vtm", k + 1, step.name));
-        report_run(file, model, &done.solver, &done.result, &input, &path)?;
-        for (i, it) in done.result.interfaces.iter().enumerate() {
-            if it.law != "perfect" {
-                println!(
-                    "  interface {:>12}: friction dissipation in this step {:e} (the slip increment of the step against the friction force)",
-                    it.name,
-                    large_sliding::step_friction_dissipation(&done, previous.as_ref(), i)
-                );
-            }
-        }
+        let origins = large_sliding::step_origins(&done, previous.as_ref());
+        report_run(
+            file,
+            model,
+            &done.solver,
+            &done.result,
+            &input,
+            &path,
+            Some(&origins),
+        )?;
+        print_dissipation(&done.result, &origins);
         if done.result.status != RunStatus::Converged {
             println!(
                 "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",

@@ -4,7 +4,8 @@
 //! settles) and keeps the closed-form resultants
 //! (N = 10 N/mm, T = mu N) with no small-sliding warning; small sliding warns and names the
 //! setting, and so does a study; a bad `sliding` value, large sliding on a perfect interface and
-//! large sliding in a study are refused at load (exit 2) at their line.
+//! large sliding in a study that estimates its error are refused at load (exit 2) at their
+//! line. A study with large sliding (random `mu`) keeps the closed form at every run.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -270,12 +271,179 @@ fn bad_sliding_settings_are_refused_at_their_line() {
     let t = text(&o);
     assert_eq!(o.status.code(), Some(0), "{t}");
     assert!(t.contains("beyond small sliding"), "{t}");
-    let (p, s) = case(&dir, "study", &[], study_tail);
+    // Large sliding in a study that estimates its error (which needs one interface layout for
+    // every run): refused at the interface's line.
+    let (p, s) = case(&dir, "study", &[], &format!("{study_tail}\n[error]\n"));
     let o = alea()
         .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
         .arg(dir.join("study"))
         .output()
         .unwrap();
     expect_input_error(&o, &p, line_of(&s, "sliding ="), "interface[0].sliding");
+    assert!(text(&o).contains("error estimate"), "{}", text(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `[solver] repair_tolerance` and `max_pairings` drive the re-pairing: with a tolerance of
+/// 1e-5 of the mesh size the slide since the first pairing (5.8e-4 of it, measured) is too
+/// large and the step re-pairs once (2 pairings, as `alea-latin/tests/large_sliding.rs`
+/// measures), keeping the closed-form resultants; allowed a single pairing, the same step
+/// cannot settle and is not converged (exit 4). Out-of-range values, and either key without a
+/// large-sliding interface, are refused at their line (exit 2).
+#[test]
+fn re_pairing_settings_are_used_and_checked_at_load() {
+    let dir = tmp("settings");
+    let (p, _) = case(&dir, "tight", &[], "\n[solver]\nrepair_tolerance = 1e-5\n");
+    let o = solve(&p, &dir.join("out-tight"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("large sliding: 2 pairing(s)"), "{t}");
+    assert!(t.contains("(tolerance 1e-5)"), "{t}");
+    let (fx, fy) = resultant(&t);
+    assert!((fy - 10.0).abs() < 1e-3 && (fx + 2.0).abs() < 1e-3, "{t}");
+    let (p, _) = case(
+        &dir,
+        "one",
+        &[],
+        "\n[solver]\nrepair_tolerance = 1e-5\nmax_pairings = 1\n",
+    );
+    let o = solve(&p, &dir.join("out-one"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(4), "{t}");
+    assert!(
+        t.contains("large sliding: 1 pairing(s)")
+            && t.contains("did not settle within 1 pairing(s) ([solver] max_pairings)"),
+        "{t}"
+    );
+    for (name, setting, field) in [
+        ("zero", "repair_tolerance = 0.0", "solver.repair_tolerance"),
+        ("half", "repair_tolerance = 0.6", "solver.repair_tolerance"),
+        ("none", "max_pairings = 0", "solver.max_pairings"),
+        ("many", "max_pairings = 101", "solver.max_pairings"),
+    ] {
+        let (p, s) = case(&dir, name, &[], &format!("\n[solver]\n{setting}\n"));
+        expect_input_error(&solve(&p, &dir.join("o")), &p, line_of(&s, setting), field);
+    }
+    let (p, s) = case(
+        &dir,
+        "unused",
+        &[("sliding = \"large\"", "")],
+        "\n[solver]\nmax_pairings = 3\n",
+    );
+    let o = solve(&p, &dir.join("o"));
+    expect_input_error(&o, &p, line_of(&s, "max_pairings"), "solver.max_pairings");
+    assert!(text(&o).contains("no interface has sliding = \"large\""));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A study with large sliding: the 8-cell slide with a random friction coefficient
+/// `mu ~ U(0.1, 0.3)`, each run re-paired in its deformed configuration. Closed form at every
+/// run: `N = 10 N/mm`, friction `-mu N` on the block, and no slide beyond what its pairing
+/// represents (no small-sliding warning). On the old code the study was refused at load.
+#[test]
+fn a_study_with_large_sliding_keeps_the_closed_form_at_every_run() {
+    let dir = tmp("study-large");
+    let tail = "\n[study]\ntitle = \"slide, random mu\"\nseed = 2\n\n\
+                [[parameter]]\nname = \"mu\"\nlaw = \"uniform\"\nlo = 0.1\nhi = 0.3\n\n\
+                [[quantity]]\nname = \"fx\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 0\n\n\
+                [[quantity]]\nname = \"fy\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 1\n\n\
+                [[method]]\ntype = \"monte_carlo\"\nruns = 4\n";
+    let (p, _) = case(&dir, "study", &[("mu = 0.2", "mu = \"mu\"")], tail);
+    let out = dir.join("run");
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(!t.contains("beyond small sliding"), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 4);
+    for r in runs {
+        assert_eq!(r["status"], "converged", "{r}");
+        let mu = r["params"][0].as_f64().unwrap();
+        let (fx, fy) = (
+            r["qois"][0].as_f64().unwrap(),
+            r["qois"][1].as_f64().unwrap(),
+        );
+        assert!((fy - 10.0).abs() < 1e-3, "mu {mu}: N = {fy}");
+        assert!(
+            (fx + mu * 10.0).abs() < 1e-3,
+            "mu {mu}: T = {fx} vs {}",
+            -mu * 10.0
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A study whose runs are load histories with large sliding and imposed displacements per step:
+/// press, then slide the block's top by 0.8 mm (8 base cells), random `mu ~ U(0.1, 0.3)`.
+/// Closed forms at every run: friction `-mu N` on the block at the end of the slide
+/// (`N = 10 N/mm`), and the slide step's own dissipation `mu N` times its slip, the imposed
+/// 0.8 mm less the block's elastic shear (about 4e-5 mm): within [0.799, 0.8] mu N; its
+/// interface work is minus that.
+#[test]
+fn a_study_of_press_then_slide_histories_with_large_sliding() {
+    let dir = tmp("study-steps");
+    let tail = "\n[study]\ntitle = \"press then slide, random mu\"\nseed = 4\n\n\
+                [[parameter]]\nname = \"mu\"\nlaw = \"uniform\"\nlo = 0.1\nhi = 0.3\n\n\
+                [[step]]\nname = \"press\"\n\n\
+                [[step]]\nname = \"slide\"\n\
+                constraint = [ { substructure = \"block\", group = \"block_top\", x = 0.8 } ]\n\n\
+                [[quantity]]\nname = \"fx\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 0\n\n\
+                [[quantity]]\nname = \"dissipated\"\nkind = \"friction_dissipation\"\ninterface = \"contact\"\n\n\
+                [[quantity]]\nname = \"work\"\nkind = \"interface_work\"\ninterface = \"contact\"\n\n\
+                [[method]]\ntype = \"monte_carlo\"\nruns = 3\n";
+    let (p, _) = case(
+        &dir,
+        "study",
+        &[
+            ("mu = 0.2", "mu = \"mu\""),
+            (
+                "group = \"block_top\", x = 0.8",
+                "group = \"block_top\", x = 0.0",
+            ),
+        ],
+        tail,
+    );
+    let out = dir.join("run");
+    let o = alea()
+        .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 3);
+    for r in runs {
+        assert_eq!(r["status"], "converged", "{r}");
+        let mu = r["params"][0].as_f64().unwrap();
+        let q: Vec<f64> = (0..3).map(|i| r["qois"][i].as_f64().unwrap()).collect();
+        let mu_n = mu * 10.0;
+        assert!(
+            (q[0] + mu_n).abs() < 1e-3,
+            "mu {mu}: T = {} vs {}",
+            q[0],
+            -mu_n
+        );
+        assert!(
+            q[1] > 0.799 * mu_n && q[1] < 0.8 * mu_n * (1.0 + 1e-3),
+            "mu {mu}: dissipation {} vs mu N x 0.8 = {}",
+            q[1],
+            0.8 * mu_n
+        );
+        assert!(
+            (q[1] + q[2]).abs() < 1e-6 * q[1],
+            "work {} vs {}",
+            q[2],
+            q[1]
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -302,11 +302,11 @@ fn study_step_settings_are_checked_at_load() {
             "quantity[0].step",
         ),
         (
-            "constraint_in_study",
+            "constraint_on_a_free_group",
             "[[step]]\nname = \"unload\"\n",
-            "[[step]]\nname = \"unload\"\nconstraint = [ { substructure = \"base\", group = \"lower_bottom\", x = 1e-3 } ]\n",
-            "x = 1e-3 } ]",
-            "step[2].constraint",
+            "[[step]]\nname = \"unload\"\nconstraint = [ { substructure = \"block\", group = \"upper_top\", x = 1e-3 } ]\n",
+            "group = \"upper_top\", x = 1e-3",
+            "step[2].constraint[0].group",
         ),
         (
             "error_estimate",
@@ -412,5 +412,224 @@ fn a_slide_over_several_cells_is_warned_about() {
         .unwrap();
     assert!(in_3.contains("interface 'contact' slid by"), "{t}");
     assert_eq!(steps.len(), 4, "{t}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The columns `names` of an interface CSV, one vector per column.
+fn csv_columns(path: &Path, names: &[&str]) -> Vec<Vec<String>> {
+    let csv = std::fs::read_to_string(path).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    names
+        .iter()
+        .map(|n| {
+            let c = header
+                .iter()
+                .position(|h| h == n)
+                .unwrap_or_else(|| panic!("no column {n} in {}", path.display()));
+            csv.lines()
+                .skip(1)
+                .map(|l| l.split(',').nth(c).unwrap().trim().to_string())
+                .collect()
+        })
+        .collect()
+}
+
+/// The number after `key` on every line of `t` that contains `key`, in order.
+fn numbers_after(t: &str, key: &str) -> Vec<f64> {
+    t.lines()
+        .filter_map(|l| l.split(key).nth(1))
+        .map(|r| r.split_whitespace().next().unwrap().parse().unwrap())
+        .collect()
+}
+
+/// The slip, work and dissipation that `alea solve` writes for each step are the step's own,
+/// measured from the tangential jump at the start of the step (the origin of the incremental
+/// Coulomb law), with the total tangential jump beside them. Closed forms on the
+/// press-then-slide example with a rigid-ish block and base (E x 1000: the elastic tangential
+/// compliance, measured about 3.9e-6 mm at mu N, is 4e-4 of the slides):
+/// - press: no slip;
+/// - the nudge (2e-5 mm) already slips fully, so the elastic state at the start and end of the
+///   slide step is the same (full slip at mu p, same direction): the slide step's slip is the
+///   imposed slide `D - d` at every closed point, and its dissipation `mu N (D - d)`;
+/// - back to 0: the slip is `-D` plus twice the elastic part (the friction force reverses),
+///   while the total jump since the unloaded state is only that elastic part;
+/// - in every step the dissipation is `sum_i w_i mu p_i |slip_i|` of the CSV (every closed point
+///   slips, or sticks with no slip) and the step's interface work is minus the dissipation (the
+///   normal part vanishes by complementarity).
+///
+/// On the old code (slip and work counted from the unloaded state) the back step fails all
+/// three: its CSV slip was the total jump (about 5e-6 mm) and its work +1.2 N mm/mm.
+#[test]
+fn each_step_reports_its_own_slip_work_and_dissipation() {
+    let dir = tmp("own-slip");
+    let (case, _) = variant(
+        &dir,
+        "rigid",
+        &[
+            ("young = 210e3", "young = 210e6"),
+            ("young = 210e3", "young = 210e6"),
+        ],
+        "",
+    );
+    let o = solve(&case, &dir.join("out"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    let (mu, n, d, big) = (0.3, 400.0, 2e-5, 1e-2);
+    let work = numbers_after(&t, "work of interface forces in this step ");
+    let dissipation = numbers_after(&t, "friction dissipation in this step ");
+    assert_eq!((work.len(), dissipation.len()), (4, 4), "{t}");
+    for (k, name) in ["press", "nudge", "slide", "back"].iter().enumerate() {
+        let csv = dir
+            .join("out")
+            .join(format!("rigid-{}-{name}", k + 1))
+            .join("interface_contact.csv");
+        let cols = csv_columns(
+            &csv,
+            &[
+                "weight",
+                "mu",
+                "pressure",
+                "slip_x",
+                "total_slip_x",
+                "status",
+            ],
+        );
+        let num = |c: usize, i: usize| -> f64 { cols[c][i].parse().unwrap() };
+        let points = cols[0].len();
+        let closed: Vec<usize> = (0..points).filter(|&i| cols[5][i] != "open").collect();
+        // The dissipation from the CSV's step slip.
+        let from_csv: f64 = closed
+            .iter()
+            .map(|&i| num(0, i) * num(1, i) * num(2, i) * num(3, i).abs())
+            .sum();
+        let scale = mu * n * big;
+        eprintln!(
+            "step {name}: dissipation {:e}, from the CSV {from_csv:e}, work {:e}",
+            dissipation[k], work[k]
+        );
+        assert!(
+            (dissipation[k] - from_csv).abs() < 1e-6 * scale,
+            "{name}: dissipation {} vs sum w mu p |slip| {from_csv}",
+            dissipation[k]
+        );
+        assert!(
+            (work[k] + dissipation[k]).abs() < 1e-6 * scale,
+            "{name}: work {} vs -dissipation {}",
+            work[k],
+            dissipation[k]
+        );
+        let slips: Vec<f64> = closed.iter().map(|&i| num(3, i)).collect();
+        let totals: Vec<f64> = closed.iter().map(|&i| num(4, i)).collect();
+        match k {
+            0 => assert!(slips.iter().all(|s| s.abs() < 1e-9 * big), "{slips:?}"),
+            2 => {
+                for s in &slips {
+                    assert!((s - (big - d)).abs() < 1e-5 * big, "slide: slip {s}");
+                }
+                let exact = mu * n * (big - d);
+                assert!(
+                    (dissipation[k] - exact).abs() < 1e-5 * exact,
+                    "slide: dissipation {} vs mu N (D - d) = {exact}",
+                    dissipation[k]
+                );
+            }
+            3 => {
+                for (s, tot) in slips.iter().zip(&totals) {
+                    // -D + 2e with the elastic part e of about 4e-6 mm.
+                    assert!(
+                        *s > -big && *s < -big + 2e-3 * big,
+                        "back: slip {s} not -D plus a small elastic part"
+                    );
+                    assert!(
+                        tot.abs() < 2e-3 * big,
+                        "back: total jump {tot} not the small elastic part"
+                    );
+                }
+            }
+            _ => {}
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A study whose steps impose displacements (as `alea solve` does): press-then-slide with a
+/// random friction coefficient `mu ~ U(0.1, 0.3)`. Closed form (Coulomb's law on the
+/// resultants, every closed point slipping): the friction force on the block is `+mu N` at
+/// the end of the slide and `-mu N` after sliding back, with `N = 400 N/mm`, at every run. On
+/// the old code the study was refused at load (steps in studies changed loads only). `mu` stays
+/// below 0.3 so that sliding back slips everywhere: the reversal needs twice the elastic
+/// tangential deflection at `mu N` (measured 3.97e-3 mm at 120 N/mm) to stay below the 0.01 mm
+/// slide, which fails above `mu` of about 0.37 (at 0.373: 147.4 instead of 149.4).
+#[test]
+fn a_study_imposes_displacements_per_step() {
+    let dir = tmp("study-slide");
+    let head = "[study]\ntitle = \"press then slide, random mu\"\nseed = 5\n\n\
+                [[parameter]]\nname = \"mu\"\nlaw = \"uniform\"\nlo = 0.1\nhi = 0.3\n\n";
+    let tail = "\n[[quantity]]\nname = \"Fx_slide\"\nkind = \"interface_force\"\n\
+                interface = \"contact\"\ncomponent = 0\nstep = \"slide\"\nunit = \"N/mm\"\n\n\
+                [[quantity]]\nname = \"Fx_back\"\nkind = \"interface_force\"\n\
+                interface = \"contact\"\ncomponent = 0\nunit = \"N/mm\"\n\n\
+                [[quantity]]\nname = \"work_back\"\nkind = \"interface_work\"\n\
+                interface = \"contact\"\nunit = \"N mm/mm\"\n\n\
+                [[quantity]]\nname = \"dissipated_back\"\nkind = \"friction_dissipation\"\n\
+                interface = \"contact\"\nunit = \"N mm/mm\"\n\n\
+                [[method]]\ntype = \"monte_carlo\"\nruns = 6\n";
+    let (case, _) = variant(
+        &dir,
+        "study",
+        &[
+            (
+                "law = \"coulomb\"\nmu = 0.3",
+                "law = \"coulomb\"\nmu = \"mu\"",
+            ),
+            ("[units]", &format!("{head}[units]")),
+        ],
+        tail,
+    );
+    let o = run_study(&case, &dir.join("run"));
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(
+        t.lines()
+            .any(|l| l.starts_with("Fx_slide") && l.ends_with("at the end of step 'slide'")),
+        "{t}"
+    );
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("run").join("summary.json")).unwrap(),
+    )
+    .unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 6);
+    let n = 400.0;
+    for r in runs {
+        assert_eq!(r["status"], "converged", "{r}");
+        let mu = r["params"][0].as_f64().unwrap();
+        let q: Vec<f64> = r["qois"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        // The interface force on the block (side 2) opposes its motion: Fx = -Q.
+        assert!(
+            (q[0] + mu * n).abs() < 1e-6 * mu * n,
+            "slide: Fx {} vs -mu N = {}",
+            q[0],
+            -mu * n
+        );
+        assert!(
+            (q[1] - mu * n).abs() < 1e-6 * mu * n,
+            "back: Fx {} vs mu N = {}",
+            q[1],
+            mu * n
+        );
+        // The back step's work is its own: minus its dissipation (> 0).
+        assert!(
+            q[3] > 0.0 && (q[2] + q[3]).abs() < 1e-6 * q[3],
+            "work {} vs dissipation {}",
+            q[2],
+            q[3]
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -501,15 +501,77 @@ pub fn build_model(
             factor: positive(src, k, "solver.search_direction_factor")?,
         };
     }
+    let assembly = Assembly { subs, interfaces };
+    let repairing = repairing_settings(src, sv, &assembly)?;
     let built = BuiltModel {
         mesh,
-        assembly: Assembly { subs, interfaces },
+        assembly,
         load_names,
         options,
+        repairing,
         units: file.units.clone(),
         parametric,
         interface_sites,
     };
     check_interfaces(src, &file.interface, &built)?;
     Ok(built)
+}
+
+/// The `[solver]` settings of large sliding (`alea_latin::large_sliding::Repairing`):
+/// `repair_tolerance` in (0, 0.5] (beyond half the mesh size a pairing no longer pairs the
+/// points that face each other, module `alea_latin::sliding`) and `max_pairings` in 1 - 100
+/// (each pairing is one assembly and factorisation); refused when no interface has
+/// `sliding = "large"` (they would have no effect).
+fn repairing_settings(
+    src: &Source,
+    sv: &crate::spec::SolverSpec,
+    assembly: &Assembly,
+) -> Result<alea_latin::large_sliding::Repairing, StudyError> {
+    let mut r = alea_latin::large_sliding::Repairing::default();
+    let large = alea_latin::large_sliding::uses_large_sliding(assembly);
+    let unused = |span: std::ops::Range<usize>, field: &str| {
+        src.error(
+            span,
+            field,
+            "no interface has sliding = \"large\": this setting of large sliding has no effect; \
+             leave it out or set sliding = \"large\" on a contact [[interface]]",
+        )
+    };
+    if let Some(t) = &sv.repair_tolerance {
+        let field = "solver.repair_tolerance";
+        if !large {
+            return Err(unused(t.span(), field));
+        }
+        let v = *t.get_ref();
+        if !(v.is_finite() && v > 0.0 && v <= alea_latin::sliding::SMALL_SLIDING_LIMIT) {
+            return Err(src.error(
+                t.span(),
+                field,
+                format!(
+                    "must be in (0, {}] (a slide since the last pairing, over the mesh size; beyond {} the pairing no longer pairs the points that face each other), got {v}",
+                    alea_latin::sliding::SMALL_SLIDING_LIMIT,
+                    alea_latin::sliding::SMALL_SLIDING_LIMIT
+                ),
+            ));
+        }
+        r.tolerance = v;
+    }
+    if let Some(m) = &sv.max_pairings {
+        let field = "solver.max_pairings";
+        if !large {
+            return Err(unused(m.span(), field));
+        }
+        let v = *m.get_ref();
+        if !(1..=100).contains(&v) {
+            return Err(src.error(
+                m.span(),
+                field,
+                format!(
+                    "must be between 1 and 100 (pairings per load step, each one assembly and factorisation), got {v}"
+                ),
+            ));
+        }
+        r.max_pairings = v;
+    }
+    Ok(r)
 }

@@ -176,6 +176,9 @@ pub struct BuiltModel {
     pub load_names: Vec<Vec<String>>,
     /// Solver options.
     pub options: LatinOptions,
+    /// Settings of the re-pairing of large-sliding interfaces (`[solver] repair_tolerance`,
+    /// `max_pairings`).
+    pub repairing: alea_latin::large_sliding::Repairing,
     /// Units as stated.
     pub units: crate::spec::UnitsSpec,
     /// How the parameters enter the model.
