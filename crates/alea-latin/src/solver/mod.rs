@@ -355,6 +355,13 @@ impl LatinSolver {
         &self.subs[s].model
     }
 
+    /// The factorisation of substructure `s`: its order, the entries of its factor and whether
+    /// the factor is stored in supernodes ([`alea_fem::FactorKind`]).
+    pub fn factor_summary(&self, s: usize) -> (usize, usize, bool) {
+        let c = &self.subs[s].chol;
+        (c.n(), c.nnz_factor(), c.is_supernodal())
+    }
+
     /// Name of substructure `s`.
     pub fn sub_name(&self, s: usize) -> &str {
         &self.subs[s].name
