@@ -50,8 +50,28 @@ impl SimplicialFactor<'_> {
         }
     }
 
-    /// The solve of `W` columns (`block`, column-major) through a row-interleaved copy.
+    /// The solve of `W` columns (`block`, column-major) through a row-interleaved copy, with
+    /// AVX2 where the processor has it.
     fn solve_block<const W: usize>(&self, block: &mut [f64], n: usize, buf: &mut Vec<f64>) {
+        #[cfg(target_arch = "x86_64")]
+        if W >= 4 && std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2 (checked just above).
+            unsafe { self.solve_block_avx2::<W>(block, n, buf) };
+            return;
+        }
+        self.solve_block_generic::<W>(block, n, buf);
+    }
+
+    /// [`SimplicialFactor::solve_block_generic`] compiled with AVX2 (4 doubles per operation;
+    /// the same operations in the same order, no fused multiply-add, so the same bits).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_block_avx2<const W: usize>(&self, block: &mut [f64], n: usize, buf: &mut Vec<f64>) {
+        self.solve_block_generic::<W>(block, n, buf);
+    }
+
+    #[inline(always)]
+    fn solve_block_generic<const W: usize>(&self, block: &mut [f64], n: usize, buf: &mut Vec<f64>) {
         buf.clear();
         buf.resize(n * W, 0.0);
         let (x, _) = buf.as_chunks_mut::<W>();
