@@ -4,7 +4,8 @@
 //! faer's simplicial solve walks the factor once per group of at most 4 right-hand sides held
 //! column by column, so each entry `l_ij` of the factor updates 4 values `n` apart. Here the
 //! right-hand sides are copied (with the fill-reducing permutation `x_i = b_{perm(i)}`) into
-//! blocks of `W = 8, 4, 2` or `1` columns stored row by row, `x[i] = [x_i^(1) .. x_i^(W)]`, so
+//! blocks of `W = 8, 4, 2` or `1` columns stored row by row (5 - 7 columns padded with zero
+//! columns to 8, 3 to 4: a pass costs about the same for them), `x[i] = [x_i^(1) .. x_i^(W)]`, so
 //! each entry of the factor is read once per block and updates `W` contiguous values (one
 //! cache line for `W = 8`) in a loop the compiler vectorises:
 //!
@@ -33,25 +34,28 @@ impl SimplicialFactor<'_> {
     pub fn solve(&self, rhs: &mut [f64], n: usize, ncols: usize, buf: &mut Vec<f64>) {
         let mut c0 = 0;
         while c0 < ncols {
-            let w = match ncols - c0 {
-                r if r >= 8 => 8,
-                r if r >= 4 => 4,
-                r if r >= 2 => 2,
-                _ => 1,
+            // Blocks of 8, the rest in one block padded with zero columns (one pass over the
+            // factor costs about the same for 5 or 8 columns, less than two passes).
+            let (w, real) = match ncols - c0 {
+                r if r >= 8 => (8, 8),
+                r if r >= 5 => (8, r),
+                r if r >= 3 => (4, r),
+                r => (r, r),
             };
-            let block = &mut rhs[c0 * n..(c0 + w) * n];
+            let block = &mut rhs[c0 * n..(c0 + real) * n];
             match w {
                 8 => self.solve_block::<8>(block, n, buf),
                 4 => self.solve_block::<4>(block, n, buf),
                 2 => self.solve_block::<2>(block, n, buf),
                 _ => self.solve_block::<1>(block, n, buf),
             }
-            c0 += w;
+            c0 += real;
         }
     }
 
-    /// The solve of `W` columns (`block`, column-major) through a row-interleaved copy, with
-    /// AVX2 where the processor has it.
+    /// The solve of the (at most `W`) columns of `block` (column-major) through a
+    /// row-interleaved copy of `W` columns (zeros beyond them), with AVX2 where the processor
+    /// has it.
     fn solve_block<const W: usize>(&self, block: &mut [f64], n: usize, buf: &mut Vec<f64>) {
         #[cfg(target_arch = "x86_64")]
         if W >= 4 && std::arch::is_x86_feature_detected!("avx2") {
@@ -72,20 +76,22 @@ impl SimplicialFactor<'_> {
 
     #[inline(always)]
     fn solve_block_generic<const W: usize>(&self, block: &mut [f64], n: usize, buf: &mut Vec<f64>) {
+        let real = block.len() / n.max(1);
+        debug_assert!(real <= W);
         buf.clear();
         buf.resize(n * W, 0.0);
         let (x, _) = buf.as_chunks_mut::<W>();
         match self.perm {
             Some((fwd, _)) => {
                 for (i, xi) in x.iter_mut().enumerate() {
-                    for (c, v) in xi.iter_mut().enumerate() {
+                    for (c, v) in xi[..real].iter_mut().enumerate() {
                         *v = block[c * n + fwd[i]];
                     }
                 }
             }
             None => {
                 for (i, xi) in x.iter_mut().enumerate() {
-                    for (c, v) in xi.iter_mut().enumerate() {
+                    for (c, v) in xi[..real].iter_mut().enumerate() {
                         *v = block[c * n + i];
                     }
                 }
@@ -125,14 +131,14 @@ impl SimplicialFactor<'_> {
         }
         match self.perm {
             Some((_, inv)) => {
-                for c in 0..W {
+                for c in 0..real {
                     for (i, v) in block[c * n..(c + 1) * n].iter_mut().enumerate() {
                         *v = x[inv[i]][c];
                     }
                 }
             }
             None => {
-                for c in 0..W {
+                for c in 0..real {
                     for (i, v) in block[c * n..(c + 1) * n].iter_mut().enumerate() {
                         *v = x[i][c];
                     }

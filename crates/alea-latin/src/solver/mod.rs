@@ -248,7 +248,12 @@ struct InterfaceOperator {
 }
 
 struct SubState {
+    /// The last plain linear stage's reduced displacement `u^0` (solved in place); the run's
+    /// displacement is `u^0` plus the coarse correction `coarse_u` ([`LatinSolver::displacement`]).
     rhs: Vec<f64>,
+    /// The coarse correction of the last linear stage, `(column, lambda)` of the substructure's
+    /// macro responses (module `coarse`), applied only where the displacement is read.
+    coarse_u: Vec<(usize, f64)>,
     scratch: SolveScratch,
     /// Linear-stage `W`, `F` per link (relaxed).
     w: Vec<Vec<V3>>,
