@@ -46,12 +46,13 @@ pub enum Ordering {
 /// c_j` with `c_j` the entries of column `j` of `L`; faer's own default is 40). Measured
 /// (`cargo bench -p alea-fem --bench multi_rhs` and `-p alea-study --bench batch_turbine`, one
 /// thread): the 2D turbine's substructures (5 200 - 5 800 dof, Quad8) have 37 - 45 flops per
-/// entry, a 21 500-dof Quad8 rectangle 70, a 57 000-dof Hex8 box 728. Up to the 2D sizes, the
+/// entry, a 21 500-dof Quad8 rectangle 70, a 57 000-dof Hex8 box 728. At the 2D sizes, the
 /// simplicial factor with the row-interleaved solves of module `simplicial` solves 8
-/// right-hand sides at 0.32x (5 500 dof) and 0.46x (21 500 dof) of a single solve per column,
-/// against 0.41x / 0.55x for faer's supernodal kernels, and a single solve in about the same
-/// time; its factorisation is 3-5x slower, which a LATIN run's hundreds of solves hide. 3D
-/// factors are far denser and stay supernodal.
+/// right-hand sides at 0.20x (5 500 dof) and 0.22x (21 500 dof) of a single solve per column,
+/// against 0.38x / 0.49x for faer's supernodal kernels (the 2D turbine's batched iteration:
+/// 0.29x of a run alone, against 0.50x with faer's choice); a single solve takes about 10 %
+/// longer, and the factorisation 2.5-5x longer, which a LATIN run's hundreds of solves hide.
+/// 3D factors are far denser and stay supernodal.
 const SUPERNODAL_FLOPS_PER_ENTRY: f64 = 100.0;
 
 /// Storage of the factor.
