@@ -46,19 +46,22 @@ pub enum Ordering {
 /// c_j` with `c_j` the entries of column `j` of `L`; faer's own default is 40). Measured
 /// (`cargo bench -p alea-fem --bench multi_rhs` and `-p alea-study --bench batch_turbine`, one
 /// thread): the 2D turbine's substructures (5 200 - 5 800 dof, Quad8) have 37 - 45 flops per
-/// entry, a 21 500-dof Quad8 rectangle 70, a 57 000-dof Hex8 box 728. At the 2D sizes, the
-/// simplicial factor with the row-interleaved solves of module `simplicial` solves 8
-/// right-hand sides at 0.20x (5 500 dof) and 0.22x (21 500 dof) of a single solve per column,
-/// against 0.38x / 0.49x for faer's supernodal kernels (the 2D turbine's batched iteration:
-/// 0.29x of a run alone, against 0.50x with faer's choice); a single solve takes about 10 %
-/// longer, and the factorisation 2.5-5x longer, which a LATIN run's hundreds of solves hide.
-/// 3D factors are far denser and stay supernodal.
-const SUPERNODAL_FLOPS_PER_ENTRY: f64 = 100.0;
+/// entry, a 5 460-dof Quad8 rectangle 45, a 21 500-dof one 70, a 57 000-dof Hex8 box 728. With
+/// the row-interleaved solves of module `simplicial`, a simplicial factor solves 8 right-hand
+/// sides at 0.19x (5 460 dof) and 0.23x (21 500 dof) of a single solve per column, against
+/// 0.39x / 0.56x (per column: 0.056 against 0.099 ms, 0.37 against 0.77 ms) for faer's
+/// supernodal kernels (the 2D turbine's batched iteration: 0.29x of a run alone, against 0.50x
+/// with faer's choice of kinds). A single simplicial solve takes 10 % longer at 5 460 dof
+/// (0.284 against 0.257 ms) but 25 % longer at 21 500 (1.64 against 1.31 ms), and the
+/// factorisation 3.5-4.5x longer: the line sits between them, so that the small 2D factors of
+/// substructured models gain the batched solves while larger ones keep faer's single-solve
+/// speed. 3D factors are far denser and stay supernodal.
+const SUPERNODAL_FLOPS_PER_ENTRY: f64 = 50.0;
 
 /// Storage of the factor.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FactorKind {
-    /// Simplicial up to 100 flops per factor entry of the factorisation, supernodal above (the
+    /// Simplicial up to 50 flops per factor entry of the factorisation, supernodal above (the
     /// default of [`Cholesky::new`]; measurements in the source, `SUPERNODAL_FLOPS_PER_ENTRY`).
     Auto,
     /// Dense blocks of columns with a common pattern (BLAS-3 kernels).

@@ -9,7 +9,7 @@
 //! fewer columns.
 //!
 //! **Same results as one at a time.** Column `j` of a multi-column solve is the solve of `r_j`
-//! alone in exact arithmetic. With a simplicial factor (every 2D substructure up to 100 flops
+//! alone in exact arithmetic. With a simplicial factor (2D substructures up to 50 flops
 //! per factor entry, `alea_fem::FactorKind`) the multi-column kernel makes, column by column,
 //! the operations of the single-column solve in the same order, so a batched run is **bitwise**
 //! the run alone (`tests/batch.rs`; the 2D turbine, `cargo bench -p alea-study --bench
