@@ -7,7 +7,8 @@
 //! blocks of `W = 8, 4, 2` or `1` columns stored row by row (5 - 7 columns padded with zero
 //! columns to 8, 3 to 4: a pass costs about the same for them), `x[i] = [x_i^(1) .. x_i^(W)]`, so
 //! each entry of the factor is read once per block and updates `W` contiguous values (one
-//! cache line for `W = 8`) in a loop the compiler vectorises:
+//! cache line for `W = 8`) in a loop the compiler vectorises (with AVX2 where the processor has
+//! it, detected at run time):
 //!
 //! ```text
 //! forward  (j = 0 .. n-1):  x[j] *= 1 / l_jj;   x[i] -= l_ij x[j]   (i > j in column j)
