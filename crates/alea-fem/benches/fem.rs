@@ -99,10 +99,15 @@ fn run(case: &Case, ordering: Ordering, threads: usize) {
         let num: f64 = ax.iter().zip(&rhs0).map(|(a, b)| (a - b) * (a - b)).sum();
         let den: f64 = rhs0.iter().map(|b| b * b).sum();
         println!(
-            "| {} | {} | {:?} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {:.1} | {:.0e} |",
+            "| {} | {} | {:?}, {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.4} | {:.1} | {:.0e} |",
             case.name,
             dofs.num_free(),
             ordering,
+            if chol.is_supernodal() {
+                "supernodal"
+            } else {
+                "simplicial"
+            },
             threads,
             t_asm,
             t_sym,
@@ -157,7 +162,7 @@ fn main() {
         .filter(|a| !a.starts_with('-'))
         .collect();
     println!(
-        "| case | free dofs | ordering | threads | assembly s | symbolic s | numeric s | \
+        "| case | free dofs | ordering, factor | threads | assembly s | symbolic s | numeric s | \
          refactor s | solve s | nnz(L) M | residual |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|");

@@ -19,7 +19,8 @@ mod support;
 use std::time::Instant;
 
 use alea_fem::{
-    Analysis, Cholesky, DofMap, Material, Model, Ordering, SolveScratch, assemble_stiffness,
+    Analysis, Cholesky, DofMap, FactorKind, Material, Model, Ordering, SolveScratch,
+    assemble_stiffness,
 };
 use alea_mesh::{CellType, generate};
 
@@ -34,13 +35,29 @@ fn best(reps: usize, mut f: impl FnMut()) -> f64 {
     t_best
 }
 
-fn case(name: &str, model: Model, reps: usize) {
-    let (cons, loads) = support::cantilever(&model);
+fn case(name: &str, model: &Model, reps: usize, kinds: &[FactorKind]) {
+    for &kind in kinds {
+        case_kind(name, model, reps, kind);
+    }
+}
+
+fn case_kind(name: &str, model: &Model, reps: usize, kind: FactorKind) {
+    let (cons, loads) = support::cantilever(model);
     let dofs = DofMap::for_mesh(&model.mesh, &cons).unwrap();
-    let asm = assemble_stiffness(&model, &dofs).unwrap();
+    let asm = assemble_stiffness(model, &dofs).unwrap();
     let blocks = dofs.node_of_dof();
-    let mut chol = Cholesky::new(&asm.k, Ordering::Metis, Some(&blocks)).unwrap();
-    chol.factorize(&asm.k).unwrap();
+    let auto = Cholesky::new(&asm.k, Ordering::Metis, Some(&blocks)).unwrap();
+    let mut chol = Cholesky::with_kind(&asm.k, Ordering::Metis, Some(&blocks), kind).unwrap();
+    let t_factor = best(reps.min(5), || chol.factorize(&asm.k).unwrap());
+    let label = format!(
+        "{name} | {kind:?}{} | {:.2}",
+        if auto.is_supernodal() == (kind == FactorKind::Supernodal) {
+            " (auto)"
+        } else {
+            ""
+        },
+        t_factor * 1e3
+    );
     let b = dofs.reduce(&loads.f);
     let n = b.len();
     // Columns: the load scaled differently, so no two are equal.
@@ -77,7 +94,7 @@ fn case(name: &str, model: Model, reps: usize) {
         }
         assert!(worst < 1e-8, "{name}: residual {worst:e}");
         println!(
-            "| {name} | {n} | {k} | {:.3} | {:.3} | {:.2} | {worst:.0e} |",
+            "| {label} | {n} | {k} | {:.3} | {:.3} | {:.2} | {worst:.0e} |",
             t * 1e3,
             t * 1e3 / k as f64,
             t / k as f64 / single
@@ -92,20 +109,21 @@ fn main() {
         .unwrap();
     pool.install(|| {
         println!(
-            "| model | dofs | columns k | solve ms | ms per column | per column / single solve | worst residual |"
+            "| model | factor | factorisation ms | dofs | columns k | solve ms | ms per column | per column / single solve | worst residual |"
         );
-        println!("|---|---|---|---|---|---|---|");
+        println!("|---|---|---|---|---|---|---|---|---|");
         let q8 = |nx: usize, ny: usize| {
             let mesh = generate::rectangle(2.0, 1.0, nx, ny, CellType::Quad8).unwrap();
             let mut m = Model::new(mesh, Analysis::PlaneStrain { thickness: 1.0 }).unwrap();
             m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
             m
         };
-        case("2D Q8 (turbine quarter)", q8(42, 21), 30);
-        case("2D Q8 (turbine whole)", q8(84, 42), 20);
+        let both = [FactorKind::Simplicial, FactorKind::Supernodal];
+        case("2D Q8 (turbine quarter)", &q8(42, 21), 30, &both);
+        case("2D Q8 (turbine whole)", &q8(84, 42), 20, &both);
         let mesh = generate::box_mesh([1.0; 3], [26; 3], CellType::Hex8).unwrap();
         let mut m = Model::new(mesh, Analysis::Solid).unwrap();
         m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
-        case("3D Hex8", m, 3);
+        case("3D Hex8", &m, 3, &[FactorKind::Supernodal]);
     });
 }

@@ -23,6 +23,7 @@ mod model;
 pub mod post;
 mod problem;
 pub mod quadrature;
+mod simplicial;
 mod solver;
 mod sparse;
 
@@ -36,5 +37,5 @@ pub use material::{Analysis, Material, von_mises};
 pub use model::Model;
 pub use problem::{ElasticSolution, Timings, solve_elastic};
 pub use quadrature::Quadrature;
-pub use solver::{Cholesky, Ordering, SolveScratch};
+pub use solver::{Cholesky, FactorKind, Ordering, SolveScratch};
 pub use sparse::SymCsc;

@@ -25,6 +25,9 @@ pub(crate) struct Anderson {
     prev: Option<(Vec<f64>, Vec<f64>)>,
     dg: VecDeque<Vec<f64>>,
     df: VecDeque<Vec<f64>>,
+    /// `gram[i][j] = dG_i . dG_j` for `j <= i` (rows follow `dg`): each step computes only the
+    /// new difference's row, with the same dot products, so the same bits.
+    gram: VecDeque<Vec<f64>>,
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -38,6 +41,7 @@ impl Anderson {
             prev: None,
             dg: VecDeque::new(),
             df: VecDeque::new(),
+            gram: VecDeque::new(),
         }
     }
 
@@ -46,6 +50,7 @@ impl Anderson {
         self.prev = None;
         self.dg.clear();
         self.df.clear();
+        self.gram.clear();
     }
 
     /// Given the input `x` of the last iteration and its image `f`, returns the next input.
@@ -59,7 +64,14 @@ impl Anderson {
             if self.dg.len() > self.depth {
                 self.dg.pop_front();
                 self.df.pop_front();
+                self.gram.pop_front();
+                for row in self.gram.iter_mut() {
+                    row.remove(0);
+                }
             }
+            let last = &self.dg[self.dg.len() - 1];
+            let row: Vec<f64> = self.dg.iter().map(|d| dot(last, d)).collect();
+            self.gram.push_back(row);
         }
         self.prev = Some((g.clone(), f.to_vec()));
         let m = self.dg.len();
@@ -73,7 +85,7 @@ impl Anderson {
         let mut b = vec![0.0; m];
         for i in 0..m {
             for j in 0..=i {
-                let v = dot(&self.dg[i], &self.dg[j]);
+                let v = self.gram[i][j];
                 a[i * m + j] = v;
                 a[j * m + i] = v;
             }
@@ -98,5 +110,103 @@ impl Anderson {
             }
         }
         next
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The update recomputed from scratch each step (every Gram entry anew), as before the
+    /// Gram rows were kept: the kept rows must give the same bits.
+    fn reference_step(dg: &[Vec<f64>], df: &[Vec<f64>], g: &[f64], f: &[f64]) -> Vec<f64> {
+        let m = dg.len();
+        let mut next = f.to_vec();
+        if m == 0 {
+            return next;
+        }
+        let mut a = vec![0.0; m * m];
+        let mut b = vec![0.0; m];
+        for i in 0..m {
+            for j in 0..=i {
+                let v = dot(&dg[i], &dg[j]);
+                a[i * m + j] = v;
+                a[j * m + i] = v;
+            }
+            b[i] = dot(&dg[i], g);
+        }
+        let trace: f64 = (0..m).map(|i| a[i * m + i]).sum();
+        let reg = 1e-10 * trace.max(dot(g, g));
+        for i in 0..m {
+            a[i * m + i] += reg;
+        }
+        let gamma = crate::dense::solve_pivoted(&mut a, &mut b, m, 0.0).unwrap();
+        for (j, gj) in gamma.iter().enumerate() {
+            for (n, d) in next.iter_mut().zip(&df[j]) {
+                *n -= gj * d;
+            }
+        }
+        next
+    }
+
+    #[test]
+    fn kept_gram_rows_give_the_recomputed_update_and_solve_a_linear_map() {
+        // x -> T x = M x + c, contractive and non-symmetric, n = 40.
+        let n = 40;
+        let mat = |i: usize, j: usize| {
+            if i == j {
+                0.9 - 0.01 * i as f64
+            } else {
+                0.02 * (((i * 31 + j * 17) % 11) as f64 - 5.0) / 5.0
+            }
+        };
+        let c: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+        let map = |x: &[f64]| -> Vec<f64> {
+            (0..n)
+                .map(|i| c[i] + (0..n).map(|j| mat(i, j) * x[j]).sum::<f64>())
+                .collect()
+        };
+        let depth = 4;
+        let mut and = Anderson::new(depth);
+        let (mut dg, mut df): (Vec<Vec<f64>>, Vec<Vec<f64>>) = (Vec::new(), Vec::new());
+        let mut prev: Option<(Vec<f64>, Vec<f64>)> = None;
+        let mut x = vec![0.0; n];
+        for _ in 0..40 {
+            let f = map(&x);
+            let g: Vec<f64> = f.iter().zip(&x).map(|(a, b)| a - b).collect();
+            if let Some((g0, f0)) = prev.take() {
+                dg.push(g.iter().zip(&g0).map(|(a, b)| a - b).collect());
+                df.push(f.iter().zip(&f0).map(|(a, b)| a - b).collect());
+                if dg.len() > depth {
+                    dg.remove(0);
+                    df.remove(0);
+                }
+            }
+            prev = Some((g.clone(), f.clone()));
+            let expected = reference_step(&dg, &df, &g, &f);
+            let next = and.step(&x, &f);
+            assert!(
+                next.iter()
+                    .zip(&expected)
+                    .all(|(p, q)| p.to_bits() == q.to_bits())
+            );
+            x = next;
+        }
+        // And it accelerates: after 40 steps its fixed-point residual is far below that of 40
+        // plain steps (contraction about 0.9 per step).
+        let residual = |x: &[f64]| -> f64 {
+            map(x)
+                .iter()
+                .zip(x)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        };
+        let mut plain = vec![0.0; n];
+        for _ in 0..40 {
+            plain = map(&plain);
+        }
+        let (r, r_plain) = (residual(&x), residual(&plain));
+        assert!(r < 1e-8 && r < 1e-5 * r_plain, "{r} vs plain {r_plain}");
     }
 }

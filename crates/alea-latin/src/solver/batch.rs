@@ -8,16 +8,17 @@
 //! stops (converged, diverged, without equilibrium) leaves the batch; the others go on with
 //! fewer columns.
 //!
-//! **Same results as one at a time, to rounding.** Column `j` of a multi-column solve is the
-//! solve of `r_j` alone in exact arithmetic, but faer's supernodal kernels may accumulate a
-//! block of columns in another order than one column (matrix-matrix against matrix-vector
-//! products): a batched run can differ from the same run alone by rounding in each solve,
-//! which the iteration carries along to the level of the stopping tolerance. Measured: on the
-//! four-part dovetail (Quad4, 2 300 and 23 000 dof) the batched runs are bitwise the single
-//! ones (`tests/batch.rs`, `benches/batch.rs`); in the 225-run 2D turbine study (Quad8) half
-//! the runs change their iteration count by a few and the quantities by at most 2.7e-4
-//! (relative; the statistics by 4e-5 of a standard deviation). A batch of one is bitwise the
-//! single run. The result of a run depends on which runs share its batch, never on the thread
+//! **Same results as one at a time.** Column `j` of a multi-column solve is the solve of `r_j`
+//! alone in exact arithmetic. With a simplicial factor (2D substructures up to 50 flops
+//! per factor entry, `alea_fem::FactorKind`) the multi-column kernel makes, column by column,
+//! the operations of the single-column solve in the same order, so a batched run is **bitwise**
+//! the run alone (`tests/batch.rs`; the 2D turbine, `cargo bench -p alea-study --bench
+//! batch_turbine`). With a supernodal factor (3D) faer accumulates a block of columns in
+//! another order than one column (matrix-matrix against matrix-vector products): a batched run
+//! can then differ from the same run alone by rounding in each solve, which the iteration
+//! carries to the level of the stopping tolerance. The coarse correction and the local stage
+//! are per run and the same code as alone. The result of a run depends on which runs share its
+//! batch only through that rounding, never on the thread
 //! count: the substructures' solves run in parallel, each on its own columns.
 
 use std::time::Instant;

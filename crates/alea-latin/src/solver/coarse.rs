@@ -39,6 +39,9 @@ impl LatinSolver {
     /// balance macroscopically across every active interface (nothing without the coarse
     /// problem). `first`: no local stage yet (the active set is the initial one).
     pub(super) fn coarse_step(&self, run: &mut Run<'_>, first: bool) {
+        for st in run.sstate.iter_mut() {
+            st.coarse_u.clear();
+        }
         let Some(cs) = &self.coarse else {
             return;
         };
@@ -82,8 +85,10 @@ impl LatinSolver {
 }
 
 /// The coarse correction of one substructure's linear stage (module `coarse`):
-/// `F -= k (sum lambda Pi u^(Gj) + E lambda_G)`, `u += sum lambda u_d^(Gj)`,
-/// `W += sum lambda Pi u_d^(Gj)` (`u_d`: the response without its free rigid part).
+/// `F -= k (sum lambda Pi u^(Gj) + E lambda_G)`, `W += sum lambda Pi u_d^(Gj)` (`u_d`: the
+/// response without its free rigid part), and `u += sum lambda u_d^(Gj)` recorded in
+/// `coarse_u`, to be applied where the displacement is read ([`LatinSolver::displacement`]:
+/// the iteration itself only needs `W` and `F`).
 fn coarse_correction(
     op: &SubOperator,
     sm: &SubMacro,
@@ -110,14 +115,12 @@ fn coarse_correction(
             }
         }
     }
-    for col in &sm.columns {
+    for (c, col) in sm.columns.iter().enumerate() {
         let a = lambda[col.index];
         if a == 0.0 {
             continue;
         }
-        for (u, v) in st.rhs.iter_mut().zip(&col.u) {
-            *u += a * v;
-        }
+        st.coarse_u.push((c, a));
         for (li, l) in op.links.iter().enumerate() {
             let k = alpha * l.k0;
             for p in 0..l.proj.len() {
@@ -127,5 +130,22 @@ fn coarse_correction(
                 }
             }
         }
+    }
+}
+
+impl LatinSolver {
+    /// The reduced displacement of substructure `s` at the last linear stage: the plain
+    /// solve plus its coarse correction, `u^0 + sum lambda u_d^(Gj)` (the columns in their
+    /// order, as the correction was always summed).
+    pub(super) fn displacement(&self, s: usize, st: &SubState) -> Vec<f64> {
+        let mut u = st.rhs.clone();
+        if let Some(cs) = &self.coarse {
+            for &(c, a) in &st.coarse_u {
+                for (u, v) in u.iter_mut().zip(&cs.subs[s].columns[c].u) {
+                    *u += a * v;
+                }
+            }
+        }
+        u
     }
 }

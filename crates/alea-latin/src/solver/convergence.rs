@@ -198,7 +198,7 @@ impl LatinSolver {
                         }
                     }
                 }
-                let u = op.dofs.expand(&st.rhs);
+                let u = op.dofs.expand(&self.displacement(s, st));
                 rm.finish(&g, scale, coords, &u, self.model_size)
             })
             .collect()

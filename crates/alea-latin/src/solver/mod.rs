@@ -248,7 +248,12 @@ struct InterfaceOperator {
 }
 
 struct SubState {
+    /// The last plain linear stage's reduced displacement `u^0` (solved in place); the run's
+    /// displacement is `u^0` plus the coarse correction `coarse_u` ([`LatinSolver::displacement`]).
     rhs: Vec<f64>,
+    /// The coarse correction of the last linear stage, `(column, lambda)` of the substructure's
+    /// macro responses (module `coarse`), applied only where the displacement is read.
+    coarse_u: Vec<(usize, f64)>,
     scratch: SolveScratch,
     /// Linear-stage `W`, `F` per link (relaxed).
     w: Vec<Vec<V3>>,
@@ -353,6 +358,13 @@ impl LatinSolver {
     /// The model of substructure `s`.
     pub fn model(&self, s: usize) -> &alea_fem::Model {
         &self.subs[s].model
+    }
+
+    /// The factorisation of substructure `s`: its order, the entries of its factor and whether
+    /// the factor is stored in supernodes ([`alea_fem::FactorKind`]).
+    pub fn factor_summary(&self, s: usize) -> (usize, usize, bool) {
+        let c = &self.subs[s].chol;
+        (c.n(), c.nnz_factor(), c.is_supernodal())
     }
 
     /// Name of substructure `s`.

@@ -23,9 +23,9 @@ impl LatinSolver {
         let displacements: Vec<Vec<f64>> = self
             .subs
             .par_iter()
-            .zip(run.sstate.par_iter_mut())
-            // The linear stage solves in place: `rhs` holds the last reduced displacement.
-            .map(|(op, st)| op.dofs.expand(&st.rhs))
+            .zip(run.sstate.par_iter())
+            .enumerate()
+            .map(|(s, (op, st))| op.dofs.expand(&self.displacement(s, st)))
             .collect();
         let points = std::mem::take(&mut run.points);
         let interfaces: Vec<InterfaceResult> = self

@@ -228,6 +228,7 @@ impl LatinSolver {
             .iter()
             .map(|op| SubState {
                 rhs: vec![0.0; op.dofs.num_free()],
+                coarse_u: Vec::new(),
                 scratch: op.chol.solve_scratch(1),
                 w: op
                     .links
