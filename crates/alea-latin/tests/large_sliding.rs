@@ -40,16 +40,7 @@ fn options() -> LatinOptions {
 /// Base `[0, 4] x [-1, 0]` (40 x 10 cells, h = 0.1), block `[1, 2] x [0, H]` (12 x 6 cells),
 /// block top moved by `s` in x.
 fn assembly_2d(s: f64, sliding: Sliding) -> Assembly {
-    let base = {
-        let m = model(
-            rect(0.0, -1.0, 4.0, 1.0, 40, 10, CellType::Quad4),
-            210e3,
-            0.3,
-        );
-        let mut c = Constraints::new();
-        c.clamp(&m.mesh, "ymin").unwrap();
-        sub("base", m, c)
-    };
+    let base = clamped_base();
     let block = {
         let m = model(rect(1.0, 0.0, 1.0, H, 12, 6, CellType::Quad4), 210e3, 0.3);
         let mut c = Constraints::new();

@@ -43,16 +43,7 @@ fn options() -> LatinOptions {
 /// along x on its right side), layer `[1, 2] x [H, 2 H]` of Young's modulus `soft`, top held in
 /// x and pressed by `P`.
 fn assembly(pull: f64, soft: f64) -> Assembly {
-    let base = {
-        let m = model(
-            rect(0.0, -1.0, 4.0, 1.0, 40, 10, CellType::Quad4),
-            210e3,
-            0.3,
-        );
-        let mut c = Constraints::new();
-        c.clamp(&m.mesh, "ymin").unwrap();
-        sub("base", m, c)
-    };
+    let base = clamped_base();
     let block = {
         let m = model(rect(1.0, 0.0, 1.0, H, 12, 6, CellType::Quad4), 210e3, 0.3);
         with_load(sub("block", m, Constraints::new()), |m, ld: &mut Loads| {
@@ -136,16 +127,7 @@ fn a_floating_block_held_by_a_bonded_layer_in_gross_slip() {
 /// Block `[1, 2] x [0, H]` of modulus `e`, held in x on its left side, pressed by `P` on its
 /// top and pulled by `pull` on its right side: it stretches over the base.
 fn stretched(pull: f64, e: f64) -> Assembly {
-    let base = {
-        let m = model(
-            rect(0.0, -1.0, 4.0, 1.0, 40, 10, CellType::Quad4),
-            210e3,
-            0.3,
-        );
-        let mut c = Constraints::new();
-        c.clamp(&m.mesh, "ymin").unwrap();
-        sub("base", m, c)
-    };
+    let base = clamped_base();
     let block = {
         let m = model(rect(1.0, 0.0, 1.0, H, 12, 6, CellType::Quad4), e, 0.3);
         let mut c = Constraints::new();

@@ -43,6 +43,19 @@ pub fn with_load(mut s: Substructure, f: impl FnOnce(&Model, &mut Loads)) -> Sub
     s
 }
 
+/// The base of the sliding tests: steel `[0, 4] x [-1, 0]` in 40 x 10 Quad4 cells (h = 0.1),
+/// clamped below.
+pub fn clamped_base() -> Substructure {
+    let m = model(
+        rect(0.0, -1.0, 4.0, 1.0, 40, 10, CellType::Quad4),
+        210e3,
+        0.3,
+    );
+    let mut c = Constraints::new();
+    c.clamp(&m.mesh, "ymin").unwrap();
+    sub("base", m, c)
+}
+
 /// Energy norm squared `u^T K u` of a displacement on a model (via internal forces).
 pub fn energy(model: &Model, u: &[f64]) -> f64 {
     let f = alea_fem::post::internal_forces(model, u).unwrap();
