@@ -75,6 +75,37 @@ impl Model {
         }
     }
 
+    /// Multiplies the Young's modulus of each cell `c` by `factors[c]` (a Young's modulus
+    /// varying from cell to cell, e.g. a random field): every cell gets a material of its own.
+    ///
+    /// # Errors
+    /// If `factors` does not have one entry per cell, an entry is not finite and > 0, or a cell
+    /// has no material.
+    pub fn scale_young_per_cell(&mut self, factors: &[f64]) -> Result<(), FemError> {
+        let n = self.mesh.num_cells();
+        if factors.len() != n {
+            return Err(FemError::Setup(format!(
+                "{} Young's-modulus factors for {n} cells",
+                factors.len()
+            )));
+        }
+        if let Some(c) = factors.iter().position(|f| !(f.is_finite() && *f > 0.0)) {
+            return Err(FemError::Setup(format!(
+                "Young's-modulus factor of cell {c} must be finite and > 0, got {}",
+                factors[c]
+            )));
+        }
+        let mut materials = Vec::with_capacity(n);
+        for (c, f) in factors.iter().enumerate() {
+            let mut m = *self.material(c)?;
+            m.young *= f;
+            materials.push(m);
+        }
+        self.materials = materials;
+        self.cell_material = (0..n as u32).map(Some).collect();
+        Ok(())
+    }
+
     /// Checks that every cell has a material.
     pub fn check(&self) -> Result<(), FemError> {
         if let Some(c) = self.cell_material.iter().position(|m| m.is_none()) {

@@ -188,6 +188,9 @@ pub struct RunResult {
     pub interfaces: Vec<InterfaceResult>,
     /// Young's-modulus factor of each substructure in this run.
     pub young_factors: Vec<f64>,
+    /// Young's-modulus factor of every cell of the substructures whose modulus varied from
+    /// cell to cell in this run ([`crate::RunInput::cell_young`]; empty: none did).
+    pub cell_young: Vec<Option<std::sync::Arc<Vec<f64>>>>,
     /// Equilibrium check of each substructure at the end of the run (applied loads + local-stage
     /// interface forces, rigid motion); see [`RunStatus::NoEquilibrium`].
     pub equilibrium: Vec<SubEquilibrium>,
@@ -196,10 +199,19 @@ pub struct RunResult {
 }
 
 impl RunResult {
-    /// A copy of substructure `s`'s model with this run's Young's modulus.
+    /// A copy of substructure `s`'s model with this run's Young's modulus (its factor, and
+    /// its cells' factors when the modulus varied from cell to cell).
     pub fn scaled_model(&self, model: &Model, s: usize) -> Model {
         let mut m = model.clone();
         m.scale_young(self.young_factors[s]);
+        if let Some(Some(f)) = self.cell_young.get(s)
+            && !f.is_empty()
+        {
+            // The run was solved with these factors, checked then (one per cell, > 0).
+            if m.scale_young_per_cell(f).is_err() {
+                m.scale_young(f64::NAN);
+            }
+        }
         m
     }
 

@@ -128,7 +128,10 @@ struct StudyInfo {
 /// A `[[field]]` of a study: its Karhunen-Loeve discretisation.
 struct FieldInfo {
     name: String,
+    /// Its interface (empty for a field over a substructure's cells).
     interface: String,
+    /// Its substructure (empty for a field along an interface).
+    substructure: String,
     unit: String,
     description: String,
     transform: String,
@@ -154,12 +157,19 @@ impl FieldInfo {
         let modes: Vec<f64> = (0..m).flat_map(|k| kl.mode(k).iter().copied()).collect();
         Self {
             name: f.name.clone(),
-            interface: study
-                .model
-                .assembly
-                .interfaces
-                .get(f.interface)
-                .map_or_else(|| f.interface.to_string(), |i| i.name.clone()),
+            interface: f
+                .interface()
+                .and_then(|i| study.model.assembly.interfaces.get(i))
+                .map_or_else(String::new, |i| i.name.clone()),
+            substructure: match f.domain {
+                alea_study::random_field::FieldDomain::Substructure(s) => study
+                    .model
+                    .assembly
+                    .subs
+                    .get(s)
+                    .map_or_else(String::new, |s| s.name.clone()),
+                alea_study::random_field::FieldDomain::Interface(_) => String::new(),
+            },
             unit: f.unit.clone(),
             description: f.description.clone(),
             transform: format!("{:?}", f.field.transform()),
@@ -179,6 +189,7 @@ impl FieldInfo {
         let d = PyDict::new(py);
         d.set_item("name", &self.name)?;
         d.set_item("interface", &self.interface)?;
+        d.set_item("substructure", &self.substructure)?;
         d.set_item("unit", &self.unit)?;
         d.set_item("description", &self.description)?;
         d.set_item("transform", &self.transform)?;

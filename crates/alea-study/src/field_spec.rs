@@ -1,20 +1,27 @@
 //! The `[[field]]` tables of a model file (schema only; the checks, the Karhunen-Loeve
-//! expansion and the evaluation along the contact are in module `random_field`).
+//! expansion and the evaluation along the contact or over the cells are in module
+//! `random_field`).
 
 use serde::Deserialize;
 use toml::Spanned;
 
-/// `[[field]]`: a random field along an interface, discretised by Karhunen-Loeve; its KL
-/// variables `<name>_1 .. <name>_m` (independent standard normal) become study parameters, and
-/// `<name>` is the field's value at the point in the interface's `mu` and `gap` expressions.
+/// `[[field]]`: a random field along an interface or over a substructure's cells, discretised
+/// by Karhunen-Loeve; its KL variables `<name>_1 .. <name>_m` (independent standard normal)
+/// become study parameters, and `<name>` is the field's value at the point in the interface's
+/// `mu` and `gap` expressions, or its mean over each cell in the substructure's `young`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FieldSpec {
     /// Name (used in `mu` / `gap` expressions; its KL variables are `<name>_1`, ...).
     pub name: Spanned<String>,
     /// The `[[interface]]` the field lives on: over the facets of its side 1, parametrised by
-    /// their points.
-    pub interface: Spanned<String>,
+    /// their points (exactly one of `interface` and `substructure`).
+    #[serde(default)]
+    pub interface: Option<Spanned<String>>,
+    /// The `[[substructure]]` the field lives on: over its cells (2D), a variable of its
+    /// `young` expression.
+    #[serde(default)]
+    pub substructure: Option<Spanned<String>>,
     /// `squared_exponential`, `exponential`, `matern32` or `matern52`.
     pub covariance: Spanned<String>,
     /// Correlation length (length, the unit of `[units] length`).

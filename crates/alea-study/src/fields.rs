@@ -137,15 +137,13 @@ pub fn mean_std_fields(
                 expected: total,
             });
         }
-        let factors = study.model.parametric.run_input(p, vec![]).young_factors;
         let mut row = Vec::with_capacity(width);
         row.extend_from_slice(&all);
         let mut off = 0;
         for s in 0..nsub {
             let u = &all[off..off + sizes[s]];
             off += sizes[s];
-            let mut model = solver.model(s).clone();
-            model.scale_young(factors[s]);
+            let model = study.model.parametric.scaled_model(solver.model(s), s, p)?;
             let st = post::nodal_stresses(&model, u)?;
             row.extend(st.iter().map(von_mises));
         }

@@ -51,13 +51,26 @@ use crate::{Source, StudyError};
 /// about 100 MB at this size, and an `O(n^3)` eigensolver of a few seconds).
 pub const MAX_FIELD_NODES: usize = 2000;
 
+/// Where a field lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FieldDomain {
+    /// Along interface `i` of `[[interface]]` (the facets of its side 1).
+    Interface(usize),
+    /// Over the cells of substructure `s` of `[[substructure]]`.
+    Substructure(usize),
+}
+
 /// A random field of a study, ready to evaluate.
 #[derive(Clone, Debug)]
 pub struct StudyField {
-    /// Name (the variable of `mu` / `gap` expressions).
+    /// Name (the variable of `mu` / `gap` expressions, or of a substructure's `young`).
     pub name: String,
-    /// Index of its interface in `[[interface]]`.
-    pub interface: usize,
+    /// Where it lives.
+    pub domain: FieldDomain,
+    /// For a field over a substructure's cells: per cell of the substructure's mesh, the field
+    /// nodes and weights of the cell's mean of the P1 field (`u_c = sum_i w_i u_i`, the weights
+    /// of a cell summing to 1); empty for an interface field.
+    pub cell_means: Vec<Vec<(usize, f64)>>,
     /// The field: KL expansion and transform.
     pub field: RandomField,
     /// Index of its first KL variable among the study parameters.
@@ -69,6 +82,14 @@ pub struct StudyField {
 }
 
 impl StudyField {
+    /// The interface the field lives on (`None`: over a substructure's cells).
+    pub fn interface(&self) -> Option<usize> {
+        match self.domain {
+            FieldDomain::Interface(i) => Some(i),
+            FieldDomain::Substructure(_) => None,
+        }
+    }
+
     /// Number of KL variables.
     pub fn num_variables(&self) -> usize {
         self.field.num_variables()
@@ -84,6 +105,15 @@ impl StudyField {
             Some(Ok(v)) => v,
             _ => vec![f64::NAN; self.field.kl().mesh().num_nodes()],
         }
+    }
+
+    /// The mean over each cell of the substructure of the P1 field with nodal values `nodal`
+    /// (a field over a substructure's cells; empty for an interface field).
+    pub fn cell_values(&self, nodal: &[f64]) -> Vec<f64> {
+        self.cell_means
+            .iter()
+            .map(|w| w.iter().map(|&(i, wi)| wi * nodal[i]).sum())
+            .collect()
     }
 
     /// The P1 interpolant of the nodal values `nodal` at `x` (in the nearest cell).
@@ -223,6 +253,74 @@ fn facet_mesh(mesh: &Mesh, group: &str) -> Result<FieldMesh, String> {
         ));
     }
     FieldMesh::new(nodes, cells).map_err(|e| e.to_string())
+}
+
+/// The P1 mesh of the corner nodes of the 2D cells of `mesh` (a quadrilateral split along its
+/// first diagonal) and, per cell, the field nodes and weights of the cell's mean of a P1 field
+/// (each triangle's mean is the mean of its three nodal values; a cell's mean weights its
+/// triangles by their areas).
+#[allow(clippy::type_complexity)]
+fn cell_mesh(mesh: &Mesh) -> Result<(FieldMesh, Vec<Vec<(usize, f64)>>), String> {
+    if mesh.dim != 2 {
+        return Err(
+            "a field over a substructure's cells needs a 2D model (fields over 3D cells are not built)"
+                .to_string(),
+        );
+    }
+    let mut index = std::collections::BTreeMap::new();
+    let mut nodes = Vec::new();
+    let mut tris = Vec::new();
+    let mut means = Vec::with_capacity(mesh.num_cells());
+    for c in 0..mesh.num_cells() {
+        let kind = mesh.cell_type(c);
+        let corners: Vec<usize> = mesh.cell_nodes(c)[..kind.num_corners()]
+            .iter()
+            .map(|&g| {
+                *index.entry(g).or_insert_with(|| {
+                    nodes.push(mesh.coords[g]);
+                    nodes.len() - 1
+                })
+            })
+            .collect();
+        let split: Vec<[usize; 3]> = match corners.len() {
+            3 => vec![[corners[0], corners[1], corners[2]]],
+            4 => vec![
+                [corners[0], corners[1], corners[2]],
+                [corners[0], corners[2], corners[3]],
+            ],
+            n => {
+                return Err(format!(
+                    "cell {c} has {n} corners; a 2D field needs triangles or quadrilaterals"
+                ));
+            }
+        };
+        let area = |t: &[usize; 3]| {
+            let (a, b, p) = (nodes[t[0]], nodes[t[1]], nodes[t[2]]);
+            0.5 * ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])).abs()
+        };
+        let total: f64 = split.iter().map(area).sum();
+        let mut w: std::collections::BTreeMap<usize, f64> = Default::default();
+        for t in &split {
+            let share = if total > 0.0 {
+                area(t) / total
+            } else {
+                1.0 / split.len() as f64
+            };
+            for &i in t {
+                *w.entry(i).or_insert(0.0) += share / 3.0;
+            }
+        }
+        means.push(w.into_iter().collect());
+        tris.extend(split);
+    }
+    if nodes.len() > MAX_FIELD_NODES {
+        return Err(format!(
+            "the field's mesh (the substructure's cell corners) has {} nodes; at most {MAX_FIELD_NODES} (the KL problem is dense)",
+            nodes.len()
+        ));
+    }
+    let fmesh = FieldMesh::new(nodes, FieldCells::Triangles(tris)).map_err(|e| e.to_string())?;
+    Ok((fmesh, means))
 }
 
 fn shape(src: &Source, f: &FieldSpec, i: usize) -> Result<KernelShape, StudyError> {
@@ -401,23 +499,7 @@ pub(crate) fn build_fields(
         let key = |k: &str| format!("field[{i}].{k}");
         check_name(src, f, i, &taken)?;
         let name = f.name.get_ref().clone();
-        let it = f.interface.get_ref();
-        let k = file
-            .interface
-            .iter()
-            .position(|s| s.name.get_ref() == it)
-            .ok_or_else(|| {
-                let names: Vec<&str> = file
-                    .interface
-                    .iter()
-                    .map(|s| s.name.get_ref().as_str())
-                    .collect();
-                src.error(
-                    f.interface.span(),
-                    key("interface"),
-                    format!("unknown interface '{it}'; defined: {}", names.join(", ")),
-                )
-            })?;
+        let domain = field_domain(src, file, f, i)?;
         let shape = shape(src, f, i)?;
         let length = *f.correlation_length.get_ref();
         if !(length.is_finite() && length > 0.0) {
@@ -429,24 +511,7 @@ pub(crate) fn build_fields(
         }
         let (mean, variance, tr) = transform(src, f, i)?;
         let trunc = truncation(src, f, i)?;
-        let side = &file.interface[k].side1;
-        let [sub, group] = side.get_ref();
-        let side_err = |m: String| src.error(side.span(), format!("interface[{k}].side1"), m);
-        let s = file
-            .substructure
-            .iter()
-            .find(|s| s.name.get_ref() == sub)
-            .ok_or_else(|| side_err(format!("unknown substructure '{sub}'")))?;
-        let sub_mesh = match &s.cells {
-            Some(c) => {
-                mesh.extract(&[c.get_ref().as_str()])
-                    .map_err(|e| side_err(e.to_string()))?
-                    .0
-            }
-            None => mesh.clone(),
-        };
-        let fmesh = facet_mesh(&sub_mesh, group)
-            .map_err(|m| src.error(f.interface.span(), key("interface"), m))?;
+        let (fmesh, cell_means, place) = domain_mesh(src, file, &mesh, f, i, domain)?;
         if let Truncation::Modes(m) = trunc
             && m > fmesh.num_nodes()
         {
@@ -467,7 +532,7 @@ pub(crate) fn build_fields(
         let m = field.num_variables();
         let unit = f.unit.clone().unwrap_or_default();
         let description = format!(
-            "{} field{} on interface '{it}', {} covariance, correlation length {length}; {m} KL modes, {:.1} % of the variance, {} nodes",
+            "{} field{} {place}, {} covariance, correlation length {length}; {m} KL modes, {:.1} % of the variance, {} nodes",
             f.transform
                 .as_ref()
                 .map_or("gaussian", |t| t.get_ref().as_str()),
@@ -495,7 +560,8 @@ pub(crate) fn build_fields(
         }
         fields.push(Arc::new(StudyField {
             name,
-            interface: k,
+            domain,
+            cell_means,
             field,
             first_variable: first_variable + variables.len() - m,
             unit,
@@ -503,6 +569,118 @@ pub(crate) fn build_fields(
         }));
     }
     Ok((fields, variables))
+}
+
+/// The interface or substructure a field names (exactly one of the two).
+fn field_domain(
+    src: &Source,
+    file: &ModelFile,
+    f: &FieldSpec,
+    i: usize,
+) -> Result<FieldDomain, StudyError> {
+    let key = |k: &str| format!("field[{i}].{k}");
+    match (&f.interface, &f.substructure) {
+        (Some(_), Some(s)) => Err(src.error(
+            s.span(),
+            key("substructure"),
+            "give either interface or substructure, not both",
+        )),
+        (None, None) => Err(src.error(
+            f.name.span(),
+            key("interface"),
+            "a field needs interface (a field along the contact) or substructure (over its cells)",
+        )),
+        (Some(it), None) => {
+            let name = it.get_ref();
+            let k = file
+                .interface
+                .iter()
+                .position(|s| s.name.get_ref() == name)
+                .ok_or_else(|| {
+                    let names: Vec<&str> = file
+                        .interface
+                        .iter()
+                        .map(|s| s.name.get_ref().as_str())
+                        .collect();
+                    src.error(
+                        it.span(),
+                        key("interface"),
+                        format!("unknown interface '{name}'; defined: {}", names.join(", ")),
+                    )
+                })?;
+            Ok(FieldDomain::Interface(k))
+        }
+        (None, Some(sb)) => {
+            let name = sb.get_ref();
+            let k = file
+                .substructure
+                .iter()
+                .position(|s| s.name.get_ref() == name)
+                .ok_or_else(|| {
+                    let names: Vec<&str> = file
+                        .substructure
+                        .iter()
+                        .map(|s| s.name.get_ref().as_str())
+                        .collect();
+                    src.error(
+                        sb.span(),
+                        key("substructure"),
+                        format!(
+                            "unknown substructure '{name}'; defined: {}",
+                            names.join(", ")
+                        ),
+                    )
+                })?;
+            Ok(FieldDomain::Substructure(k))
+        }
+    }
+}
+
+/// The field's P1 mesh, its cell means (a substructure field) and where it lives in words.
+#[allow(clippy::type_complexity)]
+fn domain_mesh(
+    src: &Source,
+    file: &ModelFile,
+    mesh: &Mesh,
+    f: &FieldSpec,
+    i: usize,
+    domain: FieldDomain,
+) -> Result<(FieldMesh, Vec<Vec<(usize, f64)>>, String), StudyError> {
+    let key = |k: &str| format!("field[{i}].{k}");
+    let sub_mesh =
+        |s: &crate::spec::SubstructureSpec, err: &dyn Fn(String) -> StudyError| match &s.cells {
+            Some(c) => mesh
+                .extract(&[c.get_ref().as_str()])
+                .map(|m| m.0)
+                .map_err(|e| err(e.to_string())),
+            None => Ok(mesh.clone()),
+        };
+    match domain {
+        FieldDomain::Interface(k) => {
+            let side = &file.interface[k].side1;
+            let [sub, group] = side.get_ref();
+            let side_err = |m: String| src.error(side.span(), format!("interface[{k}].side1"), m);
+            let s = file
+                .substructure
+                .iter()
+                .find(|s| s.name.get_ref() == sub)
+                .ok_or_else(|| side_err(format!("unknown substructure '{sub}'")))?;
+            let sm = sub_mesh(s, &side_err)?;
+            let span = f.interface.as_ref().map_or(f.name.span(), |s| s.span());
+            let fmesh = facet_mesh(&sm, group).map_err(|m| src.error(span, key("interface"), m))?;
+            let place = format!("on interface '{}'", file.interface[k].name.get_ref());
+            Ok((fmesh, Vec::new(), place))
+        }
+        FieldDomain::Substructure(k) => {
+            let s = &file.substructure[k];
+            let span = f.substructure.as_ref().map_or(f.name.span(), |s| s.span());
+            let err = |m: String| src.error(span.clone(), key("substructure"), m);
+            let sm = sub_mesh(s, &err)?;
+            let (fmesh, means) = cell_mesh(&sm).map_err(err)?;
+            let place = format!("over the cells of substructure '{}'", s.name.get_ref());
+            Ok((fmesh, means, place))
+        }
+    }
 }
 
 #[cfg(test)]

@@ -200,6 +200,7 @@ impl Study {
                     .into(),
             });
         }
+        check_cell_fields(&study)?;
         check_built(&study)?;
         Ok(study)
     }
@@ -282,14 +283,28 @@ impl Study {
         let src = &self.source;
         let at = || self.describe_point(theta);
         let par = &self.model.parametric;
-        for (s, e) in par.young.iter().enumerate() {
-            let v = e.eval(theta);
-            if !(v.is_finite() && v > 0.0) {
+        for s in 0..par.young.len() {
+            // The modulus itself (a factor of a positive reference), or on every cell when it
+            // varies from cell to cell.
+            let (factor, cells) = par.young_at(s, theta);
+            let bad = std::iter::once((None, factor))
+                .chain(
+                    cells
+                        .iter()
+                        .flat_map(|f| f.iter().copied().enumerate().map(|(c, v)| (Some(c), v))),
+                )
+                .find(|(_, v)| !(v.is_finite() && *v > 0.0));
+            if let Some((cell, v)) = bad {
                 let sp = &self.file.substructure[s].young;
+                let place = cell.map_or_else(String::new, |c| format!(" on cell {c}"));
                 return Err(src.error(
                     sp.span(),
                     format!("substructure[{s}].young"),
-                    format!("evaluates to {v} at {}; must be > 0", at()),
+                    format!(
+                        "evaluates to {}{place} at {}; must be > 0",
+                        v * par.young_nominal[s],
+                        at()
+                    ),
                 ));
             }
         }
@@ -340,6 +355,43 @@ impl Study {
         }
         Ok(())
     }
+}
+
+/// A field over a substructure's cells (a Young's modulus varying from cell to cell) is
+/// refused where what needs the study cannot follow it: the error estimate (`[error]`,
+/// adaptive methods: the stochastic CRE takes one Young's factor per substructure and run)
+/// and `[budget] refined_mesh` (the field's KL on the finer mesh would be another field).
+fn check_cell_fields(study: &Study) -> Result<(), StudyError> {
+    let Some((i, _)) = study
+        .params
+        .fields
+        .iter()
+        .enumerate()
+        .find(|(_, f)| matches!(f.domain, crate::random_field::FieldDomain::Substructure(_)))
+    else {
+        return Ok(());
+    };
+    let spec = &study.file.field[i];
+    let span = spec
+        .substructure
+        .as_ref()
+        .map_or(spec.name.span(), |s| s.span());
+    let field = format!("field[{i}].substructure");
+    if estimates_error(study) {
+        return Err(study.source.error(
+            span,
+            field,
+            "a field over a substructure's cells makes the Young's modulus vary from cell to cell, which the error estimate ([error], adaptive methods) does not handle (one Young's factor per substructure and run): leave out [error] and adaptive methods",
+        ));
+    }
+    if study.refined.is_some() {
+        return Err(study.source.error(
+            span,
+            field,
+            "a field over a substructure's cells is discretised on that substructure's mesh, so [budget] refined_mesh would compare another field: leave out refined_mesh",
+        ));
+    }
+    Ok(())
 }
 
 /// True if the study estimates its error: an `[error]` table (not disabled) or an adaptive

@@ -201,7 +201,7 @@ variance_fraction = 0.8"#;
     let x: Vec<[f64; 3]> = mesh.nodes().to_vec();
     let par = &study.model.parametric;
     let at = |theta: &[f64]| -> Vec<f64> {
-        let mu = par.run_input(theta, vec![]).mu[f.interface]
+        let mu = par.run_input(theta, vec![]).mu[f.interface().unwrap()]
             .clone()
             .unwrap();
         x.iter().map(|&p| mu(p)).collect()
@@ -229,7 +229,7 @@ variance_fraction = 0.8"#;
     );
     // The flank is 14.1 mm long; its points are where the solver reads mu.
     assert!((mesh.measure() - 10.0 * 2f64.sqrt()).abs() < 1e-9);
-    assert!(solver.interface_points(f.interface).len() >= mesh.num_nodes());
+    assert!(solver.interface_points(f.interface().unwrap()).len() >= mesh.num_nodes());
 }
 
 /// `edits` applied to the example refused at load: the message names the line of the last

@@ -46,6 +46,13 @@ impl LatinSolver {
     /// results in input order. An input that does not start (invalid) gets its error, the
     /// others run.
     pub fn run_batch(&self, inputs: &[RunInput]) -> Vec<Result<RunResult, LatinError>> {
+        if inputs
+            .iter()
+            .any(|i| i.cell_young.iter().any(Option::is_some))
+        {
+            // Each such run has operators of its own (module `cell_young`): nothing to share.
+            return inputs.iter().map(|i| self.run_shared(i)).collect();
+        }
         let t_start = Instant::now();
         let mut lanes: Vec<Result<Lane<'_>, LatinError>> = inputs
             .iter()

@@ -3,6 +3,7 @@
 //! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`,
 //! `||s||^2 = sum_points m (k |W|^2 + |F|^2 / k)` over both sides of every interface.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -50,7 +51,7 @@ fn local_stage(
     st: &mut InterfaceState,
     pts: &[PointData],
     origin: Option<&[[f64; 3]]>,
-    subs: &[SubOperator],
+    subs: &[Arc<SubOperator>],
     sstate: &[SubState],
     alpha: &[f64],
 ) -> [f64; 3] {

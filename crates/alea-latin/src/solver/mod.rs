@@ -52,6 +52,7 @@
 
 mod acceleration;
 mod batch;
+mod cell_young;
 mod coarse;
 mod convergence;
 mod existence;
@@ -158,6 +159,13 @@ pub struct RunInput {
     pub params: Vec<f64>,
     /// Explicit initial local-stage state (takes precedence over the nearest stored run).
     pub initial: Option<Arc<LocalState>>,
+    /// Young's-modulus factor of every cell of some substructures (`cell_young[s]`: one factor
+    /// per cell of substructure `s`, multiplying its reference materials and its factor in
+    /// `young_factors`; `None` or an empty vector: the substructure's materials as set up). A
+    /// run with such factors solves on operators assembled and factorised for it
+    /// ([`LatinSolver::with_cell_young`]): a modulus varying from cell to cell is not a scalar
+    /// multiple of the factorised reference.
+    pub cell_young: Vec<Option<Arc<Vec<f64>>>>,
     /// The local-stage state at the end of the previous load step (module [`crate::steps`]):
     /// the run starts from it (unless `initial` is given: a re-paired pass of a large-sliding
     /// step, module [`crate::large_sliding`], starts from its previous pass) and applies the Coulomb
@@ -235,6 +243,7 @@ struct SubOperator {
     rigid: RigidModes,
 }
 
+#[derive(Clone)]
 struct InterfaceOperator {
     name: String,
     law: Arc<dyn InterfaceLaw>,
@@ -283,7 +292,7 @@ struct StoredRun {
 
 /// The substructured LATIN solver with its multiresolution state.
 pub struct LatinSolver {
-    subs: Vec<SubOperator>,
+    subs: Vec<Arc<SubOperator>>,
     ifaces: Vec<InterfaceOperator>,
     options: LatinOptions,
     store: Mutex<Vec<StoredRun>>,
@@ -463,6 +472,9 @@ impl LatinSolver {
     /// [`LatinSolver::run`] through a shared reference: several runs may proceed at once on
     /// different threads (each allocates its own scratch; the factorisations are shared).
     pub fn run_shared(&self, input: &RunInput) -> Result<RunResult, LatinError> {
+        if input.cell_young.iter().any(Option::is_some) {
+            return self.run_with_cell_young(input);
+        }
         let t_start = Instant::now();
         let mut run = self.start(input)?;
         let mut acceleration = Acceleration::new(self, &run.alpha);

@@ -83,6 +83,7 @@ impl LatinSolver {
             displacements,
             interfaces,
             young_factors: alpha,
+            cell_young: Vec::new(),
             equilibrium,
             timings,
         }

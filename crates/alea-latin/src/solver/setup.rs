@@ -73,10 +73,10 @@ impl LatinSolver {
             )?);
         }
         let ordering = options.ordering;
-        let ops: Vec<SubOperator> = subs
+        let ops: Vec<Arc<SubOperator>> = subs
             .into_par_iter()
             .zip(links.into_par_iter())
-            .map(|(sub, links)| build_operator(sub, links, ordering))
+            .map(|(sub, links)| build_operator(sub, links, ordering).map(Arc::new))
             .collect::<Result<_, _>>()?;
         let coarse = options.coarse.then(|| build_coarse(&ops, &ifaces));
         Ok(LatinSolver {
@@ -259,7 +259,7 @@ fn interface_operator(
 
 /// The macro space of the coarse problem (interface resultants and moments, module `coarse`)
 /// and every substructure's responses to it.
-fn build_coarse(ops: &[SubOperator], ifaces: &[InterfaceOperator]) -> Coarse {
+pub(super) fn build_coarse(ops: &[Arc<SubOperator>], ifaces: &[InterfaceOperator]) -> Coarse {
     let dim = ops.first().map_or(2, |o| o.model.mesh.dim);
     let mut offset = 0;
     let modes: Vec<InterfaceModes> = ifaces
@@ -312,11 +312,51 @@ fn build_operator(
     let name = sub.name.clone();
     let model = sub.model;
     let dofs = DofMap::for_mesh(&model.mesh, &sub.constraints).map_err(fem_err(&name))?;
-    let asm = assemble_stiffness(&model, &dofs).map_err(fem_err(&name))?;
-    let mut a0: SymCsc = with_interface_couplings(asm.k, &dofs, &links);
-    let mut r_presc = asm.f_prescribed;
+    let (a0, r_presc) = operator_matrix(&name, &model, &dofs, &links)?;
+    let mut chol =
+        Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
+    chol.factorize(&a0).map_err(fem_err(&name))?;
     let dim = model.mesh.dim;
-    for l in &links {
+    let n_nodes = model.mesh.num_nodes() * model.mesh.dim;
+    if let Some(f) = sub.load_cases.iter().find(|f| f.len() != n_nodes) {
+        return Err(LatinError::Invalid(format!(
+            "substructure '{name}': load case of length {} for {n_nodes} dofs",
+            f.len()
+        )));
+    }
+    let rigid = RigidModes::new(
+        dim,
+        &model.mesh.coords,
+        |n, v| dofs.constrained_part(n, v),
+        &sub.load_cases,
+        (0..model.mesh.num_nodes()).any(|n| dofs.prescribed(n).iter().any(|&v| v != 0.0)),
+    );
+    let r_ext: Vec<Vec<f64>> = sub.load_cases.iter().map(|f| dofs.reduce(f)).collect();
+    Ok(SubOperator {
+        name,
+        model,
+        dofs,
+        chol,
+        r_ext,
+        r_presc,
+        links,
+        rigid,
+    })
+}
+
+/// The operator `A0 = T^T (K + sum k0 Pi^T M_Gamma Pi) T` of a substructure's `model` (its
+/// materials as they are) under `dofs`, and the right-hand side `-T^T A u_p` of its prescribed
+/// displacements.
+pub(super) fn operator_matrix(
+    name: &str,
+    model: &alea_fem::Model,
+    dofs: &DofMap,
+    links: &[Link],
+) -> Result<(SymCsc, Vec<f64>), LatinError> {
+    let asm = assemble_stiffness(model, dofs).map_err(fem_err(name))?;
+    let mut a0: SymCsc = with_interface_couplings(asm.k, dofs, links);
+    let mut r_presc = asm.f_prescribed;
+    for l in links {
         // k0 Pi^T M Pi: node blocks k0 m_p c_pa c_pb.
         for (p, &m) in l.proj.weights.iter().enumerate() {
             let km = l.k0 * m;
@@ -346,34 +386,7 @@ fn build_operator(
             }
         }
     }
-    let mut chol =
-        Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
-    chol.factorize(&a0).map_err(fem_err(&name))?;
-    let n_nodes = model.mesh.num_nodes() * model.mesh.dim;
-    if let Some(f) = sub.load_cases.iter().find(|f| f.len() != n_nodes) {
-        return Err(LatinError::Invalid(format!(
-            "substructure '{name}': load case of length {} for {n_nodes} dofs",
-            f.len()
-        )));
-    }
-    let rigid = RigidModes::new(
-        dim,
-        &model.mesh.coords,
-        |n, v| dofs.constrained_part(n, v),
-        &sub.load_cases,
-        (0..model.mesh.num_nodes()).any(|n| dofs.prescribed(n).iter().any(|&v| v != 0.0)),
-    );
-    let r_ext: Vec<Vec<f64>> = sub.load_cases.iter().map(|f| dofs.reduce(f)).collect();
-    Ok(SubOperator {
-        name,
-        model,
-        dofs,
-        chol,
-        r_ext,
-        r_presc,
-        links,
-        rigid,
-    })
+    Ok((a0, r_presc))
 }
 
 /// The stiffness matrix on a pattern that also couples the nodes of every interface point

@@ -15,11 +15,15 @@ import pandas as pd
 @dataclass(frozen=True)
 class RandomField:
     """A ``[[field]]`` of a study: its Karhunen-Loeve discretisation (Galerkin on the facets of
-    its interface's side 1).
+    its interface's side 1, or on the corners of its substructure's cells).
 
     Attributes
     ----------
-    name, interface, unit, description, transform : str
+    name, unit, description, transform : str
+    interface : str
+        Its interface ("" for a field over a substructure's cells).
+    substructure : str
+        Its substructure ("" for a field along an interface).
     variables : list of str
         The study parameters that are its KL variables ``<name>_1 ... <name>_m`` (standard
         normal).
@@ -32,7 +36,8 @@ class RandomField:
     nodes : numpy.ndarray
         ``(n, 3)`` node coordinates of its mesh.
     cells : numpy.ndarray
-        Its cells by node index: ``(c, 2)`` segments (2D models) or ``(c, 3)`` triangles (3D).
+        Its cells by node index: ``(c, 2)`` segments (along a 2D interface) or ``(c, 3)``
+        triangles (along a 3D interface, or over a 2D substructure's cells).
     modes : numpy.ndarray
         ``(m, n)``: mode ``k`` at the nodes in row ``k`` (L2-normalised on the mesh), as
         :attr:`KarhunenLoeve.modes`.
@@ -40,6 +45,7 @@ class RandomField:
 
     name: str
     interface: str
+    substructure: str
     unit: str
     description: str
     transform: str
@@ -58,6 +64,7 @@ class RandomField:
         return RandomField(
             name=raw["name"],
             interface=raw["interface"],
+            substructure=raw["substructure"],
             unit=raw["unit"],
             description=raw["description"],
             transform=raw["transform"],

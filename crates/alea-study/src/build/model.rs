@@ -10,6 +10,7 @@ use super::mesh::build_mesh;
 use super::parametric::{BuiltModel, InterfaceSite, Parametric};
 use crate::expr::Expr;
 use crate::params::ParamSpace;
+use crate::random_field::FieldDomain;
 use crate::spec::{LoadSpec, ModelFile, NumOrExpr};
 use crate::{Source, StudyError};
 
@@ -177,7 +178,12 @@ pub fn build_model(
         defines.push(e);
     }
     profile_vars.extend(params.fields.iter().map(|f| f.name.as_str()));
+    // `young`: the parameters, then every field (only those over the substructure's own cells
+    // may be used, checked below).
+    let mut young_vars: Vec<&str> = pvars.clone();
+    young_vars.extend(params.fields.iter().map(|f| f.name.as_str()));
     let mut young_e = Vec::new();
+    let mut young_fields = Vec::new();
     let mut young_nominal = Vec::new();
     let mut load_factors = Vec::new();
     let mesh = build_mesh(src, &file.mesh)?;
@@ -232,9 +238,47 @@ pub fn build_model(
             ));
         }
         names.push(name.clone());
-        let ye = compile(src, &s.young, &pvars, &f("young"))?;
-        let young = ye.eval(&params.nominal);
+        let ye = compile(src, &s.young, &young_vars, &f("young"))?;
+        let mut used = Vec::new();
+        for (j, fld) in params.fields.iter().enumerate() {
+            if !ye.uses(pvars.len() + j) {
+                continue;
+            }
+            if fld.domain != FieldDomain::Substructure(i) {
+                let place = match fld.domain {
+                    FieldDomain::Interface(k) => {
+                        format!("along interface '{}'", file.interface[k].name.get_ref())
+                    }
+                    FieldDomain::Substructure(k) => format!(
+                        "over the cells of substructure '{}'",
+                        file.substructure[k].name.get_ref()
+                    ),
+                };
+                return Err(src.error(
+                    s.young.span(),
+                    f("young"),
+                    format!(
+                        "field '{}' lives {place}, not over the cells of '{name}'",
+                        fld.name
+                    ),
+                ));
+            }
+            used.push(j);
+        }
+        // The reference modulus: the parameters' nominal values, each field at its nominal
+        // value (all KL variables 0: the transform of the Gaussian mean, the same at every node).
+        let mut nominal = params.nominal.clone();
+        for fld in params.fields.iter() {
+            nominal.push(
+                fld.at_nodes(&params.nominal)
+                    .first()
+                    .copied()
+                    .unwrap_or(0.0),
+            );
+        }
+        let young = ye.eval(&nominal);
         young_e.push(ye);
+        young_fields.push(used);
         young_nominal.push(young);
         let poisson = *s.poisson.get_ref();
         let density = s.density.as_ref().map_or(0.0, |d| *d.get_ref());
@@ -320,6 +364,7 @@ pub fn build_model(
         nparams: params.names.len(),
         young: young_e,
         young_nominal,
+        young_fields,
         load_factors,
         mu: Vec::new(),
         gap: Vec::new(),
@@ -388,15 +433,20 @@ pub fn build_model(
         let first_field = profile_vars.len() - params.fields.len();
         for (j, fld) in params.fields.iter().enumerate() {
             for (e, key, v) in [(&mu, "mu", &it.mu), (&gap, "gap", &it.gap)] {
-                if fld.interface != i && e.uses(first_field + j) {
+                if fld.domain != FieldDomain::Interface(i) && e.uses(first_field + j) {
+                    let place = match fld.domain {
+                        FieldDomain::Interface(k) => {
+                            format!("on interface '{}'", file.interface[k].name.get_ref())
+                        }
+                        FieldDomain::Substructure(k) => format!(
+                            "over the cells of substructure '{}'",
+                            file.substructure[k].name.get_ref()
+                        ),
+                    };
                     return Err(src.error(
                         v.as_ref().map_or(it.name.span(), |v| v.span()),
                         f(key),
-                        format!(
-                            "field '{}' lives on interface '{}', not on '{name}'",
-                            fld.name,
-                            file.interface[fld.interface].name.get_ref()
-                        ),
+                        format!("field '{}' lives {place}, not on '{name}'", fld.name),
                     ));
                 }
             }

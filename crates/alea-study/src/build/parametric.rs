@@ -14,10 +14,15 @@ use crate::random_field::{FieldPoint, StudyField};
 pub struct Parametric {
     /// Number of parameters.
     pub nparams: usize,
-    /// Young's modulus of each substructure (expression of the parameters).
+    /// Young's modulus of each substructure (expression of the parameters, then of the
+    /// fields: slots `nparams + j` for field `j`).
     pub young: Vec<Expr>,
     /// Its value at the nominal point (the factorised reference).
     pub young_nominal: Vec<f64>,
+    /// Per substructure, the fields (indices in `fields`, each over that substructure's cells)
+    /// its `young` uses: with any, the modulus varies from cell to cell, each cell's the
+    /// expression at the field's mean over the cell.
+    pub young_fields: Vec<Vec<usize>>,
     /// Factor of each load case of each substructure.
     pub load_factors: Vec<Vec<Expr>>,
     /// Friction profile of each interface (expression of the parameters, `x, y, z` and the
@@ -133,16 +138,71 @@ impl Parametric {
         }
     }
 
+    /// The Young's-modulus factor of substructure `s` at `theta` (1 when it varies from cell
+    /// to cell) and, when it does, the factor of each of its cells: `young(theta, u_c) /
+    /// young_nominal` with `u_c` each field's mean over cell `c` (NaN where a field's
+    /// transform overflows: the run's input check then refuses the point).
+    pub fn young_at(&self, s: usize, theta: &[f64]) -> (f64, Option<Arc<Vec<f64>>>) {
+        let e = &self.young[s];
+        let nominal = self.young_nominal[s];
+        let mut vars = theta.to_vec();
+        vars.resize(self.nparams + self.fields.len(), 0.0);
+        let used = self.young_fields.get(s).map_or(&[][..], Vec::as_slice);
+        if used.is_empty() {
+            return (e.eval(&vars) / nominal, None);
+        }
+        let cells: Vec<Vec<f64>> = used
+            .iter()
+            .map(|&j| self.fields[j].cell_values(&self.fields[j].at_nodes(theta)))
+            .collect();
+        let n = cells.first().map_or(0, Vec::len);
+        let factors = (0..n)
+            .map(|c| {
+                for (&j, values) in used.iter().zip(&cells) {
+                    vars[self.nparams + j] = values[c];
+                }
+                e.eval(&vars) / nominal
+            })
+            .collect();
+        (1.0, Some(Arc::new(factors)))
+    }
+
+    /// A copy of substructure `s`'s reference model `base` with its Young's modulus at
+    /// `theta` (its factor, or its cells' factors when it varies from cell to cell).
+    ///
+    /// # Errors
+    /// If a cell factor is not finite and > 0 (a field's transform overflowed).
+    pub fn scaled_model(
+        &self,
+        base: &alea_fem::Model,
+        s: usize,
+        theta: &[f64],
+    ) -> Result<alea_fem::Model, StudyError> {
+        let (factor, cells) = self.young_at(s, theta);
+        let mut model = base.clone();
+        model.scale_young(factor);
+        if let Some(f) = cells {
+            model
+                .scale_young_per_cell(&f)
+                .map_err(|e| StudyError::Failed(format!("Young's modulus at {theta:?}: {e}")))?;
+        }
+        Ok(model)
+    }
+
     /// The solver input for parameter point `theta`; `params` is the normalised point used
     /// to find the nearest finished run.
     pub fn run_input(&self, theta: &[f64], params: Vec<f64>) -> RunInput {
+        let young: Vec<(f64, Option<Arc<Vec<f64>>>)> = (0..self.young.len())
+            .map(|s| self.young_at(s, theta))
+            .collect();
+        let cell_young = if young.iter().any(|y| y.1.is_some()) {
+            young.iter().map(|y| y.1.clone()).collect()
+        } else {
+            Vec::new()
+        };
         RunInput {
-            young_factors: self
-                .young
-                .iter()
-                .zip(&self.young_nominal)
-                .map(|(e, n)| e.eval(theta) / n)
-                .collect(),
+            young_factors: young.iter().map(|y| y.0).collect(),
+            cell_young,
             load_factors: self
                 .load_factors
                 .iter()
@@ -318,6 +378,7 @@ mod tests {
             nparams: 2,
             young: vec![],
             young_nominal: vec![],
+            young_fields: vec![],
             load_factors: vec![],
             mu: vec![mu.clone()],
             gap: vec![],

@@ -95,19 +95,17 @@ pub fn corner_warnings(
                     expected: sizes.iter().sum::<usize>(),
                 });
             }
-            let factors = study
-                .model
-                .parametric
-                .run_input(&r.params, vec![])
-                .young_factors;
             let mut out = Vec::new();
             for &q in &maxima {
                 let QoiKind::MaxVonMises { sub, .. } = study.qois[q].kind else {
                     continue;
                 };
                 let off: usize = sizes[..sub].iter().sum();
-                let mut model = subs[sub].model.clone();
-                model.scale_young(factors[sub]);
+                let model =
+                    study
+                        .model
+                        .parametric
+                        .scaled_model(&subs[sub].model, sub, &r.params)?;
                 if let Some(m) = study.qois[q].max_location(&model, &all[off..off + sizes[sub]])?
                     && m.junction.is_some()
                 {

@@ -1,0 +1,113 @@
+//! Runs whose Young's modulus varies from cell to cell (`RunInput::cell_young`, e.g. a random
+//! field over a substructure's cells). The multiresolution shortcut of the linear stage,
+//! `K + k M_Gamma = alpha (K0 + k0 M_Gamma)`, needs one factor `alpha` per substructure; with
+//! `E_c = alpha f_c E0_c` cell by cell the stiffness is no multiple of the reference, so such a
+//! run gets its own operators: for every substructure with cell factors,
+//! `A0 = T^T (K(f E0) + sum k0 Pi^T M_Gamma Pi) T` assembled and factorised again (same dof map,
+//! links, search direction `k0` and ordering; the search direction is a free parameter of the
+//! iteration, its solution does not depend on it), the other substructures' factorisations
+//! shared with the set-up, and the coarse problem's substructure responses recomputed
+//! ([`LatinSolver::with_cell_young`]). Pairings and interface data are the set-up's.
+//!
+//! The run then proceeds as any other on that solver, warm-started as asked (the explicit
+//! `initial` state, or the nearest run of the set-up's store, copied over), and a run that
+//! would have been remembered for warm starts is remembered by the set-up's solver.
+
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use super::setup::{build_coarse, fem_err, operator_matrix};
+use super::{LatinSolver, RunInput, StoredRun, SubOperator};
+use crate::{LatinError, RunResult};
+
+impl LatinSolver {
+    /// A solver sharing this one's pairings, interfaces, options and the factorisations of the
+    /// substructures without cell factors, whose substructures `s` with `cell_young[s]` given
+    /// (one factor per cell, > 0) are assembled and factorised with their cells' Young's
+    /// moduli multiplied by those factors. Its warm-start store starts as a copy of this one's.
+    ///
+    /// # Errors
+    /// If `cell_young` names more substructures than there are, a factor list has not one
+    /// finite positive entry per cell, or a factorisation fails.
+    pub fn with_cell_young(
+        &self,
+        cell_young: &[Option<Arc<Vec<f64>>>],
+    ) -> Result<LatinSolver, LatinError> {
+        let t0 = Instant::now();
+        if cell_young.len() > self.subs.len() {
+            return Err(LatinError::Invalid(format!(
+                "cell Young's-modulus factors given for {} substructures, there are {}",
+                cell_young.len(),
+                self.subs.len()
+            )));
+        }
+        let mut subs = self.subs.clone();
+        for (s, factors) in cell_young.iter().enumerate() {
+            let Some(factors) = factors.as_ref().filter(|f| !f.is_empty()) else {
+                continue;
+            };
+            let op = &self.subs[s];
+            let mut model = op.model.clone();
+            model
+                .scale_young_per_cell(factors)
+                .map_err(fem_err(&op.name))?;
+            let (a0, r_presc) = operator_matrix(&op.name, &model, &op.dofs, &op.links)?;
+            let mut chol =
+                alea_fem::Cholesky::new(&a0, self.options.ordering, Some(&op.dofs.node_of_dof()))
+                    .map_err(fem_err(&op.name))?;
+            chol.factorize(&a0).map_err(fem_err(&op.name))?;
+            subs[s] = Arc::new(SubOperator {
+                name: op.name.clone(),
+                model,
+                dofs: op.dofs.clone(),
+                chol,
+                r_ext: op.r_ext.clone(),
+                r_presc,
+                links: op.links.clone(),
+                rigid: op.rigid.clone(),
+            });
+        }
+        let ifaces = self.ifaces.clone();
+        let coarse = self.coarse.as_ref().map(|_| build_coarse(&subs, &ifaces));
+        let store = self.store.lock().map_or_else(
+            |_| Vec::new(),
+            |s| {
+                s.iter()
+                    .map(|r| StoredRun {
+                        params: r.params.clone(),
+                        what: r.what.clone(),
+                        fhat: r.fhat.clone(),
+                    })
+                    .collect()
+            },
+        );
+        Ok(LatinSolver {
+            subs,
+            ifaces,
+            options: self.options.clone(),
+            store: Mutex::new(store),
+            model_size: self.model_size,
+            coarse,
+            configuration: self.configuration.clone(),
+            setup_seconds: t0.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// [`LatinSolver::run_shared`] of a run with cell factors: on the solver of
+    /// [`LatinSolver::with_cell_young`], the result carrying the factors.
+    pub(super) fn run_with_cell_young(&self, input: &RunInput) -> Result<RunResult, LatinError> {
+        let t_start = Instant::now();
+        let derived = self.with_cell_young(&input.cell_young)?;
+        let stored = derived.stored_runs();
+        let mut plain = input.clone();
+        plain.cell_young = Vec::new();
+        let mut result = derived.run_shared(&plain)?;
+        result.cell_young = input.cell_young.clone();
+        // The run's own assembly and factorisations count in its time.
+        result.timings.total = t_start.elapsed().as_secs_f64();
+        if let (Ok(mut from), Ok(mut to)) = (derived.store.lock(), self.store.lock()) {
+            to.extend(from.drain(stored..));
+        }
+        Ok(result)
+    }
+}
