@@ -13,7 +13,7 @@ use crate::convert::{ArrayIn, NonNegative, array1, array2, points, uq_err, value
 /// Karhunen-Loeve expansion of a stationary Gaussian field on a P1 mesh.
 ///
 /// `nodes`: `(n, d)` coordinates (`d` = 1 to 3, or a 1-D array of abscissae); `cells`: lists of
-/// 2 node indices (segments, e.g. along a contact line) or 3 (triangles); `kernel`:
+/// 2 node indices (segments, e.g. along a contact line), 3 (triangles) or 4 (tetrahedra); `kernel`:
 /// `"exponential"`, `"squared-exponential"`, `"matern32"` or `"matern52"`; `variance` (sigma^2)
 /// and `length` (one correlation length, or one per coordinate). Exactly one of
 /// `variance_fraction` (keep the fewest modes whose eigenvalues reach this fraction of
@@ -83,9 +83,10 @@ impl KarhunenLoeve {
         let cells = match k {
             2 => FieldCells::Segments(cells.iter().map(|c| [c[0], c[1]]).collect()),
             3 => FieldCells::Triangles(cells.iter().map(|c| [c[0], c[1], c[2]]).collect()),
+            4 => FieldCells::Tetrahedra(cells.iter().map(|c| [c[0], c[1], c[2], c[3]]).collect()),
             _ => {
                 return Err(value_error(format!(
-                    "KarhunenLoeve cells: expected a non-empty list of 2-node segments or 3-node triangles, got cells of {k} nodes"
+                    "KarhunenLoeve cells: expected a non-empty list of 2-node segments, 3-node triangles or 4-node tetrahedra, got cells of {k} nodes"
                 )));
             }
         };

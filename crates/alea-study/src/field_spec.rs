@@ -48,6 +48,11 @@ pub struct FieldSpec {
     /// Keep this many modes (at least 1, at most the number of the field mesh's nodes).
     #[serde(default)]
     pub modes: Option<Spanned<usize>>,
+    /// A field over a substructure's cells only: discretise it on a regular grid of this many
+    /// boxes per axis over the substructure's bounding box (`[nx, ny]` in 2D, `[nx, ny, nz]`
+    /// in 3D) instead of on the cells' corners (module `cell_field`).
+    #[serde(default)]
+    pub grid: Option<Spanned<Vec<usize>>>,
     /// Unit of the field's values (for the report).
     #[serde(default)]
     pub unit: Option<String>,

@@ -7,6 +7,7 @@ pub mod adaptive;
 pub mod analysis;
 pub mod budget;
 mod build;
+mod cell_field;
 pub mod cre;
 pub mod data_law;
 #[cfg(feature = "mpi")]

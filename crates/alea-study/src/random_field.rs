@@ -68,8 +68,9 @@ pub struct StudyField {
     /// Where it lives.
     pub domain: FieldDomain,
     /// For a field over a substructure's cells: per cell of the substructure's mesh, the field
-    /// nodes and weights of the cell's mean of the P1 field (`u_c = sum_i w_i u_i`, the weights
-    /// of a cell summing to 1); empty for an interface field.
+    /// nodes and weights of the cell's value (`u_c = sum_i w_i u_i`, the weights of a cell
+    /// summing to 1: the field's mean over the cell, or its value at the cell's centroid on a
+    /// grid; module `cell_field`); empty for an interface field.
     pub cell_means: Vec<Vec<(usize, f64)>>,
     /// The field: KL expansion and transform.
     pub field: RandomField,
@@ -107,7 +108,7 @@ impl StudyField {
         }
     }
 
-    /// The mean over each cell of the substructure of the P1 field with nodal values `nodal`
+    /// The value on each cell of the substructure of the P1 field with nodal values `nodal`
     /// (a field over a substructure's cells; empty for an interface field).
     pub fn cell_values(&self, nodal: &[f64]) -> Vec<f64> {
         self.cell_means
@@ -159,13 +160,19 @@ fn locate_on(mesh: &FieldMesh, x: [f64; 3]) -> FieldPoint {
     for c in 0..mesh.num_cells() {
         let cell = mesh.cell(c);
         let pts: Vec<[f64; 3]> = cell.iter().map(|&i| mesh.nodes()[i]).collect();
-        let (d2, w) = if pts.len() == 2 {
-            closest_on_segment(&pts[0], &pts[1], &x)
-        } else {
-            closest_on_triangle(&pts, &x)
+        let (d2, w) = match pts.len() {
+            2 => {
+                let (d2, w) = closest_on_segment(&pts[0], &pts[1], &x);
+                (d2, w[..2].to_vec())
+            }
+            3 => {
+                let (d2, w) = closest_on_triangle(&pts, &x);
+                (d2, w.to_vec())
+            }
+            _ => closest_on_tetrahedron(&pts, &x),
         };
         if d2 < best.0 {
-            best = (d2, c, w.to_vec());
+            best = (d2, c, w);
         }
     }
     FieldPoint {
@@ -215,6 +222,44 @@ fn closest_on_triangle(pts: &[[f64; 3]], x: &[f64; 3]) -> (f64, [f64; 3]) {
     best
 }
 
+/// Squared distance from `x` to the tetrahedron `pts` and the barycentric weights of the closest
+/// point: `x` itself when inside, else the closest point of the nearest face.
+fn closest_on_tetrahedron(pts: &[[f64; 3]], x: &[f64; 3]) -> (f64, Vec<f64>) {
+    let (e1, e2, e3, r) = (
+        sub(&pts[1], &pts[0]),
+        sub(&pts[2], &pts[0]),
+        sub(&pts[3], &pts[0]),
+        sub(x, &pts[0]),
+    );
+    let det = |a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]| {
+        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0])
+    };
+    let d = det(&e1, &e2, &e3);
+    let (l1, l2, l3) = (
+        det(&r, &e2, &e3) / d,
+        det(&e1, &r, &e3) / d,
+        det(&e1, &e2, &r) / d,
+    );
+    let l0 = 1.0 - l1 - l2 - l3;
+    if l0 >= 0.0 && l1 >= 0.0 && l2 >= 0.0 && l3 >= 0.0 {
+        return (0.0, vec![l0, l1, l2, l3]);
+    }
+    let mut best = (f64::INFINITY, vec![0.0; 4]);
+    for face in [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]] {
+        let tri: Vec<[f64; 3]> = face.iter().map(|&k| pts[k]).collect();
+        let (d2, w) = closest_on_triangle(&tri, x);
+        if d2 < best.0 {
+            let mut bw = vec![0.0; 4];
+            for (k, &v) in face.iter().enumerate() {
+                bw[v] = w[k];
+            }
+            best = (d2, bw);
+        }
+    }
+    best
+}
+
 /// The P1 mesh of the corner nodes of the facets of `group` in `mesh`.
 fn facet_mesh(mesh: &Mesh, group: &str) -> Result<FieldMesh, String> {
     let facets = mesh.facet_group(group).map_err(|e| e.to_string())?;
@@ -253,74 +298,6 @@ fn facet_mesh(mesh: &Mesh, group: &str) -> Result<FieldMesh, String> {
         ));
     }
     FieldMesh::new(nodes, cells).map_err(|e| e.to_string())
-}
-
-/// The P1 mesh of the corner nodes of the 2D cells of `mesh` (a quadrilateral split along its
-/// first diagonal) and, per cell, the field nodes and weights of the cell's mean of a P1 field
-/// (each triangle's mean is the mean of its three nodal values; a cell's mean weights its
-/// triangles by their areas).
-#[allow(clippy::type_complexity)]
-fn cell_mesh(mesh: &Mesh) -> Result<(FieldMesh, Vec<Vec<(usize, f64)>>), String> {
-    if mesh.dim != 2 {
-        return Err(
-            "a field over a substructure's cells needs a 2D model (fields over 3D cells are not built)"
-                .to_string(),
-        );
-    }
-    let mut index = std::collections::BTreeMap::new();
-    let mut nodes = Vec::new();
-    let mut tris = Vec::new();
-    let mut means = Vec::with_capacity(mesh.num_cells());
-    for c in 0..mesh.num_cells() {
-        let kind = mesh.cell_type(c);
-        let corners: Vec<usize> = mesh.cell_nodes(c)[..kind.num_corners()]
-            .iter()
-            .map(|&g| {
-                *index.entry(g).or_insert_with(|| {
-                    nodes.push(mesh.coords[g]);
-                    nodes.len() - 1
-                })
-            })
-            .collect();
-        let split: Vec<[usize; 3]> = match corners.len() {
-            3 => vec![[corners[0], corners[1], corners[2]]],
-            4 => vec![
-                [corners[0], corners[1], corners[2]],
-                [corners[0], corners[2], corners[3]],
-            ],
-            n => {
-                return Err(format!(
-                    "cell {c} has {n} corners; a 2D field needs triangles or quadrilaterals"
-                ));
-            }
-        };
-        let area = |t: &[usize; 3]| {
-            let (a, b, p) = (nodes[t[0]], nodes[t[1]], nodes[t[2]]);
-            0.5 * ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])).abs()
-        };
-        let total: f64 = split.iter().map(area).sum();
-        let mut w: std::collections::BTreeMap<usize, f64> = Default::default();
-        for t in &split {
-            let share = if total > 0.0 {
-                area(t) / total
-            } else {
-                1.0 / split.len() as f64
-            };
-            for &i in t {
-                *w.entry(i).or_insert(0.0) += share / 3.0;
-            }
-        }
-        means.push(w.into_iter().collect());
-        tris.extend(split);
-    }
-    if nodes.len() > MAX_FIELD_NODES {
-        return Err(format!(
-            "the field's mesh (the substructure's cell corners) has {} nodes; at most {MAX_FIELD_NODES} (the KL problem is dense)",
-            nodes.len()
-        ));
-    }
-    let fmesh = FieldMesh::new(nodes, FieldCells::Triangles(tris)).map_err(|e| e.to_string())?;
-    Ok((fmesh, means))
 }
 
 fn shape(src: &Source, f: &FieldSpec, i: usize) -> Result<KernelShape, StudyError> {
@@ -657,6 +634,13 @@ fn domain_mesh(
         };
     match domain {
         FieldDomain::Interface(k) => {
+            if let Some(g) = &f.grid {
+                return Err(src.error(
+                    g.span(),
+                    key("grid"),
+                    "grid is for a field over a substructure's cells; a field along an interface lives on its facets",
+                ));
+            }
             let side = &file.interface[k].side1;
             let [sub, group] = side.get_ref();
             let side_err = |m: String| src.error(side.span(), format!("interface[{k}].side1"), m);
@@ -676,8 +660,23 @@ fn domain_mesh(
             let span = f.substructure.as_ref().map_or(f.name.span(), |s| s.span());
             let err = |m: String| src.error(span.clone(), key("substructure"), m);
             let sm = sub_mesh(s, &err)?;
-            let (fmesh, means) = cell_mesh(&sm).map_err(err)?;
-            let place = format!("over the cells of substructure '{}'", s.name.get_ref());
+            let (fmesh, means) = match &f.grid {
+                None => crate::cell_field::on_corners(&sm).map_err(err)?,
+                Some(g) => crate::cell_field::on_grid(&sm, g.get_ref())
+                    .map_err(|m| src.error(g.span(), key("grid"), m))?,
+            };
+            let place = match &f.grid {
+                None => format!("over the cells of substructure '{}'", s.name.get_ref()),
+                Some(g) => format!(
+                    "over the cells of substructure '{}' (on a {} grid)",
+                    s.name.get_ref(),
+                    g.get_ref()
+                        .iter()
+                        .map(|n| n.to_string())
+                        .collect::<Vec<_>>()
+                        .join(" x ")
+                ),
+            };
             Ok((fmesh, means, place))
         }
     }

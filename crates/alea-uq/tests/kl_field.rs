@@ -477,3 +477,100 @@ fn expansion_does_not_depend_on_the_thread_count() {
         assert_eq!(one.mode(k), two.mode(k));
     }
 }
+
+/// The unit cube split into `n^3` boxes of 6 tetrahedra each (Kuhn's split along each box's
+/// main diagonal).
+fn cube_tetrahedra(n: usize) -> FieldMesh {
+    let id = |i: usize, j: usize, k: usize| (k * (n + 1) + j) * (n + 1) + i;
+    let mut nodes = Vec::new();
+    for k in 0..=n {
+        for j in 0..=n {
+            for i in 0..=n {
+                nodes.push([
+                    i as f64 / n as f64,
+                    j as f64 / n as f64,
+                    k as f64 / n as f64,
+                ]);
+            }
+        }
+    }
+    let mut tets = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let c = |di: usize, dj: usize, dk: usize| id(i + di, j + dj, k + dk);
+                // Paths from (0,0,0) to (1,1,1) one axis at a time: the 6 Kuhn tetrahedra.
+                for order in [
+                    [0, 1, 2],
+                    [0, 2, 1],
+                    [1, 0, 2],
+                    [1, 2, 0],
+                    [2, 0, 1],
+                    [2, 1, 0],
+                ] {
+                    let mut d = [0usize; 3];
+                    let mut t = [c(0, 0, 0); 4];
+                    for (s, &axis) in order.iter().enumerate() {
+                        d[axis] = 1;
+                        t[s + 1] = c(d[0], d[1], d[2]);
+                    }
+                    tets.push(t);
+                }
+            }
+        }
+    }
+    FieldMesh::new(nodes, FieldCells::Tetrahedra(tets)).unwrap()
+}
+
+/// Tetrahedra: the squared-exponential kernel is separable, `k(x, y) = prod_d k1(x_d, y_d)`, so
+/// its KL on the unit cube has the eigenvalues `lambda_i lambda_j lambda_k` of the 1D kernel on
+/// `[0, 1]` (here from a 400-cell 1D Galerkin KL, itself `O(h^4)`-accurate). The tetrahedral
+/// Galerkin KL converges to them (error falling at least 8x per halving of h: measured 9.7e-3
+/// and 3.9e-4 over the 8 largest at 3 and 6 boxes per side), the mesh has
+/// volume 1, the modes are mass-orthonormal and the trace of `C` is `sigma^2 |D|`.
+#[test]
+fn tetrahedra_match_the_separable_product_of_1d_eigenvalues() {
+    let len = 0.5;
+    let cov = Covariance::new(KernelShape::SquaredExponential, 1.0, len).unwrap();
+    let line = FieldMesh::interval(0.0, 1.0, 400).unwrap();
+    let l1 = KlExpansion::galerkin(&line, &cov, Truncation::Modes(4)).unwrap();
+    let e1 = l1.eigenvalues();
+    let mut exact: Vec<f64> = Vec::new();
+    for a in 0..4 {
+        for b in 0..4 {
+            for c in 0..4 {
+                exact.push(e1[a] * e1[b] * e1[c]);
+            }
+        }
+    }
+    exact.sort_by(|x, y| y.total_cmp(x));
+    let compare = 8;
+    let mut errors = Vec::new();
+    for n in [3, 6] {
+        let mesh = cube_tetrahedra(n);
+        assert!((mesh.measure() - 1.0).abs() < 1e-12);
+        let kl = KlExpansion::galerkin(&mesh, &cov, Truncation::Modes(compare)).unwrap();
+        let err = kl
+            .eigenvalues()
+            .iter()
+            .zip(&exact)
+            .map(|(l, e)| ((l - e) / e).abs())
+            .fold(0.0f64, f64::max);
+        eprintln!(
+            "tetrahedra n = {n}: {} nodes, max relative eigenvalue error over {compare} modes {err:e}",
+            mesh.num_nodes()
+        );
+        // Mass-orthonormal modes.
+        for i in 0..3 {
+            for j in 0..3 {
+                let g = mesh.l2_product(kl.mode(i), kl.mode(j));
+                let want = if i == j { 1.0 } else { 0.0 };
+                assert!((g - want).abs() < 1e-9, "({i}, {j}): {g}");
+            }
+        }
+        assert!((kl.total_variance() - 1.0).abs() < 1e-12);
+        errors.push(err);
+    }
+    assert!(errors[1] < 1e-3, "{errors:?}");
+    assert!(errors[1] < errors[0] / 8.0, "{errors:?}");
+}

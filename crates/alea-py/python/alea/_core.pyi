@@ -96,7 +96,7 @@ class KarhunenLoeve:
     Karhunen-Loeve expansion of a stationary Gaussian field on a P1 mesh.
 
     `nodes`: `(n, d)` coordinates (`d` = 1 to 3, or a 1-D array of abscissae); `cells`: lists of
-    2 node indices (segments, e.g. along a contact line) or 3 (triangles); `kernel`:
+    2 node indices (segments, e.g. along a contact line), 3 (triangles) or 4 (tetrahedra); `kernel`:
     `"exponential"`, `"squared-exponential"`, `"matern32"` or `"matern52"`; `variance` (sigma^2)
     and `length` (one correlation length, or one per coordinate). Exactly one of
     `variance_fraction` (keep the fewest modes whose eigenvalues reach this fraction of

@@ -71,10 +71,10 @@ pub struct KlExpansion {
 struct CellPoints {
     x: Vec<[f64; 3]>,
     w: Vec<f64>,
-    shape: Vec<[f64; 3]>,
+    shape: Vec<[f64; 4]>,
 }
 
-fn physical(mesh: &FieldMesh, c: usize, bary: &[[f64; 3]], w: &[f64]) -> CellPoints {
+fn physical(mesh: &FieldMesh, c: usize, bary: &[[f64; 4]], w: &[f64]) -> CellPoints {
     let cell = mesh.cell(c);
     let nodes = mesh.nodes();
     let mut x = Vec::with_capacity(bary.len());
@@ -95,10 +95,10 @@ fn physical(mesh: &FieldMesh, c: usize, bary: &[[f64; 3]], w: &[f64]) -> CellPoi
 }
 
 /// `int_e int_f k(x, y) phi_a(x) phi_b(y)` with tensor quadrature on `(p, q)`.
-fn pair_block(cov: &Covariance, p: &CellPoints, q: &CellPoints, nv: usize) -> [[f64; 3]; 3] {
-    let mut blk = [[0.0; 3]; 3];
+fn pair_block(cov: &Covariance, p: &CellPoints, q: &CellPoints, nv: usize) -> [[f64; 4]; 4] {
+    let mut blk = [[0.0; 4]; 4];
     for (ip, xp) in p.x.iter().enumerate() {
-        let mut row = [0.0; 3];
+        let mut row = [0.0; 4];
         for (iq, yq) in q.x.iter().enumerate() {
             let kw = cov.eval(xp, yq) * q.w[iq];
             for (b, r) in row.iter_mut().enumerate().take(nv) {
@@ -117,7 +117,7 @@ fn pair_block(cov: &Covariance, p: &CellPoints, q: &CellPoints, nv: usize) -> [[
 
 /// The diagonal block of a segment: the unit square split along `s = t`, each triangle mapped
 /// from `(u, v)` in `[0, 1]^2` by `s = u, t = u v` (and symmetrically), Jacobian `u`.
-fn segment_self_block(cov: &Covariance, mesh: &FieldMesh, c: usize, n: usize) -> [[f64; 3]; 3] {
+fn segment_self_block(cov: &Covariance, mesh: &FieldMesh, c: usize, n: usize) -> [[f64; 4]; 4] {
     let cell = mesh.cell(c);
     let (x0, x1) = (mesh.nodes()[cell[0]], mesh.nodes()[cell[1]]);
     let at = |s: f64| {
@@ -129,7 +129,7 @@ fn segment_self_block(cov: &Covariance, mesh: &FieldMesh, c: usize, n: usize) ->
     };
     let h2 = mesh.cell_measure(c).powi(2);
     let (g, gw) = gauss_legendre01(n);
-    let mut blk = [[0.0; 3]; 3];
+    let mut blk = [[0.0; 4]; 4];
     for (iu, &u) in g.iter().enumerate() {
         for (iv, &v) in g.iter().enumerate() {
             let w = gw[iu] * gw[iv] * u * h2;
@@ -172,13 +172,18 @@ fn assemble_by_quadrature(mesh: &FieldMesh, cov: &Covariance) -> Mat<f64> {
             Some(CellRule::triangle_subdivided()),
             false,
         ),
+        FieldCells::Tetrahedra(_) => (
+            CellRule::tetrahedron(),
+            Some(CellRule::tetrahedron_subdivided()),
+            false,
+        ),
     };
-    let nv = if segments { 2 } else { 3 };
+    let nv = mesh.cell(0).len();
     let points: Vec<CellPoints> = (0..nc)
         .map(|c| physical(mesh, c, &rule.bary, &rule.weights))
         .collect();
     // Blocks (c, d) for d >= c, computed in parallel, assembled in a fixed order.
-    let blocks: Vec<Vec<[[f64; 3]; 3]>> = (0..nc)
+    let blocks: Vec<Vec<[[f64; 4]; 4]>> = (0..nc)
         .into_par_iter()
         .map(|c| {
             (c..nc)
@@ -190,7 +195,7 @@ fn assemble_by_quadrature(mesh: &FieldMesh, cov: &Covariance) -> Mat<f64> {
                     } else {
                         let r = self_rule
                             .as_ref()
-                            .expect("triangle meshes have a self rule");
+                            .expect("triangle and tetrahedron meshes have a self rule");
                         let p = physical(mesh, c, &r.bary, &r.weights);
                         pair_block(cov, &p, &p, nv)
                     }

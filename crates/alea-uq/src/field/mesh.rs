@@ -1,9 +1,12 @@
-//! The mesh a random field lives on: nodes and P1 cells (segments along a line, or triangles),
-//! with the quadrature rules used by the Galerkin Karhunen-Loeve discretisation.
+//! The mesh a random field lives on: nodes and P1 cells (segments along a line, triangles, or
+//! tetrahedra), with the quadrature rules used by the Galerkin Karhunen-Loeve discretisation.
 //!
 //! A P1 function is `u(x) = sum_i u_i phi_i(x)` with `phi_i` the hat function of node `i`. On a
-//! cell of measure `|e|` the local mass matrix is `|e| / 6 [[2, 1], [1, 2]]` for a segment and
-//! `|e| / 12 (1 + delta_ab)` for a triangle.
+//! simplex of `k` nodes and measure `|e|` the local mass matrix is `|e| (1 + delta_ab) / (k (k +
+//! 1))`: `|e| / 6 [[2, 1], [1, 2]]` for a segment, `|e| / 12 (1 + delta_ab)` for a triangle,
+//! `|e| / 20 (1 + delta_ab)` for a tetrahedron. The Galerkin KL needs only `L2` products, so
+//! the hat functions need not be continuous across cells (a hexahedron split into tetrahedra
+//! without matching its neighbours' diagonals is still a valid space).
 
 use crate::error::{Result, UqError};
 
@@ -14,6 +17,8 @@ pub enum FieldCells {
     Segments(Vec<[usize; 2]>),
     /// Three-node triangles (a surface in the plane or in space).
     Triangles(Vec<[usize; 3]>),
+    /// Four-node tetrahedra (a volume).
+    Tetrahedra(Vec<[usize; 4]>),
 }
 
 /// Nodes and P1 cells; every node belongs to at least one cell and no cell is degenerate.
@@ -27,8 +32,8 @@ pub struct FieldMesh {
 /// Points of a quadrature rule on the reference cell: barycentric coordinates and weights
 /// summing to 1 (the weight of a point in a physical cell is `w |e|`).
 pub(crate) struct CellRule {
-    /// Barycentric coordinates (3 entries; the third is 0 for segments).
-    pub(crate) bary: Vec<[f64; 3]>,
+    /// Barycentric coordinates (4 entries; the unused ones 0 for segments and triangles).
+    pub(crate) bary: Vec<[f64; 4]>,
     /// Weights (sum 1).
     pub(crate) weights: Vec<f64>,
 }
@@ -87,7 +92,7 @@ impl CellRule {
     pub(crate) fn segment(n: usize) -> Self {
         let (x, w) = gauss_legendre01(n);
         Self {
-            bary: x.iter().map(|&t| [1.0 - t, t, 0.0]).collect(),
+            bary: x.iter().map(|&t| [1.0 - t, t, 0.0, 0.0]).collect(),
             weights: w,
         }
     }
@@ -106,12 +111,12 @@ impl CellRule {
         );
         Self {
             bary: vec![
-                [a1, a1, b1],
-                [a1, b1, a1],
-                [b1, a1, a1],
-                [a2, a2, b2],
-                [a2, b2, a2],
-                [b2, a2, a2],
+                [a1, a1, b1, 0.0],
+                [a1, b1, a1, 0.0],
+                [b1, a1, a1, 0.0],
+                [a2, a2, b2, 0.0],
+                [a2, b2, a2, 0.0],
+                [b2, a2, a2, 0.0],
             ],
             weights: vec![w1, w1, w1, w2, w2, w2],
         }
@@ -120,39 +125,87 @@ impl CellRule {
     /// The same rule applied on the 4 sub-triangles of the midpoint subdivision (used on the
     /// diagonal cell pairs, where the kernel has a kink).
     pub(crate) fn triangle_subdivided() -> Self {
-        let base = Self::triangle();
-        // Sub-triangles in barycentric coordinates of the parent.
-        let m = |a: [f64; 3], b: [f64; 3]| {
-            [
-                0.5 * (a[0] + b[0]),
-                0.5 * (a[1] + b[1]),
-                0.5 * (a[2] + b[2]),
-            ]
-        };
-        let (v0, v1, v2) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
-        let (m01, m12, m20) = (m(v0, v1), m(v1, v2), m(v2, v0));
+        let (v0, v1, v2) = (
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+        );
+        let (m01, m12, m20) = (mid(v0, v1), mid(v1, v2), mid(v2, v0));
         let subs = [
-            [v0, m01, m20],
-            [m01, v1, m12],
-            [m20, m12, v2],
-            [m12, m20, m01],
+            vec![v0, m01, m20],
+            vec![m01, v1, m12],
+            vec![m20, m12, v2],
+            vec![m12, m20, m01],
         ];
+        Self::triangle().on_subcells(&subs)
+    }
+
+    /// Keast's 4-point rule on a tetrahedron (exact to degree 2; points at `a = (5 + 3
+    /// sqrt 5) / 20` and `b = (5 - sqrt 5) / 20`, weights 1/4).
+    pub(crate) fn tetrahedron() -> Self {
+        let a = 0.585_410_196_624_968_5;
+        let b = 0.138_196_601_125_010_5;
+        Self {
+            bary: vec![[a, b, b, b], [b, a, b, b], [b, b, a, b], [b, b, b, a]],
+            weights: vec![0.25; 4],
+        }
+    }
+
+    /// The 4-point rule on the 8 sub-tetrahedra of the midpoint subdivision (the 4 corner
+    /// tetrahedra and the inner octahedron split along the diagonal `m02 - m13`; all 8 of
+    /// volume 1/8): the diagonal cell pairs.
+    pub(crate) fn tetrahedron_subdivided() -> Self {
+        let v: Vec<[f64; 4]> = (0..4)
+            .map(|i| {
+                let mut e = [0.0; 4];
+                e[i] = 1.0;
+                e
+            })
+            .collect();
+        let m = |i: usize, j: usize| mid(v[i], v[j]);
+        let subs = [
+            vec![v[0], m(0, 1), m(0, 2), m(0, 3)],
+            vec![m(0, 1), v[1], m(1, 2), m(1, 3)],
+            vec![m(0, 2), m(1, 2), v[2], m(2, 3)],
+            vec![m(0, 3), m(1, 3), m(2, 3), v[3]],
+            vec![m(0, 2), m(1, 3), m(0, 1), m(1, 2)],
+            vec![m(0, 2), m(1, 3), m(1, 2), m(2, 3)],
+            vec![m(0, 2), m(1, 3), m(2, 3), m(0, 3)],
+            vec![m(0, 2), m(1, 3), m(0, 3), m(0, 1)],
+        ];
+        Self::tetrahedron().on_subcells(&subs)
+    }
+
+    /// This rule applied on each of `subs` (sub-simplices of equal measure given by the
+    /// barycentric coordinates of their corners in the parent).
+    fn on_subcells(&self, subs: &[Vec<[f64; 4]>]) -> Self {
+        let share = 1.0 / subs.len() as f64;
         let mut bary = Vec::new();
         let mut weights = Vec::new();
-        for s in &subs {
-            for (b, w) in base.bary.iter().zip(&base.weights) {
-                let mut p = [0.0; 3];
+        for s in subs {
+            for (b, w) in self.bary.iter().zip(&self.weights) {
+                let mut p = [0.0; 4];
                 for (k, corner) in s.iter().enumerate() {
-                    for d in 0..3 {
+                    for d in 0..4 {
                         p[d] += b[k] * corner[d];
                     }
                 }
                 bary.push(p);
-                weights.push(0.25 * w);
+                weights.push(share * w);
             }
         }
         Self { bary, weights }
     }
+}
+
+/// Midpoint of two barycentric points.
+fn mid(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    [
+        0.5 * (a[0] + b[0]),
+        0.5 * (a[1] + b[1]),
+        0.5 * (a[2] + b[2]),
+        0.5 * (a[3] + b[3]),
+    ]
 }
 
 impl FieldMesh {
@@ -176,6 +229,7 @@ impl FieldMesh {
         let conn: Vec<&[usize]> = match &cells {
             FieldCells::Segments(s) => s.iter().map(|c| &c[..]).collect(),
             FieldCells::Triangles(t) => t.iter().map(|c| &c[..]).collect(),
+            FieldCells::Tetrahedra(t) => t.iter().map(|c| &c[..]).collect(),
         };
         if conn.is_empty() {
             return Err(bad("no cells".into()));
@@ -257,15 +311,16 @@ impl FieldMesh {
         match &self.cells {
             FieldCells::Segments(s) => &s[c],
             FieldCells::Triangles(t) => &t[c],
+            FieldCells::Tetrahedra(t) => &t[c],
         }
     }
 
-    /// Length (segments) or area (triangles) of cell `c`.
+    /// Length (segments), area (triangles) or volume (tetrahedra) of cell `c`.
     pub fn cell_measure(&self, c: usize) -> f64 {
         self.measures[c]
     }
 
-    /// Total length or area of the mesh.
+    /// Total length, area or volume of the mesh.
     pub fn measure(&self) -> f64 {
         self.measures.iter().sum()
     }
@@ -276,12 +331,9 @@ impl FieldMesh {
         let mut m = vec![0.0; n * n];
         for c in 0..self.num_cells() {
             let cell = self.cell(c);
-            let k = cell.len();
-            let (diag, off) = if k == 2 {
-                (2.0 / 6.0, 1.0 / 6.0)
-            } else {
-                (2.0 / 12.0, 1.0 / 12.0)
-            };
+            let k = cell.len() as f64;
+            let off = 1.0 / (k * (k + 1.0));
+            let diag = 2.0 * off;
             for (a, &i) in cell.iter().enumerate() {
                 for (b, &j) in cell.iter().enumerate() {
                     m[i * n + j] += self.measures[c] * if a == b { diag } else { off };
@@ -320,6 +372,11 @@ fn cell_measure(nodes: &[[f64; 3]], cell: &[usize]) -> f64 {
     if cell.len() == 2 {
         let e = d(0, 1);
         (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt()
+    } else if cell.len() == 4 {
+        let (e1, e2, e3) = (d(0, 1), d(0, 2), d(0, 3));
+        let det = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0])
+            + e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
+        det.abs() / 6.0
     } else {
         let (e1, e2) = (d(0, 1), d(0, 2));
         let c = [
