@@ -181,7 +181,7 @@ pub(crate) fn grid_nodes(counts: &[usize]) -> usize {
 /// The field on a grid of `counts` boxes over `mesh`'s bounding box (module doc).
 pub(crate) fn on_grid(mesh: &Mesh, counts: &[usize]) -> Result<CellField, String> {
     let dim = mesh.dim;
-    if counts.len() != dim || counts.iter().any(|&n| n == 0) {
+    if counts.len() != dim || counts.contains(&0) {
         return Err(format!(
             "a {dim}D substructure needs {dim} box counts >= 1, got {counts:?}"
         ));
