@@ -73,7 +73,8 @@ pub enum FactorKind {
 /// A symbolic + numeric sparse Cholesky factorisation.
 pub struct Cholesky {
     n: usize,
-    symbolic: SymbolicCholesky<usize>,
+    /// Shared by the factorisations of the same pattern ([`Cholesky::same_pattern`]).
+    symbolic: std::sync::Arc<SymbolicCholesky<usize>>,
     l_values: Vec<f64>,
     factorized: bool,
     stack: MemBuffer,
@@ -214,12 +215,30 @@ impl Cholesky {
             .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
         Ok(Cholesky {
             n,
-            symbolic,
+            symbolic: std::sync::Arc::new(symbolic),
             l_values,
             factorized: false,
             stack: MemBuffer::new(req),
             rows: Vec::new(),
         })
+    }
+
+    /// A factorisation with this one's ordering and symbolic analysis, not yet factorised: for
+    /// a matrix of the same pattern with other values ([`Cholesky::factorize`]), without
+    /// ordering it again.
+    pub fn same_pattern(&self) -> Cholesky {
+        let req = self
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+            .or(self.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        Cholesky {
+            n: self.n,
+            symbolic: self.symbolic.clone(),
+            l_values: vec![0.0; self.l_values.len()],
+            factorized: false,
+            stack: MemBuffer::new(req),
+            rows: Vec::new(),
+        }
     }
 
     /// Order of the matrix.

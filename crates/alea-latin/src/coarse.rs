@@ -88,6 +88,7 @@ use alea_mesh::vec3;
 type V3 = [f64; 3];
 
 /// The macro basis of one interface.
+#[derive(Clone)]
 pub(crate) struct InterfaceModes {
     /// First index of its unknowns in the macro vector.
     pub offset: usize,
@@ -194,6 +195,7 @@ impl InterfaceModes {
 pub(crate) const RIGID_SHARE: f64 = 0.5;
 
 /// The response of one substructure to one macro unknown of one of its interfaces.
+#[derive(Clone)]
 pub(crate) struct MacroColumn {
     /// Index in the macro vector.
     pub index: usize,
@@ -218,6 +220,7 @@ pub(crate) struct MacroLink<'a> {
 
 /// The coarse-problem data of one substructure: its columns and its block of `L` at
 /// `alpha = 1` (triplets `(row, column, value)` in the macro numbering).
+#[derive(Clone)]
 pub(crate) struct SubMacro {
     pub columns: Vec<MacroColumn>,
     pub l0: Vec<(usize, usize, f64)>,

@@ -4,9 +4,10 @@
 //! `E_c = alpha f_c E0_c` cell by cell the stiffness is no multiple of the reference, so such a
 //! run gets its own operators: for every substructure with cell factors,
 //! `A0 = T^T (K(f E0) + sum k0 Pi^T M_Gamma Pi) T` assembled and factorised again (same dof map,
-//! links, search direction `k0` and ordering; the search direction is a free parameter of the
-//! iteration, its solution does not depend on it), the other substructures' factorisations
-//! shared with the set-up, and the coarse problem's substructure responses recomputed
+//! links, search direction `k0` and the set-up's ordering and symbolic analysis - the pattern
+//! is the same; the search direction is a free parameter of the iteration, its solution does
+//! not depend on it), the other substructures' factorisations shared with the set-up, and the
+//! coarse problem's responses of the changed substructures recomputed
 //! ([`LatinSolver::with_cell_young`]). Pairings and interface data are the set-up's.
 //!
 //! The run then proceeds as any other on that solver, warm-started as asked (the explicit
@@ -16,7 +17,7 @@
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use super::setup::{build_coarse, fem_err, operator_matrix};
+use super::setup::{coarse_with, fem_err, operator_matrix};
 use super::{LatinSolver, RunInput, StoredRun, SubOperator};
 use crate::{LatinError, RunResult};
 
@@ -42,6 +43,7 @@ impl LatinSolver {
             )));
         }
         let mut subs = self.subs.clone();
+        let mut changed = vec![false; subs.len()];
         for (s, factors) in cell_young.iter().enumerate() {
             let Some(factors) = factors.as_ref().filter(|f| !f.is_empty()) else {
                 continue;
@@ -52,10 +54,10 @@ impl LatinSolver {
                 .scale_young_per_cell(factors)
                 .map_err(fem_err(&op.name))?;
             let (a0, r_presc) = operator_matrix(&op.name, &model, &op.dofs, &op.links)?;
-            let mut chol =
-                alea_fem::Cholesky::new(&a0, self.options.ordering, Some(&op.dofs.node_of_dof()))
-                    .map_err(fem_err(&op.name))?;
+            // Same mesh, dofs and links: the pattern of the set-up's operator.
+            let mut chol = op.chol.same_pattern();
             chol.factorize(&a0).map_err(fem_err(&op.name))?;
+            changed[s] = true;
             subs[s] = Arc::new(SubOperator {
                 name: op.name.clone(),
                 model,
@@ -68,7 +70,10 @@ impl LatinSolver {
             });
         }
         let ifaces = self.ifaces.clone();
-        let coarse = self.coarse.as_ref().map(|_| build_coarse(&subs, &ifaces));
+        let coarse = self
+            .coarse
+            .as_ref()
+            .map(|c| coarse_with(&subs, &ifaces, Some((c, &changed))));
         let store = self.store.lock().map_or_else(
             |_| Vec::new(),
             |s| {

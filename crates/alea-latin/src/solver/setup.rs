@@ -260,6 +260,16 @@ fn interface_operator(
 /// The macro space of the coarse problem (interface resultants and moments, module `coarse`)
 /// and every substructure's responses to it.
 pub(super) fn build_coarse(ops: &[Arc<SubOperator>], ifaces: &[InterfaceOperator]) -> Coarse {
+    coarse_with(ops, ifaces, None)
+}
+
+/// [`build_coarse`] keeping the substructure responses of `previous` where `changed` is false
+/// (the same macro space: same interfaces).
+pub(super) fn coarse_with(
+    ops: &[Arc<SubOperator>],
+    ifaces: &[InterfaceOperator],
+    previous: Option<(&Coarse, &[bool])>,
+) -> Coarse {
     let dim = ops.first().map_or(2, |o| o.model.mesh.dim);
     let mut offset = 0;
     let modes: Vec<InterfaceModes> = ifaces
@@ -272,7 +282,13 @@ pub(super) fn build_coarse(ops: &[Arc<SubOperator>], ifaces: &[InterfaceOperator
         .collect();
     let subs: Vec<SubMacro> = ops
         .par_iter()
-        .map(|op| {
+        .enumerate()
+        .map(|(s, op)| {
+            if let Some((prev, changed)) = previous
+                && !changed[s]
+            {
+                return prev.subs[s].clone();
+            }
             let links: Vec<MacroLink<'_>> = op
                 .links
                 .iter()
