@@ -79,6 +79,24 @@ def test_triangles_and_anisotropic_lengths():
     assert np.all(np.diff(kl.eigenvalues) <= 0)
 
 
+def test_tetrahedra_of_a_cube():
+    # The unit cube in 6 Kuhn tetrahedra (paths from (0,0,0) to (1,1,1) one axis at a time).
+    nodes = np.array([[i & 1, (i >> 1) & 1, (i >> 2) & 1] for i in range(8)], dtype=float)
+    tets = []
+    for order in ([0, 1, 2], [0, 2, 1], [1, 0, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0]):
+        mask, t = 0, [0]
+        for axis in order:
+            mask |= 1 << axis
+            t.append(mask)
+        tets.append(t)
+    kl = alea.KarhunenLoeve(nodes, tets, "squared-exponential", 1.0, 5.0, modes=2)
+    assert kl.modes.shape == (2, 8)
+    # A nearly constant kernel on a unit volume: the first eigenvalue holds almost all of the
+    # variance sigma^2 |D| = 1.
+    assert abs(kl.total_variance - 1.0) < 1e-12
+    assert 0.95 < kl.eigenvalues[0] <= 1.0
+
+
 @pytest.mark.parametrize(
     "kwargs, message",
     [
