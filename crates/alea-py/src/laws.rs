@@ -618,8 +618,6 @@ pub struct LawArg {
     pub joint: Arc<dyn JointLaw>,
     /// Its marginals when the variables are independent.
     pub independent: Option<Vec<Arc<dyn Marginal>>>,
-    /// Its marginals (whatever the dependence).
-    pub marginals: Vec<Arc<dyn Marginal>>,
 }
 
 /// Reads a law argument (see [`LawArg`]).
@@ -629,15 +627,13 @@ pub fn law_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<LawArg> {
         return Ok(LawArg {
             joint: j.inner.clone(),
             independent: (j.kind == "independent").then(|| j.marginals.clone()),
-            marginals: j.marginals.clone(),
         });
     }
     if let Ok(l) = obj.cast::<Law>() {
         let m = vec![l.get().inner.clone()];
         return Ok(LawArg {
             joint: Arc::new(Independent::new(m.clone()).map_err(uq_err)?),
-            independent: Some(m.clone()),
-            marginals: m,
+            independent: Some(m),
         });
     }
     if obj.try_iter().is_ok() {
@@ -645,8 +641,7 @@ pub fn law_arg(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<LawArg> {
             .map_err(|e| PyTypeError::new_err(format!("{what}: {}", e.value(obj.py()))))?;
         return Ok(LawArg {
             joint: Arc::new(Independent::new(m.clone()).map_err(uq_err)?),
-            independent: Some(m.clone()),
-            marginals: m,
+            independent: Some(m),
         });
     }
     Err(PyTypeError::new_err(format!(

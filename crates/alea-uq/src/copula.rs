@@ -29,7 +29,9 @@
 use crate::error::{Result, UqError, check_len, invalid};
 use crate::joint::JointLaw;
 use crate::law::Marginal;
-use crate::special::{ln_gamma, ln_student_pdf, safeguarded_newton, student_cdf, student_quantile};
+use crate::special::{
+    ln_gamma, ln_student_pdf, norm_cdf, safeguarded_newton, student_cdf, student_quantile,
+};
 use std::sync::Arc;
 
 /// Clamp a probability away from 0 and 1 (the copula formulas take logarithms and powers).
@@ -100,6 +102,19 @@ impl StudentCopula {
     }
 }
 
+/// The marginal's quantile at `u` (clamped to `[0, 1]`); where a conditional inversion rounds
+/// `u` to 0 or 1 and the law is unbounded there, the quantile at `Phi(-+Z_TAIL)` instead
+/// (probability 1.2e-16 beyond: [`crate::law::Marginal::quantile_of_normal`]), so that a draw
+/// or a point of the standard normal space never maps to an infinite coordinate.
+fn finite_quantile(m: &dyn Marginal, u: f64) -> f64 {
+    let x = m.quantile(u.clamp(0.0, 1.0));
+    if x.is_finite() || u.is_nan() {
+        return x;
+    }
+    let t = crate::law::Z_TAIL;
+    m.quantile(u.clamp(norm_cdf(-t), norm_cdf(t)))
+}
+
 impl JointLaw for StudentCopula {
     fn dim(&self) -> usize {
         self.marginals.len()
@@ -148,7 +163,7 @@ impl JointLaw for StudentCopula {
                 * ((self.nu + q) / (self.nu + kf)).sqrt();
             q += w[k] * w[k];
             let z: f64 = (0..=k).map(|j| self.chol[k * d + j] * w[j]).sum();
-            x[k] = self.marginals[k].quantile(student_cdf(z, self.nu));
+            x[k] = finite_quantile(self.marginals[k].as_ref(), student_cdf(z, self.nu));
         }
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
@@ -250,7 +265,7 @@ impl JointLaw for ClaytonCopula {
                 (s_prev * (vk.powf(e) - 1.0) + 1.0).powf(-1.0 / t)
             };
             s_prev += clamp01(u).powf(-t) - 1.0;
-            x[k] = self.marginals[k].quantile(u.clamp(0.0, 1.0));
+            x[k] = finite_quantile(self.marginals[k].as_ref(), u);
         }
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
@@ -327,8 +342,8 @@ impl JointLaw for GumbelCopula {
             |v| self.h(u, clamp01(v)),
             |v| self.density(u, clamp01(v)),
         );
-        x[0] = self.marginals[0].quantile(u);
-        x[1] = self.marginals[1].quantile(v.clamp(0.0, 1.0));
+        x[0] = finite_quantile(self.marginals[0].as_ref(), u);
+        x[1] = finite_quantile(self.marginals[1].as_ref(), v);
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         bounds(&self.marginals)
@@ -393,8 +408,8 @@ impl JointLaw for FrankCopula {
         let (u, p) = (w[0].clamp(0.0, 1.0), w[1].clamp(0.0, 1.0));
         let eu = (-t * u).exp();
         let v = -(p * (-t).exp_m1() / (p + (1.0 - p) * eu)).ln_1p() / t;
-        x[0] = self.marginals[0].quantile(u);
-        x[1] = self.marginals[1].quantile(v.clamp(0.0, 1.0));
+        x[0] = finite_quantile(self.marginals[0].as_ref(), u);
+        x[1] = finite_quantile(self.marginals[1].as_ref(), v);
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
         bounds(&self.marginals)

@@ -45,9 +45,14 @@ pub trait JointLaw: Send + Sync + std::fmt::Debug {
             *v = norm_quantile(*v);
         }
     }
-    /// Inverse of [`JointLaw::x_to_standard_normal`].
+    /// Inverse of [`JointLaw::x_to_standard_normal`]. By default `u_i = Phi(y_i)` through
+    /// [`JointLaw::unit_to_x`], with `y_i` at most [`crate::law::Z_TAIL`] so that `u_i < 1`
+    /// (beyond it `Phi` rounds to 1 and a law unbounded above would give an infinite `x`).
     fn standard_normal_to_x(&self, y: &[f64], x: &mut [f64]) {
-        let u: Vec<f64> = y.iter().map(|&v| norm_cdf(v)).collect();
+        let u: Vec<f64> = y
+            .iter()
+            .map(|&v| norm_cdf(v.min(crate::law::Z_TAIL)))
+            .collect();
         self.unit_to_x(&u, x);
     }
     /// Smallest box containing the support (bounds may be infinite).
@@ -126,6 +131,11 @@ impl JointLaw for Independent {
     fn unit_to_x(&self, u: &[f64], x: &mut [f64]) {
         for ((m, &v), o) in self.marginals.iter().zip(u).zip(x) {
             *o = m.quantile(v);
+        }
+    }
+    fn standard_normal_to_x(&self, y: &[f64], x: &mut [f64]) {
+        for ((m, &v), o) in self.marginals.iter().zip(y).zip(x) {
+            *o = m.quantile_of_normal(v);
         }
     }
     fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
@@ -253,7 +263,7 @@ impl JointLaw for GaussianCopula {
         let d = self.dim();
         for i in 0..d {
             let z: f64 = (0..=i).map(|k| self.chol[i * d + k] * y[k]).sum();
-            x[i] = self.marginals[i].quantile(norm_cdf(z));
+            x[i] = self.marginals[i].quantile_of_normal(z);
         }
     }
 

@@ -66,6 +66,9 @@ impl Marginal for LogNormal {
             norm_sf((x.ln() - self.mu) / self.sigma)
         }
     }
+    fn quantile_of_normal(&self, z: f64) -> f64 {
+        (self.mu + self.sigma * z).exp()
+    }
     fn quantile(&self, p: f64) -> f64 {
         (self.mu + self.sigma * norm_quantile(p)).exp()
     }

@@ -81,6 +81,10 @@ pub enum PolyFamily {
     },
 }
 
+/// Where the standard normal variable's map to a law saturates when `Phi` rounds to 0 or 1
+/// ([`Marginal::quantile_of_normal`]): `Phi(8.2) = 1 - 1.2e-16`.
+pub const Z_TAIL: f64 = 8.2;
+
 /// A one-dimensional probability law.
 pub trait Marginal: Send + Sync + std::fmt::Debug {
     /// Short name used in messages, e.g. `"truncated normal"`.
@@ -100,6 +104,19 @@ pub trait Marginal: Send + Sync + std::fmt::Debug {
     /// Survival function `P(X > x)`; override where `1 - cdf` loses accuracy.
     fn sf(&self, x: f64) -> f64 {
         1.0 - self.cdf(x)
+    }
+    /// The quantile at `Phi(z)`: the map of a standard normal variable `z` to this law
+    /// (`F^-1(Phi(z))`, the isoprobabilistic transform of FORM, SORM and importance sampling).
+    /// Beyond `z = 8.29`, `Phi(z)` rounds to 1 and the quantile of a law unbounded above would
+    /// be infinite: there it saturates at the quantile of `Phi(+-Z_TAIL)` ([`Z_TAIL`] = 8.2,
+    /// probability 1.2e-16 beyond), so the transform is finite and non-decreasing everywhere.
+    /// The normal and lognormal laws override it with their exact maps.
+    fn quantile_of_normal(&self, z: f64) -> f64 {
+        let x = self.quantile(crate::special::norm_cdf(z));
+        if x.is_finite() || z.is_nan() {
+            return x;
+        }
+        self.quantile(crate::special::norm_cdf(z.clamp(-Z_TAIL, Z_TAIL)))
     }
     /// Probability of `[a, b]`.
     fn interval_probability(&self, a: f64, b: f64) -> f64 {

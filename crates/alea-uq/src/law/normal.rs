@@ -49,6 +49,9 @@ impl Marginal for Normal {
     fn quantile(&self, p: f64) -> f64 {
         self.mean + self.std * norm_quantile(p)
     }
+    fn quantile_of_normal(&self, z: f64) -> f64 {
+        self.mean + self.std * z
+    }
     fn mean(&self) -> f64 {
         self.mean
     }
