@@ -46,6 +46,7 @@ def test_fields_are_the_galerkin_kl_of_their_kernel_on_their_mesh(study):
     res, _ = study
     assert [f.name for f in res.fields] == ["MU_G1", "MU_G2"]
     assert [f.interface for f in res.fields] == ["G1", "G2"]
+    assert [f.substructure for f in res.fields] == ["", ""]  # fields along interfaces
     assert res.fields[0].variables == ["MU_G1_1", "MU_G1_2"]
     for f in res.fields:
         assert f.cells.shape[1] == 2 and f.modes.shape == (2, len(f.nodes))
