@@ -81,6 +81,7 @@
 use faer::{Mat, Side};
 
 use crate::equilibrium::RigidModes;
+use crate::solver::direction::PointDirection;
 use crate::interface::SideProjection;
 use alea_fem::{Cholesky, DofMap};
 use alea_mesh::vec3;
@@ -210,8 +211,8 @@ pub(crate) struct MacroColumn {
 pub(crate) struct MacroLink<'a> {
     /// Projection of the side.
     pub proj: &'a SideProjection,
-    /// Reference search direction `k0`.
-    pub k0: f64,
+    /// Reference search direction at every point (module `solver::direction`).
+    pub dir: &'a [PointDirection],
     /// Macro basis of the interface.
     pub modes: &'a InterfaceModes,
 }
@@ -251,10 +252,16 @@ impl SubMacro {
             let e = &ml.modes.modes[j];
             let out = &mut rhs[c * nf..(c + 1) * nf];
             for p in 0..ml.proj.len() {
-                let s = ml.k0 * ml.proj.weights[p];
+                let d = &ml.dir[p];
+                // Isotropic: (k0 m_p) c e, as the scalar direction always made it.
+                let (s, ke) = if d.is_isotropic() {
+                    (d.kt * ml.proj.weights[p], e[p])
+                } else {
+                    (ml.proj.weights[p], d.apply(1.0, &e[p]))
+                };
                 for (n, coef) in ml.proj.row(p) {
                     let sc = s * coef;
-                    dofs.add_node_force(n, &[sc * e[p][0], sc * e[p][1], sc * e[p][2]], out);
+                    dofs.add_node_force(n, &[sc * ke[0], sc * ke[1], sc * ke[2]], out);
                 }
             }
         }
@@ -304,19 +311,48 @@ impl SubMacro {
                     offset: 0,
                     modes: ml.modes.modes.clone(),
                 };
-                shifted.add_resultants(&ml.proj.weights, &col.w_full[lr], &mut g);
-                if lr == l {
-                    shifted.add_resultants(&ml.proj.weights, &links[l].modes.modes[j], &mut g);
+                if let Some(k0) = uniform(ml.dir) {
+                    // k0 E^T M (Pi u + E): the scalar direction's operations.
+                    shifted.add_resultants(&ml.proj.weights, &col.w_full[lr], &mut g);
+                    if lr == l {
+                        shifted.add_resultants(&ml.proj.weights, &links[l].modes.modes[j], &mut g);
+                    }
+                    for v in g.iter_mut() {
+                        *v *= k0;
+                    }
+                } else {
+                    // E^T M k (Pi u + E), k per point.
+                    let kw: Vec<V3> = (0..ml.proj.len())
+                        .map(|p| {
+                            let mut v = col.w_full[lr][p];
+                            if lr == l {
+                                let e = links[l].modes.modes[j][p];
+                                for c in 0..3 {
+                                    v[c] += e[c];
+                                }
+                            }
+                            ml.dir[p].apply(1.0, &v)
+                        })
+                        .collect();
+                    shifted.add_resultants(&ml.proj.weights, &kw, &mut g);
                 }
                 for (i, v) in g.into_iter().enumerate() {
                     if v != 0.0 {
-                        l0.push((ml.modes.offset + i, col.index, ml.k0 * v));
+                        l0.push((ml.modes.offset + i, col.index, v));
                     }
                 }
             }
         }
         SubMacro { columns, l0 }
     }
+}
+
+/// The common `k` of a side whose direction is isotropic and the same at every point.
+fn uniform(dir: &[PointDirection]) -> Option<f64> {
+    let k = dir.first().map_or(1.0, |d| d.kt);
+    dir.iter()
+        .all(|d| d.is_isotropic() && d.kt == k)
+        .then_some(k)
 }
 
 /// The full node-major displacement `T u` of free unknowns `u`, without the prescribed part.

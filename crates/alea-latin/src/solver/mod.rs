@@ -54,6 +54,7 @@ mod acceleration;
 mod batch;
 mod coarse;
 mod convergence;
+pub(crate) mod direction;
 mod existence;
 mod linear_stage;
 mod local_stage;
@@ -72,6 +73,7 @@ use crate::interface::{InterfacePairing, SideProjection};
 use crate::{InterfaceLaw, LatinError, PointData, PointField, PointStatus, RunResult, RunTimings};
 use acceleration::Acceleration;
 use convergence::Monitor;
+use direction::PointDirection;
 
 type V3 = [f64; 3];
 
@@ -221,7 +223,9 @@ struct Link {
     iface: usize,
     side: usize,
     proj: Arc<SideProjection>,
-    k0: f64,
+    /// The search direction at every point of the interface, at the reference materials
+    /// (module `direction`).
+    dir: Arc<Vec<PointDirection>>,
 }
 
 struct SubOperator {

@@ -12,6 +12,7 @@ use std::time::Instant;
 use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
 use rayon::prelude::*;
 
+use super::direction::PointDirection;
 use super::{
     Coarse, InterfaceOperator, LatinOptions, LatinSolver, Link, SearchDirection, SubOperator,
 };
@@ -229,20 +230,21 @@ fn interface_operator(
             gap: (spec.gap)(x) + g,
         })
         .collect();
+    let dirs = directions(&pairing, &spec.law, k0);
     let l1 = links[spec.sub1].len();
     let [side1, side2] = pairing.sides.clone();
     links[spec.sub1].push(Link {
         iface: i,
         side: 0,
         proj: Arc::new(side1),
-        k0: k0[0],
+        dir: Arc::new(dirs[0].clone()),
     });
     let l2 = links[spec.sub2].len();
     links[spec.sub2].push(Link {
         iface: i,
         side: 1,
         proj: Arc::new(side2),
-        k0: k0[1],
+        dir: Arc::new(dirs[1].clone()),
     });
     Ok(InterfaceOperator {
         name: spec.name.clone(),
@@ -254,6 +256,55 @@ fn interface_operator(
         mu: spec.mu.clone(),
         gap: spec.gap.clone(),
         pairing: Arc::new(pairing),
+    })
+}
+
+/// The search direction of both sides at every point of an interface (module `direction`)
+/// from the sides' scalar `k0`.
+fn directions(
+    pairing: &InterfacePairing,
+    law: &Arc<dyn crate::InterfaceLaw>,
+    k0: [f64; 2],
+) -> [Vec<PointDirection>; 2] {
+    // EXPERIMENT (issue 20): variants from ALEA_K, e.g. "tn=0.5,perf=2,cont=1".
+    let mut tn = 1.0;
+    let mut perf = 1.0;
+    let mut cont = 1.0;
+    if let Ok(v) = std::env::var("ALEA_K") {
+        for kv in v.split(',') {
+            let mut it = kv.split('=');
+            let (Some(key), Some(val)) = (it.next(), it.next()) else {
+                continue;
+            };
+            let Ok(x) = val.parse::<f64>() else { continue };
+            match key {
+                "tn" => tn = x,
+                "perf" => perf = x,
+                "cont" => cont = x,
+                _ => {}
+            }
+        }
+    }
+    let contact = law.uses_gap();
+    let m = if contact { cont } else { perf };
+    let tnr = if contact { tn } else { 1.0 };
+    [0, 1].map(|s| {
+        pairing
+            .normals
+            .iter()
+            .map(|&n| {
+                let k = m * k0[s];
+                if tnr == 1.0 {
+                    PointDirection::isotropic(n, k)
+                } else {
+                    PointDirection {
+                        normal: n,
+                        kn: k,
+                        kt: tnr * k,
+                    }
+                }
+            })
+            .collect()
     })
 }
 
@@ -278,7 +329,7 @@ fn build_coarse(ops: &[SubOperator], ifaces: &[InterfaceOperator]) -> Coarse {
                 .iter()
                 .map(|l| MacroLink {
                     proj: &l.proj,
-                    k0: l.k0,
+                    dir: &l.dir,
                     modes: &modes[l.iface],
                 })
                 .collect();
@@ -316,10 +367,13 @@ fn build_operator(
     let mut a0: SymCsc = with_interface_couplings(asm.k, &dofs, &links);
     let mut r_presc = asm.f_prescribed;
     let dim = model.mesh.dim;
+    // Scratch for T_a^T n (the normal seen by a node's free unknowns).
+    let mut tn = vec![0.0; dofs.num_free()];
     for l in &links {
-        // k0 Pi^T M Pi: node blocks k0 m_p c_pa c_pb.
+        // Pi^T M k Pi: node blocks m_p c_pa c_pb (k_t I + (k_n - k_t) n n^T).
         for (p, &m) in l.proj.weights.iter().enumerate() {
-            let km = l.k0 * m;
+            let d = &l.dir[p];
+            let km = d.kt * m;
             for (a, ca) in l.proj.row(p) {
                 for (b, cb) in l.proj.row(p) {
                     if a == b {
@@ -329,7 +383,32 @@ fn build_operator(
                     }
                 }
             }
-            // -T^T (k0 Pi^T M Pi) u_p for prescribed interface nodes.
+            if !d.is_isotropic() {
+                let kr = (d.kn - d.kt) * m;
+                let tnode = |a: usize, tn: &mut [f64]| -> Vec<(usize, f64)> {
+                    dofs.add_node_force(a, &d.normal, tn);
+                    dofs.node_dofs(a)
+                        .map(|g| (g, std::mem::take(&mut tn[g])))
+                        .collect()
+                };
+                for (a, ca) in l.proj.row(p) {
+                    let ta = tnode(a, &mut tn);
+                    for (b, cb) in l.proj.row(p) {
+                        if a > b {
+                            continue;
+                        }
+                        let tb = tnode(b, &mut tn);
+                        for &(ga, va) in &ta {
+                            for &(gb, vb) in &tb {
+                                if a < b || ga <= gb {
+                                    a0.add(ga, gb, kr * ca * cb * va * vb);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            // -T^T (Pi^T M k Pi) u_p for prescribed interface nodes.
             let mut up = [0.0; 3];
             for (b, cb) in l.proj.row(p) {
                 let u = dofs.prescribed(b);
@@ -338,9 +417,15 @@ fn build_operator(
                 }
             }
             if up.iter().any(|&v| v != 0.0) {
+                // Isotropic: -(k m c_a) u_p, as the scalar direction always made it.
+                let (kup, scale) = if d.is_isotropic() {
+                    (up, km)
+                } else {
+                    (d.apply(1.0, &up), m)
+                };
                 for (a, ca) in l.proj.row(p) {
-                    let s = -(km * ca);
-                    let v = [s * up[0], s * up[1], s * up[2]];
+                    let s = -(scale * ca);
+                    let v = [s * kup[0], s * kup[1], s * kup[2]];
                     dofs.add_node_force(a, &v, &mut r_presc);
                 }
             }
