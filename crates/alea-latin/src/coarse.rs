@@ -81,8 +81,8 @@
 use faer::{Mat, Side};
 
 use crate::equilibrium::RigidModes;
-use crate::solver::direction::PointDirection;
 use crate::interface::SideProjection;
+use crate::solver::direction::PointDirection;
 use alea_fem::{Cholesky, DofMap};
 use alea_mesh::vec3;
 

@@ -50,7 +50,11 @@ impl PointDirection {
         }
         let n = &self.normal;
         let d = (kn - kt) * dot(n, v);
-        [kt * v[0] + d * n[0], kt * v[1] + d * n[1], kt * v[2] + d * n[2]]
+        [
+            kt * v[0] + d * n[0],
+            kt * v[1] + d * n[1],
+            kt * v[2] + d * n[2],
+        ]
     }
 
     /// `alpha k v`.

@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::direction::Series;
 use super::{InterfaceOperator, InterfaceState, LatinSolver, Run, SubOperator, SubState};
 use crate::PointData;
-use super::direction::Series;
 use crate::law::local_stage_from;
 use alea_mesh::vec3::dot;
 
@@ -163,8 +163,14 @@ fn local_stage(
         let phi = sol.force;
         st.fhat[0][i] = [-phi[0], -phi[1], -phi[2]];
         st.fhat[1][i] = phi;
-        st.what[0][i] = d[0].solve(al[0], &[-phi[0] - a[0][0], -phi[1] - a[0][1], -phi[2] - a[0][2]]);
-        st.what[1][i] = d[1].solve(al[1], &[phi[0] - a[1][0], phi[1] - a[1][1], phi[2] - a[1][2]]);
+        st.what[0][i] = d[0].solve(
+            al[0],
+            &[-phi[0] - a[0][0], -phi[1] - a[0][1], -phi[2] - a[0][2]],
+        );
+        st.what[1][i] = d[1].solve(
+            al[1],
+            &[phi[0] - a[1][0], phi[1] - a[1][1], phi[2] - a[1][2]],
+        );
         for s in 0..2 {
             let dw = sub(&w[s][i], &st.what[s][i]);
             let df = sub(&f[s][i], &st.fhat[s][i]);

@@ -198,8 +198,17 @@ fn interface_operator(
     } else {
         total.sqrt()
     };
-    let k0 = match &search_direction {
-        SearchDirection::Auto { factor } => {
+    let tangential = match search_direction {
+        SearchDirection::Split { tangential, .. } => *tangential,
+        SearchDirection::Auto { .. } | SearchDirection::Fixed(_) => 1.0,
+    };
+    if !(tangential > 0.0 && tangential.is_finite()) {
+        return Err(LatinError::Invalid(format!(
+            "tangential search direction ratio must be > 0, got {tangential}"
+        )));
+    }
+    let k0 = match search_direction {
+        SearchDirection::Auto { factor } | SearchDirection::Split { factor, .. } => {
             let e1 = side_young(&s1.model, &spec.group1).map_err(fem_err(&s1.name))?;
             let e2 = side_young(&s2.model, &spec.group2).map_err(fem_err(&s2.name))?;
             [factor * e1 / len, factor * e2 / len]
@@ -230,7 +239,7 @@ fn interface_operator(
             gap: (spec.gap)(x) + g,
         })
         .collect();
-    let dirs = directions(&pairing, &spec.law, k0);
+    let dirs = directions(&pairing, &spec.law, k0, tangential);
     let l1 = links[spec.sub1].len();
     let [side1, side2] = pairing.sides.clone();
     links[spec.sub1].push(Link {
@@ -260,40 +269,21 @@ fn interface_operator(
 }
 
 /// The search direction of both sides at every point of an interface (module `direction`)
-/// from the sides' scalar `k0`.
+/// from the sides' `k0`: isotropic, or split along the normal with `k_t = tangential k_n` on
+/// a contact interface (a law that uses the gap).
 fn directions(
     pairing: &InterfacePairing,
     law: &Arc<dyn crate::InterfaceLaw>,
     k0: [f64; 2],
+    tangential: f64,
 ) -> [Vec<PointDirection>; 2] {
-    // EXPERIMENT (issue 20): variants from ALEA_K, e.g. "tn=0.5,perf=2,cont=1".
-    let mut tn = 1.0;
-    let mut perf = 1.0;
-    let mut cont = 1.0;
-    if let Ok(v) = std::env::var("ALEA_K") {
-        for kv in v.split(',') {
-            let mut it = kv.split('=');
-            let (Some(key), Some(val)) = (it.next(), it.next()) else {
-                continue;
-            };
-            let Ok(x) = val.parse::<f64>() else { continue };
-            match key {
-                "tn" => tn = x,
-                "perf" => perf = x,
-                "cont" => cont = x,
-                _ => {}
-            }
-        }
-    }
-    let contact = law.uses_gap();
-    let m = if contact { cont } else { perf };
-    let tnr = if contact { tn } else { 1.0 };
+    let tnr = if law.uses_gap() { tangential } else { 1.0 };
     [0, 1].map(|s| {
         pairing
             .normals
             .iter()
             .map(|&n| {
-                let k = m * k0[s];
+                let k = k0[s];
                 if tnr == 1.0 {
                     PointDirection::isotropic(n, k)
                 } else {
