@@ -56,7 +56,7 @@ fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
 /// `[W]_t = (kappa_n / kappa_t) [W]'_t`. With a load step's origin `j0` (tangential): `R' = R +
 /// kappa j0 = R + kappa_t j0`, then `[W] = j0 + d` ([`crate::law::local_stage_from`]).
 fn split_local_stage(
-    op: &InterfaceOperator,
+    law: &dyn crate::InterfaceLaw,
     p: &PointData,
     r: [f64; 3],
     kappa: &Series,
@@ -68,7 +68,7 @@ fn split_local_stage(
         r[1] + kappa.kt * j0[1],
         r[2] + kappa.kt * j0[2],
     ];
-    let mut sol = op.law.local_stage(p, shifted, kappa.kn);
+    let mut sol = law.local_stage(p, shifted, kappa.kn);
     let n = &kappa.normal;
     let jn = dot(&sol.jump, n);
     let scale = kappa.kn / kappa.kt;
@@ -157,7 +157,7 @@ fn local_stage(
         let b = [d[0].solve(al[0], &a[0]), d[1].solve(al[1], &a[1])];
         let kappa = Series::new(d, al);
         let r = kappa.apply(&[b[1][0] - b[0][0], b[1][1] - b[0][1], b[1][2] - b[0][2]]);
-        let sol = split_local_stage(op, p, r, &kappa, origin.map(|j0| j0[i]));
+        let sol = split_local_stage(op.law.as_ref(), p, r, &kappa, origin.map(|j0| j0[i]));
         st.status[i] = sol.status;
         let m = op.weights[i];
         let phi = sol.force;
@@ -183,4 +183,66 @@ fn local_stage(
     st.what_last[0].clone_from(&st.what[0]);
     st.what_last[1].clone_from(&st.what[1]);
     [dist, norm_s, norm_h]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::law::CoulombContact;
+    use crate::{PointStatus, solver::direction::PointDirection};
+
+    /// Every branch of the Coulomb law with a split series stiffness: `Phi = R + kappa [W]`,
+    /// the gap and cone conditions, and slip opposite to the friction force.
+    #[test]
+    fn split_stiffness_keeps_the_law_and_the_search_direction() {
+        let a: f64 = 0.3;
+        let n = [a.sin(), a.cos(), 0.0];
+        let t = [n[1], -n[0], 0.0];
+        let d1 = PointDirection {
+            normal: n,
+            kn: 4.0,
+            kt: 1.0,
+        };
+        let d2 = PointDirection {
+            normal: n,
+            kn: 8.0,
+            kt: 2.0,
+        };
+        let kappa = Series::new([&d1, &d2], [1.0, 1.5]);
+        let p = PointData {
+            x: [0.0; 3],
+            normal: n,
+            mu: 0.4,
+            gap: 0.01,
+        };
+        let comb = |x: f64, y: f64| [x * n[0] + y * t[0], x * n[1] + y * t[1], 0.0];
+        for (r, status, j0) in [
+            (comb(0.01, 3.0), PointStatus::Open, [0.0; 3]),
+            (comb(10.0, 1.0), PointStatus::Stick, [0.0; 3]),
+            (comb(10.0, -9.0), PointStatus::Slip, [0.0; 3]),
+            (comb(10.0, 9.0), PointStatus::Slip, comb(0.0, 0.3)),
+            (comb(10.0, 1.0), PointStatus::Stick, comb(0.0, -0.2)),
+        ] {
+            let s = split_local_stage(&CoulombContact, &p, r, &kappa, Some(j0));
+            assert_eq!(s.status, status, "{r:?}");
+            let kw = kappa.apply(&s.jump);
+            for c in 0..3 {
+                assert!((s.force[c] - r[c] - kw[c]).abs() < 1e-12, "{r:?}");
+            }
+            let fnorm = dot(&s.force, &n);
+            let gap = dot(&s.jump, &n) + p.gap;
+            assert!(fnorm >= 0.0 && gap >= -1e-14 && (fnorm * gap).abs() < 1e-12);
+            let ft = dot(&s.force, &t);
+            assert!(ft.abs() <= p.mu * fnorm + 1e-12);
+            let slip = dot(&s.jump, &t) - dot(&j0, &t);
+            match status {
+                PointStatus::Stick => assert!(slip.abs() < 1e-14),
+                PointStatus::Slip => {
+                    assert!(slip * ft < 0.0);
+                    assert!((ft.abs() - p.mu * fnorm).abs() < 1e-12);
+                }
+                _ => assert_eq!(s.force, [0.0; 3]),
+            }
+        }
+    }
 }
