@@ -19,7 +19,9 @@
 //! exact solution satisfies, so the LATIN fixed point is unchanged). With one multiplier vector
 //! `lambda_G` per interface (a macro displacement), the search direction becomes
 //! `F_s = F_hat_s - k_s (W_s - W_hat_s) - k_s E lambda_G`, i.e.
-//! `(K + k Pi^T M Pi) u_s = f + Pi^T M (F_hat + k W_hat) - k Pi^T M E lambda`. By linearity
+//! `(K + k Pi^T M Pi) u_s = f + Pi^T M (F_hat + k W_hat) - k Pi^T M E lambda` (with a search
+//! direction per point, module `solver::direction`, `k` multiplies each point's values and
+//! stands inside the sums below: `E^T M k (...)`). By linearity
 //! `u_s = u_s^0 + sum_{G, j} lambda_Gj u_s^(Gj)` with the plain linear stage `u_s^0` and, at the
 //! E-scaled factorisation `A0 = K0 + sum k0 Pi^T M Pi` (module `solver`), the responses
 //! `u_s^(Gj) = -A0^-1 (k0 Pi^T M e_j)`, **independent of the run's Young's-modulus factor**:

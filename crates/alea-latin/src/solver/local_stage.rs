@@ -1,7 +1,9 @@
 //! The local stage (per interface point, in parallel; closed form of [`crate::law`]) and the
 //! error indicator, the k-weighted distance between the two half-iterates:
 //! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`,
-//! `||s||^2 = sum_points m (k |W|^2 + |F|^2 / k)` over both sides of every interface.
+//! `||s||^2 = sum_points m (W . k W + F . k^-1 F)` over both sides of every interface. With a
+//! split direction (module `direction`) the series stiffness `kappa` is split too and the law
+//! is applied through `split_local_stage`.
 
 use std::time::Instant;
 

@@ -5,13 +5,15 @@
 //! = alpha_s A0`, so the factorisation of `A0 = T^T (K0 + sum k0 M_Gamma) T` made once at set-up
 //! serves every run and iteration:
 //! `A0 u = (f + M_Gamma (F_hat + k W_hat)) / alpha - A0 u_p`, then `W = u|Gamma`,
-//! `F = F_hat - k (W - W_hat)`. With relaxation `rho`, `(W, F) <- rho (W, F) + (1 - rho)
+//! `F = F_hat - k (W - W_hat)`; `k` is a tensor per interface point, isotropic or split along
+//! the normal (`k_n n n^T + k_t (I - n n^T)`, module `direction`,
+//! [`SearchDirection::Split`]), `k M_Gamma` standing for `Pi^T M k Pi`. With relaxation `rho`, `(W, F) <- rho (W, F) + (1 - rho)
 //! (W, F)_previous`.
 //!
 //! **Local stage** (per interface point, in parallel): closed form of [`crate::law`].
 //!
 //! **Error indicator** (k-weighted distance between the two half-iterates):
-//! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`, `||s||^2 = sum_points m (k |W|^2 + |F|^2 / k)`
+//! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`, `||s||^2 = sum_points m (W . k W + F . k^-1 F)`
 //! over both sides of every interface. The indicator is relative to the size of the iterates,
 //! so on its own it cannot tell convergence from a floating substructure drifting away (the
 //! iterates grow, the indicator shrinks). When `eta < tol`, the run is **converged** only if
