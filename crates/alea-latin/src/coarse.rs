@@ -19,7 +19,9 @@
 //! exact solution satisfies, so the LATIN fixed point is unchanged). With one multiplier vector
 //! `lambda_G` per interface (a macro displacement), the search direction becomes
 //! `F_s = F_hat_s - k_s (W_s - W_hat_s) - k_s E lambda_G`, i.e.
-//! `(K + k Pi^T M Pi) u_s = f + Pi^T M (F_hat + k W_hat) - k Pi^T M E lambda`. By linearity
+//! `(K + k Pi^T M Pi) u_s = f + Pi^T M (F_hat + k W_hat) - k Pi^T M E lambda` (with a search
+//! direction per point, module `solver::direction`, `k` multiplies each point's values and
+//! stands inside the sums below: `E^T M k (...)`). By linearity
 //! `u_s = u_s^0 + sum_{G, j} lambda_Gj u_s^(Gj)` with the plain linear stage `u_s^0` and, at the
 //! E-scaled factorisation `A0 = K0 + sum k0 Pi^T M Pi` (module `solver`), the responses
 //! `u_s^(Gj) = -A0^-1 (k0 Pi^T M e_j)`, **independent of the run's Young's-modulus factor**:
@@ -82,6 +84,7 @@ use faer::{Mat, Side};
 
 use crate::equilibrium::RigidModes;
 use crate::interface::SideProjection;
+use crate::solver::direction::PointDirection;
 use alea_fem::{Cholesky, DofMap};
 use alea_mesh::vec3;
 
@@ -212,8 +215,8 @@ pub(crate) struct MacroColumn {
 pub(crate) struct MacroLink<'a> {
     /// Projection of the side.
     pub proj: &'a SideProjection,
-    /// Reference search direction `k0`.
-    pub k0: f64,
+    /// Reference search direction at every point (module `solver::direction`).
+    pub dir: &'a [PointDirection],
     /// Macro basis of the interface.
     pub modes: &'a InterfaceModes,
 }
@@ -254,10 +257,16 @@ impl SubMacro {
             let e = &ml.modes.modes[j];
             let out = &mut rhs[c * nf..(c + 1) * nf];
             for p in 0..ml.proj.len() {
-                let s = ml.k0 * ml.proj.weights[p];
+                let d = &ml.dir[p];
+                // Isotropic: (k0 m_p) c e, as the scalar direction always made it.
+                let (s, ke) = if d.is_isotropic() {
+                    (d.kt * ml.proj.weights[p], e[p])
+                } else {
+                    (ml.proj.weights[p], d.apply(1.0, &e[p]))
+                };
                 for (n, coef) in ml.proj.row(p) {
                     let sc = s * coef;
-                    dofs.add_node_force(n, &[sc * e[p][0], sc * e[p][1], sc * e[p][2]], out);
+                    dofs.add_node_force(n, &[sc * ke[0], sc * ke[1], sc * ke[2]], out);
                 }
             }
         }
@@ -307,19 +316,48 @@ impl SubMacro {
                     offset: 0,
                     modes: ml.modes.modes.clone(),
                 };
-                shifted.add_resultants(&ml.proj.weights, &col.w_full[lr], &mut g);
-                if lr == l {
-                    shifted.add_resultants(&ml.proj.weights, &links[l].modes.modes[j], &mut g);
+                if let Some(k0) = uniform(ml.dir) {
+                    // k0 E^T M (Pi u + E): the scalar direction's operations.
+                    shifted.add_resultants(&ml.proj.weights, &col.w_full[lr], &mut g);
+                    if lr == l {
+                        shifted.add_resultants(&ml.proj.weights, &links[l].modes.modes[j], &mut g);
+                    }
+                    for v in g.iter_mut() {
+                        *v *= k0;
+                    }
+                } else {
+                    // E^T M k (Pi u + E), k per point.
+                    let kw: Vec<V3> = (0..ml.proj.len())
+                        .map(|p| {
+                            let mut v = col.w_full[lr][p];
+                            if lr == l {
+                                let e = links[l].modes.modes[j][p];
+                                for c in 0..3 {
+                                    v[c] += e[c];
+                                }
+                            }
+                            ml.dir[p].apply(1.0, &v)
+                        })
+                        .collect();
+                    shifted.add_resultants(&ml.proj.weights, &kw, &mut g);
                 }
                 for (i, v) in g.into_iter().enumerate() {
                     if v != 0.0 {
-                        l0.push((ml.modes.offset + i, col.index, ml.k0 * v));
+                        l0.push((ml.modes.offset + i, col.index, v));
                     }
                 }
             }
         }
         SubMacro { columns, l0 }
     }
+}
+
+/// The common `k` of a side whose direction is isotropic and the same at every point.
+fn uniform(dir: &[PointDirection]) -> Option<f64> {
+    let k = dir.first().map_or(1.0, |d| d.kt);
+    dir.iter()
+        .all(|d| d.is_isotropic() && d.kt == k)
+        .then_some(k)
 }
 
 /// The full node-major displacement `T u` of free unknowns `u`, without the prescribed part.

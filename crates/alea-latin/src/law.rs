@@ -28,7 +28,10 @@
 //!     - slip otherwise: `Phi_t = mu Phi_n R_t/|R_t|`, `[W_hat]_t = (Phi_t - R_t)/kappa`
 //!       (anti-parallel to `Phi_t`, as the law requires).
 //!
-//! Finally `W_hat_1 = (-Phi - a_1)/k_1`, `W_hat_2 = (Phi - a_2)/k_2`.
+//! Finally `W_hat_1 = (-Phi - a_1)/k_1`, `W_hat_2 = (Phi - a_2)/k_2`. A search direction split
+//! along the normal (`k_n != k_t`, module `solver::direction`) uses these closed forms at
+//! `kappa_n` and rescales the tangential jump by `kappa_n / kappa_t` (the laws are invariant
+//! under a positive scaling of the tangential jump).
 
 use alea_mesh::vec3::dot;
 

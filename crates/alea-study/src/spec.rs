@@ -229,6 +229,10 @@ pub struct SolverSpec {
     /// Search direction factor (k = factor E / L). Default 3.
     #[serde(default)]
     pub search_direction_factor: Option<Spanned<f64>>,
+    /// Tangential search direction on contact interfaces over the normal one (`k_t / k_n`).
+    /// Default 1 (isotropic).
+    #[serde(default)]
+    pub search_direction_tangential: Option<Spanned<f64>>,
     /// Anderson acceleration depth (0: off). Default 5.
     #[serde(default)]
     pub acceleration: Option<Spanned<usize>>,

@@ -5,14 +5,15 @@
 //! so that whenever the loop ends the interface state is a true local stage; a clear increase
 //! of the indicator (more than twice its best value) restarts from a plain step.
 
+use super::direction::PointDirection;
 use super::{InterfaceOperator, InterfaceState, LatinSolver};
 use crate::anderson::Anderson;
 
 /// The acceleration state of one run.
 pub(super) struct Acceleration<'a> {
     ifaces: &'a [InterfaceOperator],
-    /// `k` of both sides of every interface.
-    scales: Vec<[f64; 2]>,
+    /// The search direction and Young's-modulus factor of both sides of every interface.
+    scales: Vec<[(&'a [PointDirection], f64); 2]>,
     anderson: Anderson,
     /// Smallest indicator so far.
     best_eta: f64,
@@ -24,15 +25,17 @@ pub(super) struct Acceleration<'a> {
 impl<'a> Acceleration<'a> {
     /// No history, for a run with Young's-modulus factors `alpha`.
     pub(super) fn new(solver: &'a LatinSolver, alpha: &[f64]) -> Self {
-        // Scaling of the packed state for the acceleration: sqrt(m k) W and sqrt(m / k) F.
-        let scales: Vec<[f64; 2]> = solver
+        // Scaling of the packed state for the acceleration: (m k)^(1/2) W and (m / k)^(1/2) F.
+        let scales: Vec<[(&[PointDirection], f64); 2]> = solver
             .ifaces
             .iter()
             .map(|op| {
-                [
-                    alpha[op.sub[0]] * solver.subs[op.sub[0]].links[op.link[0]].k0,
-                    alpha[op.sub[1]] * solver.subs[op.sub[1]].links[op.link[1]].k0,
-                ]
+                [0, 1].map(|s| {
+                    (
+                        solver.subs[op.sub[s]].links[op.link[s]].dir.as_slice(),
+                        alpha[op.sub[s]],
+                    )
+                })
             })
             .collect();
         Acceleration {
@@ -76,10 +79,18 @@ impl<'a> Acceleration<'a> {
         let mut v = Vec::new();
         for ((st, op), k) in istate.iter().zip(self.ifaces).zip(&self.scales) {
             for s in 0..2 {
+                let (dir, alpha) = k[s];
                 for (i, m) in op.weights.iter().enumerate() {
-                    let (a, b) = ((m * k[s]).sqrt(), (m / k[s]).sqrt());
-                    v.extend(st.what[s][i].iter().map(|w| a * w));
-                    v.extend(st.fhat[s][i].iter().map(|f| b * f));
+                    let d = &dir[i];
+                    if d.is_isotropic() {
+                        let k = alpha * d.kt;
+                        let (a, b) = ((m * k).sqrt(), (m / k).sqrt());
+                        v.extend(st.what[s][i].iter().map(|w| a * w));
+                        v.extend(st.fhat[s][i].iter().map(|f| b * f));
+                    } else {
+                        v.extend(d.sqrt_scaled(*m, alpha, false, &st.what[s][i]));
+                        v.extend(d.sqrt_scaled(*m, alpha, true, &st.fhat[s][i]));
+                    }
                 }
             }
         }
@@ -90,13 +101,22 @@ impl<'a> Acceleration<'a> {
         let mut it = v.iter();
         for ((st, op), k) in istate.iter_mut().zip(self.ifaces).zip(&self.scales) {
             for s in 0..2 {
+                let (dir, alpha) = k[s];
                 for (i, m) in op.weights.iter().enumerate() {
-                    let (a, b) = ((m * k[s]).sqrt(), (m / k[s]).sqrt());
-                    for c in 0..3 {
-                        st.what[s][i][c] = it.next().copied().unwrap_or(0.0) / a;
-                    }
-                    for c in 0..3 {
-                        st.fhat[s][i][c] = it.next().copied().unwrap_or(0.0) / b;
+                    let d = &dir[i];
+                    let mut next = || [0; 3].map(|_| it.next().copied().unwrap_or(0.0));
+                    let (w, f) = (next(), next());
+                    if d.is_isotropic() {
+                        let k = alpha * d.kt;
+                        let (a, b) = ((m * k).sqrt(), (m / k).sqrt());
+                        for c in 0..3 {
+                            st.what[s][i][c] = w[c] / a;
+                            st.fhat[s][i][c] = f[c] / b;
+                        }
+                    } else {
+                        // The inverse scalings: (m k)^(-1/2) = (1 / (m k))^(1/2), and so on.
+                        st.what[s][i] = d.sqrt_scaled(1.0 / m, alpha, true, &w);
+                        st.fhat[s][i] = d.sqrt_scaled(1.0 / m, alpha, false, &f);
                     }
                 }
             }

@@ -100,7 +100,6 @@ fn coarse_correction(
     // Forces from the whole response (admissible with the corrected displacement: a rigid
     // motion in the free modes does no work), displacements without the free rigid part.
     for (li, l) in op.links.iter().enumerate() {
-        let k = alpha * l.k0;
         let im = &modes[l.iface];
         let lam = &lambda[im.offset..im.offset + im.len()];
         for p in 0..l.proj.len() {
@@ -110,8 +109,9 @@ fn coarse_correction(
                     e[c] += lam[j] * mode[p][c];
                 }
             }
+            let ke = l.dir[p].apply(alpha, &e);
             for c in 0..3 {
-                st.f_new[li][p][c] -= k * e[c];
+                st.f_new[li][p][c] -= ke[c];
             }
         }
     }
@@ -122,11 +122,21 @@ fn coarse_correction(
         }
         st.coarse_u.push((c, a));
         for (li, l) in op.links.iter().enumerate() {
-            let k = alpha * l.k0;
             for p in 0..l.proj.len() {
-                for c in 0..3 {
-                    st.w_new[li][p][c] += a * col.w[li][p][c];
-                    st.f_new[li][p][c] -= k * a * col.w_full[li][p][c];
+                let d = &l.dir[p];
+                if d.is_isotropic() {
+                    let k = alpha * d.kt;
+                    for c in 0..3 {
+                        st.w_new[li][p][c] += a * col.w[li][p][c];
+                        st.f_new[li][p][c] -= k * a * col.w_full[li][p][c];
+                    }
+                } else {
+                    let wf = col.w_full[li][p];
+                    let kw = d.apply(alpha, &[a * wf[0], a * wf[1], a * wf[2]]);
+                    for c in 0..3 {
+                        st.w_new[li][p][c] += a * col.w[li][p][c];
+                        st.f_new[li][p][c] -= kw[c];
+                    }
                 }
             }
         }

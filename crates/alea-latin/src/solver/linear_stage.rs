@@ -1,4 +1,5 @@
-//! The linear stage (thesis 2.1; per substructure, in parallel): with `k_s = alpha_s k0_s`,
+//! The linear stage (thesis 2.1; per substructure, in parallel): with `k_s = alpha_s k0_s`
+//! (a tensor per interface point, module `direction`),
 //! `A0 u = (f + M_Gamma (F_hat + k W_hat)) / alpha - A0 u_p` with the factorisation of `A0` made
 //! at set-up, then `W = Pi u|Gamma` and `F = F_hat - k (W - W_hat)`; after the coarse
 //! correction (module `coarse` of the solver), the relaxation
@@ -76,14 +77,13 @@ pub(super) fn assemble_rhs(
     rhs.copy_from_slice(base);
     for l in &op.links {
         let is = &istate[l.iface];
-        let k = alpha * l.k0;
         for (p, &m) in l.proj.weights.iter().enumerate() {
             let fh = is.fhat[l.side][p];
-            let wh = is.what[l.side][p];
+            let kw = l.dir[p].apply(alpha, &is.what[l.side][p]);
             let v = [
-                m * (fh[0] + k * wh[0]) / alpha,
-                m * (fh[1] + k * wh[1]) / alpha,
-                m * (fh[2] + k * wh[2]) / alpha,
+                m * (fh[0] + kw[0]) / alpha,
+                m * (fh[1] + kw[1]) / alpha,
+                m * (fh[2] + kw[2]) / alpha,
             ];
             for (n, c) in l.proj.row(p) {
                 let cv = [c * v[0], c * v[1], c * v[2]];
@@ -103,7 +103,6 @@ pub(super) fn interface_fields(
 ) {
     for (li, l) in op.links.iter().enumerate() {
         let is = &istate[l.iface];
-        let k = alpha * l.k0;
         for p in 0..l.proj.len() {
             let mut w = [0.0; 3];
             for (n, c) in l.proj.row(p) {
@@ -114,9 +113,10 @@ pub(super) fn interface_fields(
             }
             let wh = is.what[l.side][p];
             let fh = is.fhat[l.side][p];
+            let kd = l.dir[p].apply(alpha, &[w[0] - wh[0], w[1] - wh[1], w[2] - wh[2]]);
             for c in 0..3 {
                 st.w_new[li][p][c] = w[c];
-                st.f_new[li][p][c] = fh[c] - k * (w[c] - wh[c]);
+                st.f_new[li][p][c] = fh[c] - kd[c];
             }
         }
     }

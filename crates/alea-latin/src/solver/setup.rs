@@ -2,7 +2,7 @@
 //! options, pairing of every interface (node to node, or dual mortar: module
 //! [`crate::mortar`]; or a pairing given by the caller, found in a deformed configuration by
 //! [`crate::large_sliding`]), the search direction `k0 = factor E_side / L_interface`, the assembly and
-//! factorisation of every substructure operator `A0 = T^T (K0 + sum k0 Pi^T M_Gamma Pi) T`, the
+//! factorisation of every substructure operator `A0 = T^T (K0 + sum Pi^T M_Gamma k Pi) T`, the
 //! rigid modes left free by the constraints (module `equilibrium`) and the macro space of the
 //! coarse problem (module `coarse`).
 
@@ -12,6 +12,7 @@ use std::time::Instant;
 use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
 use rayon::prelude::*;
 
+use super::direction::PointDirection;
 use super::{
     Coarse, InterfaceOperator, LatinOptions, LatinSolver, Link, SearchDirection, SubOperator,
 };
@@ -197,8 +198,17 @@ fn interface_operator(
     } else {
         total.sqrt()
     };
-    let k0 = match &search_direction {
-        SearchDirection::Auto { factor } => {
+    let tangential = match search_direction {
+        SearchDirection::Split { tangential, .. } => *tangential,
+        SearchDirection::Auto { .. } | SearchDirection::Fixed(_) => 1.0,
+    };
+    if !(tangential > 0.0 && tangential.is_finite()) {
+        return Err(LatinError::Invalid(format!(
+            "tangential search direction ratio must be > 0, got {tangential}"
+        )));
+    }
+    let k0 = match search_direction {
+        SearchDirection::Auto { factor } | SearchDirection::Split { factor, .. } => {
             let e1 = side_young(&s1.model, &spec.group1).map_err(fem_err(&s1.name))?;
             let e2 = side_young(&s2.model, &spec.group2).map_err(fem_err(&s2.name))?;
             [factor * e1 / len, factor * e2 / len]
@@ -229,20 +239,21 @@ fn interface_operator(
             gap: (spec.gap)(x) + g,
         })
         .collect();
+    let dirs = directions(&pairing, &spec.law, k0, tangential);
     let l1 = links[spec.sub1].len();
     let [side1, side2] = pairing.sides.clone();
     links[spec.sub1].push(Link {
         iface: i,
         side: 0,
         proj: Arc::new(side1),
-        k0: k0[0],
+        dir: Arc::new(dirs[0].clone()),
     });
     let l2 = links[spec.sub2].len();
     links[spec.sub2].push(Link {
         iface: i,
         side: 1,
         proj: Arc::new(side2),
-        k0: k0[1],
+        dir: Arc::new(dirs[1].clone()),
     });
     Ok(InterfaceOperator {
         name: spec.name.clone(),
@@ -254,6 +265,36 @@ fn interface_operator(
         mu: spec.mu.clone(),
         gap: spec.gap.clone(),
         pairing: Arc::new(pairing),
+    })
+}
+
+/// The search direction of both sides at every point of an interface (module `direction`)
+/// from the sides' `k0`: isotropic, or split along the normal with `k_t = tangential k_n` on
+/// a contact interface (a law that uses the gap).
+fn directions(
+    pairing: &InterfacePairing,
+    law: &Arc<dyn crate::InterfaceLaw>,
+    k0: [f64; 2],
+    tangential: f64,
+) -> [Vec<PointDirection>; 2] {
+    let tnr = if law.uses_gap() { tangential } else { 1.0 };
+    [0, 1].map(|s| {
+        pairing
+            .normals
+            .iter()
+            .map(|&n| {
+                let k = k0[s];
+                if tnr == 1.0 {
+                    PointDirection::isotropic(n, k)
+                } else {
+                    PointDirection {
+                        normal: n,
+                        kn: k,
+                        kt: tnr * k,
+                    }
+                }
+            })
+            .collect()
     })
 }
 
@@ -294,7 +335,7 @@ pub(super) fn coarse_with(
                 .iter()
                 .map(|l| MacroLink {
                     proj: &l.proj,
-                    k0: l.k0,
+                    dir: &l.dir,
                     modes: &modes[l.iface],
                 })
                 .collect();
@@ -360,7 +401,8 @@ fn build_operator(
     })
 }
 
-/// The operator `A0 = T^T (K + sum k0 Pi^T M_Gamma Pi) T` of a substructure's `model` (its
+/// The operator `A0 = T^T (K + sum Pi^T M_Gamma k Pi) T` (`k` the search direction of each
+/// interface point, module `direction`) of a substructure's `model` (its
 /// materials as they are) under `dofs`, and the right-hand side `-T^T A u_p` of its prescribed
 /// displacements.
 pub(super) fn operator_matrix(
@@ -372,10 +414,13 @@ pub(super) fn operator_matrix(
     let asm = assemble_stiffness(model, dofs).map_err(fem_err(name))?;
     let mut a0: SymCsc = with_interface_couplings(asm.k, dofs, links);
     let mut r_presc = asm.f_prescribed;
+    // Scratch for T_a^T n (the normal seen by a node's free unknowns).
+    let mut tn = vec![0.0; dofs.num_free()];
     for l in links {
-        // k0 Pi^T M Pi: node blocks k0 m_p c_pa c_pb.
+        // Pi^T M k Pi: node blocks m_p c_pa c_pb (k_t I + (k_n - k_t) n n^T).
         for (p, &m) in l.proj.weights.iter().enumerate() {
-            let km = l.k0 * m;
+            let d = &l.dir[p];
+            let km = d.kt * m;
             for (a, ca) in l.proj.row(p) {
                 for (b, cb) in l.proj.row(p) {
                     if a == b {
@@ -385,7 +430,32 @@ pub(super) fn operator_matrix(
                     }
                 }
             }
-            // -T^T (k0 Pi^T M Pi) u_p for prescribed interface nodes.
+            if !d.is_isotropic() {
+                let kr = (d.kn - d.kt) * m;
+                let tnode = |a: usize, tn: &mut [f64]| -> Vec<(usize, f64)> {
+                    dofs.add_node_force(a, &d.normal, tn);
+                    dofs.node_dofs(a)
+                        .map(|g| (g, std::mem::take(&mut tn[g])))
+                        .collect()
+                };
+                for (a, ca) in l.proj.row(p) {
+                    let ta = tnode(a, &mut tn);
+                    for (b, cb) in l.proj.row(p) {
+                        if a > b {
+                            continue;
+                        }
+                        let tb = tnode(b, &mut tn);
+                        for &(ga, va) in &ta {
+                            for &(gb, vb) in &tb {
+                                if a < b || ga <= gb {
+                                    a0.add(ga, gb, kr * ca * cb * va * vb);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            // -T^T (Pi^T M k Pi) u_p for prescribed interface nodes.
             let mut up = [0.0; 3];
             for (b, cb) in l.proj.row(p) {
                 let u = dofs.prescribed(b);
@@ -394,9 +464,15 @@ pub(super) fn operator_matrix(
                 }
             }
             if up.iter().any(|&v| v != 0.0) {
+                // Isotropic: -(k m c_a) u_p, as the scalar direction always made it.
+                let (kup, scale) = if d.is_isotropic() {
+                    (up, km)
+                } else {
+                    (d.apply(1.0, &up), m)
+                };
                 for (a, ca) in l.proj.row(p) {
-                    let s = -(km * ca);
-                    let v = [s * up[0], s * up[1], s * up[2]];
+                    let s = -(scale * ca);
+                    let v = [s * kup[0], s * kup[1], s * kup[2]];
                     dofs.add_node_force(a, &v, &mut r_presc);
                 }
             }

@@ -551,6 +551,16 @@ pub fn build_model(
             factor: positive(src, k, "solver.search_direction_factor")?,
         };
     }
+    if let Some(t) = &sv.search_direction_tangential {
+        let tangential = positive(src, t, "solver.search_direction_tangential")?;
+        if tangential != 1.0 {
+            let factor = match options.search_direction {
+                SearchDirection::Auto { factor } | SearchDirection::Split { factor, .. } => factor,
+                SearchDirection::Fixed(_) => 3.0,
+            };
+            options.search_direction = SearchDirection::Split { factor, tangential };
+        }
+    }
     let assembly = Assembly { subs, interfaces };
     let repairing = repairing_settings(src, sv, &assembly)?;
     let built = BuiltModel {
