@@ -149,7 +149,17 @@ fn build_load(
     Ok(loads.f)
 }
 
-/// Builds meshes, models, constraints, loads and interfaces of a model file.
+/// Where a field lives, in words (for the errors of expressions that use it elsewhere).
+fn field_place(file: &ModelFile, domain: FieldDomain) -> String {
+    match domain {
+        FieldDomain::Interface(k) => format!("on interface '{}'", file.interface[k].name.get_ref()),
+        FieldDomain::Substructure(k) => format!(
+            "over the cells of substructure '{}'",
+            file.substructure[k].name.get_ref()
+        ),
+    }
+}
+
 /// Builds meshes, models, constraints, loads and interfaces of a model file; parameters enter
 /// through `params` (the model is set up at their nominal point).
 pub fn build_model(
@@ -245,15 +255,7 @@ pub fn build_model(
                 continue;
             }
             if fld.domain != FieldDomain::Substructure(i) {
-                let place = match fld.domain {
-                    FieldDomain::Interface(k) => {
-                        format!("along interface '{}'", file.interface[k].name.get_ref())
-                    }
-                    FieldDomain::Substructure(k) => format!(
-                        "over the cells of substructure '{}'",
-                        file.substructure[k].name.get_ref()
-                    ),
-                };
+                let place = field_place(file, fld.domain);
                 return Err(src.error(
                     s.young.span(),
                     f("young"),
@@ -434,15 +436,7 @@ pub fn build_model(
         for (j, fld) in params.fields.iter().enumerate() {
             for (e, key, v) in [(&mu, "mu", &it.mu), (&gap, "gap", &it.gap)] {
                 if fld.domain != FieldDomain::Interface(i) && e.uses(first_field + j) {
-                    let place = match fld.domain {
-                        FieldDomain::Interface(k) => {
-                            format!("on interface '{}'", file.interface[k].name.get_ref())
-                        }
-                        FieldDomain::Substructure(k) => format!(
-                            "over the cells of substructure '{}'",
-                            file.substructure[k].name.get_ref()
-                        ),
-                    };
+                    let place = field_place(file, fld.domain);
                     return Err(src.error(
                         v.as_ref().map_or(it.name.span(), |v| v.span()),
                         f(key),
