@@ -26,7 +26,10 @@ use std::collections::BTreeMap;
 use alea_mesh::Mesh;
 use alea_uq::field::{FieldCells, FieldMesh};
 
-use crate::random_field::MAX_FIELD_NODES;
+/// Largest number of nodes of a field mesh, along an interface or over cells (the KL problem
+/// is dense: three `n x n` matrices, about 100 MB at this size, and an `O(n^3)` eigensolver of a
+/// few seconds).
+pub const MAX_FIELD_NODES: usize = 2000;
 
 /// A field mesh and, per finite-element cell, the field nodes and weights of the cell's value.
 pub(crate) type CellField = (FieldMesh, Vec<Vec<(usize, f64)>>);

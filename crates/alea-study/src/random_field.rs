@@ -47,9 +47,7 @@ use crate::field_spec::FieldSpec;
 use crate::spec::ModelFile;
 use crate::{Source, StudyError};
 
-/// Largest number of nodes of a field mesh (the KL problem is dense: three `n x n` matrices,
-/// about 100 MB at this size, and an `O(n^3)` eigensolver of a few seconds).
-pub const MAX_FIELD_NODES: usize = 2000;
+pub use crate::cell_field::MAX_FIELD_NODES;
 
 /// Where a field lives.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
