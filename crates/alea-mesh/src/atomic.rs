@@ -72,6 +72,27 @@ pub fn write_bytes_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     write_atomic(path, |w| w.write_all(bytes))
 }
 
+/// [`write_bytes_atomic`] without syncing the directory: the file's bytes are synced and it is
+/// renamed into place, and the caller syncs the directory ([`sync_parent`]) once after a
+/// group of such writes, before anything that relies on them surviving a power loss.
+///
+/// # Errors
+/// As [`write_atomic`].
+pub fn write_bytes_atomic_unsynced_dir(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = temporary_path(path);
+    let result = (|| {
+        let mut file = File::create(&tmp)?;
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
 /// Syncs the directory holding `path`, so that a rename into it survives a power loss (best
 /// effort: not every platform can open a directory).
 pub fn sync_parent(path: &Path) {

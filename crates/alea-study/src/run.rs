@@ -279,14 +279,15 @@ enum StepRuns<'s> {
 /// (they start from runs of earlier generations only), so an executor may solve them in any order,
 /// on any thread or process: the outcomes do not change.
 pub trait BatchExecutor: Sync {
-    /// Solves every job and hands each outcome to `commit` (from any thread, in any order).
-    /// Returns the first error (in job order for the local executor); runs that finished
-    /// before an error are committed all the same.
+    /// Solves every job and hands the outcomes to `commit` as they finish, a group of runs
+    /// solved together at once (committed together: one synced store commit per group), from
+    /// any thread, in any order. Returns the first error (in job order for the local
+    /// executor); runs that finished before an error are committed all the same.
     fn execute(
         &self,
         ctx: &RunContext<'_>,
         jobs: &[RunJob],
-        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+        commit: &(dyn Fn(Vec<RunOutcome>) -> Result<(), StudyError> + Sync),
     ) -> Result<(), StudyError>;
 }
 
@@ -303,15 +304,22 @@ impl BatchExecutor for LocalExecutor {
         &self,
         ctx: &RunContext<'_>,
         jobs: &[RunJob],
-        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+        commit: &(dyn Fn(Vec<RunOutcome>) -> Result<(), StudyError> + Sync),
     ) -> Result<(), StudyError> {
         let results: Vec<Result<(), StudyError>> = jobs
             .par_chunks(RUNS_PER_BATCH)
             .flat_map_iter(|group| {
-                ctx.solve_batch(group)
-                    .into_iter()
-                    .map(|out| commit(out?))
-                    .collect::<Vec<_>>()
+                // The group's finished runs are committed together, the failed ones reported.
+                let mut done = Vec::with_capacity(group.len());
+                let mut results: Vec<Result<(), StudyError>> = Vec::new();
+                for out in ctx.solve_batch(group) {
+                    match out {
+                        Ok(o) => done.push(o),
+                        Err(e) => results.push(Err(e)),
+                    }
+                }
+                results.insert(0, commit(done));
+                results
             })
             .collect();
         results.into_iter().collect()

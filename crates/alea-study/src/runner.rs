@@ -227,11 +227,7 @@ impl<'a> Runner<'a> {
         let store = &self.store;
         let progress = self.progress;
         let slide_noted = &self.slide_noted;
-        let commit = |out: RunOutcome| -> Result<(), StudyError> {
-            store
-                .lock()
-                .map_err(|_| StudyError::Poisoned("store"))?
-                .commit(&out.rec, &out.fields, out.cre.as_deref())?;
+        let note_committed = |out: RunOutcome| -> Result<(), StudyError> {
             progress.finished(&out.rec);
             if let Some(c) = &out.slide
                 && !slide_noted.swap(true, std::sync::atomic::Ordering::Relaxed)
@@ -252,6 +248,20 @@ impl<'a> Runner<'a> {
             done.lock()
                 .map_err(|_| StudyError::Poisoned("run list"))?
                 .push((out.rec, out.estimate_seconds));
+            Ok(())
+        };
+        let commit = |outs: Vec<RunOutcome>| -> Result<(), StudyError> {
+            let group: Vec<crate::store::RunToCommit<'_>> = outs
+                .iter()
+                .map(|o| (&o.rec, o.fields.as_slice(), o.cre.as_deref()))
+                .collect();
+            store
+                .lock()
+                .map_err(|_| StudyError::Poisoned("store"))?
+                .commit_group(&group)?;
+            for out in outs {
+                note_committed(out)?;
+            }
             Ok(())
         };
         let result = self.exec.execute(ctx, &jobs, &commit);

@@ -76,6 +76,10 @@ fn from_blob(b: &[u8]) -> Vec<f64> {
 /// Magic bytes at the start of a field file.
 const FIELD_MAGIC: &[u8; 8] = b"ALEAFLD1";
 
+/// A finished run to commit ([`Store::commit_group`]): its row, its displacement fields and
+/// its error-estimate data (when the study estimates its error).
+pub type RunToCommit<'a> = (&'a RunRecord, &'a [f64], Option<&'a [f64]>);
+
 /// The SQLite `synchronous` level of the store (see the module doc).
 pub const SYNCHRONOUS: &str = "FULL";
 
@@ -331,9 +335,11 @@ impl Store {
                 source,
             })?;
         }
-        alea_mesh::atomic::write_bytes_atomic(path, &bytes).map_err(|source| StudyError::Io {
-            path: path.to_path_buf(),
-            source,
+        alea_mesh::atomic::write_bytes_atomic_unsynced_dir(path, &bytes).map_err(|source| {
+            StudyError::Io {
+                path: path.to_path_buf(),
+                source,
+            }
         })
     }
 
@@ -342,21 +348,51 @@ impl Store {
     /// then its row. A committed row therefore always has its files.
     ///
     /// # Errors
-    /// [`StudyError::Busy`] if the database now holds another study (another process started
-    /// one in the directory): the row is refused, never mixed with the other study's; on I/O
-    /// or database errors.
+    /// As [`Store::commit_group`].
     pub fn commit(
         &self,
         rec: &RunRecord,
         fields: &[f64],
         cre: Option<&[f64]>,
     ) -> Result<(), StudyError> {
-        self.write_tagged(&self.field_path(&rec.params), fields)?;
-        if let Some(c) = cre {
-            self.write_tagged(&self.cre_path(&rec.params), c)?;
+        self.commit_group(&[(rec, fields, cre)])
+    }
+
+    /// Commits finished runs together (a group of runs solved together): every run's files
+    /// (each synced and atomically renamed into place), then their directories synced once,
+    /// then all their rows in one transaction - one synced database commit and one directory
+    /// sync for the group instead of one per run. A committed row therefore always has its
+    /// files, and the group's rows are committed all or none.
+    ///
+    /// # Errors
+    /// [`StudyError::Busy`] if the database now holds another study (another process started
+    /// one in the directory): the rows are refused, never mixed with the other study's; on I/O
+    /// or database errors.
+    pub fn commit_group(&self, runs: &[RunToCommit<'_>]) -> Result<(), StudyError> {
+        if runs.is_empty() {
+            return Ok(());
+        }
+        let mut dirs: Vec<PathBuf> = Vec::new();
+        for &(rec, fields, cre) in runs {
+            let mut write = |path: PathBuf, values: &[f64]| -> Result<(), StudyError> {
+                self.write_tagged(&path, values)?;
+                if let Some(d) = path.parent()
+                    && !dirs.iter().any(|x| x == d)
+                {
+                    dirs.push(d.to_path_buf());
+                }
+                Ok(())
+            };
+            write(self.field_path(&rec.params), fields)?;
+            if let Some(c) = cre {
+                write(self.cre_path(&rec.params), c)?;
+            }
+        }
+        for d in &dirs {
+            alea_mesh::atomic::sync_parent(&d.join("x"));
         }
         // One write transaction, taken at once: the study the directory holds is checked and
-        // the row inserted with no other writer in between.
+        // the rows inserted with no other writer in between.
         let tx = rusqlite::Transaction::new_unchecked(
             &self.conn,
             rusqlite::TransactionBehavior::Immediate,
@@ -373,13 +409,19 @@ impl Store {
                 dir: self.dir.clone(),
                 holder: format!(
                     "another study (hash {}, this study {}), started in it by another process; \
-                     this run is not stored",
+                     {} not stored",
                     now.as_deref().unwrap_or("none"),
-                    self.hash
+                    self.hash,
+                    if runs.len() == 1 {
+                        "this run is".to_string()
+                    } else {
+                        format!("these {} runs are", runs.len())
+                    }
                 ),
             });
         }
-        tx.execute(
+        for &(rec, _, _) in runs {
+            tx.execute(
                 "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
                  VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
                 params![
@@ -396,6 +438,7 @@ impl Store {
                 ],
             )
             .map_err(db_err(&self.dir))?;
+        }
         tx.commit().map_err(db_err(&self.dir))
     }
 
@@ -623,6 +666,37 @@ mod tests {
             .query_row("SELECT COUNT(*) FROM runs", [], |r| r.get(0))
             .unwrap();
         assert_eq!(rows, 1, "no row of study A in study B's store");
+    }
+
+    /// A group of runs is committed together: every row with its files, and a group refused
+    /// (the directory now holds another study) stores none of its rows.
+    #[test]
+    fn a_group_of_runs_is_committed_all_or_none() {
+        let d = dir("group");
+        let (a, b) = (study_hash("study A", &[]), study_hash("study B", &[]));
+        let first = Store::open(&d, &a, false).unwrap();
+        let recs = [record(1.0), record(2.0), record(3.0)];
+        let fields = [[1.0, 1.5], [2.0, 2.5], [3.0, 3.5]];
+        let group: Vec<RunToCommit<'_>> = recs
+            .iter()
+            .zip(&fields)
+            .map(|(r, f)| (r, &f[..], None))
+            .collect();
+        first.commit_group(&group).unwrap();
+        assert_eq!(first.runs().unwrap().len(), 3);
+        for (r, f) in recs.iter().zip(&fields) {
+            assert_eq!(first.fields(&r.params).unwrap(), f.to_vec());
+        }
+        let second = Store::open(&d, &b, true).unwrap();
+        let later = [record(4.0), record(5.0)];
+        let group: Vec<RunToCommit<'_>> = later.iter().map(|r| (r, &fields[0][..], None)).collect();
+        let err = first.commit_group(&group).unwrap_err();
+        assert!(
+            err.to_string().contains("these 2 runs are not stored"),
+            "{err}"
+        );
+        assert!(second.runs().unwrap().is_empty());
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]

@@ -313,7 +313,7 @@ impl BatchExecutor for MpiExecutor {
         &self,
         ctx: &RunContext<'_>,
         jobs: &[RunJob],
-        commit: &(dyn Fn(RunOutcome) -> Result<(), StudyError> + Sync),
+        commit: &(dyn Fn(Vec<RunOutcome>) -> Result<(), StudyError> + Sync),
     ) -> Result<(), StudyError> {
         let inner = &*self.0;
         let world = inner.world.get()?;
@@ -399,7 +399,7 @@ impl BatchExecutor for MpiExecutor {
                             return Err(fail(r, i, "its result is for another point"));
                         }
                         stats.runs[r] += 1;
-                        if let Err(e) = commit(o) {
+                        if let Err(e) = commit(vec![o]) {
                             first_err.get_or_insert(e);
                         }
                     }
