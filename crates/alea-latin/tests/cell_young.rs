@@ -139,6 +139,22 @@ fn a_cell_varying_modulus_gives_the_single_domain_solution() {
     let plain = solver.run_shared(&RunInput::default()).unwrap();
     let rel_plain = distance(&solver, &plain, &homog, &uh);
     assert!(rel_plain < 1e-8, "{rel_plain:e}");
+    // Multiresolution: a run with a parameter point is remembered by the set-up's solver, and
+    // the next one starts from it.
+    let located = RunInput {
+        params: vec![0.5],
+        ..input.clone()
+    };
+    let first = solver.run_shared(&located).unwrap();
+    let again = solver.run_shared(&located).unwrap();
+    assert_eq!(first.warm_start, None);
+    assert!(again.warm_start.is_some());
+    assert!(
+        again.iterations < first.iterations,
+        "{} vs {}",
+        again.iterations,
+        first.iterations
+    );
     // A batch holding the heterogeneous run gives it its own result.
     let batch = solver.run_batch(&[RunInput::default(), input.clone()]);
     let b = batch[1].as_ref().unwrap();

@@ -11,8 +11,9 @@
 //! ([`LatinSolver::with_cell_young`]). Pairings and interface data are the set-up's.
 //!
 //! The run then proceeds as any other on that solver, warm-started as asked (the explicit
-//! `initial` state, or the nearest run of the set-up's store, copied over), and a run that
-//! would have been remembered for warm starts is remembered by the set-up's solver.
+//! `initial` state, or the nearest run of the set-up's store, copied over only for such a run),
+//! and a run that would have been remembered for warm starts is remembered by the set-up's
+//! solver.
 
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -25,7 +26,7 @@ impl LatinSolver {
     /// A solver sharing this one's pairings, interfaces, options and the factorisations of the
     /// substructures without cell factors, whose substructures `s` with `cell_young[s]` given
     /// (one factor per cell, > 0) are assembled and factorised with their cells' Young's
-    /// moduli multiplied by those factors. Its warm-start store starts as a copy of this one's.
+    /// moduli multiplied by those factors. Its warm-start store starts empty.
     ///
     /// # Errors
     /// If `cell_young` names more substructures than there are, a factor list has not one
@@ -74,23 +75,11 @@ impl LatinSolver {
             .coarse
             .as_ref()
             .map(|c| coarse_with(&subs, &ifaces, Some((c, &changed))));
-        let store = self.store.lock().map_or_else(
-            |_| Vec::new(),
-            |s| {
-                s.iter()
-                    .map(|r| StoredRun {
-                        params: r.params.clone(),
-                        what: r.what.clone(),
-                        fhat: r.fhat.clone(),
-                    })
-                    .collect()
-            },
-        );
         Ok(LatinSolver {
             subs,
             ifaces,
             options: self.options.clone(),
-            store: Mutex::new(store),
+            store: Mutex::new(Vec::new()),
             model_size: self.model_size,
             coarse,
             configuration: self.configuration.clone(),
@@ -103,6 +92,18 @@ impl LatinSolver {
     pub(super) fn run_with_cell_young(&self, input: &RunInput) -> Result<RunResult, LatinError> {
         let t_start = Instant::now();
         let derived = self.with_cell_young(&input.cell_young)?;
+        // The set-up's finished runs are copied only for a run that looks its start up among
+        // them (no explicit start, a parameter point); a study gives every run its start.
+        if input.initial.is_none()
+            && !input.params.is_empty()
+            && let (Ok(from), Ok(mut to)) = (self.store.lock(), derived.store.lock())
+        {
+            to.extend(from.iter().map(|r| StoredRun {
+                params: r.params.clone(),
+                what: r.what.clone(),
+                fhat: r.fhat.clone(),
+            }));
+        }
         let stored = derived.stored_runs();
         let mut plain = input.clone();
         plain.cell_young = Vec::new();
