@@ -382,11 +382,13 @@ fn method_dict<'py>(
                     row.mesh,
                     row.surrogate,
                     row.sampling,
+                    row.sliding,
                     row.total,
                 ))?;
             }
             q.set_item("surrogate_basis", &b.surrogate_basis)?;
             q.set_item("mesh_basis", &b.mesh_basis)?;
+            q.set_item("sliding_basis", &b.sliding_basis)?;
             q.set_item("budget_draws", b.draws)?;
         }
         q.set_item("budget", budget)?;

@@ -451,12 +451,18 @@ pub struct MethodSpec {
 /// `[budget]`: `refined_mesh = { params = { n_flank = 48 } }` (or `cells = [..]`, or
 /// `file = "fine.msh"`): the keys of `[mesh]` that make a mesh about twice as fine; the model is
 /// solved on both meshes at a few design points and the differences give the mesh part of every
-/// statistic's error budget (`crate::budget::mesh`).
+/// statistic's error budget (`crate::budget::mesh`). `large_sliding = true`: the model is also
+/// solved with every small-sliding contact interface in large sliding at the same points, and
+/// the differences give the sliding part (`crate::budget::sliding`). At least one of the two.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BudgetSpec {
     /// Keys replacing those of `[mesh]` (`params` merged key by key).
-    pub refined_mesh: Spanned<toml::Table>,
+    #[serde(default)]
+    pub refined_mesh: Option<Spanned<toml::Table>>,
+    /// Paired solves in large sliding.
+    #[serde(default)]
+    pub large_sliding: Option<Spanned<bool>>,
 }
 
 /// `[[reliability]]`: `P(q > threshold)` of a quantity by FORM, SORM, importance sampling and
@@ -593,9 +599,9 @@ pub struct ModelFile {
     /// `[[reliability]]`: rare-event probabilities of a quantity on a method's surrogate.
     #[serde(default)]
     pub reliability: Vec<ReliabilitySpec>,
-    /// `[budget]`: how the error budget's mesh part is estimated.
+    /// `[budget]`: how the error budget's mesh and sliding parts are estimated.
     #[serde(default)]
-    pub budget: Option<BudgetSpec>,
+    pub budget: Option<Spanned<BudgetSpec>>,
     /// Statistics settings (`[statistics]`).
     #[serde(default)]
     pub statistics: StatsSpec,

@@ -43,6 +43,9 @@ pub struct Study {
     pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
     /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
     pub refined: Option<Box<Study>>,
+    /// `[budget] large_sliding`: the same study with its small-sliding contact interfaces in
+    /// large sliding (built and checked at load; `crate::budget::sliding`).
+    pub large_sliding: Option<Box<Study>>,
     /// `[[step]]`: the load history of every run (module `steps`).
     pub steps: Option<crate::steps::Plan>,
     /// The models of the steps' other sets of imposed displacements (`steps.files[1..]`),
@@ -134,14 +137,18 @@ impl Study {
             &methods,
             &params,
         )?;
-        let refined = match &file.budget {
-            Some(b) => {
-                let r = refined_study(&source, b)?;
+        let refined = match file
+            .budget
+            .as_ref()
+            .and_then(|b| b.get_ref().refined_mesh.as_ref())
+        {
+            Some(mesh) => {
+                let r = refined_study(&source, mesh)?;
                 // A field truncated by variance fraction may keep another number of modes on
                 // the finer mesh: the paired solves need the same parameters.
                 if r.params.names != params.names {
                     return Err(source.error(
-                        b.refined_mesh.span(),
+                        mesh.span(),
                         "budget.refined_mesh",
                         format!(
                             "the refined study's parameters ({}) differ from the study's ({}): a [[field]] keeps another number of KL modes on the finer mesh; give its `modes`",
@@ -152,6 +159,10 @@ impl Study {
                 }
                 Some(Box::new(r))
             }
+            _ => None,
+        };
+        let large_sliding = match &file.budget {
+            Some(b) => crate::budget::sliding::sliding_study(&source, b)?.map(Box::new),
             None => None,
         };
         let hash = input_hash(&source, &file)?;
@@ -168,6 +179,7 @@ impl Study {
             output,
             reliability,
             refined,
+            large_sliding,
             steps,
             step_models,
             step_solvers: std::sync::OnceLock::new(),
@@ -440,8 +452,11 @@ pub fn check_built(study: &Study) -> Result<(), StudyError> {
 ///
 /// # Errors
 /// [`StudyError::Input`] at `budget.refined_mesh` when the patched study does not build.
-fn refined_study(source: &Source, spec: &crate::spec::BudgetSpec) -> Result<Study, StudyError> {
-    let span = spec.refined_mesh.span();
+fn refined_study(
+    source: &Source,
+    refined_mesh: &toml::Spanned<toml::Table>,
+) -> Result<Study, StudyError> {
+    let span = refined_mesh.span();
     let field = "budget.refined_mesh";
     let fail = |why: String| source.error(span.clone(), field, why);
     let mut doc: toml::Table = toml::from_str(&source.text).map_err(|e| fail(e.to_string()))?;
@@ -450,7 +465,7 @@ fn refined_study(source: &Source, spec: &crate::spec::BudgetSpec) -> Result<Stud
         .get_mut("mesh")
         .and_then(|m| m.as_table_mut())
         .ok_or_else(|| fail("the study has no [mesh] table to refine".into()))?;
-    for (key, value) in spec.refined_mesh.get_ref() {
+    for (key, value) in refined_mesh.get_ref() {
         match (key.as_str(), value, mesh.get_mut(key)) {
             ("params", toml::Value::Table(new), Some(toml::Value::Table(old))) => {
                 for (k, v) in new {

@@ -74,11 +74,13 @@ class StudyResult:
     budget : pandas.DataFrame
         The error budget of every statistic: columns ``method``, ``quantity``, ``statistic``
         (``mean``, ``std``, ``q0.05``, ``P(> t)``...), ``value`` and its estimated error by
-        source, ``mesh``, ``surrogate`` and ``sampling`` (NaN where not estimated), and
+        source, ``mesh``, ``surrogate``, ``sampling`` and ``sliding`` (``[budget] large_sliding``:
+        the change under large sliding; NaN where not estimated or not asked for), and
         ``total``. How the surrogate part was estimated: ``budget_basis[(method, quantity)]``.
     budget_bases : pandas.DataFrame
-        How each budget was estimated: columns ``method``, ``quantity``, ``surrogate`` and
-        ``mesh`` (the basis of each part, or why it was not estimated) and ``draws`` (Monte
+        How each budget was estimated: columns ``method``, ``quantity``, ``surrogate``,
+        ``mesh`` and ``sliding`` (the basis of each part, or why it was not estimated; None
+        when the sliding part was not asked for) and ``draws`` (Monte
         Carlo draws behind the statistics).
     reliability : list of dict
         The ``[[reliability]]`` analyses of the study file (as in ``summary.json``): the FORM
@@ -197,7 +199,7 @@ class StudyResult:
             for s in m["statistics"]:
                 if "surrogate_basis" in s:
                     basis[(m["label"], s["quantity"])] = s["surrogate_basis"]
-                for (stat, value, mesh, surrogate, sampling, total) in s["budget"]:
+                for (stat, value, mesh, surrogate, sampling, sliding, total) in s["budget"]:
                     rows.append(
                         {
                             "method": m["label"],
@@ -207,10 +209,13 @@ class StudyResult:
                             "mesh": nan if mesh is None else mesh,
                             "surrogate": nan if surrogate is None else surrogate,
                             "sampling": sampling,
+                            "sliding": nan if sliding is None else sliding,
                             "total": total,
                         }
                     )
-        columns = ["method", "quantity", "statistic", "value", "mesh", "surrogate", "sampling", "total"]
+        columns = [
+            "method", "quantity", "statistic", "value", "mesh", "surrogate", "sampling", "sliding", "total",
+        ]
         return pd.DataFrame(rows, columns=columns), basis
 
     def _budget_bases(self) -> pd.DataFrame:
@@ -220,13 +225,14 @@ class StudyResult:
                 "quantity": s["quantity"],
                 "surrogate": s["surrogate_basis"],
                 "mesh": s.get("mesh_basis"),
+                "sliding": s.get("sliding_basis"),
                 "draws": s.get("budget_draws"),
             }
             for m in self._raw["methods"]
             for s in m["statistics"]
             if "surrogate_basis" in s
         ]
-        return pd.DataFrame(rows, columns=["method", "quantity", "surrogate", "mesh", "draws"])
+        return pd.DataFrame(rows, columns=["method", "quantity", "surrogate", "mesh", "sliding", "draws"])
 
     def _sensitivity(self) -> Tuple[pd.DataFrame, pd.DataFrame]:
         of_variable = {}

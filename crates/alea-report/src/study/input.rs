@@ -78,14 +78,18 @@ pub(super) fn report_input(
                 surface,
                 budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
                 budget_basis: s.budget.as_ref().map_or_else(Vec::new, |b| {
-                    vec![
+                    let mut lines = vec![
                         format!("Surrogate: {}.", b.surrogate_basis),
                         format!(
                             "Sampling: half-width of the confidence interval from the {} draws.",
                             b.draws
                         ),
                         format!("Mesh: {}.", b.mesh_basis),
-                    ]
+                    ];
+                    if let Some(sliding) = &b.sliding_basis {
+                        lines.push(format!("Sliding: {sliding}."));
+                    }
+                    lines
                 }),
                 sobol: s.sobol.as_ref().map_or_else(Vec::new, |so| {
                     study

@@ -8,6 +8,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method};
+use alea_study::budget::mesh::Part;
 use alea_study::method::{Method, MethodKind};
 use alea_study::reliability::{ReliabilityResult, analyse_reliability};
 use alea_study::runner::{Study, StudyRuns};
@@ -58,39 +59,65 @@ pub fn analyse_all(
         .map(|m| analyse_method(study, m, &runs.records, settings))
         .collect();
     if let Some(refined) = &study.refined {
-        apply_mesh_part(study, refined, &mut results);
+        apply_paired_part(study, refined, Part::Mesh, &mut results);
+    }
+    if let Some(large) = &study.large_sliding {
+        apply_paired_part(study, large, Part::Sliding, &mut results);
     }
     results
 }
 
-/// The mesh part of every statistic's budget from the paired solves of `[budget]
-/// refined_mesh` (`alea_study::budget::mesh`), or why it is not estimated.
-fn apply_mesh_part(study: &Study, refined: &Study, results: &mut [MethodResult]) {
-    use alea_study::budget::mesh::{apply, mesh_check};
-    let check = mesh_check(study, refined);
+/// The mesh part (`[budget] refined_mesh`) or the sliding part (`[budget] large_sliding`) of
+/// every statistic's budget from paired solves of the study and `other`
+/// (`alea_study::budget::mesh`, `alea_study::budget::sliding`), or why it is not estimated.
+fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [MethodResult]) {
+    use alea_study::budget::mesh::{apply, paired_check};
+    let check = paired_check(study, other);
     for r in results.iter_mut() {
         for (q, stats) in r.qois.iter_mut().enumerate() {
             let samples = std::mem::take(&mut stats.samples);
             if let Some(budget) = stats.budget.as_mut() {
-                match &check {
-                    Ok(c) => match c.bounds(q) {
-                        Some((d, s)) => apply(
-                            budget,
-                            &samples,
-                            (d, s),
-                            format!(
+                let why_not = |why: String| format!("not estimated: {why}");
+                let bounds = check.as_ref().map(|c| {
+                    let factor = if which == Part::Mesh { 2.0 } else { 1.0 };
+                    (c, c.bounds(q, factor))
+                });
+                let not_estimated = match bounds {
+                    Ok((c, Some((d, s)))) => {
+                        let basis = match which {
+                            Part::Mesh => format!(
                                 "paired solves on this mesh ({} nodes) and the refined one ({} nodes) at {} design points: D = 2 max |q_h - q_h/2| = {d:.3e}, spread S = {s:.3e} (Richardson, first order)",
                                 c.nodes.0,
                                 c.nodes.1,
                                 c.points.len()
                             ),
-                        ),
-                        None => {
-                            budget.mesh_basis =
-                                "not estimated: no paired solve converged on both meshes".into()
+                            Part::Sliding => format!(
+                                "paired solves in small and in large sliding (the pairing and its normals re-found in the deformed configuration) at {} design points: D = max |q_small - q_large| = {d:.3e}, spread S = {s:.3e}, largest relative change r = {:.3} (std part max(S / 2, r std)); the change toward the large-sliding model, not a large-deformation error",
+                                c.points.len(),
+                                c.relative(q).unwrap_or(0.0)
+                            ),
+                        };
+                        // The sliding change scales with the response (the geometric effect grows
+                        // with the displacements): its largest relative size at the points,
+                        // times the spread, bounds the change of the spread when the change is
+                        // proportional to the quantity, which S / 2 over a few points misses.
+                        let relative = (which == Part::Sliding).then(|| c.relative(q)).flatten();
+                        apply(budget, &samples, (d, s), relative, which, basis);
+                        None
+                    }
+                    Ok((_, None)) => Some(why_not(match which {
+                        Part::Mesh => "no paired solve converged on both meshes".into(),
+                        Part::Sliding => {
+                            "no paired solve converged in both small and large sliding".into()
                         }
-                    },
-                    Err(e) => budget.mesh_basis = format!("not estimated: {e}"),
+                    })),
+                    Err(e) => Some(why_not(e.to_string())),
+                };
+                if let Some(why) = not_estimated {
+                    match which {
+                        Part::Mesh => budget.mesh_basis = why,
+                        Part::Sliding => budget.sliding_basis = Some(why),
+                    }
                 }
             }
             stats.samples = samples;

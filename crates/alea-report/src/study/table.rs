@@ -60,8 +60,11 @@ pub(super) fn print_table(
                     let part = |v: Option<f64>| {
                         v.map_or_else(|| "not estimated".to_string(), |v| format!("+-{v:.2e}"))
                     };
+                    let sliding = row
+                        .sliding
+                        .map_or_else(String::new, |v| format!(", sliding +-{v:.2e}"));
                     console.line(&format!(
-                        "    {:<12} {:>13.6e} {unit:<4} total +-{:.2e}: surrogate {}, sampling +-{:.2e}, mesh {}",
+                        "    {:<12} {:>13.6e} {unit:<4} total +-{:.2e}: surrogate {}, sampling +-{:.2e}, mesh {}{sliding}",
                         row.statistic,
                         row.value,
                         row.total,

@@ -25,21 +25,26 @@ use crate::study::Study;
 /// Quantity values of each design point (`None`: the run did not converge).
 type PointValues = Vec<Option<Vec<f64>>>;
 
-/// The paired solves of the mesh part: per quantity, the signed differences
-/// `q_h(xi_i) - q_h/2(xi_i)` at the design points (only where both runs converged).
-pub struct MeshCheck {
+/// Paired solves of the study and another model of it (the refined mesh of the mesh part, the
+/// large-sliding model of the sliding part, [`super::sliding`]): per quantity, the signed
+/// differences `q(xi_i) - q_other(xi_i)` at the design points (only where both runs
+/// converged).
+pub struct PairedCheck {
     /// The design points.
     pub points: Vec<Vec<f64>>,
     /// `diff[q][i]`: quantity `q` at point `i` (`None`: a run did not converge).
     pub diff: Vec<Vec<Option<f64>>>,
+    /// `base[q][i]`: the study's own value of quantity `q` at point `i`, where `diff` has one.
+    pub base: Vec<Vec<Option<f64>>>,
     /// Nodes of the two models.
     pub nodes: (usize, usize),
 }
 
-impl MeshCheck {
-    /// `D = 2 max_i |diff_i|` and `S = 2 (max_i diff_i - min_i diff_i)` of quantity `q`
-    /// (`None` when no pair converged).
-    pub fn bounds(&self, q: usize) -> Option<(f64, f64)> {
+impl PairedCheck {
+    /// `D = factor max_i |diff_i|` and `S = factor (max_i diff_i - min_i diff_i)` of quantity
+    /// `q` (`None` when no pair converged): `factor` 2 for the mesh part (Richardson, first
+    /// order), 1 for the sliding part.
+    pub fn bounds(&self, q: usize, factor: f64) -> Option<(f64, f64)> {
         let d: Vec<f64> = self.diff[q].iter().flatten().copied().collect();
         if d.is_empty() {
             return None;
@@ -50,15 +55,29 @@ impl MeshCheck {
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
                 (a.min(v), b.max(v))
             });
-        Some((2.0 * max_abs, 2.0 * (hi - lo)))
+        Some((factor * max_abs, factor * (hi - lo)))
+    }
+
+    /// The largest relative difference `max_i |diff_i / q(xi_i)|` of quantity `q` over the
+    /// points where the study's value is not zero (`None` when there is none).
+    pub fn relative(&self, q: usize) -> Option<f64> {
+        self.diff[q]
+            .iter()
+            .zip(&self.base[q])
+            .filter_map(|(d, b)| match (d, b) {
+                (Some(d), Some(b)) if *b != 0.0 => Some((d / b).abs()),
+                _ => None,
+            })
+            .reduce(f64::max)
     }
 }
 
-/// Solves `study` and its refined study at the `2 d + 1` design points (cold starts).
+/// Solves `study` and `other` (its refined or large-sliding study) at the `2 d + 1` design
+/// points (cold starts).
 ///
 /// # Errors
 /// Building either solver.
-pub fn mesh_check(study: &Study, refined: &Study) -> Result<MeshCheck, StudyError> {
+pub fn paired_check(study: &Study, other: &Study) -> Result<PairedCheck, StudyError> {
     let p = &study.params;
     let mut points = vec![p.nominal.clone()];
     for (j, m) in p.marginals.iter().enumerate() {
@@ -94,35 +113,57 @@ pub fn mesh_check(study: &Study, refined: &Study) -> Result<MeshCheck, StudyErro
         Ok((values, dofs))
     };
     let (coarse, n0) = solve(study)?;
-    let (fine, n1) = solve(refined)?;
+    let (fine, n1) = solve(other)?;
+    let pair = |q: usize, i: usize| match (&coarse[i], &fine[i]) {
+        (Some(a), Some(b)) if a[q].is_finite() && b[q].is_finite() => Some((a[q], a[q] - b[q])),
+        _ => None,
+    };
+    let n = points.len();
     let diff = (0..study.qois.len())
-        .map(|q| {
-            coarse
-                .iter()
-                .zip(&fine)
-                .map(|(a, b)| match (a, b) {
-                    (Some(a), Some(b)) if a[q].is_finite() && b[q].is_finite() => Some(a[q] - b[q]),
-                    _ => None,
-                })
-                .collect()
-        })
+        .map(|q| (0..n).map(|i| pair(q, i).map(|p| p.1)).collect())
         .collect();
-    Ok(MeshCheck {
+    let base = (0..study.qois.len())
+        .map(|q| (0..n).map(|i| pair(q, i).map(|p| p.0)).collect())
+        .collect();
+    Ok(PairedCheck {
         points,
         diff,
+        base,
         nodes: (n0, n1),
     })
 }
 
-/// Puts the mesh part into a quantity's budget: `D` for the mean and the quantiles, `S / 2`
-/// for the standard deviation, `P(|q~ - t| <= D)` over the draws `samples` for `P(q > t)`;
-/// totals updated.
-pub fn apply(budget: &mut super::QoiBudget, samples: &[f64], bounds: (f64, f64), basis: String) {
+/// Which part of a budget [`apply`] fills.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    /// Space discretisation (`[budget] refined_mesh`).
+    Mesh,
+    /// Small against large sliding (`[budget] large_sliding`).
+    Sliding,
+}
+
+/// Puts a paired-solve part into a quantity's budget: `D` for the mean and the quantiles,
+/// `S / 2` for the standard deviation - at least `r sigma` when a relative change `r` is given
+/// (`sigma` the standard deviation of the draws) -, `P(|q~ - t| <= D)` over the draws
+/// `samples` for `P(q > t)`; totals updated.
+pub fn apply(
+    budget: &mut super::QoiBudget,
+    samples: &[f64],
+    bounds: (f64, f64),
+    relative: Option<f64>,
+    which: Part,
+    basis: String,
+) {
     let (d, s) = bounds;
     let n = samples.len().max(1) as f64;
+    let sigma = alea_uq::stats::Summary::of(samples).std;
+    let scaled = relative
+        .map(|r| r * sigma)
+        .filter(|v| v.is_finite())
+        .unwrap_or(0.0);
     for row in &mut budget.rows {
         let part = if row.statistic == "std" {
-            0.5 * s
+            (0.5 * s).max(scaled)
         } else if let Some(t) = row
             .statistic
             .strip_prefix("P(> ")
@@ -133,8 +174,14 @@ pub fn apply(budget: &mut super::QoiBudget, samples: &[f64], bounds: (f64, f64),
         } else {
             d
         };
-        row.mesh = Some(part);
-        row.total = row.sampling + row.surrogate.unwrap_or(0.0) + part;
+        match which {
+            Part::Mesh => row.mesh = Some(part),
+            Part::Sliding => row.sliding = Some(part),
+        }
+        row.total = row.sum_of_parts();
     }
-    budget.mesh_basis = basis;
+    match which {
+        Part::Mesh => budget.mesh_basis = basis,
+        Part::Sliding => budget.sliding_basis = Some(basis),
+    }
 }

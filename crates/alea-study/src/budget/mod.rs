@@ -18,9 +18,13 @@
 //! - **mesh** (space discretisation): with `[budget] refined_mesh`, from paired solves on the
 //!   study's mesh and a mesh about twice as fine at a few design points ([`mesh`]); without
 //!   it, not estimated (`None`; the runs' energy-norm error is then the CRE estimate's `I_geo`).
+//! - **sliding** (the kinematics of contact): with `[budget] large_sliding = true`, from paired
+//!   solves in small and large sliding at the same design points ([`sliding`]); without it,
+//!   not asked for (`None`).
 
 mod coarse;
 pub mod mesh;
+pub mod sliding;
 
 pub use coarse::{Comparison, comparisons, credible_fit, smooth_fits};
 
@@ -41,8 +45,22 @@ pub struct BudgetRow {
     pub surrogate: Option<f64>,
     /// Sampling part (half-width of the confidence interval).
     pub sampling: f64,
+    /// Sliding part: the change under large sliding (`[budget] large_sliding`; `None`: not
+    /// asked for).
+    #[serde(default)]
+    pub sliding: Option<f64>,
     /// Sum of the estimated parts.
     pub total: f64,
+}
+
+impl BudgetRow {
+    /// Sampling plus every estimated part.
+    pub fn sum_of_parts(&self) -> f64 {
+        self.sampling
+            + self.surrogate.unwrap_or(0.0)
+            + self.mesh.unwrap_or(0.0)
+            + self.sliding.unwrap_or(0.0)
+    }
 }
 
 /// The budget of one quantity under one method.
@@ -54,6 +72,9 @@ pub struct QoiBudget {
     pub surrogate_basis: String,
     /// How the mesh part was estimated, or why it was not.
     pub mesh_basis: String,
+    /// How the sliding part was estimated, or why it was not (`None`: not asked for).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sliding_basis: Option<String>,
     /// Monte Carlo draws behind the statistics.
     pub draws: usize,
 }
@@ -250,6 +271,7 @@ pub fn qoi_budget(
                 mesh: None,
                 surrogate: part,
                 sampling: *sampling,
+                sliding: None,
                 total: sampling + part.unwrap_or(0.0),
             }
         })
@@ -266,6 +288,7 @@ pub fn qoi_budget(
         surrogate_basis,
         mesh_basis:
             "not estimated (the runs' energy-norm mesh error is I_geo of the error estimate)".into(),
+        sliding_basis: None,
         draws: samples.len(),
     }
 }

@@ -148,17 +148,25 @@ fn sobol_table(o: &mut String, q: &QoiReport) {
     o.push_str("</tbody></table></div>\n");
 }
 
-/// The error budget of each statistic: value, mesh, surrogate, sampling and total parts.
+/// The error budget of each statistic: value, mesh, surrogate, sampling, sliding (when asked
+/// for) and total parts.
 fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
     if q.budget.is_empty() {
         return;
     }
-    o.push_str(
+    let sliding = q.budget.iter().any(|b| b.sliding.is_some());
+    let _ = writeln!(
+        o,
         "<div class=\"budget\"><h3>Error budget</h3><p class=\"hint\">How far each statistic \
          can be trusted: estimated error by source (±), and their sum</p>\
          <table><thead><tr><th>Statistic</th><th class=\"n\">Value</th><th class=\"n\">Mesh</th>\
-         <th class=\"n\">Surrogate</th><th class=\"n\">Sampling</th><th class=\"n\">Total</th>\
-         </tr></thead><tbody>\n",
+         <th class=\"n\">Surrogate</th><th class=\"n\">Sampling</th>{}<th class=\"n\">Total</th>\
+         </tr></thead><tbody>",
+        if sliding {
+            "<th class=\"n\">Sliding</th>"
+        } else {
+            ""
+        }
     );
     let part = |v: Option<f64>| v.map_or_else(|| "not estimated".to_string(), |v| num(v, 2));
     for b in &q.budget {
@@ -167,10 +175,15 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
         } else {
             unit
         };
+        let sliding_cell = if sliding {
+            format!("<td class=\"n\">{}</td>", part(b.sliding))
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             o,
             "<tr><th>{}</th><td class=\"n\">{}{u}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>\
-             <td class=\"n\">{}</td><td class=\"n\">{}</td></tr>",
+             <td class=\"n\">{}</td>{sliding_cell}<td class=\"n\">{}</td></tr>",
             esc(&b.statistic),
             num(b.value, 5),
             part(b.mesh),

@@ -153,6 +153,7 @@ pub(super) fn synthetic() -> ReportInput {
                         mesh: None,
                         surrogate: Some(4.0e-5),
                         sampling: 1.0e-6,
+                        sliding: None,
                         total: 4.1e-5,
                     },
                     BudgetRow {
@@ -161,6 +162,7 @@ pub(super) fn synthetic() -> ReportInput {
                         mesh: None,
                         surrogate: None,
                         sampling: 3.0e-5,
+                        sliding: None,
                         total: 3.0e-5,
                     },
                 ],
