@@ -31,7 +31,7 @@ use rayon::prelude::*;
 use crate::StudyError;
 use crate::method::MethodKind;
 use crate::runs::StudyRuns;
-use crate::store::{Store, point_key, read_values};
+use crate::store::{Store, point_key};
 use crate::study::Study;
 
 /// Mean and standard deviation of the fields of one substructure (node-major, like the
@@ -125,11 +125,15 @@ pub fn mean_std_fields(
     // Run `a`'s data: its displacements of every substructure, then its nodal von Mises
     // stresses of every substructure.
     let width = total + nodes.iter().sum::<usize>();
-    let paths: Vec<PathBuf> = used.iter().map(|p| store.field_path(p)).collect();
-    drop(store);
+    // The runs' fields are read from the database one at a time (a connection is not shared
+    // between threads), then their stresses computed in parallel.
+    let store = std::sync::Mutex::new(store);
     let load = |a: usize| -> Result<Vec<f64>, StudyError> {
         let p = &used[a];
-        let all = read_values(&paths[a])?;
+        let all = store
+            .lock()
+            .map_err(|_| StudyError::Poisoned("store"))?
+            .fields(p)?;
         if all.len() != total {
             return Err(StudyError::FieldSize {
                 params: p.clone(),
