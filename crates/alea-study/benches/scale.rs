@@ -163,7 +163,10 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
     let store = Store::open(dir, &study.hash, false)?;
     let t0 = Instant::now();
     for chunk in records.chunks(1024) {
-        let data: Vec<Vec<f64>> = chunk.par_iter().map(|r| synthetic(&r.params, width)).collect();
+        let data: Vec<Vec<f64>> = chunk
+            .par_iter()
+            .map(|r| synthetic(&r.params, width))
+            .collect();
         let group: Vec<alea_study::store::RunToCommit<'_>> = chunk
             .iter()
             .zip(&data)

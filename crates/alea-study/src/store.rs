@@ -768,7 +768,10 @@ mod tests {
             .unwrap();
         assert_eq!(store.fields(&[1.0, 2.0]).unwrap(), vec![1.0, 2.0, 3.0]);
         assert_eq!(store.cre(&[1.0, 2.0]).unwrap(), Some(vec![4.0]));
-        assert!(!d.join("fields").exists() && !d.join("cre").exists(), "no file");
+        assert!(
+            !d.join("fields").exists() && !d.join("cre").exists(),
+            "no file"
+        );
         // A row of study B in the same table (what a second writer could leave).
         store
             .conn
@@ -790,7 +793,10 @@ mod tests {
             store.cre(&[1.0, 2.0]).unwrap_err(),
         ] {
             assert_eq!(err.exit_code(), 3, "{err}");
-            assert!(err.to_string().contains("belongs to another study"), "{err}");
+            assert!(
+                err.to_string().contains("belongs to another study"),
+                "{err}"
+            );
         }
         let why = store.damaged_files(&[1.0, 2.0], 3, true).unwrap();
         assert!(why.contains("belongs to another study"), "{why}");
@@ -803,7 +809,10 @@ mod tests {
             )
             .unwrap();
         let err = store.fields(&[1.0, 2.0]).unwrap_err().to_string();
-        assert!(err.contains("field data") && err.contains("damaged"), "{err}");
+        assert!(
+            err.contains("field data") && err.contains("damaged"),
+            "{err}"
+        );
         assert!(store.cre(&[1.0, 2.0]).is_err());
         drop(store);
         // The study file changed: refused without --restart, emptied with it.
@@ -838,7 +847,10 @@ mod tests {
             why(&p.params, 4, false),
             "its field data has 3 values, expected 4 (truncated or damaged)"
         );
-        assert_eq!(why(&q.params, 3, true), "its error-estimate data is missing");
+        assert_eq!(
+            why(&q.params, 3, true),
+            "its error-estimate data is missing"
+        );
         assert_eq!(s.cre(&q.params).unwrap(), None);
         let key = point_key(&p.params);
         let set = |sql: &str| s.conn.execute(sql, params![key]).unwrap();
@@ -854,7 +866,10 @@ mod tests {
         let w = why(&p.params, 3, false);
         assert!(w.starts_with("its field data is missing"), "{w}");
         let err = s.fields(&p.params).unwrap_err().to_string();
-        assert!(err.contains("field data") && err.contains("is missing"), "{err}");
+        assert!(
+            err.contains("field data") && err.contains("is missing"),
+            "{err}"
+        );
         let _ = std::fs::remove_dir_all(&d);
     }
 
@@ -948,7 +963,10 @@ mod tests {
         assert_eq!(s.fields(&[3.0, 6.0]).unwrap(), vec![4.0, 5.0]);
         assert_eq!(s.damaged_files(&[3.0, 6.0], 2, false), None);
         let why = s.damaged_files(&[3.0, 6.0], 3, false).unwrap();
-        assert!(why.contains("fields/run_") && why.contains("expected"), "{why}");
+        assert!(
+            why.contains("fields/run_") && why.contains("expected"),
+            "{why}"
+        );
     }
 
     fn tagged(hash: &str, values: &[f64]) -> Vec<u8> {
@@ -1003,7 +1021,11 @@ mod tests {
         // Truncated: refused, not misread.
         std::fs::write(s.field_path(&old.params), &b"ALEAFLD1abc"[..]).unwrap();
         assert!(s.fields(&old.params).is_err());
-        assert!(s.damaged_files(&old.params, 2, true).unwrap().contains("truncated"));
+        assert!(
+            s.damaged_files(&old.params, 2, true)
+                .unwrap()
+                .contains("truncated")
+        );
         // Missing error estimate; then missing fields.
         std::fs::write(s.field_path(&old.params), tagged(&h, &[1.0, 2.0])).unwrap();
         std::fs::remove_file(s.cre_path(&old.params)).unwrap();

@@ -184,11 +184,9 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     let o = alea().arg("report").arg(&dir).output().unwrap();
     assert!(o.status.success(), "{}", text(&o));
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
-    // What kills leave: temporaries of a dead process (pid above Linux's pid_max).
-    let fields: Vec<PathBuf> = std::fs::read_dir(dir.join("fields"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
+    // What kills leave: temporaries of a dead process (pid above Linux's pid_max), also in
+    // `fields/`, where a directory written when the runs' data were files had them.
+    std::fs::create_dir_all(dir.join("fields")).unwrap();
     let stale = [
         dir.join(".samples.csv.tmp-4000000"),
         dir.join("report/.report-input.json.tmp-4000000"),
@@ -197,10 +195,29 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     for s in &stale {
         std::fs::write(s, vec![0u8; 4096]).unwrap();
     }
-    // One field file lost, one truncated.
-    std::fs::remove_file(&fields[0]).unwrap();
-    let bytes = std::fs::read(&fields[1]).unwrap();
-    std::fs::write(&fields[1], &bytes[..bytes.len() / 2]).unwrap();
+    // One run's field data lost, one's truncated (in the database, which the runs' data are in).
+    let stored = |dir: &Path| -> Vec<(String, Vec<u8>)> {
+        let db = rusqlite::Connection::open(dir.join("study.db")).unwrap();
+        let mut st = db
+            .prepare("SELECT key, fields FROM run_data ORDER BY key LIMIT 2")
+            .unwrap();
+        st.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    let before = stored(&dir);
+    assert_eq!(before.len(), 2);
+    {
+        let db = rusqlite::Connection::open(dir.join("study.db")).unwrap();
+        db.execute("DELETE FROM run_data WHERE key = ?1", [&before[0].0])
+            .unwrap();
+        db.execute(
+            "UPDATE run_data SET fields = substr(fields, 1, ?2) WHERE key = ?1",
+            rusqlite::params![before[1].0, before[1].1.len() as i64 / 2],
+        )
+        .unwrap();
+    }
     // `alea report`: the two runs named and counted missing, not "did not converge".
     let o = alea().arg("report").arg(&dir).output().unwrap();
     let t = text(&o);
@@ -221,5 +238,6 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     assert!(t.contains("runs: 2 computed, 68 resumed"), "{t}");
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
     assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
-    assert_eq!(std::fs::read(&fields[1]).unwrap(), bytes);
+    // Both stored again, as they were.
+    assert_eq!(stored(&dir), before);
 }
