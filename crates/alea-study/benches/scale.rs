@@ -263,7 +263,8 @@ fn moments_1e6() -> Result<(), StudyError> {
     Ok(())
 }
 
-/// Rank 0's serial work per run: committing it (its row and its field data in one synced transaction).
+/// Rank 0's serial work per run: committing it (its row and its field data in one synced
+/// transaction).
 fn commit_cost(values: usize, dir: &Path) -> Result<(), StudyError> {
     let _ = std::fs::remove_dir_all(dir);
     let store = Store::open(dir, "bench", false)?;

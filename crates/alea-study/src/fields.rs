@@ -17,7 +17,9 @@
 //! then cost `O(nnz x n)` instead of `O(K^2 x n)` for `n` field values. Global surrogates
 //! (chaos, polynomials) have one support of all `K` runs: the dense matrix, as before.
 //!
-//! **Streaming.** Runs are read in order, a block at a time; run `b`'s field is dropped once
+//! **Streaming.** Runs are read in order, a block at a time (their fields from the study
+//! database, one run at a time through its connection, which is not shared between threads;
+//! each run's stresses then computed in parallel); run `b`'s field is dropped once
 //! the last run `a` with `E[w_a w_b] != 0` has been read, so memory holds the matrix's profile
 //! (about `sqrt(K)` runs for a 2D grid), not all `K` fields. Chunks of draws are summed in a
 //! fixed order, and a bounded number of them is held at once: results do not depend on the

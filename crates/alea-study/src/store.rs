@@ -86,7 +86,8 @@ fn from_blob(b: &[u8]) -> Vec<f64> {
         .collect()
 }
 
-/// Magic bytes at the start of a field file.
+/// Magic bytes at the start of a field file (directories written before the data moved into
+/// the database).
 const FIELD_MAGIC: &[u8; 8] = b"ALEAFLD1";
 
 /// A finished run to commit ([`Store::commit_group`]): its row, its displacement fields and
@@ -492,7 +493,7 @@ impl Store {
                 ),
             ));
         }
-        if b.len() % 8 != 0 {
+        if !b.len().is_multiple_of(8) {
             return Err(self.data_error(
                 params,
                 what,
