@@ -174,8 +174,15 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
             .collect();
         store.commit_group(&group)?;
     }
-    drop(store);
     let write = secs(t0);
+    // What the mean / std fields read of the store, one run at a time (its connection is not
+    // shared between threads).
+    let t0 = Instant::now();
+    for p in &points {
+        std::hint::black_box(store.fields(p)?);
+    }
+    let read = secs(t0);
+    drop(store);
     let runs = StudyRuns {
         records,
         computed: 0,
@@ -208,7 +215,7 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
         })
         .unwrap_or(0.0);
     print!(
-        "fields K = {:>6} ({width} displacement values per run, {draws_n} draws): stored in {write:.2} s; mean/std {new:.3} s (peak RSS so far {rss:.0} MB)",
+        "fields K = {:>6} ({width} displacement values per run, {draws_n} draws): stored in {write:.2} s, read back one by one in {read:.3} s; mean/std {new:.3} s (peak RSS so far {rss:.0} MB)",
         points.len()
     );
     if points.len() <= 2100 {
