@@ -17,8 +17,10 @@
 //! anywhere, in the fixed groups of [`crate::run::RUNS_PER_BATCH`] consecutive runs that share
 //! their LATIN iterations' triangular solves ([`alea_latin::LatinSolver::run_batch`]):
 //! [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
-//! the `distributed` module) on other ranks. Each finished run is committed to the [`Store`] at
-//! once, by this process only; `run_study` on a directory that already holds runs skips them (a
+//! the `distributed` module) on other ranks. Each finished group of runs is committed to the
+//! [`Store`] at once, by this process only (one synced transaction; groups finished while
+//! another group's commit is syncing are committed together by the next one, their solver
+//! thread going on meanwhile); `run_study` on a directory that already holds runs skips them (a
 //! resume) and loads their local-stage states for the warm starts.
 
 use std::collections::{HashMap, HashSet};
