@@ -243,7 +243,7 @@ pub enum StudyError {
 impl StudyError {
     /// Process exit code for this kind of error (the table is in `docs/study-file.md`): 2 for
     /// input errors (including sizes beyond the limits), 3 for file-system and store errors (a
-    /// corrupt `study.db`, a damaged or foreign stored file), 4 for
+    /// corrupt `study.db`, damaged or foreign stored run data), 4 for
     /// computation failures, 5 for a study directory in use by another process.
     pub fn exit_code(&self) -> i32 {
         match self {
