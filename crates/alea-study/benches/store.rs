@@ -1,7 +1,8 @@
 //! What the store's durability costs: commits per second of run records with
-//! `synchronous = NORMAL` and `FULL` (WAL journal), field files of a typical size (the 23k-dof
-//! dovetail: 23 000 values) and without fields. Each commit also writes and syncs its field
-//! file, as `alea run` does.
+//! `synchronous = NORMAL` and `FULL` (WAL journal), field data of a typical size (the 23k-dof
+//! dovetail: 23 000 values) and without fields. Each commit stores its field data in the same
+//! transaction as its row, as `alea run` does (`Store::commit`; `alea run` commits a group of
+//! runs per transaction, `Store::commit_group`).
 //!
 //! Run: `cargo bench -p alea-study --bench store`
 

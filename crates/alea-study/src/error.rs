@@ -96,8 +96,21 @@ pub enum StudyError {
         /// This study's hash.
         study: String,
     },
-    /// A run's stored field file with another number of values than the model has.
-    #[error("field file of the run at {params:?} has {found} values, expected {expected}")]
+    /// A run's stored data in the study database that cannot be used: missing, damaged, or
+    /// written by another study (`why` says which).
+    #[error("study database in {}: the {what} of the run at {params:?} {why}", dir.display())]
+    RunData {
+        /// The study directory.
+        dir: PathBuf,
+        /// The run's parameters.
+        params: Vec<f64>,
+        /// `field data` or `error-estimate data`.
+        what: &'static str,
+        /// What is wrong with it (`is missing`, `belongs to another study ...`, ...).
+        why: String,
+    },
+    /// A run's stored field data with another number of values than the model has.
+    #[error("field data of the run at {params:?} has {found} values, expected {expected}")]
     FieldSize {
         /// The run's parameters.
         params: Vec<f64>,
@@ -230,7 +243,7 @@ pub enum StudyError {
 impl StudyError {
     /// Process exit code for this kind of error (the table is in `docs/study-file.md`): 2 for
     /// input errors (including sizes beyond the limits), 3 for file-system and store errors (a
-    /// corrupt `study.db`, a damaged or foreign stored file), 4 for
+    /// corrupt `study.db`, damaged or foreign stored run data), 4 for
     /// computation failures, 5 for a study directory in use by another process.
     pub fn exit_code(&self) -> i32 {
         match self {
@@ -239,6 +252,7 @@ impl StudyError {
             StudyError::Io { .. }
             | StudyError::Database { .. }
             | StudyError::Corrupt { .. }
+            | StudyError::RunData { .. }
             | StudyError::ForeignFile { .. } => 3,
             StudyError::Mesh(alea_mesh::MeshError::Io { .. })
             | StudyError::Latin(alea_latin::LatinError::Io { .. })
@@ -310,7 +324,7 @@ mod tests {
                     found: 3,
                     expected: 4,
                 },
-                "field file of the run at [0.25] has 3 values, expected 4",
+                "field data of the run at [0.25] has 3 values, expected 4",
             ),
             (StudyError::Poisoned("run list"), "run list lock poisoned"),
             (
@@ -334,6 +348,17 @@ mod tests {
         );
         assert_eq!(foreign.exit_code(), 3);
         assert_eq!(StudyError::Corrupt { path: "f".into() }.exit_code(), 3);
+        let data = StudyError::RunData {
+            dir: "d".into(),
+            params: vec![0.5],
+            what: "field data",
+            why: "is missing".into(),
+        };
+        assert_eq!(
+            data.to_string(),
+            "study database in d: the field data of the run at [0.5] is missing"
+        );
+        assert_eq!(data.exit_code(), 3);
         let db = StudyError::Database {
             dir: "d".into(),
             error: rusqlite::Error::InvalidQuery,

@@ -17,7 +17,9 @@
 //! then cost `O(nnz x n)` instead of `O(K^2 x n)` for `n` field values. Global surrogates
 //! (chaos, polynomials) have one support of all `K` runs: the dense matrix, as before.
 //!
-//! **Streaming.** Runs are read in order, a block at a time; run `b`'s field is dropped once
+//! **Streaming.** Runs are read in order, a block at a time (their fields from the study
+//! database, one run at a time through its connection, which is not shared between threads;
+//! each run's stresses then computed in parallel); run `b`'s field is dropped once
 //! the last run `a` with `E[w_a w_b] != 0` has been read, so memory holds the matrix's profile
 //! (about `sqrt(K)` runs for a 2D grid), not all `K` fields. Chunks of draws are summed in a
 //! fixed order, and a bounded number of them is held at once: results do not depend on the
@@ -31,7 +33,7 @@ use rayon::prelude::*;
 use crate::StudyError;
 use crate::method::MethodKind;
 use crate::runs::StudyRuns;
-use crate::store::{Store, point_key, read_values};
+use crate::store::{Store, point_key};
 use crate::study::Study;
 
 /// Mean and standard deviation of the fields of one substructure (node-major, like the
@@ -125,11 +127,15 @@ pub fn mean_std_fields(
     // Run `a`'s data: its displacements of every substructure, then its nodal von Mises
     // stresses of every substructure.
     let width = total + nodes.iter().sum::<usize>();
-    let paths: Vec<PathBuf> = used.iter().map(|p| store.field_path(p)).collect();
-    drop(store);
+    // The runs' fields are read from the database one at a time (a connection is not shared
+    // between threads), then their stresses computed in parallel.
+    let store = std::sync::Mutex::new(store);
     let load = |a: usize| -> Result<Vec<f64>, StudyError> {
         let p = &used[a];
-        let all = read_values(&paths[a])?;
+        let all = store
+            .lock()
+            .map_err(|_| StudyError::Poisoned("store"))?
+            .fields(p)?;
         if all.len() != total {
             return Err(StudyError::FieldSize {
                 params: p.clone(),

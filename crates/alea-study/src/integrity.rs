@@ -1,25 +1,28 @@
-//! The stored files of finished runs, checked before they are used.
+//! The stored data of finished runs, checked before it is used.
 //!
-//! A converged run's row is committed after its files (`fields/run_<h>.bin`, and with error
-//! estimation `cre/run_<h>.bin`), so a kill cannot leave a row without them; a file removed or
-//! truncated afterwards (by hand, a full disk, a copy of the directory that was cut short)
-//! could, and every output that reads it would then fail. [`usable_runs`] checks each
-//! converged run's files when a study directory is opened (sizes against the model's number of
-//! field values, headers against the study hash; `Store::damaged_files`): a run with a damaged
-//! file is left out of the stored runs, so that `alea run` computes it again (its row is
-//! replaced on commit) and `alea report` counts it as missing; either way the run is named in a
-//! note. A study is never blocked by one lost file.
+//! A converged run's row is committed in the same transaction as its data (its displacement
+//! fields, and with error estimation its error-estimate values: the `run_data` table of
+//! `study.db`), so a kill cannot leave a row without them; data removed or cut afterwards (a
+//! row deleted by hand, a damaged database page, or in a directory written when each run's data
+//! was a file - `fields/run_<h>.bin`, `cre/run_<h>.bin` - a file removed or truncated) could,
+//! and every output that reads it would then fail. [`usable_runs`] checks each converged run's
+//! data when a study directory is opened (its size against the model's number of field values,
+//! its study hash; `Store::damaged_files`, which reads sizes, not values): a run with damaged
+//! data is left out of the stored runs, so that `alea run` computes it again (its row and data
+//! are replaced on commit) and `alea report` counts it as missing; either way the run is named
+//! in a note ("the run at (...) cannot be used: its field data has N values, expected M"). A
+//! study is never blocked by one lost run.
 
 use crate::store::{RunRecord, Store};
 use crate::study::{Study, estimates_error};
 
-/// Number of values of a run's field file ([`Study::field_values`]).
+/// Number of values of a run's field data ([`Study::field_values`]).
 pub fn field_values(study: &Study) -> usize {
     study.field_values()
 }
 
-/// The runs of `records` whose stored files can be used; each converged run with a damaged
-/// file is left out and named to `note` (`compute`: it is computed again; else it is missing
+/// The runs of `records` whose stored data can be used; each converged run with damaged data
+/// is left out and named to `note` (`compute`: it is computed again; else it is missing
 /// from the outputs).
 pub fn usable_runs(
     study: &Study,

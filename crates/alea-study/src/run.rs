@@ -30,7 +30,7 @@ pub struct RunJob {
 pub struct RunOutcome {
     /// The store row.
     pub rec: RunRecord,
-    /// Displacements of every substructure, concatenated (the run's field file).
+    /// Displacements of every substructure, concatenated (the run's field data in the store).
     pub fields: Vec<f64>,
     /// Compact per-run error-estimate data, when the study estimates its error.
     pub cre: Option<Vec<f64>>,

@@ -17,8 +17,10 @@
 //! anywhere, in the fixed groups of [`crate::run::RUNS_PER_BATCH`] consecutive runs that share
 //! their LATIN iterations' triangular solves ([`alea_latin::LatinSolver::run_batch`]):
 //! [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
-//! the `distributed` module) on other ranks. Each finished run is committed to the [`Store`] at
-//! once, by this process only; `run_study` on a directory that already holds runs skips them (a
+//! the `distributed` module) on other ranks. Each finished group of runs is committed to the
+//! [`Store`] at once, by this process only (one synced transaction; groups finished while
+//! another group's commit is syncing are committed together by the next one, their solver
+//! thread going on meanwhile); `run_study` on a directory that already holds runs skips them (a
 //! resume) and loads their local-stage states for the warm starts.
 
 use std::collections::{HashMap, HashSet};
@@ -250,21 +252,53 @@ impl<'a> Runner<'a> {
                 .push((out.rec, out.estimate_seconds));
             Ok(())
         };
-        let commit = |outs: Vec<RunOutcome>| -> Result<(), StudyError> {
+        // Groups finished while another group's commit is being synced wait here, and are
+        // committed together by the next commit (or by the flush after the executor): one
+        // synced transaction for all of them, and the solver thread that finished them goes on
+        // solving instead of waiting for the disk. A run is noted (finished, warm-start source)
+        // only once its transaction is committed.
+        let pending: Mutex<Vec<RunOutcome>> = Mutex::new(Vec::new());
+        let commit_pending = |store: &Store| -> Result<(), StudyError> {
+            let outs = std::mem::take(
+                &mut *pending
+                    .lock()
+                    .map_err(|_| StudyError::Poisoned("pending runs"))?,
+            );
+            if outs.is_empty() {
+                return Ok(());
+            }
             let group: Vec<crate::store::RunToCommit<'_>> = outs
                 .iter()
                 .map(|o| (&o.rec, o.fields.as_slice(), o.cre.as_deref()))
                 .collect();
-            store
-                .lock()
-                .map_err(|_| StudyError::Poisoned("store"))?
-                .commit_group(&group)?;
+            store.commit_group(&group)?;
             for out in outs {
                 note_committed(out)?;
             }
             Ok(())
         };
-        let result = self.exec.execute(ctx, &jobs, &commit);
+        let commit = |outs: Vec<RunOutcome>| -> Result<(), StudyError> {
+            pending
+                .lock()
+                .map_err(|_| StudyError::Poisoned("pending runs"))?
+                .extend(outs);
+            match store.try_lock() {
+                Ok(store) => commit_pending(&store),
+                // Another thread is committing: it or the next commit takes these runs.
+                Err(std::sync::TryLockError::WouldBlock) => Ok(()),
+                Err(std::sync::TryLockError::Poisoned(_)) => Err(StudyError::Poisoned("store")),
+            }
+        };
+        let mut result = self.exec.execute(ctx, &jobs, &commit);
+        // The runs still waiting: committed now (also after a failed run: whatever finished
+        // is kept).
+        let flushed = store
+            .lock()
+            .map_err(|_| StudyError::Poisoned("store"))
+            .and_then(|s| commit_pending(&s));
+        if result.is_ok() {
+            result = flushed;
+        }
         // Whatever finished is committed: keep it even when a run failed.
         for (rec, est) in done
             .into_inner()

@@ -1,23 +1,36 @@
 //! The study directory's crash-safe store: an SQLite database (bundled, WAL journal) with one
-//! row per finished run, and a compact binary file per run with its displacement fields.
+//! row per finished run and, in the same database, the run's displacement fields (and its
+//! error-estimate data when the study estimates its error) as BLOBs.
 //!
-//! A run is committed atomically: its field file is written to a temporary name, synced and
-//! renamed (and the directory synced), then its row is inserted in one transaction. A study
-//! killed at any point therefore resumes with every committed run intact (a field file without
-//! a row is simply rewritten).
+//! **Tables.** `meta` (the study hash, the study file's path and text), `runs` (one row per
+//! finished run: point, status, iterations, quantities of interest, error history, local-stage
+//! state, study hash) and `run_data` (per run: `key` as in `runs`, `study_hash`, `fields` - the
+//! displacements of every substructure, f64 little-endian - and `cre`, the error-estimate
+//! values or NULL). `run_data` is a table of its own so that reading every run's row
+//! ([`Store::runs`]) never reads the fields.
+//!
+//! A run is committed atomically: its `runs` row and its `run_data` row are inserted in one
+//! transaction, and the runs solved together are committed together ([`Store::commit_group`]:
+//! one synced database commit per group, no file at all). A committed row therefore always has
+//! its data, and a study killed at any point resumes with every committed run intact.
 //!
 //! **Which study.** The study's hash (of the study file's text and of the mesh file it reads)
-//! is kept in the database, and every run row and every field file carries it: a changed
+//! is kept in the database, and every run row and every `run_data` row carries it: a changed
 //! study is refused unless the caller asks to start over, rows of another hash are never
-//! returned, and a field file of another study is refused on reading. The study file's text is
+//! returned, and field data of another study is refused on reading. The study file's text is
 //! kept too, so that `alea report DIR` can rebuild every output from the directory alone.
 //!
 //! **Durability.** `synchronous = FULL` with the WAL journal: a commit returns only once the
 //! WAL is synced, so a finished run survives a kill, an OS crash and a power loss (given a disk
 //! that honours flushes). `NORMAL` would survive a kill but could lose the last commits on power
-//! loss; FULL costs one more fsync per run, measured in `BENCHMARKS.md` ("store commits").
-//! Field file format: 8 bytes `ALEAFLD1`, 16 ASCII hex digits of the study hash, then the
-//! values as f64 little-endian.
+//! loss; FULL costs one more fsync per commit, measured in `BENCHMARKS.md` ("store commits").
+//!
+//! **Directories written before the data moved into the database** (up to 2026-11) kept each
+//! run's fields in a file `fields/run_<h>.bin` (and `cre/run_<h>.bin`): 8 bytes `ALEAFLD1`, 16
+//! ASCII hex digits of the study hash, then the values as f64 little-endian (or, older still,
+//! the values alone). A run with no `run_data` row is read from its file ([`Store::field_path`],
+//! [`Store::cre_path`]), so such directories are still read and resumed; the runs solved after
+//! the resumption are stored in the database.
 
 use std::path::{Path, PathBuf};
 
@@ -73,12 +86,20 @@ fn from_blob(b: &[u8]) -> Vec<f64> {
         .collect()
 }
 
-/// Magic bytes at the start of a field file.
+/// Magic bytes at the start of a field file (directories written before the data moved into
+/// the database).
 const FIELD_MAGIC: &[u8; 8] = b"ALEAFLD1";
 
 /// A finished run to commit ([`Store::commit_group`]): its row, its displacement fields and
 /// its error-estimate data (when the study estimates its error).
 pub type RunToCommit<'a> = (&'a RunRecord, &'a [f64], Option<&'a [f64]>);
+
+/// Removes the field and error-estimate files of a directory written before the run data
+/// moved into the database (best effort: their rows are gone, nothing reads them).
+fn remove_legacy_files(dir: &Path) {
+    let _ = std::fs::remove_dir_all(dir.join("fields"));
+    let _ = std::fs::remove_dir_all(dir.join("cre"));
+}
 
 /// The SQLite `synchronous` level of the store (see the module doc).
 pub const SYNCHRONOUS: &str = "FULL";
@@ -139,7 +160,7 @@ impl Store {
             let p = p.to_path_buf();
             move |source| StudyError::Io { path: p, source }
         };
-        std::fs::create_dir_all(dir.join("fields")).map_err(io(dir))?;
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
         let db = dir.join("study.db");
         let mut conn = Connection::open(&db).map_err(db_err(dir))?;
         conn.pragma_update(None, "journal_mode", "WAL")
@@ -158,7 +179,12 @@ impl Store {
                  qois BLOB NOT NULL,
                  history BLOB NOT NULL,
                  state BLOB NOT NULL,
-                 finished_at TEXT NOT NULL DEFAULT CURRENT_TIMESTAMP);",
+                 finished_at TEXT NOT NULL DEFAULT CURRENT_TIMESTAMP);
+             CREATE TABLE IF NOT EXISTS run_data (
+                 key TEXT PRIMARY KEY,
+                 study_hash TEXT NOT NULL,
+                 fields BLOB NOT NULL,
+                 cre BLOB);",
         )
         .map_err(db_err(dir))?;
         let old: Option<String> = conn
@@ -189,20 +215,23 @@ impl Store {
                     )));
                 }
                 let tx = conn.transaction().map_err(db_err(dir))?;
-                tx.execute("DELETE FROM runs", []).map_err(db_err(dir))?;
+                tx.execute_batch("DELETE FROM runs; DELETE FROM run_data;")
+                    .map_err(db_err(dir))?;
                 tx.execute(
                     "UPDATE meta SET value = ?1 WHERE key = 'study_hash'",
                     params![hash],
                 )
                 .map_err(db_err(dir))?;
                 tx.commit().map_err(db_err(dir))?;
-                let _ = std::fs::remove_dir_all(dir.join("fields"));
-                let _ = std::fs::remove_dir_all(dir.join("cre"));
-                std::fs::create_dir_all(dir.join("fields")).map_err(io(dir))?;
+                remove_legacy_files(dir);
             }
             Some(_) => {
                 if restart {
-                    conn.execute("DELETE FROM runs", []).map_err(db_err(dir))?;
+                    let tx = conn.transaction().map_err(db_err(dir))?;
+                    tx.execute_batch("DELETE FROM runs; DELETE FROM run_data;")
+                        .map_err(db_err(dir))?;
+                    tx.commit().map_err(db_err(dir))?;
+                    remove_legacy_files(dir);
                 }
             }
             None => {
@@ -308,44 +337,24 @@ impl Store {
             .map_err(db_err(&self.dir))
     }
 
-    /// Path of the field file of a run (`fields/<run_file_stem>.bin`).
+    /// Path of the field file of a run in a directory written before the run data moved into
+    /// the database (`fields/<run_file_stem>.bin`): read when the run has no `run_data` row.
     pub fn field_path(&self, params: &[f64]) -> PathBuf {
         self.dir
             .join("fields")
             .join(format!("{}.bin", run_file_stem(params)))
     }
 
-    /// Path of the error-estimate file of a run (`cre/run_<hash>.bin`, next to its fields).
+    /// Path of the error-estimate file of a run in a directory written before the run data
+    /// moved into the database (`cre/run_<hash>.bin`, next to its fields).
     pub fn cre_path(&self, params: &[f64]) -> PathBuf {
         let f = self.field_path(params);
         let name = f.file_name().map(|n| n.to_os_string()).unwrap_or_default();
         self.dir.join("cre").join(name)
     }
 
-    /// Writes `values` with the study-hash header (then f64 little-endian), synced and
-    /// atomically renamed into place.
-    fn write_tagged(&self, path: &Path, values: &[f64]) -> Result<(), StudyError> {
-        let mut bytes = Vec::with_capacity(24 + 8 * values.len());
-        bytes.extend_from_slice(FIELD_MAGIC);
-        bytes.extend_from_slice(self.hash.as_bytes());
-        bytes.extend_from_slice(&to_blob(values));
-        if let Some(parent) = path.parent() {
-            std::fs::create_dir_all(parent).map_err(|source| StudyError::Io {
-                path: parent.to_path_buf(),
-                source,
-            })?;
-        }
-        alea_mesh::atomic::write_bytes_atomic_unsynced_dir(path, &bytes).map_err(|source| {
-            StudyError::Io {
-                path: path.to_path_buf(),
-                source,
-            }
-        })
-    }
-
-    /// Commits a finished run: its fields and, if given, its error estimate (each with the
-    /// study-hash header, then f64 little-endian; synced and atomically renamed into place),
-    /// then its row. A committed row therefore always has its files.
+    /// Commits a finished run: its row, its fields and, if given, its error estimate, in one
+    /// transaction.
     ///
     /// # Errors
     /// As [`Store::commit_group`].
@@ -358,11 +367,10 @@ impl Store {
         self.commit_group(&[(rec, fields, cre)])
     }
 
-    /// Commits finished runs together (a group of runs solved together): every run's files
-    /// (each synced and atomically renamed into place), then their directories synced once,
-    /// then all their rows in one transaction - one synced database commit and one directory
-    /// sync for the group instead of one per run. A committed row therefore always has its
-    /// files, and the group's rows are committed all or none.
+    /// Commits finished runs together (a group of runs solved together): every run's row and
+    /// its data (fields, error estimate) in one transaction - one synced database commit for
+    /// the group, no file. A committed row therefore always has its data, and the group's rows
+    /// are committed all or none.
     ///
     /// # Errors
     /// [`StudyError::Busy`] if the database now holds another study (another process started
@@ -371,25 +379,6 @@ impl Store {
     pub fn commit_group(&self, runs: &[RunToCommit<'_>]) -> Result<(), StudyError> {
         if runs.is_empty() {
             return Ok(());
-        }
-        let mut dirs: Vec<PathBuf> = Vec::new();
-        for &(rec, fields, cre) in runs {
-            let mut write = |path: PathBuf, values: &[f64]| -> Result<(), StudyError> {
-                self.write_tagged(&path, values)?;
-                if let Some(d) = path.parent()
-                    && !dirs.iter().any(|x| x == d)
-                {
-                    dirs.push(d.to_path_buf());
-                }
-                Ok(())
-            };
-            write(self.field_path(&rec.params), fields)?;
-            if let Some(c) = cre {
-                write(self.cre_path(&rec.params), c)?;
-            }
-        }
-        for d in &dirs {
-            alea_mesh::atomic::sync_parent(&d.join("x"));
         }
         // One write transaction, taken at once: the study the directory holds is checked and
         // the rows inserted with no other writer in between.
@@ -420,12 +409,23 @@ impl Store {
                 ),
             });
         }
-        for &(rec, _, _) in runs {
-            tx.execute(
-                "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
-                 VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
-                params![
-                    point_key(&rec.params),
+        {
+            let mut row = tx
+                .prepare_cached(
+                    "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
+                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
+                )
+                .map_err(db_err(&self.dir))?;
+            let mut data = tx
+                .prepare_cached(
+                    "INSERT OR REPLACE INTO run_data (key, study_hash, fields, cre)
+                     VALUES (?1, ?2, ?3, ?4)",
+                )
+                .map_err(db_err(&self.dir))?;
+            for &(rec, fields, cre) in runs {
+                let key = point_key(&rec.params);
+                row.execute(params![
+                    key,
                     to_blob(&rec.params),
                     rec.status,
                     rec.iterations as i64,
@@ -435,19 +435,145 @@ impl Store {
                     to_blob(&rec.history),
                     to_blob(&rec.state),
                     self.hash,
-                ],
-            )
-            .map_err(db_err(&self.dir))?;
+                ])
+                .map_err(db_err(&self.dir))?;
+                data.execute(params![key, self.hash, to_blob(fields), cre.map(to_blob)])
+                    .map_err(db_err(&self.dir))?;
+            }
         }
         tx.commit().map_err(db_err(&self.dir))
     }
 
-    /// Why the stored files of the run at `params` cannot be used, `None` if they can: its
-    /// field file must exist with `field_values` values (after the study-hash header of this
-    /// study, or none for a directory written before headers), and with `estimate` its
-    /// error-estimate file must exist with this study's header and whole values. Reads the
-    /// headers only.
+    /// The `run_data` row of the run at `params`: its study hash and `column` (`None` if the
+    /// run has no row: a directory written before the data moved into the database).
+    fn data_row<T: rusqlite::types::FromSql>(
+        &self,
+        params: &[f64],
+        column: &str,
+    ) -> Result<Option<(String, T)>, StudyError> {
+        let sql = match column {
+            "fields" => "SELECT study_hash, fields FROM run_data WHERE key = ?1",
+            "cre" => "SELECT study_hash, cre FROM run_data WHERE key = ?1",
+            _ => return Err(StudyError::Internal(format!("no run_data column {column}"))),
+        };
+        self.conn
+            .prepare_cached(sql)
+            .and_then(|mut st| {
+                st.query_row(params![point_key(params)], |r| Ok((r.get(0)?, r.get(1)?)))
+                    .optional()
+            })
+            .map_err(db_err(&self.dir))
+    }
+
+    /// A [`StudyError::RunData`] for the run at `params`.
+    fn data_error(&self, params: &[f64], what: &'static str, why: String) -> StudyError {
+        StudyError::RunData {
+            dir: self.dir.clone(),
+            params: params.to_vec(),
+            what,
+            why,
+        }
+    }
+
+    /// The values of a `run_data` BLOB of this study (`hash`), whole f64 values.
+    fn untag_blob(
+        &self,
+        params: &[f64],
+        what: &'static str,
+        hash: &str,
+        b: &[u8],
+    ) -> Result<Vec<f64>, StudyError> {
+        if hash != self.hash {
+            return Err(self.data_error(
+                params,
+                what,
+                format!(
+                    "belongs to another study (hash {hash}, this study {}); run again with --restart",
+                    self.hash
+                ),
+            ));
+        }
+        if !b.len().is_multiple_of(8) {
+            return Err(self.data_error(
+                params,
+                what,
+                format!("has {} bytes, not whole values (damaged)", b.len()),
+            ));
+        }
+        Ok(from_blob(b))
+    }
+
+    /// Why the stored data of the run at `params` cannot be used, `None` if it can: its field
+    /// data must be of this study with `field_values` values, and with `estimate` its
+    /// error-estimate data must be present and whole. Reads the sizes only. A run with no
+    /// `run_data` row (a directory written before the data moved into the database) is checked
+    /// in its files: its field file must exist with `field_values` values (after the
+    /// study-hash header of this study, or none for a directory written before headers), and
+    /// with `estimate` its error-estimate file must exist with this study's header and whole
+    /// values.
     pub fn damaged_files(
+        &self,
+        params: &[f64],
+        field_values: usize,
+        estimate: bool,
+    ) -> Option<String> {
+        // length() of a BLOB reads its size, not its bytes.
+        let row = self
+            .conn
+            .prepare_cached(
+                "SELECT study_hash, length(fields), length(cre) FROM run_data WHERE key = ?1",
+            )
+            .and_then(|mut st| {
+                st.query_row(params![point_key(params)], |r| {
+                    Ok((
+                        r.get::<_, String>(0)?,
+                        r.get::<_, Option<i64>>(1)?,
+                        r.get::<_, Option<i64>>(2)?,
+                    ))
+                })
+                .optional()
+            });
+        let (hash, fields, cre) = match row {
+            Ok(Some(row)) => row,
+            Ok(None) => return self.damaged_legacy_files(params, field_values, estimate),
+            Err(e) => return Some(format!("its data cannot be read: {e}")),
+        };
+        if hash != self.hash {
+            return Some(format!(
+                "its data belongs to another study (hash {hash}, this study {})",
+                self.hash
+            ));
+        }
+        let expected = 8 * field_values as i64;
+        let Some(fields) = fields else {
+            return Some("its field data is missing".into());
+        };
+        if fields % 8 != 0 {
+            return Some(format!(
+                "its field data has {fields} bytes, expected {expected} (truncated or damaged)"
+            ));
+        }
+        if fields != expected {
+            return Some(format!(
+                "its field data has {} values, expected {field_values} (truncated or damaged)",
+                fields / 8
+            ));
+        }
+        if estimate {
+            let Some(cre) = cre else {
+                return Some("its error-estimate data is missing".into());
+            };
+            if cre % 8 != 0 {
+                return Some(format!(
+                    "its error-estimate data has {cre} bytes, not whole values (truncated)"
+                ));
+            }
+        }
+        None
+    }
+
+    /// [`Store::damaged_files`] for a run stored in files.
+    fn damaged_legacy_files(
         &self,
         params: &[f64],
         field_values: usize,
@@ -458,7 +584,12 @@ impl Store {
         let fields = self.field_path(params);
         let expected = [header + 8 * field_values as u64, 8 * field_values as u64];
         match std::fs::metadata(&fields) {
-            Err(_) => return Some(format!("{} is missing", name(&fields))),
+            Err(_) => {
+                return Some(format!(
+                    "its field data is missing (not in the database, and no file {})",
+                    name(&fields)
+                ));
+            }
             Ok(m) if !expected.contains(&m.len()) => {
                 return Some(format!(
                     "{} has {} bytes, expected {} (truncated or damaged)",
@@ -475,7 +606,12 @@ impl Store {
         if estimate {
             let cre = self.cre_path(params);
             match std::fs::metadata(&cre) {
-                Err(_) => return Some(format!("{} is missing", name(&cre))),
+                Err(_) => {
+                    return Some(format!(
+                        "its error-estimate data is missing (not in the database, and no file {})",
+                        name(&cre)
+                    ));
+                }
                 Ok(m) if m.len() < header || (m.len() - header) % 8 != 0 => {
                     return Some(format!("{} is truncated", name(&cre)));
                 }
@@ -499,8 +635,18 @@ impl Store {
             && &head[8..] == self.hash.as_bytes()
     }
 
-    /// Reads a run's error-estimate file (`None` if the run has none).
+    /// A run's error-estimate data (`None` if the run has none).
+    ///
+    /// # Errors
+    /// If it cannot be read, is damaged, or belongs to another study.
     pub fn cre(&self, params: &[f64]) -> Result<Option<Vec<f64>>, StudyError> {
+        const WHAT: &str = "error-estimate data";
+        if let Some((hash, blob)) = self.data_row::<Option<Vec<u8>>>(params, "cre")? {
+            return match blob {
+                Some(b) => self.untag_blob(params, WHAT, &hash, &b).map(Some),
+                None => Ok(None),
+            };
+        }
         let path = self.cre_path(params);
         match std::fs::read(&path) {
             Ok(b) => self.untag(&path, &b).map(Some),
@@ -509,15 +655,32 @@ impl Store {
         }
     }
 
-    /// Reads a run's field file.
+    /// A run's displacement fields (every substructure's, in order).
     ///
     /// # Errors
-    /// If it cannot be read, or belongs to another study.
+    /// If they are missing, cannot be read, are damaged, or belong to another study.
     pub fn fields(&self, params: &[f64]) -> Result<Vec<f64>, StudyError> {
+        const WHAT: &str = "field data";
+        if let Some((hash, b)) = self.data_row::<Vec<u8>>(params, "fields")? {
+            return self.untag_blob(params, WHAT, &hash, &b);
+        }
         let path = self.field_path(params);
-        let b = std::fs::read(&path).map_err(|source| StudyError::Io {
-            path: path.clone(),
-            source,
+        let b = std::fs::read(&path).map_err(|source| {
+            if source.kind() == std::io::ErrorKind::NotFound {
+                self.data_error(
+                    params,
+                    WHAT,
+                    format!(
+                        "is missing (not in the database, and no file {})",
+                        path.display()
+                    ),
+                )
+            } else {
+                StudyError::Io {
+                    path: path.clone(),
+                    source,
+                }
+            }
         })?;
         match b.strip_prefix(FIELD_MAGIC) {
             Some(_) => self.untag(&path, &b),
@@ -526,7 +689,8 @@ impl Store {
         }
     }
 
-    /// The values of a file written by `write_tagged`, checked against this study's hash.
+    /// The values of a file written by the store before the data moved into the database,
+    /// checked against this study's hash.
     fn untag(&self, path: &Path, b: &[u8]) -> Result<Vec<f64>, StudyError> {
         match b.strip_prefix(FIELD_MAGIC) {
             Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => {
@@ -543,22 +707,6 @@ impl Store {
                 path: path.to_path_buf(),
             }),
         }
-    }
-}
-
-/// Reads a file of `f64` little-endian values written by the store (a field or error-estimate
-/// file): the study-hash header, if any, is skipped (the store's own readers check it).
-pub fn read_values(path: &Path) -> Result<Vec<f64>, StudyError> {
-    let b = std::fs::read(path).map_err(|source| StudyError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    match b.strip_prefix(FIELD_MAGIC) {
-        Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => Ok(from_blob(&rest[16..])),
-        Some(_) => Err(StudyError::Corrupt {
-            path: path.to_path_buf(),
-        }),
-        None => Ok(from_blob(&b)),
     }
 }
 
@@ -612,12 +760,19 @@ mod tests {
     }
 
     #[test]
-    fn rows_and_field_files_of_another_study_are_never_used() {
+    fn rows_and_field_data_of_another_study_are_never_used() {
         let d = dir("hash");
         let (a, b) = (study_hash("study A", &[]), study_hash("study B", &[]));
         let store = Store::open(&d, &a, false).unwrap();
-        store.commit(&record(1.0), &[1.0, 2.0, 3.0], None).unwrap();
+        store
+            .commit(&record(1.0), &[1.0, 2.0, 3.0], Some(&[4.0]))
+            .unwrap();
         assert_eq!(store.fields(&[1.0, 2.0]).unwrap(), vec![1.0, 2.0, 3.0]);
+        assert_eq!(store.cre(&[1.0, 2.0]).unwrap(), Some(vec![4.0]));
+        assert!(
+            !d.join("fields").exists() && !d.join("cre").exists(),
+            "no file"
+        );
         // A row of study B in the same table (what a second writer could leave).
         store
             .conn
@@ -629,23 +784,94 @@ mod tests {
             .unwrap();
         let runs = store.runs().unwrap();
         assert_eq!(runs, vec![record(1.0)]);
-        // A field file written by study B at the same point.
-        let mut bytes = FIELD_MAGIC.to_vec();
-        bytes.extend_from_slice(b.as_bytes());
-        bytes.extend_from_slice(&to_blob(&[9.0, 9.0, 9.0]));
-        std::fs::write(store.field_path(&[1.0, 2.0]), bytes).unwrap();
+        // Field data written by study B at the same point (what a second writer could leave).
+        store
+            .conn
+            .execute("UPDATE run_data SET study_hash = ?1", params![b])
+            .unwrap();
+        for err in [
+            store.fields(&[1.0, 2.0]).unwrap_err(),
+            store.cre(&[1.0, 2.0]).unwrap_err(),
+        ] {
+            assert_eq!(err.exit_code(), 3, "{err}");
+            assert!(
+                err.to_string().contains("belongs to another study"),
+                "{err}"
+            );
+        }
+        let why = store.damaged_files(&[1.0, 2.0], 3, true).unwrap();
+        assert!(why.contains("belongs to another study"), "{why}");
+        // Truncated data: refused, not misread.
+        store
+            .conn
+            .execute(
+                "UPDATE run_data SET study_hash = ?1, fields = X'0102', cre = X'01'",
+                params![a],
+            )
+            .unwrap();
         let err = store.fields(&[1.0, 2.0]).unwrap_err().to_string();
-        assert!(err.contains("belongs to another study"), "{err}");
-        // Truncated file: refused, not misread.
-        let path = store.field_path(&[1.0, 2.0]);
-        std::fs::write(&path, &b"ALEAFLD1abc"[..]).unwrap();
-        assert!(store.fields(&[1.0, 2.0]).is_err());
+        assert!(
+            err.contains("field data") && err.contains("damaged"),
+            "{err}"
+        );
+        assert!(store.cre(&[1.0, 2.0]).is_err());
         drop(store);
         // The study file changed: refused without --restart, emptied with it.
         let e = Store::open(&d, &b, false).unwrap_err();
         assert_eq!(e.exit_code(), 2, "{e}");
         let s = Store::open(&d, &b, true).unwrap();
         assert!(s.runs().unwrap().is_empty());
+        let rows: i64 = s
+            .conn
+            .query_row("SELECT COUNT(*) FROM run_data", [], |r| r.get(0))
+            .unwrap();
+        assert_eq!(rows, 0, "the data of the old study is gone with its rows");
+    }
+
+    /// `damaged_files` names what is wrong with a run's stored data: nothing when it is whole,
+    /// a missing, truncated or wrong-sized field datum, a missing or truncated error estimate.
+    #[test]
+    fn damaged_run_data_is_named() {
+        let d = dir("damaged");
+        let h = study_hash("study", &[]);
+        let s = Store::open(&d, &h, false).unwrap();
+        let (p, q) = (record(1.0), record(2.0));
+        s.commit_group(&[
+            (&p, &[1.0, 2.0, 3.0][..], Some(&[5.0][..])),
+            (&q, &[1.0, 2.0, 3.0][..], None),
+        ])
+        .unwrap();
+        assert_eq!(s.damaged_files(&p.params, 3, true), None);
+        assert_eq!(s.damaged_files(&q.params, 3, false), None);
+        let why = |params: &[f64], n, estimate| s.damaged_files(params, n, estimate).unwrap();
+        assert_eq!(
+            why(&p.params, 4, false),
+            "its field data has 3 values, expected 4 (truncated or damaged)"
+        );
+        assert_eq!(
+            why(&q.params, 3, true),
+            "its error-estimate data is missing"
+        );
+        assert_eq!(s.cre(&q.params).unwrap(), None);
+        let key = point_key(&p.params);
+        let set = |sql: &str| s.conn.execute(sql, params![key]).unwrap();
+        set("UPDATE run_data SET cre = X'0102' WHERE key = ?1");
+        assert!(why(&p.params, 3, true).contains("error-estimate data has 2 bytes"));
+        set("UPDATE run_data SET fields = substr(fields, 1, 12) WHERE key = ?1");
+        assert_eq!(
+            why(&p.params, 3, false),
+            "its field data has 12 bytes, expected 24 (truncated or damaged)"
+        );
+        // Its data row lost: no legacy file either.
+        set("DELETE FROM run_data WHERE key = ?1");
+        let w = why(&p.params, 3, false);
+        assert!(w.starts_with("its field data is missing"), "{w}");
+        let err = s.fields(&p.params).unwrap_err().to_string();
+        assert!(
+            err.contains("field data") && err.contains("is missing"),
+            "{err}"
+        );
+        let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]
@@ -696,6 +922,12 @@ mod tests {
             "{err}"
         );
         assert!(second.runs().unwrap().is_empty());
+        let data: i64 = second
+            .conn
+            .query_row("SELECT COUNT(*) FROM run_data", [], |r| r.get(0))
+            .unwrap();
+        assert_eq!(data, 0, "no field data of the refused group");
+        assert!(!d.join("fields").exists(), "no file");
         let _ = std::fs::remove_dir_all(&d);
     }
 
@@ -730,5 +962,88 @@ mod tests {
         // Legacy field file without a header.
         std::fs::write(s.field_path(&[3.0, 6.0]), to_blob(&[4.0, 5.0])).unwrap();
         assert_eq!(s.fields(&[3.0, 6.0]).unwrap(), vec![4.0, 5.0]);
+        assert_eq!(s.damaged_files(&[3.0, 6.0], 2, false), None);
+        let why = s.damaged_files(&[3.0, 6.0], 3, false).unwrap();
+        assert!(
+            why.contains("fields/run_") && why.contains("expected"),
+            "{why}"
+        );
+    }
+
+    fn tagged(hash: &str, values: &[f64]) -> Vec<u8> {
+        let mut bytes = FIELD_MAGIC.to_vec();
+        bytes.extend_from_slice(hash.as_bytes());
+        bytes.extend_from_slice(&to_blob(values));
+        bytes
+    }
+
+    /// A directory written when each run's data was a file (`fields/`, `cre/`, with the study
+    /// hash header): its runs are read from their files and checked as before (another study's
+    /// file refused, a truncated one refused, a missing one named), it resumes, and the runs
+    /// committed after the resumption are stored in the database.
+    #[test]
+    fn a_directory_with_field_files_is_read_and_resumed() {
+        let d = dir("files");
+        let (h, other) = (study_hash("files", &[]), study_hash("other", &[]));
+        let s = Store::open(&d, &h, false).unwrap();
+        // What the store wrote then: the row, and the files.
+        let old = record(1.0);
+        s.conn
+            .execute(
+                "INSERT INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
+                 VALUES (?1, ?2, ?3, 7, ?4, ?5, ?6, ?7, ?8, ?9)",
+                params![point_key(&old.params), to_blob(&old.params), old.status, old.residual,
+                        old.seconds, to_blob(&old.qois), to_blob(&old.history), to_blob(&old.state), h],
+            )
+            .unwrap();
+        std::fs::create_dir_all(d.join("fields")).unwrap();
+        std::fs::create_dir_all(d.join("cre")).unwrap();
+        std::fs::write(s.field_path(&old.params), tagged(&h, &[1.0, 2.0])).unwrap();
+        std::fs::write(s.cre_path(&old.params), tagged(&h, &[7.0])).unwrap();
+        drop(s);
+        let s = Store::open(&d, &h, false).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![old.clone()]);
+        assert_eq!(s.fields(&old.params).unwrap(), vec![1.0, 2.0]);
+        assert_eq!(s.cre(&old.params).unwrap(), Some(vec![7.0]));
+        assert_eq!(s.damaged_files(&old.params, 2, true), None);
+        // Resumed: a new run goes into the database, the old one is still read from its files.
+        let new = record(2.0);
+        s.commit(&new, &[3.0, 4.0], Some(&[8.0])).unwrap();
+        assert!(!s.field_path(&new.params).exists());
+        assert_eq!(s.fields(&new.params).unwrap(), vec![3.0, 4.0]);
+        assert_eq!(s.fields(&old.params).unwrap(), vec![1.0, 2.0]);
+        assert_eq!(s.runs().unwrap(), vec![old.clone(), new.clone()]);
+        // A file of another study: refused on reading and named.
+        std::fs::write(s.field_path(&old.params), tagged(&other, &[1.0, 2.0])).unwrap();
+        let err = s.fields(&old.params).unwrap_err().to_string();
+        assert!(err.contains("belongs to another study"), "{err}");
+        let why = s.damaged_files(&old.params, 2, true).unwrap();
+        assert!(why.contains("damaged header"), "{why}");
+        // Truncated: refused, not misread.
+        std::fs::write(s.field_path(&old.params), &b"ALEAFLD1abc"[..]).unwrap();
+        assert!(s.fields(&old.params).is_err());
+        assert!(
+            s.damaged_files(&old.params, 2, true)
+                .unwrap()
+                .contains("truncated")
+        );
+        // Missing error estimate; then missing fields.
+        std::fs::write(s.field_path(&old.params), tagged(&h, &[1.0, 2.0])).unwrap();
+        std::fs::remove_file(s.cre_path(&old.params)).unwrap();
+        assert_eq!(s.cre(&old.params).unwrap(), None);
+        let why = s.damaged_files(&old.params, 2, true).unwrap();
+        assert!(why.contains("error-estimate data is missing"), "{why}");
+        std::fs::remove_file(s.field_path(&old.params)).unwrap();
+        let why = s.damaged_files(&old.params, 2, false).unwrap();
+        assert!(why.contains("field data is missing"), "{why}");
+        // Re-solved: stored in the database, read from it.
+        s.commit(&old, &[1.5, 2.5], None).unwrap();
+        assert_eq!(s.fields(&old.params).unwrap(), vec![1.5, 2.5]);
+        drop(s);
+        // Started over: the old files go with the rows.
+        let s = Store::open(&d, &h, true).unwrap();
+        assert!(s.runs().unwrap().is_empty());
+        assert!(!d.join("fields").exists() && !d.join("cre").exists());
+        let _ = std::fs::remove_dir_all(&d);
     }
 }

@@ -64,7 +64,7 @@ impl std::fmt::Debug for Study {
 }
 
 impl Study {
-    /// Number of values of a run's displacement field (its field file): every substructure's
+    /// Number of values of a run's displacement field (its field data in the store): every substructure's
     /// nodes times the dimension.
     pub fn field_values(&self) -> usize {
         self.model

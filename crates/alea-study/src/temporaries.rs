@@ -2,10 +2,10 @@
 //!
 //! Every file of a study directory is written to a hidden temporary beside it,
 //! `.<name>.tmp-<pid>` ([`alea_mesh::atomic::temporary_path`]), then renamed into place; a
-//! process killed in between leaves its temporary (a samples file, the report's input, a run's
-//! field file can be megabytes). [`remove_stale`] removes them from the directory and its
-//! sub-directories (`fields/`, `cre/`, `report/`, `paraview/`, ... down to [`MAX_DEPTH`]
-//! levels). It runs when the directory's lock is taken and again when it is released (on
+//! process killed in between leaves its temporary (a samples file, the report's input, a
+//! ParaView file can be megabytes). [`remove_stale`] removes them from the directory and its
+//! sub-directories (`report/`, `paraview/`, `vtu/`, and `fields/`, `cre/` of directories
+//! written when each run's data was a file, ... down to [`MAX_DEPTH`] levels). It runs when the directory's lock is taken and again when it is released (on
 //! success and on error), so the only writer of the directory is the caller: a temporary of a
 //! dead process is removed, and so is one of this process (nothing of it is being written
 //! while it takes or lets go of the lock). A temporary of another live process (which would be

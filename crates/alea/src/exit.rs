@@ -17,7 +17,7 @@ pub const TABLE: &[(u8, &str)] = &[
     ),
     (
         FILES,
-        "file-system or store error: a file or directory that cannot be read or written (missing study file, permissions, disk full), a corrupt `study.db`, a stored file of another study",
+        "file-system or store error: a file or directory that cannot be read or written (missing study file, permissions, disk full), a corrupt `study.db`, a stored run's data of another study",
     ),
     (
         COMPUTATION,

@@ -184,11 +184,9 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     let o = alea().arg("report").arg(&dir).output().unwrap();
     assert!(o.status.success(), "{}", text(&o));
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
-    // What kills leave: temporaries of a dead process (pid above Linux's pid_max).
-    let fields: Vec<PathBuf> = std::fs::read_dir(dir.join("fields"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
+    // What kills leave: temporaries of a dead process (pid above Linux's pid_max), also in
+    // `fields/`, where a directory written when the runs' data were files had them.
+    std::fs::create_dir_all(dir.join("fields")).unwrap();
     let stale = [
         dir.join(".samples.csv.tmp-4000000"),
         dir.join("report/.report-input.json.tmp-4000000"),
@@ -197,10 +195,29 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     for s in &stale {
         std::fs::write(s, vec![0u8; 4096]).unwrap();
     }
-    // One field file lost, one truncated.
-    std::fs::remove_file(&fields[0]).unwrap();
-    let bytes = std::fs::read(&fields[1]).unwrap();
-    std::fs::write(&fields[1], &bytes[..bytes.len() / 2]).unwrap();
+    // One run's field data lost, one's truncated (in the database, which the runs' data are in).
+    let stored = |dir: &Path| -> Vec<(String, Vec<u8>)> {
+        let db = rusqlite::Connection::open(dir.join("study.db")).unwrap();
+        let mut st = db
+            .prepare("SELECT key, fields FROM run_data ORDER BY key LIMIT 2")
+            .unwrap();
+        st.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    let before = stored(&dir);
+    assert_eq!(before.len(), 2);
+    {
+        let db = rusqlite::Connection::open(dir.join("study.db")).unwrap();
+        db.execute("DELETE FROM run_data WHERE key = ?1", [&before[0].0])
+            .unwrap();
+        db.execute(
+            "UPDATE run_data SET fields = substr(fields, 1, ?2) WHERE key = ?1",
+            rusqlite::params![before[1].0, before[1].1.len() as i64 / 2],
+        )
+        .unwrap();
+    }
     // `alea report`: the two runs named and counted missing, not "did not converge".
     let o = alea().arg("report").arg(&dir).output().unwrap();
     let t = text(&o);
@@ -221,5 +238,104 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     assert!(t.contains("runs: 2 computed, 68 resumed"), "{t}");
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
     assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
-    assert_eq!(std::fs::read(&fields[1]).unwrap(), bytes);
+    // Both stored again, as they were.
+    assert_eq!(stored(&dir), before);
+}
+
+/// FNV-1a of `text` as 16 hex digits: the stem of a run's file (`alea_study::store::run_file_stem`
+/// of its point, whose key is what `run_data.key` holds).
+fn fnv_stem(text: &str) -> String {
+    let mut h: u64 = 0xcbf29ce484222325;
+    for b in text.bytes() {
+        h = (h ^ b as u64).wrapping_mul(0x100000001b3);
+    }
+    format!("run_{h:016x}")
+}
+
+/// A study directory written when each run's displacements were a file of its own
+/// (`fields/run_<h>.bin`: `ALEAFLD1`, the study hash, the values; no `run_data` table) is
+/// still read - `alea report` rebuilds the same outputs from it - and resumed: nothing is
+/// computed again, a damaged file's run is, and it then goes into the database.
+#[test]
+fn a_directory_with_one_field_file_per_run_is_read_and_resumed() {
+    let base = tmp("legacy");
+    small_study(&base);
+    let o = run_in(&base, "plate.toml", "out");
+    assert!(o.status.success(), "{}", text(&o));
+    let dir = base.join("out");
+    let summary = std::fs::read(dir.join("summary.json")).unwrap();
+    // The mean / std fields (read from every run's fields): every file under `paraview/`.
+    let mut mean_fields: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let mut stack = vec![dir.join("paraview")];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            if e.file_type().unwrap().is_dir() {
+                stack.push(e.path());
+            } else {
+                mean_fields.push((e.path(), std::fs::read(e.path()).unwrap()));
+            }
+        }
+    }
+    assert!(
+        !mean_fields.is_empty(),
+        "the study writes mean / std fields"
+    );
+    // The directory as the store wrote it before the data moved into the database.
+    let files = {
+        let db = rusqlite::Connection::open(dir.join("study.db")).unwrap();
+        let hash: String = db
+            .query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
+                r.get(0)
+            })
+            .unwrap();
+        let rows: Vec<(String, Vec<u8>)> = db
+            .prepare("SELECT key, fields FROM run_data")
+            .unwrap()
+            .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap();
+        std::fs::create_dir_all(dir.join("fields")).unwrap();
+        let mut files = Vec::new();
+        for (key, values) in &rows {
+            let mut bytes = b"ALEAFLD1".to_vec();
+            bytes.extend_from_slice(hash.as_bytes());
+            bytes.extend_from_slice(values);
+            let path = dir.join("fields").join(format!("{}.bin", fnv_stem(key)));
+            std::fs::write(&path, bytes).unwrap();
+            files.push(path);
+        }
+        db.execute_batch("DROP TABLE run_data").unwrap();
+        files
+    };
+    assert!(files.len() >= 30, "{}", files.len());
+    std::fs::remove_file(dir.join("summary.json")).unwrap();
+    let _ = std::fs::remove_dir_all(dir.join("paraview"));
+    // Read: the same outputs, no run left out.
+    let o = alea().arg("report").arg(&dir).output().unwrap();
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(!t.contains("cannot be used"), "{t}");
+    assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
+    for (path, bytes) in &mean_fields {
+        assert_eq!(&std::fs::read(path).unwrap(), bytes, "{}", path.display());
+    }
+    // Resumed: nothing computed again.
+    let o = run_in(&base, "plate.toml", "out");
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("runs: 0 computed"), "{t}");
+    // A truncated file: its run computed again, into the database; the outputs as before.
+    let bytes = std::fs::read(&files[0]).unwrap();
+    std::fs::write(&files[0], &bytes[..bytes.len() / 2]).unwrap();
+    let o = run_in(&base, "plate.toml", "out");
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(
+        t.contains("cannot be used") && t.contains("truncated"),
+        "{t}"
+    );
+    assert!(t.contains("runs: 1 computed"), "{t}");
+    assert_eq!(common::stored_runs(&dir, "fields"), 1);
+    assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
 }

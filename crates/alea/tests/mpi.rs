@@ -188,10 +188,7 @@ fn killed_job_resumes_with_another_rank_count() {
         .unwrap();
     let t0 = Instant::now();
     loop {
-        let n = std::fs::read_dir(dir.join("fields"))
-            .map(|d| d.count())
-            .unwrap_or(0);
-        if n >= 10 {
+        if common::stored_runs(&dir, "fields") >= 10 {
             break;
         }
         assert!(t0.elapsed() < Duration::from_secs(120), "no progress");

@@ -9,6 +9,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+mod common;
+use common::stored_runs;
+
 fn alea() -> Command {
     Command::new(env!("CARGO_BIN_EXE_alea"))
 }
@@ -91,10 +94,9 @@ fn killed_study_resumes_to_the_same_summary() {
         .spawn()
         .unwrap();
     let t0 = Instant::now();
-    let fields = dir.join("fields");
     loop {
-        let n = std::fs::read_dir(&fields).map(|d| d.count()).unwrap_or(0);
-        if n >= 10 {
+        // Runs committed with their fields.
+        if stored_runs(&dir, "fields") >= 10 {
             break;
         }
         assert!(t0.elapsed() < Duration::from_secs(120), "no progress");
@@ -390,10 +392,8 @@ fn adaptive_study_is_deterministic_and_resumable() {
         .unwrap();
     let t0 = Instant::now();
     loop {
-        let n = std::fs::read_dir(dir.join("cre"))
-            .map(|d| d.count())
-            .unwrap_or(0);
-        if n >= 7 {
+        // Runs committed with their error estimates.
+        if stored_runs(&dir, "cre") >= 7 {
             break;
         }
         assert!(t0.elapsed() < Duration::from_secs(120), "no progress");

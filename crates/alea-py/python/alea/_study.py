@@ -439,7 +439,7 @@ def run(
     OSError
         The study file or directory cannot be read or written.
 
-    Writes only the store (``study.db`` and per-run field files); ``alea run`` also writes
+    Writes only the store (``study.db``, with every run's fields); ``alea run`` also writes
     ``summary.json``, ``samples.csv``, mean fields and the HTML report, and :func:`report`
     writes them from the store afterwards.
 

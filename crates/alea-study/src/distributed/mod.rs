@@ -9,7 +9,7 @@
 //! solves together ([`RunContext::solve_batch`]: the LATIN runs of a group share their
 //! triangular solves, so a run's result depends on its group), each group handed to whichever
 //! rank has a free solver thread (the other ranks first, rank 0 last), each run with the
-//! warm-start state it starts from. A rank sends back each run's store row, field file and
+//! warm-start state it starts from. A rank sends back each run's store row, field data and
 //! error-estimate data; rank 0 commits them as they arrive.
 //!
 //! **Same results for every rank count.** A run is a pure function of its group's points and

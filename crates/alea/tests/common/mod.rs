@@ -1,4 +1,5 @@
-//! Helpers shared by the CLI tests: a fresh scratch directory and a command's whole output.
+//! Helpers shared by the CLI tests: a fresh scratch directory, a command's whole output, and
+//! access to the runs' data in a study directory's database.
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
@@ -41,4 +42,30 @@ pub fn write_case(
     let p = dir.join(format!("{name}.toml"));
     std::fs::write(&p, &s).unwrap();
     (p, s)
+}
+
+/// The number of runs of the study in `dir` with stored data in `column` of the database's
+/// `run_data` table (`fields`, or `cre`: the error estimate); 0 while there is no database yet.
+#[allow(dead_code)]
+pub fn stored_runs(dir: &Path, column: &str) -> usize {
+    let count = || -> rusqlite::Result<i64> {
+        let c = rusqlite::Connection::open_with_flags(
+            dir.join("study.db"),
+            rusqlite::OpenFlags::SQLITE_OPEN_READ_ONLY,
+        )?;
+        c.busy_timeout(std::time::Duration::from_secs(5))?;
+        c.query_row(
+            &format!("SELECT COUNT(*) FROM run_data WHERE {column} IS NOT NULL"),
+            [],
+            |r| r.get(0),
+        )
+    };
+    count().map(|n| n as usize).unwrap_or(0)
+}
+
+/// Runs `sql` on the database of the study directory `dir` (a test damaging its runs' data).
+#[allow(dead_code)]
+pub fn run_sql(dir: &Path, sql: &str) {
+    let c = rusqlite::Connection::open(dir.join("study.db")).unwrap();
+    c.execute_batch(sql).unwrap();
 }
