@@ -44,7 +44,7 @@ pub struct Study {
     /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
     pub refined: Option<Box<Study>>,
     /// `[budget] large_sliding`: the same study with its small-sliding contact interfaces in
-    /// large sliding (built and checked at load; `crate::budget::sliding`).
+    /// large sliding (built and checked at load, `sliding_study`).
     pub large_sliding: Option<Box<Study>>,
     /// `[[step]]`: the load history of every run (module `steps`).
     pub steps: Option<crate::steps::Plan>,
@@ -162,7 +162,7 @@ impl Study {
             _ => None,
         };
         let large_sliding = match &file.budget {
-            Some(b) => crate::budget::sliding::sliding_study(&source, b)?.map(Box::new),
+            Some(b) => sliding_study(&source, b)?.map(Box::new),
             None => None,
         };
         let hash = input_hash(&source, &file)?;
@@ -483,4 +483,97 @@ fn refined_study(
         text,
     };
     Study::from_source(refined).map_err(|e| fail(format!("the refined study does not build: {e}")))
+}
+
+/// The sliding part of the error budget: what small sliding, the pairing of the initial
+/// configuration kept throughout, changes in each statistic. With `[budget] large_sliding =
+/// true` the study is also built with every small-sliding contact interface in large sliding
+/// (`alea_latin::large_sliding`: the pairing and its normals re-found in the deformed
+/// configuration of each run, the bodies still linear) and both are solved at the `2 d + 1`
+/// design points of the mesh part (`crate::budget::mesh::paired_check`: the nominal point and, along
+/// each parameter, its 5 % and 95 % quantiles); with `delta_i = q_small(xi_i) - q_large(xi_i)`,
+///
+/// ```text
+/// D = max_i |delta_i|,   S = max_i delta_i - min_i delta_i,
+/// ```
+///
+/// and the part is `D` for the mean and the quantiles, `max(S / 2, r sigma)` for the standard
+/// deviation (`r = max_i |delta_i / q_small(xi_i)|`, `sigma` the draws' standard deviation: the
+/// change grows with the displacements, so it is often nearly proportional to the quantity, and
+/// then changes the spread by about `r sigma`, which `S / 2` over a few points misses) and
+/// `P(|q~ - t| <= D)` over the draws for `P(q > t)` (the propagation of the mesh part,
+/// `crate::budget::mesh::apply`, without Richardson's factor: the difference is the change
+/// itself, not one term of a converging sequence).
+///
+/// What it measures: the first-order effect of the deformed geometry on the contact (where the
+/// points meet, and the normals' turn), which small sliding leaves out and which grows with
+/// the displacements. It is the change toward the large-sliding model, not the error against a
+/// large-deformation analysis (the bodies stay linear in both). Measured on the simple blade
+/// root (`examples/blade-root-simple.toml`, header): T changes by +20 to +75 % between the two
+/// models, both mesh-converged.
+///
+/// The study of `source` with every small-sliding contact interface in large sliding, without
+/// `[budget]`, `[error]`, `[[reliability]]` and with a two-run Monte Carlo as its method (the
+/// paired solves use its model only; the error estimate and adaptive methods refuse large
+/// sliding). `None` without `large_sliding = true`.
+///
+/// # Errors
+/// [`StudyError::Input`] at `budget` when it asks for no part, and at `budget.large_sliding`
+/// when the study has no small-sliding contact interface or the patched study does not build.
+fn sliding_study(
+    source: &Source,
+    budget: &toml::Spanned<crate::spec::BudgetSpec>,
+) -> Result<Option<Study>, StudyError> {
+    let spec = budget.get_ref();
+    let sliding = spec.large_sliding.as_ref().is_some_and(|f| *f.get_ref());
+    if spec.refined_mesh.is_none() && !sliding {
+        return Err(source.error(
+            budget.span(),
+            "budget",
+            "[budget] asks for no part: give refined_mesh (the mesh part) and / or large_sliding = true (the sliding part)",
+        ));
+    }
+    let Some(flag) = spec.large_sliding.as_ref().filter(|f| *f.get_ref()) else {
+        return Ok(None);
+    };
+    let field = "budget.large_sliding";
+    let fail = |why: String| source.error(flag.span(), field, why);
+    let mut doc: toml::Table = toml::from_str(&source.text).map_err(|e| fail(e.to_string()))?;
+    for key in ["budget", "error", "reliability"] {
+        doc.remove(key);
+    }
+    let mut patched = 0;
+    if let Some(toml::Value::Array(interfaces)) = doc.get_mut("interface") {
+        for it in interfaces.iter_mut().filter_map(toml::Value::as_table_mut) {
+            let contact = it.get("law").and_then(toml::Value::as_str) == Some("coulomb");
+            let small = it
+                .get("sliding")
+                .and_then(toml::Value::as_str)
+                .is_none_or(|s| s == "small");
+            if contact && small {
+                it.insert("sliding".into(), toml::Value::String("large".into()));
+                patched += 1;
+            }
+        }
+    }
+    if patched == 0 {
+        return Err(fail(
+            "the study has no contact interface in small sliding (law = \"coulomb\" without sliding = \"large\"): there is no sliding part to estimate; leave out large_sliding".into(),
+        ));
+    }
+    let mut method = toml::Table::new();
+    method.insert("type".into(), toml::Value::String("monte_carlo".into()));
+    method.insert("runs".into(), toml::Value::Integer(2));
+    method.insert("label".into(), toml::Value::String("large sliding".into()));
+    doc.insert(
+        "method".into(),
+        toml::Value::Array(vec![toml::Value::Table(method)]),
+    );
+    let text = toml::to_string(&doc).map_err(|e| fail(e.to_string()))?;
+    let study = Study::from_source(Source {
+        path: source.path.clone(),
+        text,
+    })
+    .map_err(|e| fail(format!("the large-sliding study does not build: {e}")))?;
+    Ok(Some(study))
 }

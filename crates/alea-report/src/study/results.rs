@@ -69,7 +69,8 @@ pub fn analyse_all(
 
 /// The mesh part (`[budget] refined_mesh`) or the sliding part (`[budget] large_sliding`) of
 /// every statistic's budget from paired solves of the study and `other`
-/// (`alea_study::budget::mesh`, `alea_study::budget::sliding`), or why it is not estimated.
+/// (`alea_study::budget::mesh`; the large-sliding study is built at load), or why it is not
+/// estimated.
 fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [MethodResult]) {
     use alea_study::budget::mesh::{apply, paired_check};
     let check = paired_check(study, other);

@@ -26,7 +26,7 @@ use crate::study::Study;
 type PointValues = Vec<Option<Vec<f64>>>;
 
 /// Paired solves of the study and another model of it (the refined mesh of the mesh part, the
-/// large-sliding model of the sliding part, [`super::sliding`]): per quantity, the signed
+/// large-sliding model of the sliding part, `Study::large_sliding`): per quantity, the signed
 /// differences `q(xi_i) - q_other(xi_i)` at the design points (only where both runs
 /// converged).
 pub struct PairedCheck {
