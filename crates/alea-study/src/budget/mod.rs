@@ -46,8 +46,8 @@ pub struct BudgetRow {
     /// Sampling part (half-width of the confidence interval).
     pub sampling: f64,
     /// Sliding part: the change under large sliding (`[budget] large_sliding`; `None`: not
-    /// asked for).
-    #[serde(default)]
+    /// asked for; left out of `summary.json` then).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sliding: Option<f64>,
     /// Sum of the estimated parts.
     pub total: f64,
