@@ -78,13 +78,17 @@ fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [M
         for (q, stats) in r.qois.iter_mut().enumerate() {
             let samples = std::mem::take(&mut stats.samples);
             if let Some(budget) = stats.budget.as_mut() {
-                let why_not = |why: String| format!("not estimated: {why}");
                 let bounds = check.as_ref().map(|c| {
                     let factor = if which == Part::Mesh { 2.0 } else { 1.0 };
                     (c, c.bounds(q, factor))
                 });
                 let not_estimated = match bounds {
                     Ok((c, Some((d, s)))) => {
+                        // The sliding change scales with the response (the geometric effect grows
+                        // with the displacements): its largest relative size at the points,
+                        // times the spread, bounds the change of the spread when the change is
+                        // proportional to the quantity, which S / 2 over a few points misses.
+                        let relative = (which == Part::Sliding).then(|| c.relative(q)).flatten();
                         let basis = match which {
                             Part::Mesh => format!(
                                 "paired solves on this mesh ({} nodes) and the refined one ({} nodes) at {} design points: D = 2 max |q_h - q_h/2| = {d:.3e}, spread S = {s:.3e} (Richardson, first order)",
@@ -95,26 +99,22 @@ fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [M
                             Part::Sliding => format!(
                                 "paired solves in small and in large sliding (the pairing and its normals re-found in the deformed configuration) at {} design points: D = max |q_small - q_large| = {d:.3e}, spread S = {s:.3e}, largest relative change r = {:.3} (std part max(S / 2, r std)); the change toward the large-sliding model, not a large-deformation error",
                                 c.points.len(),
-                                c.relative(q).unwrap_or(0.0)
+                                relative.unwrap_or(0.0)
                             ),
                         };
-                        // The sliding change scales with the response (the geometric effect grows
-                        // with the displacements): its largest relative size at the points,
-                        // times the spread, bounds the change of the spread when the change is
-                        // proportional to the quantity, which S / 2 over a few points misses.
-                        let relative = (which == Part::Sliding).then(|| c.relative(q)).flatten();
                         apply(budget, &samples, (d, s), relative, which, basis);
                         None
                     }
-                    Ok((_, None)) => Some(why_not(match which {
-                        Part::Mesh => "no paired solve converged on both meshes".into(),
+                    Ok((_, None)) => Some(match which {
+                        Part::Mesh => "no paired solve converged on both meshes".to_string(),
                         Part::Sliding => {
-                            "no paired solve converged in both small and large sliding".into()
+                            "no paired solve converged in both small and large sliding".to_string()
                         }
-                    })),
-                    Err(e) => Some(why_not(e.to_string())),
+                    }),
+                    Err(e) => Some(e.to_string()),
                 };
                 if let Some(why) = not_estimated {
+                    let why = format!("not estimated: {why}");
                     match which {
                         Part::Mesh => budget.mesh_basis = why,
                         Part::Sliding => budget.sliding_basis = Some(why),
