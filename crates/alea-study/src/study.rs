@@ -501,7 +501,8 @@ fn refined_study(
 /// deviation (`r = max_i |delta_i / q_small(xi_i)|`, `sigma` the draws' standard deviation: the
 /// change grows with the displacements, so it is often nearly proportional to the quantity, and
 /// then changes the spread by about `r sigma`, which `S / 2` over a few points misses) and
-/// `P(|q~ - t| <= D)` over the draws for `P(q > t)` (the propagation of the mesh part,
+/// for `P(q > t)` the share of draws within their own shift of `t` under the first-order
+/// model of the differences (the propagation of the mesh part,
 /// `crate::budget::mesh::apply`, without Richardson's factor: the difference is the change
 /// itself, not one term of a converging sequence).
 ///

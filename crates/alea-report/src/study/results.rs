@@ -78,10 +78,8 @@ fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [M
         for (q, stats) in r.qois.iter_mut().enumerate() {
             let samples = std::mem::take(&mut stats.samples);
             if let Some(budget) = stats.budget.as_mut() {
-                let bounds = check.as_ref().map(|c| {
-                    let factor = if which == Part::Mesh { 2.0 } else { 1.0 };
-                    (c, c.bounds(q, factor))
-                });
+                let factor = if which == Part::Mesh { 2.0 } else { 1.0 };
+                let bounds = check.as_ref().map(|c| (c, c.bounds(q, factor)));
                 let not_estimated = match bounds {
                     Ok((c, Some((d, s)))) => {
                         // The sliding change scales with the response (the geometric effect grows
@@ -89,20 +87,40 @@ fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [M
                         // times the spread, bounds the change of the spread when the change is
                         // proportional to the quantity, which S / 2 over a few points misses.
                         let relative = (which == Part::Sliding).then(|| c.relative(q)).flatten();
+                        // The shift at each draw, from the first-order model of the
+                        // differences (for the `P(q > t)` rows).
+                        let shifts: Option<Vec<f64>> = c.shift_model(q, factor).and_then(|m| {
+                            let dim = study.params.names.len();
+                            (dim > 0 && r.points.len() == samples.len() * dim)
+                                .then(|| r.points.chunks(dim).map(|x| m.at(x)).collect())
+                        });
+                        let p_rows = if shifts.is_some() {
+                            "P(q > t): the draws within their own shift of t, from a first-order model of the differences along each parameter"
+                        } else {
+                            "P(q > t): the draws within D of t"
+                        };
                         let basis = match which {
                             Part::Mesh => format!(
-                                "paired solves on this mesh ({} nodes) and the refined one ({} nodes) at {} design points: D = 2 max |q_h - q_h/2| = {d:.3e}, spread S = {s:.3e} (Richardson, first order)",
+                                "paired solves on this mesh ({} nodes) and the refined one ({} nodes) at {} design points: D = 2 max |q_h - q_h/2| = {d:.3e}, spread S = {s:.3e} (Richardson, first order); {p_rows}",
                                 c.nodes.0,
                                 c.nodes.1,
                                 c.points.len()
                             ),
                             Part::Sliding => format!(
-                                "paired solves in small and in large sliding (the pairing and its normals re-found in the deformed configuration) at {} design points: D = max |q_small - q_large| = {d:.3e}, spread S = {s:.3e}, largest relative change r = {:.3} (std part max(S / 2, r std)); the change toward the large-sliding model, not a large-deformation error",
+                                "paired solves in small and in large sliding (the pairing and its normals re-found in the deformed configuration) at {} design points: D = max |q_small - q_large| = {d:.3e}, spread S = {s:.3e}, largest relative change r = {:.3} (std part max(S / 2, r std)); {p_rows}; the change toward the large-sliding model, not a large-deformation error",
                                 c.points.len(),
                                 relative.unwrap_or(0.0)
                             ),
                         };
-                        apply(budget, &samples, (d, s), relative, which, basis);
+                        apply(
+                            budget,
+                            &samples,
+                            shifts.as_deref(),
+                            (d, s),
+                            relative,
+                            which,
+                            basis,
+                        );
                         None
                     }
                     Ok((_, None)) => Some(match which {
