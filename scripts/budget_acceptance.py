@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""Counts the error budget against the TRUE error on every case of issue 19's acceptance.
+
+usage: budget_acceptance.py [--all] [ALEA]
+
+Runs, with release builds (ALEA defaults to target/release/alea, built first):
+- `cargo test --release -p alea-study --test budget_coverage -- --nocapture` (analytic
+  responses: smooth, kink, steep x 6 methods, against exact statistics);
+- `cargo test --release -p alea-study --test contact_estimate -- --nocapture` (contact stick /
+  slip and closing gap, 9 methods each, against an 81-run reference);
+- `examples/turbine-2d-wear.toml`, `-adaptive.toml`, `-goal.toml` against
+  `turbine-2d-wear-reference.toml` (225 runs), and the thesis's table 2.1 case
+  `examples/blade-root-simple-comparison.toml` against its own 11 x 11 reference method,
+  each in a temporary directory with 2 threads;
+then prints every (case, statistic) pair with its true error, the budget's total (surrogate +
+sampling) and their ratio, and the share covered (`total >= true`) and within 10x (`total <= 10
+max(true, sampling)`: an error below the draws' noise cannot be told). By default only the
+statistics the acceptance names (mean, std, P(q > t)); `--all` adds the quantiles.
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROW = re.compile(
+    r"(?:budget )?(.{20,}?)\s+(mean|std|q[0-9.]+|P\(> [^)]*\))\s+true\s+(\S+)\s+total\s+(\S+)"
+    r"\s+\(surrogate\s+\S+,\s+sampling\s+(\S+)\)")
+
+
+class Count:
+    def __init__(self, everything):
+        self.everything = everything
+        self.n = self.covered = self.tight = 0
+
+    def wanted(self, statistic):
+        return self.everything or statistic in ("mean", "std") or statistic.startswith("P(")
+
+    def add(self, name, statistic, actual, total, sampling):
+        if not self.wanted(statistic):
+            return
+        self.n += 1
+        covered = total >= actual
+        tight = total <= 10 * max(actual, sampling)
+        self.covered += covered
+        self.tight += tight
+        flags = ("" if covered else " NOT COVERED") + ("" if tight else " LOOSE")
+        print("%-58s %-10s true %9.3e total %9.3e x%8.2f%s" % (
+            name[:58], statistic, actual, total, total / max(actual, sampling, 1e-300), flags))
+
+
+def test_rows(count, test, label):
+    out = subprocess.run(
+        ["cargo", "test", "--release", "-q", "-p", "alea-study", "--test", test, "--",
+         "--nocapture", "--test-threads=1"],
+        cwd=ROOT, capture_output=True, text=True)
+    for line in (out.stdout + out.stderr).splitlines():
+        if line.startswith("thread '"):
+            break  # a failing test prints its captured rows again
+        m = ROW.match(line.strip())
+        if m:
+            count.add("%s %s" % (label, m.group(1).strip()), m.group(2), float(m.group(3)),
+                      float(m.group(4)), float(m.group(5)))
+
+
+def truths(q):
+    t = {"mean": q["mean"], "std": q["std"]}
+    for p, v in q["quantiles"]:
+        t["q%g" % p] = v
+    for f in q["failure"]:
+        t["P(> %g)" % f["threshold"]] = f["probability"]
+    return t
+
+
+def study_rows(count, summary, reference):
+    ref = json.load(open(reference))["methods"][0]["qois"]
+    s = json.load(open(summary))
+    methods = s["methods"][1:] if summary == reference else s["methods"]
+    case = os.path.basename(os.path.dirname(summary))
+    for m in methods:
+        for qi, q in enumerate(m.get("qois", [])):
+            truth = truths(ref[qi])
+            for row in q.get("budget", {}).get("rows", []):
+                if row["statistic"] in truth:
+                    count.add("%s %s %s" % (case, m["label"][:16], q["name"]), row["statistic"],
+                              abs(row["value"] - truth[row["statistic"]]), row["total"],
+                              row["sampling"])
+
+
+def main(args):
+    everything = "--all" in args
+    args = [a for a in args if a != "--all"]
+    alea = args[0] if args else os.path.join(ROOT, "target", "release", "alea")
+    if not args:
+        subprocess.run(["cargo", "build", "--release", "-q"], cwd=ROOT, check=True)
+    count = Count(everything)
+    test_rows(count, "budget_coverage", "analytic")
+    test_rows(count, "contact_estimate", "contact")
+    work = tempfile.mkdtemp(prefix="alea-budget-")
+    def run(name):
+        d = os.path.join(work, name)
+        subprocess.run([alea, "run", os.path.join(ROOT, "examples", name + ".toml"), "--dir", d,
+                        "--threads", "2", "-q"], check=True, stdout=subprocess.DEVNULL)
+        return os.path.join(d, "summary.json")
+    reference = run("turbine-2d-wear-reference")
+    for name in ("turbine-2d-wear", "turbine-2d-wear-adaptive", "turbine-2d-wear-goal"):
+        study_rows(count, run(name), reference)
+    table = run("blade-root-simple-comparison")
+    study_rows(count, table, table)
+    print("covered %d/%d (%.1f %%), within 10x %d/%d (%.1f %%) (work directory %s)" % (
+        count.covered, count.n, 100.0 * count.covered / count.n, count.tight, count.n,
+        100.0 * count.tight / count.n, work))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
