@@ -327,7 +327,15 @@ mod tests {
         let bounds = check.bounds(0, 1.0).unwrap();
         let part = |shifts: Option<&[f64]>| {
             let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[1.0], 0.95);
-            apply(&mut b, &samples, shifts, bounds, None, Part::Sliding, String::new());
+            apply(
+                &mut b,
+                &samples,
+                shifts,
+                bounds,
+                None,
+                Part::Sliding,
+                String::new(),
+            );
             b.rows[2].sliding.unwrap()
         };
         let (first_order, band) = (part(Some(&shifts)), part(None));
