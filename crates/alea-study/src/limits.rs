@@ -441,9 +441,24 @@ pub fn check_total_runs(runs: usize) -> Result<(), StudyError> {
 }
 
 /// Memory (bytes) of the weight moments of the mean / std fields for `runs` surrogate runs
-/// (`fields.rs`: 16 blocks of draws at a time, each with a `runs x runs` matrix).
-pub fn mean_fields_memory(runs: usize) -> f64 {
-    16.0 * 8.0 * (runs as f64) * (runs as f64)
+/// whose weights at one draw involve at most `support` runs (`fields.rs`,
+/// `WeightMoments::estimate`): about 56 bytes per pair of runs non-zero together (the sums of
+/// each support, the `(a, b, value)` entries sorted before assembly, the assembled matrix),
+/// `runs^2` pairs for a global surrogate (`support >= runs`: chaos, polynomials) and at most
+/// `runs support^2` for a local one (one `support x support` block per cell of a stochastic
+/// mesh), plus the 256 MB to which `estimate` bounds the chunk sums held at once.
+///
+/// Measured (`cargo bench -p alea-study --bench scale`): a piecewise-linear study of 10 000
+/// runs peaks at about 300 MB; the former estimate, `128 runs^2` bytes for every surrogate,
+/// said 12.8 GB and refused it.
+pub fn mean_fields_memory(runs: usize, support: usize) -> f64 {
+    let k = runs as f64;
+    let pairs = if support >= runs {
+        k * k
+    } else {
+        k * (support as f64) * (support as f64)
+    };
+    56.0 * pairs + 256.0 * 1024.0 * 1024.0
 }
 
 /// Checks a `--threads` value against the machine.

@@ -432,7 +432,8 @@ pub fn check_built(study: &Study) -> Result<(), StudyError> {
             .iter()
             .find(|m| m.kind != MethodKind::MonteCarlo)
     {
-        let need = mean_fields_memory(m.points.len());
+        let support = weight_support(&m.kind, m.points.len(), study.params.names.len());
+        let need = mean_fields_memory(m.points.len(), support);
         let have = available_memory() as f64 / 2.0;
         if need > have {
             return Err(StudyError::TooLarge(format!(
@@ -446,6 +447,20 @@ pub fn check_built(study: &Study) -> Result<(), StudyError> {
         }
     }
     Ok(())
+}
+
+/// Runs at most non-zero together at one draw in a surrogate of `kind` on `runs` runs in `d`
+/// parameters: `2^d` for piecewise multilinear interpolation on a grid, `4^d` for an adaptive
+/// stochastic mesh (an estimate made before its mesh exists: a corner that is a hanging node
+/// is interpolated from the corners of a coarser neighbour's face), `runs` for the global
+/// surrogates.
+fn weight_support(kind: &MethodKind, runs: usize, d: usize) -> usize {
+    let local = |base: usize| base.checked_pow(d as u32).unwrap_or(usize::MAX).min(runs);
+    match kind {
+        MethodKind::PiecewiseLinear { .. } => local(2),
+        MethodKind::Adaptive(_) => local(4),
+        _ => runs,
+    }
 }
 
 /// The study of `source` with `[mesh]` patched by `[budget] refined_mesh` (and no `[budget]`).

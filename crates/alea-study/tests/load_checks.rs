@@ -296,3 +296,23 @@ fn study_files_that_are_not_text_files_are_input_errors_with_a_location() {
         &e.to_string()[..300]
     );
 }
+
+/// The memory check of the mean / std fields counts the pairs of runs that a surrogate's
+/// weights couple: a 10 000-run piecewise-linear study (2 runs per draw in 1D) loads, as its
+/// fields need about 260 MB (the former check, `128 runs^2` bytes for any surrogate, asked 12.8
+/// GB and refused it); a global chaos on 100 000 runs (10^10 pairs, about 560 GB) is refused at
+/// load with the way out in the message, and accepted without mean / std fields.
+#[test]
+fn mean_fields_memory_is_checked_by_the_surrogates_support() {
+    let load = |text: &str| Study::from_source(Source::from_text("checks.toml", text));
+    let pl = study("", "tip", "type = \"piecewise_linear\"\npoints_per_dim = 10000");
+    load(&pl).expect("a local surrogate's fields fit in memory");
+    let chaos = "type = \"pc_regression\"\ndegree = 2\ndesign = \"lhs\"\nruns = 100000";
+    let e = load(&study("", "tip", chaos)).expect_err("refused");
+    let msg = e.to_string();
+    assert!(
+        msg.contains("mean / std fields") && msg.contains("mean_fields = false"),
+        "{msg}"
+    );
+    load(&study("[output]\nmean_fields = false", "tip", chaos)).expect("no fields: accepted");
+}
