@@ -24,6 +24,8 @@ import subprocess
 import sys
 import tempfile
 
+from budget_check import truths  # the reference's statistics by name (same directory)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROW = re.compile(
     r"(?:budget )?(.{20,}?)\s+(mean|std|q[0-9.]+|P\(> [^)]*\))\s+true\s+(\S+)\s+total\s+(\S+)"
@@ -63,15 +65,6 @@ def test_rows(count, test, label):
         if m:
             count.add("%s %s" % (label, m.group(1).strip()), m.group(2), float(m.group(3)),
                       float(m.group(4)), float(m.group(5)))
-
-
-def truths(q):
-    t = {"mean": q["mean"], "std": q["std"]}
-    for p, v in q["quantiles"]:
-        t["q%g" % p] = v
-    for f in q["failure"]:
-        t["P(> %g)" % f["threshold"]] = f["probability"]
-    return t
 
 
 def study_rows(count, summary, reference):
