@@ -305,7 +305,11 @@ fn study_files_that_are_not_text_files_are_input_errors_with_a_location() {
 #[test]
 fn mean_fields_memory_is_checked_by_the_surrogates_support() {
     let load = |text: &str| Study::from_source(Source::from_text("checks.toml", text));
-    let pl = study("", "tip", "type = \"piecewise_linear\"\npoints_per_dim = 10000");
+    let pl = study(
+        "",
+        "tip",
+        "type = \"piecewise_linear\"\npoints_per_dim = 10000",
+    );
     load(&pl).expect("a local surrogate's fields fit in memory");
     let chaos = "type = \"pc_regression\"\ndegree = 2\ndesign = \"lhs\"\nruns = 100000";
     let e = load(&study("", "tip", chaos)).expect_err("refused");

@@ -17,6 +17,12 @@
 //! draws within their own shift of `t`, `P(|q~(xi) - t| <= |b~(xi)|)`, with `b~` an anchored
 //! first-order model of the differences over the parameters ([`PairedCheck::shift_model`];
 //! `P(|q~ - t| <= D)` when a pair did not converge).
+//!
+//! What the `2 d + 1` points cannot see: a difference that varies only through the interaction
+//! of parameters and vanishes along the axes through the nominal point (`0.2 (x - 1/2) (y -
+//! 1/2)` on the unit square). Every part is then blind to it; `P(q > t)`'s part was measured
+//! at 0.15 - 0.33x of its change on that case (the band `|q~ - t| <= D` alike). A difference
+//! with a main effect as well (`0.2 x y`) is covered (1.76 - 2.77x; the unit test below).
 
 use alea_uq::law::Marginal;
 
@@ -293,11 +299,15 @@ mod tests {
     use crate::budget::{SurrogatePart, qoi_budget};
 
     /// `q = x + y` on the unit square (midpoint grid of 400 x 400 draws) and a second model
-    /// `q - 0.1 x`: `P(q > 1) = 1/2` becomes `P(0.9 x + y > 1) = 0.45` exactly. From the
-    /// differences at the `2 d + 1` points alone, the part of `P(q > 1)` covers that change
-    /// of 0.05 within 2.5x, and the band `|q - t| <= D` it replaces is looser.
+    /// `q - delta(x, y)`; the true change of `P(q > t)` is counted on the same draws. From the
+    /// differences at the `2 d + 1` points alone, the part of `P(q > t)` covers it within 3.5x
+    /// for a linear, a quadratic and an interacting `delta` (measured 1.76 - 2.77x; the band
+    /// `|q - t| <= D` it replaces, 1.70 - 5.09x). Not asserted, measured and documented (module
+    /// `budget::mesh`, BENCHMARKS.md): a pure interaction centred at the nominal point,
+    /// `0.2 (x - 1/2) (y - 1/2)`, vanishes at all `2 d + 1` points, and both rules see 0.15 -
+    /// 0.33x of its change.
     #[test]
-    fn p_part_from_the_shift_model_covers_an_exact_change_tightly() {
+    fn p_part_from_the_shift_model_covers_exact_changes_tightly() {
         let n = 400;
         let mut points = Vec::with_capacity(2 * n * n);
         let mut samples = Vec::with_capacity(n * n);
@@ -316,39 +326,61 @@ mod tests {
             [0.5, 0.05],
             [0.5, 0.95],
         ];
-        let check = PairedCheck {
-            points: design.iter().map(|p| p.to_vec()).collect(),
-            diff: vec![design.iter().map(|p| Some(0.1 * p[0])).collect()],
-            base: vec![design.iter().map(|p| Some(p[0] + p[1])).collect()],
-            nodes: (1, 1),
-        };
-        let model = check.shift_model(0, 1.0).expect("every pair converged");
-        let shifts: Vec<f64> = points.chunks(2).map(|x| model.at(x)).collect();
-        let bounds = check.bounds(0, 1.0).unwrap();
-        let part = |shifts: Option<&[f64]>| {
-            let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[1.0], 0.95);
-            apply(
-                &mut b,
-                &samples,
-                shifts,
-                bounds,
-                None,
-                Part::Sliding,
-                String::new(),
-            );
-            b.rows[2].sliding.unwrap()
-        };
-        let (first_order, band) = (part(Some(&shifts)), part(None));
-        let change = 0.05;
-        eprintln!("P part: first order {first_order:.4}, band {band:.4}, true change {change}");
-        assert!(
-            first_order >= change && first_order <= 2.5 * change,
-            "P part {first_order} for a change of {change}"
-        );
-        assert!(band > first_order, "band {band}, first order {first_order}");
-        // Within the design's range the model is exact here (the difference is linear in x).
-        assert!((model.at(&[0.3, 0.8]) - 0.03).abs() < 1e-12);
-        // Beyond the 5 % / 95 % points it is held constant, not extrapolated.
-        assert!((model.at(&[1.0, 0.5]) - 0.095).abs() < 1e-12);
+        let cases: [(&str, fn(f64, f64) -> f64); 3] = [
+            ("0.1 x", |x, _| 0.1 * x),
+            ("0.2 x^2", |x, _| 0.2 * x * x),
+            ("0.2 x y", |x, y| 0.2 * x * y),
+        ];
+        for (name, delta) in cases {
+            let check = PairedCheck {
+                points: design.iter().map(|p| p.to_vec()).collect(),
+                diff: vec![design.iter().map(|p| Some(delta(p[0], p[1]))).collect()],
+                base: vec![design.iter().map(|p| Some(p[0] + p[1])).collect()],
+                nodes: (1, 1),
+            };
+            let model = check.shift_model(0, 1.0).expect("every pair converged");
+            let shifts: Vec<f64> = points.chunks(2).map(|x| model.at(x)).collect();
+            let bounds = check.bounds(0, 1.0).unwrap();
+            for t in [1.0, 1.5] {
+                let part = |shifts: Option<&[f64]>| {
+                    let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[t], 0.95);
+                    apply(
+                        &mut b,
+                        &samples,
+                        shifts,
+                        bounds,
+                        None,
+                        Part::Sliding,
+                        String::new(),
+                    );
+                    b.rows[2].sliding.unwrap()
+                };
+                let (first_order, band) = (part(Some(&shifts)), part(None));
+                let above = |shift: bool| {
+                    samples
+                        .iter()
+                        .zip(points.chunks(2))
+                        .filter(|(q, x)| *q - if shift { delta(x[0], x[1]) } else { 0.0 } > t)
+                        .count() as f64
+                        / samples.len() as f64
+                };
+                let change = (above(false) - above(true)).abs();
+                eprintln!(
+                    "delta = {name}, P(q > {t}): change {change:.4}, first order {first_order:.4} ({:.2}x), band {band:.4} ({:.2}x)",
+                    first_order / change,
+                    band / change
+                );
+                assert!(
+                    first_order >= change && first_order <= 3.5 * change,
+                    "delta = {name}, t = {t}: P part {first_order} for a change of {change}"
+                );
+            }
+            if name == "0.1 x" {
+                // Within the design's range the model is exact (the difference is linear in
+                // x); beyond the 5 % / 95 % points it is held constant, not extrapolated.
+                assert!((model.at(&[0.3, 0.8]) - 0.03).abs() < 1e-12);
+                assert!((model.at(&[1.0, 0.5]) - 0.095).abs() < 1e-12);
+            }
+        }
     }
 }
