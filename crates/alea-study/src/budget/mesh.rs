@@ -326,7 +326,8 @@ mod tests {
             [0.5, 0.05],
             [0.5, 0.95],
         ];
-        let cases: [(&str, fn(f64, f64) -> f64); 3] = [
+        type Difference = fn(f64, f64) -> f64;
+        let cases: [(&str, Difference); 3] = [
             ("0.1 x", |x, _| 0.1 * x),
             ("0.2 x^2", |x, _| 0.2 * x * x),
             ("0.2 x y", |x, y| 0.2 * x * y),
