@@ -302,10 +302,9 @@ mod tests {
     /// `q - delta(x, y)`; the true change of `P(q > t)` is counted on the same draws. From the
     /// differences at the `2 d + 1` points alone, the part of `P(q > t)` covers it within 3.5x
     /// for a linear, a quadratic and an interacting `delta` (measured 1.76 - 2.77x; the band
-    /// `|q - t| <= D` it replaces, 1.70 - 5.09x). Not asserted, measured and documented (module
-    /// `budget::mesh`, BENCHMARKS.md): a pure interaction centred at the nominal point,
-    /// `0.2 (x - 1/2) (y - 1/2)`, vanishes at all `2 d + 1` points, and both rules see 0.15 -
-    /// 0.33x of its change.
+    /// `|q - t| <= D` it replaces, 1.70 - 5.09x). Printed, not asserted (module `budget::mesh`,
+    /// BENCHMARKS.md): a pure interaction centred at the nominal point, `0.2 (x - 1/2) (y -
+    /// 1/2)`, vanishes at all `2 d + 1` points, and both rules see 0.15 - 0.33x of its change.
     #[test]
     fn p_part_from_the_shift_model_covers_exact_changes_tightly() {
         let n = 400;
@@ -327,10 +326,13 @@ mod tests {
             [0.5, 0.95],
         ];
         type Difference = fn(f64, f64) -> f64;
-        let cases: [(&str, Difference); 3] = [
+        let cases: [(&str, Difference); 4] = [
             ("0.1 x", |x, _| 0.1 * x),
             ("0.2 x^2", |x, _| 0.2 * x * x),
             ("0.2 x y", |x, y| 0.2 * x * y),
+            ("0.2 (x - 1/2) (y - 1/2)", |x, y| {
+                0.2 * (x - 0.5) * (y - 0.5)
+            }),
         ];
         for (name, delta) in cases {
             let check = PairedCheck {
@@ -371,6 +373,9 @@ mod tests {
                     first_order / change,
                     band / change
                 );
+                if name.starts_with("0.2 (") {
+                    continue; // the blind spot: measured above, not asserted
+                }
                 assert!(
                     first_order >= change && first_order <= 3.5 * change,
                     "delta = {name}, t = {t}: P part {first_order} for a change of {change}"
