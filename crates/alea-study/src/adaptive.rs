@@ -65,8 +65,9 @@ pub(crate) trait AdaptiveRuns<'a> {
     fn announce(&self, more: usize);
 }
 
-/// The comparison of the error budget of `mesh`: the last step's mesh with at most half its
-/// runs, or the corners of the box (the runs of the start mesh but its centre).
+/// The earlier step of a goal-oriented loop's leaf indicators ([`goal`]): the last step's mesh
+/// with at most half the runs of `mesh`, or the corners of the box (the runs of the start mesh
+/// but its centre).
 fn comparison_mesh(
     step_meshes: &[StochasticMesh],
     mesh: &StochasticMesh,
@@ -359,11 +360,9 @@ pub(crate) fn run_adaptive<'a>(
         }
         runner.announce(new);
     };
-    let coarse_mesh = comparison_mesh(&step_meshes, &mesh, params)?;
     Ok(AdaptiveOutcome {
         method: m,
         mesh,
-        coarse_mesh,
         steps,
         stop,
         error,

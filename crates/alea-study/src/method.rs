@@ -102,9 +102,6 @@ pub struct Method {
     pub description: String,
     /// Adaptive methods: the stochastic mesh once the loop has run (its runs are `points`).
     pub mesh: Option<StochasticMesh>,
-    /// Adaptive methods: the mesh of an earlier step, the comparison of the surrogate part of
-    /// the error budget (`crate::budget`).
-    pub coarse_mesh: Option<StochasticMesh>,
     /// Sparse chaos: the multi-indices selected once the runs are done (`crate::sparse`).
     pub sparse_basis: Option<Vec<Vec<u16>>>,
 }
@@ -120,7 +117,6 @@ impl Method {
             rule: None,
             description: "one deterministic run (the study has no random parameter)".into(),
             mesh: None,
-            coarse_mesh: None,
             sparse_basis: None,
         }
     }
@@ -401,7 +397,6 @@ pub fn build_methods(
             rule,
             description,
             mesh: None,
-            coarse_mesh: None,
             sparse_basis: None,
         });
     }
@@ -528,11 +523,12 @@ impl std::fmt::Debug for Surrogate {
 }
 
 impl Surrogate {
-    /// The interpolant one level coarser than a stochastic mesh (`ParentLevel`), on the box.
-    pub fn parent_level(mesh: StochasticMesh, params: &ParamSpace) -> Self {
+    /// The interpolant one level coarser than a stochastic mesh where it can be coarsened
+    /// (`ParentLevel::coarsenable`: every family of leaves merged), on the box.
+    pub fn coarsenable_level(mesh: StochasticMesh, params: &ParamSpace) -> Self {
         let d = params.names.len();
         Surrogate {
-            inner: Box::new(ParentLevel::new(mesh)),
+            inner: Box::new(ParentLevel::coarsenable(mesh)),
             shift: vec![0.0; d],
             scale: vec![1.0; d],
             clamp: Some((params.lo.clone(), params.hi.clone())),

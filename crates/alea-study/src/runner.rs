@@ -469,7 +469,6 @@ pub(crate) fn execute(
                 .map(|r| outcome.mesh.run_point(r).to_vec())
                 .collect();
             method.mesh = Some(outcome.mesh.clone());
-            method.coarse_mesh = Some(outcome.coarse_mesh.clone());
             adaptive.push(outcome);
         }
     }

@@ -97,9 +97,6 @@ pub struct AdaptiveOutcome {
     pub method: usize,
     /// The final stochastic mesh (its runs are the method's runs).
     pub mesh: StochasticMesh,
-    /// The comparison mesh of the error budget: the last step's mesh with at most half the
-    /// final runs (or the corners of the box); its runs are a prefix of the final ones.
-    pub coarse_mesh: StochasticMesh,
     /// Every step, in order.
     pub steps: Vec<StepRecord>,
     /// Why the loop stopped.
