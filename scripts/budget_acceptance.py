@@ -35,7 +35,7 @@ ROW = re.compile(
 class Count:
     def __init__(self, everything):
         self.everything = everything
-        self.n = self.covered = self.tight = 0
+        self.n = self.covered = self.tight = self.strict = 0
 
     def wanted(self, statistic):
         return self.everything or statistic in ("mean", "std") or statistic.startswith("P(")
@@ -48,6 +48,7 @@ class Count:
         tight = total <= 10 * max(actual, sampling)
         self.covered += covered
         self.tight += tight
+        self.strict += total <= 10 * actual
         flags = ("" if covered else " NOT COVERED") + ("" if tight else " LOOSE")
         print("%-58s %-10s true %9.3e total %9.3e x%8.2f%s" % (
             name[:58], statistic, actual, total, total / max(actual, sampling, 1e-300), flags))
@@ -105,6 +106,8 @@ def main(args):
     print("covered %d/%d (%.1f %%), within 10x %d/%d (%.1f %%) (work directory %s)" % (
         count.covered, count.n, 100.0 * count.covered / count.n, count.tight, count.n,
         100.0 * count.tight / count.n, work))
+    print("within 10x of the true error itself, even where it is below the sampling half-width:"
+          " %d/%d (%.1f %%)" % (count.strict, count.n, 100.0 * count.strict / count.n))
 
 
 if __name__ == "__main__":
