@@ -228,3 +228,136 @@ fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
     assert!(cov >= 0.9, "coverage {cov:.3} < 0.9\n{report}");
     assert!(tig >= 0.75, "within 10x {tig:.3} < 0.75\n{report}");
 }
+
+/// Adaptive stochastic meshes on the same analytic responses (the budget's comparisons of an
+/// adaptive method: the mesh one level coarser where it can be coarsened and the smooth fits,
+/// `alea_study::budget` module `coarse`). The meshes are refined here by an oracle, as a loop
+/// that finds the worst cells would: from the start mesh (corners and centre), each step splits
+/// fully (every new node a run) the leaves whose interpolation error at their centre times
+/// their area is at least half the largest, until at least 40 and 80 runs (45 - 107: a step
+/// splits all its cells). Against the exact statistics, mean, std and `P(q > t)` of each
+/// response at the two budgets (18 triples).
+///
+/// Measured (`cargo test --release -p alea-study --test budget_coverage adaptive --
+/// --nocapture`): 16 of 18 covered, 17 within 10x. The two misses are the steep response's
+/// mean (true errors 4.1e-3 and 4.3e-3 against totals of 3.4e-3, nearly all sampling): the
+/// Monte Carlo error of the shared draws, which the 9 x 9 grid misses alike; the surrogate's
+/// own error there is 1e-4. With every leaf replaced by its parent instead (`ParentLevel::new`,
+/// the comparison before session 9; its earlier step needs a loop, none here): 16 covered, 12
+/// within 10x (4 - 140x over on the kink and the steep std). Asserted: every statistic covered or off by at most 1.5 sampling
+/// half-widths (a miss inside the draws' noise), and at least 16 of 18 within 10x.
+#[test]
+fn adaptive_mesh_budget_covers_the_true_error() {
+    use alea_study::method::{AdaptiveSettings, Criterion, Method, MethodKind};
+    use alea_uq::surrogate::StochasticMesh;
+    let study = Study::from_source(Source::from_text("budget.toml", STUDY)).unwrap();
+    let thresholds = [2.0, 0.5, 0.5];
+    let truth = exact(thresholds);
+    let settings = AnalysisSettings {
+        samples: 250_000,
+        bandwidth: Bandwidth::Silverman,
+        kde_points: 64,
+        confidence: 0.95,
+    };
+    let (mut n, mut covered, mut tight) = (0usize, 0usize, 0usize);
+    let mut lines = Vec::new();
+    let mut beyond_noise = Vec::new();
+    for q in 0..3 {
+        for budget_runs in [40, 80] {
+            let f = |p: &[f64]| responses(p)[q];
+            let mut mesh = StochasticMesh::new(&[-1.0, -1.0], &[1.0, 1.0], &[1, 1]).unwrap();
+            mesh.refine_centred(&[0]).unwrap();
+            while mesh.num_runs() < budget_runs {
+                let values: Vec<f64> = (0..mesh.num_runs()).map(|k| f(mesh.run_point(k))).collect();
+                let scored: Vec<(usize, f64)> = mesh
+                    .leaves()
+                    .into_iter()
+                    .map(|c| {
+                        let (lo, hi) = mesh.cell_bounds(c);
+                        let centre = mesh.cell_centre(c);
+                        let area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+                        (
+                            c,
+                            (f(&centre) - mesh.interpolate(&centre, &values)).abs() * area,
+                        )
+                    })
+                    .collect();
+                let top = scored.iter().map(|s| s.1).fold(0.0, f64::max);
+                let cells: Vec<usize> = scored
+                    .iter()
+                    .filter(|s| s.1 >= 0.5 * top)
+                    .map(|s| s.0)
+                    .collect();
+                mesh.refine(&cells).unwrap();
+            }
+            let points: Vec<Vec<f64>> = (0..mesh.num_runs())
+                .map(|k| mesh.run_point(k).to_vec())
+                .collect();
+            let method = Method {
+                label: format!("adaptive {}", points.len()),
+                kind: MethodKind::Adaptive(AdaptiveSettings {
+                    criterion: Criterion::Improved { fraction: 0.5 },
+                    target: None,
+                    max_runs: points.len(),
+                    goal: None,
+                }),
+                points: points.clone(),
+                rule: None,
+                description: String::new(),
+                mesh: Some(mesh),
+                sparse_basis: None,
+            };
+            let records: Vec<RunRecord> = points
+                .iter()
+                .map(|p| RunRecord {
+                    params: p.clone(),
+                    status: "converged".into(),
+                    iterations: 1,
+                    residual: 0.0,
+                    seconds: 0.0,
+                    qois: responses(p).to_vec(),
+                    history: Vec::new(),
+                    state: Vec::new(),
+                })
+                .collect();
+            let res = analyse_method(&study, &method, &records, &settings);
+            assert!(res.error.is_none(), "{}: {:?}", method.label, res.error);
+            let stats = &res.qois[q];
+            let budget = stats.budget.as_ref().expect("a budget");
+            let p_row = budget.rows.len() - 1;
+            for (k, row) in [0, 1, p_row].into_iter().enumerate() {
+                let r = &budget.rows[row];
+                let actual = (r.value - truth[q][k]).abs();
+                let cov = r.total >= actual;
+                let ok = r.total <= 10.0 * actual.max(r.sampling);
+                n += 1;
+                covered += usize::from(cov);
+                tight += usize::from(ok);
+                if !cov && actual > 1.5 * r.sampling {
+                    beyond_noise.push(format!("{} {} {}", method.label, stats.name, r.statistic));
+                }
+                lines.push(format!(
+                    "{:<24} {:<7} {:<10} true {:10.3e} total {:10.3e} (surrogate {:10.3e}, sampling {:10.3e}) {}{}",
+                    method.label,
+                    stats.name,
+                    r.statistic,
+                    actual,
+                    r.total,
+                    r.surrogate.unwrap_or(f64::NAN),
+                    r.sampling,
+                    if cov { "" } else { "NOT COVERED " },
+                    if ok { "" } else { "LOOSE" }
+                ));
+            }
+        }
+    }
+    let report = lines.join("\n");
+    println!("{report}");
+    println!("adaptive: covered {covered}/{n}, within 10x {tight}/{n}");
+    assert_eq!(n, 18);
+    assert!(
+        beyond_noise.is_empty(),
+        "not covered beyond the sampling noise: {beyond_noise:?}\n{report}"
+    );
+    assert!(tight >= 16, "within 10x {tight} of {n}\n{report}");
+}
