@@ -5,7 +5,8 @@ usage: budget_acceptance.py [--all] [ALEA]
 
 Runs, with release builds (ALEA defaults to target/release/alea, built first):
 - `cargo test --release -p alea-study --test budget_coverage -- --nocapture` (analytic
-  responses: smooth, kink, steep x 6 methods, against exact statistics);
+  responses: smooth, kink, steep x 6 methods, and adaptive meshes refined by an oracle at two
+  run budgets, against exact statistics);
 - `cargo test --release -p alea-study --test contact_estimate -- --nocapture` (contact stick /
   slip and closing gap, 9 methods each, against an 81-run reference);
 - `examples/turbine-2d-wear.toml`, `-adaptive.toml`, `-goal.toml` against

@@ -2,7 +2,8 @@
 //! the surrogate error of one quantity's statistic is largest and stops when that statistic's
 //! error budget ([`crate::budget`]) is within the user's tolerance.
 //!
-//! At each step, on `N` Monte Carlo draws `xi_i` (at most 100 000, seeded):
+//! At each step, on the `N` Monte Carlo draws `xi_i` of the final analysis (the study's
+//! `samples`, the same seed: the last step's budget is the report's, to the digit):
 //! - **budget** of the goal statistic `S` (`P(q > t)`, or the mean and the standard deviation):
 //!   its surrogate part against the mesh one level coarser where it can be coarsened
 //!   (`alea_uq::surrogate::ParentLevel::coarsenable`) and the smooth fits on the same runs (the
@@ -32,14 +33,15 @@
 
 use alea_uq::design;
 use alea_uq::surrogate::{CellId, LinearSurrogate, ParentLevel, StochasticMesh};
+use rayon::prelude::*;
 
 use crate::budget::{SurrogatePart, credible_fit, qoi_budget, smooth_fits};
 use crate::method::Goal;
 pub use crate::runs::GoalRecord;
 use crate::study::Study;
 
-/// Draws per goal step, at most.
-const MAX_DRAWS: usize = 100_000;
+/// A surrogate's value at a clamped draw, with scratch space for its weights.
+type AtDraw<'a> = dyn Fn(&[f64], &mut Vec<f64>, &mut Vec<(usize, f64)>) -> f64 + Sync + 'a;
 
 /// One goal step: the goal statistics' budgets and the leaf indicators.
 pub struct GoalStep {
@@ -63,11 +65,12 @@ pub fn goal_step(
     confidence: f64,
 ) -> GoalStep {
     let d = study.params.names.len();
-    let n = samples.clamp(2, MAX_DRAWS);
+    let n = samples.max(2);
+    // The draws of the final analysis (`crate::analysis`: same count, same seed).
     let draws = design::monte_carlo(
         study.params.joint.as_ref(),
         n,
-        study.seed.wrapping_add(0x6f61_6c21),
+        study.seed.wrapping_add(0x9e37_79b9),
     );
     let pts = draws.points();
     let clamp = |x: &[f64]| -> Vec<f64> {
@@ -84,34 +87,43 @@ pub fn goal_step(
         .map(|k| mesh.run_point(k).to_vec())
         .collect();
     let smooth = smooth_fits(&study.params, &run_points);
-    let (mut t, mut w) = (vec![0.0; d], Vec::new());
-    let mut fit = |s: &crate::budget::Comparison, x: &[f64]| -> f64 {
-        s.surrogate.weights(x, &mut t, &mut w);
+    let fit = |s: &crate::budget::Comparison,
+               x: &[f64],
+               t: &mut Vec<f64>,
+               w: &mut Vec<(usize, f64)>|
+     -> f64 {
+        s.surrogate.weights(x, t, w);
         w.iter().map(|&(k, wk)| wk * values[s.runs[k]]).sum()
     };
-    let mut fine = Vec::with_capacity(n);
-    let mut earlier = Vec::with_capacity(n);
-    let mut parent_values = Vec::with_capacity(n);
-    let mut coarsenable_values = Vec::with_capacity(n);
-    let mut smoothed: Vec<Vec<f64>> = vec![Vec::with_capacity(n); smooth.len()];
-    let mut located = Vec::with_capacity(n);
-    for x in pts.chunks(d) {
-        let x = clamp(x);
-        fine.push(mesh.interpolate(&x, values));
-        earlier.push(coarse.interpolate(&x, &values[..coarse.num_runs()]));
-        parent_values.push(parent.eval(&x, values));
-        coarsenable_values.push(coarsenable.eval(&x, values));
-        for (s, column) in smooth.iter().zip(&mut smoothed) {
-            column.push(fit(s, &x));
-        }
-        located.push(mesh.locate(&x));
-    }
+    // Every surrogate at every draw, one column at a time, in parallel (in draw order: thread-
+    // count independent; no allocation per draw but the clamped point).
+    let column = |eval: &AtDraw| {
+        pts.par_chunks(d)
+            .map_init(
+                || (vec![0.0; d], Vec::new()),
+                |(t, w), x| eval(&clamp(x), t, w),
+            )
+            .collect::<Vec<f64>>()
+    };
+    let fine = column(&|x, _, _| mesh.interpolate(x, values));
+    let earlier = column(&|x, _, _| coarse.interpolate(x, &values[..coarse.num_runs()]));
+    let parent_values = column(&|x, _, _| parent.eval(x, values));
+    let coarsenable_values = column(&|x, _, _| coarsenable.eval(x, values));
+    let smoothed: Vec<Vec<f64>> = smooth
+        .iter()
+        .map(|s| column(&|x, t, w| fit(s, x, t, w)))
+        .collect();
+    let located: Vec<Option<CellId>> = pts.par_chunks(d).map(|x| mesh.locate(&clamp(x))).collect();
     // The smooth fits that follow the runs (as in the final budget).
     let smoothed: Vec<(&crate::budget::Comparison, Vec<f64>)> = smooth
         .iter()
         .zip(smoothed)
         .filter(|(s, at_draws)| {
-            let at_runs: Vec<f64> = run_points.iter().map(|x| fit(s, x)).collect();
+            let (mut t, mut w) = (vec![0.0; d], Vec::new());
+            let at_runs: Vec<f64> = run_points
+                .iter()
+                .map(|x| fit(s, x, &mut t, &mut w))
+                .collect();
             credible_fit(&at_runs, values, at_draws, &fine)
         })
         .collect();

@@ -378,7 +378,14 @@ pub fn check_study_file(src: &Source, file: &ModelFile, nparams: usize) -> Resul
         // Per draw and method: the point, the surrogate values and the samples per quantity,
         // a sorted copy; plus the report's copy and its JSON text.
         let per_draw = methods * (8.0 * nparams as f64 + 16.0 * nq + 8.0) + 40.0 * nq;
-        let need = n as f64 * per_draw;
+        // A goal-oriented loop's step (module `goal`, before the analysis, on the same draws):
+        // six columns of surrogate values, the leaf of each draw and a clamped point.
+        let goal_step = if file.method.iter().any(|m| m.goal.is_some()) {
+            6.0 * 8.0 + 16.0 + 8.0 * nparams as f64
+        } else {
+            0.0
+        };
+        let need = n as f64 * per_draw.max(goal_step);
         let have = available_memory() as f64 / 2.0;
         if !(2..=MAX_SAMPLES).contains(&n) || need > have {
             return Err(src.error(

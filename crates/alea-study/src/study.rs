@@ -130,6 +130,16 @@ impl Study {
             let names: Vec<String> = qois.iter().map(|q| q.name.clone()).collect();
             build_methods(&source, &file.method, &params, &names, seed)?
         };
+        // A goal's `P(q > t)` is reported with its budget like the quantity's own thresholds.
+        for m in &methods {
+            if let MethodKind::Adaptive(a) = &m.kind
+                && let Some(g) = &a.goal
+                && let Some(t) = g.threshold
+                && !qois[g.quantity].thresholds.contains(&t)
+            {
+                qois[g.quantity].thresholds.push(t);
+            }
+        }
         let reliability = crate::reliability::task::build_reliability(
             &source,
             &file.reliability,

@@ -114,7 +114,8 @@ fn a_valid_goal_is_accepted_and_described() {
 /// End to end against an exact failure probability: `tip = s L / E` exactly (a linear field,
 /// traction s = 1 MPa, L = 10 mm), `E ~ U(150e3, 250e3)`, so
 /// `P(tip > t) = (s L / t - 150e3) / 100e3`. The goal-oriented loop stops when its budget is
-/// within the tolerance, and the exact probability lies within the reported total of the value.
+/// within the tolerance, and the exact probability lies within the reported total of the value;
+/// the loop's last budget is the one the analysis reports (same comparisons, same draws).
 #[test]
 fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget() {
     use alea_study::runner::{NoProgress, run_study};
@@ -137,6 +138,19 @@ fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget()
         g.value,
         g.total
     );
+    let settings = alea_study::analysis::analysis_settings(&s).unwrap();
+    let method = &runs.methods[0];
+    let res = alea_study::analysis::analyse_method(&s, method, &runs.records, &settings);
+    let row = res.qois[0]
+        .budget
+        .as_ref()
+        .unwrap()
+        .rows
+        .last()
+        .unwrap()
+        .clone();
+    assert!(row.statistic.starts_with("P(> "), "{}", row.statistic);
+    assert_eq!((row.value, row.total), (g.value, g.total), "report vs loop");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
