@@ -159,34 +159,98 @@ fn exact(thresholds: [f64; 3]) -> [[f64; 3]; 3] {
     })
 }
 
-#[test]
-fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
+/// The study, the exact statistics of its responses and the analysis settings (250 000 draws,
+/// the default of a study).
+fn setup() -> (Study, [[f64; 3]; 3], AnalysisSettings) {
     let study = Study::from_source(Source::from_text("budget.toml", STUDY)).unwrap();
-    let thresholds = [2.0, 0.5, 0.5];
-    let truth = exact(thresholds);
     let settings = AnalysisSettings {
         samples: 250_000,
         bandwidth: Bandwidth::Silverman,
         kde_points: 64,
         confidence: 0.95,
     };
-    let (mut n, mut covered, mut tight) = (0usize, 0usize, 0usize);
-    let mut lines = Vec::new();
+    (study, exact([2.0, 0.5, 0.5]), settings)
+}
+
+/// The records of runs at `points` whose quantities are the analytic responses.
+fn analytic_records(points: &[Vec<f64>]) -> Vec<RunRecord> {
+    points
+        .iter()
+        .map(|p| RunRecord {
+            params: p.clone(),
+            status: "converged".into(),
+            iterations: 1,
+            residual: 0.0,
+            seconds: 0.0,
+            qois: responses(p).to_vec(),
+            history: Vec::new(),
+            state: Vec::new(),
+        })
+        .collect()
+}
+
+/// The mean, std and `P(q > t)` rows of budgets against exact values, counted and printed.
+#[derive(Default)]
+struct Tally {
+    n: usize,
+    covered: usize,
+    tight: usize,
+    lines: Vec<String>,
+}
+
+impl Tally {
+    /// Counts the mean, std and last (`P(q > t)`) rows of `budget` against `truth` (in that
+    /// order); the true error and sampling half-width of each row not covered.
+    fn add(
+        &mut self,
+        label: &str,
+        quantity: &str,
+        budget: &alea_study::budget::QoiBudget,
+        truth: &[f64; 3],
+    ) -> Vec<(f64, f64)> {
+        let p_row = budget.rows.len() - 1;
+        let mut misses = Vec::new();
+        for (k, row) in [0, 1, p_row].into_iter().enumerate() {
+            let r = &budget.rows[row];
+            let actual = (r.value - truth[k]).abs();
+            let cov = r.total >= actual;
+            let ok = r.total <= 10.0 * actual.max(r.sampling);
+            self.n += 1;
+            self.covered += usize::from(cov);
+            self.tight += usize::from(ok);
+            if !cov {
+                misses.push((actual, r.sampling));
+            }
+            self.lines.push(format!(
+                "{:<24} {:<7} {:<10} true {:10.3e} total {:10.3e} (surrogate {:10.3e}, sampling {:10.3e}) {}{}",
+                label,
+                quantity,
+                r.statistic,
+                actual,
+                r.total,
+                r.surrogate.unwrap_or(f64::NAN),
+                r.sampling,
+                if cov { "" } else { "NOT COVERED " },
+                if ok { "" } else { "LOOSE" }
+            ));
+        }
+        misses
+    }
+
+    /// Prints the rows, and returns them as one text.
+    fn print(&self) -> String {
+        let report = self.lines.join("\n");
+        println!("{report}");
+        report
+    }
+}
+
+#[test]
+fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
+    let (study, truth, settings) = setup();
+    let mut tally = Tally::default();
     for method in &study.methods {
-        let records: Vec<RunRecord> = method
-            .points
-            .iter()
-            .map(|p| RunRecord {
-                params: p.clone(),
-                status: "converged".into(),
-                iterations: 1,
-                residual: 0.0,
-                seconds: 0.0,
-                qois: responses(p).to_vec(),
-                history: Vec::new(),
-                state: Vec::new(),
-            })
-            .collect();
+        let records = analytic_records(&method.points);
         let res = analyse_method(&study, method, &records, &settings);
         assert!(res.error.is_none(), "{}: {:?}", method.label, res.error);
         for (q, stats) in res.qois.iter().enumerate() {
@@ -197,32 +261,13 @@ fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
                 method.label,
                 budget.surrogate_basis
             );
-            let p_row = budget.rows.len() - 1;
-            for (k, row) in [0, 1, p_row].into_iter().enumerate() {
-                let r = &budget.rows[row];
-                let actual = (r.value - truth[q][k]).abs();
-                let cov = r.total >= actual;
-                let ok = r.total <= 10.0 * actual.max(r.sampling);
-                n += 1;
-                covered += usize::from(cov);
-                tight += usize::from(ok);
-                lines.push(format!(
-                    "{:<24} {:<7} {:<10} true {:10.3e} total {:10.3e} (surrogate {:10.3e}, sampling {:10.3e}) {}{}",
-                    method.label,
-                    stats.name,
-                    r.statistic,
-                    actual,
-                    r.total,
-                    r.surrogate.unwrap_or(f64::NAN),
-                    r.sampling,
-                    if cov { "" } else { "NOT COVERED " },
-                    if ok { "" } else { "LOOSE" }
-                ));
-            }
+            tally.add(&method.label, &stats.name, budget, &truth[q]);
         }
     }
-    let report = lines.join("\n");
-    println!("{report}");
+    let report = tally.print();
+    let Tally {
+        n, covered, tight, ..
+    } = tally;
     let (cov, tig) = (covered as f64 / n as f64, tight as f64 / n as f64);
     println!("covered {covered}/{n} = {cov:.3}, within 10x {tight}/{n} = {tig:.3}");
     assert!(cov >= 0.9, "coverage {cov:.3} < 0.9\n{report}");
@@ -244,23 +289,15 @@ fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
 /// Monte Carlo error of the shared draws, which the 9 x 9 grid misses alike; the surrogate's
 /// own error there is 1e-4. With every leaf replaced by its parent instead (`ParentLevel::new`,
 /// the comparison before session 9; its earlier step needs a loop, none here): 16 covered, 12
-/// within 10x (4 - 140x over on the kink and the steep std). Asserted: every statistic covered or off by at most 1.5 sampling
-/// half-widths (a miss inside the draws' noise), and at least 16 of 18 within 10x.
+/// within 10x (4 - 140x over on the kink and the steep std). Asserted: every statistic covered
+/// or off by at most 1.5 sampling half-widths (a miss inside the draws' noise), and at least 16
+/// of 18 within 10x.
 #[test]
 fn adaptive_mesh_budget_covers_the_true_error() {
     use alea_study::method::{AdaptiveSettings, Criterion, Method, MethodKind};
     use alea_uq::surrogate::StochasticMesh;
-    let study = Study::from_source(Source::from_text("budget.toml", STUDY)).unwrap();
-    let thresholds = [2.0, 0.5, 0.5];
-    let truth = exact(thresholds);
-    let settings = AnalysisSettings {
-        samples: 250_000,
-        bandwidth: Bandwidth::Silverman,
-        kde_points: 64,
-        confidence: 0.95,
-    };
-    let (mut n, mut covered, mut tight) = (0usize, 0usize, 0usize);
-    let mut lines = Vec::new();
+    let (study, truth, settings) = setup();
+    let mut tally = Tally::default();
     let mut beyond_noise = Vec::new();
     for q in 0..3 {
         for budget_runs in [40, 80] {
@@ -307,52 +344,22 @@ fn adaptive_mesh_budget_covers_the_true_error() {
                 mesh: Some(mesh),
                 sparse_basis: None,
             };
-            let records: Vec<RunRecord> = points
-                .iter()
-                .map(|p| RunRecord {
-                    params: p.clone(),
-                    status: "converged".into(),
-                    iterations: 1,
-                    residual: 0.0,
-                    seconds: 0.0,
-                    qois: responses(p).to_vec(),
-                    history: Vec::new(),
-                    state: Vec::new(),
-                })
-                .collect();
+            let records = analytic_records(&points);
             let res = analyse_method(&study, &method, &records, &settings);
             assert!(res.error.is_none(), "{}: {:?}", method.label, res.error);
             let stats = &res.qois[q];
             let budget = stats.budget.as_ref().expect("a budget");
-            let p_row = budget.rows.len() - 1;
-            for (k, row) in [0, 1, p_row].into_iter().enumerate() {
-                let r = &budget.rows[row];
-                let actual = (r.value - truth[q][k]).abs();
-                let cov = r.total >= actual;
-                let ok = r.total <= 10.0 * actual.max(r.sampling);
-                n += 1;
-                covered += usize::from(cov);
-                tight += usize::from(ok);
-                if !cov && actual > 1.5 * r.sampling {
-                    beyond_noise.push(format!("{} {} {}", method.label, stats.name, r.statistic));
+            for (actual, sampling) in tally.add(&method.label, &stats.name, budget, &truth[q]) {
+                if actual > 1.5 * sampling {
+                    beyond_noise.push(format!("{} {}", method.label, stats.name));
                 }
-                lines.push(format!(
-                    "{:<24} {:<7} {:<10} true {:10.3e} total {:10.3e} (surrogate {:10.3e}, sampling {:10.3e}) {}{}",
-                    method.label,
-                    stats.name,
-                    r.statistic,
-                    actual,
-                    r.total,
-                    r.surrogate.unwrap_or(f64::NAN),
-                    r.sampling,
-                    if cov { "" } else { "NOT COVERED " },
-                    if ok { "" } else { "LOOSE" }
-                ));
             }
         }
     }
-    let report = lines.join("\n");
-    println!("{report}");
+    let report = tally.print();
+    let Tally {
+        n, covered, tight, ..
+    } = tally;
     println!("adaptive: covered {covered}/{n}, within 10x {tight}/{n}");
     assert_eq!(n, 18);
     assert!(
