@@ -5,7 +5,7 @@ usage: sliding_check.py STUDY.toml [ALEA]
 
 Writes two copies of STUDY.toml next to it in a temporary directory (its .msh files copied too):
 - "small": the study with `[budget] large_sliding = true` (the sliding part: paired solves in
-  small and large sliding at 2 d + 1 design points);
+  small and large sliding at the 2 d + 3 design points of `alea_study::budget::mesh`);
 - "large": the study with `sliding = "large"` on every `law = "coulomb"` interface, without its
   `[[reliability]]` tables, on the same design;
 runs both with ALEA (default target/release/alea, 2 threads), then prints, for every method,

@@ -514,9 +514,10 @@ fn refined_study(
 /// configuration kept throughout, changes in each statistic. With `[budget] large_sliding =
 /// true` the study is also built with every small-sliding contact interface in large sliding
 /// (`alea_latin::large_sliding`: the pairing and its normals re-found in the deformed
-/// configuration of each run, the bodies still linear) and both are solved at the `2 d + 1`
-/// design points of the mesh part (`crate::budget::mesh::paired_check`: the nominal point and, along
-/// each parameter, its 5 % and 95 % quantiles); with `delta_i = q_small(xi_i) - q_large(xi_i)`,
+/// configuration of each run, the bodies still linear) and both are solved at the `2 d + 3`
+/// design points of the mesh part (`crate::budget::mesh::paired_check`: the nominal point,
+/// along each parameter its 5 % and 95 % quantiles, and the two diagonal points); with
+/// `delta_i = q_small(xi_i) - q_large(xi_i)`,
 ///
 /// ```text
 /// D = max_i |delta_i|,   S = max_i delta_i - min_i delta_i,
@@ -526,8 +527,8 @@ fn refined_study(
 /// deviation (`r = max_i |delta_i / q_small(xi_i)|`, `sigma` the draws' standard deviation: the
 /// change grows with the displacements, so it is often nearly proportional to the quantity, and
 /// then changes the spread by about `r sigma`, which `S / 2` over a few points misses) and
-/// for `P(q > t)` the share of draws within their own shift of `t` under the first-order
-/// model of the differences (the propagation of the mesh part,
+/// for `P(q > t)` the share of draws within their own shift of `t` under the model of the
+/// differences (the propagation of the mesh part,
 /// `crate::budget::mesh::apply`, without Richardson's factor: the difference is the change
 /// itself, not one term of a converging sequence).
 ///

@@ -87,15 +87,15 @@ fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [M
                         // times the spread, bounds the change of the spread when the change is
                         // proportional to the quantity, which S / 2 over a few points misses.
                         let relative = (which == Part::Sliding).then(|| c.relative(q)).flatten();
-                        // The shift at each draw, from the first-order model of the
-                        // differences (for the `P(q > t)` rows).
+                        // How far the difference may reach at each draw, `|delta~| + A` from
+                        // the model of the differences (for the `P(q > t)` rows).
                         let shifts: Option<Vec<f64>> = c.shift_model(q, factor).and_then(|m| {
                             let dim = study.params.names.len();
                             (dim > 0 && r.points.len() == samples.len() * dim)
-                                .then(|| r.points.chunks(dim).map(|x| m.at(x)).collect())
+                                .then(|| r.points.chunks(dim).map(|x| m.reach(x)).collect())
                         });
                         let p_rows = if shifts.is_some() {
-                            "P(q > t): the draws within their own shift of t, from a first-order model of the differences along each parameter"
+                            "P(q > t): the draws within their own shift of t, from a model of the differences: first order along each parameter, plus the pair terms fitted at the two diagonal points"
                         } else {
                             "P(q > t): the draws within D of t"
                         };
