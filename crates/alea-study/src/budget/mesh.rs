@@ -28,7 +28,8 @@
 //! it, and `P(q > t)`'s part saw 0.15 - 0.33x of its change. With them it covers it at 1.8 -
 //! 2.2x (the unit test below). What they still cannot see, with three parameters or more:
 //! pair interactions of opposite signs that cancel on the diagonal, and which pair interacts
-//! (one coefficient is spread over all pairs).
+//! (one coefficient is spread over all pairs; with one interacting pair among three
+//! parameters the part still covered the change, at 1.98 - 5.44x, the second unit test).
 
 use alea_uq::law::Marginal;
 
@@ -532,7 +533,7 @@ mod tests {
                 part / change
             );
             assert!(
-                part >= 0.5 * change,
+                part >= change && part <= 10.0 * change,
                 "t = {t}: part {part}, change {change}"
             );
         }
