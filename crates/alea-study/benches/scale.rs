@@ -147,16 +147,7 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
     let points = study.methods[0].points.clone();
     let records: Vec<RunRecord> = points
         .iter()
-        .map(|p| RunRecord {
-            params: p.clone(),
-            status: "converged".into(),
-            iterations: 1,
-            residual: 0.0,
-            seconds: 0.0,
-            qois: vec![0.0; study.qois.len()],
-            history: vec![0.0],
-            state: vec![],
-        })
+        .map(|p| RunRecord::known(p.clone(), vec![0.0; study.qois.len()]))
         .collect();
     // The runs' fields, stored as `alea run` stores them (into the database), 1024 runs per
     // transaction.

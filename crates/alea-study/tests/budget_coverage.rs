@@ -176,16 +176,7 @@ fn setup() -> (Study, [[f64; 3]; 3], AnalysisSettings) {
 fn analytic_records(points: &[Vec<f64>]) -> Vec<RunRecord> {
     points
         .iter()
-        .map(|p| RunRecord {
-            params: p.clone(),
-            status: "converged".into(),
-            iterations: 1,
-            residual: 0.0,
-            seconds: 0.0,
-            qois: responses(p).to_vec(),
-            history: Vec::new(),
-            state: Vec::new(),
-        })
+        .map(|p| RunRecord::known(p.clone(), responses(p).to_vec()))
         .collect()
 }
 
