@@ -212,12 +212,24 @@ pub(crate) fn run_adaptive<'a>(
                 .map_or_else(Vec::new, |g| g.records.clone()),
         });
         if let Some(g) = &goal_step {
-            let budget = g
+            let mut budget = g
                 .records
                 .iter()
                 .map(|r| format!("{} = {:.6} +- {:.2e}", r.statistic, r.value, r.total))
                 .collect::<Vec<_>>()
                 .join(", ");
+            // No run lowers the sampling part: say so when it alone misses the tolerance.
+            let goal = settings.goal.as_ref().expect("a goal step has a goal");
+            if let Some(r) = g
+                .records
+                .iter()
+                .find(|r| !goal.tolerance.holds(r.sampling, r.value))
+            {
+                budget.push_str(&format!(
+                    "; the sampling part of {} alone, {:.2e}, exceeds the tolerance: more [statistics] samples lower it, more runs do not",
+                    r.statistic, r.sampling
+                ));
+            }
             if g.reached {
                 break (format!("goal reached: {budget}"), None);
             }

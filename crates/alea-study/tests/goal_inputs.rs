@@ -154,6 +154,30 @@ fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget()
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A tolerance below the sampling half-width of the goal statistic cannot be met by runs: the
+/// loop stops on its run budget and its stop message says that the sampling part alone exceeds
+/// the tolerance (250 000 draws give about 2e-3 on a probability of 0.4).
+#[test]
+fn a_tolerance_below_the_sampling_part_is_named_when_the_loop_stops() {
+    use alea_study::runner::{NoProgress, run_study};
+    let t = 10.0 / 190e3; // P = 0.4
+    let s = load(&format!(
+        "type = \"adaptive\"\ngoal = {{ quantity = \"tip\", threshold = {t:e}, tolerance = 1e-5 }}\nmax_runs = 6\n"
+    ))
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-goal-floor-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let a = &runs.adaptive[0];
+    assert!(a.stop.starts_with("run budget of 6 reached"), "{}", a.stop);
+    assert!(
+        a.stop.contains("the sampling part of P(> ") && a.stop.contains("more runs do not"),
+        "{}",
+        a.stop
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// A threshold outside the quantity's range over the start design (`tip` lies in
 /// `[10 / 250e3, 10 / 150e3] = [4e-5, 6.7e-5]` mm) is an input error at the threshold's line,
 /// raised after the start design's three runs, before any refinement (the range is not known
