@@ -211,7 +211,7 @@ pub(crate) fn run_adaptive<'a>(
                 .as_ref()
                 .map_or_else(Vec::new, |g| g.records.clone()),
         });
-        if let Some(g) = &goal_step {
+        if let (Some(g), Some(goal)) = (&goal_step, &settings.goal) {
             let mut budget = g
                 .records
                 .iter()
@@ -219,7 +219,6 @@ pub(crate) fn run_adaptive<'a>(
                 .collect::<Vec<_>>()
                 .join(", ");
             // No run lowers the sampling part: say so when it alone misses the tolerance.
-            let goal = settings.goal.as_ref().expect("a goal step has a goal");
             if let Some(r) = g
                 .records
                 .iter()

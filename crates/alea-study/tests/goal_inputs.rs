@@ -111,6 +111,28 @@ fn a_valid_goal_is_accepted_and_described() {
     );
 }
 
+/// The threshold of `P(tip > t) = 0.4` (`tip = 10 / E` mm, `E ~ U(150e3, 250e3)` MPa).
+const TIP_THRESHOLD: f64 = 10.0 / 190e3;
+
+/// Runs the study whose method is a goal on `P(tip > TIP_THRESHOLD)` with `tolerance` and
+/// `max_runs`, in a fresh directory named after `name` (removed after): the study and its runs.
+fn run_tip_goal(
+    name: &str,
+    tolerance: f64,
+    max_runs: usize,
+) -> (Study, alea_study::runner::StudyRuns) {
+    use alea_study::runner::{NoProgress, run_study};
+    let s = load(&format!(
+        "type = \"adaptive\"\ngoal = {{ quantity = \"tip\", threshold = {TIP_THRESHOLD:e}, tolerance = {tolerance:e} }}\nmax_runs = {max_runs}\n"
+    ))
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("alea-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    (s, runs)
+}
+
 /// End to end against an exact failure probability: `tip = s L / E` exactly (a linear field,
 /// traction s = 1 MPa, L = 10 mm), `E ~ U(150e3, 250e3)`, so
 /// `P(tip > t) = (s L / t - 150e3) / 100e3`. The goal-oriented loop stops when its budget is
@@ -118,15 +140,8 @@ fn a_valid_goal_is_accepted_and_described() {
 /// the loop's last budget is the one the analysis reports (same comparisons, same draws).
 #[test]
 fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget() {
-    use alea_study::runner::{NoProgress, run_study};
-    let t = 10.0 / 190e3; // P = 0.4
-    let s = load(&format!(
-        "type = \"adaptive\"\ngoal = {{ quantity = \"tip\", threshold = {t:e}, tolerance = 0.01 }}\nmax_runs = 40\n"
-    ))
-    .unwrap();
-    let dir = std::env::temp_dir().join(format!("alea-goal-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let (s, runs) = run_tip_goal("goal", 0.01, 40);
+    let t = TIP_THRESHOLD;
     let a = &runs.adaptive[0];
     assert!(a.stop.starts_with("goal reached"), "{}", a.stop);
     let last = a.steps.last().unwrap();
@@ -151,7 +166,6 @@ fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget()
         .clone();
     assert!(row.statistic.starts_with("P(> "), "{}", row.statistic);
     assert_eq!((row.value, row.total), (g.value, g.total), "report vs loop");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A tolerance below the sampling half-width of the goal statistic cannot be met by runs: the
@@ -159,15 +173,7 @@ fn a_goal_oriented_loop_reaches_an_exact_failure_probability_within_its_budget()
 /// the tolerance (250 000 draws give about 2e-3 on a probability of 0.4).
 #[test]
 fn a_tolerance_below_the_sampling_part_is_named_when_the_loop_stops() {
-    use alea_study::runner::{NoProgress, run_study};
-    let t = 10.0 / 190e3; // P = 0.4
-    let s = load(&format!(
-        "type = \"adaptive\"\ngoal = {{ quantity = \"tip\", threshold = {t:e}, tolerance = 1e-5 }}\nmax_runs = 6\n"
-    ))
-    .unwrap();
-    let dir = std::env::temp_dir().join(format!("alea-goal-floor-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let (_, runs) = run_tip_goal("goal-floor", 1e-5, 6);
     let a = &runs.adaptive[0];
     assert!(a.stop.starts_with("run budget of 6 reached"), "{}", a.stop);
     assert!(
@@ -175,7 +181,6 @@ fn a_tolerance_below_the_sampling_part_is_named_when_the_loop_stops() {
         "{}",
         a.stop
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A threshold outside the quantity's range over the start design (`tip` lies in

@@ -172,7 +172,8 @@ impl ShiftModel {
         if self.pairs == 0.0 {
             return first;
         }
-        let s: Vec<f64> = self
+        // `sum_{j < k} s_j s_k = ((sum_j s_j)^2 - sum_j s_j^2) / 2`: no allocation per draw.
+        let (sum, squares) = self
             .axes
             .iter()
             .zip(xi)
@@ -191,15 +192,10 @@ impl ShiftModel {
                 };
                 v.clamp(-1.0, 1.0)
             })
-            .collect();
-        let dim = s.len();
-        let mut sum = 0.0;
-        for j in 0..dim {
-            for k in j + 1..dim {
-                sum += s[j] * s[k];
-            }
-        }
-        first + self.pairs * sum / (dim * (dim - 1) / 2) as f64
+            .fold((0.0, 0.0), |(a, b), s| (a + s, b + s * s));
+        let dim = self.axes.len();
+        let pairs = 0.5 * (sum * sum - squares);
+        first + self.pairs * pairs / (dim * (dim - 1) / 2) as f64
     }
 }
 
