@@ -24,7 +24,7 @@ pub(super) struct Acceleration<'a> {
 
 impl<'a> Acceleration<'a> {
     /// No history, for a run with Young's-modulus factors `alpha`.
-    pub(super) fn new(solver: &'a LatinSolver, alpha: &[f64]) -> Self {
+    pub(super) fn new(solver: &'a LatinSolver, alpha: &[f64], depth: usize) -> Self {
         // Scaling of the packed state for the acceleration: (m k)^(1/2) W and (m / k)^(1/2) F.
         let scales: Vec<[(&[PointDirection], f64); 2]> = solver
             .ifaces
@@ -41,10 +41,10 @@ impl<'a> Acceleration<'a> {
         Acceleration {
             ifaces: &solver.ifaces,
             scales,
-            anderson: Anderson::new(solver.options.acceleration),
+            anderson: Anderson::new(depth),
             best_eta: f64::INFINITY,
             pending: None,
-            on: solver.options.acceleration > 0,
+            on: depth > 0,
         }
     }
 

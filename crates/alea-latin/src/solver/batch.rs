@@ -59,7 +59,7 @@ impl LatinSolver {
             .map(|input| {
                 let run = self.start(input)?;
                 Ok(Lane {
-                    acceleration: Acceleration::new(self, &run.alpha),
+                    acceleration: Acceleration::new(self, &run.alpha, run.acceleration),
                     monitor: Monitor::new(self),
                     run,
                     stopped: None,
@@ -72,11 +72,17 @@ impl LatinSolver {
             .iter()
             .map(|op| op.chol.solve_scratch(inputs.len()))
             .collect();
-        for iteration in 0..self.options.max_iterations {
+        let max_iterations = lanes
+            .iter()
+            .filter_map(|l| l.as_ref().ok())
+            .map(|l| l.run.max_iterations)
+            .max()
+            .unwrap_or(0);
+        for iteration in 0..max_iterations {
             let mut active: Vec<&mut Lane<'_>> = lanes
                 .iter_mut()
                 .filter_map(|l| l.as_mut().ok())
-                .filter(|l| !l.done)
+                .filter(|l| !l.done && iteration < l.run.max_iterations)
                 .collect();
             if active.is_empty() {
                 break;

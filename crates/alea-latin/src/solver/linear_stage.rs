@@ -13,9 +13,9 @@ use super::{InterfaceState, LatinSolver, Run, SubOperator, SubState};
 
 impl LatinSolver {
     /// Relaxation of the linear stage: the option's, at most 0.8 with the coarse problem and
-    /// without acceleration (`LatinOptions::coarse`).
-    fn relaxation(&self) -> f64 {
-        if self.coarse.is_some() && self.options.acceleration == 0 {
+    /// without acceleration (`LatinOptions::coarse`; `acceleration`: the run's Anderson depth).
+    fn relaxation(&self, acceleration: usize) -> f64 {
+        if self.coarse.is_some() && acceleration == 0 {
             self.options.relaxation.min(0.8)
         } else {
             self.options.relaxation
@@ -42,7 +42,11 @@ impl LatinSolver {
     /// iteration).
     pub(super) fn correct_and_relax(&self, run: &mut Run<'_>, first: bool) {
         self.coarse_step(run, first);
-        let r = if first { 1.0 } else { self.relaxation() };
+        let r = if first {
+            1.0
+        } else {
+            self.relaxation(run.acceleration)
+        };
         run.sstate.par_iter_mut().for_each(|st| relax(st, r));
     }
 }

@@ -1,9 +1,17 @@
 //! The local stage (per interface point, in parallel; closed form of [`crate::law`]) and the
 //! error indicator, the k-weighted distance between the two half-iterates:
-//! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`,
-//! `||s||^2 = sum_points m (W . k W + F . k^-1 F)` over both sides of every interface. With a
-//! split direction (module `direction`) the series stiffness `kappa` is split too and the law
-//! is applied through `split_local_stage`.
+//! `eta = ||s - s_hat|| / max(1/2 (||s|| + ||s_hat||), ||s_0||)`,
+//! `||s||^2 = sum_points m (W . k W + F . k^-1 F)` over both sides of every interface, with
+//! `s_0 = (W_hat, F_hat)` the state the run started from (the warm start; zero for a cold
+//! start). The floor `||s_0||` keeps the indicator's scale from vanishing with the answer: a run
+//! warm-started from a neighbour whose contact is closed, at a point where the contact opens and
+//! nothing else loads the parts (the answer is zero), has iterates that shrink towards zero
+//! while their relative distance stays of order one; measured against the start it falls like
+//! the iterates (issue 35). The floor only raises the denominator, so a run that converged
+//! without it converges no later; its answer is then accurate to `tol ||s_0||` instead of
+//! `tol ||s||`, the absolute accuracy of the neighbour it started from. With a split direction
+//! (module `direction`) the series stiffness `kappa` is split too and the law is applied
+//! through `split_local_stage`.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -18,10 +26,11 @@ use alea_mesh::vec3::dot;
 
 impl LatinSolver {
     /// The local stage of every interface from the last linear stage; returns the error
-    /// indicator `eta`.
+    /// indicator `eta`. The first call of a run records the norm of the state the run started
+    /// from (the floor of the indicator's scale, module doc).
     pub(super) fn local_stage(&self, run: &mut Run<'_>) -> f64 {
         let t0 = Instant::now();
-        let sums: Vec<[f64; 3]> = self
+        let sums: Vec<[f64; 4]> = self
             .ifaces
             .par_iter()
             .zip(run.istate.par_iter_mut())
@@ -33,17 +42,19 @@ impl LatinSolver {
             })
             .collect();
         run.timings.local += t0.elapsed().as_secs_f64();
-        indicator(&sums)
+        let tot = sums.iter().fold([0.0; 4], |acc, v| {
+            [acc[0] + v[0], acc[1] + v[1], acc[2] + v[2], acc[3] + v[3]]
+        });
+        let start = *run.start_norm.get_or_insert(tot[3].sqrt());
+        indicator(tot, start)
     }
 }
 
-/// The error indicator from the interfaces' parts of `||s - s_hat||^2`, `||s||^2` and
-/// `||s_hat||^2` (0 when both half-iterates vanish).
-fn indicator(sums: &[[f64; 3]]) -> f64 {
-    let tot = sums.iter().fold([0.0; 3], |acc, v| {
-        [acc[0] + v[0], acc[1] + v[1], acc[2] + v[2]]
-    });
-    let den = 0.5 * (tot[1].sqrt() + tot[2].sqrt());
+/// The error indicator from the totals of `||s - s_hat||^2`, `||s||^2` and `||s_hat||^2` over
+/// the interfaces and the norm `||s_0||` of the run's start (0 when the half-iterates and the
+/// start all vanish).
+fn indicator(tot: [f64; 4], start: f64) -> f64 {
+    let den = (0.5 * (tot[1].sqrt() + tot[2].sqrt())).max(start);
     if den > 0.0 { tot[0].sqrt() / den } else { 0.0 }
 }
 
@@ -83,7 +94,8 @@ fn split_local_stage(
 }
 
 /// Local stage on one interface; returns the interface's parts of `||s - s_hat||^2`,
-/// `||s||^2` and `||s_hat||^2`. `origin`: the tangential jump of each point at the start of the
+/// `||s||^2`, `||s_hat||^2` and of the squared norm of the state the linear stage started from
+/// (`(W_hat, F_hat)` before this local stage replaces it). `origin`: the tangential jump of each point at the start of the
 /// load step (incremental law, [`crate::law::local_stage_from`]), `None` for a single step.
 fn local_stage(
     op: &InterfaceOperator,
@@ -93,7 +105,7 @@ fn local_stage(
     subs: &[Arc<SubOperator>],
     sstate: &[SubState],
     alpha: &[f64],
-) -> [f64; 3] {
+) -> [f64; 4] {
     let dirs = [
         subs[op.sub[0]].links[op.link[0]].dir.as_slice(),
         subs[op.sub[1]].links[op.link[1]].dir.as_slice(),
@@ -108,7 +120,7 @@ fn local_stage(
         &sstate[op.sub[1]].f[op.link[1]],
     ];
     std::mem::swap(&mut st.what_prev, &mut st.what_last);
-    let (mut dist, mut norm_s, mut norm_h) = (0.0, 0.0, 0.0);
+    let (mut dist, mut norm_s, mut norm_h, mut norm_in) = (0.0, 0.0, 0.0, 0.0);
     for (i, p) in pts.iter().enumerate() {
         let d = [&dirs[0][i], &dirs[1][i]];
         if d[0].is_isotropic() && d[1].is_isotropic() {
@@ -132,6 +144,12 @@ fn local_stage(
             };
             st.status[i] = sol.status;
             let m = op.weights[i];
+            for s in 0..2 {
+                for c in 0..3 {
+                    norm_in +=
+                        m * (k[s] * st.what[s][i][c].powi(2) + st.fhat[s][i][c].powi(2) / k[s]);
+                }
+            }
             for c in 0..3 {
                 let phi = sol.force[c];
                 st.fhat[0][i][c] = -phi;
@@ -163,6 +181,10 @@ fn local_stage(
         let sol = split_local_stage(op.law.as_ref(), p, r, &kappa, origin.map(|j0| j0[i]));
         st.status[i] = sol.status;
         let m = op.weights[i];
+        for s in 0..2 {
+            norm_in +=
+                m * (d[s].energy(al[s], &st.what[s][i]) + d[s].co_energy(al[s], &st.fhat[s][i]));
+        }
         let phi = sol.force;
         st.fhat[0][i] = [-phi[0], -phi[1], -phi[2]];
         st.fhat[1][i] = phi;
@@ -185,7 +207,7 @@ fn local_stage(
     }
     st.what_last[0].clone_from(&st.what[0]);
     st.what_last[1].clone_from(&st.what[1]);
-    [dist, norm_s, norm_h]
+    [dist, norm_s, norm_h, norm_in]
 }
 
 #[cfg(test)]

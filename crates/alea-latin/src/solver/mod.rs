@@ -13,8 +13,10 @@
 //! **Local stage** (per interface point, in parallel): closed form of [`crate::law`].
 //!
 //! **Error indicator** (k-weighted distance between the two half-iterates):
-//! `eta = ||s - s_hat|| / (1/2 (||s|| + ||s_hat||))`, `||s||^2 = sum_points m (W . k W + F . k^-1 F)`
-//! over both sides of every interface. The indicator is relative to the size of the iterates,
+//! `eta = ||s - s_hat|| / max(1/2 (||s|| + ||s_hat||), ||s_0||)`,
+//! `||s||^2 = sum_points m (W . k W + F . k^-1 F)` over both sides of every interface, `s_0` the
+//! state the run started from (zero cold; module `local_stage`: a run whose answer is zero, or
+//! tiny next to the warm start's, converges as the iterates shrink). The indicator is relative to the size of the iterates,
 //! so on its own it cannot tell convergence from a floating substructure drifting away (the
 //! iterates grow, the indicator shrinks). When `eta < tol`, the run is **converged** only if
 //! every substructure is also in equilibrium under its loads and the local-stage interface
@@ -190,6 +192,10 @@ pub struct RunInput {
     /// law incrementally, slip being measured from its tangential jump. `None`: one static
     /// step from the unloaded state.
     pub previous_step: Option<Arc<LocalState>>,
+    /// The retry settings of a run that did not converge with the options' (issue 35): no
+    /// Anderson acceleration (the plain, relaxed LATIN iteration: slower, but it does not
+    /// cycle) and twice the iteration limit. `false`: the options as set up.
+    pub damped: bool,
 }
 
 /// The local-stage state `(W_hat, F_hat)` on both sides of every interface: everything a run
@@ -357,6 +363,13 @@ struct Run<'a> {
     /// a previous step; module [`crate::steps`]).
     slip_origin: Vec<Vec<V3>>,
     residuals: Vec<f64>,
+    /// `||s_0||`, the norm of the state the run started from (set by its first local stage):
+    /// the floor of the error indicator's scale (module `local_stage`).
+    start_norm: Option<f64>,
+    /// The run's iteration limit and Anderson depth: the options', or the retry settings of
+    /// [`RunInput::damped`].
+    max_iterations: usize,
+    acceleration: usize,
     timings: RunTimings,
 }
 
@@ -497,10 +510,10 @@ impl LatinSolver {
         }
         let t_start = Instant::now();
         let mut run = self.start(input)?;
-        let mut acceleration = Acceleration::new(self, &run.alpha);
+        let mut acceleration = Acceleration::new(self, &run.alpha, run.acceleration);
         let mut monitor = Monitor::new(self);
         let mut stopped = None;
-        for iteration in 0..self.options.max_iterations {
+        for iteration in 0..run.max_iterations {
             acceleration.apply_pending(&mut run.istate);
             let x_in = acceleration.input(&run.istate);
             self.linear_stage(&mut run, iteration == 0);

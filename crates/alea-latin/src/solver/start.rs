@@ -91,6 +91,17 @@ impl LatinSolver {
             macro_active,
             slip_origin,
             residuals: Vec::new(),
+            start_norm: None,
+            max_iterations: if input.damped {
+                2 * self.options.max_iterations
+            } else {
+                self.options.max_iterations
+            },
+            acceleration: if input.damped {
+                0
+            } else {
+                self.options.acceleration
+            },
             timings: RunTimings::default(),
         })
     }
