@@ -83,7 +83,53 @@ impl RunContext<'_> {
     /// files if asked; commits nothing. A pure function of the job: the same on every thread and
     /// every MPI rank.
     pub fn solve(&self, job: &RunJob) -> Result<RunOutcome, StudyError> {
-        let input = self.input(job);
+        let first = self.attempt(job, self.input(job))?;
+        self.retried(job, first)
+    }
+
+    /// The retries of a run that did not converge (issue 35): a run that ended "not
+    /// converged" or "diverged" is solved again cold (the warm start may be what misled it),
+    /// then cold with the damped settings of [`alea_latin::RunInput::damped`] (no Anderson
+    /// acceleration, twice the iteration limit), and the first attempt that converges is the
+    /// run; if none does, the last attempt is. A run without equilibrium is not retried: its
+    /// status is a finding about the model (a drift, or a certificate that no admissible
+    /// interface forces balance the loads), not about the iteration. The run's iteration
+    /// count is that of every attempt, and its status says that it was retried.
+    fn retried(&self, job: &RunJob, first: RunOutcome) -> Result<RunOutcome, StudyError> {
+        let retryable = |o: &RunOutcome| {
+            // With [[step]]s the status is prefixed by the step that failed.
+            o.rec.status.ends_with(RunStatus::NotConverged.label())
+                || o.rec.status.ends_with(RunStatus::Diverged.label())
+        };
+        if !retryable(&first) {
+            return Ok(first);
+        }
+        let mut spent = first.rec.iterations;
+        let cold = RunJob {
+            theta: job.theta.clone(),
+            start: None,
+        };
+        let mut last = first;
+        for (damped, how) in [(false, "cold"), (true, "cold and damped")] {
+            let mut input = self.input(&cold);
+            input.damped = damped;
+            let mut out = self.attempt(&cold, input)?;
+            spent += out.rec.iterations;
+            out.rec.iterations = spent;
+            let converged = out.rec.converged();
+            if !converged {
+                out.rec.status = format!("{} (also retried {how})", out.rec.status);
+            }
+            last = out;
+            if converged {
+                break;
+            }
+        }
+        Ok(last)
+    }
+
+    /// One attempt at a run: the solve of `input` (the job's, or a retry's) and its outcome.
+    fn attempt(&self, job: &RunJob, input: alea_latin::RunInput) -> Result<RunOutcome, StudyError> {
         let study = self.study;
         if alea_latin::large_sliding::uses_large_sliding(&study.model.assembly) {
             // Each step re-paired in its deformed configuration, on the assembly of its
@@ -124,7 +170,10 @@ impl RunContext<'_> {
         let results = self.solver.run_batch(&inputs);
         jobs.par_iter()
             .zip(results.into_par_iter())
-            .map(|(job, res)| self.outcome(job, StepRuns::Paired(vec![res?])))
+            .map(|(job, res)| {
+                let first = self.outcome(job, StepRuns::Paired(vec![res?]))?;
+                self.retried(job, first)
+            })
             .collect()
     }
 

@@ -221,6 +221,7 @@ impl Parametric {
             params,
             initial: None,
             previous_step: None,
+            damped: false,
         }
     }
 }
