@@ -347,6 +347,19 @@ fn method_dict<'py>(
         left.append((p.clone(), s.as_str()))?;
     }
     out.set_item("left_out", left)?;
+    // The region of the failed runs, left out of the statistics (None: no run failed).
+    match &r.failure_region {
+        Some(f) => {
+            let region = PyDict::new(py);
+            region.set_item("failed_runs", f.failed_runs)?;
+            region.set_item("probability", f.probability)?;
+            region.set_item("interval", (f.ci_low, f.ci_high))?;
+            region.set_item("left_out", f.left_out)?;
+            region.set_item("basis", &f.basis)?;
+            out.set_item("failure_region", region)?;
+        }
+        None => out.set_item("failure_region", py.None())?,
+    }
     let stats = PyList::empty(py);
     for s in &r.qois {
         let q = PyDict::new(py);

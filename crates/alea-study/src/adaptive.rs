@@ -21,6 +21,11 @@
 //!    nodes, and adds one run: the node itself, or the centre of the cell that holds the
 //!    sub-cell centre (`alea_estimate::refine` says why). Then back to 2.
 //!
+//! A run that failed (not converged after its retries, or without equilibrium) leaves no error
+//! estimate possible: the loop then splits the cells around failed runs to [`FAILURE_LEVEL`]
+//! (within the run budget) to delimit their region, and stops; the method's statistics leave
+//! that region out and report its probability (module `failure_region`).
+//!
 //! Every step is a pure function of the runs' results, so a resumed loop replays the same steps
 //! and recomputes no run. Cost in the thesis's units (tables 4.3-4.4): a run counts 1, an
 //! estimate 1.5.
@@ -84,6 +89,44 @@ fn comparison_mesh(
     }
 }
 
+/// The level to which the adaptive loop splits the cells around failed runs (a cell edge of
+/// 1/8 of the box): deep enough to delimit a region holding a few percent of the law, shallow
+/// enough that a region of failures does not take the whole run budget.
+pub const FAILURE_LEVEL: u32 = 3;
+
+/// Splits (in full, within `max_runs`) every leaf of `mesh` below [`FAILURE_LEVEL`] whose
+/// interpolant uses a failed run (`failed[k]` per run, tested at the leaf's centre where every
+/// corner has a weight); the number of new runs, `None` when no leaf qualifies or fits.
+fn delimit_failures(
+    mesh: &mut StochasticMesh,
+    failed: &[bool],
+    max_runs: usize,
+) -> Result<Option<usize>, StudyError> {
+    use alea_uq::surrogate::LinearSurrogate;
+    let mut w = Vec::new();
+    let cells: Vec<_> = mesh
+        .leaves()
+        .into_iter()
+        .filter(|&c| {
+            mesh.level(c) < FAILURE_LEVEL && {
+                LinearSurrogate::weights(&*mesh, &mesh.cell_centre(c), &mut w);
+                crate::failure_region::touches(&w, failed)
+            }
+        })
+        .collect();
+    let before = mesh.num_runs();
+    for c in cells {
+        let mut trial = mesh.clone();
+        trial.refine(&[c]).map_err(StudyError::from)?;
+        if trial.num_runs() > max_runs {
+            break;
+        }
+        *mesh = trial;
+    }
+    let new = mesh.num_runs() - before;
+    Ok((new > 0).then_some(new))
+}
+
 /// The start mesh: the parameter box with its corners and centre as runs.
 pub fn start_mesh(lo: &[f64], hi: &[f64]) -> Result<StochasticMesh, StudyError> {
     let uq = StudyError::from;
@@ -118,22 +161,48 @@ pub(crate) fn run_adaptive<'a>(
         let (solve0, est0) = (runner.solve_seconds(), runner.estimate_seconds());
         runner.run_points(&points)?;
         let solve_seconds = runner.solve_seconds() - solve0;
-        if let Some(p) = points.iter().find(|p| {
-            runner
-                .by_key()
-                .get(&point_key(p))
-                .is_none_or(|r| !r.converged())
-        }) {
-            let status = runner
-                .by_key()
-                .get(&point_key(p))
-                .map_or("missing".to_string(), |r| r.status.clone());
+        if let Some(p) = points
+            .iter()
+            .find(|p| !runner.by_key().contains_key(&point_key(p)))
+        {
+            // Replayed from the store (`alea report`): the loop stops where the runs end.
             break (
-                "a run did not converge".to_string(),
+                "a run is missing".to_string(),
                 Some(format!(
-                    "the run at {p:?} did not converge ({status}); the adaptive stochastic mesh needs every run"
+                    "the run at {p:?} is missing from the study directory; the adaptive stochastic mesh needs every run"
                 )),
             );
+        }
+        let failed: Vec<bool> = points
+            .iter()
+            .map(|p| {
+                runner
+                    .by_key()
+                    .get(&point_key(p))
+                    .is_some_and(|r| !r.converged())
+            })
+            .collect();
+        if failed.iter().any(|&f| f) {
+            // Runs failed (module `failure_region`): no error estimate is possible on a mesh
+            // with failed nodes, so the loop delimits the region around them and stops; the
+            // method's statistics leave that region out.
+            let count = failed.iter().filter(|&&f| f).count();
+            match delimit_failures(&mut mesh, &failed, settings.max_runs)? {
+                Some(new) => {
+                    runner.announce(new);
+                    continue;
+                }
+                None => {
+                    break (
+                        format!(
+                            "{count} run(s) failed: the cells around them were split to level \
+                             {FAILURE_LEVEL} (or the run budget) to delimit the region, which the \
+                             statistics leave out; no error estimate on a mesh with failed runs"
+                        ),
+                        None,
+                    );
+                }
+            }
         }
         let mut method: Method = study.methods[m].clone();
         method.points = points.clone();

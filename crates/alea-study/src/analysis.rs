@@ -13,6 +13,9 @@ use serde::Serialize;
 
 use crate::StudyError;
 use crate::budget::{self, QoiBudget, SurrogatePart};
+use crate::failure_region::{
+    FailureRegion, RegionTally, binomial_region, local_weight, touches, two_nearest,
+};
 use crate::method::{Method, MethodKind};
 use crate::store::{RunRecord, point_key};
 use crate::study::Study;
@@ -83,6 +86,9 @@ pub struct MethodResult {
     pub left_out: Vec<(Vec<f64>, String)>,
     /// Why the method produced no statistics, if it did not.
     pub error: Option<String>,
+    /// The region attributed to failed runs, left out of the statistics (`None`: no run of
+    /// the method failed; module [`crate::failure_region`]).
+    pub failure_region: Option<FailureRegion>,
     /// Statistics per quantity of interest.
     pub qois: Vec<QoiStats>,
     /// Seconds to build the surrogate.
@@ -247,6 +253,15 @@ pub fn analyse_method(
             None => left_out.push((p.clone(), "missing".into())),
         }
     }
+    // Runs that ran and failed (not converged after their retries, or without equilibrium):
+    // the region they stand for is left out of the statistics (module `failure_region`).
+    let failed: Vec<bool> = method
+        .points
+        .iter()
+        .map(|p| by_key.get(&point_key(p)).is_some_and(|r| !r.converged()))
+        .collect();
+    let failed_runs = failed.iter().filter(|&&f| f).count();
+    let missing = method.points.len() - used_points.len() - failed_runs;
     let mut out = MethodResult {
         label: method.label.clone(),
         description: method.description.clone(),
@@ -254,6 +269,7 @@ pub fn analyse_method(
         runs_used: used_points.len(),
         left_out,
         error: None,
+        failure_region: None,
         qois: Vec::new(),
         surrogate_seconds: 0.0,
         monte_carlo_seconds: 0.0,
@@ -277,10 +293,41 @@ pub fn analyse_method(
             .enumerate()
             .map(|(q, v)| qoi_stats(study, q, v, s, has_params.then_some(SurrogatePart::Exact)))
             .collect();
+        if failed_runs > 0 {
+            out.failure_region = Some(binomial_region(
+                failed_runs,
+                used_points.len() + failed_runs,
+                s.confidence,
+            ));
+        }
         return out;
     }
+    // A local surrogate (piecewise linear, adaptive mesh) with failed runs is built on every
+    // node, the failed ones holding a placeholder 0 that no kept draw uses.
+    let local = matches!(
+        method.kind,
+        MethodKind::PiecewiseLinear { .. } | MethodKind::Adaptive(_)
+    );
+    let tolerant = failed_runs > 0 && missing == 0 && local;
+    let (sur_points, sur_values) = if tolerant {
+        let all: Vec<Vec<f64>> = (0..study.qois.len())
+            .map(|q| {
+                method
+                    .points
+                    .iter()
+                    .map(|p| match by_key.get(&point_key(p)) {
+                        Some(r) if r.converged() => r.qois[q],
+                        _ => 0.0,
+                    })
+                    .collect()
+            })
+            .collect();
+        (method.points.clone(), all)
+    } else {
+        (used_points.clone(), values.clone())
+    };
     let t0 = Instant::now();
-    let sur = match method.surrogate(&study.params, &used_points) {
+    let sur = match method.surrogate(&study.params, &sur_points) {
         Ok(sur) => sur,
         Err(e) => {
             out.error = Some(format!(
@@ -301,21 +348,90 @@ pub fn analyse_method(
     );
     let pts = draws.points();
     let nq = study.qois.len();
-    // Weights once per draw, reused for every quantity.
-    let per_draw: Vec<Vec<f64>> = pts
+    // Weights once per draw, reused for every quantity; with failed runs, the draw's weight on
+    // them (module `failure_region`).
+    let design_norm: Vec<Vec<f64>> = if failed_runs > 0 && !tolerant {
+        method.points.iter().map(|p| study.normalise(p)).collect()
+    } else {
+        Vec::new()
+    };
+    let per_draw: Vec<(Vec<f64>, DrawRegion)> = pts
         .par_chunks(d)
         .map_init(
             || (vec![0.0; d], Vec::new()),
             |(t, w), x| {
                 sur.weights(x, t, w);
-                (0..nq)
-                    .map(|q| w.iter().map(|&(k, wk)| wk * values[q][k]).sum())
-                    .collect()
+                let v = (0..nq)
+                    .map(|q| w.iter().map(|&(k, wk)| wk * sur_values[q][k]).sum())
+                    .collect();
+                let region = if tolerant {
+                    let weight = local_weight(w, &failed);
+                    DrawRegion {
+                        weight,
+                        whole: weight >= 1.0 - 1e-12,
+                        touched: touches(w, &failed),
+                    }
+                } else if design_norm.is_empty() {
+                    DrawRegion::default()
+                } else {
+                    let (a, b) = two_nearest(&study.normalise(x), &design_norm);
+                    DrawRegion {
+                        weight: f64::from(u8::from(failed[a])),
+                        whole: failed[a] && failed[b],
+                        touched: failed[a] || failed[b],
+                    }
+                };
+                (v, region)
             },
         )
         .collect();
-    // The comparison surrogates of the error budget, at the same draws.
-    let comparisons = budget::comparisons(method, &study.params, &used_points);
+    // Draws kept for the statistics: those outside the failure region.
+    let keep: Vec<bool> = per_draw
+        .iter()
+        .map(|(_, r)| {
+            if tolerant {
+                !r.touched
+            } else {
+                r.weight == 0.0
+            }
+        })
+        .collect();
+    if failed_runs > 0 {
+        let mut tally = RegionTally::default();
+        for ((_, r), &k) in per_draw.iter().zip(&keep) {
+            tally.add(r.weight, r.whole, r.touched, !k);
+        }
+        let basis = if tolerant {
+            "the failure indicator interpolated by the method's surrogate; interval from the \
+             draws whose every node failed to those with any failed node"
+        } else {
+            "the draws whose nearest run failed; interval from those whose two nearest runs \
+             failed to those with either failed"
+        };
+        out.failure_region = Some(tally.region(failed_runs, s.confidence, basis));
+        if keep.iter().all(|&k| !k) {
+            out.error = Some(format!(
+                "every draw lies in the region of the failed runs{}",
+                left_out_words(&out.left_out)
+            ));
+            return out;
+        }
+    }
+    // The comparison surrogates of the error budget, at the same draws (with failed runs, a
+    // local method's coarser mesh would need them: only its smooth fits on the converged runs).
+    let comparisons = if tolerant {
+        let fits = budget::smooth_fits(&study.params, &used_points);
+        if fits.is_empty() {
+            Err(format!(
+                "{failed_runs} run(s) failed and the coarser mesh needs them; too few converged \
+                 runs for a smooth fit"
+            ))
+        } else {
+            Ok(fits)
+        }
+    } else {
+        budget::comparisons(method, &study.params, &used_points)
+    };
     let coarse_per_draw: Vec<Vec<Vec<f64>>> = comparisons
         .iter()
         .flatten()
@@ -355,10 +471,21 @@ pub fn analyse_method(
         .collect();
     out.qois = (0..nq)
         .map(|q| {
-            let mine: Vec<f64> = per_draw.iter().map(|v| v[q]).collect();
+            let mine: Vec<f64> = per_draw
+                .iter()
+                .zip(&keep)
+                .filter(|(_, k)| **k)
+                .map(|(v, _)| v.0[q])
+                .collect();
             let coarse: Vec<Vec<f64>> = coarse_per_draw
                 .iter()
-                .map(|c| c.iter().map(|v| v[q]).collect())
+                .map(|c| {
+                    c.iter()
+                        .zip(&keep)
+                        .filter(|(_, k)| **k)
+                        .map(|(v, _)| v[q])
+                        .collect()
+                })
                 .collect();
             let part = match &comparisons {
                 Ok(cs) => {
@@ -389,14 +516,36 @@ pub fn analyse_method(
             qoi_stats(study, q, mine, s, Some(part))
         })
         .collect();
-    for (q, stats) in out.qois.iter_mut().enumerate() {
-        stats.sobol =
-            crate::sensitivity::sobol_stats(study, method, &sur, &used_points, &values[q]);
+    // Sobol' indices are variances over the whole box: not computed where a region is left out.
+    if failed_runs == 0 {
+        for (q, stats) in out.qois.iter_mut().enumerate() {
+            stats.sobol =
+                crate::sensitivity::sobol_stats(study, method, &sur, &used_points, &values[q]);
+        }
     }
     out.monte_carlo_seconds = t0.elapsed().as_secs_f64();
-    out.draws = s.samples;
-    out.points = pts.to_vec();
+    out.draws = keep.iter().filter(|&&k| k).count();
+    out.points = if failed_runs == 0 {
+        pts.to_vec()
+    } else {
+        pts.chunks(d)
+            .zip(&keep)
+            .filter(|(_, k)| **k)
+            .flat_map(|(x, _)| x.iter().copied())
+            .collect()
+    };
     out
+}
+
+/// Where one draw stands with respect to the failed runs (module `failure_region`).
+#[derive(Clone, Copy, Default)]
+struct DrawRegion {
+    /// Its weight on failed runs, in [0, 1].
+    weight: f64,
+    /// Wholly in the region.
+    whole: bool,
+    /// Touching it.
+    touched: bool,
 }
 
 /// Response surface of the first quantity... of quantity `q` under `method` over the first two

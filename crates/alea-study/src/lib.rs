@@ -16,6 +16,7 @@ mod error;
 mod error_settings;
 pub mod estimate;
 pub mod expr;
+pub mod failure_region;
 mod field_spec;
 pub mod fields;
 pub mod goal;

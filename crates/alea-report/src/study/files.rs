@@ -38,6 +38,7 @@ pub(super) fn write_summary(
             let mut v = serde_json::json!({
                 "label": r.label, "description": r.description, "design_runs": r.design_runs,
                 "runs_used": r.runs_used, "left_out": r.left_out, "error": r.error,
+                "failure_region": r.failure_region,
                 "draws": r.draws, "qois": r.qois,
             });
             if let Some(e) = estimates.iter().find(|e| e.method == m) {

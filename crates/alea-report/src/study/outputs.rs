@@ -83,6 +83,21 @@ pub fn write_outputs(
         if let Some(e) = &r.error {
             warn(format!("method '{}' gave no statistics: {e}", r.label));
         }
+        if let Some(f) = &r.failure_region {
+            warn(format!(
+                "method '{}': {} run(s) failed; the region they stand for has probability {:.4} \
+                 ({:.0}% interval [{:.4}, {:.4}]; {}) and its statistics describe the rest of the \
+                 law ({:.2}% of it left out)",
+                r.label,
+                f.failed_runs,
+                f.probability,
+                100.0 * settings.confidence,
+                f.ci_low,
+                f.ci_high,
+                f.basis,
+                100.0 * f.left_out
+            ));
+        }
     }
     print_table(study, &results, settings.confidence, console);
     print_reliability(&reliability, console);
