@@ -186,7 +186,7 @@ fn converged_runs_under_a_large_lateral_load_balance_their_loads() {
             );
         } else {
             assert!(
-                r.status.starts_with("no equilibrium") || r.status == "not converged",
+                r.status.starts_with("no equilibrium") || r.status.starts_with("not converged"),
                 "{}",
                 r.status
             );
@@ -197,4 +197,68 @@ fn converged_runs_under_a_large_lateral_load_balance_their_loads() {
     }
     assert_eq!(low_mu_failed, 3, "mu = 0.1 cannot hold the lateral load");
     assert!(converged >= 3, "mu = 0.9 holds it: {converged} converged");
+}
+
+/// Failed runs do not sink a method (issue 35). The lateral load of 2000 with the friction
+/// coefficient uniform on [0.58, 0.98]: the flanks hold the root from mu of about 0.6 - 0.65
+/// (runs at mu <= 0.6 fail, at 0.65 converge: measured on a 17 x 17 grid of the same model), so
+/// the region without a converged run holds between 5 % and 17.5 % of the law. Every method
+/// gives statistics, no run is lost, and every method whose design meets the region states its
+/// probability with an interval that meets [0.05, 0.175].
+#[test]
+fn failed_runs_leave_a_region_out_and_every_method_gives_statistics() {
+    let text = STUDY
+        .replace("PRESSURE", "1000.0")
+        .replace("LATERAL", "2000.0")
+        .replace("lo = 0.1\nhi = 0.9", "lo = 0.58\nhi = 0.98")
+        .replace(
+            "type = \"piecewise_linear\"\npoints_per_dim = 3",
+            "type = \"piecewise_linear\"\npoints_per_dim = 5\n\n[[method]]\ntype = \
+             \"pc_regression\"\ndegree = 3\n\n[[method]]\ntype = \"adaptive\"\nmax_runs = 30\n\n\
+             [[method]]\ntype = \"monte_carlo\"\nruns = 40",
+        );
+    assert!(text.contains("lo = 0.58") && text.contains("monte_carlo"));
+    let s = Study::from_source(Source::from_text("failed_runs.toml", &text)).unwrap();
+    let dir = scratch("failed-runs");
+    let runs = run_study(&s, &dir, false, &NoProgress).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let failed = runs.records.iter().filter(|r| !r.converged()).count();
+    assert!(failed >= 3, "{failed} failed runs");
+    let settings = alea_study::analysis::analysis_settings(&s).unwrap();
+    let mut regions = 0;
+    for m in &runs.methods {
+        // No run lost: every design point has its record.
+        for p in &m.points {
+            assert!(
+                runs.records.iter().any(|r| &r.params == p),
+                "{}: no record at {p:?}",
+                m.label
+            );
+        }
+        let res = alea_study::analysis::analyse_method(&s, m, &runs.records, &settings);
+        assert!(res.error.is_none(), "{}: {:?}", res.label, res.error);
+        assert!(res.qois.iter().all(|q| q.mean.is_finite() && q.std > 0.0));
+        let meets = m.points.iter().any(|p| {
+            runs.records
+                .iter()
+                .any(|r| &r.params == p && !r.converged())
+        });
+        match &res.failure_region {
+            Some(f) => {
+                regions += 1;
+                assert!(
+                    f.ci_low <= 0.175 && f.ci_high >= 0.05,
+                    "{}: P(region) = {} in [{}, {}]",
+                    res.label,
+                    f.probability,
+                    f.ci_low,
+                    f.ci_high
+                );
+                assert!(f.ci_low <= f.probability && f.probability <= f.ci_high);
+                assert!(f.left_out > 0.0 && f.left_out < 0.5, "{f:?}");
+            }
+            None => assert!(!meets, "{}: failed runs but no region", res.label),
+        }
+    }
+    assert!(regions >= 3, "{regions} methods met the region");
 }
