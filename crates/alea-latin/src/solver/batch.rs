@@ -104,12 +104,12 @@ impl LatinSolver {
             for (l, x) in active.iter_mut().zip(x_in) {
                 l.run.timings.linear += linear * share;
                 l.run.timings.triangular_solves += solve_time * share;
-                let eta = self.local_stage(&mut l.run);
+                let (eta, eta_iterates) = self.local_stage(&mut l.run);
                 l.stopped = l.monitor.check(self, &mut l.run, iteration, eta);
                 if l.stopped.is_some() {
                     l.done = true;
                 } else {
-                    l.acceleration.step(x, eta, &l.run.istate);
+                    l.acceleration.step(x, eta_iterates, &l.run.istate);
                 }
             }
         }

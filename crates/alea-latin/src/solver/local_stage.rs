@@ -4,12 +4,17 @@
 //! `||s||^2 = sum_points m (W . k W + F . k^-1 F)` over both sides of every interface, with
 //! `s_0 = (W_hat, F_hat)` the state the run started from (the warm start; zero for a cold
 //! start). The floor `||s_0||` keeps the indicator's scale from vanishing with the answer: a run
-//! warm-started from a neighbour whose contact is closed, at a point where the contact opens and
-//! nothing else loads the parts (the answer is zero), has iterates that shrink towards zero
+//! warm-started from a neighbour whose contact is closed, at a point where the contact barely
+//! closes (the answer tiny next to the start), has iterates that shrink towards the answer
 //! while their relative distance stays of order one; measured against the start it falls like
-//! the iterates (issue 35). The floor only raises the denominator, so a run that converged
-//! without it converges no later; its answer is then accurate to `tol ||s_0||` instead of
-//! `tol ||s||`, the absolute accuracy of the neighbour it started from. With a split direction
+//! the iterates (issue 35; a run whose answer is exactly zero starts cold instead, module
+//! `start`). The floor only raises the denominator, so a run that converged without it
+//! converges no later; its answer is then accurate to `tol ||s_0||` instead of `tol ||s||`, the
+//! absolute accuracy of the neighbour it started from (measured on the 225-run 2D turbine
+//! against runs at tolerance 1e-10: largest relative error of the friction work 1.44e-3 against
+//! 1.12e-3 without the floor, of the fillet stress 9.7e-6 against 8.0e-6). The Anderson
+//! safeguard keeps the distance relative to the iterates alone, so the iteration itself is the
+//! same with or without the floor. With a split direction
 //! (module `direction`) the series stiffness `kappa` is split too and the law is applied
 //! through `split_local_stage`.
 
@@ -26,9 +31,11 @@ use alea_mesh::vec3::dot;
 
 impl LatinSolver {
     /// The local stage of every interface from the last linear stage; returns the error
-    /// indicator `eta`. The first call of a run records the norm of the state the run started
-    /// from (the floor of the indicator's scale, module doc).
-    pub(super) fn local_stage(&self, run: &mut Run<'_>) -> f64 {
+    /// indicator `eta` (the stopping test's) and the same distance relative to the iterates
+    /// alone (the Anderson safeguard's, unchanged by the floor so that the iteration itself is
+    /// the same). The first call of a run records the norm of the state the run started from
+    /// (the floor of the indicator's scale, module doc).
+    pub(super) fn local_stage(&self, run: &mut Run<'_>) -> (f64, f64) {
         let t0 = Instant::now();
         let sums: Vec<[f64; 4]> = self
             .ifaces
@@ -46,7 +53,7 @@ impl LatinSolver {
             [acc[0] + v[0], acc[1] + v[1], acc[2] + v[2], acc[3] + v[3]]
         });
         let start = *run.start_norm.get_or_insert(tot[3].sqrt());
-        indicator(tot, start)
+        (indicator(tot, start), indicator(tot, 0.0))
     }
 }
 

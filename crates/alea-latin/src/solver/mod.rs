@@ -517,12 +517,12 @@ impl LatinSolver {
             acceleration.apply_pending(&mut run.istate);
             let x_in = acceleration.input(&run.istate);
             self.linear_stage(&mut run, iteration == 0);
-            let eta = self.local_stage(&mut run);
+            let (eta, eta_iterates) = self.local_stage(&mut run);
             stopped = monitor.check(self, &mut run, iteration, eta);
             if stopped.is_some() {
                 break;
             }
-            acceleration.step(x_in, eta, &run.istate);
+            acceleration.step(x_in, eta_iterates, &run.istate);
         }
         let (status, equilibrium) = monitor.finish(self, &run, stopped);
         Ok(self.finish_run(run, status, equilibrium, t_start))
