@@ -12,6 +12,7 @@ pub mod cre;
 pub mod data_law;
 #[cfg(feature = "mpi")]
 pub mod distributed;
+pub mod draw_range;
 mod error;
 mod error_settings;
 pub mod estimate;

@@ -99,6 +99,11 @@ pub fn write_outputs(
             ));
         }
     }
+    for (r, m) in results.iter().zip(&runs.methods) {
+        for w in alea_study::draw_range::draw_range_warnings(study, m, r, &runs.records) {
+            warn(w);
+        }
+    }
     print_table(study, &results, settings.confidence, console);
     print_reliability(&reliability, console);
     for r in &reliability {
