@@ -418,3 +418,73 @@ fn keys_a_law_does_not_use_are_refused() {
             .unwrap_or_else(|e| panic!("{law}: {e}"));
     }
 }
+
+/// The study with its `[mesh]` keys replaced by `mesh`.
+fn with_mesh(mesh: &str) -> String {
+    study("", "tip", PL).replace(
+        "generator = \"rectangle\"\nkind = \"quad4\"\nsize = [10.0, 2.0]\ncells = [2, 1]",
+        mesh,
+    )
+}
+
+/// Issue 42, item 5: `params` on the gmsh generator says that it takes only `file` (and that
+/// `file` is missing when it is) instead of "expected one of: " and an empty list; the `[mesh]`
+/// keys a generator does not read (`file` but with gmsh, `size` / `cells` but with rectangle
+/// and box) are refused.
+#[test]
+fn mesh_keys_a_generator_does_not_use_are_refused() {
+    let no_file = with_mesh("generator = \"gmsh\"\nparams = { radius = 1.0 }");
+    refused(
+        &no_file,
+        "params = ",
+        "mesh.params",
+        "the gmsh generator takes no params, only file = ",
+    );
+    refused(&no_file, "params = ", "mesh.params", "file is missing");
+    let msg = Study::from_source(Source::from_text("checks.toml", &no_file))
+        .unwrap_err()
+        .to_string();
+    assert!(!msg.contains("one of"), "{msg}");
+    let with_file = with_mesh("generator = \"gmsh\"\nfile = \"m.msh\"\nparams = { radius = 1.0 }");
+    refused(&with_file, "params = ", "mesh.params", "only file = ");
+    let msg = Study::from_source(Source::from_text("checks.toml", &with_file))
+        .unwrap_err()
+        .to_string();
+    assert!(!msg.contains("missing"), "{msg}");
+    refused(
+        &with_mesh(
+            "generator = \"rectangle\"\nsize = [10.0, 2.0]\ncells = [2, 1]\nparams = { n = 2 }",
+        ),
+        "params = ",
+        "mesh.params",
+        "generator 'rectangle' takes no params, only size and cells",
+    );
+    refused(
+        &with_mesh(
+            "generator = \"rectangle\"\nsize = [10.0, 2.0]\ncells = [2, 1]\nfile = \"m.msh\"",
+        ),
+        "file = ",
+        "mesh.file",
+        "generator 'rectangle' does not use 'file' (it takes size and cells)",
+    );
+    refused(
+        &with_mesh("generator = \"gmsh\"\nfile = \"m.msh\"\ncells = [2, 1]"),
+        "cells = ",
+        "mesh.cells",
+        "does not use 'cells' (it takes file)",
+    );
+    refused(
+        &with_mesh(
+            "generator = \"plate_with_hole\"\nsize = [10.0, 2.0]\nparams = { radius = 1.0, half_width = 5.0 }",
+        ),
+        "size = ",
+        "mesh.size",
+        "its parameters go in params",
+    );
+    refused(
+        &with_mesh("generator = \"rectangel\"\nsize = [10.0, 2.0]\ncells = [2, 1]"),
+        "generator = ",
+        "mesh.generator",
+        "unknown generator 'rectangel'; expected rectangle, box,",
+    );
+}
