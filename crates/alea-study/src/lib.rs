@@ -23,6 +23,7 @@ pub mod fields;
 pub mod goal;
 mod goal_settings;
 mod integrity;
+mod law_keys;
 pub mod limits;
 pub mod lock;
 pub mod method;

@@ -1,5 +1,6 @@
 //! The random parameters of a study: marginal laws, joint law, nominal point and the box used
-//! by grids and the stochastic mesh.
+//! by grids and the stochastic mesh. A `[[parameter]]` key that its law does not use is
+//! refused (module `law_keys`).
 
 use std::sync::Arc;
 
@@ -103,11 +104,11 @@ fn marginal(
         )
     };
     let law = p.law.get_ref().as_str();
+    let from_data = crate::data_law::DATA_LAWS.contains(&law);
     crate::data_law::check_data_keys(src, p, i)?;
-    if crate::data_law::DATA_LAWS.contains(&law) {
-        return crate::data_law::data_law(src, p, i);
-    }
-    if let Some(d) = &p.data {
+    if let Some(d) = &p.data
+        && !from_data
+    {
         return Err(src.error(
             d.span(),
             format!("parameter[{i}].data"),
@@ -115,6 +116,10 @@ fn marginal(
                 "law '{law}' takes no data; data goes with law = \"empirical\", \"kde\" or \"fit\""
             ),
         ));
+    }
+    crate::law_keys::check(src, p, i)?;
+    if from_data {
+        return crate::data_law::data_law(src, p, i);
     }
     let (m, d): (Arc<dyn Marginal>, String) = match law {
         "uniform" => {

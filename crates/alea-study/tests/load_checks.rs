@@ -320,3 +320,171 @@ fn mean_fields_memory_is_checked_by_the_surrogates_support() {
     );
     load(&study("[output]\nmean_fields = false", "tip", chaos)).expect("no fields: accepted");
 }
+
+/// The study with the parameter `E` under `law` (its keys in `keys`, one `key = value` a line).
+fn with_law(law: &str, keys: &str) -> String {
+    study("", "tip", PL).replace(
+        "law = \"uniform\"\nlo = 150e3\nhi = 250e3",
+        &format!("law = \"{law}\"\n{keys}"),
+    )
+}
+
+/// Issue 42, item 5: a key that the parameter's law does not use is refused with its line and
+/// field (`lo` / `hi` on a normal law used to be dropped: the study then ran an untruncated
+/// normal), and the law's own keys are named.
+#[test]
+fn keys_a_law_does_not_use_are_refused() {
+    let normal = with_law("normal", "mean = 200e3\nstd = 20e3\nlo = 150e3\nhi = 250e3");
+    refused(
+        &normal,
+        "lo = 150e3",
+        "parameter[0].lo",
+        "law = \"truncated_normal\"",
+    );
+    refused(
+        &normal,
+        "lo = 150e3",
+        "parameter[0].lo",
+        "it takes mean, std",
+    );
+    refused(
+        &with_law("uniform", "lo = 150e3\nhi = 250e3\nstd = 10e3"),
+        "std = 10e3",
+        "parameter[0].std",
+        "law 'uniform' does not use 'std' (it takes lo, hi)",
+    );
+    // Every other law refuses a key of another law, at that key's line.
+    for (law, keys, bad, field) in [
+        (
+            "lognormal",
+            "mean = 200e3\nstd = 20e3\nhi = 9e5",
+            "hi = 9e5",
+            "hi",
+        ),
+        (
+            "truncated_normal",
+            "mean = 200e3\nstd = 20e3\nlo = 150e3\nhi = 250e3\nmode = 2e5",
+            "mode = 2e5",
+            "mode",
+        ),
+        (
+            "beta",
+            "alpha = 2.0\nbeta = 3.0\nlo = 150e3\nhi = 250e3\nmean = 2e5",
+            "mean = 2e5",
+            "mean",
+        ),
+        (
+            "triangular",
+            "lo = 150e3\nmode = 2e5\nhi = 250e3\nstd = 1e4",
+            "std = 1e4",
+            "std",
+        ),
+        (
+            "empirical",
+            "data = \"e.csv\"\nmean = 2e5",
+            "mean = 2e5",
+            "mean",
+        ),
+        ("kde", "data = \"e.csv\"\nlo = 1e5", "lo = 1e5", "lo"),
+        ("fit", "data = \"e.csv\"\nstd = 1e4", "std = 1e4", "std"),
+    ] {
+        refused(
+            &with_law(law, keys),
+            bad,
+            &format!("parameter[0].{field}"),
+            &format!("law '{law}' does not use '{field}'"),
+        );
+    }
+    // The first key not used, in the order of the file, is the one named.
+    refused(
+        &with_law("normal", "hi = 250e3\nmean = 200e3\nstd = 20e3\nlo = 150e3"),
+        "hi = 250e3",
+        "parameter[0].hi",
+        "truncated_normal",
+    );
+    // Each parametric law with its own keys loads.
+    for (law, keys) in [
+        ("uniform", "lo = 150e3\nhi = 250e3"),
+        ("normal", "mean = 200e3\nstd = 20e3"),
+        (
+            "truncated_normal",
+            "mean = 200e3\nstd = 20e3\nlo = 150e3\nhi = 250e3",
+        ),
+        ("lognormal", "mean = 200e3\nstd = 20e3\nunit = \"MPa\""),
+        ("beta", "alpha = 2.0\nbeta = 3.0\nlo = 150e3\nhi = 250e3"),
+        ("triangular", "lo = 150e3\nmode = 2e5\nhi = 250e3"),
+    ] {
+        Study::from_source(Source::from_text("checks.toml", &with_law(law, keys)))
+            .unwrap_or_else(|e| panic!("{law}: {e}"));
+    }
+}
+
+/// The study with its `[mesh]` keys replaced by `mesh`.
+fn with_mesh(mesh: &str) -> String {
+    study("", "tip", PL).replace(
+        "generator = \"rectangle\"\nkind = \"quad4\"\nsize = [10.0, 2.0]\ncells = [2, 1]",
+        mesh,
+    )
+}
+
+/// Issue 42, item 5: `params` on the gmsh generator says that it takes only `file` (and that
+/// `file` is missing when it is) instead of "expected one of: " and an empty list; the `[mesh]`
+/// keys a generator does not read (`file` but with gmsh, `size` / `cells` but with rectangle
+/// and box) are refused.
+#[test]
+fn mesh_keys_a_generator_does_not_use_are_refused() {
+    let no_file = with_mesh("generator = \"gmsh\"\nparams = { radius = 1.0 }");
+    refused(
+        &no_file,
+        "params = ",
+        "mesh.params",
+        "the gmsh generator takes no params, only file = ",
+    );
+    refused(&no_file, "params = ", "mesh.params", "file is missing");
+    let msg = Study::from_source(Source::from_text("checks.toml", &no_file))
+        .unwrap_err()
+        .to_string();
+    assert!(!msg.contains("one of"), "{msg}");
+    let with_file = with_mesh("generator = \"gmsh\"\nfile = \"m.msh\"\nparams = { radius = 1.0 }");
+    refused(&with_file, "params = ", "mesh.params", "only file = ");
+    let msg = Study::from_source(Source::from_text("checks.toml", &with_file))
+        .unwrap_err()
+        .to_string();
+    assert!(!msg.contains("missing"), "{msg}");
+    refused(
+        &with_mesh(
+            "generator = \"rectangle\"\nsize = [10.0, 2.0]\ncells = [2, 1]\nparams = { n = 2 }",
+        ),
+        "params = ",
+        "mesh.params",
+        "generator 'rectangle' takes no params, only size and cells",
+    );
+    refused(
+        &with_mesh(
+            "generator = \"rectangle\"\nsize = [10.0, 2.0]\ncells = [2, 1]\nfile = \"m.msh\"",
+        ),
+        "file = ",
+        "mesh.file",
+        "generator 'rectangle' does not use 'file' (it takes size and cells)",
+    );
+    refused(
+        &with_mesh("generator = \"gmsh\"\nfile = \"m.msh\"\ncells = [2, 1]"),
+        "cells = ",
+        "mesh.cells",
+        "does not use 'cells' (it takes file)",
+    );
+    refused(
+        &with_mesh(
+            "generator = \"plate_with_hole\"\nsize = [10.0, 2.0]\nparams = { radius = 1.0, half_width = 5.0 }",
+        ),
+        "size = ",
+        "mesh.size",
+        "its parameters go in params",
+    );
+    refused(
+        &with_mesh("generator = \"rectangel\"\nsize = [10.0, 2.0]\ncells = [2, 1]"),
+        "generator = ",
+        "mesh.generator",
+        "unknown generator 'rectangel'; expected rectangle, box,",
+    );
+}

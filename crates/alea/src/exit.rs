@@ -6,7 +6,10 @@ use alea_study::StudyError;
 
 /// Every exit code and its meaning: the one table of `--help`, the docs and the README.
 pub const TABLE: &[(u8, &str)] = &[
-    (SUCCESS, "success"),
+    (
+        SUCCESS,
+        "success, also when stdout closes before all is printed (piped into `head`): the rest of the printout is dropped and the command goes on; the outputs are written before the results are printed, so they are complete",
+    ),
     (
         INTERNAL,
         "internal error (a bug: please report it with the input), including a report plot that cannot be drawn",
@@ -17,7 +20,7 @@ pub const TABLE: &[(u8, &str)] = &[
     ),
     (
         FILES,
-        "file-system or store error: a file or directory that cannot be read or written (missing study file, permissions, disk full), a corrupt `study.db`, a stored run's data of another study",
+        "file-system or store error: a file or directory that cannot be read or written (missing study file, permissions, disk full), stdout that cannot be written (other than closed: a redirection to a full disk; the files are written), a corrupt `study.db`, a stored run's data of another study",
     ),
     (
         COMPUTATION,
@@ -204,7 +207,7 @@ mod tests {
         }
         let codes: Vec<u8> = TABLE.iter().map(|(c, _)| *c).collect();
         assert_eq!(codes, [0, 1, 2, 3, 4, 5]);
-        assert!(help().starts_with("Exit codes:\n  0  success\n"));
+        assert!(help().starts_with("Exit codes:\n  0  success, also when stdout closes"));
     }
 
     #[test]

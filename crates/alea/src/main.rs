@@ -2,6 +2,7 @@
 //! outputs and reports) and `alea-study`, printing.
 
 mod exit;
+mod out;
 mod run_report;
 mod solve;
 mod solve_steps;
@@ -11,6 +12,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+
+use out::errln;
 
 /// alea: design quantities of elastic assemblies with uncertain frictional contact.
 #[derive(Parser, Debug)]
@@ -102,6 +105,7 @@ fn run_distributed(
     threads: Option<usize>,
 ) -> Option<anyhow::Result<()>> {
     use alea_study::distributed::{Role, start};
+    use out::outln;
     match start(threads) {
         Err(e) => Some(Err(e.into())),
         Ok(Role::Single) => None,
@@ -116,9 +120,9 @@ fn run_distributed(
             alea_study::runner::install_executor(leader.executor());
             let result = study_cmd::run(study, dir, restart, quiet);
             match leader.finish() {
-                Ok(stats) if stats.batches > 0 => println!("{}", stats.summary()),
+                Ok(stats) if stats.batches > 0 => outln!("{}", stats.summary()),
                 Ok(_) => {}
-                Err(e) => eprintln!("warning: {e}"),
+                Err(e) => errln!("warning: {e}"),
             }
             Some(result)
         }
@@ -151,10 +155,14 @@ fn main() -> ExitCode {
             run_single(&study, &dir, restart, quiet, threads)
         }
     };
+    // A closed stdout is no error; another error writing it fails a command that succeeded.
+    let printed = out::finish();
+    let result = result
+        .and_then(|()| printed.map_err(|e| anyhow::Error::from(e).context("writing to stdout")));
     match result {
         Ok(()) => ExitCode::from(exit::SUCCESS),
         Err(e) => {
-            eprintln!("error: {}", exit::message(&e));
+            errln!("error: {}", exit::message(&e));
             ExitCode::from(exit::code(&e))
         }
     }

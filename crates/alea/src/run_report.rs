@@ -8,6 +8,8 @@ use alea_latin::RunStatus;
 use alea_study::spec::ModelFile;
 use anyhow::Result;
 
+use crate::out::outln;
+
 /// The error of a run that did not converge (exit 4).
 pub(crate) fn not_converged(
     solver: &alea_latin::LatinSolver,
@@ -40,18 +42,19 @@ pub(crate) fn report_run(
     let u = &built.units;
     let last = res.residuals.last().copied().unwrap_or(0.0);
     match res.status {
-        RunStatus::Converged => println!(
+        RunStatus::Converged => outln!(
             "converged in {} iterations (error indicator {last:.2e}, every substructure in equilibrium), {:.3} s",
-            res.iterations, res.timings.total
+            res.iterations,
+            res.timings.total
         ),
-        RunStatus::NoEquilibrium => println!(
+        RunStatus::NoEquilibrium => outln!(
             "NO STATIC EQUILIBRIUM after {} iterations (error indicator {last:.2e}): {}; results below are the last iterate",
             res.iterations,
             solver
                 .equilibrium_report(res)
                 .unwrap_or_else(|| "a floating substructure drifts".into())
         ),
-        _ => println!(
+        _ => outln!(
             "NOT CONVERGED after {} iterations: error indicator {last:.2e} (tolerance {:.1e}); results below are the last iterate",
             res.iterations,
             solver.options().tolerance
@@ -65,7 +68,7 @@ pub(crate) fn report_run(
             .filter(|(i, _)| (i + 1).is_power_of_two() || *i + 1 == h.len())
             .map(|(i, v)| format!("{}: {v:.2e}", i + 1))
             .collect();
-        println!("  error indicator by iteration: {}", shown.join(", "));
+        outln!("  error indicator by iteration: {}", shown.join(", "));
     }
     for (s, sub) in built.assembly.subs.iter().enumerate() {
         let all = (0..sub.model.mesh.num_cells()).collect::<Vec<_>>();
@@ -81,9 +84,10 @@ pub(crate) fn report_run(
         } else {
             String::new()
         };
-        println!(
+        outln!(
             "  substructure {:>10}: max von Mises {vm:.4} {}{balance}",
-            sub.name, u.stress
+            sub.name,
+            u.stress
         );
     }
     let dim = built.mesh.dim;
@@ -94,7 +98,7 @@ pub(crate) fn report_run(
             Some(o) => (it.step_work(o), " in this step"),
             None => (it.work(), ""),
         };
-        println!(
+        outln!(
             "  interface {:>12} ({}): open {} stick {} slip {}; resultant on side 2 ({}) {}; work of interface forces{within} {work:e}",
             it.name,
             it.law,
@@ -114,7 +118,7 @@ pub(crate) fn report_run(
             } else {
                 ""
             };
-            println!(
+            outln!(
                 "  warning: interface '{}' slid{since} by {:.4e} {} at ({:.4}, {:.4}, {:.4}), {:.2} x the local mesh size: beyond small sliding (> {} x), the pairing no longer pairs the points that face each other and the contact zone, gap and pressure may be wrong (sliding = \"large\" on the interface re-pairs it in the deformed configuration during the solve)",
                 it.name,
                 c.slip,
@@ -141,7 +145,7 @@ pub(crate) fn report_run(
             let g = c.group.get_ref();
             let nodes = sub.model.mesh.group_nodes(g)?;
             let sum = alea_latin::reactions::group_sum(&r, dim, &nodes);
-            println!(
+            outln!(
                 "  reaction on {:>10} / {g}: {} {}",
                 sub.name,
                 labelled(sum, dim, "R"),
@@ -151,7 +155,7 @@ pub(crate) fn report_run(
         reactions.push(r);
     }
     let written = alea_latin::output::write_step(path, solver, res, Some(&reactions), origins)?;
-    println!(
+    outln!(
         "wrote {} and {} file(s) beside it",
         path.display(),
         written.len(),

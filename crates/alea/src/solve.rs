@@ -9,6 +9,8 @@ use alea_mesh::vtu::VtuWriter;
 use alea_study::{Source, build_model, build_params, spec::ModelFile};
 use anyhow::{Context, Result};
 
+use crate::out::outln;
+
 const DEMO_DOVETAIL: &str = include_str!("../../../examples/dovetail-contact.toml");
 const DEMO_KIRSCH: &str = include_str!("../../../examples/kirsch.toml");
 
@@ -24,7 +26,7 @@ pub fn demo(name: &str, out: &Path) -> Result<()> {
             .into());
         }
     };
-    println!("demo '{name}' (the case file is {file})");
+    outln!("demo '{name}' (the case file is {file})");
     solve_source(&Source::from_text(file, text), out)
 }
 
@@ -42,7 +44,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     let plan = alea_study::steps::plan_steps(src, &file)?;
     let input = built.parametric.run_input(&params.nominal, vec![]);
     if !params.names.is_empty() {
-        println!(
+        outln!(
             "parameters at their nominal (mean) values: {}",
             params
                 .names
@@ -59,7 +61,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         .map_or("case".into(), |s| s.to_string_lossy().into_owned());
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     let u = &built.units;
-    println!(
+    outln!(
         "units: length {}, force {}, stress {}; mesh: {} nodes, {} cells; {} substructure(s), {} interface(s)",
         u.length,
         u.force,
@@ -124,16 +126,19 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             .fold((0, 0.0), |a, (i, &v)| if v > a.1 { (i, v) } else { a });
         let x = sub.model.mesh.coords[imax];
         let energy = post::strain_energy(&sub.model, &sol.u)?;
-        println!(
+        outln!(
             "direct solve of {} unknowns: assembly {:.3} s, factorisation {:.3} s, solve {:.3} s",
             sol.num_free,
             sol.timings.assembly,
             sol.timings.symbolic + sol.timings.numeric,
             sol.timings.solve
         );
-        println!(
+        outln!(
             "max von Mises {vmax:.4} {} at ({:.3}, {:.3}, {:.3}); strain energy {energy:.6e}",
-            u.stress, x[0], x[1], x[2]
+            u.stress,
+            x[0],
+            x[1],
+            x[2]
         );
         let stress6: Vec<f64> = stresses
             .iter()
@@ -146,7 +151,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
             .point_tensor("stress", 6, &stress6)
             .point_scalar("von_mises", &vm)
             .write(&path)?;
-        println!(
+        outln!(
             "wrote {} ({:.2} s in all)",
             path.display(),
             t0.elapsed().as_secs_f64()
@@ -161,21 +166,21 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         let (solver, res) = (&step.solver, &step.result);
         let path = out.join(format!("{stem}.vtm"));
         crate::run_report::report_run(&file, &built, solver, res, &input, &path, None)?;
-        println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+        outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
         if res.status != RunStatus::Converged {
             return Err(crate::run_report::not_converged(solver, res).into());
         }
         return Ok(());
     }
     let solver = built.solver()?;
-    println!(
+    outln!(
         "LATIN set-up (assembly + factorisations): {:.3} s",
         solver.setup_seconds
     );
     let res = solver.run_shared(&input)?;
     let path = out.join(format!("{stem}.vtm"));
     crate::run_report::report_run(&file, &built, &solver, &res, &input, &path, None)?;
-    println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+    outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     if res.status != RunStatus::Converged {
         return Err(crate::run_report::not_converged(&solver, &res).into());
     }

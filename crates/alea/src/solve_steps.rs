@@ -11,6 +11,7 @@ use alea_study::steps::Plan;
 use alea_study::{BuiltModel, ParamSpace, Source, build_model, spec::ModelFile};
 use anyhow::Result;
 
+use crate::out::outln;
 use crate::run_report::{not_converged, report_run};
 
 /// Solves the steps of `plan` in order, each from the end of the previous one.
@@ -38,7 +39,7 @@ pub fn solve_history(
         solvers.push(m.solver()?);
     }
     let setup: f64 = solvers.iter().map(|s| s.setup_seconds).sum();
-    println!(
+    outln!(
         "{} load step(s); LATIN set-up (assembly + factorisations) of {} solver(s) (one per set of imposed displacements): {setup:.3} s",
         plan.steps.len(),
         solvers.len()
@@ -50,14 +51,14 @@ pub fn solve_history(
         if let Some(prev) = &previous {
             input.previous_step = Some(std::sync::Arc::new(prev.end_state()));
         }
-        println!("step {} '{}':", k + 1, step.name);
+        outln!("step {} '{}':", k + 1, step.name);
         let res = solver.run_shared(&input)?;
         let path = out.join(format!("{stem}-{}-{}.vtm", k + 1, step.name));
         let origins = alea_latin::steps::step_origins(previous.as_ref(), &res);
         report_run(file, model, solver, &res, &input, &path, Some(&origins))?;
         print_dissipation(&res, &origins);
         if res.status != RunStatus::Converged {
-            println!(
+            outln!(
                 "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",
                 k + 1,
                 step.name,
@@ -67,7 +68,7 @@ pub fn solve_history(
         }
         previous = Some(res);
     }
-    println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+    outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     Ok(())
 }
 
@@ -92,7 +93,7 @@ fn step_input(
 fn print_dissipation(res: &alea_latin::RunResult, origins: &[Vec<[f64; 3]>]) {
     for (it, origin) in res.interfaces.iter().zip(origins) {
         if it.law != "perfect" {
-            println!(
+            outln!(
                 "  interface {:>12}: friction dissipation in this step {:e} (the slip increment of the step against the friction force)",
                 it.name,
                 it.step_friction_dissipation(origin)
@@ -110,7 +111,7 @@ pub(crate) fn large_sliding_step(
 ) -> Result<SlidingStep> {
     let settings = &model.repairing;
     let step = large_sliding::run_step(&model.assembly, &model.options, settings, start, input)?;
-    println!(
+    outln!(
         "large sliding: {} pairing(s) in the deformed configuration, {} LATIN iterations in all, set-up {:.3} s; slide since the last pairing {:.2e} x the mesh size (tolerance {:.0e}){}",
         step.pairings,
         step.iterations,
@@ -140,12 +141,12 @@ fn large_sliding_history(
     stem: &str,
     t0: Instant,
 ) -> Result<()> {
-    println!("{} load step(s), large sliding", plan.steps.len());
+    outln!("{} load step(s), large sliding", plan.steps.len());
     let mut previous: Option<SlidingStep> = None;
     for (k, step) in plan.steps.iter().enumerate() {
         let model = &models[step.file];
         let input = step_input(model, params, step);
-        println!("step {} '{}':", k + 1, step.name);
+        outln!("step {} '{}':", k + 1, step.name);
         let done = large_sliding_step(model, previous.as_ref(), &input)?;
         let path = out.join(format!("{stem}-{}-{}.vtm", k + 1, step.name));
         let origins = large_sliding::step_origins(&done, previous.as_ref());
@@ -160,7 +161,7 @@ fn large_sliding_history(
         )?;
         print_dissipation(&done.result, &origins);
         if done.result.status != RunStatus::Converged {
-            println!(
+            outln!(
                 "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",
                 k + 1,
                 step.name,
@@ -170,6 +171,6 @@ fn large_sliding_history(
         }
         previous = Some(done);
     }
-    println!("({:.2} s in all)", t0.elapsed().as_secs_f64());
+    outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     Ok(())
 }

@@ -10,15 +10,17 @@ use alea_study::store::RunRecord;
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::out::{errln, outln};
+
 /// The account of a study on the terminal: lines to stdout, warnings to stderr.
 struct Terminal;
 
 impl Console for Terminal {
     fn line(&self, text: &str) {
-        println!("{text}");
+        outln!("{text}");
     }
     fn warning(&self, text: &str) {
-        eprintln!("warning: {text}");
+        errln!("warning: {text}");
     }
 }
 
@@ -84,7 +86,7 @@ impl Progress for Bar {
     fn note(&self, message: &str) {
         // A hidden bar (--quiet, no terminal) prints nothing: notes go to stderr then.
         if self.bar.is_hidden() {
-            eprintln!("note: {message}");
+            errln!("note: {message}");
         } else {
             self.bar.println(format!("note: {message}"));
         }

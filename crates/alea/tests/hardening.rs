@@ -160,7 +160,8 @@ fn help_prints_the_exit_code_table() {
     let o = alea().arg("--help").output().unwrap();
     let t = text(&o);
     assert!(
-        t.contains("Exit codes:\n  0  success\n  1  internal error"),
+        t.contains("Exit codes:\n  0  success, also when stdout closes")
+            && t.contains("complete\n  1  internal error"),
         "{t}"
     );
     assert!(
@@ -338,4 +339,117 @@ fn a_directory_with_one_field_file_per_run_is_read_and_resumed() {
     assert!(t.contains("runs: 1 computed"), "{t}");
     assert_eq!(common::stored_runs(&dir, "fields"), 1);
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
+}
+
+/// `alea` with stdout a pipe whose reader has already gone (every write fails with EPIPE).
+fn with_closed_stdout(args: &[&std::ffi::OsStr]) -> Output {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    alea()
+        .args(args)
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap()
+}
+
+/// A command whose stdout closed ended quietly: exit code 0 (docs/study-file.md, "Exit
+/// codes"), no panic, no error.
+fn ended_quietly(o: &Output, what: &str) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{what}: {err}");
+    assert!(!err.contains("panicked"), "{what}: {err}");
+    assert!(!err.contains("error: "), "{what}: {err}");
+}
+
+/// Issue 42, item 1: `alea run study.toml | head -1` used to panic ("failed printing to stdout:
+/// Broken pipe", exit 101) and leave only `study.db`, the outputs being written after the
+/// tables were printed. Now the outputs are written first and a closed stdout ends the command
+/// quietly (exit 0) with every output complete: `alea report` rebuilds the same
+/// `summary.json`. `alea report` and `alea solve` also end quietly with their files written;
+/// a stdout that fails otherwise (a full disk) is a file-system error (3), files written.
+#[test]
+fn a_closed_stdout_ends_quietly_with_the_outputs_complete() {
+    use std::io::BufRead;
+    let base = tmp("epipe");
+    let study = small_study(&base);
+    let dir = base.join("study");
+    let mut child = alea()
+        .arg("run")
+        .arg(&study)
+        .arg("--dir")
+        .arg(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    // The reader is dropped: the pipe is closed while the study runs.
+    assert!(
+        first.starts_with("study 'plate with random E and load'"),
+        "{first}"
+    );
+    let o = child.wait_with_output().unwrap();
+    ended_quietly(&o, "alea run | head -1");
+    let summary = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert!(json.is_object(), "{summary}");
+    let samples = std::fs::read_to_string(dir.join("samples.csv")).unwrap();
+    assert!(
+        samples.lines().count() > 1000,
+        "{} lines",
+        samples.lines().count()
+    );
+    let html = std::fs::read_to_string(dir.join("report/report.html")).unwrap();
+    assert!(
+        html.trim_end().ends_with("</html>"),
+        "{}",
+        &html[html.len() - 100..]
+    );
+    assert!(dir.join("report/report-input.json").exists());
+    assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
+    // `alea report` into a closed stdout: quiet, and the same summary.json, byte for byte.
+    let o = with_closed_stdout(&["report".as_ref(), dir.as_os_str()]);
+    ended_quietly(&o, "alea report | (closed)");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("summary.json")).unwrap(),
+        summary
+    );
+    // `alea solve`, a direct solve and a LATIN solve: quiet, their files written.
+    for (case, file) in [
+        ("examples/kirsch.toml", "kirsch.vtu"),
+        ("examples/full-slip.toml", "full-slip.vtm"),
+    ] {
+        let out = base.join("solve");
+        let o = with_closed_stdout(&[
+            "solve".as_ref(),
+            root().join(case).as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        ended_quietly(&o, case);
+        assert!(out.join(file).exists(), "{case}: no {file}");
+    }
+    // A stdout that cannot be written (a full disk): exit 3 with the reason, files written.
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let out = base.join("full");
+        let o = alea()
+            .args([
+                "solve",
+                root().join("examples/kirsch.toml").to_str().unwrap(),
+                "--out",
+            ])
+            .arg(&out)
+            .stdout(full)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(3), "{err}");
+        assert!(err.contains("error: writing to stdout: "), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(out.join("kirsch.vtu").exists());
+    }
 }

@@ -497,3 +497,45 @@ load = [ { group = "xmax", traction = [1.0, 0.0] }, { group = "xmin", traction =
     assert!(t.contains("rigid body"), "{t}");
     assert_eq!(t.matches("rigid body").count(), 1, "said once: {t}");
 }
+
+/// Issue 42, item 5, end to end: keys that used to be ignored are input errors (2) at
+/// `file:line: field` - bounds on a normal law (the study used to run an untruncated normal),
+/// `std` on a uniform law, and `params` on a Gmsh mesh (which said "expected one of: " with an
+/// empty list, and not that `file` was missing).
+#[test]
+fn keys_that_would_be_ignored_are_input_errors_at_their_line() {
+    let dir = tmp("ignored");
+    let cases = [
+        (
+            "bounds on a normal law",
+            ("std = 0.1", "std = 0.1\nlo = 0.8\nhi = 1.2"),
+            "lo = 0.8",
+            "parameter[1].lo",
+            "law = \"truncated_normal\"",
+        ),
+        (
+            "std on a uniform law",
+            ("hi = 250e3", "hi = 250e3\nstd = 1e4"),
+            "std = 1e4",
+            "parameter[0].std",
+            "law 'uniform' does not use 'std'",
+        ),
+        (
+            "params on a Gmsh mesh",
+            (
+                "generator = \"rectangle\"\nkind = \"quad4\"\nsize = [100.0, 20.0]\ncells = [10, 2]",
+                "generator = \"gmsh\"\nparams = { size = 1.0 }",
+            ),
+            "params = ",
+            "mesh.params",
+            "the gmsh generator takes no params, only file = \"<mesh>.msh\" (a Gmsh 4.1 file, relative to the study file); file is missing",
+        ),
+    ];
+    for (i, (what, edit, needle, field, msg)) in cases.into_iter().enumerate() {
+        let (p, t) = plate(&dir, &format!("k{i}"), &[edit], "");
+        let o = run(&p, &dir.join(format!("out{i}")), &[]);
+        expect_input_error(&o, &p, line_of(&t, needle), field, what);
+        assert!(text(&o).contains(msg), "{what}: {}", text(&o));
+        assert!(!text(&o).contains("one of: \n"), "{what}: {}", text(&o));
+    }
+}

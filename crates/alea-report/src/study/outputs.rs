@@ -1,5 +1,6 @@
 //! Every output of a study whose runs are done: warnings, statistics, error estimates,
-//! `summary.json`, `samples.csv`, mean / std fields and the report.
+//! `summary.json`, `samples.csv`, mean / std fields and the report - the files first, then
+//! what is printed about them (issue 42: a closed stdout never leaves the files incomplete).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -16,6 +17,7 @@ use super::files::{write_samples, write_summary};
 use super::input::{reliability_report, report_input};
 use super::results::{Analysis, analyse};
 use super::table::{print_reliability, print_table};
+use crate::console::Deferred;
 use crate::report::{self, ReportFiles};
 use crate::{Console, Error};
 
@@ -38,11 +40,30 @@ pub struct Outputs {
 
 /// Statistics and every output file of a study whose runs are in `runs`; `report`: write the
 /// HTML report too; `notes`: warnings found before (kept in `summary.json` and the report).
+/// The account (statistics tables, error estimates, the files written) and the warnings go to
+/// `console` once every file is written, or once writing failed: a reader of the account that
+/// stops reading early (`alea run study.toml | head -2`) leaves complete files behind.
 ///
 /// # Errors
 /// Any error of writing an output; after writing what it can,
 /// [`StudyError::Failed`] if no run converged or no method produced statistics.
 pub fn write_outputs(
+    study: &Study,
+    runs: &StudyRuns,
+    dir: &Path,
+    settings: &AnalysisSettings,
+    notes: Vec<String>,
+    report: bool,
+    console: &dyn Console,
+) -> Result<Outputs, Error> {
+    let deferred = Deferred::default();
+    let written = write_files(study, runs, dir, settings, notes, report, &deferred);
+    deferred.replay(console);
+    written
+}
+
+/// [`write_outputs`], saying its account to `console` as it goes.
+fn write_files(
     study: &Study,
     runs: &StudyRuns,
     dir: &Path,

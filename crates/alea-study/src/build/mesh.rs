@@ -78,20 +78,96 @@ fn param_usize(
     Ok(v as usize)
 }
 
+/// Refuses a `mesh.params` key that the generator does not read (`allowed`: the keys it reads;
+/// none for `rectangle`, `box` and `gmsh`).
 fn check_params(src: &Source, spec: &MeshSpec, allowed: &[&str]) -> Result<(), StudyError> {
-    if let Some(p) = &spec.params {
-        for k in p.get_ref().keys() {
-            if !allowed.contains(&k.as_str()) {
-                return Err(src.error(
-                    p.span(),
-                    format!("mesh.params.{k}"),
-                    format!(
-                        "unknown parameter for generator '{}'; expected one of: {}",
-                        spec.generator.get_ref(),
-                        allowed.join(", ")
-                    ),
-                ));
+    let Some(p) = &spec.params else {
+        return Ok(());
+    };
+    let Some(k) = p.get_ref().keys().find(|k| !allowed.contains(&k.as_str())) else {
+        return Ok(());
+    };
+    if allowed.is_empty() {
+        return Err(src.error(
+            p.span(),
+            "mesh.params",
+            format!("{} (got params.{k})", no_params(spec)),
+        ));
+    }
+    Err(src.error(
+        p.span(),
+        format!("mesh.params.{k}"),
+        format!(
+            "unknown parameter for generator '{}'; expected one of: {}",
+            spec.generator.get_ref(),
+            allowed.join(", ")
+        ),
+    ))
+}
+
+/// What a generator without parameters takes instead, and for `gmsh` whether `file` is missing.
+fn no_params(spec: &MeshSpec) -> String {
+    let generator = spec.generator.get_ref();
+    match generator.as_str() {
+        "gmsh" => format!(
+            "the gmsh generator takes no params, only file = \"<mesh>.msh\" (a Gmsh 4.1 file, relative to the study file){}",
+            if spec.file.is_none() {
+                "; file is missing"
+            } else {
+                ""
             }
+        ),
+        _ => format!("generator '{generator}' takes no params, only size and cells"),
+    }
+}
+
+/// The generators of `[mesh] generator` (an unknown one is refused by `build_base_mesh`).
+const GENERATORS: &[&str] = &[
+    "rectangle",
+    "box",
+    "plate_with_hole",
+    "annulus_sector",
+    "dovetail",
+    "blade_root_simple",
+    "turbine_2d",
+    "turbine_3d",
+    "stacked_blocks",
+    "block_on_incline",
+    "concentric_rings",
+    "cylinder_on_block",
+    "gmsh",
+];
+
+/// Refuses the `[mesh]` keys that a known generator does not read: `size` and `cells` but with
+/// `rectangle` and `box`, `file` but with `gmsh`.
+fn check_generator_keys(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
+    let generator = spec.generator.get_ref().as_str();
+    if !GENERATORS.contains(&generator) {
+        return Ok(());
+    }
+    let used: &[&str] = match generator {
+        "rectangle" | "box" => &["size", "cells"],
+        "gmsh" => &["file"],
+        _ => &[],
+    };
+    let given = [
+        ("size", spec.size.as_ref().map(|v| v.span())),
+        ("cells", spec.cells.as_ref().map(|v| v.span())),
+        ("file", spec.file.as_ref().map(|v| v.span())),
+    ];
+    for (key, span) in given {
+        if let Some(span) = span
+            && !used.contains(&key)
+        {
+            let takes = match used {
+                [] => "its parameters go in params = { ... }".to_string(),
+                keys => format!("it takes {}", keys.join(" and ")),
+            };
+            return Err(src.error(
+                span,
+                format!("mesh.{key}"),
+                format!("generator '{generator}' does not use '{key}' ({takes})"),
+            ));
         }
     }
     Ok(())
@@ -222,6 +298,7 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
 }
 
 fn build_base_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+    check_generator_keys(src, spec)?;
     crate::limits::check_mesh(src, spec)?;
     let kind = |default: CellType| -> Result<CellType, StudyError> {
         spec.kind
@@ -450,6 +527,26 @@ fn build_base_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_generators_checked_for_their_keys_are_the_generators_built() {
+        let spec: MeshSpec = toml::from_str("generator = \"disc\"").unwrap();
+        let e = build_mesh(&Source::from_text("t.toml", ""), &spec)
+            .unwrap_err()
+            .to_string();
+        let list = e
+            .split("; expected ")
+            .nth(1)
+            .expect("the list of generators");
+        let named: Vec<&str> = list
+            .split([',', ' '])
+            .filter(|w| !w.is_empty() && *w != "or")
+            .collect();
+        assert_eq!(named.len(), GENERATORS.len(), "{e}");
+        for g in GENERATORS {
+            assert!(named.contains(g), "{g}: {e}");
+        }
+    }
 
     #[test]
     fn node_estimates_match_the_generated_meshes() {
