@@ -55,6 +55,16 @@ pub struct RunIdentity {
     pub quantities: Vec<String>,
 }
 
+impl RunIdentity {
+    /// The keys the store keeps with each run (`Store::open_study`).
+    pub fn keys(&self) -> crate::store::RunKeys<'_> {
+        crate::store::RunKeys {
+            run_hash: &self.run_hash,
+            quantities: &self.quantities,
+        }
+    }
+}
+
 /// The run identity of the study file `src` (parsed as `file`): its run hash, over the
 /// canonical form of its run-defining tables and the bytes of its mesh and data files, and
 /// its quantities' keys.

@@ -408,7 +408,7 @@ pub(crate) fn execute(
     lock: StudyLock,
     compute: bool,
 ) -> Result<(StudyRuns, usize), StudyError> {
-    let store = Store::open_study(dir, &study.hash, &study.identity, restart)?;
+    let store = Store::open_study(dir, &study.hash, study.identity.keys(), restart)?;
     store.save_study(&study.source.path, &study.source.text)?;
     let note = |m: &str| progress.note(m);
     let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, &note);

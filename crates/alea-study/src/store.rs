@@ -2,9 +2,10 @@
 //! row per finished run and, in the same database, the run's displacement fields (and its
 //! error-estimate data when the study estimates its error) as BLOBs.
 //!
-//! **Tables.** `meta` (the study hash, the study file's path and text), `runs` (one row per
-//! finished run: point, status, iterations, quantities of interest, error history, local-stage
-//! state, study hash) and `run_data` (per run: `key` as in `runs`, `study_hash`, `fields` - the
+//! **Tables.** `meta` (the study hash, the run hash, the study hashes it held before with the
+//! same runs, the study file's path and text), `runs` (one row per finished run: point,
+//! status, iterations, quantities of interest, error history, local-stage state, study hash,
+//! run hash, quantities' keys) and `run_data` (per run: `key` as in `runs`, `study_hash`, `fields` - the
 //! displacements of every substructure, f64 little-endian - and `cre`, the error-estimate
 //! values or NULL). `run_data` is a table of its own so that reading every run's row
 //! ([`Store::runs`]) never reads the fields.
@@ -15,10 +16,16 @@
 //! its data, and a study killed at any point resumes with every committed run intact.
 //!
 //! **Which study.** The study's hash (of the study file's text and of the mesh file it reads)
-//! is kept in the database, and every run row and every `run_data` row carries it: a changed
-//! study is refused unless the caller asks to start over, rows of another hash are never
-//! returned, and field data of another study is refused on reading. The study file's text is
-//! kept too, so that `alea report DIR` can rebuild every output from the directory alone.
+//! is kept in the database, and every run row and every `run_data` row carries it: rows of
+//! another hash are never returned, and field data of another study is refused on reading.
+//! Every run row also carries the study's run hash and its quantities' keys
+//! (`crate::run_hash`; columns `run_hash`, `quantities`, NULL in rows written before them):
+//! a directory holding another study hash is accepted by [`Store::open_study`] when its run
+//! hash is the study's (an edit that keeps the runs - the runs are re-tagged with the new
+//! study hash, their quantity values put in the study's order, a run lacking a quantity left
+//! out to be computed again), and refused otherwise unless the caller asks to start over. The
+//! study file's text is kept too, so that `alea report DIR` can rebuild every output from the
+//! directory alone.
 //!
 //! **Durability.** `synchronous = FULL` with the WAL journal: a commit returns only once the
 //! WAL is synced, so a finished run survives a kill, an OS crash and a power loss (given a disk
@@ -37,7 +44,24 @@ use std::path::{Path, PathBuf};
 use rusqlite::{Connection, OptionalExtension, params};
 
 use crate::StudyError;
-use crate::run_hash::RunIdentity;
+
+/// What defines a study's runs, as the store keeps it: the run hash and the quantities' keys
+/// in study order (`crate::run_hash::RunIdentity` computes them; the store does not depend on
+/// how).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunKeys<'a> {
+    /// The run hash.
+    pub run_hash: &'a str,
+    /// The quantities' keys, in study order.
+    pub quantities: &'a [String],
+}
+
+/// [`RunKeys`], owned by an open store.
+#[derive(Clone, Debug)]
+struct OwnedRunKeys {
+    run_hash: String,
+    quantities: Vec<String>,
+}
 
 /// One finished run (converged or not).
 #[derive(Clone, Debug, PartialEq)]
@@ -156,7 +180,7 @@ fn adopt(
     dir: &Path,
     old: &str,
     new: &str,
-    id: &RunIdentity,
+    id: &RunKeys<'_>,
 ) -> Result<(), StudyError> {
     let rows: Vec<(String, String, Vec<u8>, Option<String>)> = tx
         .prepare("SELECT key, study_hash, qois, quantities FROM runs WHERE run_hash = ?1")
@@ -172,7 +196,7 @@ fn adopt(
         let stored: Vec<&str> = stored
             .as_deref()
             .map_or(Vec::new(), |s| s.split(',').collect());
-        let Some(values) = remap_quantities(&from_blob(&qois), &stored, &id.quantities) else {
+        let Some(values) = remap_quantities(&from_blob(&qois), &stored, id.quantities) else {
             continue;
         };
         tx.execute(
@@ -225,7 +249,7 @@ pub struct Store {
     hash: String,
     /// What defines the study's runs (`None`: opened by its study hash alone; its commits
     /// carry no run hash).
-    identity: Option<RunIdentity>,
+    identity: Option<OwnedRunKeys>,
     /// Study hashes this directory held before with the same runs (edits that kept them):
     /// the headers of field files written then are this study's too.
     former: Vec<String>,
@@ -295,7 +319,7 @@ impl Store {
     pub fn open_study(
         dir: &Path,
         hash: &str,
-        identity: &RunIdentity,
+        identity: RunKeys<'_>,
         restart: bool,
     ) -> Result<Self, StudyError> {
         Self::open_with(dir, hash, Some(identity), restart)
@@ -304,7 +328,7 @@ impl Store {
     fn open_with(
         dir: &Path,
         hash: &str,
-        identity: Option<&RunIdentity>,
+        identity: Option<RunKeys<'_>>,
         restart: bool,
     ) -> Result<Self, StudyError> {
         let mut conn = Self::connect(dir)?;
@@ -325,12 +349,11 @@ impl Store {
         let mut cleared = false;
         match old {
             Some(h) if h != hash => {
-                let same_runs =
-                    identity.is_some_and(|id| old_runs.as_deref() == Some(&id.run_hash));
+                let same_runs = identity.is_some_and(|id| old_runs.as_deref() == Some(id.run_hash));
                 if restart {
                     clear(&tx)?;
                     cleared = true;
-                } else if let (true, Some(id)) = (same_runs, identity) {
+                } else if let (true, Some(id)) = (same_runs, &identity) {
                     adopt(&tx, dir, &h, hash, id)?;
                 } else {
                     return Err(different_study(dir, &h, hash, old_runs.is_some()));
@@ -345,14 +368,14 @@ impl Store {
             }
             None => set_meta(&tx, dir, "study_hash", hash)?,
         }
-        if let Some(id) = identity {
+        if let Some(id) = &identity {
             // Rows of this very study written before runs carried a run hash.
             tx.execute(
                 "UPDATE runs SET run_hash = ?1, quantities = ?2 WHERE study_hash = ?3 AND run_hash IS NULL",
                 params![id.run_hash, id.quantities.join(","), hash],
             )
             .map_err(db_err(dir))?;
-            set_meta(&tx, dir, "run_hash", &id.run_hash)?;
+            set_meta(&tx, dir, "run_hash", id.run_hash)?;
         }
         tx.commit().map_err(db_err(dir))?;
         if cleared {
@@ -365,7 +388,10 @@ impl Store {
             conn,
             dir: dir.to_path_buf(),
             hash: hash.to_string(),
-            identity: identity.cloned(),
+            identity: identity.map(|id| OwnedRunKeys {
+                run_hash: id.run_hash.to_string(),
+                quantities: id.quantities.to_vec(),
+            }),
             former,
         })
     }
@@ -1158,10 +1184,11 @@ mod tests {
         );
     }
 
-    fn identity(run_hash: &str, quantities: &[&str]) -> RunIdentity {
-        RunIdentity {
-            run_hash: run_hash.into(),
-            quantities: quantities.iter().map(|q| q.to_string()).collect(),
+    fn identity(run_hash: &'static str, quantities: &[&str]) -> RunKeys<'static> {
+        let quantities: Vec<String> = quantities.iter().map(|q| q.to_string()).collect();
+        RunKeys {
+            run_hash,
+            quantities: Vec::leak(quantities),
         }
     }
 
@@ -1178,11 +1205,11 @@ mod tests {
         );
         let mut r = record(1.0);
         r.qois = vec![10.0, 20.0];
-        let s = Store::open_study(&d, &a, &identity("runs1", &["q1", "q2"]), false).unwrap();
+        let s = Store::open_study(&d, &a, identity("runs1", &["q1", "q2"]), false).unwrap();
         s.commit(&r, &[1.0, 2.0], Some(&[3.0])).unwrap();
         drop(s);
         // Same runs, quantities reordered (and q1 renamed: same key).
-        let s = Store::open_study(&d, &b, &identity("runs1", &["q2", "q1"]), false).unwrap();
+        let s = Store::open_study(&d, &b, identity("runs1", &["q2", "q1"]), false).unwrap();
         let mut expected = r.clone();
         expected.qois = vec![20.0, 10.0];
         assert_eq!(s.runs().unwrap(), vec![expected]);
@@ -1193,14 +1220,14 @@ mod tests {
         // Study hash recorded: the store opened by hash alone (outputs) finds the runs.
         assert_eq!(Store::open(&d, &b, false).unwrap().runs().unwrap().len(), 1);
         // Another model: refused, with what a run is in the message.
-        let e = Store::open_study(&d, &c, &identity("runs2", &["q2", "q1"]), false).unwrap_err();
+        let e = Store::open_study(&d, &c, identity("runs2", &["q2", "q1"]), false).unwrap_err();
         assert_eq!(e.exit_code(), 2, "{e}");
         assert!(
             e.to_string().contains("what defines its runs differs"),
             "{e}"
         );
         // A quantity added: the run lacks it and is left out, not mixed.
-        let s = Store::open_study(&d, &a, &identity("runs1", &["q1", "q2", "q3"]), false).unwrap();
+        let s = Store::open_study(&d, &a, identity("runs1", &["q1", "q2", "q3"]), false).unwrap();
         assert!(s.runs().unwrap().is_empty());
         // Computed again: it replaces the old row.
         let mut again = r.clone();
@@ -1219,17 +1246,17 @@ mod tests {
         let s = Store::open(&d, &a, false).unwrap();
         s.commit(&record(1.0), &[1.0], None).unwrap();
         drop(s);
-        let e = Store::open_study(&d, &b, &identity("runs1", &["q1"]), false).unwrap_err();
+        let e = Store::open_study(&d, &b, identity("runs1", &["q1"]), false).unwrap_err();
         assert!(
             e.to_string()
                 .contains("written before study directories recorded"),
             "{e}"
         );
-        let s = Store::open_study(&d, &a, &identity("runs1", &["q1"]), false).unwrap();
+        let s = Store::open_study(&d, &a, identity("runs1", &["q1"]), false).unwrap();
         assert_eq!(s.runs().unwrap(), vec![record(1.0)]);
         drop(s);
         // Now tagged: a later edit keeps it.
-        let s = Store::open_study(&d, &b, &identity("runs1", &["q1"]), false).unwrap();
+        let s = Store::open_study(&d, &b, identity("runs1", &["q1"]), false).unwrap();
         assert_eq!(s.runs().unwrap(), vec![record(1.0)]);
         assert_eq!(s.fields(&[1.0, 2.0]).unwrap(), vec![1.0]);
         let _ = std::fs::remove_dir_all(&d);
