@@ -331,3 +331,31 @@ fn points_equal_up_to_round_off_are_one_run() {
     let o = run(&study, &dir, &[]);
     assert_eq!(counts(&o), (0, 9), "{}", text_of(&o));
 }
+
+/// Issue 42, item 4: a quantity added is not refused - the runs that lack its value are
+/// computed again; removing or renaming a quantity then keeps every run.
+#[test]
+fn a_quantity_added_recomputes_the_runs_that_lack_it() {
+    let base = tmp("quantity");
+    let study = small_study(&base, "");
+    let original = std::fs::read_to_string(&study).unwrap();
+    let dir = base.join("out");
+    let o = run(&study, &dir, &[]);
+    assert_eq!(counts(&o), (70, 0), "{}", text_of(&o));
+    let added = format!(
+        "{original}\n[[quantity]]\nname = \"tip_y\"\nkind = \"displacement\"\nsubstructure = \"plate\"\npoint = [100.0, 20.0]\ncomponent = 1\n"
+    );
+    std::fs::write(&study, &added).unwrap();
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (70, 0), "{}", text_of(&o));
+    // Back to the one quantity, renamed: every run has its value.
+    std::fs::write(
+        &study,
+        original.replace("name = \"tip\"", "name = \"u_tip\""),
+    )
+    .unwrap();
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (0, 70), "{}", text_of(&o));
+}
