@@ -35,6 +35,7 @@ use crate::StudyError;
 use crate::cre::CreSetup;
 use crate::lock::StudyLock;
 use crate::method::MethodKind;
+use crate::points::{PointIndex, canonicalise};
 use crate::run::executor;
 pub use crate::run::{
     BatchExecutor, LocalExecutor, RunContext, RunJob, RunOutcome, RunSetup, install_executor,
@@ -407,10 +408,24 @@ pub(crate) fn execute(
     lock: StudyLock,
     compute: bool,
 ) -> Result<(StudyRuns, usize), StudyError> {
-    let store = Store::open(dir, &study.hash, restart)?;
+    let store = Store::open_study(dir, &study.hash, study.identity.keys(), restart)?;
     store.save_study(&study.source.path, &study.source.text)?;
     let note = |m: &str| progress.note(m);
     let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, &note);
+    // A design point within round-off of a stored run is that run (module `points`): the
+    // stored runs are canonical, in the order they were stored.
+    let mut index = PointIndex::new(&study.params.lo, &study.params.hi);
+    for r in &previous {
+        index.insert(&r.params);
+    }
+    let mut methods = study.methods.clone();
+    canonicalise(
+        &mut index,
+        methods
+            .iter_mut()
+            .filter(|m| !matches!(m.kind, MethodKind::Adaptive(_)))
+            .map(|m| &mut m.points),
+    );
     let by_key: HashMap<String, RunRecord> = previous
         .into_iter()
         .map(|r| (point_key(&r.params), r))
@@ -418,8 +433,7 @@ pub(crate) fn execute(
     let RunSetup { solver, cre } = RunSetup::build(study)?;
     let fixed: Vec<Vec<f64>> = {
         let mut seen = std::collections::HashSet::new();
-        study
-            .methods
+        methods
             .iter()
             .filter(|m| !matches!(m.kind, MethodKind::Adaptive(_)))
             .flat_map(|m| m.points.iter())
@@ -459,7 +473,6 @@ pub(crate) fn execute(
         slide_noted: std::sync::atomic::AtomicBool::new(false),
     };
     runner.run_points(&fixed)?;
-    let mut methods = study.methods.clone();
     crate::sparse::select_bases(study, &mut methods, &runner.by_key);
     let mut adaptive = Vec::new();
     for (m, method) in methods.iter_mut().enumerate() {

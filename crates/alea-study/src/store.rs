@@ -2,9 +2,10 @@
 //! row per finished run and, in the same database, the run's displacement fields (and its
 //! error-estimate data when the study estimates its error) as BLOBs.
 //!
-//! **Tables.** `meta` (the study hash, the study file's path and text), `runs` (one row per
-//! finished run: point, status, iterations, quantities of interest, error history, local-stage
-//! state, study hash) and `run_data` (per run: `key` as in `runs`, `study_hash`, `fields` - the
+//! **Tables.** `meta` (the study hash, the run hash, the study hashes it held before with the
+//! same runs, the study file's path and text), `runs` (one row per finished run: point,
+//! status, iterations, quantities of interest, error history, local-stage state, study hash,
+//! run hash, quantities' keys) and `run_data` (per run: `key` as in `runs`, `study_hash`, `fields` - the
 //! displacements of every substructure, f64 little-endian - and `cre`, the error-estimate
 //! values or NULL). `run_data` is a table of its own so that reading every run's row
 //! ([`Store::runs`]) never reads the fields.
@@ -15,10 +16,16 @@
 //! its data, and a study killed at any point resumes with every committed run intact.
 //!
 //! **Which study.** The study's hash (of the study file's text and of the mesh file it reads)
-//! is kept in the database, and every run row and every `run_data` row carries it: a changed
-//! study is refused unless the caller asks to start over, rows of another hash are never
-//! returned, and field data of another study is refused on reading. The study file's text is
-//! kept too, so that `alea report DIR` can rebuild every output from the directory alone.
+//! is kept in the database, and every run row and every `run_data` row carries it: rows of
+//! another hash are never returned, and field data of another study is refused on reading.
+//! Every run row also carries the study's run hash and its quantities' keys
+//! (`crate::run_hash`; columns `run_hash`, `quantities`, NULL in rows written before them):
+//! a directory holding another study hash is accepted by [`Store::open_study`] when its run
+//! hash is the study's (an edit that keeps the runs - the runs are re-tagged with the new
+//! study hash, their quantity values put in the study's order, a run lacking a quantity left
+//! out to be computed again), and refused otherwise unless the caller asks to start over. The
+//! study file's text is kept too, so that `alea report DIR` can rebuild every output from the
+//! directory alone.
 //!
 //! **Durability.** `synchronous = FULL` with the WAL journal: a commit returns only once the
 //! WAL is synced, so a finished run survives a kill, an OS crash and a power loss (given a disk
@@ -37,6 +44,24 @@ use std::path::{Path, PathBuf};
 use rusqlite::{Connection, OptionalExtension, params};
 
 use crate::StudyError;
+
+/// What defines a study's runs, as the store keeps it: the run hash and the quantities' keys
+/// in study order (`crate::run_hash::RunIdentity` computes them; the store does not depend on
+/// how).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunKeys<'a> {
+    /// The run hash.
+    pub run_hash: &'a str,
+    /// The quantities' keys, in study order.
+    pub quantities: &'a [String],
+}
+
+/// [`RunKeys`], owned by an open store.
+#[derive(Clone, Debug)]
+struct OwnedRunKeys {
+    run_hash: String,
+    quantities: Vec<String>,
+}
 
 /// One finished run (converged or not).
 #[derive(Clone, Debug, PartialEq)]
@@ -116,6 +141,104 @@ fn remove_legacy_files(dir: &Path) {
     let _ = std::fs::remove_dir_all(dir.join("cre"));
 }
 
+/// Sets `key` in the `meta` table.
+fn set_meta(tx: &Connection, dir: &Path, key: &str, value: &str) -> Result<(), StudyError> {
+    tx.execute(
+        "INSERT OR REPLACE INTO meta (key, value) VALUES (?1, ?2)",
+        params![key, value],
+    )
+    .map(|_| ())
+    .map_err(db_err(dir))
+}
+
+/// The refusal of a directory that holds another study (`runs_known`: it records a run hash,
+/// which differs from this study's).
+fn different_study(dir: &Path, old: &str, new: &str, runs_known: bool) -> StudyError {
+    let why = if runs_known {
+        "what defines its runs differs (the model - mesh and its files, substructures, \
+         materials, loads, constraints, interfaces, fields, steps -, the parameters' laws or \
+         the solver settings)"
+    } else {
+        "it was written before study directories recorded what defines their runs, so only \
+         an unchanged study file reuses them"
+    };
+    StudyError::Usage(format!(
+        "{} holds the results of a different study or version of the study file \
+         (hash {old}, now {new}; the mesh file counts too): {why}; refusing to mix them. \
+         Run again with --restart to discard them, or use another --dir",
+        dir.display()
+    ))
+}
+
+/// Makes the runs of `run_hash` stored under the study hash `old` (or any earlier one) runs
+/// of the study hash `new` (an edit that keeps them, `Store::open_study`): each run whose
+/// stored quantities include every quantity of `id` gets its values in `id`'s order and the
+/// new study hash (its data too); the others keep their old hash, out of [`Store::runs`],
+/// until they are computed again. `old` is remembered for the field files of old directories.
+fn adopt(
+    tx: &Connection,
+    dir: &Path,
+    old: &str,
+    new: &str,
+    id: &RunKeys<'_>,
+) -> Result<(), StudyError> {
+    let rows: Vec<(String, String, Vec<u8>, Option<String>)> = tx
+        .prepare("SELECT key, study_hash, qois, quantities FROM runs WHERE run_hash = ?1")
+        .and_then(|mut st| {
+            st.query_map(params![id.run_hash], |r| {
+                Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?))
+            })?
+            .collect::<Result<Vec<_>, _>>()
+        })
+        .map_err(db_err(dir))?;
+    let quantities = id.quantities.join(",");
+    for (key, row_hash, qois, stored) in rows {
+        let stored: Vec<&str> = stored
+            .as_deref()
+            .map_or(Vec::new(), |s| s.split(',').collect());
+        let Some(values) = remap_quantities(&from_blob(&qois), &stored, id.quantities) else {
+            continue;
+        };
+        tx.execute(
+            "UPDATE runs SET qois = ?1, quantities = ?2, study_hash = ?3 WHERE key = ?4",
+            params![to_blob(&values), quantities, new, key],
+        )
+        .map_err(db_err(dir))?;
+        tx.execute(
+            "UPDATE run_data SET study_hash = ?1 WHERE key = ?2 AND study_hash = ?3",
+            params![new, key, row_hash],
+        )
+        .map_err(db_err(dir))?;
+    }
+    let former: Option<String> = tx
+        .query_row(
+            "SELECT value FROM meta WHERE key = 'former_hashes'",
+            [],
+            |r| r.get(0),
+        )
+        .optional()
+        .map_err(db_err(dir))?;
+    let mut list: Vec<String> = former
+        .map(|f| f.split(',').map(str::to_string).collect())
+        .unwrap_or_default();
+    if !list.iter().any(|h| h == old) {
+        list.push(old.to_string());
+    }
+    set_meta(tx, dir, "former_hashes", &list.join(","))
+}
+
+/// A run's quantity values `values` (stored under the keys `stored`) in the order of the keys
+/// `wanted`; `None` if a wanted key is not stored (or the values do not match their keys).
+pub fn remap_quantities(values: &[f64], stored: &[&str], wanted: &[String]) -> Option<Vec<f64>> {
+    if values.len() != stored.len() {
+        return None;
+    }
+    wanted
+        .iter()
+        .map(|w| stored.iter().position(|s| s == w).map(|i| values[i]))
+        .collect()
+}
+
 /// The SQLite `synchronous` level of the store (see the module doc).
 pub const SYNCHRONOUS: &str = "FULL";
 
@@ -124,6 +247,12 @@ pub struct Store {
     conn: Connection,
     dir: PathBuf,
     hash: String,
+    /// What defines the study's runs (`None`: opened by its study hash alone; its commits
+    /// carry no run hash).
+    identity: Option<OwnedRunKeys>,
+    /// Study hashes this directory held before with the same runs (edits that kept them):
+    /// the headers of field files written then are this study's too.
+    former: Vec<String>,
 }
 
 impl std::fmt::Debug for Store {
@@ -165,19 +294,115 @@ fn db_err(dir: &Path) -> impl Fn(rusqlite::Error) -> StudyError + '_ {
 
 impl Store {
     /// Opens (or creates) the store in `dir` for a study whose hash is `hash` (see
-    /// [`study_hash`]). With `restart`, every stored run is discarded.
+    /// [`study_hash`]), known by that hash alone: a directory holding another study hash is
+    /// refused (or, with `restart`, emptied). With `restart`, every stored run is discarded.
     ///
     /// # Errors
     /// If the directory holds a different study (hash mismatch) and `restart` is false; on
     /// I/O or database errors.
     pub fn open(dir: &Path, hash: &str, restart: bool) -> Result<Self, StudyError> {
-        let io = |p: &Path| {
-            let p = p.to_path_buf();
-            move |source| StudyError::Io { path: p, source }
+        Self::open_with(dir, hash, None, restart)
+    }
+
+    /// Opens (or creates) the store in `dir` for a study whose hash is `hash` and whose runs
+    /// are defined by `identity` (`crate::run_hash`). A directory holding another study hash
+    /// is accepted when it holds the same run hash (the study file was edited in a way that
+    /// keeps its runs): the new study hash is recorded, and each stored run that has a value of
+    /// every quantity of the study is kept (its values put in the study's order); a run that
+    /// lacks one stays out of [`Store::runs`] and is computed again. Rows written before runs
+    /// carried a run hash are this study's only if the study hash is unchanged (they are then
+    /// given the run hash). With `restart`, every stored run is discarded.
+    ///
+    /// # Errors
+    /// If the directory holds a study with other runs (another run hash, or another study
+    /// hash and no run hash) and `restart` is false; on I/O or database errors.
+    pub fn open_study(
+        dir: &Path,
+        hash: &str,
+        identity: RunKeys<'_>,
+        restart: bool,
+    ) -> Result<Self, StudyError> {
+        Self::open_with(dir, hash, Some(identity), restart)
+    }
+
+    fn open_with(
+        dir: &Path,
+        hash: &str,
+        identity: Option<RunKeys<'_>>,
+        restart: bool,
+    ) -> Result<Self, StudyError> {
+        let mut conn = Self::connect(dir)?;
+        let meta = |conn: &Connection, k: &str| -> Result<Option<String>, StudyError> {
+            conn.query_row("SELECT value FROM meta WHERE key = ?1", params![k], |r| {
+                r.get(0)
+            })
+            .optional()
+            .map_err(db_err(dir))
         };
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
-        let db = dir.join("study.db");
-        let mut conn = Connection::open(&db).map_err(db_err(dir))?;
+        let old = meta(&conn, "study_hash")?;
+        let old_runs = meta(&conn, "run_hash")?;
+        let tx = conn.transaction().map_err(db_err(dir))?;
+        let clear = |tx: &rusqlite::Transaction<'_>| {
+            tx.execute_batch("DELETE FROM runs; DELETE FROM run_data; DELETE FROM meta WHERE key = 'former_hashes';")
+                .map_err(db_err(dir))
+        };
+        let mut cleared = false;
+        match old {
+            Some(h) if h != hash => {
+                let same_runs = identity.is_some_and(|id| old_runs.as_deref() == Some(id.run_hash));
+                if restart {
+                    clear(&tx)?;
+                    cleared = true;
+                } else if let (true, Some(id)) = (same_runs, &identity) {
+                    adopt(&tx, dir, &h, hash, id)?;
+                } else {
+                    return Err(different_study(dir, &h, hash, old_runs.is_some()));
+                }
+                set_meta(&tx, dir, "study_hash", hash)?;
+            }
+            Some(_) => {
+                if restart {
+                    clear(&tx)?;
+                    cleared = true;
+                }
+            }
+            None => set_meta(&tx, dir, "study_hash", hash)?,
+        }
+        if let Some(id) = &identity {
+            // Rows of this very study written before runs carried a run hash.
+            tx.execute(
+                "UPDATE runs SET run_hash = ?1, quantities = ?2 WHERE study_hash = ?3 AND run_hash IS NULL",
+                params![id.run_hash, id.quantities.join(","), hash],
+            )
+            .map_err(db_err(dir))?;
+            set_meta(&tx, dir, "run_hash", id.run_hash)?;
+        }
+        tx.commit().map_err(db_err(dir))?;
+        if cleared {
+            remove_legacy_files(dir);
+        }
+        let former = meta(&conn, "former_hashes")?
+            .map(|f| f.split(',').map(str::to_string).collect())
+            .unwrap_or_default();
+        Ok(Store {
+            conn,
+            dir: dir.to_path_buf(),
+            hash: hash.to_string(),
+            identity: identity.map(|id| OwnedRunKeys {
+                run_hash: id.run_hash.to_string(),
+                quantities: id.quantities.to_vec(),
+            }),
+            former,
+        })
+    }
+
+    /// Opens the database of `dir` (created if needed, tables and columns migrated).
+    fn connect(dir: &Path) -> Result<Connection, StudyError> {
+        std::fs::create_dir_all(dir).map_err(|source| StudyError::Io {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        let conn = Connection::open(dir.join("study.db")).map_err(db_err(dir))?;
         conn.pragma_update(None, "journal_mode", "WAL")
             .map_err(db_err(dir))?;
         conn.pragma_update(None, "synchronous", SYNCHRONOUS)
@@ -202,66 +427,30 @@ impl Store {
                  cre BLOB);",
         )
         .map_err(db_err(dir))?;
-        let old: Option<String> = conn
-            .query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
-                r.get(0)
-            })
-            .optional()
-            .map_err(db_err(dir))?;
+        let has = |column: &str| {
+            conn.prepare(&format!("SELECT {column} FROM runs LIMIT 0"))
+                .is_ok()
+        };
         // Directories written before runs carried their study's hash: their rows belong to
         // the hash in `meta`.
-        let has_column = conn.prepare("SELECT study_hash FROM runs LIMIT 0").is_ok();
-        if !has_column {
+        if !has("study_hash") {
             conn.execute("ALTER TABLE runs ADD COLUMN study_hash TEXT", [])
                 .map_err(db_err(dir))?;
-            if let Some(h) = &old {
-                conn.execute("UPDATE runs SET study_hash = ?1", params![h])
+            conn.execute(
+                "UPDATE runs SET study_hash = (SELECT value FROM meta WHERE key = 'study_hash')",
+                [],
+            )
+            .map_err(db_err(dir))?;
+        }
+        // Directories written before runs carried their run hash and their quantities' keys
+        // (NULL: known only through the study hash).
+        for column in ["run_hash", "quantities"] {
+            if !has(column) {
+                conn.execute(&format!("ALTER TABLE runs ADD COLUMN {column} TEXT"), [])
                     .map_err(db_err(dir))?;
             }
         }
-        match old {
-            Some(h) if h != hash => {
-                if !restart {
-                    return Err(StudyError::Usage(format!(
-                        "{} holds the results of a different study or version of the study file \
-                         (hash {h}, now {hash}; the mesh file counts too); refusing to mix them. \
-                         Run again with --restart to discard them, or use another --dir",
-                        dir.display()
-                    )));
-                }
-                let tx = conn.transaction().map_err(db_err(dir))?;
-                tx.execute_batch("DELETE FROM runs; DELETE FROM run_data;")
-                    .map_err(db_err(dir))?;
-                tx.execute(
-                    "UPDATE meta SET value = ?1 WHERE key = 'study_hash'",
-                    params![hash],
-                )
-                .map_err(db_err(dir))?;
-                tx.commit().map_err(db_err(dir))?;
-                remove_legacy_files(dir);
-            }
-            Some(_) => {
-                if restart {
-                    let tx = conn.transaction().map_err(db_err(dir))?;
-                    tx.execute_batch("DELETE FROM runs; DELETE FROM run_data;")
-                        .map_err(db_err(dir))?;
-                    tx.commit().map_err(db_err(dir))?;
-                    remove_legacy_files(dir);
-                }
-            }
-            None => {
-                conn.execute(
-                    "INSERT INTO meta (key, value) VALUES ('study_hash', ?1)",
-                    params![hash],
-                )
-                .map_err(db_err(dir))?;
-            }
-        }
-        Ok(Store {
-            conn,
-            dir: dir.to_path_buf(),
-            hash: hash.to_string(),
-        })
+        Ok(conn)
     }
 
     /// The study hash of a study directory and the study file it holds (path as given to
@@ -427,8 +616,8 @@ impl Store {
         {
             let mut row = tx
                 .prepare_cached(
-                    "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash)
-                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
+                    "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash, run_hash, quantities)
+                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
                 )
                 .map_err(db_err(&self.dir))?;
             let mut data = tx
@@ -437,6 +626,8 @@ impl Store {
                      VALUES (?1, ?2, ?3, ?4)",
                 )
                 .map_err(db_err(&self.dir))?;
+            let run_hash = self.identity.as_ref().map(|id| id.run_hash.as_str());
+            let quantities = self.identity.as_ref().map(|id| id.quantities.join(","));
             for &(rec, fields, cre) in runs {
                 let key = point_key(&rec.params);
                 row.execute(params![
@@ -450,6 +641,8 @@ impl Store {
                     to_blob(&rec.history),
                     to_blob(&rec.state),
                     self.hash,
+                    run_hash,
+                    quantities,
                 ])
                 .map_err(db_err(&self.dir))?;
                 data.execute(params![key, self.hash, to_blob(fields), cre.map(to_blob)])
@@ -639,6 +832,12 @@ impl Store {
         None
     }
 
+    /// True if `hash` (a field file's header) is this study's, or one it held before with the
+    /// same runs.
+    fn is_this_study(&self, hash: &[u8]) -> bool {
+        hash == self.hash.as_bytes() || self.former.iter().any(|h| h.as_bytes() == hash)
+    }
+
     /// True if `path` starts with the header of this study.
     fn header_ok(&self, path: &Path) -> bool {
         use std::io::Read;
@@ -647,7 +846,7 @@ impl Store {
             .and_then(|mut f| f.read_exact(&mut head))
             .is_ok()
             && &head[..8] == FIELD_MAGIC
-            && &head[8..] == self.hash.as_bytes()
+            && self.is_this_study(&head[8..])
     }
 
     /// A run's error-estimate data (`None` if the run has none).
@@ -709,7 +908,7 @@ impl Store {
     fn untag(&self, path: &Path, b: &[u8]) -> Result<Vec<f64>, StudyError> {
         match b.strip_prefix(FIELD_MAGIC) {
             Some(rest) if rest.len() >= 16 && (rest.len() - 16) % 8 == 0 => {
-                if &rest[..16] != self.hash.as_bytes() {
+                if !self.is_this_study(&rest[..16]) {
                     return Err(StudyError::ForeignFile {
                         path: path.to_path_buf(),
                         hash: String::from_utf8_lossy(&rest[..16]).into_owned(),
@@ -983,6 +1182,95 @@ mod tests {
             why.contains("fields/run_") && why.contains("expected"),
             "{why}"
         );
+    }
+
+    fn identity(run_hash: &'static str, quantities: &[&str]) -> RunKeys<'static> {
+        let quantities: Vec<String> = quantities.iter().map(|q| q.to_string()).collect();
+        RunKeys {
+            run_hash,
+            quantities: Vec::leak(quantities),
+        }
+    }
+
+    /// An edit that keeps what defines the runs (same run hash, another study hash) keeps the
+    /// runs and their data, their quantities put in the study's order; a run lacking a
+    /// quantity is left out (computed again); another run hash is refused.
+    #[test]
+    fn an_edit_that_keeps_the_runs_keeps_them() {
+        let d = dir("edit");
+        let (a, b, c) = (
+            study_hash("A", &[]),
+            study_hash("A # comment", &[]),
+            study_hash("A, E doubled", &[]),
+        );
+        let mut r = record(1.0);
+        r.qois = vec![10.0, 20.0];
+        let s = Store::open_study(&d, &a, identity("runs1", &["q1", "q2"]), false).unwrap();
+        s.commit(&r, &[1.0, 2.0], Some(&[3.0])).unwrap();
+        drop(s);
+        // Same runs, quantities reordered (and q1 renamed: same key).
+        let s = Store::open_study(&d, &b, identity("runs1", &["q2", "q1"]), false).unwrap();
+        let mut expected = r.clone();
+        expected.qois = vec![20.0, 10.0];
+        assert_eq!(s.runs().unwrap(), vec![expected]);
+        assert_eq!(s.fields(&r.params).unwrap(), vec![1.0, 2.0]);
+        assert_eq!(s.cre(&r.params).unwrap(), Some(vec![3.0]));
+        assert_eq!(s.damaged_files(&r.params, 2, true), None);
+        drop(s);
+        // Study hash recorded: the store opened by hash alone (outputs) finds the runs.
+        assert_eq!(Store::open(&d, &b, false).unwrap().runs().unwrap().len(), 1);
+        // Another model: refused, with what a run is in the message.
+        let e = Store::open_study(&d, &c, identity("runs2", &["q2", "q1"]), false).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{e}");
+        assert!(
+            e.to_string().contains("what defines its runs differs"),
+            "{e}"
+        );
+        // A quantity added: the run lacks it and is left out, not mixed.
+        let s = Store::open_study(&d, &a, identity("runs1", &["q1", "q2", "q3"]), false).unwrap();
+        assert!(s.runs().unwrap().is_empty());
+        // Computed again: it replaces the old row.
+        let mut again = r.clone();
+        again.qois = vec![10.0, 20.0, 30.0];
+        s.commit(&again, &[1.0, 2.0], None).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![again]);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    /// Rows written before runs carried a run hash: kept when the study hash is unchanged
+    /// (and given the run hash), refused when it changed, as before.
+    #[test]
+    fn rows_without_a_run_hash_need_the_same_study_hash() {
+        let d = dir("no-run-hash");
+        let (a, b) = (study_hash("A", &[]), study_hash("A # comment", &[]));
+        let s = Store::open(&d, &a, false).unwrap();
+        s.commit(&record(1.0), &[1.0], None).unwrap();
+        drop(s);
+        let e = Store::open_study(&d, &b, identity("runs1", &["q1"]), false).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("written before study directories recorded"),
+            "{e}"
+        );
+        let s = Store::open_study(&d, &a, identity("runs1", &["q1"]), false).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![record(1.0)]);
+        drop(s);
+        // Now tagged: a later edit keeps it.
+        let s = Store::open_study(&d, &b, identity("runs1", &["q1"]), false).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![record(1.0)]);
+        assert_eq!(s.fields(&[1.0, 2.0]).unwrap(), vec![1.0]);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn quantities_are_remapped_by_key() {
+        let w = |k: &[&str]| k.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            remap_quantities(&[1.0, 2.0, 3.0], &["a", "b", "c"], &w(&["c", "a"])),
+            Some(vec![3.0, 1.0])
+        );
+        assert_eq!(remap_quantities(&[1.0], &["a"], &w(&["a", "b"])), None);
+        assert_eq!(remap_quantities(&[1.0, 2.0], &["a"], &w(&["a"])), None);
     }
 
     fn tagged(hash: &str, values: &[f64]) -> Vec<u8> {

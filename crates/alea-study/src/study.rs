@@ -14,6 +14,7 @@ use crate::limits::{
 };
 use crate::method::{Method, MethodKind, build_methods};
 use crate::params::{ParamSpace, build_params};
+use crate::points::{PointIndex, canonicalise};
 use crate::qoi::{Qoi, build_qois};
 use crate::source::Source;
 use crate::spec::{ModelFile, OutputSpec};
@@ -37,6 +38,9 @@ pub struct Study {
     pub seed: u64,
     /// Hash of the study's inputs (its file's text and its mesh file).
     pub hash: String,
+    /// What defines its runs: the run hash and the quantities' keys (a study directory keeps
+    /// its runs across edits that leave them unchanged, `crate::run_hash`).
+    pub identity: crate::run_hash::RunIdentity,
     /// Outputs.
     pub output: OutputSpec,
     /// The `[[reliability]]` analyses, checked.
@@ -124,12 +128,15 @@ impl Study {
             None => Vec::new(),
         };
         let seed = file.study.seed.unwrap_or(1);
-        let methods = if params.names.is_empty() {
+        let mut methods = if params.names.is_empty() {
             vec![Method::deterministic()]
         } else {
             let names: Vec<String> = qois.iter().map(|q| q.name.clone()).collect();
             build_methods(&source, &file.method, &params, &names, seed)?
         };
+        // Points that differ by round-off only are one run (module `points`).
+        let mut index = PointIndex::new(&params.lo, &params.hi);
+        canonicalise(&mut index, methods.iter_mut().map(|m| &mut m.points));
         // A goal's `P(q > t)` is reported with its budget like the quantity's own thresholds.
         for m in &methods {
             if let MethodKind::Adaptive(a) = &m.kind
@@ -176,6 +183,7 @@ impl Study {
             None => None,
         };
         let hash = input_hash(&source, &file)?;
+        let identity = crate::run_hash::run_identity(&source, &file)?;
         let output = file.output.clone();
         let study = Study {
             source,
@@ -186,6 +194,7 @@ impl Study {
             methods,
             seed,
             hash,
+            identity,
             output,
             reliability,
             refined,

@@ -224,3 +224,138 @@ vtu = true
     assert_eq!(o.status.code(), Some(2), "{}", text_of(&o));
     assert!(text_of(&o).contains("method[0].type"), "{}", text_of(&o));
 }
+
+/// The `runs: N computed, M resumed` counts of a run's output.
+fn counts(o: &Output) -> (usize, usize) {
+    let t = text_of(o);
+    let line = t
+        .lines()
+        .find(|l| l.contains(" computed, ") && l.contains(" resumed"))
+        .unwrap_or_else(|| panic!("no run counts in: {t}"));
+    let number_before = |word: &str| -> usize {
+        let head = &line[..line.find(word).unwrap()];
+        head.split_whitespace().last().unwrap().parse().unwrap()
+    };
+    (number_before(" computed"), number_before(" resumed"))
+}
+
+/// Issue 42, item 4: edits that leave what defines a run unchanged keep every stored run - a
+/// comment, a threshold and a statistics setting (nothing computed), a method (its new points
+/// only), a Monte Carlo method's run count raised (the new draws only); a changed Young's
+/// modulus or load is still refused.
+#[test]
+fn edits_that_keep_the_runs_reuse_them() {
+    let base = tmp("edits");
+    let study = small_study(&base, "");
+    let original = std::fs::read_to_string(&study).unwrap();
+    let dir = base.join("out");
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", text_of(&o));
+    // 40 LHS points and 30 Monte Carlo draws.
+    assert_eq!(counts(&o), (70, 0), "{}", text_of(&o));
+    let edit = |text: &str| {
+        std::fs::write(&study, text).unwrap();
+        run(&study, &dir, &[])
+    };
+    // (a) a comment appended.
+    let o = edit(&format!("{original}\n# checked against the closed form\n"));
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (0, 70), "{}", text_of(&o));
+    // (b) a threshold added, and more draws on the surrogate.
+    let text = original
+        .replace("thresholds = [0.13]", "thresholds = [0.13, 0.15]")
+        .replace("samples = 4000", "samples = 5000");
+    let o = edit(&text);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (0, 70), "{}", text_of(&o));
+    let summary = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    assert!(summary.contains("0.15"), "the outputs are rewritten");
+    // (c) a method added: its 8 new points only.
+    let text = format!(
+        "{text}\n[[method]]\ntype = \"pc_regression\"\nlabel = \"PC 2\"\ndegree = 2\ndesign = \"lhs\"\nruns = 8\n"
+    );
+    let o = edit(&text);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (8, 70), "{}", text_of(&o));
+    // (d) the Monte Carlo method raised from 30 to 40 runs: 10 new draws.
+    let text = text.replace("runs = 30", "runs = 40");
+    let o = edit(&text);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (10, 78), "{}", text_of(&o));
+    // (e) another Young's modulus or another load: a different model, refused.
+    for changed in [
+        text.replace("young = \"E\"", "young = \"1.1 * E\""),
+        text.replace("traction = [200.0, 0.0]", "traction = [210.0, 0.0]"),
+    ] {
+        assert_ne!(changed, text);
+        let o = edit(&changed);
+        assert_eq!(o.status.code(), Some(2), "{}", text_of(&o));
+        assert!(
+            text_of(&o).contains("what defines its runs differs"),
+            "{}",
+            text_of(&o)
+        );
+    }
+    // Refused without harm: the last accepted study still resumes every run.
+    let o = edit(&text);
+    assert_eq!(counts(&o), (0, 88), "{}", text_of(&o));
+}
+
+/// Issue 42, item 2: two methods whose designs hold the same point up to round-off (a 3 x 3
+/// grid's centre `0.1 + 0.6 / 2 = 0.4` and the corners-and-centre design's
+/// `0.5 * (0.1 + 0.7) = 0.39999999999999997`) make one run of it, not two.
+#[test]
+fn points_equal_up_to_round_off_are_one_run() {
+    let base = tmp("round-off");
+    let study = base.join("twins.toml");
+    let text = std::fs::read_to_string(small_study(&base, ""))
+        .unwrap()
+        .replace(
+            "law = \"normal\"\nmean = 1.0\nstd = 0.1",
+            "law = \"uniform\"\nlo = 0.1\nhi = 0.7",
+        );
+    let methods = text.find("[[method]]").unwrap();
+    let text = format!(
+        "{}[[method]]\ntype = \"polynomial\"\ndegree = 1\ndesign = \"grid\"\npoints_per_dim = 3\n\n\
+         [[method]]\ntype = \"pc_regression\"\ndegree = 1\ndesign = \"corners_centre\"\n\n\
+         [statistics]\nsamples = 4000\n",
+        &text[..methods]
+    );
+    assert!(text.contains("lo = 0.1"), "{text}");
+    std::fs::write(&study, text).unwrap();
+    let dir = base.join("out");
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", text_of(&o));
+    // 9 grid points; the 4 corners and the centre of the other design are among them.
+    assert_eq!(counts(&o), (9, 0), "{}", text_of(&o));
+    let o = run(&study, &dir, &[]);
+    assert_eq!(counts(&o), (0, 9), "{}", text_of(&o));
+}
+
+/// Issue 42, item 4: a quantity added is not refused - the runs that lack its value are
+/// computed again; removing or renaming a quantity then keeps every run.
+#[test]
+fn a_quantity_added_recomputes_the_runs_that_lack_it() {
+    let base = tmp("quantity");
+    let study = small_study(&base, "");
+    let original = std::fs::read_to_string(&study).unwrap();
+    let dir = base.join("out");
+    let o = run(&study, &dir, &[]);
+    assert_eq!(counts(&o), (70, 0), "{}", text_of(&o));
+    let added = format!(
+        "{original}\n[[quantity]]\nname = \"tip_y\"\nkind = \"displacement\"\nsubstructure = \"plate\"\npoint = [100.0, 20.0]\ncomponent = 1\n"
+    );
+    std::fs::write(&study, &added).unwrap();
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (70, 0), "{}", text_of(&o));
+    // Back to the one quantity, renamed: every run has its value.
+    std::fs::write(
+        &study,
+        original.replace("name = \"tip\"", "name = \"u_tip\""),
+    )
+    .unwrap();
+    let o = run(&study, &dir, &[]);
+    assert!(o.status.success(), "{}", text_of(&o));
+    assert_eq!(counts(&o), (0, 70), "{}", text_of(&o));
+}

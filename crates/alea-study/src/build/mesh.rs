@@ -184,6 +184,14 @@ fn mesh_file_path(src: &Source, f: &Spanned<String>) -> std::path::PathBuf {
 /// The hash of a study's inputs: its file's text and, for a Gmsh mesh, the mesh file's bytes,
 /// and the data files of laws from data (a changed input file makes a different study).
 pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> {
+    let inputs = input_files(src, file)?;
+    let refs: Vec<&[u8]> = inputs.iter().map(|b| b.as_slice()).collect();
+    Ok(crate::store::study_hash(&src.text, &refs))
+}
+
+/// The bytes of the files a study reads besides its own: the Gmsh mesh file, then the data
+/// files of laws from data, in order.
+pub fn input_files(src: &Source, file: &ModelFile) -> Result<Vec<Vec<u8>>, StudyError> {
     let mut inputs: Vec<Vec<u8>> = Vec::new();
     if let (Some(f), "gmsh") = (&file.mesh.file, file.mesh.generator.get_ref().as_str()) {
         let path = mesh_file_path(src, f);
@@ -195,8 +203,7 @@ pub fn input_hash(src: &Source, file: &ModelFile) -> Result<String, StudyError> 
     }
     // The data files of laws from data (a changed file makes a different study).
     inputs.extend(crate::data_law::data_bytes(src, &file.parameter)?);
-    let refs: Vec<&[u8]> = inputs.iter().map(|b| b.as_slice()).collect();
-    Ok(crate::store::study_hash(&src.text, &refs))
+    Ok(inputs)
 }
 
 /// Geometry and in-plane counts of the turbine generators (`mesh.params`).

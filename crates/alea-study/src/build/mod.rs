@@ -13,7 +13,7 @@ mod mesh;
 mod model;
 mod parametric;
 
-pub use mesh::{build_mesh, input_hash};
+pub use mesh::{build_mesh, input_files, input_hash};
 pub use model::build_model;
 pub(crate) use parametric::ProfileTable;
 pub use parametric::{BuiltModel, InterfaceSite, Parametric};
