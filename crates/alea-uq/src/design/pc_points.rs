@@ -12,8 +12,8 @@
 //! set `S` the most:
 //!
 //! 1. while `|S| < P` (`M` singular): the candidate with the largest residual
-//!    `r(x) = |psi(x) - Q Q^T psi(x)|^2` off the span `Q` (orthonormal) of the rows already chosen
-//!    - the limit of the largest gain of `log det(M + eps I)` as `eps -> 0`; a pivoted
+//!    `r(x) = |psi(x) - Q Q^T psi(x)|^2` off the span `Q` (orthonormal) of the rows already chosen,
+//!    the limit of the largest gain of `log det(M + eps I)` as `eps -> 0`; a pivoted
 //!    Gram-Schmidt whose `P` points are approximate Fekete points (Bos, De Marchi, Sommariva &
 //!    Vianello 2010). After adding `x*` with `q = (I - Q Q^T) psi(x*) / |.|`:
 //!    `r(x) -= (q^T psi(x))^2`;
