@@ -5,6 +5,13 @@
 //! interpolation on a regular stochastic mesh; piecewise multilinear interpolation on an
 //! **adaptive** stochastic mesh that chooses its own runs with the stochastic error estimate
 //! (thesis 4.2; the loop is in the `adaptive` module); or plain Monte Carlo on the model.
+//!
+//! A chaos fitted by regression must be determined by its design: at load the information
+//! matrix `Psi^T Psi` of the basis at the design points is checked (`alea_uq::design::
+//! information`: rank by Cholesky, condition number at most [`MAX_INFORMATION_CONDITION`]) and a
+//! design that fails is an input error at the line that fixes it. The default design,
+//! `pc_collocation`, takes `min((p + 1)^d, 2 P)` points of the tensor grid of roots, chosen
+//! greedily D-optimal when fewer than the whole grid (`alea_uq::design::pc_collocation`).
 
 use alea_uq::basis::PcBasis;
 use alea_uq::design::{self, Design};
@@ -210,21 +217,38 @@ pub fn build_methods(
         let (kind, points, rule, description) = match m.kind.get_ref().as_str() {
             "pc_regression" => {
                 let p = degree.unwrap_or(2);
-                let basis_len = PcBasis::total_degree(&params.marginals, p)
-                    .map_err(uq)?
-                    .len();
+                let basis = PcBasis::total_degree(&params.marginals, p).map_err(uq)?;
+                let basis_len = basis.len();
                 let full = (p + 1).saturating_pow(d as u32);
                 let dflt = full.min((2 * basis_len).max(basis_len + 1));
+                let too_few = |n: usize| {
+                    format!(
+                        "PC of degree {p} in {d} parameters has {basis_len} terms: at least that many runs are needed, got {n}"
+                    )
+                };
+                if let Some(r) = &m.runs
+                    && *r.get_ref() < basis_len
+                {
+                    return Err(src.error(r.span(), f("runs"), too_few(*r.get_ref())));
+                }
                 let des = match design_name.unwrap_or("pc_collocation") {
                     "pc_collocation" => {
+                        if let Some(r) = &m.runs
+                            && *r.get_ref() > full
+                        {
+                            return Err(src.error(r.span(), f("runs"), format!("the pc_collocation design of degree {p} in {d} parameters has {full} candidate points (the (degree + 1)^{d} roots): at most that many runs, got {}", r.get_ref())));
+                        }
                         design::pc_collocation(&params.marginals, p, runs.unwrap_or(dflt))
                             .map_err(uq)?
                     }
                     other => generic_design(other, 2 * basis_len)?,
                 };
+                let (span, field) = design_origin(m);
                 if des.len() < basis_len {
-                    return Err(src.error(m.kind.span(), f("runs"), format!("PC of degree {p} in {d} parameters has {basis_len} terms: at least that many runs are needed, got {}", des.len())));
+                    return Err(src.error(span, f(field), too_few(des.len())));
                 }
+                check_information(&basis, &des, &params.names)
+                    .map_err(|why| src.error(span, f(field), why))?;
                 let n = des.len();
                 (
                     MethodKind::PcRegression { degree: p },
@@ -401,6 +425,73 @@ pub fn build_methods(
         });
     }
     Ok(out)
+}
+
+/// Largest condition number of the information matrix `Psi^T Psi` of a regression design
+/// accepted at load: the fit would amplify errors in the runs' values by up to
+/// `sqrt(1e12) = 1e6` (`alea_uq::design::information`).
+pub const MAX_INFORMATION_CONDITION: f64 = 1e12;
+
+/// The span and field that fix a method's design: `runs` if given, else `points_per_dim` of a
+/// grid, else `design` if given, else the method's `type` line (field `design`: its default).
+fn design_origin(m: &MethodSpec) -> (std::ops::Range<usize>, &'static str) {
+    if let Some(r) = &m.runs {
+        return (r.span(), "runs");
+    }
+    let design = m.design.as_ref();
+    if let (Some(k), Some("grid")) = (&m.points_per_dim, design.map(|s| s.get_ref().as_str())) {
+        return (k.span(), "points_per_dim");
+    }
+    (design.map_or(m.kind.span(), |s| s.span()), "design")
+}
+
+/// Whether a design determines the chaos `basis`: its information matrix `Psi^T Psi` has full
+/// rank and a condition number of at most [`MAX_INFORMATION_CONDITION`]. The error says why not,
+/// naming the first term the runs cannot tell from the ones before it.
+fn check_information(basis: &PcBasis, des: &Design, names: &[String]) -> Result<(), String> {
+    let n = des.len();
+    let terms = basis.len();
+    let psi = basis
+        .design_matrix(des.points())
+        .map_err(|e| e.to_string())?;
+    let advice = "more runs or another design are needed";
+    match design::information(&psi, n, terms) {
+        Ok(info) if info.condition() <= MAX_INFORMATION_CONDITION => Ok(()),
+        Ok(info) => Err(format!(
+            "the information matrix Psi^T Psi of the {terms} chaos terms on these {n} runs has condition number {:.1e} (at most {MAX_INFORMATION_CONDITION:.0e}): the fit would amplify the runs' errors up to {:.0e} times; {advice}",
+            info.condition(),
+            info.condition().sqrt()
+        )),
+        Err(alea_uq::UqError::Singular { pivot, .. }) => Err(format!(
+            "these {n} runs cannot determine the {terms} chaos terms: on them the term {} is a combination of the terms before it (Psi^T Psi is rank deficient); {advice}",
+            term_name(basis.indices().get(pivot), names)
+        )),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// A term of the chaos by its multi-index and leading monomial, e.g. `(3, 0) (leading monomial
+/// E^3)`.
+fn term_name(alpha: &[u16], names: &[String]) -> String {
+    let index: Vec<String> = alpha.iter().map(|a| a.to_string()).collect();
+    let factors: Vec<String> = alpha
+        .iter()
+        .zip(names)
+        .filter(|(a, _)| **a > 0)
+        .map(|(a, x)| {
+            if *a == 1 {
+                x.clone()
+            } else {
+                format!("{x}^{a}")
+            }
+        })
+        .collect();
+    let monomial = if factors.is_empty() {
+        "1".to_string()
+    } else {
+        factors.join(" ")
+    };
+    format!("({}) (leading monomial {monomial})", index.join(", "))
 }
 
 fn adaptive_settings(

@@ -488,3 +488,109 @@ fn mesh_keys_a_generator_does_not_use_are_refused() {
         "unknown generator 'rectangel'; expected rectangle, box,",
     );
 }
+
+/// Extra `[[parameter]]` tables `x1 .. x{count}` of one family (`uniform`, `normal`, `mixed`:
+/// the other laws of a study file in turn).
+fn extra_parameters(family: &str, count: usize) -> String {
+    let law = |j: usize| match (family, j % 5) {
+        ("uniform", _) => "law = \"uniform\"\nlo = 1.0\nhi = 3.0".to_string(),
+        ("normal", _) | ("mixed", 0) => "law = \"normal\"\nmean = 1.0\nstd = 0.2".to_string(),
+        ("mixed", 1) => "law = \"lognormal\"\nmean = 1.0\nstd = 0.3".to_string(),
+        ("mixed", 2) => {
+            "law = \"truncated_normal\"\nmean = 0.5\nstd = 0.2\nlo = 0.1\nhi = 0.9".to_string()
+        }
+        ("mixed", 3) => "law = \"beta\"\nalpha = 2.0\nbeta = 3.0\nlo = 0.0\nhi = 1.0".to_string(),
+        _ => "law = \"triangular\"\nlo = 0.0\nmode = 0.3\nhi = 1.0".to_string(),
+    };
+    (1..=count)
+        .map(|j| format!("[[parameter]]\nname = \"x{j}\"\n{}\n", law(j)))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn default_chaos_design_determines_its_surrogate() {
+    // Issue 42, item 9: degree 3 on three uniform parameters used to spend its 40 runs and end
+    // "matrix is singular (pivot 10 of 20)". Every default design now loads (its information
+    // matrix is checked at load) and its surrogate is built on its points, before any run.
+    for family in ["uniform", "normal", "mixed"] {
+        for d in 1..=6 {
+            for p in 1..=5 {
+                let text = study(
+                    &extra_parameters(family, d - 1),
+                    "tip",
+                    &format!("type = \"pc_regression\"\ndegree = {p}"),
+                );
+                let s = Study::from_source(Source::from_text("checks.toml", &text))
+                    .unwrap_or_else(|e| panic!("{family}, d = {d}, p = {p}: {e}"));
+                let method = &s.methods[0];
+                let terms = (1..=d).fold(1usize, |t, k| t * (p + k) / k);
+                let full = (p + 1).pow(d as u32);
+                assert_eq!(method.points.len(), full.min(2 * terms), "{family} {d} {p}");
+                method
+                    .surrogate(&s.params, &method.points)
+                    .unwrap_or_else(|e| panic!("{family}, d = {d}, p = {p}: {e}"));
+            }
+        }
+    }
+}
+
+#[test]
+fn chaos_designs_that_cannot_determine_it_are_refused_at_load() {
+    let three = extra_parameters("uniform", 2);
+    // An explicit run count below the 20 terms of degree 3 in 3 parameters.
+    refused(
+        &study(
+            &three,
+            "tip",
+            "type = \"pc_regression\"\ndegree = 3\nruns = 19",
+        ),
+        "runs = 19",
+        "method[0].runs",
+        "20 terms: at least that many runs",
+    );
+    // More collocation runs than the 64 roots.
+    refused(
+        &study(
+            &three,
+            "tip",
+            "type = \"pc_regression\"\ndegree = 3\nruns = 65",
+        ),
+        "runs = 65",
+        "method[0].runs",
+        "64 candidate points",
+    );
+    // A grid of 3 nodes per parameter cannot tell a cubic from lower terms.
+    refused(
+        &study(
+            &three,
+            "tip",
+            "type = \"pc_regression\"\ndegree = 3\ndesign = \"grid\"\npoints_per_dim = 3",
+        ),
+        "points_per_dim = 3",
+        "method[0].points_per_dim",
+        "the term (3, 0, 0) (leading monomial E^3) is a combination of the terms before it",
+    );
+    // Corners and centre: 9 runs for 10 terms of degree 2 in 3 parameters.
+    refused(
+        &study(
+            &three,
+            "tip",
+            "type = \"pc_regression\"\ndegree = 2\ndesign = \"corners_centre\"",
+        ),
+        "design = \"corners_centre\"",
+        "method[0].design",
+        "10 terms: at least that many runs are needed, got 9",
+    );
+    // The run count that suffices loads, with the exact number of runs asked.
+    let s = Study::from_source(Source::from_text(
+        "checks.toml",
+        &study(
+            &three,
+            "tip",
+            "type = \"pc_regression\"\ndegree = 3\nruns = 20",
+        ),
+    ))
+    .unwrap();
+    assert_eq!(s.methods[0].points.len(), 20);
+}

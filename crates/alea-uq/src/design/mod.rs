@@ -9,18 +9,23 @@
 //! * [`sobol`]: Sobol' sequence (Joe-Kuo direction numbers, up to 40 dimensions), optionally
 //!   scrambled by a random linear matrix scramble and digital shift (Matousek);
 //! * [`tensor_grid`], [`corners_and_centre`]: deterministic designs on a box;
-//! * [`pc_collocation`]: roots of the next-degree orthogonal polynomial (thesis 2.3, Sudret).
+//! * [`pc_collocation`]: roots of the next-degree orthogonal polynomial (thesis 2.3, Sudret),
+//!   a subset of their tensor grid chosen greedily D-optimal ([`d_optimal_subset`]);
+//! * [`information`]: rank and condition number of the information matrix `Psi^T Psi / n` of a
+//!   basis on a design - whether a least-squares surrogate is determined by it.
 
 mod grid;
+mod information;
 mod lhs;
 mod mc;
 mod pc_points;
 mod sobol_seq;
 
 pub use grid::{corners_and_centre, tensor_grid};
+pub use information::{Information, information};
 pub use lhs::{latin_hypercube, latin_hypercube_maximin};
 pub use mc::monte_carlo;
-pub use pc_points::pc_collocation;
+pub use pc_points::{d_optimal_subset, pc_collocation};
 pub use sobol_seq::{SOBOL_MAX_DIM, SobolSequence, sobol};
 
 use crate::joint::JointLaw;
