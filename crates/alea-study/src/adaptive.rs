@@ -89,6 +89,11 @@ fn comparison_mesh(
     }
 }
 
+/// The goal quantity's value at every run of the mesh (`records` in run order).
+fn values_of_goal(records: &[RunRecord], goal: &crate::method::Goal) -> Vec<f64> {
+    records.iter().map(|r| r.qois[goal.quantity]).collect()
+}
+
 /// The level to which the adaptive loop splits the cells around failed runs (a cell edge of
 /// 1/8 of the box): deep enough to delimit a region holding a few percent of the law, shallow
 /// enough that a region of failures does not take the whole run budget.
@@ -154,6 +159,8 @@ pub(crate) fn run_adaptive<'a>(
     let mut step_meshes: Vec<StochasticMesh> = Vec::new();
     let mut estimates = 0usize;
     let mut last_estimator = None;
+    // Rounds of goal validation runs so far (module `goal_validation`).
+    let mut validation_round = 0u32;
     let (stop, error) = loop {
         let points: Vec<Vec<f64>> = (0..mesh.num_runs())
             .map(|r| mesh.run_point(r).to_vec())
@@ -280,7 +287,16 @@ pub(crate) fn run_adaptive<'a>(
                 .as_ref()
                 .map_or_else(Vec::new, |g| g.records.clone()),
         });
-        if let (Some(g), Some(goal)) = (&goal_step, &settings.goal) {
+        // A goal's budget compares surrogates built on the same runs: where the runs miss a
+        // feature every comparison misses it alike (issue 40: a 5-run start design said "goal
+        // reached" with an error twice its bar while i_sto was 31 %). The goal is not taken as
+        // reached while the CRE estimate says the surrogate needs more runs (`i_sto` above the
+        // `[error] warn` level): the loop then refines where the estimate's stochastic error
+        // sits, as the estimate-driven loop does.
+        let blind_goal = goal_step
+            .as_ref()
+            .is_some_and(|g| g.reached && i_sto > err_settings.warn);
+        if let (Some(g), Some(goal), false) = (&goal_step, &settings.goal, blind_goal) {
             let mut budget = g
                 .records
                 .iter()
@@ -299,7 +315,80 @@ pub(crate) fn run_adaptive<'a>(
                 ));
             }
             if g.reached {
-                break (format!("goal reached: {budget}"), None);
+                // Validation runs independent of the mesh (module `goal_validation`).
+                let vpoints = crate::goal_validation::points(study, validation_round);
+                let fresh = vpoints
+                    .iter()
+                    .filter(|p| !runner.by_key().contains_key(&point_key(p)))
+                    .count();
+                runner.announce(fresh);
+                runner.run_points(&vpoints)?;
+                let validated: Vec<(Vec<f64>, f64)> = vpoints
+                    .iter()
+                    .filter_map(|p| runner.by_key().get(&point_key(p)))
+                    .filter(|r| r.converged())
+                    .map(|r| (r.params.clone(), r.qois[goal.quantity]))
+                    .collect();
+                let value: Vec<f64> = g.records.iter().map(|r| r.value).collect();
+                match crate::goal_validation::check(
+                    goal,
+                    study,
+                    &mesh,
+                    &values_of_goal(&records, goal),
+                    &validated,
+                    &value,
+                ) {
+                    crate::goal_validation::Verdict::Holds(errors) => {
+                        let said = errors
+                            .iter()
+                            .map(|(s, e)| format!("{s} {e:.2e}"))
+                            .collect::<Vec<_>>()
+                            .join(", ");
+                        break (
+                            format!(
+                                "goal reached: {budget}; {} validation runs agree (their estimate \
+                                 of the surrogate's error: {said})",
+                                validated.len()
+                            ),
+                            None,
+                        );
+                    }
+                    crate::goal_validation::Verdict::Misses {
+                        statistic,
+                        error,
+                        leaves,
+                    } => {
+                        validation_round += 1;
+                        let before = mesh.num_runs();
+                        for c in leaves {
+                            let mut trial = mesh.clone();
+                            trial.refine(&[c]).map_err(StudyError::from)?;
+                            if trial.num_runs() > settings.max_runs {
+                                break;
+                            }
+                            mesh = trial;
+                        }
+                        let new = mesh.num_runs() - before;
+                        if new == 0 {
+                            break (
+                                format!(
+                                    "goal not reached: its budget says {budget}, but {} \
+                                     validation runs estimate the surrogate's error of \
+                                     {statistic} at {error:.2e}, above the tolerance, and the \
+                                     run budget of {} leaves no split",
+                                    validated.len(),
+                                    settings.max_runs
+                                ),
+                                None,
+                            );
+                        }
+                        if let Some(s) = steps.last_mut() {
+                            s.new_runs = new;
+                        }
+                        runner.announce(new);
+                        continue;
+                    }
+                }
             }
             if runs >= settings.max_runs {
                 break (

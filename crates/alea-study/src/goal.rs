@@ -180,14 +180,26 @@ pub fn goal_step(
             }
         })
         .collect();
-    let reached = records
-        .iter()
-        .all(|r| goal.tolerance.holds(r.total, r.value));
+    // A part not estimated is no part of size 0: the goal is then not reached.
+    let estimated = rows_estimated(&budget.rows, goal.threshold.is_some());
+    let reached = estimated
+        && records
+            .iter()
+            .all(|r| goal.tolerance.holds(r.total, r.value));
     GoalStep {
         records,
         reached,
         indicators: leaves.into_iter().zip(eta).collect(),
     }
+}
+
+/// True when every goal row's surrogate part was estimated (`P(q > t)` with a threshold, else
+/// the mean and the std).
+fn rows_estimated(rows: &[crate::budget::BudgetRow], threshold: bool) -> bool {
+    let goal_rows: &[usize] = if threshold { &[2] } else { &[0, 1] };
+    goal_rows
+        .iter()
+        .all(|&r| rows.get(r).is_some_and(|row| row.surrogate.is_some()))
 }
 
 /// The leaves to split: every leaf whose indicator is at least `fraction` of the largest

@@ -22,6 +22,7 @@ mod field_spec;
 pub mod fields;
 pub mod goal;
 mod goal_settings;
+pub mod goal_validation;
 mod integrity;
 mod law_keys;
 pub mod limits;
