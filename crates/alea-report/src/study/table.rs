@@ -75,8 +75,23 @@ pub(super) fn print_table(
                 }
             }
             for f in &s.failure {
+                // The total interval of the error budget first (issue 40, item 3); the sampling
+                // interval alone labelled as such.
+                let total = s.budget.as_ref().and_then(|b| {
+                    b.rows
+                        .iter()
+                        .find(|r| r.statistic == format!("P(> {})", f.threshold))
+                        .map(|r| r.total)
+                });
+                let total_words = total.map_or_else(String::new, |t| {
+                    format!(
+                        "total interval [{:.4e}, {:.4e}] (budget, parts above); ",
+                        (f.probability - t).max(0.0),
+                        (f.probability + t).min(1.0)
+                    )
+                });
                 console.line(&format!(
-                    "  P({} > {}) = {:.4e}  ({:.0}% interval [{:.4e}, {:.4e}])",
+                    "  P({} > {}) = {:.4e}  ({total_words}{:.0}% sampling interval [{:.4e}, {:.4e}])",
                     qoi.name,
                     f.threshold,
                     f.probability,
