@@ -70,13 +70,56 @@ pub fn uq_err(e: UqError) -> PyErr {
 /// line and field).
 #[cfg(feature = "solver")]
 pub fn study_err(e: StudyError) -> PyErr {
+    let message = python_terms(&e.to_string());
     match &e {
         StudyError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
-            PyFileNotFoundError::new_err(e.to_string())
+            PyFileNotFoundError::new_err(message)
         }
-        StudyError::Io { .. } => PyOSError::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
+        StudyError::Io { .. } => PyOSError::new_err(message),
+        _ => PyValueError::new_err(message),
     }
+}
+
+/// A message of the study crates, written for the command line, in the terms of `alea.run`:
+/// `--restart` is `restart=True`, `--dir` is `directory=`, `--threads N` is `threads=N`, and
+/// "`alea run STUDY --dir DIR`" is "`alea.run("STUDY", directory="DIR")`" ("`alea run`" alone
+/// "`alea.run`").
+#[cfg(feature = "solver")]
+pub fn python_terms(message: &str) -> String {
+    let mut out = rewrite_run_commands(message);
+    for (cli, python) in [
+        ("give --dir a directory", "give directory= a directory"),
+        ("use another --dir", "pass another directory="),
+        ("`alea run`", "`alea.run`"),
+        ("--restart", "restart=True"),
+        ("--threads ", "threads="),
+        ("--dir", "directory="),
+    ] {
+        out = out.replace(cli, python);
+    }
+    out
+}
+
+/// Every "`alea run STUDY --dir DIR`" of `message` as "`alea.run('STUDY', directory='DIR')`".
+#[cfg(feature = "solver")]
+fn rewrite_run_commands(message: &str) -> String {
+    const START: &str = "`alea run ";
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(i) = rest.find(START) {
+        let after = &rest[i + START.len()..];
+        let Some(end) = after.find('`') else { break };
+        let Some((study, dir)) = after[..end].split_once(" --dir ") else {
+            out.push_str(&rest[..i + START.len()]);
+            rest = after;
+            continue;
+        };
+        out.push_str(&rest[..i]);
+        out.push_str(&format!("`alea.run({study:?}, directory={dir:?})`"));
+        rest = &after[end + 1..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// A shape as Python prints it: `(3,)`, `(10, 2)`.

@@ -7,36 +7,36 @@
 //! into DataFrames. Nothing is computed here: every number is alea-study's.
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, mpsc};
+use std::time::Duration;
 
 use alea_report::study::{analyse, run_runs, sample_points, stored_runs};
 use alea_report::{Error as OutputError, Silent, report::ReportError};
+use alea_study::StudyError;
 use alea_study::analysis::MethodResult;
 use alea_study::runner::{Progress, Study};
 use alea_study::store::RunRecord;
 use numpy::PyArray1;
-use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError};
+use pyo3::exceptions::{PyFileNotFoundError, PyKeyboardInterrupt, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::convert::{NonNegative, array1, array2, study_err, value_error};
+use crate::convert::{NonNegative, array1, array2, python_terms, study_err, value_error};
 
 /// An error of the study orchestration as a Python exception: study errors as `study_err`
-/// does, files that cannot be read or written as `OSError` (`FileNotFoundError` for a
-/// directory without a store), a directory that is not a study store as `ValueError`, bugs as
-/// `RuntimeError`. The message is the error's with its causes (each once).
-fn output_err(e: OutputError) -> PyErr {
-    let mut message = e.to_string();
-    let mut cause = std::error::Error::source(&e);
-    while let Some(c) = cause {
-        let text = c.to_string();
-        if !message.ends_with(&text) {
-            message.push_str(&format!(": {text}"));
-        }
-        cause = c.source();
-    }
+/// does, a study directory in use by another process as `alea.StudyLocked` (naming the
+/// holder), an interrupted study as `KeyboardInterrupt`, files that cannot be read or written
+/// as `OSError` (`FileNotFoundError` for a directory without a store), a directory that is
+/// not a study store as `ValueError`, bugs as `RuntimeError`. The message is the error's with
+/// its causes (each once), in the terms of the Python API (`restart=True`, not `--restart`).
+fn output_err(py: Python<'_>, e: OutputError) -> PyErr {
+    let message = python_terms(&message_with_causes(&e));
     match e {
+        OutputError::Study(StudyError::Busy { dir, holder }) => {
+            study_locked(py, &message, &dir, &holder)
+        }
+        OutputError::Study(StudyError::Interrupted) => PyKeyboardInterrupt::new_err(message),
         OutputError::Study(s) => study_err(s),
         OutputError::NoStore { .. } => PyFileNotFoundError::new_err(message),
         OutputError::Store { .. } => value_error(message),
@@ -50,23 +50,75 @@ fn output_err(e: OutputError) -> PyErr {
     }
 }
 
-/// Calls a Python `progress(done, total)` after each finished run (from the worker threads,
-/// attaching to the interpreter for the call). The first exception it raises is kept, further
-/// calls are skipped, and the exception is raised once the study has finished.
+/// The error's message followed by its causes, each once.
+fn message_with_causes(e: &OutputError) -> String {
+    let mut message = e.to_string();
+    let mut cause = std::error::Error::source(e);
+    while let Some(c) = cause {
+        let text = c.to_string();
+        if !message.ends_with(&text) {
+            message.push_str(&format!(": {text}"));
+        }
+        cause = c.source();
+    }
+    message
+}
+
+/// `alea.StudyLocked(message, directory, holder)` (a `ValueError` defined by the Python
+/// package, `python/alea/_study.py`); a plain `ValueError` if that class cannot be found.
+fn study_locked(py: Python<'_>, message: &str, dir: &Path, holder: &str) -> PyErr {
+    let made = py
+        .import("alea._study")
+        .and_then(|m| m.getattr("StudyLocked"))
+        .and_then(|cls| cls.call1((message, dir.display().to_string(), holder)));
+    match made {
+        Ok(err) => PyErr::from_value(err),
+        Err(_) => value_error(message.to_string()),
+    }
+}
+
+/// The progress of a study seen from Python: calls `progress(done, total)` after each
+/// finished run (from the worker threads, attaching to the interpreter for the call), and
+/// asks the runner to stop once an error is kept: the first exception the callback raises
+/// (further calls are skipped), or the `KeyboardInterrupt` of a Ctrl-C seen by the waiting
+/// thread ([`run_watched`]). The kept error is raised once the study has stopped.
 struct PyProgress {
     callback: Option<Py<PyAny>>,
     done: AtomicUsize,
     total: AtomicUsize,
     error: Mutex<Option<PyErr>>,
+    stop: AtomicBool,
 }
 
 impl PyProgress {
+    fn new(callback: Option<Py<PyAny>>) -> Self {
+        Self {
+            callback,
+            done: AtomicUsize::new(0),
+            total: AtomicUsize::new(0),
+            error: Mutex::new(None),
+            stop: AtomicBool::new(false),
+        }
+    }
+
+    /// Keeps `e` (unless an error is kept already) and asks the runner to stop.
+    fn fail(&self, e: PyErr) {
+        self.stop.store(true, Ordering::SeqCst);
+        if let Ok(mut err) = self.error.lock()
+            && err.is_none()
+        {
+            *err = Some(e);
+        }
+    }
+
+    /// The kept error, if any.
+    fn take_error(&self) -> Option<PyErr> {
+        self.error.lock().ok().and_then(|mut e| e.take())
+    }
+
     fn call(&self) {
         let Some(cb) = &self.callback else { return };
-        let Ok(mut err) = self.error.lock() else {
-            return;
-        };
-        if err.is_some() {
+        if self.stop.load(Ordering::SeqCst) {
             return;
         }
         let (done, total) = (
@@ -74,7 +126,7 @@ impl PyProgress {
             self.total.load(Ordering::SeqCst),
         );
         if let Err(e) = Python::attach(|py| cb.call1(py, (done, total)).map(|_| ())) {
-            *err = Some(e);
+            self.fail(e);
         }
     }
 }
@@ -92,6 +144,51 @@ impl Progress for PyProgress {
     fn more(&self, n: usize) {
         self.total.fetch_add(n, Ordering::SeqCst);
     }
+    fn stop_requested(&self) -> bool {
+        self.stop.load(Ordering::SeqCst)
+    }
+}
+
+/// How often the thread waiting for a study checks for signals (Ctrl-C).
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `job` on a thread of its own while the calling thread waits without the interpreter
+/// lock, checking for signals every [`SIGNAL_POLL`]; a signal's exception (`KeyboardInterrupt`
+/// for Ctrl-C) goes to `interrupt`, and the job is waited for all the same (it is asked to stop
+/// through `interrupt`, and returns once its finished work is safe).
+fn run_watched<T: Send>(
+    py: Python<'_>,
+    job: impl FnOnce() -> T + Send,
+    interrupt: impl Fn(PyErr),
+) -> PyResult<T> {
+    let out = std::thread::scope(|s| {
+        let (tx, rx) = mpsc::channel::<()>();
+        let worker = s.spawn(move || {
+            let out = job();
+            // The receiver may be gone only if the waiting thread panicked.
+            let _ = tx.send(());
+            out
+        });
+        // In a mutex: the receiver crosses to the detached closure by reference.
+        let rx = Mutex::new(rx);
+        loop {
+            let finished = py.detach(|| {
+                let Ok(rx) = rx.lock() else { return true };
+                !matches!(
+                    rx.recv_timeout(SIGNAL_POLL),
+                    Err(mpsc::RecvTimeoutError::Timeout)
+                )
+            });
+            if finished {
+                break;
+            }
+            if let Err(e) = py.check_signals() {
+                interrupt(e);
+            }
+        }
+        worker.join()
+    });
+    out.map_err(|_| PyRuntimeError::new_err("the study panicked"))
 }
 
 /// What a finished study hands to Python.
@@ -454,20 +551,16 @@ pub fn run_study_file<'py>(
         .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
         .transpose()
         .map_err(|e| value_error(format!("thread pool: {e}")))?;
-    let prog = PyProgress {
-        callback: progress,
-        done: AtomicUsize::new(0),
-        total: AtomicUsize::new(0),
-        error: Mutex::new(None),
-    };
-    let out = py.detach(|| match &pool {
+    let prog = PyProgress::new(progress);
+    let job = || match &pool {
         Some(p) => p.install(|| run(&path, &directory, restart, &prog)),
         None => run(&path, &directory, restart, &prog),
-    });
-    if let Some(e) = prog.error.lock().ok().and_then(|mut e| e.take()) {
+    };
+    let out = run_watched(py, job, |e| prog.fail(e))?;
+    if let Some(e) = prog.take_error() {
         return Err(e);
     }
-    let out = out.map_err(output_err)?;
+    let out = out.map_err(|e| output_err(py, e))?;
     let d = out.study.parameters.len();
     let m = out.study.quantities.len();
     let dict = PyDict::new(py);
@@ -498,7 +591,7 @@ pub fn read_store<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let stored = py
         .detach(|| stored_runs(&directory, study.as_deref()))
-        .map_err(output_err)?;
+        .map_err(|e| output_err(py, e))?;
     let records = &stored.records;
     let info = stored.study.as_ref().map(StudyInfo::of);
     let d = match &info {
@@ -526,7 +619,7 @@ pub fn read_store<'py>(
 pub fn rebuild_outputs<'py>(py: Python<'py>, directory: PathBuf) -> PyResult<Bound<'py, PyDict>> {
     let out = py
         .detach(|| alea_report::study::rebuild(&directory, "alea.report", &Silent))
-        .map_err(output_err)?;
+        .map_err(|e| output_err(py, e))?;
     let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
     let dict = PyDict::new(py);
     dict.set_item("summary", out.summary.display().to_string())?;
@@ -542,6 +635,7 @@ pub fn rebuild_outputs<'py>(py: Python<'py>, directory: PathBuf) -> PyResult<Bou
     };
     dict.set_item("report", html)?;
     dict.set_item("plots", PyList::new(py, plots)?)?;
-    dict.set_item("notes", PyList::new(py, &out.notes)?)?;
+    let notes = out.notes.iter().map(|n| python_terms(n));
+    dict.set_item("notes", PyList::new(py, notes)?)?;
     Ok(dict)
 }

@@ -137,8 +137,12 @@ def test_samples_are_the_main_methods_draws(study):
     rel = x[:, 2] / (x[:, 1] * S * L / x[:, 0]) - 1
     assert np.sqrt(np.mean(rel**2)) < 5e-4 and np.abs(rel).max() < 0.05
     # The Monte Carlo method's draws are its runs.
-    mc, cols = res.samples_of("Monte Carlo")
-    assert mc.shape == (200, 3) and cols == ["E", "P", "tip"]
+    mc = res.samples_of("Monte Carlo")
+    assert isinstance(mc, np.ndarray) and mc.shape == (200, 3)
+    assert res.sample_columns_of("Monte Carlo") == ["E", "P", "tip"]
+    # The main method's draws, by label or index, are `samples` itself.
+    np.testing.assert_array_equal(res.samples_of(res.main_method), x)
+    np.testing.assert_array_equal(res.samples_of(0), x)
     np.testing.assert_allclose(mc[:, 2], mc[:, 1] * S * L / mc[:, 0], rtol=1e-9)
     xs, pdf = res.kde("tip")
     assert np.sum(pdf) * (xs[1] - xs[0]) == pytest.approx(1.0, abs=1e-3)

@@ -229,6 +229,12 @@ pub enum StudyError {
         /// The run's parameters.
         theta: Vec<f64>,
     },
+    /// The user asked to stop ([`crate::runner::Progress::stop_requested`]): the runs that
+    /// finished are committed to the store and the next invocation resumes from them.
+    #[error(
+        "interrupted: the finished runs are in the study directory and a new run resumes from them"
+    )]
+    Interrupted,
     /// A lock held by a thread that panicked.
     #[error("{0} lock poisoned")]
     Poisoned(&'static str),
@@ -261,6 +267,8 @@ impl StudyError {
                 ..
             }) => 3,
             StudyError::Busy { .. } => 5,
+            // The shell's code of a process stopped by SIGINT (128 + 2).
+            StudyError::Interrupted => 130,
             _ => 4,
         }
     }

@@ -76,6 +76,14 @@ pub struct RunContext<'a> {
     pub cre: Option<&'a CreSetup>,
     /// The study directory.
     pub dir: &'a Path,
+    /// Whether the user asked to stop ([`crate::runner::Progress::stop_requested`]): the
+    /// local executor starts no further group of runs once it returns true.
+    pub stop: &'a (dyn Fn() -> bool + Sync),
+}
+
+/// A [`RunContext::stop`] that never stops.
+pub fn never_stop() -> bool {
+    false
 }
 
 impl RunContext<'_> {
@@ -358,6 +366,10 @@ impl BatchExecutor for LocalExecutor {
         let results: Vec<Result<(), StudyError>> = jobs
             .par_chunks(RUNS_PER_BATCH)
             .flat_map_iter(|group| {
+                // Asked to stop: no new group starts (the groups under way finish and commit).
+                if (ctx.stop)() {
+                    return vec![Err(StudyError::Interrupted)];
+                }
                 // The group's finished runs are committed together, the failed ones reported.
                 let mut done = Vec::with_capacity(group.len());
                 let mut results: Vec<Result<(), StudyError>> = Vec::new();

@@ -58,6 +58,13 @@ pub trait Progress: Sync {
     fn end(&self) {}
     /// Something the user should know (e.g. a lock taken over from a dead process).
     fn note(&self, _message: &str) {}
+    /// Whether the user asked to stop (Ctrl-C in the Python package). Polled from the solver
+    /// threads before each group of runs: once true, no further group starts, the groups under
+    /// way finish and are committed, and [`run_study`] returns [`StudyError::Interrupted`]; a
+    /// new invocation resumes from the committed runs. The MPI executor does not poll it.
+    fn stop_requested(&self) -> bool {
+        false
+    }
 }
 
 /// A progress observer that does nothing.
@@ -172,11 +179,14 @@ impl<'a> Runner<'a> {
         }
         let t0 = Instant::now();
         let (solver, cre) = (self.solver.clone(), self.cre.clone());
+        let progress = self.progress;
+        let stop = || progress.stop_requested();
         let ctx = RunContext {
             study,
             solver: &solver,
             cre: cre.as_deref(),
             dir: self.dir,
+            stop: &stop,
         };
         for members in &gens {
             let mut pending: Vec<usize> = members

@@ -72,7 +72,16 @@ from ._core import (
     sobol,
     subset_simulation,
 )
-from ._study import SolverNotBuilt, StoredRuns, StudyOutputs, StudyResult, open_store, report, run
+from ._study import (
+    SolverNotBuilt,
+    StoredRuns,
+    StudyLocked,
+    StudyOutputs,
+    StudyResult,
+    open_store,
+    report,
+    run,
+)
 from ._reliability import sorm
 from ._tables import RandomField
 
@@ -93,6 +102,7 @@ __all__ = [
     "SOLVER",
     "SolverNotBuilt",
     "StoredRuns",
+    "StudyLocked",
     "StudyOutputs",
     "StudyResult",
     "Triangular",

@@ -9,9 +9,11 @@ from __future__ import annotations
 
 import json
 import os
+import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, List, Optional, Sequence, Tuple, Union
+from typing import Callable, List, Optional, Sequence, TextIO, Tuple, Union
 
 import numpy as np
 import pandas as pd
@@ -314,8 +316,18 @@ class StudyResult:
                 return m
         raise KeyError(f"no method {method!r}; methods: {[m['label'] for m in methods]}")
 
-    def samples_of(self, method: Union[int, str]) -> Tuple[np.ndarray, List[str]]:
-        """Draws of another method (by label or index): ``(array, column names)``."""
+    def samples_of(self, method: Union[int, str]) -> np.ndarray:
+        """Draws of a method (by label or index), an array like :attr:`samples`: the parameter
+        point of each draw then the quantities' values there (columns named by
+        :meth:`sample_columns_of`)."""
+        return self._method_samples(method)[0]
+
+    def sample_columns_of(self, method: Union[int, str]) -> List[str]:
+        """The column names of :meth:`samples_of` ``(method)``: parameters then quantities, or
+        the quantities alone when the method's draws carry no parameter points."""
+        return self._method_samples(method)[1]
+
+    def _method_samples(self, method: Union[int, str]) -> Tuple[np.ndarray, List[str]]:
         m = self._method(method)
         if m["samples"] is None:
             raise ValueError(f"method {m['label']!r} gave no statistics: {m['error']}")
@@ -393,6 +405,88 @@ class SolverNotBuilt(RuntimeError):
     toolkit-only build of alea (built without the cargo feature ``solver``)."""
 
 
+class StudyLocked(ValueError):
+    """The study directory is in use by another process (another :func:`run`, or ``alea run``:
+    the command line's exit code 5). Wait for it to finish, stop it, or pass another
+    ``directory=``.
+
+    Attributes
+    ----------
+    directory : Path
+        The study directory.
+    holder : str
+        Who holds its lock (process id, host, start time and command), as the message says.
+    """
+
+    def __init__(self, message: str, directory: PathLike, holder: str):
+        super().__init__(message)
+        self.directory = Path(directory)
+        self.holder = holder
+
+
+class _ProgressLine:
+    """The default progress display of :func:`run`: one line on a stream (stderr), rewritten
+    in place at most five times a second, as ``alea: 37/200 runs (18 %), 12 s, about 54 s
+    left``; :meth:`close` ends the line."""
+
+    def __init__(self, stream: TextIO, every: float = 0.2):
+        self._stream = stream
+        self._every = every
+        self._start = time.monotonic()
+        self._last = float("-inf")
+        self._first_done: Optional[int] = None
+        self._shown = False
+
+    def __call__(self, done: int, total: int) -> None:
+        now = time.monotonic()
+        if self._first_done is None:
+            self._first_done = done
+        if done < total and now - self._last < self._every:
+            return
+        self._last = now
+        self._stream.write("\r" + self.line(done, total, now - self._start))
+        self._stream.flush()
+        self._shown = True
+
+    def line(self, done: int, total: int, elapsed: float) -> str:
+        """The text shown after ``done`` of ``total`` runs and ``elapsed`` seconds."""
+        percent = 100 * done // total if total else 100
+        text = f"alea: {done}/{total} runs ({percent} %), {elapsed:.0f} s"
+        computed = done - (self._first_done or 0)
+        if 0 < computed and done < total and elapsed > 0:
+            text += f", about {(total - done) * elapsed / computed:.0f} s left"
+        return text + "   "
+
+    def close(self) -> None:
+        if self._shown:
+            self._stream.write("\n")
+            self._stream.flush()
+
+
+def _interactive() -> bool:
+    """Whether someone watches: stderr is a terminal, or the code runs in a Jupyter kernel."""
+    try:
+        if sys.stderr is not None and sys.stderr.isatty():
+            return True
+    except (AttributeError, ValueError):
+        pass
+    return "ipykernel" in sys.modules
+
+
+def _progress_callback(progress: Union[None, bool, Callable[[int, int], None]]):
+    """The callback :func:`run` hands to the study, and the display to close after it."""
+    if progress is None:
+        progress = _interactive()
+    if progress is True:
+        line = _ProgressLine(sys.stderr)
+        return line, line
+    if progress is False:
+        return None, None
+    if not callable(progress):
+        raise TypeError(f"progress must be None, True, False or a callable, got {progress!r}")
+    return progress, None
+
+
 def _require_solver(function: str) -> None:
     if not _core.SOLVER:
         raise SolverNotBuilt(
@@ -409,7 +503,7 @@ def run(
     directory: Optional[PathLike] = None,
     restart: bool = False,
     threads: Optional[int] = None,
-    progress: Optional[Callable[[int, int], None]] = None,
+    progress: Union[None, bool, Callable[[int, int], None]] = None,
 ) -> StudyResult:
     """Run (or resume) a study file and analyse every method, as ``alea run`` does.
 
@@ -425,8 +519,12 @@ def run(
         Discard the runs in ``directory`` (needed when the study file changed).
     threads : int, optional
         Number of worker threads (default: all cores). Results do not depend on it.
-    progress : callable, optional
-        Called as ``progress(done, total)`` after each finished run (from a worker thread).
+    progress : bool or callable, optional
+        ``True``: a progress line on stderr (runs done of the total, elapsed time, time left);
+        ``False``: none; a callable: called as ``progress(done, total)`` at the start and after
+        each finished run (from a worker thread; an exception it raises stops the study and is
+        raised by ``run``). Default (None): the progress line when someone watches (stderr is a
+        terminal, or in Jupyter), none otherwise.
 
     Returns
     -------
@@ -436,22 +534,32 @@ def run(
     ------
     ValueError
         A bad study file (the message names the file, line and field) or a failed computation.
+    StudyLocked
+        Another process works in ``directory`` (a ``ValueError``; the message names it).
     OSError
         The study file or directory cannot be read or written.
+    KeyboardInterrupt
+        Ctrl-C: no further run starts, the runs under way finish (a second or so) and every
+        finished run is in the store; the next call on the same directory resumes from them.
 
     Writes only the store (``study.db``, with every run's fields); ``alea run`` also writes
     ``summary.json``, ``samples.csv``, mean fields and the HTML report, and :func:`report`
     writes them from the store afterwards.
 
-    The solves run without the interpreter lock, and Ctrl-C is only seen when the study
-    returns; every finished run is already committed to the store, so killing the process
-    (or restarting a notebook kernel) loses nothing and the next call resumes.
+    The solves run without the interpreter lock. Every finished run is committed to the store
+    at once, so even killing the process (or restarting a notebook kernel) loses nothing and
+    the next call resumes.
     """
     _require_solver("run")
     study = Path(study)
     if directory is None:
         directory = Path("out") / study.stem
-    raw = _core.run_study_file(str(study), str(directory), restart, threads, progress)
+    callback, display = _progress_callback(progress)
+    try:
+        raw = _core.run_study_file(str(study), str(directory), restart, threads, callback)
+    finally:
+        if display is not None:
+            display.close()
     return StudyResult(raw)
 
 
@@ -521,8 +629,9 @@ def report(directory: PathLike) -> StudyOutputs:
     Raises
     ------
     ValueError
-        ``directory`` is not a study directory, its mesh file changed, another process works in
-        it, or no run converged / no method produced statistics (the outputs are written first).
+        ``directory`` is not a study directory, its mesh file changed, or no run converged / no
+        method produced statistics (the outputs are written first); :class:`StudyLocked` (a
+        ``ValueError``) when another process works in it.
     OSError
         A file cannot be read or written.
     """

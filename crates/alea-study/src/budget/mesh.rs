@@ -254,6 +254,7 @@ pub fn paired_check(study: &Study, other: &Study) -> Result<PairedCheck, StudyEr
             solver: &setup.solver,
             cre: None,
             dir: std::path::Path::new("."),
+            stop: &crate::run::never_stop,
         };
         let dofs = (0..setup.solver.num_subs())
             .map(|k| setup.solver.model(k).mesh.num_nodes())

@@ -546,6 +546,7 @@ impl Worker {
             solver: &s.solver,
             cre: s.cre.as_deref(),
             dir,
+            stop: &crate::run::never_stop,
         };
         let sizes = s.solver.interface_sizes();
         let (job_tx, job_rx) = mpsc::channel::<Group>();
