@@ -36,9 +36,6 @@ pub struct RunOutcome {
     pub cre: Option<Vec<f64>>,
     /// Seconds of the run's error estimate.
     pub estimate_seconds: f64,
-    /// The largest slide beyond small sliding over the run's steps (module
-    /// `alea_latin::sliding`; `None`: every slide within it).
-    pub slide: Option<alea_latin::sliding::SlideCheck>,
 }
 
 /// The solver and error-estimator set-up of a study: built once per process (per MPI rank),
@@ -249,7 +246,9 @@ impl RunContext<'_> {
         } else {
             results[0].end_state().to_vec()
         };
+        let slide = largest_slide(&results, &solvers);
         let rec = RunRecord {
+            slide,
             params: theta.to_vec(),
             status,
             iterations: results.iter().map(|r| r.iterations).sum(),
@@ -307,18 +306,11 @@ impl RunContext<'_> {
                 }
             }
         }
-        let slide = results
-            .iter()
-            .zip(&solvers)
-            .flat_map(|(r, s)| alea_latin::sliding::slide_checks(s, r))
-            .filter(|c| c.beyond_small_sliding())
-            .max_by(|a, b| a.ratio.total_cmp(&b.ratio));
         Ok(RunOutcome {
             rec,
             fields,
             cre,
             estimate_seconds,
-            slide,
         })
     }
 }
@@ -330,6 +322,28 @@ enum StepRuns<'s> {
     Paired(Vec<alea_latin::RunResult>),
     /// With large sliding: each step on the solver of its last pairing.
     Repaired(&'s [alea_latin::large_sliding::SlidingStep]),
+}
+
+/// The largest slide over the local mesh size of a run's steps, on any contact interface
+/// (`alea_latin::sliding`), named by its interface; `None` without a contact interface.
+fn largest_slide(
+    results: &[alea_latin::RunResult],
+    solvers: &[&LatinSolver],
+) -> Option<crate::store::RunSlide> {
+    results
+        .iter()
+        .zip(solvers)
+        .flat_map(|(r, s)| {
+            alea_latin::sliding::slide_checks(s, r)
+                .into_iter()
+                .map(move |c| (r.interfaces[c.interface].name.clone(), c))
+        })
+        .max_by(|a, b| a.1.ratio.total_cmp(&b.1.ratio))
+        .map(|(interface, c)| crate::store::RunSlide {
+            interface,
+            slip: c.slip,
+            ratio: c.ratio,
+        })
 }
 
 /// Solves the pending runs of one batch. Every run of a batch is independent of the others

@@ -135,7 +135,8 @@ pub(crate) struct Runner<'a> {
     pub(crate) resumed: usize,
     pub(crate) solve_seconds: f64,
     pub(crate) estimate_seconds: f64,
-    /// A run slid beyond small sliding and the user was told (once per invocation).
+    /// A run slid beyond small sliding and the user was told (once per invocation, as it
+    /// happens; the outputs' notes count them all, `crate::sliding_note`).
     slide_noted: std::sync::atomic::AtomicBool,
 }
 
@@ -242,15 +243,15 @@ impl<'a> Runner<'a> {
         let slide_noted = &self.slide_noted;
         let note_committed = |out: RunOutcome| -> Result<(), StudyError> {
             progress.finished(&out.rec);
-            if let Some(c) = &out.slide
+            if let Some(c) = &out.rec.slide
+                && c.ratio > alea_latin::sliding::SMALL_SLIDING_LIMIT
                 && !slide_noted.swap(true, std::sync::atomic::Ordering::Relaxed)
             {
                 progress.note(&format!(
-                    "warning: the run at {:?} slid by {:.4e} on interface {}, {:.2} x the local \
-                     mesh size: beyond small sliding (> {} x), the pairing of the initial \
-                     configuration no longer pairs the points that face each other and its \
-                     contact zone, gap and pressure may be wrong (further runs beyond small \
-                     sliding are not listed)",
+                    "warning: the run at {:?} slid by {:.4e} on interface '{}', {:.2} x the local \
+                     mesh size: beyond small sliding (> {} x), its contact zone, gap and pressure \
+                     may be wrong (the runs beyond small sliding are counted in the notes of the \
+                     outputs)",
                     out.rec.params,
                     c.slip,
                     c.interface,

@@ -566,9 +566,24 @@ pub struct OutputSpec {
     /// Write samples.csv. Default true.
     #[serde(default)]
     pub samples_csv: Option<bool>,
+    /// Draws written to samples.csv: a number (the first draws) or `"all"`. Default 10 000
+    /// (`crate::output_settings`).
+    #[serde(default)]
+    pub samples_rows: Option<Spanned<SamplesRows>>,
     /// Write mean and standard-deviation fields (ParaView) of the main method. Default true.
     #[serde(default)]
     pub mean_fields: Option<bool>,
+}
+
+/// `[output] samples_rows`: a number of draws or a word (`"all"`), checked at load
+/// (`crate::output_settings`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum SamplesRows {
+    /// A number of draws.
+    Count(i64),
+    /// A word.
+    Word(String),
 }
 
 /// A study (or a deterministic case: a study without parameters) file.

@@ -83,6 +83,24 @@ pub struct RunRecord {
     pub history: Vec<f64>,
     /// Local-stage state (`alea_latin::LocalState::to_vec`), for warm starts.
     pub state: Vec<f64>,
+    /// The run's largest slide over the local mesh size, on any contact interface and step
+    /// (`alea_latin::sliding`; columns `slide_interface`, `slide_slip`, `slide_ratio`); `None`
+    /// for a study without a contact interface, and for the runs stored before the slide was
+    /// kept with the run (their slide is unknown).
+    pub slide: Option<RunSlide>,
+}
+
+/// The largest slide of a run: where the tangential slip over the local mesh size is largest
+/// among its contact interfaces and steps (module `alea_latin::sliding`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunSlide {
+    /// The interface's name (as in the study file).
+    pub interface: String,
+    /// The tangential slip there (length).
+    pub slip: f64,
+    /// The slip over the local mesh size (beyond small sliding above
+    /// `alea_latin::sliding::SMALL_SLIDING_LIMIT`).
+    pub ratio: f64,
 }
 
 impl RunRecord {
@@ -98,6 +116,7 @@ impl RunRecord {
             qois,
             history: Vec::new(),
             state: Vec::new(),
+            slide: None,
         }
     }
 
@@ -444,9 +463,17 @@ impl Store {
         }
         // Directories written before runs carried their run hash and their quantities' keys
         // (NULL: known only through the study hash).
-        for column in ["run_hash", "quantities"] {
+        // Directories written before each run kept its largest slide (NULL: not known; also
+        // the runs of a study without a contact interface).
+        for (column, kind) in [
+            ("run_hash", "TEXT"),
+            ("quantities", "TEXT"),
+            ("slide_interface", "TEXT"),
+            ("slide_slip", "REAL"),
+            ("slide_ratio", "REAL"),
+        ] {
             if !has(column) {
-                conn.execute(&format!("ALTER TABLE runs ADD COLUMN {column} TEXT"), [])
+                conn.execute(&format!("ALTER TABLE runs ADD COLUMN {column} {kind}"), [])
                     .map_err(db_err(dir))?;
             }
         }
@@ -521,7 +548,7 @@ impl Store {
     pub fn runs(&self) -> Result<Vec<RunRecord>, StudyError> {
         let mut st = self
             .conn
-            .prepare("SELECT params, status, iterations, residual, seconds, qois, history, state FROM runs WHERE study_hash = ?1 ORDER BY rowid")
+            .prepare("SELECT params, status, iterations, residual, seconds, qois, history, state, slide_interface, slide_slip, slide_ratio FROM runs WHERE study_hash = ?1 ORDER BY rowid")
             .map_err(db_err(&self.dir))?;
         let rows = st
             .query_map(params![self.hash], |r| {
@@ -534,6 +561,14 @@ impl Store {
                     qois: from_blob(&r.get::<_, Vec<u8>>(5)?),
                     history: from_blob(&r.get::<_, Vec<u8>>(6)?),
                     state: from_blob(&r.get::<_, Vec<u8>>(7)?),
+                    slide: match (r.get(8)?, r.get(9)?, r.get(10)?) {
+                        (Some(interface), Some(slip), Some(ratio)) => Some(RunSlide {
+                            interface,
+                            slip,
+                            ratio,
+                        }),
+                        _ => None,
+                    },
                 })
             })
             .map_err(db_err(&self.dir))?;
@@ -616,8 +651,8 @@ impl Store {
         {
             let mut row = tx
                 .prepare_cached(
-                    "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash, run_hash, quantities)
-                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+                    "INSERT OR REPLACE INTO runs (key, params, status, iterations, residual, seconds, qois, history, state, study_hash, run_hash, quantities, slide_interface, slide_slip, slide_ratio)
+                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15)",
                 )
                 .map_err(db_err(&self.dir))?;
             let mut data = tx
@@ -643,6 +678,9 @@ impl Store {
                     self.hash,
                     run_hash,
                     quantities,
+                    rec.slide.as_ref().map(|s| s.interface.as_str()),
+                    rec.slide.as_ref().map(|s| s.slip),
+                    rec.slide.as_ref().map(|s| s.ratio),
                 ])
                 .map_err(db_err(&self.dir))?;
                 data.execute(params![key, self.hash, to_blob(fields), cre.map(to_blob)])
@@ -970,6 +1008,7 @@ mod tests {
             qois: vec![p * p],
             history: vec![1.0, 0.1],
             state: vec![0.5; 4],
+            slide: None,
         }
     }
 
@@ -1182,6 +1221,16 @@ mod tests {
             why.contains("fields/run_") && why.contains("expected"),
             "{why}"
         );
+        // The slide columns were added: the old run's slide is unknown (None above), a run
+        // committed now keeps its own.
+        let mut slid = record(4.0);
+        slid.slide = Some(RunSlide {
+            interface: "G2".into(),
+            slip: 0.28,
+            ratio: 0.72,
+        });
+        s.commit(&slid, &[1.0, 2.0], None).unwrap();
+        assert_eq!(s.runs().unwrap(), vec![record(3.0), slid]);
     }
 
     fn identity(run_hash: &'static str, quantities: &[&str]) -> RunKeys<'static> {

@@ -43,6 +43,9 @@ pub struct Study {
     pub identity: crate::run_hash::RunIdentity,
     /// Outputs.
     pub output: OutputSpec,
+    /// Draws written to `samples.csv` (the first ones; `None`: every draw), checked at load
+    /// (`crate::output_settings`).
+    pub samples_rows: Option<usize>,
     /// The `[[reliability]]` analyses, checked.
     pub reliability: Vec<crate::reliability::task::ReliabilityTask>,
     /// `[budget] refined_mesh`: the same study on the finer mesh (built and checked at load).
@@ -185,6 +188,7 @@ impl Study {
         let hash = input_hash(&source, &file)?;
         let identity = crate::run_hash::run_identity(&source, &file)?;
         let output = file.output.clone();
+        let samples_rows = crate::output_settings::samples_rows(&source, &output)?;
         let study = Study {
             source,
             file,
@@ -196,6 +200,7 @@ impl Study {
             hash,
             identity,
             output,
+            samples_rows,
             reliability,
             refined,
             large_sliding,

@@ -284,6 +284,80 @@ fn bad_sliding_settings_are_refused_at_their_line() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Issue 42: the small-sliding warning of a study is kept with its runs, not only printed by
+/// the invocation that computed them: after the run, after a resumption that computes nothing
+/// and after `alea report DIR`, `summary.json`'s notes count the runs beyond small sliding and
+/// name the worst one's interface by its name and substructures (not by an index), and every
+/// invocation prints it.
+#[test]
+fn a_study_beyond_small_sliding_keeps_its_warning_in_every_output() {
+    let dir = tmp("notes");
+    let (p, _) = case(
+        &dir,
+        "study-small",
+        &[("sliding = \"large\"", "")],
+        "\n[study]\ntitle = \"slide\"\n\n[[quantity]]\nname = \"fy\"\nkind = \"interface_force\"\ninterface = \"contact\"\ncomponent = 1\n\n[solver]\nmax_iterations = 20000\n",
+    );
+    let out = dir.join("study-small");
+    let summary = out.join("summary.json");
+    let check = |o: &Output, what: &str| {
+        let t = text(o);
+        assert_eq!(o.status.code(), Some(0), "{what}: {t}");
+        assert!(
+            t.contains("1 of 1 converged runs slid beyond small sliding"),
+            "{what}: {t}"
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&summary).unwrap()).unwrap();
+        let notes: Vec<&str> = json["notes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|n| n.as_str())
+            .filter(|n| n.contains("beyond small sliding"))
+            .collect();
+        assert_eq!(notes.len(), 1, "{what}: {json}");
+        let n = notes[0];
+        assert!(
+            n.starts_with("1 of 1 converged runs slid beyond small sliding")
+                && n.contains("1 on interface 'contact' (between 'base' and 'block')")
+                && n.contains("slid by")
+                && !n.contains("interface 0"),
+            "{what}: {n}"
+        );
+        // The block slides by 0.8 mm over base cells of 0.1 mm.
+        let ratio: f64 = n
+            .rsplit(", ")
+            .next()
+            .and_then(|s| s.split(' ').next())
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| panic!("{what}: {n}"));
+        assert!(ratio > 2.0, "{what}: {n}");
+        // No warning about runs of unknown slide: this run's is stored.
+        assert!(!t.contains("is not known"), "{what}: {t}");
+    };
+    let run = || {
+        alea()
+            .args(["run", p.to_str().unwrap(), "--quiet", "--dir"])
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    check(&run(), "run");
+    std::fs::remove_file(&summary).unwrap();
+    let o = run();
+    assert!(
+        !text(&o).contains("warning: the run at"),
+        "the resumption computed a run: {}",
+        text(&o)
+    );
+    check(&o, "resume");
+    std::fs::remove_file(&summary).unwrap();
+    let o = alea().arg("report").arg(&out).output().unwrap();
+    check(&o, "report");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `[solver] repair_tolerance` and `max_pairings` drive the re-pairing: with a tolerance of
 /// 1e-5 of the mesh size the slide since the first pairing (5.8e-4 of it, measured) is too
 /// large and the step re-pairs once (2 pairings, as `alea-latin/tests/large_sliding.rs`

@@ -185,6 +185,72 @@ fn one_and_two_threads_give_identical_summaries() {
     let _ = std::fs::remove_dir_all(&base);
 }
 
+/// Issue 42, outputs sized to use: `samples.csv` holds the first `[output] samples_rows` draws
+/// (default 10 000; the 50-run example's 250 000 draws made it 19 MB, and the report's input,
+/// no longer written, 21 MB more), `"all"` every draw; the setting is not part of the runs (an
+/// edit resumes), and a bad value is refused at its line.
+#[test]
+fn samples_csv_holds_the_draws_asked_for() {
+    let base = tmp("samples-rows");
+    let study = coarse_study(&base);
+    let text = std::fs::read_to_string(&study).unwrap();
+    let dir = base.join("d");
+    let lines = || {
+        std::fs::read_to_string(dir.join("samples.csv"))
+            .unwrap()
+            .lines()
+            .count()
+    };
+    let with = |tail: &str| {
+        std::fs::write(
+            &study,
+            format!("{text}\n[output]\nmean_fields = false\n{tail}"),
+        )
+        .unwrap();
+        run(&study, &dir, &[])
+    };
+    // Default: the first 10 000 of the 20 000 draws, and no report input beside the report.
+    let o = with("");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(lines(), 1 + 10_000);
+    assert!(dir.join("report/report.html").exists());
+    assert!(!dir.join("report/report-input.json").exists());
+    let summary = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    assert!(
+        summary.contains("\"draws\": 20000"),
+        "the statistics use every draw"
+    );
+    let o = with("samples_rows = 500\n");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(lines(), 1 + 500);
+    let o = with("samples_rows = \"all\"\n");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(lines(), 1 + 20_000);
+    // `alea report` rebuilds it as the study file says.
+    std::fs::remove_file(dir.join("samples.csv")).unwrap();
+    let o = alea().arg("report").arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(lines(), 1 + 20_000);
+    // Refused at load, at the key's line.
+    let key_line = text.lines().count() + 4;
+    for (tail, phrase) in [
+        ("samples_rows = \"some\"\n", "unknown value 'some'"),
+        ("samples_rows = 0\n", "at least 1"),
+        ("samples_csv = false\nsamples_rows = 10\n", "ignored"),
+    ] {
+        let o = with(tail);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{tail}: {err}");
+        let line = key_line + usize::from(tail.starts_with("samples_csv"));
+        assert!(
+            err.contains(&format!("study.toml:{line}:")) && err.contains("output.samples_rows"),
+            "{tail}: {err}"
+        );
+        assert!(err.contains(phrase), "{tail}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&base);
+}
+
 #[test]
 fn malformed_study_files_give_specific_errors() {
     let base = tmp("bad");

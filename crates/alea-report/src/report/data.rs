@@ -1,14 +1,16 @@
 //! What the report is made of: a plain data structure the study runner fills in.
 //!
-//! Everything here is serialisable (serde), so a study can save the report input as JSON and
-//! the report can be rebuilt from it later. `write_report` validates it first: every number
+//! Everything here is serialisable (serde; a study does not save it: `alea report DIR` rebuilds
+//! the report from the study's store). `write_report` validates it first: every number
 //! must be finite (a NaN anywhere is an error naming its field), except the bounds `lo`/`hi`
 //! of a parameter, which may be infinite (an untruncated law).
 
+#[cfg(test)]
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+#[cfg(test)]
 use super::ReportError;
 
 /// Everything the report shows about one study.
@@ -254,7 +256,9 @@ pub struct ComparisonRow {
 }
 
 impl ReportInput {
-    /// Saves the input as pretty JSON (so a report can be rebuilt later).
+    /// Saves the input as pretty JSON. Not an output of a study (the report is rebuilt from
+    /// the study's store, `alea report DIR`); kept for the round-trip test.
+    #[cfg(test)]
     pub fn save_json(&self, path: &Path) -> Result<(), ReportError> {
         let text = serde_json::to_string_pretty(self).map_err(|e| ReportError::Json {
             path: path.to_path_buf(),

@@ -28,6 +28,9 @@ pub(super) fn write_summary(
             serde_json::json!({
                 "params": r.params, "status": r.status, "iterations": r.iterations,
                 "residual": r.residual, "qois": r.qois,
+                "slide": r.slide.as_ref().map(|s| serde_json::json!({
+                    "interface": s.interface, "slip": s.slip, "ratio": s.ratio,
+                })),
             })
         })
         .collect();
@@ -86,8 +89,9 @@ pub(super) fn write_summary(
     Ok(path)
 }
 
-/// Writes `samples.csv` (parameters then quantities, one line per draw of method `r`) into
-/// `dir`; returns its path, `None` if `r` has no draws.
+/// Writes `samples.csv` (parameters then quantities, one line per draw of method `r`: its first
+/// draws up to the study's `[output] samples_rows`, or all of them) into `dir`; returns its
+/// path, `None` if `r` has no draws.
 pub(super) fn write_samples(
     study: &Study,
     dir: &Path,
@@ -106,9 +110,10 @@ pub(super) fn write_samples(
         .cloned()
         .chain(study.qois.iter().map(|q| q.name.clone()))
         .collect();
+    let rows = study.samples_rows.map_or(r.draws, |n| n.min(r.draws));
     alea_mesh::atomic::write_atomic(&path, |w| {
         writeln!(w, "{}", header.join(","))?;
-        for i in 0..r.draws {
+        for i in 0..rows {
             let mut line = String::new();
             for j in 0..d {
                 line.push_str(&format!("{:.10e},", r.points[i * d + j]));
@@ -127,10 +132,14 @@ pub(super) fn write_samples(
         path: path.clone(),
         source,
     })?;
+    let written = if rows < r.draws {
+        format!("the first {rows} of {} draws", r.draws)
+    } else {
+        format!("{} draws", r.draws)
+    };
     console.line(&format!(
-        "samples: {} ({} draws on the {} surrogate)",
+        "samples: {} ({written} on the {} surrogate)",
         path.display(),
-        r.draws,
         r.label
     ));
     Ok(Some(path))

@@ -95,6 +95,11 @@ fn write_files(
     for w in alea_study::qoi::warnings::corner_warnings(study, &runs.records, dir)? {
         warn(w.to_string());
     }
+    for w in
+        alea_study::sliding_note::sliding_warnings(&runs.records, &runs.solver, &study.params.names)
+    {
+        warn(w);
+    }
     let Analysis {
         results,
         seconds: analysis_seconds,
@@ -206,7 +211,10 @@ fn write_files(
         input.error = report_error(study, runs, &err_settings, &estimates);
         input.reliability = reliability_report(&reliability);
         let written = report::write_report(&dir.join("report"), &input)?;
-        input.save_json(&dir.join("report").join("report-input.json"))?;
+        // Directories written before 2026-11-28 kept the report's input beside it
+        // (`report-input.json`, as large as every draw): an intermediate nothing reads, removed
+        // when the report is written again.
+        let _ = std::fs::remove_file(dir.join("report").join("report-input.json"));
         console.line(&format!(
             "report: {} ({} plots, {:.2} s)",
             written.html.display(),

@@ -14,5 +14,6 @@ pub fn synthetic_record(index: usize, iterations: usize, qois: usize, state: usi
         qois: (1..=qois).map(|q| q as f64).collect(),
         history: vec![1e-3; iterations],
         state: vec![0.1; state],
+        slide: None,
     }
 }

@@ -207,6 +207,10 @@ pub(crate) fn encode_result(id: u64, out: &Result<RunOutcome, String>) -> Vec<u8
                 Some(c) => w.u64(1).f64s(c),
                 None => w.u64(0),
             };
+            match &r.slide {
+                Some(s) => w.u64(1).str(&s.interface).f64(s.slip).f64(s.ratio),
+                None => w.u64(0),
+            };
         }
         Err(msg) => {
             w.u64(0).str(msg);
@@ -222,7 +226,7 @@ pub(crate) fn decode_result(buf: &[u8]) -> Result<(u64, Result<RunOutcome, Strin
     let out = match r.u64()? {
         0 => Err(r.str()?),
         _ => {
-            let rec = RunRecord {
+            let mut rec = RunRecord {
                 params: r.f64s()?,
                 status: r.str()?,
                 iterations: r.u64()? as usize,
@@ -231,6 +235,7 @@ pub(crate) fn decode_result(buf: &[u8]) -> Result<(u64, Result<RunOutcome, Strin
                 qois: r.f64s()?,
                 history: r.f64s()?,
                 state: r.f64s()?,
+                slide: None,
             };
             let fields = r.f64s()?;
             let estimate_seconds = r.f64()?;
@@ -238,13 +243,19 @@ pub(crate) fn decode_result(buf: &[u8]) -> Result<(u64, Result<RunOutcome, Strin
                 0 => None,
                 _ => Some(r.f64s()?),
             };
+            rec.slide = match r.u64()? {
+                0 => None,
+                _ => Some(crate::store::RunSlide {
+                    interface: r.str()?,
+                    slip: r.f64()?,
+                    ratio: r.f64()?,
+                }),
+            };
             Ok(RunOutcome {
                 rec,
                 fields,
                 cre,
                 estimate_seconds,
-                // The slide check is not sent between processes (MPI runs do not warn).
-                slide: None,
             })
         }
     };
@@ -268,11 +279,15 @@ mod tests {
                 qois: vec![f64::NAN, 1e300],
                 history: vec![1.0, 0.5],
                 state: vec![3.0; 12],
+                slide: Some(crate::store::RunSlide {
+                    interface: "G2".into(),
+                    slip: 0.25,
+                    ratio: 0.75,
+                }),
             },
             fields: (0..100).map(|i| (i as f64).sin()).collect(),
             cre: Some(vec![1.5, 2.5]),
             estimate_seconds: 0.125,
-            slide: None,
         };
         let b = encode_result(9, &Ok(out.clone()));
         let (id, back) = decode_result(&b).unwrap();
@@ -284,6 +299,7 @@ mod tests {
         assert_eq!(back.rec.status, out.rec.status);
         assert_eq!(back.fields, out.fields);
         assert_eq!(back.cre, out.cre);
+        assert_eq!(back.rec.slide, out.rec.slide);
         let (id, e) = decode_result(&encode_result(3, &Err("boom".into()))).unwrap();
         assert_eq!((id, e.unwrap_err()), (3, "boom".to_string()));
         // A truncated message is an error, never a panic.
