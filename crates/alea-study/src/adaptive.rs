@@ -35,7 +35,7 @@ use std::sync::{Arc, MutexGuard};
 
 use alea_estimate::refine;
 use alea_latin::LatinSolver;
-use alea_uq::surrogate::StochasticMesh;
+use alea_uq::surrogate::{CellId, StochasticMesh};
 
 use crate::StudyError;
 use crate::analysis::{AnalysisSettings, analyse_method};
@@ -119,8 +119,20 @@ fn delimit_failures(
             }
         })
         .collect();
+    let new = split_within(mesh, &cells, max_runs)?;
+    Ok((new > 0).then_some(new))
+}
+
+/// Splits the leaves `cells` of `mesh` in full, in order, while the mesh keeps at most
+/// `max_runs` runs (the first split that would exceed it ends the splitting); the number of
+/// new runs.
+fn split_within(
+    mesh: &mut StochasticMesh,
+    cells: &[CellId],
+    max_runs: usize,
+) -> Result<usize, StudyError> {
     let before = mesh.num_runs();
-    for c in cells {
+    for &c in cells {
         let mut trial = mesh.clone();
         trial.refine(&[c]).map_err(StudyError::from)?;
         if trial.num_runs() > max_runs {
@@ -128,8 +140,7 @@ fn delimit_failures(
         }
         *mesh = trial;
     }
-    let new = mesh.num_runs() - before;
-    Ok((new > 0).then_some(new))
+    Ok(mesh.num_runs() - before)
 }
 
 /// The start mesh: the parameter box with its corners and centre as runs.
@@ -359,16 +370,7 @@ pub(crate) fn run_adaptive<'a>(
                         leaves,
                     } => {
                         validation_round += 1;
-                        let before = mesh.num_runs();
-                        for c in leaves {
-                            let mut trial = mesh.clone();
-                            trial.refine(&[c]).map_err(StudyError::from)?;
-                            if trial.num_runs() > settings.max_runs {
-                                break;
-                            }
-                            mesh = trial;
-                        }
-                        let new = mesh.num_runs() - before;
+                        let new = split_within(&mut mesh, &leaves, settings.max_runs)?;
                         if new == 0 {
                             break (
                                 format!(
@@ -408,16 +410,8 @@ pub(crate) fn run_adaptive<'a>(
                 break (format!("no leaf carries goal error ({budget})"), None);
             }
             // Full splits (every new node a run), largest indicator first, within the budget.
-            let before = mesh.num_runs();
-            for &(c, _) in &marked {
-                let mut trial = mesh.clone();
-                trial.refine(&[c]).map_err(StudyError::from)?;
-                if trial.num_runs() > settings.max_runs {
-                    break;
-                }
-                mesh = trial;
-            }
-            let new = mesh.num_runs() - before;
+            let cells: Vec<CellId> = marked.iter().map(|&(c, _)| c).collect();
+            let new = split_within(&mut mesh, &cells, settings.max_runs)?;
             if new == 0 {
                 break (
                     format!(
