@@ -19,7 +19,7 @@
 //! `<qoi>` is the QoI name reduced to ASCII letters, digits, `-` and `_`.
 
 mod data;
-mod format;
+pub(crate) mod format;
 mod html;
 mod plots;
 #[cfg(test)]

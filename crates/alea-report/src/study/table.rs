@@ -5,6 +5,7 @@ use alea_study::analysis::MethodResult;
 use alea_study::runner::Study;
 
 use crate::Console;
+use crate::report::format::{num, prob};
 
 /// Shows the table on `console` (the values themselves, at full precision, for a study without
 /// random parameters).
@@ -27,15 +28,30 @@ pub(super) fn print_table(
     }
     for (q, qoi) in study.qois.iter().enumerate() {
         console.line(&format!("\n{} [{}]: {}", qoi.name, qoi.unit, qoi.what));
+        // Six significant digits, fixed notation where it reads (831.002, not 8.310020e2),
+        // the unit in the header.
+        let unit = if qoi.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" [{}]", qoi.unit)
+        };
         console.line(&format!(
             "  {:<34} {:>5} {:>14} {:>14} {:>10}",
-            "method", "runs", "mean", "std", "skewness"
+            "method",
+            "runs",
+            format!("mean{unit}"),
+            format!("std{unit}"),
+            "skewness"
         ));
         for r in results {
             match r.qois.get(q) {
                 Some(s) => console.line(&format!(
-                    "  {:<34} {:>5} {:>14.6e} {:>14.6e} {:>10.3}",
-                    r.label, r.runs_used, s.mean, s.std, s.skewness
+                    "  {:<34} {:>5} {:>14} {:>14} {:>10.3}",
+                    r.label,
+                    r.runs_used,
+                    num(s.mean, 6),
+                    num(s.std, 6),
+                    s.skewness
                 )),
                 None => console.line(&format!(
                     "  {:<34} {:>5} {:>14} {:>14} {:>10}",
@@ -58,18 +74,21 @@ pub(super) fn print_table(
                         qoi.unit.as_str()
                     };
                     let part = |v: Option<f64>| {
-                        v.map_or_else(|| "not estimated".to_string(), |v| format!("+-{v:.2e}"))
+                        v.map_or_else(
+                            || "not estimated".to_string(),
+                            |v| format!("+-{}", num(v, 3)),
+                        )
                     };
                     let sliding = row
                         .sliding
-                        .map_or_else(String::new, |v| format!(", sliding +-{v:.2e}"));
+                        .map_or_else(String::new, |v| format!(", sliding +-{}", num(v, 3)));
                     console.line(&format!(
-                        "    {:<12} {:>13.6e} {unit:<4} total +-{:.2e}: surrogate {}, sampling +-{:.2e}, mesh {}{sliding}",
+                        "    {:<12} {:>13} {unit:<4} total +-{}: surrogate {}, sampling +-{}, mesh {}{sliding}",
                         row.statistic,
-                        row.value,
-                        row.total,
+                        num(row.value, 6),
+                        num(row.total, 3),
                         part(row.surrogate),
-                        row.sampling,
+                        num(row.sampling, 3),
                         part(row.mesh)
                     ));
                 }
@@ -85,19 +104,20 @@ pub(super) fn print_table(
                 });
                 let total_words = total.map_or_else(String::new, |t| {
                     format!(
-                        "total interval [{:.4e}, {:.4e}] (budget, parts above); ",
-                        (f.probability - t).max(0.0),
-                        (f.probability + t).min(1.0)
+                        "total interval [{}, {}] (budget, parts above); ",
+                        prob((f.probability - t).max(0.0)),
+                        prob((f.probability + t).min(1.0))
                     )
                 });
                 console.line(&format!(
-                    "  P({} > {}) = {:.4e}  ({total_words}{:.0}% sampling interval [{:.4e}, {:.4e}])",
+                    "  P({} > {} {}) = {}  ({total_words}{:.0}% sampling interval [{}, {}])",
                     qoi.name,
-                    f.threshold,
-                    f.probability,
+                    num(f.threshold, 6),
+                    qoi.unit,
+                    prob(f.probability),
                     100.0 * confidence,
-                    f.ci_low,
-                    f.ci_high
+                    prob(f.ci_low),
+                    prob(f.ci_high)
                 ));
             }
         }
