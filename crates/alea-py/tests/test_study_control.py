@@ -89,7 +89,10 @@ def test_progress_argument(tmp_path, capsys):
 
 CHILD = textwrap.dedent(
     """
-    import sys, alea
+    import signal, sys, alea
+    # A background shell job (CI) starts its children with SIGINT ignored, and Python then
+    # installs no KeyboardInterrupt handler: install it, as an interactive session has it.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     started = False
     def progress(done, total):
         global started
