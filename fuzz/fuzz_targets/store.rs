@@ -31,6 +31,7 @@ fn record(p: f64) -> RunRecord {
         qois: vec![p * p, -p],
         history: vec![1.0, 0.1, 0.01],
         state: vec![0.5; 6],
+        slide: None,
     }
 }
 
