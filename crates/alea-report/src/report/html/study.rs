@@ -54,27 +54,46 @@ pub(super) fn overview(o: &mut String, input: &ReportInput) {
         o.push_str("<div class=\"glance\">\n");
         for (k, q) in input.qois.iter().enumerate() {
             let unit = esc(&q.unit);
+            // The mean with the total of its error budget (issue 40, item 3: "mean +- std"
+            // read as an error bar); the standard deviation on its own line.
+            let total_of = |statistic: &str| {
+                q.budget
+                    .iter()
+                    .find(|r| r.statistic == statistic)
+                    .map(|r| r.total)
+            };
+            let bar = total_of("mean").map_or_else(String::new, |t| {
+                format!("<span class=\"pm\">± {}</span> ", num(t, 2))
+            });
             let _ = write!(
                 o,
                 "<a class=\"card\" href=\"#qoi-{k}\"><div class=\"name\">{}</div>\
-                 <div class=\"big\">{} <span class=\"pm\">± {}</span> \
-                 <span class=\"unit\">{unit}</span></div>",
+                 <div class=\"big\">{} {bar}<span class=\"unit\">{unit}</span></div>\
+                 <div class=\"pf\">mean{}; standard deviation {} {unit}</div>",
                 esc(&q.name),
                 num(q.mean, 4),
+                if bar.is_empty() {
+                    ""
+                } else {
+                    " ± the total of its error budget"
+                },
                 num(q.std, 3)
             );
-            match q.failure.first() {
-                Some(f) => {
-                    let _ = write!(
-                        o,
-                        "<div class=\"pf\">P(q &gt; {}) = {} <span class=\"ci\">[{}, {}]</span></div>",
-                        num(f.threshold, 4),
-                        prob(f.probability),
-                        prob(f.ci_low),
-                        prob(f.ci_high)
-                    );
-                }
-                None => o.push_str("<div class=\"pf\">mean ± standard deviation</div>"),
+            if let Some(f) = q.failure.first() {
+                let interval = match total_of(&format!("P(> {})", f.threshold)) {
+                    Some(t) => format!(
+                        "total [{}, {}]",
+                        prob((f.probability - t).max(0.0)),
+                        prob((f.probability + t).min(1.0))
+                    ),
+                    None => format!("sampling only [{}, {}]", prob(f.ci_low), prob(f.ci_high)),
+                };
+                let _ = write!(
+                    o,
+                    "<div class=\"pf\">P(q &gt; {}) = {} <span class=\"ci\">{interval}</span></div>",
+                    num(f.threshold, 4),
+                    prob(f.probability)
+                );
             }
             o.push_str("</a>\n");
         }
