@@ -89,6 +89,83 @@ fn comparison_mesh(
     }
 }
 
+/// What a goal's validation runs decided (module `goal_validation`).
+enum Validated {
+    /// The loop stops with this message (goal reached, or not reached within the budget).
+    Stop(String),
+    /// The leaves they found wrong were split: this many new runs.
+    Refined(usize),
+}
+
+/// A goal whose budget is within its tolerance, checked against validation runs of the solver
+/// drawn from the input law independently of `mesh` (round `round`; module `goal_validation`):
+/// they agree (stop: goal reached), or the leaves holding the draws the surrogate gets wrong
+/// are split within `max_runs` (the next round doubles the sample), or no split fits.
+fn validate_goal<'a>(
+    runner: &mut impl AdaptiveRuns<'a>,
+    goal: &crate::method::Goal,
+    mesh: &mut StochasticMesh,
+    records: &[RunRecord],
+    g: &goal::GoalStep,
+    budget: &str,
+    round: &mut u32,
+    max_runs: usize,
+) -> Result<Validated, StudyError> {
+    let study = runner.study();
+    let vpoints = crate::goal_validation::points(study, *round);
+    let fresh = vpoints
+        .iter()
+        .filter(|p| !runner.by_key().contains_key(&point_key(p)))
+        .count();
+    runner.announce(fresh);
+    runner.run_points(&vpoints)?;
+    let validated: Vec<(Vec<f64>, f64)> = vpoints
+        .iter()
+        .filter_map(|p| runner.by_key().get(&point_key(p)))
+        .filter(|r| r.converged())
+        .map(|r| (r.params.clone(), r.qois[goal.quantity]))
+        .collect();
+    let value: Vec<f64> = g.records.iter().map(|r| r.value).collect();
+    let verdict = crate::goal_validation::check(
+        goal,
+        study,
+        mesh,
+        &values_of_goal(records, goal),
+        &validated,
+        &value,
+    );
+    Ok(match verdict {
+        crate::goal_validation::Verdict::Holds(errors) => {
+            let said = errors
+                .iter()
+                .map(|(s, e)| format!("{s} {e:.2e}"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            Validated::Stop(format!(
+                "goal reached: {budget}; {} validation runs agree (their estimate of the \
+                 surrogate's error: {said})",
+                validated.len()
+            ))
+        }
+        crate::goal_validation::Verdict::Misses {
+            statistic,
+            error,
+            leaves,
+        } => {
+            *round += 1;
+            match split_within(mesh, &leaves, max_runs)? {
+                0 => Validated::Stop(format!(
+                    "goal not reached: its budget says {budget}, but {} validation runs \
+                     estimate the surrogate's error of {statistic} at {error:.2e}, above the \
+                     tolerance, and the run budget of {max_runs} leaves no split",
+                    validated.len()
+                )),
+                new => Validated::Refined(new),
+            }
+        }
+    })
+}
+
 /// The goal quantity's value at every run of the mesh (`records` in run order).
 fn values_of_goal(records: &[RunRecord], goal: &crate::method::Goal) -> Vec<f64> {
     records.iter().map(|r| r.qois[goal.quantity]).collect()
@@ -326,64 +403,18 @@ pub(crate) fn run_adaptive<'a>(
                 ));
             }
             if g.reached {
-                // Validation runs independent of the mesh (module `goal_validation`).
-                let vpoints = crate::goal_validation::points(study, validation_round);
-                let fresh = vpoints
-                    .iter()
-                    .filter(|p| !runner.by_key().contains_key(&point_key(p)))
-                    .count();
-                runner.announce(fresh);
-                runner.run_points(&vpoints)?;
-                let validated: Vec<(Vec<f64>, f64)> = vpoints
-                    .iter()
-                    .filter_map(|p| runner.by_key().get(&point_key(p)))
-                    .filter(|r| r.converged())
-                    .map(|r| (r.params.clone(), r.qois[goal.quantity]))
-                    .collect();
-                let value: Vec<f64> = g.records.iter().map(|r| r.value).collect();
-                match crate::goal_validation::check(
+                match validate_goal(
+                    runner,
                     goal,
-                    study,
-                    &mesh,
-                    &values_of_goal(&records, goal),
-                    &validated,
-                    &value,
-                ) {
-                    crate::goal_validation::Verdict::Holds(errors) => {
-                        let said = errors
-                            .iter()
-                            .map(|(s, e)| format!("{s} {e:.2e}"))
-                            .collect::<Vec<_>>()
-                            .join(", ");
-                        break (
-                            format!(
-                                "goal reached: {budget}; {} validation runs agree (their estimate \
-                                 of the surrogate's error: {said})",
-                                validated.len()
-                            ),
-                            None,
-                        );
-                    }
-                    crate::goal_validation::Verdict::Misses {
-                        statistic,
-                        error,
-                        leaves,
-                    } => {
-                        validation_round += 1;
-                        let new = split_within(&mut mesh, &leaves, settings.max_runs)?;
-                        if new == 0 {
-                            break (
-                                format!(
-                                    "goal not reached: its budget says {budget}, but {} \
-                                     validation runs estimate the surrogate's error of \
-                                     {statistic} at {error:.2e}, above the tolerance, and the \
-                                     run budget of {} leaves no split",
-                                    validated.len(),
-                                    settings.max_runs
-                                ),
-                                None,
-                            );
-                        }
+                    &mut mesh,
+                    &records,
+                    g,
+                    &budget,
+                    &mut validation_round,
+                    settings.max_runs,
+                )? {
+                    Validated::Stop(message) => break (message, None),
+                    Validated::Refined(new) => {
                         if let Some(s) = steps.last_mut() {
                             s.new_runs = new;
                         }
