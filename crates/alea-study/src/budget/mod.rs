@@ -28,6 +28,7 @@
 
 mod coarse;
 pub mod mesh;
+pub mod validation;
 
 pub use coarse::{Comparison, comparisons, credible_fit, smooth_fits};
 
@@ -52,11 +53,37 @@ pub struct BudgetRow {
     /// asked for; left out of `summary.json` then).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sliding: Option<f64>,
-    /// Sum of the estimated parts.
+    /// Sum of the estimated parts: the half-width of the total interval about
+    /// [`BudgetRow::estimate`] ([`BudgetRow::interval`]).
     pub total: f64,
+    /// The statistic corrected by validation runs of the solver and its interval (module
+    /// [`validation`]; `None`: the study has no validation runs, or the statistics are those of
+    /// the model runs themselves).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub validation: Option<validation::Corrected>,
 }
 
 impl BudgetRow {
+    /// The value users read: the statistic corrected by the validation runs where there are
+    /// some, else the surrogate's (or the model runs') value.
+    pub fn estimate(&self) -> f64 {
+        self.validation.as_ref().map_or(self.value, |v| v.value)
+    }
+
+    /// The total interval `[lo, hi]` about [`BudgetRow::estimate`]: the estimate plus and minus
+    /// [`BudgetRow::total`] (a probability's interval clipped to `[0, 1]`, a standard
+    /// deviation's to `[0, inf)`).
+    pub fn interval(&self) -> (f64, f64) {
+        let e = self.estimate();
+        let (mut lo, mut hi) = (e - self.total, e + self.total);
+        if self.statistic.starts_with("P(") {
+            (lo, hi) = (lo.max(0.0), hi.min(1.0));
+        } else if self.statistic == "std" {
+            lo = lo.max(0.0);
+        }
+        (lo, hi)
+    }
+
     /// Sampling plus every estimated part.
     pub fn sum_of_parts(&self) -> f64 {
         self.sampling
@@ -312,6 +339,7 @@ pub fn qoi_budget(
                 sampling: *sampling,
                 sliding: None,
                 total: sampling + part.unwrap_or(0.0),
+                validation: None,
             }
         })
         .collect();

@@ -155,6 +155,7 @@ pub(super) fn synthetic() -> ReportInput {
                         sampling: 1.0e-6,
                         sliding: None,
                         total: 4.1e-5,
+                        validation: None,
                     },
                     BudgetRow {
                         statistic: "P(> 0.004)".into(),
@@ -164,6 +165,7 @@ pub(super) fn synthetic() -> ReportInput {
                         sampling: 3.0e-5,
                         sliding: None,
                         total: 3.0e-5,
+                        validation: None,
                     },
                 ],
                 budget_basis: vec![
