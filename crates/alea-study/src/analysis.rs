@@ -165,10 +165,19 @@ fn qoi_stats(
     samples: Vec<f64>,
     s: &AnalysisSettings,
     surrogate: Option<SurrogatePart<'_>>,
+    validation: Option<budget::validation::Sample<'_>>,
 ) -> QoiStats {
     let qoi = &study.qois[q];
-    let budget = surrogate
-        .map(|part| budget::qoi_budget(&samples, part, &QUANTILES, &qoi.thresholds, s.confidence));
+    let budget = surrogate.map(|part| {
+        budget::qoi_budget(
+            &samples,
+            part,
+            &QUANTILES,
+            &qoi.thresholds,
+            s.confidence,
+            validation,
+        )
+    });
     let sum = Summary::of(&samples);
     let mut sorted = samples.clone();
     sorted.sort_by(|a, b| a.total_cmp(b));
@@ -291,7 +300,16 @@ pub fn analyse_method(
         out.qois = values
             .into_iter()
             .enumerate()
-            .map(|(q, v)| qoi_stats(study, q, v, s, has_params.then_some(SurrogatePart::Exact)))
+            .map(|(q, v)| {
+                qoi_stats(
+                    study,
+                    q,
+                    v,
+                    s,
+                    has_params.then_some(SurrogatePart::Exact),
+                    None,
+                )
+            })
             .collect();
         if failed_runs > 0 {
             out.failure_region = Some(binomial_region(
@@ -355,47 +373,64 @@ pub fn analyse_method(
     } else {
         Vec::new()
     };
+    // A draw's values on the surrogate and where it stands with respect to the failed runs.
+    let evaluate = |x: &[f64], t: &mut Vec<f64>, w: &mut Vec<(usize, f64)>| {
+        sur.weights(x, t, w);
+        let v: Vec<f64> = (0..nq)
+            .map(|q| w.iter().map(|&(k, wk)| wk * sur_values[q][k]).sum())
+            .collect();
+        let region = if tolerant {
+            let weight = local_weight(w, &failed);
+            DrawRegion {
+                weight,
+                whole: weight >= 1.0 - 1e-12,
+                touched: touches(w, &failed),
+            }
+        } else if design_norm.is_empty() {
+            DrawRegion::default()
+        } else {
+            let (a, b) = two_nearest(&study.normalise(x), &design_norm);
+            DrawRegion {
+                weight: f64::from(u8::from(failed[a])),
+                whole: failed[a] && failed[b],
+                touched: failed[a] || failed[b],
+            }
+        };
+        (v, region)
+    };
+    // Draws kept for the statistics: those outside the failure region.
+    let kept = |r: &DrawRegion| {
+        if tolerant {
+            !r.touched
+        } else {
+            r.weight == 0.0
+        }
+    };
     let per_draw: Vec<(Vec<f64>, DrawRegion)> = pts
         .par_chunks(d)
-        .map_init(
-            || (vec![0.0; d], Vec::new()),
-            |(t, w), x| {
-                sur.weights(x, t, w);
-                let v = (0..nq)
-                    .map(|q| w.iter().map(|&(k, wk)| wk * sur_values[q][k]).sum())
-                    .collect();
-                let region = if tolerant {
-                    let weight = local_weight(w, &failed);
-                    DrawRegion {
-                        weight,
-                        whole: weight >= 1.0 - 1e-12,
-                        touched: touches(w, &failed),
-                    }
-                } else if design_norm.is_empty() {
-                    DrawRegion::default()
-                } else {
-                    let (a, b) = two_nearest(&study.normalise(x), &design_norm);
-                    DrawRegion {
-                        weight: f64::from(u8::from(failed[a])),
-                        whole: failed[a] && failed[b],
-                        touched: failed[a] || failed[b],
-                    }
-                };
-                (v, region)
-            },
-        )
+        .map_init(|| (vec![0.0; d], Vec::new()), |(t, w), x| evaluate(x, t, w))
         .collect();
-    // Draws kept for the statistics: those outside the failure region.
-    let keep: Vec<bool> = per_draw
-        .iter()
-        .map(|(_, r)| {
-            if tolerant {
-                !r.touched
-            } else {
-                r.weight == 0.0
+    let keep: Vec<bool> = per_draw.iter().map(|(_, r)| kept(r)).collect();
+    // The validation runs (module `crate::validation_runs`): the model and the surrogate at each
+    // converged one outside the failure region, per quantity.
+    let validation = {
+        let found = crate::validation_runs::found(study, &|k| by_key.contains_key(k));
+        let (mut t, mut w) = (vec![0.0; d], Vec::new());
+        let mut pairs: Vec<(Vec<f64>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); nq];
+        for p in &found {
+            let Some(r) = by_key.get(&point_key(p)).filter(|r| r.converged()) else {
+                continue;
+            };
+            let (v, region) = evaluate(p, &mut t, &mut w);
+            if kept(&region) {
+                for (q, (model, surrogate)) in pairs.iter_mut().enumerate() {
+                    model.push(r.qois[q]);
+                    surrogate.push(v[q]);
+                }
             }
-        })
-        .collect();
+        }
+        pairs
+    };
     if failed_runs > 0 {
         let mut tally = RegionTally::default();
         for ((_, r), &k) in per_draw.iter().zip(&keep) {
@@ -513,7 +548,10 @@ pub fn analyse_method(
                 }
                 Err(why) => SurrogatePart::Unavailable(why),
             };
-            qoi_stats(study, q, mine, s, Some(part))
+            let (model, surrogate) = &validation[q];
+            let sample =
+                (model.len() >= 2).then_some(budget::validation::Sample { model, surrogate });
+            qoi_stats(study, q, mine, s, Some(part), sample)
         })
         .collect();
     // Sobol' indices are variances over the whole box: not computed where a region is left out.

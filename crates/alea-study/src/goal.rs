@@ -162,6 +162,7 @@ pub fn goal_step(
         &[],
         &thresholds,
         confidence,
+        None,
     );
     let rows: Vec<usize> = match goal.threshold {
         Some(_) => vec![2],

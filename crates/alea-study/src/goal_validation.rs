@@ -22,7 +22,6 @@
 //! `e = 0.05`), so a small feature can still escape; the doubling makes each round likelier to
 //! meet it.
 
-use alea_uq::design;
 use alea_uq::surrogate::{CellId, StochasticMesh};
 
 use crate::goal_settings::Goal;
@@ -31,20 +30,11 @@ use crate::study::Study;
 /// Validation runs of the first round.
 pub const VALIDATION_RUNS: usize = 20;
 
-/// Offset of the validation draws' seed from the study's (distinct from the analysis draws').
-const VALIDATION_SEED: u64 = 0x0005_eed0_fa11;
-
 /// The validation points of round `round` (0, 1, ...): the first `VALIDATION_RUNS * 2^round`
-/// draws of the input law with the validation seed (each round's points start with the last's).
+/// points of the study's validation sequence (`crate::validation_runs`; each round's points
+/// start with the last's, and the budget's validation runs are a prefix of them).
 pub fn points(study: &Study, round: u32) -> Vec<Vec<f64>> {
-    let d = study.params.names.len();
-    let n = VALIDATION_RUNS << round.min(10);
-    let draws = design::monte_carlo(
-        study.params.joint.as_ref(),
-        n,
-        study.seed.wrapping_add(VALIDATION_SEED),
-    );
-    draws.points().chunks(d).map(<[f64]>::to_vec).collect()
+    crate::validation_runs::points(study, VALIDATION_RUNS << round.min(10))
 }
 
 /// What the validation runs say about the surrogate.

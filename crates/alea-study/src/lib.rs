@@ -54,6 +54,7 @@ pub mod study;
 pub mod temporaries;
 #[cfg(test)]
 mod test_rng;
+pub mod validation_runs;
 
 /// Sequential dense kernels of faer (results independent of the thread count); called by the
 /// programs that run studies (the `alea` binary, the Python module).

@@ -506,6 +506,17 @@ pub(crate) fn execute(
         runner.announce(confirmation.len());
         runner.run_points(&confirmation)?;
     }
+    // Validation runs of the surrogates' statistics (module `validation_runs`).
+    let validation =
+        crate::validation_runs::points(study, crate::validation_runs::count(study, &methods));
+    let fresh = validation
+        .iter()
+        .filter(|p| !runner.by_key.contains_key(&point_key(p)))
+        .count();
+    if fresh > 0 {
+        runner.announce(fresh);
+        runner.run_points(&validation)?;
+    }
     progress.end();
     let mut order: Vec<Vec<f64>> = fixed;
     let mut seen: std::collections::HashSet<String> = order.iter().map(|p| point_key(p)).collect();
@@ -522,6 +533,7 @@ pub(crate) fn execute(
     order.extend(
         confirmation
             .into_iter()
+            .chain(validation)
             .filter(|p| seen.insert(point_key(p))),
     );
     let records: Vec<RunRecord> = order

@@ -463,6 +463,9 @@ pub struct BudgetSpec {
     /// Paired solves in large sliding.
     #[serde(default)]
     pub large_sliding: Option<Spanned<bool>>,
+    /// Validation runs of the solver (`crate::validation_runs`; 0: none; default automatic).
+    #[serde(default)]
+    pub validation_runs: Option<Spanned<usize>>,
 }
 
 /// `[[reliability]]`: `P(q > threshold)` of a quantity by FORM, SORM, importance sampling and

@@ -53,6 +53,8 @@ pub struct Study {
     /// `[budget] large_sliding`: the same study with its small-sliding contact interfaces in
     /// large sliding (built and checked at load, `sliding_study`).
     pub large_sliding: Option<Box<Study>>,
+    /// `[budget] validation_runs` (`None`: the automatic number; `crate::validation_runs`).
+    pub validation_runs: Option<usize>,
     /// `[[step]]`: the load history of every run (module `steps`).
     pub steps: Option<crate::steps::Plan>,
     /// The models of the steps' other sets of imposed displacements (`steps.files[1..]`),
@@ -185,6 +187,7 @@ impl Study {
             Some(b) => sliding_study(&source, b)?.map(Box::new),
             None => None,
         };
+        let validation_runs = validation_runs_setting(&source, &file)?;
         let hash = input_hash(&source, &file)?;
         let identity = crate::run_hash::run_identity(&source, &file)?;
         let output = file.output.clone();
@@ -204,6 +207,7 @@ impl Study {
             reliability,
             refined,
             large_sliding,
+            validation_runs,
             steps,
             step_models,
             step_solvers: std::sync::OnceLock::new(),
@@ -567,11 +571,11 @@ fn sliding_study(
 ) -> Result<Option<Study>, StudyError> {
     let spec = budget.get_ref();
     let sliding = spec.large_sliding.as_ref().is_some_and(|f| *f.get_ref());
-    if spec.refined_mesh.is_none() && !sliding {
+    if spec.refined_mesh.is_none() && !sliding && spec.validation_runs.is_none() {
         return Err(source.error(
             budget.span(),
             "budget",
-            "[budget] asks for no part: give refined_mesh (the mesh part) and / or large_sliding = true (the sliding part)",
+            "[budget] asks for nothing: give refined_mesh (the mesh part), large_sliding = true (the sliding part) and / or validation_runs",
         ));
     }
     let Some(flag) = spec.large_sliding.as_ref().filter(|f| *f.get_ref()) else {
@@ -617,4 +621,43 @@ fn sliding_study(
     })
     .map_err(|e| fail(format!("the large-sliding study does not build: {e}")))?;
     Ok(Some(study))
+}
+
+/// `[budget] validation_runs`, checked: at most [`crate::validation_runs::AUTO_MAX`] times 50
+/// (each is a run of the solver), and none asked of a study without random parameters.
+fn validation_runs_setting(
+    source: &Source,
+    file: &crate::spec::ModelFile,
+) -> Result<Option<usize>, StudyError> {
+    let Some(v) = file
+        .budget
+        .as_ref()
+        .and_then(|b| b.get_ref().validation_runs.as_ref())
+    else {
+        return Ok(None);
+    };
+    let n = *v.get_ref();
+    let most = 50 * crate::validation_runs::AUTO_MAX;
+    if n > most {
+        return Err(source.error(
+            v.span(),
+            "budget.validation_runs",
+            format!("must be at most {most} (each is a run of the solver), got {n}"),
+        ));
+    }
+    if n == 1 {
+        return Err(source.error(
+            v.span(),
+            "budget.validation_runs",
+            "must be 0 (none) or at least 2: one run gives no interval",
+        ));
+    }
+    if n > 0 && file.parameter.is_empty() && file.field.is_empty() {
+        return Err(source.error(
+            v.span(),
+            "budget.validation_runs",
+            "the study has no random parameter: there is no surrogate to validate",
+        ));
+    }
+    Ok(Some(n))
 }

@@ -427,7 +427,7 @@ mod tests {
             let bounds = check.bounds(0, 1.0).unwrap();
             for t in [1.0, 1.5] {
                 let part = |shifts: Option<&[f64]>| {
-                    let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[t], 0.95);
+                    let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[t], 0.95, None);
                     apply(
                         &mut b,
                         &samples,
@@ -504,7 +504,7 @@ mod tests {
         let model = check.shift_model(0, 1.0).unwrap();
         let shifts: Vec<f64> = points.chunks(3).map(|x| model.reach(x)).collect();
         for t in [1.5, 2.0] {
-            let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[t], 0.95);
+            let mut b = qoi_budget(&samples, SurrogatePart::Exact, &[], &[t], 0.95, None);
             let bounds = check.bounds(0, 1.0).unwrap();
             apply(
                 &mut b,

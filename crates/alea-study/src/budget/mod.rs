@@ -67,7 +67,10 @@ impl BudgetRow {
     /// The value users read: the statistic corrected by the validation runs where there are
     /// some, else the surrogate's (or the model runs') value.
     pub fn estimate(&self) -> f64 {
-        self.validation.as_ref().map_or(self.value, |v| v.value)
+        self.validation
+            .as_ref()
+            .filter(|v| v.detected)
+            .map_or(self.value, |v| v.value)
     }
 
     /// The total interval `[lo, hi]` about [`BudgetRow::estimate`]: the estimate plus and minus
@@ -85,11 +88,14 @@ impl BudgetRow {
     }
 
     /// Sampling plus every estimated part.
+    /// With validation runs, the validation half-width combined with the design's surrogate
+    /// part ([`validation::combined_half_width`]) in place of sampling plus surrogate.
     pub fn sum_of_parts(&self) -> f64 {
-        self.sampling
-            + self.surrogate.unwrap_or(0.0)
-            + self.mesh.unwrap_or(0.0)
-            + self.sliding.unwrap_or(0.0)
+        let core = match &self.validation {
+            Some(v) => validation::combined_half_width(v, self.sampling, self.surrogate),
+            None => self.sampling + self.surrogate.unwrap_or(0.0),
+        };
+        core + self.mesh.unwrap_or(0.0) + self.sliding.unwrap_or(0.0)
     }
 }
 
@@ -100,6 +106,9 @@ pub struct QoiBudget {
     pub rows: Vec<BudgetRow>,
     /// How the surrogate part was estimated, or why it was not.
     pub surrogate_basis: String,
+    /// How the validation runs corrected the statistics (`None`: no validation runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub validation_basis: Option<String>,
     /// How the mesh part was estimated, or why it was not.
     pub mesh_basis: String,
     /// How the sliding part was estimated, or why it was not (`None`: not asked for).
@@ -276,8 +285,14 @@ pub fn qoi_budget(
     quantiles: &[f64],
     thresholds: &[f64],
     confidence: f64,
+    validation: Option<validation::Sample<'_>>,
 ) -> QoiBudget {
     let fine = Statistics::of(samples, quantiles, thresholds, confidence);
+    // The statistics corrected by the validation runs (none for the model runs themselves).
+    let corrected = match (&surrogate, validation) {
+        (SurrogatePart::Exact, _) | (_, None) => None,
+        (_, Some(v)) => validation::corrected(samples, v, quantiles, thresholds, confidence),
+    };
     // The first coarser comparison that differs from the method's surrogate, and every richer
     // one.
     let chosen: Vec<(&[f64], bool)> = match &surrogate {
@@ -331,16 +346,18 @@ pub fn qoi_budget(
                 SurrogatePart::Exact => Some(0.0),
                 SurrogatePart::Unavailable(_) => None,
             };
-            BudgetRow {
+            let mut row = BudgetRow {
                 statistic: name.clone(),
                 value: *value,
                 mesh: None,
                 surrogate: part,
                 sampling: *sampling,
                 sliding: None,
-                total: sampling + part.unwrap_or(0.0),
-                validation: None,
-            }
+                total: 0.0,
+                validation: corrected.as_ref().and_then(|c| c.get(i).cloned()),
+            };
+            row.total = row.sum_of_parts();
+            row
         })
         .collect();
     let surrogate_basis = match surrogate {
@@ -350,9 +367,16 @@ pub fn qoi_budget(
         SurrogatePart::Exact => "none: the statistics of the model runs themselves".into(),
         SurrogatePart::Unavailable(why) => format!("not estimated: {why}"),
     };
+    let validation_basis = corrected.as_ref().map(|c| {
+        format!(
+            "{} validation runs of the solver at draws of the input law, independent of the design: each statistic corrected by the runs' difference with the surrogate (control variates), its interval from the draws and the runs together; the total keeps at least the surrogate part",
+            c.first().map_or(0, |r| r.runs)
+        )
+    });
     QoiBudget {
         rows,
         surrogate_basis,
+        validation_basis,
         mesh_basis:
             "not estimated (the runs' energy-norm mesh error is I_geo of the error estimate)".into(),
         sliding_basis: None,
