@@ -142,7 +142,7 @@ fn check_mesh_budget(case: &str, reference: Study, coarse: Study) {
         let Some(t) = truth(&row.statistic) else {
             continue;
         };
-        let actual = (row.value - t).abs();
+        let actual = (row.estimate() - t).abs();
         eprintln!(
             "{case} {:<10} value {:.5e} true {:.5e} error {:.3e} total {:.3e} (mesh {:.3e}, surrogate {:.3e}, sampling {:.3e})",
             row.statistic,

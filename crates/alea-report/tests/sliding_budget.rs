@@ -93,7 +93,7 @@ fn sliding_part_covers_the_true_change_under_large_sliding() {
         let Some(t) = true_value(&row.statistic) else {
             continue;
         };
-        let change = (row.value - t).abs();
+        let change = (row.estimate() - t).abs();
         let part = row.sliding.expect("a sliding part");
         eprintln!(
             "{:<6} small {:.4e} large {:.4e} change {:.3e} sliding part {:.3e} ({:.2}x) total {:.3e}",

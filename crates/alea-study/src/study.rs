@@ -575,7 +575,7 @@ fn sliding_study(
         return Err(source.error(
             budget.span(),
             "budget",
-            "[budget] asks for nothing: give refined_mesh (the mesh part), large_sliding = true (the sliding part) and / or validation_runs",
+            "[budget] asks for no part: give refined_mesh (the mesh part), large_sliding = true (the sliding part) and / or validation_runs (the validation runs)",
         ));
     }
     let Some(flag) = spec.large_sliding.as_ref().filter(|f| *f.get_ref()) else {

@@ -99,7 +99,8 @@ fn pc_and_monte_carlo_match_the_exact_law() {
     let dir = std::env::temp_dir().join(format!("alea-analytic-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let runs = run_study(&study, &dir, false, &NoProgress).unwrap();
-    assert_eq!(runs.records.len(), 440);
+    // 40 + 400 design runs and 10 validation runs (a quarter of the chaos design).
+    assert_eq!(runs.records.len(), 450);
     assert!(runs.records.iter().all(|r| r.converged()));
     let (a, b, s, l): (f64, f64, f64, f64) = (150e3, 250e3, 200.0, 100.0);
     // Each run is exact: u = P s L / E.
@@ -217,13 +218,14 @@ fn per_run_paraview_files_on_request() {
     let dir = std::env::temp_dir().join(format!("alea-vtu-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let runs = run_study(&study, &dir, false, &NoProgress).unwrap();
-    assert_eq!(runs.records.len(), 7);
+    // 4 + 3 design runs and 5 validation runs, each with its ParaView file.
+    assert_eq!(runs.records.len(), 12);
     let vtm: Vec<_> = std::fs::read_dir(dir.join("vtu"))
         .unwrap()
         .filter_map(|e| e.ok())
         .filter(|e| e.path().extension().is_some_and(|x| x == "vtm"))
         .collect();
-    assert_eq!(vtm.len(), 7);
+    assert_eq!(vtm.len(), 12);
     for e in vtm {
         let part = e.path().with_extension("").join("plate.vtu");
         let xml = std::fs::read_to_string(&part).unwrap();

@@ -460,7 +460,7 @@ fn budget_against_reference(
         let budget = q.budget.as_ref().unwrap();
         for (name, t) in &exact {
             let row = budget.rows.iter().find(|r| r.statistic == *name).unwrap();
-            let actual = (row.value - t).abs();
+            let actual = (row.estimate() - t).abs();
             if matches!(m.kind, MethodKind::Adaptive(_)) && matches!(*name, "mean" | "std") {
                 adaptive.push((
                     format!("{} {name}", m.label),

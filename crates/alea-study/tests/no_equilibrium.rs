@@ -114,6 +114,10 @@ component = 1
 type = "piecewise_linear"
 points_per_dim = 3
 
+# The design's runs are the subject: no validation runs at other points.
+[budget]
+validation_runs = 0
+
 [solver]
 tolerance = 1e-6
 max_iterations = 1500

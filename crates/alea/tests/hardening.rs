@@ -223,10 +223,10 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     let o = alea().arg("report").arg(&dir).output().unwrap();
     let t = text(&o);
     assert!(o.status.success(), "{t}");
-    assert!(t.contains("68 of 70 runs finished"), "{t}");
+    assert!(t.contains("78 of 80 runs finished"), "{t}");
     assert_eq!(t.matches("cannot be used").count(), 2, "{t}");
     assert!(t.contains("is missing") && t.contains("truncated"), "{t}");
-    assert!(t.contains("2 of 70 runs are missing"), "{t}");
+    assert!(t.contains("2 of 80 runs are missing"), "{t}");
     assert!(!t.contains("did not converge"), "{t}");
     assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
     for s in &stale {
@@ -236,7 +236,7 @@ fn temporaries_go_damaged_runs_are_recomputed_and_report_matches_run() {
     let o = run_in(&base, "plate.toml", "out");
     let t = text(&o);
     assert!(o.status.success(), "{t}");
-    assert!(t.contains("runs: 2 computed, 68 resumed"), "{t}");
+    assert!(t.contains("runs: 2 computed, 78 resumed"), "{t}");
     assert_eq!(std::fs::read(dir.join("summary.json")).unwrap(), summary);
     assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
     // Both stored again, as they were.

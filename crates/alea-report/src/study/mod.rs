@@ -59,14 +59,23 @@ pub fn run_runs(
 ) -> Result<Ran, Error> {
     let study = Study::load(path)?;
     let settings = analysis_settings(&study)?;
+    // The validation runs of the designs known before the runs (an adaptive loop's own are
+    // counted once it ends).
+    let validation = alea_study::validation_runs::count(&study, &study.methods);
+    let design = study.all_points().len();
     console.line(&format!(
-        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs -> {}",
+        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs{} -> {}",
         study.title(),
         study.params.names.len(),
         study.qois.len(),
         if study.qois.len() == 1 { "y" } else { "ies" },
         study.methods.len(),
-        study.all_points().len(),
+        design + validation,
+        if validation > 0 {
+            format!(" ({validation} of them validation runs)")
+        } else {
+            String::new()
+        },
         dir.display()
     ));
     let runs = run_study(&study, dir, restart, progress)?;
