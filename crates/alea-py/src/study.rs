@@ -478,14 +478,31 @@ fn method_dict<'py>(
         let ky: Vec<f64> = s.kde.iter().map(|p| p.1).collect();
         q.set_item("kde_x", array1(py, kx))?;
         q.set_item("kde_pdf", array1(py, ky))?;
+        // Each failure probability: threshold, value, its sampling-only (Wilson) interval, then
+        // the estimate and the total interval of its budget row (None without a budget; issue
+        // 40, item 3).
+        let rows = s.budget.as_ref().map_or(&[][..], |b| &b.rows[..]);
         let f = PyList::empty(py);
         for fs in &s.failure {
-            f.append((fs.threshold, fs.probability, fs.ci_low, fs.ci_high))?;
+            let statistic = format!("P(> {})", fs.threshold);
+            let row = rows.iter().find(|r| r.statistic == statistic);
+            f.append((
+                fs.threshold,
+                fs.probability,
+                fs.ci_low,
+                fs.ci_high,
+                row.map(|r| r.estimate()),
+                row.map(|r| r.interval().0),
+                row.map(|r| r.interval().1),
+            ))?;
         }
         q.set_item("failure", f)?;
+        // Each budget row: its parts, then what users read, the estimate (corrected by the
+        // validation runs where there are some) and the total interval.
         let budget = PyList::empty(py);
         if let Some(b) = &s.budget {
             for row in &b.rows {
+                let (lo, hi) = row.interval();
                 budget.append((
                     row.statistic.as_str(),
                     row.value,
@@ -494,6 +511,9 @@ fn method_dict<'py>(
                     row.sampling,
                     row.sliding,
                     row.total,
+                    row.estimate(),
+                    lo,
+                    hi,
                 ))?;
             }
             q.set_item("surrogate_basis", &b.surrogate_basis)?;

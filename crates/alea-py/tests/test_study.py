@@ -71,6 +71,28 @@ def test_statistics_match_the_exact_law(study):
         assert row["ci_low"] <= row["probability"] <= row["ci_high"]
 
 
+def test_failure_and_statistics_carry_the_total_interval_beside_the_sampling_one(study):
+    """Issue 40, item 3: what users read is the budget's estimate with its total interval; the
+    Wilson interval is there too, named sampling-only, and the total contains it."""
+    res, _, _ = study
+    budget = res.budget.set_index(["method", "quantity", "statistic"])
+    for _, row in res.failure.iterrows():
+        b = budget.loc[(row["method"], row["quantity"], f"P(> {T})")]
+        assert row["estimate"] == b["estimate"]
+        assert (row["total_low"], row["total_high"]) == (b["total_low"], b["total_high"])
+        assert (row["sampling_low"], row["sampling_high"]) == (row["ci_low"], row["ci_high"])
+        assert row["total_low"] <= row["sampling_low"] <= row["sampling_high"] <= row["total_high"], row.to_dict()
+        assert row["total_high"] - row["total_low"] > 0
+    for (method, quantity), row in res.statistics.iterrows():
+        for stat in ("mean", "std"):
+            b = budget.loc[(method, quantity, stat)]
+            assert row[f"{stat}_estimate"] == b["estimate"]
+            assert row[f"{stat}_low"] <= row[f"{stat}_estimate"] <= row[f"{stat}_high"]
+            assert abs(0.5 * (row[f"{stat}_high"] - row[f"{stat}_low"]) - b["total"]) <= 1e-12 * abs(b["estimate"]) or stat == "std"
+        # The sampling-only half-width of the mean inside the total one.
+        assert row["mean_ci_half_width"] <= 0.5 * (row["mean_high"] - row["mean_low"]) * (1 + 1e-12)
+
+
 def test_error_budget_covers_the_exact_statistics(study):
     """Each statistic's reported total error covers its true error (exact law above)."""
     res, _, _ = study

@@ -5,6 +5,7 @@
 
 pub mod adaptive;
 pub mod analysis;
+pub mod atoms;
 pub mod budget;
 mod build;
 mod cell_field;

@@ -66,19 +66,30 @@ class StudyResult:
         ``iterations`` (LATIN), ``residual`` (final error indicator), ``seconds`` and the
         quantities of interest (one column each; NaN where a run gave none).
     statistics : pandas.DataFrame
-        Indexed by ``(method, quantity)``: ``mean``, ``std``, ``skewness``, ``min``, ``max``,
-        ``mean_ci_half_width`` (half width of the confidence interval of the mean, Monte Carlo
-        error), quantiles ``q0.01`` ... ``q0.99``, ``kde_bandwidth``, ``draws`` and
-        ``runs_used``. Methods that gave no statistics have no rows (see ``methods``).
+        Indexed by ``(method, quantity)``: ``mean``, ``std``, ``skewness``, ``min``, ``max``
+        (of the draws on the surrogate), ``mean_ci_half_width`` (half width of the confidence
+        interval of the mean from the draws alone: sampling only), quantiles ``q0.01`` ...
+        ``q0.99``, ``kde_bandwidth``, ``draws`` and ``runs_used``; and what to read of the
+        mean and the std, from their error budget (NaN without one): ``mean_estimate`` (the
+        mean corrected by the validation runs where there are some, else ``mean``),
+        ``mean_low``, ``mean_high`` (its total interval: every estimated part of the budget),
+        ``std_estimate``, ``std_low``, ``std_high``. Methods that gave no statistics have no
+        rows (see ``methods``).
     failure : pandas.DataFrame
         ``P(quantity > threshold)`` for every threshold of the study: columns ``method``,
-        ``quantity``, ``threshold``, ``probability``, ``ci_low``, ``ci_high`` (Wilson interval).
+        ``quantity``, ``threshold``, ``probability`` (on the draws), ``estimate`` (corrected
+        by the validation runs where there are some), ``total_low``, ``total_high`` (the total
+        interval of its error budget; NaN without a budget), ``sampling_low``,
+        ``sampling_high`` (the Wilson interval from the draws alone: sampling only), and
+        ``ci_low``, ``ci_high`` (the same sampling-only bounds, their older names).
     budget : pandas.DataFrame
         The error budget of every statistic: columns ``method``, ``quantity``, ``statistic``
         (``mean``, ``std``, ``q0.05``, ``P(> t)``...), ``value`` and its estimated error by
         source, ``mesh``, ``surrogate``, ``sampling`` and ``sliding`` (``[budget] large_sliding``:
-        the change under large sliding; NaN where not estimated or not asked for), and
-        ``total``. How the surrogate part was estimated: ``budget_basis[(method, quantity)]``.
+        the change under large sliding; NaN where not estimated or not asked for), ``total``,
+        and what to read: ``estimate`` (the statistic corrected by the validation runs where
+        there are some, else ``value``) with its total interval ``total_low``, ``total_high``.
+        How the surrogate part was estimated: ``budget_basis[(method, quantity)]``.
     budget_bases : pandas.DataFrame
         How each budget was estimated: columns ``method``, ``quantity``, ``surrogate``,
         ``mesh`` and ``sliding`` (the basis of each part, or why it was not estimated; None
@@ -189,6 +200,13 @@ class StudyResult:
                 row["kde_bandwidth"] = s["bandwidth"]
                 row["draws"] = m["draws"]
                 row["runs_used"] = m["runs_used"]
+                read = {b[0]: b[7:10] for b in s["budget"]}
+                nan = float("nan")
+                for stat in ("mean", "std"):
+                    estimate, low, high = read.get(stat, (nan, nan, nan))
+                    row[f"{stat}_estimate"] = estimate
+                    row[f"{stat}_low"] = low
+                    row[f"{stat}_high"] = high
                 rows.append(row)
         if not rows:
             return pd.DataFrame(columns=["method", "quantity"]).set_index(["method", "quantity"])
@@ -201,7 +219,7 @@ class StudyResult:
             for s in m["statistics"]:
                 if "surrogate_basis" in s:
                     basis[(m["label"], s["quantity"])] = s["surrogate_basis"]
-                for (stat, value, mesh, surrogate, sampling, sliding, total) in s["budget"]:
+                for (stat, value, mesh, surrogate, sampling, sliding, total, estimate, low, high) in s["budget"]:
                     rows.append(
                         {
                             "method": m["label"],
@@ -213,10 +231,14 @@ class StudyResult:
                             "sampling": sampling,
                             "sliding": nan if sliding is None else sliding,
                             "total": total,
+                            "estimate": estimate,
+                            "total_low": low,
+                            "total_high": high,
                         }
                     )
         columns = [
             "method", "quantity", "statistic", "value", "mesh", "surrogate", "sampling", "sliding", "total",
+            "estimate", "total_low", "total_high",
         ]
         return pd.DataFrame(rows, columns=columns), basis
 
@@ -283,20 +305,29 @@ class StudyResult:
         return sens, fields
 
     def _failure(self) -> pd.DataFrame:
+        nan = float("nan")
         rows = [
             {
                 "method": m["label"],
                 "quantity": s["quantity"],
                 "threshold": t,
                 "probability": p,
+                "estimate": p if estimate is None else estimate,
+                "total_low": nan if low is None else low,
+                "total_high": nan if high is None else high,
+                "sampling_low": lo,
+                "sampling_high": hi,
                 "ci_low": lo,
                 "ci_high": hi,
             }
             for m in self._raw["methods"]
             for s in m["statistics"]
-            for (t, p, lo, hi) in s["failure"]
+            for (t, p, lo, hi, estimate, low, high) in s["failure"]
         ]
-        columns = ["method", "quantity", "threshold", "probability", "ci_low", "ci_high"]
+        columns = [
+            "method", "quantity", "threshold", "probability", "estimate", "total_low", "total_high",
+            "sampling_low", "sampling_high", "ci_low", "ci_high",
+        ]
         return pd.DataFrame(rows, columns=columns)
 
     def _samples(self, m: dict) -> Tuple[np.ndarray, List[str]]:

@@ -165,8 +165,13 @@ pub struct QoiReport {
     pub skewness: f64,
     /// (probability, value).
     pub quantiles: Vec<(f64, f64)>,
-    /// (x, pdf) on a grid.
+    /// (x, pdf) on a grid: the kernel density of the samples, or with atoms that of the other
+    /// samples scaled by their share (it integrates to 1 minus the atoms' probabilities).
     pub kde: Vec<(f64, f64)>,
+    /// Values the samples take exactly with a probability of at least 1 % (a contact that
+    /// opens: many exact zeros), drawn as atoms (`alea_study::atoms`).
+    #[serde(default)]
+    pub atoms: Vec<Atom>,
     /// Failure probabilities for the user's thresholds.
     pub failure: Vec<FailureInfo>,
     /// The response surface over two parameters, when there is one to show.
@@ -187,8 +192,23 @@ pub struct QoiReport {
 }
 
 /// The error budget of one statistic (each part estimated, `None` when not): the study's own
-/// row type, drawn as it is.
+/// row type, drawn as it is. What users read of it: [`BudgetRow::estimate`] and
+/// [`BudgetRow::interval`] (the total interval).
 pub use alea_study::budget::BudgetRow;
+
+/// A probability atom of a quantity (value, probability, its sampling-only Wilson interval):
+/// the study's own type.
+pub use alea_study::atoms::Atom;
+
+/// The budget row of `statistic` (`mean`, `std`, `q0.05`, `P(> t)`) in `rows`, if estimated.
+pub fn budget_row<'a>(rows: &'a [BudgetRow], statistic: &str) -> Option<&'a BudgetRow> {
+    rows.iter().find(|r| r.statistic == statistic)
+}
+
+/// The name of the budget row of `P(q > threshold)` (as `alea_study::budget` writes it).
+pub fn failure_statistic(threshold: f64) -> String {
+    format!("P(> {threshold})")
+}
 
 /// The failure probability by one algorithm.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -214,11 +234,13 @@ pub struct ReliabilityReport {
     pub notes: Vec<String>,
 }
 
-/// Probability of failure for one threshold, with its confidence interval.
+/// Probability of failure for one threshold, with its sampling-only confidence interval (the
+/// total interval is that of the budget row [`failure_statistic`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct FailureInfo {
     pub threshold: f64,
     pub probability: f64,
+    /// Wilson interval from the draws alone (sampling only).
     pub ci_low: f64,
     pub ci_high: f64,
 }
@@ -251,8 +273,16 @@ pub struct ComparisonRow {
     pub runs: usize,
     pub mean: f64,
     pub std: f64,
-    /// (x, pdf) on a grid.
+    /// (x, pdf) on a grid (of the continuous part when there are atoms, as
+    /// [`QoiReport::kde`]).
     pub kde: Vec<(f64, f64)>,
+    /// Probability atoms (as [`QoiReport::atoms`]).
+    #[serde(default)]
+    pub atoms: Vec<Atom>,
+    /// The method's error budget of the quantity (empty when not estimated): each statistic
+    /// with its own total interval.
+    #[serde(default)]
+    pub budget: Vec<BudgetRow>,
 }
 
 impl ReportInput {

@@ -30,9 +30,9 @@ use std::path::{Path, PathBuf};
 // The whole input type family is public API for the study runner (and the tests).
 #[allow(unused_imports)]
 pub use data::{
-    AdaptiveReport, BudgetRow, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow,
+    AdaptiveReport, Atom, BudgetRow, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow,
     FailureInfo, ParamInfo, QoiReport, ReliabilityReport, ReliabilityRow, ReportInput, RunInfo,
-    StepRow, Surface,
+    StepRow, Surface, budget_row, failure_statistic,
 };
 
 /// What went wrong while writing a report.
@@ -140,6 +140,41 @@ fn pdf_curve(field: &str, kde: &[(f64, f64)]) -> Result<(), ReportError> {
     Ok(())
 }
 
+/// Checks atoms: finite values, probabilities with their intervals in `[0, 1]`.
+fn atoms(field: &str, list: &[Atom]) -> Result<(), ReportError> {
+    for (i, a) in list.iter().enumerate() {
+        let f = |what: &str| format!("{field}[{i}].{what}");
+        finite(|| f("value"), a.value)?;
+        probability(|| f("probability"), a.probability)?;
+        probability(|| f("ci_low"), a.ci_low)?;
+        probability(|| f("ci_high"), a.ci_high)?;
+    }
+    Ok(())
+}
+
+/// Checks the values and parts of budget rows are finite (a part may be absent).
+fn budget(field: &str, rows: &[BudgetRow]) -> Result<(), ReportError> {
+    for (i, r) in rows.iter().enumerate() {
+        let f = |what: &str| format!("{field}[{i}] \"{}\".{what}", r.statistic);
+        finite(|| f("value"), r.value)?;
+        finite(|| f("sampling"), r.sampling)?;
+        finite(|| f("total"), r.total)?;
+        let (lo, hi) = r.interval();
+        finite(|| f("interval"), lo)?;
+        finite(|| f("interval"), hi)?;
+        for (name, part) in [
+            ("mesh", r.mesh),
+            ("surrogate", r.surrogate),
+            ("sliding", r.sliding),
+        ] {
+            if let Some(v) = part {
+                finite(|| f(name), v)?;
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Checks a surface: finite values, strictly increasing grids of at least 2 values, matching
 /// sizes.
 fn validate_surface(field: &str, s: &Surface) -> Result<(), ReportError> {
@@ -240,6 +275,8 @@ pub fn validate(input: &ReportInput) -> Result<(), ReportError> {
             finite(|| f(&format!("quantiles[{i}].value")), v)?;
         }
         pdf_curve(&f("kde"), &q.kde)?;
+        atoms(&f("atoms"), &q.atoms)?;
+        budget(&f("budget"), &q.budget)?;
         for (i, (_, first, total)) in q.sobol.iter().enumerate() {
             finite(|| f(&format!("sobol[{i}].first")), *first)?;
             finite(|| f(&format!("sobol[{i}].total")), *total)?;
@@ -309,6 +346,8 @@ pub fn validate(input: &ReportInput) -> Result<(), ReportError> {
             finite(|| f("mean"), row.mean)?;
             finite(|| f("std"), row.std)?;
             pdf_curve(&f("kde"), &row.kde)?;
+            atoms(&f("atoms"), &row.atoms)?;
+            budget(&f("budget"), &row.budget)?;
         }
     }
     for (label, t) in &input.timings {

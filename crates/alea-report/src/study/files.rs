@@ -1,5 +1,5 @@
-//! `summary.json` (everything a study found, for programs) and `samples.csv` (the main method's
-//! draws).
+//! `summary.json` (everything a study found, for programs; the total intervals beside the
+//! sampling-only ones: `summary_intervals.rs`) and `samples.csv` (the main method's draws).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -8,6 +8,7 @@ use alea_study::analysis::MethodResult;
 use alea_study::runner::{Study, StudyRuns};
 
 use super::estimate::{MethodEstimate, adaptive_json, error_json};
+use super::summary_intervals::add_intervals;
 use crate::{Console, Error};
 
 /// Writes `summary.json` into `dir`; returns its path.
@@ -44,6 +45,7 @@ pub(super) fn write_summary(
                 "failure_region": r.failure_region,
                 "draws": r.draws, "qois": r.qois,
             });
+            add_intervals(&mut v["qois"], &r.qois);
             if let Some(e) = estimates.iter().find(|e| e.method == m) {
                 v["error_estimate"] = match &e.result {
                     Ok(me) => error_json(me),

@@ -1,19 +1,36 @@
 //! The report's input from a study's results: the main method's quantities with their
 //! response surfaces, the comparison of methods, the runs and a few LATIN histories.
 
-use alea_study::analysis::{MethodResult, response_surface};
+use alea_study::analysis::{AnalysisSettings, MethodResult, QoiStats, response_surface};
+use alea_study::atoms::split_atoms;
 use alea_study::method::Method;
 use alea_study::runner::Study;
 use alea_study::store::RunRecord;
 
 use crate::report::{
-    Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
+    Atom, Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
     ReliabilityRow, ReportInput, RunInfo, Surface,
 };
+
+/// The density a plot draws of a quantity's samples: with probability atoms (values that 1 %
+/// of the samples or more take exactly), the atoms and the kernel density of the rest scaled
+/// by its share; else the analysis's kernel density as it is.
+fn density(s: &QoiStats, settings: &AnalysisSettings) -> (Vec<Atom>, Vec<(f64, f64)>) {
+    match split_atoms(
+        &s.samples,
+        settings.bandwidth,
+        settings.kde_points,
+        settings.confidence,
+    ) {
+        Some(law) => (law.atoms, law.kde),
+        None => (Vec::new(), s.kde.clone()),
+    }
+}
 
 /// The report's input (without the error section, which `estimate_report.rs` adds).
 pub(super) fn report_input(
     study: &Study,
+    settings: &AnalysisSettings,
     methods: &[Method],
     results: &[MethodResult],
     records: &[RunRecord],
@@ -55,6 +72,7 @@ pub(super) fn report_input(
                             .collect(),
                     }
                 });
+            let (atoms, kde) = density(s, settings);
             Some(QoiReport {
                 name: qoi.name.clone(),
                 unit: qoi.unit.clone(),
@@ -64,7 +82,8 @@ pub(super) fn report_input(
                 std: s.std,
                 skewness: s.skewness,
                 quantiles: s.quantiles.clone(),
-                kde: s.kde.clone(),
+                kde,
+                atoms,
                 failure: s
                     .failure
                     .iter()
@@ -120,12 +139,15 @@ pub(super) fn report_input(
             .iter()
             .filter_map(|r| {
                 let s = r.qois.first()?;
+                let (atoms, kde) = density(s, settings);
                 Some(ComparisonRow {
                     method: r.label.clone(),
                     runs: r.runs_used,
                     mean: s.mean,
                     std: s.std,
-                    kde: s.kde.clone(),
+                    kde,
+                    atoms,
+                    budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
                 })
             })
             .collect(),

@@ -14,6 +14,7 @@ mod files;
 mod input;
 mod outputs;
 mod results;
+mod summary_intervals;
 mod table;
 
 use std::path::{Path, PathBuf};

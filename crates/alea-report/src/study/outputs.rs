@@ -197,6 +197,7 @@ fn write_files(
         let t0 = Instant::now();
         let mut input = report_input(
             study,
+            settings,
             &runs.methods,
             &results,
             &runs.records,

@@ -1,7 +1,10 @@
-//! The statistics table of `alea run` / `alea report`: every method's mean, std and skewness
-//! per quantity, the failure probabilities of the main method.
+//! The statistics table of `alea run` / `alea report`: every method's mean and std with their
+//! total intervals (the estimates and intervals of the error budget's rows, issue 40, item 3)
+//! and skewness per quantity, the error budget of the main method, and every method's failure
+//! probabilities with their total and sampling-only intervals.
 
-use alea_study::analysis::MethodResult;
+use alea_study::analysis::{MethodResult, QoiStats};
+use alea_study::budget::BudgetRow;
 use alea_study::runner::Study;
 
 use crate::Console;
@@ -36,85 +39,97 @@ pub(super) fn print_table(
             format!(" [{}]", qoi.unit)
         };
         console.line(&format!(
-            "  {:<34} {:>5} {:>14} {:>14} {:>10}",
+            "  {:<34} {:>5} {:>12} {:>24} {:>12} {:>24} {:>9}",
             "method",
             "runs",
             format!("mean{unit}"),
+            "total interval",
             format!("std{unit}"),
+            "total interval",
             "skewness"
         ));
         for r in results {
             match r.qois.get(q) {
-                Some(s) => console.line(&format!(
-                    "  {:<34} {:>5} {:>14} {:>14} {:>10.3}",
-                    r.label,
-                    r.runs_used,
-                    num(s.mean, 6),
-                    num(s.std, 6),
-                    s.skewness
-                )),
+                Some(s) => {
+                    let (mean, mean_interval) = read(s, "mean", s.mean, 6);
+                    let (std, std_interval) = read(s, "std", s.std, 6);
+                    console.line(&format!(
+                        "  {:<34} {:>5} {mean:>12} {mean_interval:>24} {std:>12} {std_interval:>24} {:>9.3}",
+                        r.label, r.runs_used, s.skewness
+                    ));
+                }
                 None => console.line(&format!(
-                    "  {:<34} {:>5} {:>14} {:>14} {:>10}",
-                    r.label, r.runs_used, "-", "-", "-"
+                    "  {:<34} {:>5} {:>12} {:>24} {:>12} {:>24} {:>9}",
+                    r.label, r.runs_used, "-", "-", "-", "-", "-"
                 )),
             }
         }
-        if let Some((r, s)) = results.iter().find_map(|r| r.qois.get(q).map(|s| (r, s))) {
-            if let Some(b) = &s.budget {
-                console.line(&format!("  error budget ({}):", r.label));
-                for row in &b.rows {
-                    if row.statistic.starts_with('q')
-                        && !["q0.05", "q0.5", "q0.95"].contains(&row.statistic.as_str())
-                    {
-                        continue;
-                    }
-                    let unit = if row.statistic.starts_with('P') {
-                        ""
-                    } else {
-                        qoi.unit.as_str()
-                    };
-                    let part = |v: Option<f64>| {
-                        v.map_or_else(
-                            || "not estimated".to_string(),
-                            |v| format!("+-{}", num(v, 3)),
-                        )
-                    };
-                    let sliding = row
-                        .sliding
-                        .map_or_else(String::new, |v| format!(", sliding +-{}", num(v, 3)));
-                    console.line(&format!(
-                        "    {:<12} {:>13} {unit:<4} total +-{}: surrogate {}, sampling +-{}, mesh {}{sliding}",
-                        row.statistic,
-                        num(row.value, 6),
-                        num(row.total, 3),
-                        part(row.surrogate),
-                        num(row.sampling, 3),
-                        part(row.mesh)
-                    ));
+        if let Some((r, b)) = results
+            .iter()
+            .find_map(|r| r.qois.get(q).map(|s| (r, s)))
+            .and_then(|(r, s)| Some((r, s.budget.as_ref()?)))
+        {
+            console.line(&format!("  error budget ({}):", r.label));
+            for row in &b.rows {
+                if row.statistic.starts_with('q')
+                    && !["q0.05", "q0.5", "q0.95"].contains(&row.statistic.as_str())
+                {
+                    continue;
                 }
-            }
-            for f in &s.failure {
-                // The total interval of the error budget first (issue 40, item 3); the sampling
-                // interval alone labelled as such.
-                let total = s.budget.as_ref().and_then(|b| {
-                    b.rows
-                        .iter()
-                        .find(|r| r.statistic == format!("P(> {})", f.threshold))
-                        .map(|r| r.total)
-                });
-                let total_words = total.map_or_else(String::new, |t| {
+                let unit = if row.statistic.starts_with('P') {
+                    ""
+                } else {
+                    qoi.unit.as_str()
+                };
+                let part = |v: Option<f64>| {
+                    v.map_or_else(
+                        || "not estimated".to_string(),
+                        |v| format!("+-{}", num(v, 3)),
+                    )
+                };
+                let sliding = row
+                    .sliding
+                    .map_or_else(String::new, |v| format!(", sliding +-{}", num(v, 3)));
+                let corrected = row.validation.as_ref().map_or_else(String::new, |v| {
                     format!(
-                        "total interval [{}, {}] (budget, parts above); ",
-                        prob((f.probability - t).max(0.0)),
-                        prob((f.probability + t).min(1.0))
+                        " (surrogate {}, corrected by {} validation runs)",
+                        num(row.value, 6),
+                        v.runs
                     )
                 });
                 console.line(&format!(
-                    "  P({} > {} {}) = {}  ({total_words}{:.0}% sampling interval [{}, {}])",
+                    "    {:<12} {:>13} {unit:<4} total +-{}: surrogate {}, sampling +-{}, mesh {}{sliding}{corrected}",
+                    row.statistic,
+                    num(row.estimate(), 6),
+                    num(row.total, 3),
+                    part(row.surrogate),
+                    num(row.sampling, 3),
+                    part(row.mesh)
+                ));
+            }
+        }
+        // Every method's failure probabilities: the total interval of the error budget first
+        // (issue 40, item 3), the sampling interval alone labelled as such.
+        let several = results.iter().filter(|r| r.qois.get(q).is_some()).count() > 1;
+        for r in results {
+            let Some(s) = r.qois.get(q) else { continue };
+            for f in &s.failure {
+                let row = budget_row(s, &format!("P(> {})", f.threshold));
+                let total_words = row.map_or_else(String::new, |row| {
+                    let (lo, hi) = row.interval();
+                    format!("total interval [{}, {}] (budget); ", prob(lo), prob(hi))
+                });
+                console.line(&format!(
+                    "  {}P({} > {} {}) = {}  ({total_words}{:.0}% sampling-only interval [{}, {}])",
+                    if several {
+                        format!("{}: ", r.label)
+                    } else {
+                        String::new()
+                    },
                     qoi.name,
                     num(f.threshold, 6),
                     qoi.unit,
-                    prob(f.probability),
+                    prob(row.map_or(f.probability, BudgetRow::estimate)),
                     100.0 * confidence,
                     prob(f.ci_low),
                     prob(f.ci_high)
@@ -123,6 +138,30 @@ pub(super) fn print_table(
         }
     }
     console.line("");
+}
+
+/// The budget row of `statistic` of a quantity's statistics, if estimated.
+fn budget_row<'a>(s: &'a QoiStats, statistic: &str) -> Option<&'a BudgetRow> {
+    s.budget
+        .as_ref()?
+        .rows
+        .iter()
+        .find(|r| r.statistic == statistic)
+}
+
+/// What a user reads of `statistic`: its estimate (the budget's, else `value`) and its total
+/// interval (`-` when not estimated), with `sig` significant digits.
+fn read(s: &QoiStats, statistic: &str, value: f64, sig: usize) -> (String, String) {
+    match budget_row(s, statistic) {
+        Some(row) => {
+            let (lo, hi) = row.interval();
+            (
+                num(row.estimate(), sig),
+                format!("[{}, {}]", num(lo, sig - 2), num(hi, sig - 2)),
+            )
+        }
+        None => (num(value, sig), "-".to_string()),
+    }
 }
 
 /// The `[[reliability]]` results: the probability by each algorithm, with its interval and

@@ -3,6 +3,7 @@
 
 mod error;
 mod figures;
+mod interval;
 mod qoi;
 mod runs;
 mod study;

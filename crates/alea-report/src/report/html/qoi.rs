@@ -4,8 +4,9 @@ use std::fmt::Write;
 
 use super::super::format::{count, esc, num, prob};
 use super::super::plots::{Figure, Kind};
-use super::super::{Comparison, QoiReport, ReliabilityReport};
+use super::super::{Comparison, QoiReport, ReliabilityReport, failure_statistic};
 use super::figures::{put_figure, with_unit};
+use super::interval::{Style, estimate, total, with_total};
 
 pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
     let _ = writeln!(
@@ -27,13 +28,25 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
     let row = |o: &mut String, label: &str, value: String| {
         let _ = writeln!(o, "<tr><th>{label}</th><td class=\"n\">{value}</td></tr>");
     };
-    row(o, "Mean", format!("{}{unit}", num(q.mean, 5)));
-    row(o, "Standard deviation", format!("{}{unit}", num(q.std, 4)));
-    if q.mean != 0.0 {
+    // Each with its total interval (issue 40, item 3).
+    let (mean, std) = (
+        estimate(&q.budget, "mean", q.mean),
+        estimate(&q.budget, "std", q.std),
+    );
+    let with_interval = |statistic: &str, value: f64, sig: usize| {
+        let e = num(estimate(&q.budget, statistic, value), sig);
+        match total(&q.budget, statistic, Style::Num(sig)) {
+            Some(t) => format!("{e}{unit} <span class=\"ci\">total {t}</span>"),
+            None => format!("{e}{unit}"),
+        }
+    };
+    row(o, "Mean", with_interval("mean", q.mean, 5));
+    row(o, "Standard deviation", with_interval("std", q.std, 4));
+    if mean != 0.0 {
         row(
             o,
             "Coefficient of variation",
-            format!("{} %", num(100.0 * q.std / q.mean.abs(), 3)),
+            format!("{} %", num(100.0 * std / mean.abs(), 3)),
         );
     }
     row(o, "Skewness", num(q.skewness, 3));
@@ -44,16 +57,36 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
     if q.quantiles.is_empty() {
         o.push_str("<p class=\"ok-note\">None computed.</p>");
     } else {
-        o.push_str(
-            "<table><thead><tr><th class=\"n\">Probability</th><th class=\"n\">Value</th>\
-             </tr></thead><tbody>\n",
+        let intervals = q
+            .quantiles
+            .iter()
+            .any(|(p, _)| total(&q.budget, &format!("q{p}"), Style::Num(4)).is_some());
+        let _ = writeln!(
+            o,
+            "<table><thead><tr><th class=\"n\">Probability</th><th class=\"n\">Value</th>{}\
+             </tr></thead><tbody>",
+            if intervals {
+                "<th class=\"n\">Total interval</th>"
+            } else {
+                ""
+            }
         );
         for &(p, v) in &q.quantiles {
+            let statistic = format!("q{p}");
+            let cell = if intervals {
+                format!(
+                    "<td class=\"n\">{}</td>",
+                    total(&q.budget, &statistic, Style::Num(4))
+                        .unwrap_or_else(|| "not estimated".into())
+                )
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 o,
-                "<tr><td class=\"n\">{}</td><td class=\"n\">{}{unit}</td></tr>",
+                "<tr><td class=\"n\">{}</td><td class=\"n\">{}{unit}</td>{cell}</tr>",
                 prob(p),
-                num(v, 4)
+                num(estimate(&q.budget, &statistic, v), 4)
             );
         }
         o.push_str("</tbody></table>");
@@ -65,17 +98,22 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         o.push_str("<p class=\"ok-note\">No threshold given.</p>");
     } else {
         o.push_str(
-            "<p class=\"hint\">P<sub>f</sub> = P(q &gt; threshold), with its confidence \
-             interval</p><table><thead><tr><th class=\"n\">Threshold</th><th class=\"n\">P<sub>f</sub></th>\
-             <th class=\"n\">Confidence interval</th></tr></thead><tbody>\n",
+            "<p class=\"hint\">P<sub>f</sub> = P(q &gt; threshold) with its total interval \
+             (every estimated part of its error budget), and the interval from the Monte Carlo \
+             draws alone (sampling only, Wilson)</p><table><thead><tr>\
+             <th class=\"n\">Threshold</th><th class=\"n\">P<sub>f</sub></th>\
+             <th class=\"n\">Total interval</th><th class=\"n\">Sampling-only interval</th>\
+             </tr></thead><tbody>\n",
         );
         for f in &q.failure {
+            let statistic = failure_statistic(f.threshold);
             let _ = writeln!(
                 o,
                 "<tr><td class=\"n\">{}{unit}</td><td class=\"n\">{}</td>\
-                 <td class=\"n\">[{}, {}]</td></tr>",
+                 <td class=\"n\">{}</td><td class=\"n\">[{}, {}]</td></tr>",
                 num(f.threshold, 5),
-                prob(f.probability),
+                prob(estimate(&q.budget, &statistic, f.probability)),
+                total(&q.budget, &statistic, Style::Prob).unwrap_or_else(|| "not estimated".into()),
                 prob(f.ci_low),
                 prob(f.ci_high)
             );
@@ -91,8 +129,12 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         Kind::Pdf(k),
         &format!(
             "Probability density of {}: kernel density estimate over the normalised histogram \
-             of the Monte Carlo samples on the surrogate; dashed: mean; red: failure thresholds, \
-             shaded: the failure region q > threshold",
+             of the Monte Carlo samples on the surrogate; dashed: mean, grey band: its total \
+             interval; red: failure thresholds, shaded: the failure region q > threshold; a value \
+             taken with positive probability (an atom: e.g. many exact zeros where a contact \
+             opens) is a stem ending in a dot, its height its probability (the top of the frame: \
+             1), and the histogram and the curve are then those of the other values, scaled by \
+             their share",
             q.name
         ),
     );
@@ -101,7 +143,8 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         figures,
         Kind::Cdf(k),
         &format!(
-            "Empirical cumulative distribution of {}, with the tabulated quantiles",
+            "Empirical cumulative distribution of {}, with the tabulated quantiles and their \
+             total intervals (horizontal bars)",
             q.name
         ),
     );
@@ -148,20 +191,33 @@ fn sobol_table(o: &mut String, q: &QoiReport) {
     o.push_str("</tbody></table></div>\n");
 }
 
-/// The error budget of each statistic: value, mesh, surrogate, sampling, sliding (when asked
-/// for) and total parts.
+/// The error budget of each statistic: value, the corrected value (when validation runs
+/// corrected some), mesh, surrogate, sampling, sliding (when asked for) and total parts, and
+/// the total interval.
 fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
     if q.budget.is_empty() {
         return;
     }
     let sliding = q.budget.iter().any(|b| b.sliding.is_some());
+    let corrected = q.budget.iter().any(|b| b.validation.is_some());
     let _ = writeln!(
         o,
         "<div class=\"budget\"><h3>Error budget</h3><p class=\"hint\">How far each statistic \
-         can be trusted: estimated error by source (±), and their sum</p>\
-         <table><thead><tr><th>Statistic</th><th class=\"n\">Value</th><th class=\"n\">Mesh</th>\
+         can be trusted: estimated error by source (±), their sum, and the total interval about \
+         the statistic{}</p>\
+         <table><thead><tr><th>Statistic</th><th class=\"n\">Value</th>{}<th class=\"n\">Mesh</th>\
          <th class=\"n\">Surrogate</th><th class=\"n\">Sampling</th>{}<th class=\"n\">Total</th>\
-         </tr></thead><tbody>",
+         <th class=\"n\">Total interval</th></tr></thead><tbody>",
+        if corrected {
+            " (corrected by the validation runs where there are some)"
+        } else {
+            ""
+        },
+        if corrected {
+            "<th class=\"n\">Corrected</th>"
+        } else {
+            ""
+        },
         if sliding {
             "<th class=\"n\">Sliding</th>"
         } else {
@@ -170,26 +226,37 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
     );
     let part = |v: Option<f64>| v.map_or_else(|| "not estimated".to_string(), |v| num(v, 2));
     for b in &q.budget {
-        let u = if b.statistic.starts_with('P') {
-            ""
-        } else {
-            unit
+        let is_p = b.statistic.starts_with('P');
+        let u = if is_p { "" } else { unit };
+        let style = if is_p { Style::Prob } else { Style::Num(5) };
+        let corrected_cell = match (&b.validation, corrected) {
+            (Some(v), _) => format!(
+                "<td class=\"n\">{} <span class=\"ci\">({} runs)</span></td>",
+                style.text(v.value),
+                v.runs
+            ),
+            (None, true) => "<td class=\"n\">&mdash;</td>".to_string(),
+            (None, false) => String::new(),
         };
         let sliding_cell = if sliding {
             format!("<td class=\"n\">{}</td>", part(b.sliding))
         } else {
             String::new()
         };
+        let (lo, hi) = b.interval();
         let _ = writeln!(
             o,
-            "<tr><th>{}</th><td class=\"n\">{}{u}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>\
-             <td class=\"n\">{}</td>{sliding_cell}<td class=\"n\">{}</td></tr>",
+            "<tr><th>{}</th><td class=\"n\">{}{u}</td>{corrected_cell}<td class=\"n\">{}</td>\
+             <td class=\"n\">{}</td><td class=\"n\">{}</td>{sliding_cell}<td class=\"n\">{}</td>\
+             <td class=\"n\">[{}, {}]</td></tr>",
             esc(&b.statistic),
-            num(b.value, 5),
+            style.text(b.value),
             part(b.mesh),
             part(b.surrogate),
             num(b.sampling, 2),
-            num(b.total, 2)
+            num(b.total, 2),
+            style.text(lo),
+            style.text(hi)
         );
     }
     o.push_str("</tbody></table>");
@@ -239,6 +306,9 @@ pub(super) fn reliability(o: &mut String, list: &[ReliabilityReport]) {
     o.push_str("</section>\n");
 }
 
+/// The methods side by side: each method's mean, standard deviation and failure
+/// probabilities with its own total interval (issue 40, item 3: before, only the first
+/// method's budget was shown), and the differences with a reference method if there is one.
 pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
     let _ = writeln!(
         o,
@@ -249,9 +319,23 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
         .rows
         .iter()
         .find(|r| r.method.to_lowercase().contains("reference"));
-    o.push_str(
-        "<table><thead><tr><th>Method</th><th class=\"n\">Runs</th><th class=\"n\">Mean</th>\
-         <th class=\"n\">Std</th>",
+    // The failure probabilities any method has a budget row of, in their first order.
+    let mut thresholds: Vec<&str> = Vec::new();
+    for b in c.rows.iter().flat_map(|r| &r.budget) {
+        if b.statistic.starts_with("P(") && !thresholds.contains(&b.statistic.as_str()) {
+            thresholds.push(&b.statistic);
+        }
+    }
+    let _ = write!(
+        o,
+        "<p class=\"hint\">Each statistic with its method's total interval (every estimated \
+         part of its error budget; \"not estimated\" where the method has no budget)</p>\
+         <table><thead><tr><th>Method</th><th class=\"n\">Runs</th><th class=\"n\">Mean</th>\
+         <th class=\"n\">Std</th>{}",
+        thresholds
+            .iter()
+            .map(|t| format!("<th class=\"n\">{}</th>", esc(t)))
+            .collect::<String>()
     );
     if reference.is_some() {
         o.push_str("<th class=\"n\">Mean vs reference</th><th class=\"n\">Std vs reference</th>");
@@ -265,6 +349,11 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
             "&mdash;".into()
         }
     };
+    let cell = |rows: &[_], statistic: &str, value: Option<f64>, style: Style| match value {
+        Some(v) if total(rows, statistic, style).is_some() => with_total(rows, statistic, v, style),
+        Some(v) => format!("{} <span class=\"ci\">not estimated</span>", style.text(v)),
+        None => "&mdash;".to_string(),
+    };
     for row in &c.rows {
         let is_ref = reference.is_some_and(|r| std::ptr::eq(r, row));
         let _ = write!(
@@ -273,9 +362,21 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
             if is_ref { " class=\"ref\"" } else { "" },
             esc(&row.method),
             row.runs,
-            num(row.mean, 5),
-            num(row.std, 4)
+            cell(&row.budget, "mean", Some(row.mean), Style::Num(5)),
+            cell(&row.budget, "std", Some(row.std), Style::Num(4))
         );
+        for t in &thresholds {
+            let value = row
+                .budget
+                .iter()
+                .find(|b| b.statistic == *t)
+                .map(|b| b.value);
+            let _ = write!(
+                o,
+                "<td class=\"n\">{}</td>",
+                cell(&row.budget, t, value, Style::Prob)
+            );
+        }
         if let Some(r) = reference {
             if is_ref {
                 o.push_str("<td class=\"n\">reference</td><td class=\"n\">reference</td>");
@@ -283,8 +384,14 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
                 let _ = write!(
                     o,
                     "<td class=\"n\">{}</td><td class=\"n\">{}</td>",
-                    rel(row.mean, r.mean),
-                    rel(row.std, r.std)
+                    rel(
+                        estimate(&row.budget, "mean", row.mean),
+                        estimate(&r.budget, "mean", r.mean)
+                    ),
+                    rel(
+                        estimate(&row.budget, "std", row.std),
+                        estimate(&r.budget, "std", r.std)
+                    )
                 );
             }
         }
@@ -295,7 +402,14 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
         o,
         figures,
         Kind::Comparison,
-        &format!("Probability density of {} by each method", c.qoi),
+        &format!(
+            "Probability density of {} by each method; a value taken with positive probability \
+             (an atom: e.g. many exact zeros where a contact opens) is a stem ending in a dot, its \
+             height its probability (the top of the frame: 1; the legend gives it), the curve the \
+             density of the other values; bars near the axis: each method's mean with its total \
+             interval",
+            c.qoi
+        ),
     );
     o.push_str("</section>\n");
 }

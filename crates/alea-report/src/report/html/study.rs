@@ -2,8 +2,8 @@
 
 use std::fmt::Write;
 
-use super::super::ReportInput;
 use super::super::format::{esc, num, prob};
+use super::super::{BudgetRow, ReportInput, budget_row, failure_statistic};
 use super::runs::is_converged;
 
 pub(super) fn notes(o: &mut String, input: &ReportInput) {
@@ -55,15 +55,11 @@ pub(super) fn overview(o: &mut String, input: &ReportInput) {
         for (k, q) in input.qois.iter().enumerate() {
             let unit = esc(&q.unit);
             // The mean with the total of its error budget (issue 40, item 3: "mean +- std"
-            // read as an error bar); the standard deviation on its own line.
-            let total_of = |statistic: &str| {
-                q.budget
-                    .iter()
-                    .find(|r| r.statistic == statistic)
-                    .map(|r| r.total)
-            };
-            let bar = total_of("mean").map_or_else(String::new, |t| {
-                format!("<span class=\"pm\">± {}</span> ", num(t, 2))
+            // read as an error bar), corrected by the validation runs where there are some;
+            // the standard deviation on its own line.
+            let mean = budget_row(&q.budget, "mean");
+            let bar = mean.map_or_else(String::new, |r| {
+                format!("<span class=\"pm\">± {}</span> ", num(r.total, 2))
             });
             let _ = write!(
                 o,
@@ -71,28 +67,31 @@ pub(super) fn overview(o: &mut String, input: &ReportInput) {
                  <div class=\"big\">{} {bar}<span class=\"unit\">{unit}</span></div>\
                  <div class=\"pf\">mean{}; standard deviation {} {unit}</div>",
                 esc(&q.name),
-                num(q.mean, 4),
+                num(mean.map_or(q.mean, BudgetRow::estimate), 4),
                 if bar.is_empty() {
                     ""
                 } else {
                     " ± the total of its error budget"
                 },
-                num(q.std, 3)
+                num(
+                    budget_row(&q.budget, "std").map_or(q.std, BudgetRow::estimate),
+                    3
+                )
             );
             if let Some(f) = q.failure.first() {
-                let interval = match total_of(&format!("P(> {})", f.threshold)) {
-                    Some(t) => format!(
-                        "total [{}, {}]",
-                        prob((f.probability - t).max(0.0)),
-                        prob((f.probability + t).min(1.0))
-                    ),
+                let row = budget_row(&q.budget, &failure_statistic(f.threshold));
+                let interval = match row {
+                    Some(r) => {
+                        let (lo, hi) = r.interval();
+                        format!("total [{}, {}]", prob(lo), prob(hi))
+                    }
                     None => format!("sampling only [{}, {}]", prob(f.ci_low), prob(f.ci_high)),
                 };
                 let _ = write!(
                     o,
                     "<div class=\"pf\">P(q &gt; {}) = {} <span class=\"ci\">{interval}</span></div>",
                     num(f.threshold, 4),
-                    prob(f.probability)
+                    prob(row.map_or(f.probability, BudgetRow::estimate))
                 );
             }
             o.push_str("</a>\n");

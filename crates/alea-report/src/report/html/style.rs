@@ -69,7 +69,7 @@ tr.failed td { background: #fff7f6; }
 .card .pm { font-weight: 400; color: #344252; }
 .card .unit { font-size: 14px; font-weight: 400; color: var(--muted); }
 .card .pf { font-size: 13px; color: #344252; }
-.card .ci { color: var(--muted); }
+.card .ci, td .ci { color: var(--muted); }
 nav.toc { margin-top: 10px; font-size: 13px; }
 nav.toc a { color: #fff; opacity: .85; text-decoration: none; margin-right: 14px; }
 nav.toc a:hover { opacity: 1; text-decoration: underline; }

@@ -1,13 +1,16 @@
-//! The empirical CDF of a QoI with its quantiles.
+//! The empirical CDF of a QoI with its quantiles, each with its total interval as a horizontal
+//! error bar at its probability (the budget rows' intervals, issue 40, item 3; the marker at
+//! the row's estimate).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::super::QoiReport;
 use super::super::format::count;
+use super::super::{BudgetRow, QoiReport, budget_row};
 use super::common::{
     DrawResult, KDE, QUANTILE, axis_label, chart, configure_legend, err, grid, line_legend, ticks,
 };
+use super::marks::{clipped_interval, error_bar};
 use super::qoi::{draw_mean, draw_thresholds, qoi_x_range};
 
 /// Points drawn at most for the empirical CDF.
@@ -57,13 +60,32 @@ pub(super) fn draw_cdf<DB: DrawingBackend>(
             .legend(line_legend(KDE, 2));
     }
     draw_mean(&mut chart, q, 1.0)?;
+    let bars: Vec<_> = q
+        .quantiles
+        .iter()
+        .filter_map(|&(p, _)| Some((p, clipped_interval(&q.budget, &format!("q{p}"), (lo, hi))?)))
+        .collect();
+    if !bars.is_empty() {
+        chart
+            .draw_series(bars.iter().map(|&(p, b)| error_bar(p, b, QUANTILE)))
+            .map_err(err)?
+            .label("total intervals of the quantiles")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], QUANTILE.stroke_width(2)));
+    }
     if !q.quantiles.is_empty() {
         chart
             .draw_series(
                 q.quantiles
                     .iter()
+                    .map(|&(p, v)| {
+                        let statistic = format!("q{p}");
+                        (
+                            p,
+                            budget_row(&q.budget, &statistic).map_or(v, BudgetRow::estimate),
+                        )
+                    })
                     .filter(|(_, v)| *v >= lo && *v <= hi)
-                    .map(|&(p, v)| Circle::new((v, p), 5, QUANTILE.filled())),
+                    .map(|(p, v)| Circle::new((v, p), 5, QUANTILE.filled())),
             )
             .map_err(err)?
             .label("quantiles")

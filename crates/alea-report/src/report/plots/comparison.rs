@@ -1,13 +1,18 @@
-//! The PDFs of several methods in one plot.
+//! The PDFs of several methods in one plot: each method's density (of the samples off its
+//! atoms, scaled by their share), its probability atoms as stems ending in a dot (height: the
+//! probability, the top of the frame standing for 1) and the total interval of its mean as a
+//! horizontal error bar near the axis (issue 40, item 3).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::super::Comparison;
+use super::super::format::prob;
 use super::common::{
     DrawResult, PALETTE, axis_label, by_x, chart, configure_legend, err, extend, grid, line_legend,
     pad, ticks,
 };
+use super::marks::{clipped_interval, draw_atoms, error_bar};
 
 pub(super) fn draw_comparison<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -22,6 +27,9 @@ pub(super) fn draw_comparison<DB: DrawingBackend>(
                 extend(&mut xr, x);
                 ymax = ymax.max(p);
             }
+        }
+        for a in &row.atoms {
+            extend(&mut xr, a.value);
         }
     }
     let (x0, x1) = pad(xr.unwrap_or((0.0, 1.0)), 0.02);
@@ -41,9 +49,10 @@ pub(super) fn draw_comparison<DB: DrawingBackend>(
         .y_label_formatter(&ticks(0.0, ymax, 7))
         .draw()
         .map_err(err)?;
+    let top = ymax / 1.15;
     let mut k = 0;
-    for row in &c.rows {
-        if row.kde.len() < 2 {
+    for (i, row) in c.rows.iter().enumerate() {
+        if row.kde.len() < 2 && row.atoms.is_empty() {
             continue;
         }
         let reference = row.method.to_lowercase().contains("reference");
@@ -54,11 +63,35 @@ pub(super) fn draw_comparison<DB: DrawingBackend>(
             (PALETTE[(k - 1) % PALETTE.len()], 2)
         };
         // Labels often say their run count already ("chaos p=2 (9 runs)").
-        let label = if row.method.contains("run") {
+        let mut label = if row.method.contains("run") {
             row.method.clone()
         } else {
             format!("{} ({} runs)", row.method, row.runs)
         };
+        for a in &row.atoms {
+            label.push_str(&format!(
+                ", P(q = {}) = {}",
+                ticks(x0, x1, 8)(&a.value),
+                prob(a.probability)
+            ));
+        }
+        // The mean's total interval, one height per method near the axis.
+        if let Some(b) = clipped_interval(&row.budget, "mean", (x0, x1)) {
+            let y = top * (0.03 + 0.03 * i as f64);
+            chart
+                .draw_series(std::iter::once(error_bar(y, b, color)))
+                .map_err(err)?;
+        }
+        draw_atoms(&mut chart, &row.atoms, top, color, None)?;
+        if row.kde.len() < 2 {
+            // Atoms only: the legend entry on a dot.
+            chart
+                .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                .map_err(err)?
+                .label(label)
+                .legend(move |(x, y)| Circle::new((x + 11, y), 6, color.filled()));
+            continue;
+        }
         if reference {
             chart
                 .draw_series(DashedLineSeries::new(

@@ -10,6 +10,7 @@ mod common;
 mod comparison;
 mod convergence;
 mod indicators;
+mod marks;
 mod pdf;
 mod qoi;
 mod raster;
@@ -130,7 +131,9 @@ pub fn draw_all(dir: &Path, input: &ReportInput) -> Result<Vec<Figure>, ReportEr
         figures.push(render(dir, "convergence", SIZE, Kind::Convergence, &spec)?);
     }
     if let Some(c) = &input.comparison
-        && c.rows.iter().any(|r| r.kde.len() >= 2)
+        && c.rows
+            .iter()
+            .any(|r| r.kde.len() >= 2 || !r.atoms.is_empty())
     {
         let unit = input
             .qois

@@ -1,4 +1,6 @@
-//! The PDF plot of a QoI: KDE over a normalised histogram, mean, failure regions.
+//! The PDF plot of a QoI: KDE over a normalised histogram, mean with the band of its total
+//! interval, failure regions; probability atoms as stems (the histogram and the KDE are then
+//! those of the other samples, scaled by their share: `alea_study::atoms`).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -6,9 +8,10 @@ use plotters::prelude::*;
 use super::super::QoiReport;
 use super::super::format::{count, num};
 use super::common::{
-    DrawResult, HIST_EDGE, HIST_FILL, KDE, THRESHOLD, axis_label, by_x, chart, configure_legend,
-    err, grid, line_legend, ticks,
+    DrawResult, HIST_EDGE, HIST_FILL, KDE, MEAN, THRESHOLD, axis_label, by_x, chart,
+    configure_legend, err, grid, line_legend, ticks,
 };
+use super::marks::{atom_label, draw_atoms, draw_mean_band, without_atoms};
 use super::qoi::{draw_mean, draw_thresholds, qoi_x_range};
 
 /// The region under a curve (increasing x) right of `t`, as a closed polygon; `None` when the
@@ -32,8 +35,9 @@ fn tail_polygon(curve: &[(f64, f64)], t: f64) -> Option<Vec<(f64, f64)>> {
     Some(poly)
 }
 
-/// Freedman-Diaconis bins (10 to 80) of sorted samples, as (left, right, density).
-fn histogram(sorted: &[f64]) -> Vec<(f64, f64, f64)> {
+/// Freedman-Diaconis bins (10 to 80) of sorted samples, as (left, right, density), the
+/// densities scaled by `share` (the samples' share of the law: 1 without atoms).
+fn histogram(sorted: &[f64], share: f64) -> Vec<(f64, f64, f64)> {
     let n = sorted.len();
     if n < 2 {
         return Vec::new();
@@ -61,7 +65,7 @@ fn histogram(sorted: &[f64]) -> Vec<(f64, f64, f64)> {
         .enumerate()
         .map(|(b, &c)| {
             let a = lo + b as f64 * width;
-            (a, a + width, c as f64 / (n as f64 * width))
+            (a, a + width, share * c as f64 / (n as f64 * width))
         })
         .collect()
 }
@@ -72,8 +76,11 @@ pub(super) fn draw_pdf<DB: DrawingBackend>(
     sorted: &[f64],
 ) -> DrawResult {
     let ((lo, hi), on_scale) = qoi_x_range(q, sorted);
-    let bars = histogram(sorted);
-    let point_mass = !sorted.is_empty() && bars.is_empty();
+    let rest = without_atoms(sorted, &q.atoms);
+    let share = rest.len() as f64 / sorted.len().max(1) as f64;
+    let bars = histogram(&rest, share);
+    // A constant sample handed over without its atom: one line.
+    let point_mass = !sorted.is_empty() && bars.is_empty() && q.atoms.is_empty();
     let ymax = bars
         .iter()
         .map(|b| b.2)
@@ -95,14 +102,24 @@ pub(super) fn draw_pdf<DB: DrawingBackend>(
         .y_label_formatter(&ticks(0.0, ymax, 7))
         .draw()
         .map_err(err)?;
+    let top = ymax / 1.15;
+    draw_mean_band(&mut chart, &q.budget, (lo, hi), top, MEAN)?;
     if !bars.is_empty() {
+        let what = if q.atoms.is_empty() {
+            format!("histogram of {} samples", count(sorted.len()))
+        } else {
+            format!(
+                "histogram of the {} samples off the atoms",
+                count(rest.len())
+            )
+        };
         chart
             .draw_series(
                 bars.iter()
                     .map(|&(a, b, d)| Rectangle::new([(a, 0.0), (b, d)], HIST_FILL.filled())),
             )
             .map_err(err)?
-            .label(format!("histogram of {} samples", count(sorted.len())))
+            .label(what)
             .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 22, y + 6)], HIST_FILL.filled()));
         chart
             .draw_series(
@@ -139,10 +156,22 @@ pub(super) fn draw_pdf<DB: DrawingBackend>(
         chart
             .draw_series(LineSeries::new(by_x(&q.kde), KDE.stroke_width(3)))
             .map_err(err)?
-            .label("kernel density estimate")
+            .label(if q.atoms.is_empty() {
+                "kernel density estimate"
+            } else {
+                "kernel density estimate off the atoms"
+            })
             .legend(line_legend(KDE, 3));
     }
-    let top = ymax / 1.15;
+    for a in &q.atoms {
+        draw_atoms(
+            &mut chart,
+            std::slice::from_ref(a),
+            top,
+            KDE,
+            Some(atom_label(a)),
+        )?;
+    }
     draw_mean(&mut chart, q, top)?;
     draw_thresholds(&mut chart, q, &on_scale, top)?;
     let position = if q.mean > 0.5 * (lo + hi) {

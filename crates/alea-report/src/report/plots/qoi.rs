@@ -1,10 +1,12 @@
-//! What the PDF and CDF plots of a QoI share: the x range and the failure thresholds.
+//! What the PDF and CDF plots of a QoI share: the x range (which takes in the total intervals
+//! of the mean and the quantiles up to half the data's width beyond it), the mean and the
+//! failure thresholds.
 
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
-use super::super::QoiReport;
 use super::super::format::num;
+use super::super::{BudgetRow, QoiReport, budget_row, failure_statistic};
 use super::common::{DrawResult, MEAN, THRESHOLD, err, extend, line_legend, pad};
 
 /// The x range of a QoI's plots: samples, KDE grid, mean, and the thresholds that are not far
@@ -36,24 +38,32 @@ pub(super) fn qoi_x_range(q: &QoiReport, sorted: &[f64]) -> ((f64, f64), Vec<boo
             extend(&mut r, f.threshold);
         }
     }
+    for b in &q.budget {
+        if b.statistic == "mean" || b.statistic.starts_with('q') {
+            let (a, c) = b.interval();
+            extend(&mut r, a.max(lo - 0.5 * w));
+            extend(&mut r, c.min(hi + 0.5 * w));
+        }
+    }
     (pad(r.unwrap_or((lo, hi)), 0.03), on_scale)
 }
 
-/// The mean, a dashed vertical line up to `top`.
+/// The mean (its budget row's estimate where there is one), a dashed vertical line up to `top`.
 pub(super) fn draw_mean<'a, DB: DrawingBackend + 'a>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
     q: &QoiReport,
     top: f64,
 ) -> DrawResult {
+    let mean = budget_row(&q.budget, "mean").map_or(q.mean, BudgetRow::estimate);
     chart
         .draw_series(DashedLineSeries::new(
-            [(q.mean, 0.0), (q.mean, top)],
+            [(mean, 0.0), (mean, top)],
             9,
             6,
             MEAN.stroke_width(2),
         ))
         .map_err(err)?
-        .label(format!("mean = {}", num(q.mean, 4)))
+        .label(format!("mean = {}", num(mean, 4)))
         .legend(line_legend(MEAN, 2));
     Ok(())
 }
@@ -68,7 +78,11 @@ pub(super) fn draw_thresholds<'a, DB: DrawingBackend + 'a>(
         let label = format!(
             "P(q > {}) = {}{}",
             num(f.threshold, 4),
-            num(f.probability, 3),
+            num(
+                budget_row(&q.budget, &failure_statistic(f.threshold))
+                    .map_or(f.probability, BudgetRow::estimate),
+                3
+            ),
             if *on { "" } else { " (threshold off scale)" }
         );
         // Off scale: no line, only the legend entry.

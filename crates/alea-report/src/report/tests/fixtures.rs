@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use super::super::*;
 
 /// SplitMix64: deterministic uniform numbers without a dependency.
-pub(super) struct Rng(u64);
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
     pub(super) fn uniform(&mut self) -> f64 {
@@ -35,6 +35,20 @@ pub(super) fn kde_of(m: f64, s: f64, n: usize) -> Vec<(f64, f64)> {
             (x, normal_pdf(x, m, s))
         })
         .collect()
+}
+
+/// A budget row with only a surrogate part (or none) and a sampling part.
+pub(super) fn row(statistic: &str, value: f64, surrogate: Option<f64>, sampling: f64) -> BudgetRow {
+    BudgetRow {
+        statistic: statistic.into(),
+        value,
+        mesh: None,
+        surrogate,
+        sampling,
+        sliding: None,
+        total: sampling + surrogate.unwrap_or(0.0),
+        validation: None,
+    }
 }
 
 /// The QoI of the synthetic study: work of friction as a function of (E, mu).
@@ -125,6 +139,7 @@ pub(super) fn synthetic() -> ReportInput {
                 skewness: 0.0,
                 quantiles,
                 kde: kde_of(m, s, 200),
+                atoms: vec![],
                 failure: vec![
                     FailureInfo {
                         threshold: 14.0,
@@ -147,26 +162,13 @@ pub(super) fn synthetic() -> ReportInput {
                     points,
                 }),
                 budget: vec![
-                    BudgetRow {
-                        statistic: "mean".into(),
-                        value: 2.5e-3,
-                        mesh: None,
-                        surrogate: Some(4.0e-5),
-                        sampling: 1.0e-6,
-                        sliding: None,
-                        total: 4.1e-5,
-                        validation: None,
-                    },
-                    BudgetRow {
-                        statistic: "P(> 0.004)".into(),
-                        value: 1.2e-4,
-                        mesh: None,
-                        surrogate: None,
-                        sampling: 3.0e-5,
-                        sliding: None,
-                        total: 3.0e-5,
-                        validation: None,
-                    },
+                    row("mean", m, Some(0.04), 0.008),
+                    row("std", s, Some(0.03), 0.006),
+                    row("q0.05", m - 1.645 * s, Some(0.05), 0.01),
+                    row("q0.5", m, Some(0.02), 0.01),
+                    row("q0.95", m + 1.645 * s, None, 0.01),
+                    // Total interval [0.01875, 0.02675] about 0.02275.
+                    row("P(> 14)", 0.02275, Some(0.00375), 0.00025),
                 ],
                 budget_basis: vec![
                     "surrogate: largest difference with the nested 3^2 grid, on the same draws"
@@ -190,6 +192,7 @@ pub(super) fn synthetic() -> ReportInput {
                 skewness: 0.0,
                 quantiles: vec![(0.5, 412.0)],
                 kde: vec![],
+                atoms: vec![],
                 failure: vec![],
                 surface: None,
                 budget: vec![],
@@ -207,6 +210,11 @@ pub(super) fn synthetic() -> ReportInput {
                     mean: 10.3,
                     std: 2.6,
                     kde: kde_of(10.3, 2.6, 150),
+                    atoms: vec![],
+                    budget: vec![
+                        row("mean", 10.3, Some(0.25), 0.01),
+                        row("std", 2.6, Some(0.5), 0.01),
+                    ],
                 },
                 ComparisonRow {
                     method: "polynomial chaos, order 2".into(),
@@ -214,6 +222,11 @@ pub(super) fn synthetic() -> ReportInput {
                     mean: 10.05,
                     std: 2.1,
                     kde: kde_of(10.05, 2.1, 150),
+                    atoms: vec![],
+                    budget: vec![
+                        row("mean", 10.05, Some(0.125), 0.0),
+                        row("std", 2.1, Some(0.0625), 0.0),
+                    ],
                 },
                 ComparisonRow {
                     method: "piecewise linear, regular grid".into(),
@@ -221,6 +234,8 @@ pub(super) fn synthetic() -> ReportInput {
                     mean: 9.9,
                     std: 1.8,
                     kde: kde_of(9.9, 1.8, 150),
+                    atoms: vec![],
+                    budget: vec![],
                 },
                 ComparisonRow {
                     method: "reference (11 x 11 grid)".into(),
@@ -228,6 +243,11 @@ pub(super) fn synthetic() -> ReportInput {
                     mean: 10.0,
                     std: 2.0,
                     kde: kde_of(10.0, 2.0, 150),
+                    atoms: vec![],
+                    budget: vec![
+                        row("mean", 10.0, None, 0.03125),
+                        row("std", 2.0, None, 0.015625),
+                    ],
                 },
             ],
         }),

@@ -73,6 +73,7 @@ fn degenerate_inputs_give_a_report() {
             skewness: 0.0,
             quantiles: vec![],
             kde: vec![],
+            atoms: vec![],
             failure: vec![FailureInfo {
                 threshold: 0.0,
                 probability: 1.0,

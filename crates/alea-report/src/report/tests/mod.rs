@@ -6,6 +6,7 @@
 
 mod fixtures;
 mod inputs;
+mod intervals;
 mod labels;
 
 use super::plots::{SIZE, SURFACE_SIZE};
