@@ -450,6 +450,11 @@ pub fn estimates_error(study: &Study) -> bool {
 /// [`StudyError::TooLarge`] with the estimate.
 pub fn check_built(study: &Study) -> Result<(), StudyError> {
     check_total_runs(study.all_points().len())?;
+    if let Some(m) = &study.file.solver.linear_stage
+        && m.get_ref() == "condensed"
+    {
+        crate::limits::check_condensed(&study.source, m.span(), &study.model.assembly)?;
+    }
     if study.output.mean_fields.unwrap_or(true)
         && let Some(m) = study
             .methods
