@@ -238,6 +238,10 @@ impl Study {
         }
         check_cell_fields(&study)?;
         check_built(&study)?;
+        // The runs the solver's set-up serves: what the condensed linear stage's set-up is
+        // weighed against (`[solver] linear_stage = "auto"`).
+        let mut study = study;
+        study.model.options.expected_runs = study.all_points().len().max(1);
         Ok(study)
     }
 

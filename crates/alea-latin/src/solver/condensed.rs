@@ -59,6 +59,15 @@ type V3 = [f64; 3];
 /// product's cost per entry over the sparse solve's per factor entry (module doc).
 pub(super) const DENSE_PER_FACTOR: f64 = 4.0;
 
+/// Cost of the set-up's solve of one column of `H`, in single-column solves of the same
+/// factor (measured: the 3D turbine's set-up, 4 x 1 100 - 1 800 columns, cost the time of 360
+/// of its volume iterations, 0.2 per column of its largest substructure; BENCHMARKS.md).
+pub(super) const SETUP_PER_COLUMN: f64 = 0.25;
+
+/// LATIN iterations of a run, for the set-up's pay-back (warm-started study runs: 17 - 56 on
+/// the 2D and 3D turbines; BENCHMARKS.md).
+pub(super) const ITERATIONS_PER_RUN: f64 = 30.0;
+
 /// Share of the available memory the dense operators may take (`Auto` and forced).
 pub(super) const MEMORY_SHARE: f64 = 0.25;
 
@@ -154,8 +163,21 @@ impl Condensed {
                 }
             }
         };
+        let interface = |u: &[f64], homogeneous: bool| -> Vec<f64> {
+            let mut w = vec![0.0; n];
+            for (l, &off) in op.links.iter().zip(&offsets) {
+                for p in 0..l.proj.len() {
+                    let wp = project(dofs, l, p, u, homogeneous);
+                    w[off + p * dim..off + (p + 1) * dim].copy_from_slice(&wp[..dim]);
+                }
+            }
+            w
+        };
+        // Per chunk of columns: one multi-column solve, then only the interface values kept
+        // (and the volume responses to the rigid modes), so that the set-up holds one block
+        // per thread.
         let starts: Vec<usize> = (0..ncols).step_by(CHUNK).collect();
-        let solved: Vec<Vec<f64>> = starts
+        let solved: Vec<Vec<Solved>> = starts
             .par_iter()
             .map(|&c0| {
                 let c1 = (c0 + CHUNK).min(ncols);
@@ -167,40 +189,32 @@ impl Condensed {
                     let mut scratch = op.chol.solve_scratch(c1 - c0);
                     op.chol.solve_with(&mut block, &mut scratch);
                 }
-                block
+                (c0..c1)
+                    .map(|j| {
+                        let u = if nf == 0 {
+                            &[][..]
+                        } else {
+                            &block[(j - c0) * nf..(j - c0 + 1) * nf]
+                        };
+                        let w = interface(u, j != n);
+                        (w, (j > n + op.r_ext.len()).then(|| u.to_vec()))
+                    })
+                    .collect()
             })
             .collect();
-        let col = |j: usize| -> &[f64] {
-            let b = &solved[j / CHUNK];
-            let k = j % CHUNK;
-            if nf == 0 {
-                &[]
-            } else {
-                &b[k * nf..(k + 1) * nf]
-            }
-        };
-        let interface = |u: &[f64], homogeneous: bool| -> Vec<f64> {
-            let mut w = vec![0.0; n];
-            for (l, &off) in op.links.iter().zip(&offsets) {
-                for p in 0..l.proj.len() {
-                    let wp = project(dofs, l, p, u, homogeneous);
-                    w[off + p * dim..off + (p + 1) * dim].copy_from_slice(&wp[..dim]);
-                }
-            }
-            w
-        };
-        let mut h = vec![0.0; n * n];
-        h.par_chunks_mut(n.max(1))
-            .enumerate()
-            .for_each(|(j, hj)| hj.copy_from_slice(&interface(col(j), true)));
-        let w_presc = interface(col(n), false);
-        let w_ext = (0..op.r_ext.len())
-            .map(|j| interface(col(n + 1 + j), true))
-            .collect();
+        let mut cols: Vec<Solved> = solved.into_iter().flatten().collect();
+        let rigid_cols: Vec<Solved> = cols.split_off(n + 1 + op.r_ext.len());
+        let w_ext: Vec<Vec<f64>> = cols.drain(n + 1..).map(|c| c.0).collect();
+        let w_presc = cols.pop().map_or_else(|| vec![0.0; n], |c| c.0);
+        let mut h = Vec::with_capacity(n * n);
+        for (w, _) in cols {
+            h.extend_from_slice(&w);
+        }
         let rigid = checks_motion.then(|| {
-            let base = n + 1 + op.r_ext.len();
-            let z: Vec<Vec<f64>> = (0..modes).map(|i| col(base + i).to_vec()).collect();
-            let zs = z.iter().map(|zi| interface(zi, true)).collect();
+            let (zs, z): (Vec<Vec<f64>>, Vec<Vec<f64>>) = rigid_cols
+                .into_iter()
+                .map(|(w, u)| (w, u.unwrap_or_default()))
+                .unzip();
             let presc = op.rigid.moments(coords, &dofs.expand(&vec![0.0; nf]));
             let coarse = coarse.map_or_else(Vec::new, |cm| {
                 cm.columns
@@ -347,6 +361,10 @@ impl Condensed {
     }
 }
 
+/// A solved set-up column: its interface values, and its volume response when kept (the
+/// rigid modes' columns).
+type Solved = (Vec<f64>, Option<Vec<f64>>);
+
 /// The link and offset inside it of interface unknown `j`.
 fn locate(offsets: &[usize], j: usize) -> (usize, usize) {
     let li = offsets.partition_point(|&o| o <= j) - 1;
@@ -460,6 +478,7 @@ pub(super) fn build_all(
     ops: &[Arc<SubOperator>],
     coarse: Option<&super::Coarse>,
     mode: super::LinearStage,
+    expected_runs: usize,
     deformed: bool,
 ) -> Result<Vec<SharedCondensed>, LatinError> {
     let sizes: Vec<usize> = ops
@@ -480,7 +499,7 @@ pub(super) fn build_all(
                 let mut want: Vec<bool> = ops
                     .iter()
                     .zip(&sizes)
-                    .map(|(op, &n)| pays(n, op.chol.nnz_factor()))
+                    .map(|(op, &n)| pays(n, op.chol.nnz_factor(), expected_runs))
                     .collect();
                 // Within the memory share: the smallest operators first.
                 let budget = MEMORY_SHARE * alea_mesh::input::available_memory() as f64;
@@ -510,9 +529,10 @@ pub(super) fn build_all(
 }
 
 /// Whether `Auto` condenses a substructure of `n` interface unknowns whose factor has `nnz`
-/// entries (module doc, "When").
-pub(super) fn pays(n: usize, nnz: usize) -> bool {
+/// entries, for a set-up serving `runs` runs (module doc, "When").
+pub(super) fn pays(n: usize, nnz: usize, runs: usize) -> bool {
     (n as f64) * (n as f64) <= DENSE_PER_FACTOR * nnz as f64
+        && SETUP_PER_COLUMN * n as f64 <= ITERATIONS_PER_RUN * runs as f64
 }
 
 impl super::LatinSolver {
@@ -554,5 +574,36 @@ impl super::LatinSolver {
                     st.stale = false;
                 }
             });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The `Auto` rule on the turbines' sizes (BENCHMARKS.md, issue 41): the 2D turbine's
+    /// substructures (284 interface unknowns, factors of about 1.5e5 entries) condense for a
+    /// study of a few runs, not for one solve; the 3D turbine's (1 794 unknowns, factors of
+    /// several million entries) from about 15 runs; an interface larger than its factor never.
+    #[test]
+    fn auto_weighs_the_product_the_set_up_and_the_runs() {
+        assert!(!pays(284, 150_000, 1));
+        assert!(pays(284, 150_000, 3));
+        assert!(!pays(1794, 5_000_000, 10));
+        assert!(pays(1794, 5_000_000, 17));
+        assert!(!pays(4000, 1_000_000, 100_000));
+    }
+
+    /// Forced condensation beyond the memory share is a typed error naming the largest
+    /// substructure.
+    #[test]
+    fn operators_beyond_the_memory_share_are_refused() {
+        let e = check_memory(&["small", "huge"], &[10, 10_000_000]).unwrap_err();
+        assert!(
+            matches!(&e, LatinError::CondensedMemory { largest, unknowns, .. }
+                if largest == "huge" && *unknowns == 10_000_000),
+            "{e}"
+        );
+        assert!(check_memory(&["a"], &[100]).is_ok());
     }
 }

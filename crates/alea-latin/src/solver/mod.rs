@@ -180,6 +180,9 @@ pub struct LatinOptions {
     pub max_rigid_motion: f64,
     /// Condensed or volume linear stage (module `condensed`; default [`LinearStage::Auto`]).
     pub linear_stage: LinearStage,
+    /// Runs the solver's set-up is expected to serve (default 1): [`LinearStage::Auto`]
+    /// weighs the condensed stage's set-up against the iterations of that many runs.
+    pub expected_runs: usize,
 }
 
 impl Default for LatinOptions {
@@ -195,6 +198,7 @@ impl Default for LatinOptions {
             equilibrium_tolerance: 1e-4,
             max_rigid_motion: 10.0,
             linear_stage: LinearStage::Auto,
+            expected_runs: 1,
         }
     }
 }

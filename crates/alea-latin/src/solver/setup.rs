@@ -84,6 +84,7 @@ impl LatinSolver {
             &ops,
             coarse.as_ref(),
             options.linear_stage,
+            options.expected_runs,
             configuration.is_some(),
         )?;
         Ok(LatinSolver {
