@@ -39,8 +39,11 @@
 //! # When
 //! Chosen per substructure ([`super::LinearStage`]): `Auto` condenses a substructure when the
 //! dense product costs less than the sparse solve it replaces, `n_i^2 <= DENSE_PER_FACTOR
-//! nnz(L)` (measured, `BENCHMARKS.md`, issue 41), and the dense operators of the whole
-//! assembly fit in [`MEMORY_SHARE`] of the available memory; the set-up of a solver re-paired
+//! nnz(L)`, when its set-up (`n_i` solved columns, [`SETUP_PER_COLUMN`] single solves each) is
+//! paid back by the iterations of the runs the solver is expected to serve
+//! (`LatinOptions::expected_runs` times [`ITERATIONS_PER_RUN`]; measured, `BENCHMARKS.md`, issue
+//! 41), and when the dense operators of the whole assembly fit in [`MEMORY_SHARE`] of the
+//! available memory; the set-up of a solver re-paired
 //! in a deformed configuration (large sliding) and the operators of a run whose modulus varies
 //! from cell to cell (module `cell_young`) stay on the volume path, their operators change.
 

@@ -8,7 +8,10 @@
 //! `F = F_hat - k (W - W_hat)`; `k` is a tensor per interface point, isotropic or split along
 //! the normal (`k_n n n^T + k_t (I - n n^T)`, module `direction`,
 //! [`SearchDirection::Split`]), `k M_Gamma` standing for `Pi^T M k Pi`. With relaxation `rho`, `(W, F) <- rho (W, F) + (1 - rho)
-//! (W, F)_previous`.
+//! (W, F)_previous`. Where it pays, the linear stage of a substructure is condensed on its
+//! interface (module `condensed`, issue 41): `W = w0 + H v` with the dense interface operator
+//! `H = Pi T A0^-1 S` computed at set-up, the same iterates to round-off, the volume solution
+//! recovered once per run ([`LinearStage`]).
 //!
 //! **Local stage** (per interface point, in parallel): closed form of [`crate::law`].
 //!
@@ -49,7 +52,7 @@
 //!
 //! **Files**: the types and the iteration itself (`run_shared`, this file); set-up
 //! (`setup.rs`); what a run starts from, with the warm start (`start.rs`); the linear stage
-//! (`linear_stage.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
+//! (`linear_stage.rs`) and its interface-condensed form (`condensed.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
 //! (`local_stage.rs`); Anderson acceleration (`acceleration.rs`); stopping, status and the
 //! equilibrium check (`convergence.rs`); the run's result and the warm-start store
 //! (`result.rs`).
