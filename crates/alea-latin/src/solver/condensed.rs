@@ -279,7 +279,7 @@ impl Condensed {
         for (l, &off) in links.iter().zip(&self.offsets) {
             let is = &istate[l.iface];
             for (p, &m) in l.proj.weights.iter().enumerate() {
-                let vp = super::linear_stage::point_load(l, is, p, m, alpha);
+                let vp = point_load(l, is, p, m, alpha);
                 v[off + p * self.dim..off + (p + 1) * self.dim].copy_from_slice(&vp[..self.dim]);
             }
         }
@@ -362,6 +362,24 @@ impl Condensed {
         });
         operator_bytes(self.n) + 8.0 * (self.n * (1 + self.w_ext.len()) + r) as f64
     }
+}
+
+/// The interface data `v_p = m_p (F_hat_p + k W_hat_p) / alpha` of point `p` of link `l`.
+#[inline(always)]
+pub(super) fn point_load(
+    l: &Link,
+    is: &super::InterfaceState,
+    p: usize,
+    m: f64,
+    alpha: f64,
+) -> [f64; 3] {
+    let fh = is.fhat[l.side][p];
+    let kw = l.dir[p].apply(alpha, &is.what[l.side][p]);
+    [
+        m * (fh[0] + kw[0]) / alpha,
+        m * (fh[1] + kw[1]) / alpha,
+        m * (fh[2] + kw[2]) / alpha,
+    ]
 }
 
 /// A solved set-up column: its interface values, and its volume response when kept (the

@@ -9,8 +9,8 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::condensed::Condensed;
-use super::{InterfaceState, LatinSolver, Link, Run, SubOperator, SubState, V3};
+use super::condensed::{Condensed, point_load};
+use super::{InterfaceState, LatinSolver, Run, SubOperator, SubState, V3};
 
 impl LatinSolver {
     /// Relaxation of the linear stage: the option's, at most 0.8 with the coarse problem and
@@ -97,18 +97,6 @@ pub(super) fn assemble_rhs(
             }
         }
     }
-}
-
-/// The interface data `v_p = m_p (F_hat_p + k W_hat_p) / alpha` of point `p` of link `l`.
-#[inline(always)]
-pub(super) fn point_load(l: &Link, is: &InterfaceState, p: usize, m: f64, alpha: f64) -> [f64; 3] {
-    let fh = is.fhat[l.side][p];
-    let kw = l.dir[p].apply(alpha, &is.what[l.side][p]);
-    [
-        m * (fh[0] + kw[0]) / alpha,
-        m * (fh[1] + kw[1]) / alpha,
-        m * (fh[2] + kw[2]) / alpha,
-    ]
 }
 
 /// `W = Pi u|Gamma` and `F = F_hat - k (W - W_hat)` of one substructure from its solved `u`
