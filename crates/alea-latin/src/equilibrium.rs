@@ -250,7 +250,7 @@ impl RigidModes {
         g: &[f64],
         scale: f64,
         coords: &[[f64; 3]],
-        u: &[f64],
+        moments: impl FnOnce() -> Vec<f64>,
         model_size: f64,
     ) -> SubEquilibrium {
         let (m, nf) = (self.modes, self.num_free);
@@ -297,7 +297,7 @@ impl RigidModes {
                 relative_rigid_motion: 0.0,
             };
         }
-        let mode = self.rigid_fit(coords, u);
+        let mode = self.fit_moments(coords, &moments());
         let mut r = [[0.0; 3]; 6];
         let mut rigid = 0.0f64;
         for x in coords {
@@ -323,12 +323,13 @@ impl RigidModes {
     /// in mode coordinates (`modes` entries; zero if no mode is free):
     /// `a = argmin sum_n |u_n - R_n V a|^2`, returned as `V a`.
     pub(crate) fn rigid_fit(&self, coords: &[[f64; 3]], u: &[f64]) -> Vec<f64> {
-        let (m, nf) = (self.modes, self.num_free);
-        let col = |k: usize| &self.free[k * m..(k + 1) * m];
-        // Least-squares rigid part in the free modes: (V^T A V) a = V^T b,
-        // A = sum_n R_n^T R_n, b = sum_n R_n^T u_n.
-        let d = self.dim;
-        let mut a = vec![0.0; m * m];
+        self.fit_moments(coords, &self.moments(coords, u))
+    }
+
+    /// The moments `b = sum_n R_n^T u_n` of a full node-major displacement `u` on every rigid
+    /// mode (`modes` entries): the only way the rigid fit depends on `u` (linear in `u`).
+    pub(crate) fn moments(&self, coords: &[[f64; 3]], u: &[f64]) -> Vec<f64> {
+        let (m, d) = (self.modes, self.dim);
         let mut b = vec![0.0; m];
         let mut r = [[0.0; 3]; 6];
         for (node, x) in coords.iter().enumerate() {
@@ -337,6 +338,47 @@ impl RigidModes {
             un[..d].copy_from_slice(&u[node * d..node * d + d]);
             for i in 0..m {
                 b[i] += (0..3).map(|c| r[i][c] * un[c]).sum::<f64>();
+            }
+        }
+        b
+    }
+
+    /// Whether [`RigidModes::finish`] measures the rigid motion (some mode is free and no
+    /// displacement is prescribed).
+    pub(crate) fn checks_motion(&self) -> bool {
+        self.num_free > 0 && !self.driven
+    }
+
+    /// Number of rigid modes (3 in 2D, 6 in 3D).
+    pub(crate) fn num_modes(&self) -> usize {
+        self.modes
+    }
+
+    /// Mode `i` at every node as a force-like nodal vector: `R_n e_i` at node `n` (the rows of
+    /// [`RigidModes::moments`]: `b_i = sum_n (R_n e_i) . u_n`).
+    pub(crate) fn mode_at_nodes(&self, coords: &[[f64; 3]], i: usize) -> Vec<[f64; 3]> {
+        let mut r = [[0.0; 3]; 6];
+        coords
+            .iter()
+            .map(|x| {
+                self.at(x, &mut r);
+                r[i]
+            })
+            .collect()
+    }
+
+    /// [`RigidModes::rigid_fit`] from the moments `b` of the displacement
+    /// ([`RigidModes::moments`]).
+    pub(crate) fn fit_moments(&self, coords: &[[f64; 3]], b: &[f64]) -> Vec<f64> {
+        let (m, nf) = (self.modes, self.num_free);
+        let col = |k: usize| &self.free[k * m..(k + 1) * m];
+        // Least-squares rigid part in the free modes: (V^T A V) a = V^T b,
+        // A = sum_n R_n^T R_n, b = sum_n R_n^T u_n.
+        let mut a = vec![0.0; m * m];
+        let mut r = [[0.0; 3]; 6];
+        for x in coords {
+            self.at(x, &mut r);
+            for i in 0..m {
                 for j in 0..m {
                     a[i * m + j] += (0..3).map(|c| r[i][c] * r[j][c]).sum::<f64>();
                 }
@@ -345,7 +387,7 @@ impl RigidModes {
         let mut vav = Mat::<f64>::zeros(nf, nf);
         let mut vb = Mat::<f64>::zeros(nf, 1);
         for k in 0..nf {
-            vb[(k, 0)] = col(k).iter().zip(&b).map(|(p, q)| p * q).sum();
+            vb[(k, 0)] = col(k).iter().zip(b).map(|(p, q)| p * q).sum();
             for l in 0..nf {
                 let mut s = 0.0;
                 for i in 0..m {

@@ -58,6 +58,22 @@ pub enum LatinError {
         /// What is wrong.
         message: String,
     },
+    /// The dense interface operators of the condensed linear stage (forced by
+    /// `LinearStage::Condensed`) would not fit in a quarter of the available memory.
+    #[error(
+        "the condensed linear stage needs {:.1} MB for its dense interface operators (largest: substructure '{largest}', {unknowns} interface unknowns), more than a quarter of the {:.1} MB available; use the volume linear stage ([solver] linear_stage = \"volume\" or \"auto\")",
+        bytes / 1e6, available / 1e6
+    )]
+    CondensedMemory {
+        /// Bytes of the operators.
+        bytes: f64,
+        /// Bytes available.
+        available: f64,
+        /// The substructure with the most interface unknowns.
+        largest: String,
+        /// Its interface unknowns.
+        unknowns: usize,
+    },
     /// Inconsistent set-up or run input.
     #[error("{0}")]
     Invalid(String),

@@ -43,4 +43,7 @@ pub use error::LatinError;
 pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};
 pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
-pub use solver::{LatinOptions, LatinSolver, LocalState, RunInput, SearchDirection};
+pub use solver::{
+    LatinOptions, LatinSolver, LinearStage, LinearStageSummary, LocalState, RunInput,
+    SearchDirection,
+};

@@ -13,6 +13,7 @@
 //! | Anderson depth | <= [`MAX_ACCELERATION`] |
 //! | worker threads | 1 ..= 4 x the cores, at most [`MAX_THREADS`] |
 //! | mean / std fields | their weight-moment matrices <= half the available memory, else refused (set `mean_fields = false`) |
+//! | `[solver] linear_stage = "condensed"` | the dense interface operators, `8 n_i^2` bytes per substructure of `n_i` interface unknowns, <= a quarter of the available memory ([`check_condensed`]; `"auto"` keeps volume solves beyond it) |
 //!
 //! **Memory of a mesh** (measured peak resident memory of `alea solve`, release build, METIS
 //! ordering; `BENCHMARKS.md`, "memory per node"): 2D 3.4-4.5 kB per node (Q4 and Q8, 40k-160k
@@ -284,6 +285,73 @@ fn span_of(spec: &MeshSpec) -> std::ops::Range<usize> {
     spec.params
         .as_ref()
         .map_or(spec.generator.span(), |p| p.span())
+}
+
+/// Interface unknowns of each substructure of an assembly, estimated before pairing: `dim`
+/// per node of the side-1 facet group of each of its interfaces (the points of a node-to-node
+/// pairing, and of a mortar pairing up to the side's ends), counted on both sides.
+pub fn interface_unknowns(assembly: &alea_latin::Assembly) -> Vec<usize> {
+    let mut n = vec![0usize; assembly.subs.len()];
+    for i in &assembly.interfaces {
+        let Some(s1) = assembly.subs.get(i.sub1) else {
+            continue;
+        };
+        let mesh = &s1.model.mesh;
+        let Ok(facets) = mesh.facet_group(&i.group1) else {
+            continue;
+        };
+        let mut nodes: Vec<usize> = facets
+            .iter()
+            .flat_map(|f| f.nodes.iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        for s in [i.sub1, i.sub2] {
+            if let Some(v) = n.get_mut(s) {
+                *v += mesh.dim * nodes.len();
+            }
+        }
+    }
+    n
+}
+
+/// Bytes of the dense interface operators of substructures with `unknowns` interface
+/// unknowns each (`8 n^2`).
+pub fn condensed_memory(unknowns: &[usize]) -> f64 {
+    unknowns.iter().map(|&n| 8.0 * (n as f64).powi(2)).sum()
+}
+
+/// The forced condensed linear stage (`[solver] linear_stage = "condensed"`): its dense
+/// interface operators at most a quarter of the available memory (the solver's own rule).
+///
+/// # Errors
+/// [`StudyError::Input`] at `solver.linear_stage`, with the estimate.
+pub fn check_condensed(
+    src: &Source,
+    span: std::ops::Range<usize>,
+    assembly: &alea_latin::Assembly,
+) -> Result<(), StudyError> {
+    let unknowns = interface_unknowns(assembly);
+    let need = condensed_memory(&unknowns);
+    let have = available_memory() as f64 / 4.0;
+    if need > have || !need.is_finite() {
+        let (s, n) = unknowns
+            .iter()
+            .enumerate()
+            .max_by_key(|(_, n)| **n)
+            .map_or((0, 0), |(s, n)| (s, *n));
+        return Err(src.error(
+            span,
+            "solver.linear_stage",
+            format!(
+                "the condensed linear stage's dense interface operators would need about {} of memory (substructure '{}': about {n} interface unknowns), more than a quarter of the {} available; use \"auto\" or \"volume\"",
+                human_bytes(need),
+                assembly.subs.get(s).map_or("", |x| x.name.as_str()),
+                human_bytes(4.0 * have)
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `n^d` without overflow (saturating in f64).

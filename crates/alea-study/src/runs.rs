@@ -106,3 +106,31 @@ pub struct AdaptiveOutcome {
     /// The estimator of the last step (for maps and element fields).
     pub estimator: Option<alea_estimate::Estimator>,
 }
+
+impl StudyRuns {
+    /// How the solver's linear stage is solved, substructure by substructure (`[solver]
+    /// linear_stage`): `linear stage: D1 condensed (184 interface unknowns, 0.3 MB), ...`.
+    pub fn linear_stage_line(&self) -> String {
+        let parts: Vec<String> = self
+            .solver
+            .linear_stage_summary()
+            .iter()
+            .map(|s| {
+                if s.condensed {
+                    format!(
+                        "{} condensed ({} interface unknowns, {:.1} MB)",
+                        s.name,
+                        s.interface_unknowns,
+                        s.bytes / 1e6
+                    )
+                } else {
+                    format!(
+                        "{} volume solves ({} dof, {} interface unknowns)",
+                        s.name, s.dofs, s.interface_unknowns
+                    )
+                }
+            })
+            .collect();
+        format!("linear stage: {}", parts.join(", "))
+    }
+}

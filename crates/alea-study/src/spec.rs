@@ -252,6 +252,10 @@ pub struct SolverSpec {
     /// Large sliding: largest number of pairings per load step, 1 - 100. Default 10.
     #[serde(default)]
     pub max_pairings: Option<Spanned<usize>>,
+    /// How the linear stage is solved: `"auto"` (default), `"condensed"` (a dense operator
+    /// on each substructure's interface) or `"volume"` (a sparse solve per iteration).
+    #[serde(default)]
+    pub linear_stage: Option<Spanned<String>>,
 }
 
 /// `[study]`.

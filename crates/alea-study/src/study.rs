@@ -242,6 +242,10 @@ impl Study {
         }
         check_cell_fields(&study)?;
         check_built(&study)?;
+        // The runs the solver's set-up serves: what the condensed linear stage's set-up is
+        // weighed against (`[solver] linear_stage = "auto"`).
+        let mut study = study;
+        study.model.options.expected_runs = study.all_points().len().max(1);
         Ok(study)
     }
 
@@ -454,6 +458,11 @@ pub fn estimates_error(study: &Study) -> bool {
 /// [`StudyError::TooLarge`] with the estimate.
 pub fn check_built(study: &Study) -> Result<(), StudyError> {
     check_total_runs(study.all_points().len())?;
+    if let Some(m) = &study.file.solver.linear_stage
+        && m.get_ref() == "condensed"
+    {
+        crate::limits::check_condensed(&study.source, m.span(), &study.model.assembly)?;
+    }
     if study.output.mean_fields.unwrap_or(true)
         && let Some(m) = study
             .methods

@@ -26,11 +26,24 @@ use std::time::Instant;
 use alea_fem::SolveScratch;
 use rayon::prelude::*;
 
+use super::SubOperator;
 use super::acceleration::Acceleration;
+use super::condensed::Condensed;
 use super::convergence::Monitor;
-use super::linear_stage::{assemble_rhs, interface_fields};
+use super::linear_stage::{assemble_rhs, condensed_fields, interface_fields};
 use super::{InterfaceState, LatinSolver, Run, RunInput, SubState};
 use crate::{LatinError, RunResult, RunStatus};
+
+/// One run's column of a substructure's block: its state of the substructure, its interface
+/// state, constant right-hand side, Young's-modulus factor and, on a condensed substructure,
+/// its constant interface response `w0`.
+type Column<'r> = (
+    &'r mut SubState,
+    &'r [InterfaceState],
+    &'r [f64],
+    f64,
+    Option<&'r [f64]>,
+);
 
 /// One run of a batch with its iteration state.
 struct Lane<'a> {
@@ -113,6 +126,13 @@ impl LatinSolver {
                 }
             }
         }
+        // The volume solutions of the condensed substructures, one solve for all the runs.
+        let mut runs: Vec<&mut Run<'_>> = lanes
+            .iter_mut()
+            .filter_map(|l| l.as_mut().ok())
+            .map(|l| &mut l.run)
+            .collect();
+        self.recover_volumes(&mut runs);
         lanes
             .into_iter()
             .map(|lane| {
@@ -129,7 +149,6 @@ impl LatinSolver {
     fn batch_solves(&self, active: &mut [&mut Lane<'_>], scratch: &mut [SolveScratch]) -> f64 {
         let nsub = self.subs.len();
         // Per substructure: each run's state of it, with what its right-hand side needs.
-        type Column<'r> = (&'r mut SubState, &'r [InterfaceState], &'r [f64], f64);
         let mut per_sub: Vec<Vec<Column<'_>>> = (0..nsub).map(|_| Vec::new()).collect();
         for l in active.iter_mut() {
             let Run {
@@ -137,32 +156,38 @@ impl LatinSolver {
                 istate,
                 base,
                 alpha,
+                condensed,
                 ..
             } = &mut l.run;
             for (s, st) in sstate.iter_mut().enumerate() {
-                per_sub[s].push((st, istate.as_slice(), base[s].as_slice(), alpha[s]));
+                let w0 = condensed[s].as_ref().map(|c| c.w0.as_slice());
+                per_sub[s].push((st, istate.as_slice(), base[s].as_slice(), alpha[s], w0));
             }
         }
         self.subs
             .par_iter()
+            .zip(self.condensed.par_iter())
             .zip(per_sub.par_iter_mut())
             .zip(scratch.par_iter_mut())
-            .map(|((op, cols), scratch)| {
+            .map(|(((op, cd), cols), scratch)| {
+                if let Some(cd) = cd {
+                    return condensed_block(op, cd, cols);
+                }
                 let n = cols.first().map_or(0, |c| c.0.rhs.len());
                 if n == 0 {
-                    for (st, istate, _, alpha) in cols.iter_mut() {
+                    for (st, istate, _, alpha, _) in cols.iter_mut() {
                         interface_fields(op, st, istate, *alpha);
                     }
                     return 0.0;
                 }
                 let mut block = vec![0.0; n * cols.len()];
-                for ((_, istate, base, alpha), r) in cols.iter().zip(block.chunks_exact_mut(n)) {
+                for ((_, istate, base, alpha, _), r) in cols.iter().zip(block.chunks_exact_mut(n)) {
                     assemble_rhs(op, istate, base, *alpha, r);
                 }
                 let t0 = Instant::now();
                 op.chol.solve_with(&mut block, scratch);
                 let t = t0.elapsed().as_secs_f64();
-                for ((st, istate, _, alpha), u) in cols.iter_mut().zip(block.chunks_exact(n)) {
+                for ((st, istate, _, alpha, _), u) in cols.iter_mut().zip(block.chunks_exact(n)) {
                     st.rhs.copy_from_slice(u);
                     interface_fields(op, st, istate, *alpha);
                 }
@@ -170,4 +195,35 @@ impl LatinSolver {
             })
             .sum()
     }
+}
+
+/// The condensed linear stage of one substructure for every active run of a batch: the runs'
+/// interface data as the columns of one block, one dense product `W = w0 + H v` for all
+/// (each column's bits those of the run alone, `Condensed::apply`), then each run's `W`, `F`.
+/// Returns the seconds of the product.
+fn condensed_block(op: &SubOperator, cd: &Condensed, cols: &mut [Column<'_>]) -> f64 {
+    let n = cd.n;
+    let mut v = vec![0.0; n * cols.len()];
+    let mut w = vec![0.0; n * cols.len()];
+    for ((_, istate, _, alpha, w0), (vj, wj)) in cols.iter().zip(
+        v.chunks_exact_mut(n.max(1))
+            .zip(w.chunks_exact_mut(n.max(1))),
+    ) {
+        cd.gather(&op.links, istate, *alpha, vj);
+        if let Some(w0) = w0 {
+            wj.copy_from_slice(w0);
+        }
+    }
+    let t0 = Instant::now();
+    cd.apply(&v, &mut w);
+    let t = t0.elapsed().as_secs_f64();
+    for ((st, istate, _, alpha, _), (vj, wj)) in cols
+        .iter_mut()
+        .zip(v.chunks_exact(n.max(1)).zip(w.chunks_exact(n.max(1))))
+    {
+        st.v.copy_from_slice(vj);
+        st.wi.copy_from_slice(wj);
+        condensed_fields(op, cd, st, istate, *alpha);
+    }
+    t
 }

@@ -83,6 +83,14 @@ impl LatinSolver {
             model_size: self.model_size,
             coarse,
             configuration: self.configuration.clone(),
+            // The changed substructures' operators are the run's own: volume solves there; the
+            // others keep their condensed stage (their coarse columns are kept too).
+            condensed: self
+                .condensed
+                .iter()
+                .zip(&changed)
+                .map(|(c, &ch)| if ch { None } else { c.clone() })
+                .collect(),
             setup_seconds: t0.elapsed().as_secs_f64(),
         })
     }

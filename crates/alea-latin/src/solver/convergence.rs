@@ -14,6 +14,7 @@
 
 use rayon::prelude::*;
 
+use super::condensed::RunCondensed;
 use super::{InterfaceState, LatinSolver, Run, SubState};
 use crate::{RunResult, RunStatus, SubEquilibrium};
 
@@ -54,19 +55,20 @@ impl Monitor {
         eta: f64,
     ) -> Option<RunStatus> {
         let (istate, sstate, load_factors) = (&run.istate, &run.sstate, &run.input.load_factors);
+        let cond = run.condensed.as_slice();
         if !eta.is_finite() {
             run.residuals.push(f64::NAN);
             return Some(RunStatus::Diverged);
         }
         run.residuals.push(eta);
         if self.floating && iteration % self.stride == self.stride - 1 {
-            let eq = solver.equilibrium(istate, sstate, load_factors);
+            let eq = solver.equilibrium(istate, sstate, cond, load_factors);
             let worst = eq.iter().map(|e| e.relative_imbalance).fold(0.0, f64::max);
             self.imbalance.push((iteration, worst));
         }
         if eta < solver.options.tolerance {
             // Small indicator: converged only if every substructure is in equilibrium.
-            let eq = solver.equilibrium(istate, sstate, load_factors);
+            let eq = solver.equilibrium(istate, sstate, cond, load_factors);
             let drift = eq
                 .iter()
                 .any(|e| e.relative_rigid_motion > solver.options.max_rigid_motion);
@@ -94,7 +96,12 @@ impl Monitor {
         let mut status = stopped.unwrap_or(RunStatus::NotConverged);
         let equilibrium = match self.equilibrium {
             Some(eq) => eq,
-            None => solver.equilibrium(&run.istate, &run.sstate, &run.input.load_factors),
+            None => solver.equilibrium(
+                &run.istate,
+                &run.sstate,
+                &run.condensed,
+                &run.input.load_factors,
+            ),
         };
         // A run stopped by the iteration limit while a floating substructure drifts away, or
         // stays out of balance without improving, has no static equilibrium rather than a slow
@@ -175,6 +182,7 @@ impl LatinSolver {
         &self,
         istate: &[InterfaceState],
         sstate: &[SubState],
+        cond: &[Option<RunCondensed>],
         load_factors: &[Vec<f64>],
     ) -> Vec<SubEquilibrium> {
         self.subs
@@ -198,8 +206,13 @@ impl LatinSolver {
                         }
                     }
                 }
-                let u = op.dofs.expand(&self.displacement(s, st));
-                rm.finish(&g, scale, coords, &u, self.model_size)
+                // The rigid moments of the displacement: from the interface data on a
+                // condensed substructure (module `condensed`), else from `u`.
+                let moments = || match (&self.condensed[s], cond.get(s).and_then(Option::as_ref)) {
+                    (Some(cd), Some(rc)) => cd.moments(&rc.moments0, &st.v, &st.coarse_u),
+                    _ => rm.moments(coords, &op.dofs.expand(&self.displacement(s, st))),
+                };
+                rm.finish(&g, scale, coords, moments, self.model_size)
             })
             .collect()
     }

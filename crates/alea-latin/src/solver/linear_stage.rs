@@ -9,7 +9,8 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::{InterfaceState, LatinSolver, Run, SubOperator, SubState};
+use super::condensed::{Condensed, point_load};
+use super::{InterfaceState, LatinSolver, Run, SubOperator, SubState, V3};
 
 impl LatinSolver {
     /// Relaxation of the linear stage: the option's, at most 0.8 with the coarse problem and
@@ -31,7 +32,14 @@ impl LatinSolver {
             .par_iter()
             .zip(run.sstate.par_iter_mut())
             .enumerate()
-            .map(|(s, (op, st))| linear_stage(op, st, &run.istate, &run.base[s], run.alpha[s]))
+            .map(
+                |(s, (op, st))| match (&self.condensed[s], &run.condensed[s]) {
+                    (Some(cd), Some(rc)) => {
+                        condensed_stage(op, cd, st, &run.istate, &rc.w0, run.alpha[s])
+                    }
+                    _ => linear_stage(op, st, &run.istate, &run.base[s], run.alpha[s]),
+                },
+            )
             .sum();
         self.correct_and_relax(run, first);
         run.timings.linear += t0.elapsed().as_secs_f64();
@@ -82,13 +90,7 @@ pub(super) fn assemble_rhs(
     for l in &op.links {
         let is = &istate[l.iface];
         for (p, &m) in l.proj.weights.iter().enumerate() {
-            let fh = is.fhat[l.side][p];
-            let kw = l.dir[p].apply(alpha, &is.what[l.side][p]);
-            let v = [
-                m * (fh[0] + kw[0]) / alpha,
-                m * (fh[1] + kw[1]) / alpha,
-                m * (fh[2] + kw[2]) / alpha,
-            ];
+            let v = point_load(l, is, p, m, alpha);
             for (n, c) in l.proj.row(p) {
                 let cv = [c * v[0], c * v[1], c * v[2]];
                 op.dofs.add_node_force(n, &cv, rhs);
@@ -105,22 +107,78 @@ pub(super) fn interface_fields(
     istate: &[InterfaceState],
     alpha: f64,
 ) {
+    let SubState {
+        rhs, w_new, f_new, ..
+    } = st;
+    write_fields(op, w_new, f_new, istate, alpha, |li, p| {
+        let l = &op.links[li];
+        let mut w = [0.0; 3];
+        for (n, c) in l.proj.row(p) {
+            let u = op.dofs.node_displacement(n, rhs);
+            for d in 0..3 {
+                w[d] += c * u[d];
+            }
+        }
+        w
+    });
+}
+
+/// The condensed linear stage of one substructure (module `condensed`): `v` from the
+/// local-stage state, `W = w0 + H v`, then `F`; `u` is left to be recovered (`st.stale`).
+/// Returns the seconds of the dense product.
+pub(super) fn condensed_stage(
+    op: &SubOperator,
+    cd: &Condensed,
+    st: &mut SubState,
+    istate: &[InterfaceState],
+    w0: &[f64],
+    alpha: f64,
+) -> f64 {
+    cd.gather(&op.links, istate, alpha, &mut st.v);
+    st.wi.copy_from_slice(w0);
+    let t0 = Instant::now();
+    cd.apply(&st.v, &mut st.wi);
+    let t = t0.elapsed().as_secs_f64();
+    condensed_fields(op, cd, st, istate, alpha);
+    t
+}
+
+/// `W` from the interface unknowns `st.wi` of a condensed substructure and `F = F_hat - k (W -
+/// W_hat)` into `w_new`, `f_new`; marks the volume solution as not recovered.
+pub(super) fn condensed_fields(
+    op: &SubOperator,
+    cd: &Condensed,
+    st: &mut SubState,
+    istate: &[InterfaceState],
+    alpha: f64,
+) {
+    let SubState {
+        wi, w_new, f_new, ..
+    } = st;
+    write_fields(op, w_new, f_new, istate, alpha, |li, p| cd.point(wi, li, p));
+    st.stale = true;
+}
+
+/// `W` (from `w_at(link, point)`) and `F = F_hat - k (W - W_hat)` into `w_new`, `f_new`.
+#[inline(always)]
+fn write_fields(
+    op: &SubOperator,
+    w_new: &mut [Vec<V3>],
+    f_new: &mut [Vec<V3>],
+    istate: &[InterfaceState],
+    alpha: f64,
+    w_at: impl Fn(usize, usize) -> V3,
+) {
     for (li, l) in op.links.iter().enumerate() {
         let is = &istate[l.iface];
         for p in 0..l.proj.len() {
-            let mut w = [0.0; 3];
-            for (n, c) in l.proj.row(p) {
-                let u = op.dofs.node_displacement(n, &st.rhs);
-                for d in 0..3 {
-                    w[d] += c * u[d];
-                }
-            }
+            let w = w_at(li, p);
             let wh = is.what[l.side][p];
             let fh = is.fhat[l.side][p];
             let kd = l.dir[p].apply(alpha, &[w[0] - wh[0], w[1] - wh[1], w[2] - wh[2]]);
             for c in 0..3 {
-                st.w_new[li][p][c] = w[c];
-                st.f_new[li][p][c] = fh[c] - kd[c];
+                w_new[li][p][c] = w[c];
+                f_new[li][p][c] = fh[c] - kd[c];
             }
         }
     }

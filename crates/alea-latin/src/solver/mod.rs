@@ -8,7 +8,10 @@
 //! `F = F_hat - k (W - W_hat)`; `k` is a tensor per interface point, isotropic or split along
 //! the normal (`k_n n n^T + k_t (I - n n^T)`, module `direction`,
 //! [`SearchDirection::Split`]), `k M_Gamma` standing for `Pi^T M k Pi`. With relaxation `rho`, `(W, F) <- rho (W, F) + (1 - rho)
-//! (W, F)_previous`.
+//! (W, F)_previous`. Where it pays, the linear stage of a substructure is condensed on its
+//! interface (module `condensed`, issue 41): `W = w0 + H v` with the dense interface operator
+//! `H = Pi T A0^-1 S` computed at set-up, the same iterates to round-off, the volume solution
+//! recovered once per run ([`LinearStage`]).
 //!
 //! **Local stage** (per interface point, in parallel): closed form of [`crate::law`].
 //!
@@ -49,7 +52,7 @@
 //!
 //! **Files**: the types and the iteration itself (`run_shared`, this file); set-up
 //! (`setup.rs`); what a run starts from, with the warm start (`start.rs`); the linear stage
-//! (`linear_stage.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
+//! (`linear_stage.rs`) and its interface-condensed form (`condensed.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
 //! (`local_stage.rs`); Anderson acceleration (`acceleration.rs`); stopping, status and the
 //! equilibrium check (`convergence.rs`); the run's result and the warm-start store
 //! (`result.rs`).
@@ -58,6 +61,7 @@ mod acceleration;
 mod batch;
 mod cell_young;
 mod coarse;
+mod condensed;
 mod convergence;
 pub(crate) mod direction;
 mod existence;
@@ -115,6 +119,37 @@ pub enum SearchDirection {
     Fixed(Vec<[f64; 2]>),
 }
 
+/// How the linear stage of a substructure is solved (module `condensed`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LinearStage {
+    /// Condensed where the dense interface operator costs less than the sparse solve and the
+    /// operators fit in memory, volume solves elsewhere (module `condensed`, "When").
+    #[default]
+    Auto,
+    /// Every substructure condensed on its interface (refused at set-up when the dense
+    /// operators would not fit in a quarter of the available memory).
+    Condensed,
+    /// A sparse volume solve per substructure and iteration.
+    Volume,
+}
+
+/// How the linear stage of one substructure is solved ([`LatinSolver::linear_stage_summary`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearStageSummary {
+    /// Substructure name.
+    pub name: String,
+    /// Free unknowns of its volume.
+    pub dofs: usize,
+    /// Entries of its sparse factor.
+    pub factor_entries: usize,
+    /// Interface unknowns (`dim` per point of every interface side).
+    pub interface_unknowns: usize,
+    /// Condensed on its interface (module `condensed`), else volume solves.
+    pub condensed: bool,
+    /// Bytes of its dense interface operator and responses (0 on the volume path).
+    pub bytes: f64,
+}
+
 /// Solver options.
 #[derive(Clone, Debug)]
 pub struct LatinOptions {
@@ -146,6 +181,11 @@ pub struct LatinOptions {
     /// alone (manufactured solutions move floating parts by half the model size). The rigid
     /// motion of every run is reported in [`RunResult::equilibrium`].
     pub max_rigid_motion: f64,
+    /// Condensed or volume linear stage (module `condensed`; default [`LinearStage::Auto`]).
+    pub linear_stage: LinearStage,
+    /// Runs the solver's set-up is expected to serve (default 1): [`LinearStage::Auto`]
+    /// weighs the condensed stage's set-up against the iterations of that many runs.
+    pub expected_runs: usize,
 }
 
 impl Default for LatinOptions {
@@ -160,6 +200,8 @@ impl Default for LatinOptions {
             coarse: true,
             equilibrium_tolerance: 1e-4,
             max_rigid_motion: 10.0,
+            linear_stage: LinearStage::Auto,
+            expected_runs: 1,
         }
     }
 }
@@ -296,6 +338,12 @@ struct SubState {
     /// This iteration's `W`, `F` before the relaxation.
     w_new: Vec<Vec<V3>>,
     f_new: Vec<Vec<V3>>,
+    /// Condensed substructure (module `condensed`): the last linear stage's interface data
+    /// `v`, its interface displacements `W = w0 + H v`, and whether `rhs` is yet to be
+    /// recovered from `v` (empty and false on the volume path).
+    v: Vec<f64>,
+    wi: Vec<f64>,
+    stale: bool,
 }
 
 #[derive(Clone)]
@@ -329,6 +377,9 @@ pub struct LatinSolver {
     /// Displacement of every substructure in the configuration the interfaces were paired in
     /// (`None`: the initial configuration; module [`crate::large_sliding`]).
     configuration: Option<Vec<Vec<f64>>>,
+    /// The condensed linear stage of each substructure (`None`: volume solves; module
+    /// `condensed`).
+    condensed: Vec<condensed::SharedCondensed>,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
 }
@@ -350,6 +401,8 @@ struct Run<'a> {
     points: Vec<Vec<PointData>>,
     /// Constant part of each substructure's right-hand side.
     base: Vec<Vec<f64>>,
+    /// Per condensed substructure, the run's constant interface response and rigid moments.
+    condensed: Vec<Option<condensed::RunCondensed>>,
     /// Index of the stored run it started from.
     warm: Option<usize>,
     istate: Vec<InterfaceState>,
@@ -407,6 +460,23 @@ impl LatinSolver {
     pub fn factor_summary(&self, s: usize) -> (usize, usize, bool) {
         let c = &self.subs[s].chol;
         (c.n(), c.nnz_factor(), c.is_supernodal())
+    }
+
+    /// How each substructure's linear stage is solved: condensed on its interface or by
+    /// volume solves (module `condensed`), with the sizes the choice was made from.
+    pub fn linear_stage_summary(&self) -> Vec<LinearStageSummary> {
+        self.subs
+            .iter()
+            .zip(&self.condensed)
+            .map(|(op, cd)| LinearStageSummary {
+                name: op.name.clone(),
+                dofs: op.dofs.num_free(),
+                factor_entries: op.chol.nnz_factor(),
+                interface_unknowns: condensed::interface_unknowns(op.dofs.dim, &op.links),
+                condensed: cd.is_some(),
+                bytes: cd.as_ref().map_or(0.0, |c| c.bytes()),
+            })
+            .collect()
     }
 
     /// Name of substructure `s`.

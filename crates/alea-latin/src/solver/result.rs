@@ -19,7 +19,9 @@ impl LatinSolver {
         equilibrium: Vec<SubEquilibrium>,
         t_start: Instant,
     ) -> RunResult {
-        // Final fields: the last linear stage's displacement.
+        // Final fields: the last linear stage's displacement (recovered from its interface
+        // data on a condensed substructure, module `condensed`).
+        self.recover_volumes(&mut [&mut run]);
         let displacements: Vec<Vec<f64>> = self
             .subs
             .par_iter()

@@ -80,6 +80,13 @@ impl LatinSolver {
             .map(|(sub, links)| build_operator(sub, links, ordering).map(Arc::new))
             .collect::<Result<_, _>>()?;
         let coarse = options.coarse.then(|| build_coarse(&ops, &ifaces));
+        let condensed = super::condensed::build_all(
+            &ops,
+            coarse.as_ref(),
+            options.linear_stage,
+            options.expected_runs,
+            configuration.is_some(),
+        )?;
         Ok(LatinSolver {
             subs: ops,
             ifaces,
@@ -88,6 +95,7 @@ impl LatinSolver {
             model_size,
             coarse,
             configuration,
+            condensed,
             setup_seconds: t0.elapsed().as_secs_f64(),
         })
     }

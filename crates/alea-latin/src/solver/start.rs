@@ -80,11 +80,26 @@ impl LatinSolver {
             let mask = cs.mask(&macro_active);
             macro_inverse(cs.n, &cs.subs, &alpha, &mask)
         });
+        let condensed = self
+            .condensed
+            .iter()
+            .enumerate()
+            .map(|(s, c)| {
+                c.as_ref().map(|cd| {
+                    cd.for_run(
+                        input.load_factors.get(s).map(Vec::as_slice),
+                        alpha[s],
+                        &base[s],
+                    )
+                })
+            })
+            .collect();
         Ok(Run {
             input,
             alpha,
             points,
             base,
+            condensed,
             warm,
             istate,
             sstate: self.sub_states(),
@@ -259,7 +274,11 @@ impl LatinSolver {
     fn sub_states(&self) -> Vec<SubState> {
         self.subs
             .iter()
-            .map(|op| SubState {
+            .zip(&self.condensed)
+            .map(|(op, cd)| SubState {
+                v: vec![0.0; cd.as_ref().map_or(0, |c| c.n)],
+                wi: vec![0.0; cd.as_ref().map_or(0, |c| c.n)],
+                stale: false,
                 rhs: vec![0.0; op.dofs.num_free()],
                 coarse_u: Vec::new(),
                 scratch: op.chol.solve_scratch(1),

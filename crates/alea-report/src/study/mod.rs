@@ -96,6 +96,7 @@ pub fn run_runs(
         runs.solve_seconds,
         runs.computed as f64 / runs.solve_seconds.max(1e-9)
     ));
+    console.line(&runs.linear_stage_line());
     let iterations: Vec<usize> = runs
         .records
         .iter()

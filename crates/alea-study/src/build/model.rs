@@ -2,7 +2,9 @@
 //! a model file.
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::{Assembly, InterfaceSpec, LatinOptions, Pairing, SearchDirection, Substructure};
+use alea_latin::{
+    Assembly, InterfaceSpec, LatinOptions, LinearStage, Pairing, SearchDirection, Substructure,
+};
 use toml::Spanned;
 
 use super::checks::check_interfaces;
@@ -539,6 +541,20 @@ pub fn build_model(
     }
     if let Some(t) = &sv.max_rigid_motion {
         options.max_rigid_motion = positive(src, t, "solver.max_rigid_motion")?;
+    }
+    if let Some(m) = &sv.linear_stage {
+        options.linear_stage = match m.get_ref().as_str() {
+            "auto" => LinearStage::Auto,
+            "condensed" => LinearStage::Condensed,
+            "volume" => LinearStage::Volume,
+            other => {
+                return Err(src.error(
+                    m.span(),
+                    "solver.linear_stage",
+                    format!("must be \"auto\", \"condensed\" or \"volume\", got \"{other}\""),
+                ));
+            }
+        };
     }
     if let Some(k) = &sv.search_direction_factor {
         options.search_direction = SearchDirection::Auto {
