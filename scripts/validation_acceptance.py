@@ -185,7 +185,7 @@ def rings_case(name, seed, params, threshold, ms):
         bore='load = [ { group = "inner_inner", pressure = "p" } ]' if "p" in params else "",
         methods=methods(*ms))
     return {"name": name, "kind": "rings", "params": params, "laws": laws, "text": text,
-            "threshold": threshold}
+            "threshold": threshold, "goal_tolerance": 0.01}
 
 
 def block_case(name, seed, params, g, threshold, ms):
@@ -196,7 +196,7 @@ def block_case(name, seed, params, g, threshold, ms):
         parameters="\n".join(parameter(k, *laws[k]) for k in params),
         ep="Ep" if "Ep" in params else "210e3", methods=methods(*ms))
     return {"name": name, "kind": "block", "params": params, "laws": laws, "text": text,
-            "threshold": threshold}
+            "threshold": threshold, "goal_tolerance": 0.01}
 
 
 CASES = [
@@ -343,6 +343,7 @@ def main(args):
     os.makedirs(work, exist_ok=True)
     total = {"n": 0, "covered": 0, "ratios": []}
     cost = []
+    goals = []
     for k, case in enumerate(CASES):
         print("== %s" % case["name"])
         path = os.path.join(work, "case%d.toml" % k)
@@ -379,6 +380,20 @@ def main(args):
                              row["total"],
                              " (corrected)" if (row.get("validation") or {}).get("detected")
                              else "", "" if ok else "  NOT COVERED"))
+        for m in s["methods"]:
+            a = m.get("adaptive") or {}
+            steps = a.get("steps") or []
+            goal = (steps[-1].get("goal") or [None])[0] if steps else None
+            if goal is None:
+                continue
+            exact = truth.get(goal["statistic"])
+            reached = a.get("stop", "").startswith("goal reached")
+            err = abs(goal["value"] - exact) if exact is not None else float("nan")
+            tol = case["goal_tolerance"]
+            goals.append((case["name"], goal["statistic"], reached, err, tol))
+            print("  goal %s: %s; value %.5g +- %.3g, exact %.5g, error %.3g (tolerance %g)%s" % (
+                goal["statistic"], a.get("stop", "")[:90], goal["value"], goal["total"], exact,
+                err, tol, "  WRONG STOP" if reached and err > tol else ""))
         total["n"] += n_case
         total["covered"] += covered_case
         design = max(m["design_runs"] for m in s["methods"] if "monte" not in m["label"].lower())
@@ -389,6 +404,9 @@ def main(args):
     print("\ncase | runs in the store | validation runs used | largest surrogate design | covered")
     for c in cost:
         print("%s | %d | %d | %d | %d/%d" % c)
+    wrong = sum(1 for g in goals if g[2] and g[3] > g[4])
+    print("goals: %d, reached %d, reached with an exact error above the tolerance %d" % (
+        len(goals), sum(1 for g in goals if g[2]), wrong))
     print("evaluation set: covered %d/%d (%.1f %%); median total / error where the error exceeds "
           "the sampling half-width %.2f over %d rows (work directory %s)" % (
               total["covered"], total["n"], 100.0 * total["covered"] / max(total["n"], 1),

@@ -515,6 +515,9 @@ pub(crate) fn execute(
         .count();
     if fresh > 0 {
         runner.announce(fresh);
+    }
+    if !validation.is_empty() {
+        // Stored ones are counted as resumed.
         runner.run_points(&validation)?;
     }
     progress.end();

@@ -69,6 +69,9 @@ mod tests {
             value: 10.2,
             half_width: 0.05,
             runs: 30,
+            detected: true,
+            bound: 0.3,
+            difference: 0.2,
         });
         let stats = QoiStats {
             name: "q".into(),
@@ -99,6 +102,7 @@ mod tests {
             budget: Some(QoiBudget {
                 rows: vec![mean, row("P(> 14)", 0.25, 0.01, 0.09)],
                 surrogate_basis: String::new(),
+                validation_basis: None,
                 mesh_basis: String::new(),
                 sliding_basis: None,
                 draws: 1000,

@@ -71,6 +71,9 @@ fn corrected_estimates_are_what_the_page_reads() {
         value: 10.5,
         half_width: 0.04,
         runs: 40,
+        detected: true,
+        bound: 0.6,
+        difference: 0.5,
     });
     let dir = out_dir("corrected");
     let files = write_report(&dir, &input).unwrap();
