@@ -91,11 +91,15 @@ pub(super) fn print_table(
                     .sliding
                     .map_or_else(String::new, |v| format!(", sliding +-{}", num(v, 3)));
                 let corrected = row.validation.as_ref().map_or_else(String::new, |v| {
-                    format!(
-                        " (surrogate {}, corrected by {} validation runs)",
-                        num(row.value, 6),
-                        v.runs
-                    )
+                    if v.detected {
+                        format!(
+                            " (surrogate {}, corrected by {} validation runs)",
+                            num(row.value, 6),
+                            v.runs
+                        )
+                    } else {
+                        format!(" ({} validation runs agree within their noise)", v.runs)
+                    }
                 });
                 console.line(&format!(
                     "    {:<12} {:>13} {unit:<4} total +-{}: surrogate {}, sampling +-{}, mesh {}{sliding}{corrected}",

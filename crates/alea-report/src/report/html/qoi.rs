@@ -209,7 +209,8 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
          <th class=\"n\">Surrogate</th><th class=\"n\">Sampling</th>{}<th class=\"n\">Total</th>\
          <th class=\"n\">Total interval</th></tr></thead><tbody>",
         if corrected {
-            " (corrected by the validation runs where there are some)"
+            " (corrected by the validation runs where they detect the surrogate's error; \"agree\": \
+             their difference with the surrogate is within their own noise)"
         } else {
             ""
         },
@@ -230,9 +231,13 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
         let u = if is_p { "" } else { unit };
         let style = if is_p { Style::Prob } else { Style::Num(5) };
         let corrected_cell = match (&b.validation, corrected) {
-            (Some(v), _) => format!(
+            (Some(v), _) if v.detected => format!(
                 "<td class=\"n\">{} <span class=\"ci\">({} runs)</span></td>",
                 style.text(v.value),
+                v.runs
+            ),
+            (Some(v), _) => format!(
+                "<td class=\"n\">agree <span class=\"ci\">({} runs)</span></td>",
                 v.runs
             ),
             (None, true) => "<td class=\"n\">&mdash;</td>".to_string(),
