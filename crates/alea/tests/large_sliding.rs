@@ -210,12 +210,14 @@ fn large_sliding_re_pairs_and_small_sliding_warns() {
     assert!(dir.join("out-large/large/interface_contact.csv").is_file());
 
     // Small sliding from a cold start needs ~10 000 iterations on this slide (the default
-    // 2 000 end as "not converged"); large sliding starts from the predicted slide.
+    // 2 000 end as "not converged"); large sliding starts from the predicted slide. That count
+    // depends on round-off (Anderson acceleration while the block drifts: BENCHMARKS.md, issue
+    // 41), so the linear stage is fixed to the volume path, whose rounding gives 10 210.
     let (p, _) = case(
         &dir,
         "small",
         &[("sliding = \"large\"", "")],
-        "\n[solver]\nmax_iterations = 20000\n",
+        "\n[solver]\nmax_iterations = 20000\nlinear_stage = \"volume\"\n",
     );
     let o = solve(&p, &dir.join("out-small"));
     let t = text(&o);

@@ -181,7 +181,7 @@ pub struct LatinOptions {
     /// alone (manufactured solutions move floating parts by half the model size). The rigid
     /// motion of every run is reported in [`RunResult::equilibrium`].
     pub max_rigid_motion: f64,
-    /// Condensed or volume linear stage (module `condensed`; default [`LinearStage::Volume`]).
+    /// Condensed or volume linear stage (module `condensed`; default [`LinearStage::Auto`]).
     pub linear_stage: LinearStage,
     /// Runs the solver's set-up is expected to serve (default 1): [`LinearStage::Auto`]
     /// weighs the condensed stage's set-up against the iterations of that many runs.
@@ -200,9 +200,7 @@ impl Default for LatinOptions {
             coarse: true,
             equilibrium_tolerance: 1e-4,
             max_rigid_motion: 10.0,
-            // Volume until the condensed stage's iterates equal the volume path's on every
-            // case: on a block slid far in small sliding they stall at 1e-5 (issue 41).
-            linear_stage: LinearStage::Volume,
+            linear_stage: LinearStage::Auto,
             expected_runs: 1,
         }
     }
