@@ -26,6 +26,9 @@
 use crate::spec::{MeshSpec, MethodSpec, ModelFile};
 use crate::{Source, StudyError};
 
+/// Most validation runs a study may ask for (`[budget] validation_runs`; `crate::validation_runs`).
+pub const MAX_VALIDATION_RUNS: usize = 10_000;
+
 /// Distinct runs of a study (each is a full LATIN solve and a row of the store).
 pub const MAX_RUNS: usize = 100_000;
 /// Terms of a polynomial-chaos basis.

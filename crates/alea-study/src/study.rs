@@ -632,8 +632,8 @@ fn sliding_study(
     Ok(Some(study))
 }
 
-/// `[budget] validation_runs`, checked: at most [`crate::validation_runs::AUTO_MAX`] times 50
-/// (each is a run of the solver), and none asked of a study without random parameters.
+/// `[budget] validation_runs`, checked: at most [`crate::limits::MAX_VALIDATION_RUNS`] (each is
+/// a run of the solver), and none asked of a study without random parameters.
 fn validation_runs_setting(
     source: &Source,
     file: &crate::spec::ModelFile,
@@ -646,7 +646,7 @@ fn validation_runs_setting(
         return Ok(None);
     };
     let n = *v.get_ref();
-    let most = 50 * crate::validation_runs::AUTO_MAX;
+    let most = crate::limits::MAX_VALIDATION_RUNS;
     if n > most {
         return Err(source.error(
             v.span(),
