@@ -69,6 +69,11 @@ pub struct QoiStats {
     /// The samples (not serialised).
     #[serde(skip)]
     pub samples: Vec<f64>,
+    /// A quantity that cannot be negative: the share of the surrogate's draws that were
+    /// negative before their projection onto `>= 0`, and the lowest (`(0, inf)` otherwise; not
+    /// serialised).
+    #[serde(skip)]
+    pub negative: (f64, f64),
 }
 
 /// The result of one method.
@@ -235,6 +240,7 @@ fn qoi_stats(
         budget,
         sobol: None,
         samples,
+        negative: (0.0, f64::INFINITY),
     }
 }
 
@@ -506,19 +512,34 @@ pub fn analyse_method(
         .collect();
     out.qois = (0..nq)
         .map(|q| {
-            let mine: Vec<f64> = per_draw
+            // A quantity that cannot be negative: every surrogate's draws projected onto `>= 0`
+            // (the model's value is >= 0, so the projection only brings a draw nearer to it;
+            // a surrogate that spreads an atom at 0 - a contact that opens - below 0 otherwise
+            // puts its low quantiles there), the share and lowest of the negative ones kept for
+            // the draw-range warning.
+            let floor = study.qois[q].kind.nonnegative();
+            let project = |v: f64| if floor { v.max(0.0) } else { v };
+            let raw: Vec<f64> = per_draw
                 .iter()
                 .zip(&keep)
                 .filter(|(_, k)| **k)
                 .map(|(v, _)| v.0[q])
                 .collect();
+            let negative = if floor {
+                let below = raw.iter().filter(|&&v| v < 0.0).count();
+                let lowest = raw.iter().copied().fold(f64::INFINITY, f64::min);
+                (below as f64 / raw.len().max(1) as f64, lowest)
+            } else {
+                (0.0, f64::INFINITY)
+            };
+            let mine: Vec<f64> = raw.into_iter().map(project).collect();
             let coarse: Vec<Vec<f64>> = coarse_per_draw
                 .iter()
                 .map(|c| {
                     c.iter()
                         .zip(&keep)
                         .filter(|(_, k)| **k)
-                        .map(|(v, _)| v[q])
+                        .map(|(v, _)| project(v[q]))
                         .collect()
                 })
                 .collect();
@@ -548,10 +569,15 @@ pub fn analyse_method(
                 }
                 Err(why) => SurrogatePart::Unavailable(why),
             };
-            let (model, surrogate) = &validation[q];
-            let sample =
-                (model.len() >= 2).then_some(budget::validation::Sample { model, surrogate });
-            qoi_stats(study, q, mine, s, Some(part), sample)
+            let (model, at_runs) = &validation[q];
+            let surrogate: Vec<f64> = at_runs.iter().map(|&v| project(v)).collect();
+            let sample = (model.len() >= 2).then_some(budget::validation::Sample {
+                model,
+                surrogate: &surrogate,
+            });
+            let mut stats = qoi_stats(study, q, mine, s, Some(part), sample);
+            stats.negative = negative;
+            stats
         })
         .collect();
     // Sobol' indices are variances over the whole box: not computed where a region is left out.

@@ -22,15 +22,9 @@ use crate::study::Study;
 /// The share of the draws beyond the runs' range above which it is warned about.
 pub const OUTSIDE_SHARE: f64 = 0.01;
 
-/// True for the quantities that cannot be negative.
+/// True for the quantities that cannot be negative ([`QoiKind::nonnegative`]).
 pub fn nonnegative(kind: &QoiKind) -> bool {
-    matches!(
-        kind,
-        QoiKind::FrictionDissipation(_)
-            | QoiKind::MaxVonMises { .. }
-            | QoiKind::MeanVonMises { .. }
-            | QoiKind::Contact(_)
-    )
+    kind.nonnegative()
 }
 
 /// The warnings of one method's draws (empty for Monte Carlo on the model, whose draws are its
@@ -71,14 +65,22 @@ pub fn draw_range_warnings(
         };
         let share =
             |f: &dyn Fn(f64) -> bool| stats.samples.iter().filter(|&&v| f(v)).count() as f64 / n;
-        let min_draw = stats.samples.iter().copied().fold(f64::INFINITY, f64::min);
-        let negative = share(&|v| v < 0.0);
+        // The draws of a quantity that cannot be negative were projected onto `>= 0` by the
+        // analysis, which kept the share of negative ones and the lowest (`QoiStats::negative`).
+        let min_draw = stats
+            .samples
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+            .min(stats.negative.1);
+        let negative = share(&|v| v < 0.0).max(stats.negative.0);
         if nonnegative(&qoi.kind) && negative > 0.0 && lo >= 0.0 {
             out.push(format!(
                 "method '{}': {:.1} % of the draws of '{}' are negative (down to {min_draw:.4e}{unit}), \
                  which it cannot be ({}), while all {} runs are >= 0: the surrogate oscillates \
-                 between the runs (a kink or a contact that opens?); its statistics there are \
-                 not the model's - more runs, or a piecewise-linear or adaptive method",
+                 between the runs (a kink or a contact that opens?); those draws are taken as 0 \
+                 in its statistics, which are still not the model's there - more runs, or a \
+                 piecewise-linear or adaptive method",
                 method.label,
                 100.0 * negative,
                 qoi.name,

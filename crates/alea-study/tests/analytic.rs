@@ -203,7 +203,7 @@ fn pc_and_monte_carlo_match_the_exact_law() {
     drop(runs.lock);
     let again = run_study(&study, &dir, false, &NoProgress).unwrap();
     assert_eq!(again.computed, 0);
-    assert_eq!(again.resumed, 440);
+    assert_eq!(again.resumed, 450);
     assert_eq!(again.records, runs.records);
     let _ = std::fs::remove_dir_all(&dir);
 }

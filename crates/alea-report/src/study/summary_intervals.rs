@@ -109,6 +109,7 @@ mod tests {
             }),
             sobol: None,
             samples: vec![],
+            negative: (0.0, f64::INFINITY),
         };
         let mut v = serde_json::to_value(vec![&stats]).unwrap();
         add_intervals(&mut v, std::slice::from_ref(&stats));

@@ -497,6 +497,20 @@ pub struct MaxLocation {
     pub junction: Option<(String, String)>,
 }
 
+impl QoiKind {
+    /// True for the quantities that cannot be negative: a friction dissipation, a von Mises
+    /// stress, a contact pressure, slip or status length or area.
+    pub fn nonnegative(&self) -> bool {
+        matches!(
+            self,
+            QoiKind::FrictionDissipation(_)
+                | QoiKind::MaxVonMises { .. }
+                | QoiKind::MeanVonMises { .. }
+                | QoiKind::Contact(_)
+        )
+    }
+}
+
 impl Qoi {
     /// The value of this quantity for a run.
     pub fn eval(&self, solver: &LatinSolver, res: &RunResult) -> Result<f64, StudyError> {
