@@ -80,7 +80,7 @@ def test_progress_argument(tmp_path, capsys):
     alea.run(PLATE, directory=directory, progress=False)
     assert capsys.readouterr().err == ""  # finished: the next calls solve nothing
     alea.run(PLATE, directory=directory, progress=True)
-    assert re.fullmatch(r"\ralea: 230/230 runs \(100 %\), \d+ s   \n", capsys.readouterr().err)
+    assert re.fullmatch(r"\ralea: 237/237 runs \(100 %\), \d+ s   \n", capsys.readouterr().err)
     alea.run(PLATE, directory=directory)  # default: stderr is not a terminal under pytest
     assert capsys.readouterr().err == ""
     with pytest.raises(TypeError, match="progress must be"):
@@ -174,7 +174,7 @@ def test_locked_directory_raises_study_locked(tmp_path):
     finally:
         os.close(fd)
     # Released: the study runs.
-    assert len(alea.run(PLATE, directory=directory, progress=False).runs) == 230
+    assert len(alea.run(PLATE, directory=directory, progress=False).runs) == 237
 
 
 def test_study_locked_is_a_value_error():
@@ -220,7 +220,7 @@ def test_a_raising_callback_stops_the_study_and_report_notes_speak_python(tmp_pa
     stored = len(alea.open_store(directory).runs)
     assert 60 <= stored < 60 + 8 * os.cpu_count() + 8
     notes = alea.report(directory).notes
-    missing = f"{230 - stored} of 230 runs are missing"
+    missing = f"{237 - stored} of 237 runs are missing"
     note = next(n for n in notes if n.startswith(missing))
     assert note.endswith(f"compute them with `alea.run({str(PLATE)!r}, directory={str(directory)!r})`".replace("'", '"'))
     assert not any("--dir" in n or "`alea run`" in n for n in notes)
