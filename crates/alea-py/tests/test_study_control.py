@@ -198,7 +198,7 @@ def test_messages_speak_of_python_arguments(tmp_path):
     assert "--restart" not in message and "--dir" not in message
     # restart=True is indeed the way out.
     res = alea.run(changed, directory=directory, restart=True, progress=False)
-    assert res.computed == 230
+    assert res.computed == 237
     # A file where a directory belongs.
     a_file = tmp_path / "a_file"
     a_file.write_text("")

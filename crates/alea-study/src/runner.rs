@@ -458,11 +458,21 @@ pub(crate) fn execute(
         .filter(|m| matches!(m.kind, MethodKind::Adaptive(_)))
         .map(|m| m.points.len())
         .sum();
+    // Without an adaptive method the validation runs are known now: counted from the start.
+    let validation_upfront = if adaptive_start == 0 {
+        crate::validation_runs::count(study, &methods)
+    } else {
+        0
+    };
     let done_before = fixed
         .iter()
+        .chain(&crate::validation_runs::points(study, validation_upfront))
         .filter(|p| by_key.contains_key(&point_key(p)))
         .count();
-    progress.begin(fixed.len() + adaptive_start, done_before);
+    progress.begin(
+        fixed.len() + adaptive_start + validation_upfront,
+        done_before,
+    );
     let mut runner = Runner {
         study,
         dir,
@@ -511,6 +521,7 @@ pub(crate) fn execute(
         crate::validation_runs::points(study, crate::validation_runs::count(study, &methods));
     let fresh = validation
         .iter()
+        .skip(validation_upfront)
         .filter(|p| !runner.by_key.contains_key(&point_key(p)))
         .count();
     if fresh > 0 {
