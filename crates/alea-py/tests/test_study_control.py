@@ -116,7 +116,7 @@ def test_ctrl_c_stops_the_study_and_the_next_run_resumes(tmp_path):
     )
     try:
         first = child.stdout.readline()
-        assert first == "started 50030\n", child.stderr.read() if not first else first
+        assert first == "started 50037\n", child.stderr.read() if not first else first
         # While the child runs, the directory is locked: StudyLocked names the child.
         with pytest.raises(alea.StudyLocked, match="in use by") as locked:
             alea.run(study, directory=directory, progress=False)
@@ -137,7 +137,7 @@ def test_ctrl_c_stops_the_study_and_the_next_run_resumes(tmp_path):
     assert "KeyboardInterrupt" in err and "finished" not in out
     assert elapsed < 3.0, f"the study took {elapsed:.1f} s to stop"
     stored = len(alea.open_store(directory).runs)
-    assert 0 < stored < 50030
+    assert 0 < stored < 50037
     # A new run resumes: it starts from the stored runs (then is stopped by its callback, which
     # also stops the study at once).
     calls = []
@@ -150,7 +150,7 @@ def test_ctrl_c_stops_the_study_and_the_next_run_resumes(tmp_path):
     with pytest.raises(Enough):
         alea.run(study, directory=directory, progress=progress)
     assert time.monotonic() - started < 10.0
-    assert calls == [(stored, 50030)]
+    assert calls == [(stored, 50037)]
     assert len(alea.open_store(directory).runs) == stored
 
 
