@@ -520,6 +520,20 @@ fn method_dict<'py>(
             q.set_item("mesh_basis", &b.mesh_basis)?;
             q.set_item("sliding_basis", &b.sliding_basis)?;
             q.set_item("budget_draws", b.draws)?;
+            // The surrogate's residuals at the validation runs (None without validation runs).
+            let errors = match &b.validation_errors {
+                Some(e) => {
+                    let d = PyDict::new(py);
+                    d.set_item("runs", e.runs)?;
+                    d.set_item("rms", e.rms)?;
+                    d.set_item("max", e.max)?;
+                    d.set_item("scale", e.scale)?;
+                    d.set_item("relative", e.relative)?;
+                    Some(d)
+                }
+                None => None,
+            };
+            q.set_item("validation_errors", errors)?;
         }
         q.set_item("budget", budget)?;
         // Sobol' indices (studies with random fields), as in summary.json.

@@ -2,6 +2,7 @@
 //! warnings they raise.
 
 use alea_study::adaptive::AdaptiveOutcome;
+use alea_study::analysis::MethodResult;
 use alea_study::estimate::ErrorSettings;
 use alea_study::runner::{Study, StudyRuns};
 
@@ -20,6 +21,7 @@ pub(super) fn print_estimates(
     runs: &StudyRuns,
     settings: &ErrorSettings,
     estimates: &[MethodEstimate],
+    results: &[MethodResult],
     console: &dyn Console,
 ) -> Vec<String> {
     let mut warnings = Vec::new();
@@ -58,6 +60,9 @@ pub(super) fn print_estimates(
                     pct(est.i_sto()),
                     100.0 * share
                 ));
+                if let Some(line) = results.get(me.method).and_then(validation_line) {
+                    console.line(&line);
+                }
                 // The indicators above the warning threshold, with the entity to act on.
                 type Part = fn(&alea_estimate::EntityEstimate) -> f64;
                 let indicators: [(&str, &str, f64, Part, &str, &str); 2] = [
@@ -126,6 +131,32 @@ pub(super) fn print_estimates(
         console.warning(w);
     }
     warnings
+}
+
+/// The surrogate's relative RMS error at the validation runs, per quantity, to read beside
+/// `i_sto` (both relative to the size of what they measure: `i_sto` to the solution's energy,
+/// this to the quantity's root mean square; `None` without validation runs).
+fn validation_line(r: &MethodResult) -> Option<String> {
+    let parts: Vec<String> = r
+        .qois
+        .iter()
+        .filter_map(|s| {
+            let e = s.budget.as_ref()?.validation_errors.as_ref()?;
+            Some(format!("{} {}", s.name, pct(e.relative)))
+        })
+        .collect();
+    let runs = r.qois.iter().find_map(|s| {
+        s.budget
+            .as_ref()?
+            .validation_errors
+            .as_ref()
+            .map(|e| e.runs)
+    })?;
+    Some(format!(
+        "  {:<34} the surrogate's RMS error at {runs} validation runs, relative to each quantity's: {}",
+        "",
+        parts.join(", ")
+    ))
 }
 
 fn print_adaptive(study: &Study, runs: &StudyRuns, a: &AdaptiveOutcome, console: &dyn Console) {

@@ -148,6 +148,7 @@ fn write_files(
         runs,
         &err_settings,
         &estimates,
+        &results,
         console,
     ));
     let estimate_seconds = t0.elapsed().as_secs_f64();

@@ -103,6 +103,7 @@ mod tests {
                 rows: vec![mean, row("P(> 14)", 0.25, 0.01, 0.09)],
                 surrogate_basis: String::new(),
                 validation_basis: None,
+                validation_errors: None,
                 mesh_basis: String::new(),
                 sliding_basis: None,
                 draws: 1000,

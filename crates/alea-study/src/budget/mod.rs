@@ -109,6 +109,9 @@ pub struct QoiBudget {
     /// How the validation runs corrected the statistics (`None`: no validation runs).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub validation_basis: Option<String>,
+    /// The surrogate's residuals at the validation runs (`None`: no validation runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub validation_errors: Option<validation::PointwiseErrors>,
     /// How the mesh part was estimated, or why it was not.
     pub mesh_basis: String,
     /// How the sliding part was estimated, or why it was not (`None`: not asked for).
@@ -289,9 +292,12 @@ pub fn qoi_budget(
 ) -> QoiBudget {
     let fine = Statistics::of(samples, quantiles, thresholds, confidence);
     // The statistics corrected by the validation runs (none for the model runs themselves).
-    let corrected = match (&surrogate, validation) {
-        (SurrogatePart::Exact, _) | (_, None) => None,
-        (_, Some(v)) => validation::corrected(samples, v, quantiles, thresholds, confidence),
+    let (corrected, validation_errors) = match (&surrogate, validation) {
+        (SurrogatePart::Exact, _) | (_, None) => (None, None),
+        (_, Some(v)) => (
+            validation::corrected(samples, v, quantiles, thresholds, confidence),
+            validation::PointwiseErrors::of(v),
+        ),
     };
     // The first coarser comparison that differs from the method's surrogate, and every richer
     // one.
@@ -377,6 +383,7 @@ pub fn qoi_budget(
         rows,
         surrogate_basis,
         validation_basis,
+        validation_errors,
         mesh_basis:
             "not estimated (the runs' energy-norm mesh error is I_geo of the error estimate)".into(),
         sliding_basis: None,

@@ -60,6 +60,71 @@ pub struct Corrected {
     pub difference: f64,
 }
 
+/// What the validation runs say of the surrogate point by point, beside the statistics: the
+/// residuals `r_i = q(x_i) - q~(x_i)` at the `n` runs,
+///
+/// ```text
+/// rms = sqrt( sum r_i^2 / n ),   max = max |r_i|,   scale = sqrt( sum q(x_i)^2 / n ),
+/// ```
+///
+/// and `rms / scale`, the surrogate's relative error in the mean-square norm of the quantity
+/// over the input law (estimated on the runs) - the same normalisation as `i_sto`, the error
+/// estimate's stochastic part relative to the solution's norm, so the two can be set side by
+/// side (BENCHMARKS.md, "Where i_sto and the validation disagree").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PointwiseErrors {
+    /// Validation runs behind the figures.
+    pub runs: usize,
+    /// Root mean square of the residuals.
+    pub rms: f64,
+    /// Largest residual magnitude.
+    pub max: f64,
+    /// Root mean square of the model's values at the runs.
+    pub scale: f64,
+    /// `rms / scale` (0 when the quantity is 0 at every run and so is the surrogate).
+    pub relative: f64,
+}
+
+impl PointwiseErrors {
+    /// The residuals' summary of a validation sample (`None` below 2 runs or with a value that
+    /// is not finite).
+    pub fn of(v: Sample<'_>) -> Option<Self> {
+        let n = v.model.len();
+        if n < 2
+            || v.surrogate.len() != n
+            || v.model.iter().chain(v.surrogate).any(|x| !x.is_finite())
+        {
+            return None;
+        }
+        let (mut sq, mut max, mut sq_model) = (0.0_f64, 0.0_f64, 0.0_f64);
+        for (y, s) in v.model.iter().zip(v.surrogate) {
+            let r = y - s;
+            sq += r * r;
+            max = max.max(r.abs());
+            sq_model += y * y;
+        }
+        let rms = (sq / n as f64).sqrt();
+        let scale = (sq_model / n as f64).sqrt();
+        let relative = if scale > 0.0 {
+            rms / scale
+        } else if rms == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        };
+        // A surrogate that errs where the model is exactly 0 everywhere has no relative
+        // error: its absolute figures say it.
+        let relative = if relative.is_finite() { relative } else { 1.0 };
+        Some(PointwiseErrors {
+            runs: n,
+            rms,
+            max,
+            scale,
+            relative,
+        })
+    }
+}
+
 /// The validation sample of one quantity: the model's value and the surrogate's at each
 /// converged validation run (the same length, at least 2).
 #[derive(Clone, Copy, Debug)]
@@ -330,6 +395,44 @@ impl<'a> CorrectedCdf<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The residuals' summary by hand: model (3, 4, 0, 0), surrogate (3, 3, 1, 0): residuals
+    /// (0, 1, -1, 0), rms sqrt(2 / 4), scale sqrt(25 / 4), relative sqrt(2) / 5; no finite value
+    /// or a single run gives none; a quantity 0 at every run with an exact surrogate has no
+    /// relative error.
+    #[test]
+    fn pointwise_errors_are_the_residuals_root_mean_square() {
+        let e = PointwiseErrors::of(Sample {
+            model: &[3.0, 4.0, 0.0, 0.0],
+            surrogate: &[3.0, 3.0, 1.0, 0.0],
+        })
+        .expect("4 runs");
+        assert_eq!(e.runs, 4);
+        assert!((e.rms - 0.5_f64.sqrt()).abs() < 1e-15);
+        assert_eq!(e.max, 1.0);
+        assert!((e.scale - 2.5).abs() < 1e-15);
+        assert!((e.relative - 2.0_f64.sqrt() / 5.0).abs() < 1e-15);
+        assert!(
+            PointwiseErrors::of(Sample {
+                model: &[1.0, f64::NAN],
+                surrogate: &[1.0, 1.0],
+            })
+            .is_none()
+        );
+        assert!(
+            PointwiseErrors::of(Sample {
+                model: &[1.0],
+                surrogate: &[1.0],
+            })
+            .is_none()
+        );
+        let zero = PointwiseErrors::of(Sample {
+            model: &[0.0, 0.0],
+            surrogate: &[0.0, 0.0],
+        })
+        .expect("2 runs");
+        assert_eq!(zero.relative, 0.0);
+    }
 
     /// A surrogate equal to the model: the corrected statistics are the draws' own, the
     /// validation adds no width beyond the draws'.
