@@ -166,6 +166,90 @@ fn validate_goal<'a>(
     })
 }
 
+/// A target stop (`i_sto <= target`) checked against the study's validation runs (module
+/// `crate::target_validation`): their count for the mesh's runs, run (or found in the store)
+/// now; every quantity's relative error within the target (stop, with what the runs say
+/// appended to the stop message), or the leaves holding the points a quantity gets wrong are
+/// split within `max_runs`. No validation runs (`[budget] validation_runs = 0`, or a replay
+/// that finds none in the store): the stop stands as the estimate says.
+fn validate_target<'a>(
+    runner: &mut impl AdaptiveRuns<'a>,
+    mesh: &mut StochasticMesh,
+    records: &[RunRecord],
+    head: &str,
+    target: f64,
+    max_runs: usize,
+) -> Result<Validated, StudyError> {
+    let study = runner.study();
+    let n = study.validation_runs.unwrap_or_else(|| {
+        (mesh.num_runs() / 4).clamp(
+            crate::validation_runs::AUTO_MIN,
+            crate::validation_runs::AUTO_MAX,
+        )
+    });
+    let vpoints = crate::validation_runs::points(study, n);
+    if vpoints.is_empty() {
+        return Ok(Validated::Stop(head.to_string()));
+    }
+    let fresh = vpoints
+        .iter()
+        .filter(|p| !runner.by_key().contains_key(&point_key(p)))
+        .count();
+    runner.announce(fresh);
+    runner.run_points(&vpoints)?;
+    let validated: Vec<(Vec<f64>, Vec<f64>)> = vpoints
+        .iter()
+        .filter_map(|p| runner.by_key().get(&point_key(p)))
+        .filter(|r| r.converged())
+        .map(|r| (r.params.clone(), r.qois.clone()))
+        .collect();
+    let found = vpoints
+        .iter()
+        .filter(|p| runner.by_key().contains_key(&point_key(p)))
+        .count();
+    if found < vpoints.len() {
+        // Replayed from a store written before target stops were validated.
+        return Ok(Validated::Stop(head.to_string()));
+    }
+    if validated.len() < 2 {
+        return Ok(Validated::Stop(format!(
+            "{head}; {} of {} validation runs converged: too few to check the target",
+            validated.len(),
+            vpoints.len()
+        )));
+    }
+    let values: Vec<Vec<f64>> = (0..study.qois.len())
+        .map(|q| records.iter().map(|r| r.qois[q]).collect())
+        .collect();
+    Ok(
+        match crate::target_validation::check(study, mesh, &values, &validated, target) {
+            crate::target_validation::TargetVerdict::Holds(errors) => {
+                let said = errors
+                    .iter()
+                    .map(|(q, e)| format!("{q} {:.2} %", 100.0 * e))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                Validated::Stop(format!(
+                    "{head}; {} validation runs agree (the surrogate's RMS error relative to each quantity's: {said})",
+                    validated.len()
+                ))
+            }
+            crate::target_validation::TargetVerdict::Misses {
+                quantity,
+                relative,
+                leaves,
+            } => match split_within(mesh, &leaves, max_runs)? {
+                0 => Validated::Stop(format!(
+                    "target not met: {head}, but {} validation runs put the surrogate's RMS error of {quantity} at {:.2} % of its size, above the target, and the run budget of {max_runs} leaves no split",
+                    validated.len(),
+                    100.0 * relative
+                )),
+                new => Validated::Refined(new),
+            },
+        },
+    )
+}
+
 /// The goal quantity's value at every run of the mesh (`records` in run order).
 fn values_of_goal(records: &[RunRecord], goal: &crate::method::Goal) -> Vec<f64> {
     records.iter().map(|r| r.qois[goal.quantity]).collect()
@@ -459,7 +543,19 @@ pub(crate) fn run_adaptive<'a>(
             continue;
         }
         match settings.target {
-            Some(t) if i_sto <= t => break (format!("i_sto = {i_sto:.4} <= target {t}"), None),
+            Some(t) if i_sto <= t => {
+                let head = format!("i_sto = {i_sto:.4} <= target {t}");
+                match validate_target(runner, &mut mesh, &records, &head, t, settings.max_runs)? {
+                    Validated::Stop(message) => break (message, None),
+                    Validated::Refined(new) => {
+                        if let Some(s) = steps.last_mut() {
+                            s.new_runs = new;
+                        }
+                        runner.announce(new);
+                        continue;
+                    }
+                }
+            }
             None if i_sto <= i_geo
                 && previous_geo.is_some_and(|g| (g - i_geo).abs() <= 0.1 * i_geo) =>
             {

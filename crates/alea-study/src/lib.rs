@@ -52,6 +52,7 @@ mod step_spec;
 pub mod steps;
 pub mod store;
 pub mod study;
+pub mod target_validation;
 pub mod temporaries;
 #[cfg(test)]
 mod test_rng;
