@@ -158,6 +158,13 @@ fn main() {
         vec![0.0, 1.0],
         vec![1.0, 1.0],
     ];
+    let turbine_3d_points = vec![
+        vec![0.5, 0.5, 0.5, 0.5],
+        vec![0.0, 0.0, 0.0, 0.0],
+        vec![1.0, 1.0, 1.0, 1.0],
+        vec![0.0, 1.0, 0.0, 1.0],
+        vec![1.0, 0.0, 1.0, 0.0],
+    ];
     let cases = vec![
         Case {
             name: "blade-root",
@@ -169,6 +176,12 @@ fn main() {
             name: "turbine",
             file: "examples/turbine-2d-wear.toml",
             points: turbine_points,
+            factors: vec![1.0, 2.0],
+        },
+        Case {
+            name: "turbine-3d",
+            file: "examples/turbine-3d-wear.toml",
+            points: turbine_3d_points,
             factors: vec![1.0, 2.0],
         },
     ];

@@ -22,15 +22,23 @@ use alea_study::{Source, estimate};
 
 const FINE: &str = "n_flank = 16, n_runout = 5, n_fillet = 16, n_lobe = 10, n_slot = 6, n_below = 10, n_root = 15, n_shank = 12, depth = 20.0, n_z = 12";
 const COARSE: &str = "n_flank = 4, n_runout = 2, n_fillet = 4, n_lobe = 3, n_slot = 2, n_below = 3, n_root = 4, n_shank = 3, depth = 20.0, n_z = 2";
+/// The example's refined mesh (its disk's counts doubled), and the coarse copy's.
+const FINE_REFINED: &str = "n_fillet = 32, n_lobe = 20, n_below = 20, n_slot = 12, n_runout = 10";
+const COARSE_REFINED: &str = "n_fillet = 8, n_lobe = 6, n_below = 6, n_slot = 4, n_runout = 4";
 
 fn coarse_study() -> Study {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/turbine-3d-wear.toml");
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.contains(FINE), "the example's mesh line changed");
+    assert!(
+        text.contains(FINE_REFINED),
+        "the example's refined mesh line changed"
+    );
     let text = format!(
         "{}\n[statistics]\nsamples = 20000\n",
         text.replace(FINE, COARSE)
+            .replace(FINE_REFINED, COARSE_REFINED)
     );
     Study::from_source(Source::from_text("turbine-3d-coarse.toml", &text)).unwrap()
 }
