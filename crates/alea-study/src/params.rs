@@ -223,8 +223,17 @@ pub fn build_params(src: &Source, file: &ModelFile) -> Result<ParamSpace, StudyE
     let (mut lo, mut hi) = (Vec::new(), Vec::new());
     for m in &marginals {
         let (a, b) = m.support();
-        lo.push(if a.is_finite() { a } else { m.quantile(1e-6) });
-        hi.push(if b.is_finite() {
+        // A law on a half-line (lognormal, gamma) has its finite end as a limit its draws do
+        // not reach - where a lognormal modulus would vanish -, so its box is its 1e-6 and
+        // 1 - 1e-6 quantiles at both ends, as for a law on the whole line: a design over the
+        // box (grids, the adaptive mesh's corners) never runs at that end.
+        let half_line = a.is_finite() != b.is_finite();
+        lo.push(if a.is_finite() && !half_line {
+            a
+        } else {
+            m.quantile(1e-6)
+        });
+        hi.push(if b.is_finite() && !half_line {
             b
         } else {
             m.quantile(1.0 - 1e-6)

@@ -419,6 +419,24 @@ fn keys_a_law_does_not_use_are_refused() {
     }
 }
 
+/// A lognormal Young's modulus under an adaptive method (whose start runs are the corners of
+/// the parameter box) loads: the box of a law on a half-line is its 1e-6 tail quantiles, not
+/// its support's end 0, where the modulus would vanish ("evaluates to 0 at E = 0; must be >
+/// 0" before). The box is the law's quantiles to the digits of the closed form.
+#[test]
+fn a_lognormal_modulus_has_a_box_away_from_zero() {
+    let text = with_law("lognormal", "mean = 200e3\nstd = 20e3")
+        .replace(PL, "type = \"adaptive\"\nmax_runs = 20\n");
+    let s = Study::from_source(Source::from_text("ln.toml", &text)).expect("loads");
+    // log-mean and log-std of the law of mean 200e3 and std 20e3.
+    let s2 = (1.0f64 + 0.01).ln();
+    let (mu, sigma) = (200e3f64.ln() - s2 / 2.0, s2.sqrt());
+    let z = 4.753_424_308_822_899; // the standard normal quantile of 1 - 1e-6
+    let (lo, hi) = ((mu - sigma * z).exp(), (mu + sigma * z).exp());
+    assert!((s.params.lo[0] - lo).abs() < 1e-6 * lo, "{} vs {lo}", s.params.lo[0]);
+    assert!((s.params.hi[0] - hi).abs() < 1e-6 * hi, "{} vs {hi}", s.params.hi[0]);
+}
+
 /// The study with its `[mesh]` keys replaced by `mesh`.
 fn with_mesh(mesh: &str) -> String {
     study("", "tip", PL).replace(
