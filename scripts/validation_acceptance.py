@@ -2,7 +2,7 @@
 """Issue 40's acceptance on cases with EXACT statistics, built for it: contact in each, a kink
 off every grid and an atom at zero (a fit or a gap that opens), 2 to 4 parameters, 2D and 3D.
 
-usage: validation_acceptance.py [ALEA] [--keep DIR]
+usage: validation_acceptance.py [ALEA] [--keep DIR] [--set 1|3]
 
 ALEA defaults to target/release/alea (built first). Each case is a study written here, run with
 `alea run --threads 2`, and its every method's budget rows (mean, std, q0.05 - q0.95, P(N > t))
@@ -28,6 +28,7 @@ These cases are the EVALUATION set: the validation rule was chosen on tests/budg
 """
 import itertools
 import json
+import math
 import os
 import sqlite3
 import struct
@@ -152,8 +153,33 @@ samples = 100000
 """
 
 
-def parameter(name, lo, hi):
-    return '[[parameter]]\nname = "%s"\nlaw = "uniform"\nlo = %r\nhi = %r\n' % (name, lo, hi)
+def parameter(name, law):
+    """A `[[parameter]]` table: `law` is `(lo, hi)` (uniform) or a dict of the law's keys."""
+    if isinstance(law, tuple):
+        law = {"law": "uniform", "lo": law[0], "hi": law[1]}
+    keys = "".join("%s = %s\n" % (k, '"%s"' % v if isinstance(v, str) else repr(v))
+                   for k, v in law.items())
+    return '[[parameter]]\nname = "%s"\n%s' % (name, keys)
+
+
+def quantile(law, u):
+    """The quantile of order `u` of a law of `parameter` (those the cases use)."""
+    from statistics import NormalDist
+    if isinstance(law, tuple):
+        return law[0] + (law[1] - law[0]) * u
+    kind = law["law"]
+    if kind == "normal":
+        return NormalDist(law["mean"], law["std"]).inv_cdf(u)
+    if kind == "lognormal":
+        s2 = math.log(1.0 + (law["std"] / law["mean"]) ** 2)
+        return math.exp(math.log(law["mean"]) - s2 / 2 + math.sqrt(s2) * NormalDist().inv_cdf(u))
+    if kind == "triangular":
+        a, c, b = law["lo"], law["mode"], law["hi"]
+        f = (c - a) / (b - a)
+        if u < f:
+            return a + math.sqrt(u * (b - a) * (c - a))
+        return b - math.sqrt((1 - u) * (b - a) * (b - c))
+    raise ValueError(kind)
 
 
 def methods(*specs):
@@ -174,12 +200,14 @@ D = (-0.02, 0.05)
 D2 = (-0.01, 0.01)
 
 
-def rings_case(name, seed, params, threshold, ms):
-    """A shrink-fit case; `params` among E1, E2, d, d2 (the others fixed)."""
-    laws = {"E1": E, "E2": E, "d": D, "d2": D2}
+def rings_case(name, seed, params, threshold, ms, laws=None):
+    """A shrink-fit case; `params` among E1, E2, d, d2 (the others fixed); `laws` overrides
+    the default laws (d and d2 stay uniform: the exact statistics integrate them in closed
+    form)."""
+    laws = dict({"E1": E, "E2": E, "d": D, "d2": D2}, **(laws or {}))
     text = RINGS.format(
         seed=seed, title=name, threshold=threshold,
-        parameters="\n".join(parameter(k, *laws[k]) for k in params),
+        parameters="\n".join(parameter(k, laws[k]) for k in params),
         e1="E1" if "E1" in params else "210e3", e2="E2" if "E2" in params else "210e3",
         gap="-d - d2" if "d2" in params else "-d",
         methods=methods(*ms))
@@ -187,12 +215,12 @@ def rings_case(name, seed, params, threshold, ms):
             "threshold": threshold, "goal_tolerance": 0.01}
 
 
-def block_case(name, seed, params, g, threshold, ms):
-    laws = {"Eb": E, "Ep": E, "g": g}
+def block_case(name, seed, params, g, threshold, ms, laws=None):
+    laws = dict({"Eb": E, "Ep": E, "g": g}, **(laws or {}))
     text = BLOCK.format(
         seed=seed, title=name, threshold=threshold,
         mesh=os.path.join(ROOT, "examples", "block-on-plane-3d.msh"),
-        parameters="\n".join(parameter(k, *laws[k]) for k in params),
+        parameters="\n".join(parameter(k, laws[k]) for k in params),
         ep="Ep" if "Ep" in params else "210e3", methods=methods(*ms))
     return {"name": name, "kind": "block", "params": params, "laws": laws, "text": text,
             "threshold": threshold, "goal_tolerance": 0.01}
@@ -209,6 +237,31 @@ CASES = [
                [PL(5), PC(3), ADAPT(30), GOAL(40, 50.0, 0.01)]),
     block_case("block-3d smooth (Eb, Ep, g)", 11, ["Eb", "Ep", "g"], (-5e-4, 5e-4), 150.0,
                [PL(3), PC(2), POLY(2)]),
+]
+
+TARGET = lambda n, t: [("type", '"adaptive"'), ("max_runs", n), ("target", t)]
+SPARSE = lambda p: [("type", '"pc_sparse"'), ("degree", p)]
+
+# Evaluation set 3, written before any rule was changed after evaluation set 1 (`--set 3`):
+# other laws (normal, lognormal, triangular), a kink along a diagonal (d + d2 = 0), a larger
+# and a smaller atom, other method types (sparse chaos, degree 4, grids of 4, 7 and 8 points,
+# adaptive loops stopped by a target), and a goal.
+CASES3 = [
+    rings_case("rings-2 lognormal E1 (E1, d)", 13, ["E1", "d"], 800.0,
+               [PL(4), PL(7), PC(4), SPARSE(4), TARGET(40, 0.02), MC(30)],
+               laws={"E1": {"law": "lognormal", "mean": 210e3, "std": 20e3},
+                     "d": (-0.03, 0.04)}),
+    rings_case("rings-3 normal / triangular (E1, E2, d)", 17, ["E1", "E2", "d"], 1500.0,
+               [PL(4), PC(3), POLY(3), TARGET(80, 0.05)],
+               laws={"E1": {"law": "normal", "mean": 210e3, "std": 15e3},
+                     "E2": {"law": "triangular", "lo": 180e3, "mode": 200e3, "hi": 250e3},
+                     "d": (-0.01, 0.06)}),
+    rings_case("rings-2 diagonal kink (d, d2)", 19, ["d", "d2"], 500.0,
+               [PL(5), PL(8), PC(3), PC(5), ADAPT(40), GOAL(60, 500.0, 0.01)],
+               laws={"d": (-0.02, 0.02), "d2": (-0.015, 0.015)}),
+    block_case("block-3d lognormal Eb (Eb, g)", 23, ["Eb", "g"], (-8e-4, 1.2e-3), 100.0,
+               [PL(4), PC(3), TARGET(40, 0.05)],
+               laws={"Eb": {"law": "lognormal", "mean": 200e3, "std": 30e3}}),
 ]
 
 
@@ -253,7 +306,11 @@ def rings_model(case, runs):
         # N (alpha / E1 + beta / E2) = d + d2
         rows.append([n / e1, n / e2])
         rhs.append(d + d2)
-    alpha, beta = solve3(rows, rhs)
+    if "E1" in names or "E2" in names:
+        alpha, beta = solve3(rows, rhs)
+    else:
+        # Both moduli fixed: only alpha + beta is seen; split it evenly (the model is the same).
+        alpha = beta = solve3([[r[0] + r[1]] for r in rows], rhs)[0]
     worst = 0.0
     for _, x, n in runs:
         if n <= 1e-6:
@@ -285,8 +342,8 @@ def exact_stats(case, law, linear, threshold, per_dim=40):
     lo, hi = laws[linear]
     if linear == "g":
         lo, hi = -hi, -lo
-    grids = [[laws[k][0] + (laws[k][1] - laws[k][0]) * (i + 0.5) / per_dim
-              for i in range(per_dim)] for k in others]
+    # Midpoints in probability: the law's quantiles at (i + 1/2) / n.
+    grids = [[quantile(laws[k], (i + 0.5) / per_dim) for i in range(per_dim)] for k in others]
     cells = [dict(zip(others, c)) for c in itertools.product(*grids)] if others else [{}]
     pieces = [law(c) for c in cells]
     w = hi - lo
@@ -334,6 +391,11 @@ def main(args):
         i = args.index("--keep")
         keep = args[i + 1]
         del args[i:i + 2]
+    cases = CASES
+    if "--set" in args:
+        i = args.index("--set")
+        cases = {"1": CASES, "3": CASES3}[args[i + 1]]
+        del args[i:i + 2]
     alea = args[0] if args else os.path.join(ROOT, "target", "release", "alea")
     if not args:
         subprocess.run(["cargo", "build", "--release", "-q"], cwd=ROOT, check=True)
@@ -342,7 +404,7 @@ def main(args):
     total = {"n": 0, "covered": 0, "ratios": []}
     cost = []
     goals = []
-    for k, case in enumerate(CASES):
+    for k, case in enumerate(cases):
         print("== %s" % case["name"])
         path = os.path.join(work, "case%d.toml" % k)
         with open(path, "w") as f:
