@@ -574,6 +574,7 @@ pub fn analyse_method(
             let sample = (model.len() >= 2).then_some(budget::validation::Sample {
                 model,
                 surrogate: &surrogate,
+                nonnegative: floor,
             });
             let mut stats = qoi_stats(study, q, mine, s, Some(part), sample);
             stats.negative = negative;

@@ -433,8 +433,16 @@ fn a_lognormal_modulus_has_a_box_away_from_zero() {
     let (mu, sigma) = (200e3f64.ln() - s2 / 2.0, s2.sqrt());
     let z = 4.753_424_308_822_899; // the standard normal quantile of 1 - 1e-6
     let (lo, hi) = ((mu - sigma * z).exp(), (mu + sigma * z).exp());
-    assert!((s.params.lo[0] - lo).abs() < 1e-6 * lo, "{} vs {lo}", s.params.lo[0]);
-    assert!((s.params.hi[0] - hi).abs() < 1e-6 * hi, "{} vs {hi}", s.params.hi[0]);
+    assert!(
+        (s.params.lo[0] - lo).abs() < 1e-6 * lo,
+        "{} vs {lo}",
+        s.params.lo[0]
+    );
+    assert!(
+        (s.params.hi[0] - hi).abs() < 1e-6 * hi,
+        "{} vs {hi}",
+        s.params.hi[0]
+    );
 }
 
 /// The study with its `[mesh]` keys replaced by `mesh`.

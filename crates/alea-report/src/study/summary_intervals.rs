@@ -72,6 +72,7 @@ mod tests {
             detected: true,
             bound: 0.3,
             difference: 0.2,
+            atom: false,
         });
         let stats = QoiStats {
             name: "q".into(),

@@ -92,6 +92,9 @@ impl BudgetRow {
     /// part ([`validation::combined_half_width`]) in place of sampling plus surrogate.
     pub fn sum_of_parts(&self) -> f64 {
         let core = match &self.validation {
+            // A quantile the runs cannot exclude from the atom at 0: its interval reaches 0.
+            Some(v) if v.atom => validation::combined_half_width(v, self.sampling, self.surrogate)
+                .max(self.estimate().abs()),
             Some(v) => validation::combined_half_width(v, self.sampling, self.surrogate),
             None => self.sampling + self.surrogate.unwrap_or(0.0),
         };

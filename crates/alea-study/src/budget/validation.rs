@@ -32,6 +32,16 @@
 //! the sample agrees there, the correction and its variance see nothing, and only the design's
 //! own comparisons (the surrogate part) can tell. The row's total therefore keeps the larger of
 //! the validation half-width and the surrogate part ([`combined_half_width`]).
+//!
+//! **Atoms.** A quantity that cannot be negative (a contact force, a slip, a zone's length) has
+//! an atom at 0 where the contact opens; a smooth surrogate spreads it, and puts a quantile that
+//! is exactly 0 above it (measured: q0.25 at 260 - 710 N and medians at 120 - 190 N for an exact
+//! 0). The cdf's correction sees that only through runs between the two, often none. The runs
+//! at 0 see the atom itself: with `k` of `n` runs at 0, the Wilson interval of the atom's share
+//! `P(q = 0)` at the study's confidence has an upper end `u`; a quantile of order `p <= u` may
+//! be 0 as far as the runs can tell, and its total reaches 0 ([`Corrected::atom`]:
+//! `total >= |estimate|`). Assumed: the model's runs at 0 are the atom's (a force within the
+//! solver's tolerance of 0, `1e-6` of the largest run, counts as 0).
 
 use alea_uq::special::{norm_quantile, student_quantile};
 use alea_uq::stats::{Summary, quantile_sorted};
@@ -58,6 +68,11 @@ pub struct Corrected {
     pub bound: f64,
     /// The runs' estimate of the surrogate's (uncorrected) error: `|D|`.
     pub difference: f64,
+    /// A quantile of a quantity that cannot be negative, which the runs cannot exclude to lie
+    /// in its atom at 0: the upper end of the interval of the share of runs at 0 reaches the
+    /// quantile's order (module doc, "Atoms"). Its total then reaches 0.
+    #[serde(default)]
+    pub atom: bool,
 }
 
 /// What the validation runs say of the surrogate point by point, beside the statistics: the
@@ -125,6 +140,11 @@ impl PointwiseErrors {
     }
 }
 
+/// Runs of a quantity that cannot be negative within this fraction of the largest run are at 0
+/// (its atom): the solver's default tolerance, below which a just-closed contact's force is
+/// round-off.
+const ZERO_TOLERANCE: f64 = 1e-6;
+
 /// The validation sample of one quantity: the model's value and the surrogate's at each
 /// converged validation run (the same length, at least 2).
 #[derive(Clone, Copy, Debug)]
@@ -133,6 +153,9 @@ pub struct Sample<'a> {
     pub model: &'a [f64],
     /// `q~(x_i)`, the surrogate at the same points.
     pub surrogate: &'a [f64],
+    /// The quantity cannot be negative (`crate::qoi::QoiKind::nonnegative`): its runs at 0
+    /// are an atom of its law.
+    pub nonnegative: bool,
 }
 
 /// The half-width of the total interval before the mesh and sliding parts (what `sampling`
@@ -198,6 +221,7 @@ pub fn corrected(
         detected: difference.abs() > t * se,
         bound: finite(difference.abs() + t * se),
         difference: finite(difference.abs()),
+        atom: false,
     };
     let sum = Summary::of(draws);
     let var_draws = finite(sum.std * sum.std);
@@ -250,7 +274,20 @@ pub fn corrected(
         to_std(se_var_runs),
     ));
 
-    // Quantiles, by the corrected cdf.
+    // Quantiles, by the corrected cdf. The upper end of the interval of the atom's share at 0
+    // (runs within the solver's tolerance of 0, relative to the largest run).
+    let atom_upper = sample.nonnegative.then(|| {
+        let top = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let at_zero: Vec<f64> = y
+            .iter()
+            .map(|v| f64::from(u8::from(v.abs() <= ZERO_TOLERANCE * top)))
+            .collect();
+        if at_zero.iter().any(|&z| z > 0.0) {
+            alea_uq::stats::failure_probability(&at_zero, 0.5, confidence).upper
+        } else {
+            0.0
+        }
+    });
     let mut sorted = draws.to_vec();
     sorted.sort_by(f64::total_cmp);
     let cdf = CorrectedCdf::new(&sorted, y, s);
@@ -283,6 +320,7 @@ pub fn corrected(
         };
         row.bound = moved(mean_e.abs() + t * se_runs);
         row.difference = moved(mean_e.abs());
+        row.atom = atom_upper.is_some_and(|u| u >= p);
         out.push(row);
     }
 
@@ -396,6 +434,53 @@ impl<'a> CorrectedCdf<'a> {
 mod tests {
     use super::*;
 
+    /// A force with an atom at 0 of mass 0.4 (4 of 10 runs at 0 exactly, one at round-off) and
+    /// a surrogate that spreads it (never 0): the quantiles of order up to the Wilson upper end
+    /// of 4 / 10 at 95 % (0.688) are flagged as possibly in the atom, the others not; a quantity
+    /// that may be negative, or runs without a 0, flag none.
+    #[test]
+    fn quantiles_the_runs_cannot_exclude_from_the_atom_at_zero_are_flagged() {
+        let draws: Vec<f64> = (0..1000).map(|i| 1.0 + i as f64).collect();
+        let model = [
+            0.0, 0.0, 0.0, 1e-9, 300.0, 500.0, 600.0, 700.0, 800.0, 900.0,
+        ];
+        let surrogate = [
+            50.0, 60.0, 80.0, 90.0, 310.0, 490.0, 610.0, 690.0, 810.0, 890.0,
+        ];
+        let orders = [0.05, 0.25, 0.5, 0.68, 0.7, 0.95];
+        let flags = |nonnegative: bool, model: &[f64]| -> Vec<bool> {
+            corrected(
+                &draws,
+                Sample {
+                    model,
+                    surrogate: &surrogate,
+                    nonnegative,
+                },
+                &orders,
+                &[],
+                0.95,
+            )
+            .expect("10 runs")[2..]
+                .iter()
+                .map(|c| c.atom)
+                .collect()
+        };
+        // Wilson's upper end for 4 / 10 at 95 %.
+        let (k, n, z) = (4.0_f64, 10.0_f64, 1.959_963_984_540_054_f64);
+        let p = k / n;
+        let upper =
+            (p + z * z / (2.0 * n) + z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt())
+                / (1.0 + z * z / n);
+        assert!(upper > 0.68 && upper < 0.7, "{upper}");
+        assert_eq!(
+            flags(true, &model),
+            vec![true, true, true, true, false, false]
+        );
+        assert_eq!(flags(false, &model), vec![false; 6]);
+        let no_zero: Vec<f64> = model.iter().map(|v| v + 10.0).collect();
+        assert_eq!(flags(true, &no_zero), vec![false; 6]);
+    }
+
     /// The residuals' summary by hand: model (3, 4, 0, 0), surrogate (3, 3, 1, 0): residuals
     /// (0, 1, -1, 0), rms sqrt(2 / 4), scale sqrt(25 / 4), relative sqrt(2) / 5; no finite value
     /// or a single run gives none; a quantity 0 at every run with an exact surrogate has no
@@ -405,6 +490,7 @@ mod tests {
         let e = PointwiseErrors::of(Sample {
             model: &[3.0, 4.0, 0.0, 0.0],
             surrogate: &[3.0, 3.0, 1.0, 0.0],
+            nonnegative: false,
         })
         .expect("4 runs");
         assert_eq!(e.runs, 4);
@@ -416,6 +502,7 @@ mod tests {
             PointwiseErrors::of(Sample {
                 model: &[1.0, f64::NAN],
                 surrogate: &[1.0, 1.0],
+                nonnegative: false,
             })
             .is_none()
         );
@@ -423,12 +510,14 @@ mod tests {
             PointwiseErrors::of(Sample {
                 model: &[1.0],
                 surrogate: &[1.0],
+                nonnegative: false,
             })
             .is_none()
         );
         let zero = PointwiseErrors::of(Sample {
             model: &[0.0, 0.0],
             surrogate: &[0.0, 0.0],
+            nonnegative: false,
         })
         .expect("2 runs");
         assert_eq!(zero.relative, 0.0);
@@ -445,6 +534,7 @@ mod tests {
             Sample {
                 model: &pts,
                 surrogate: &pts,
+                nonnegative: false,
             },
             &[0.5],
             &[0.8],
@@ -472,6 +562,7 @@ mod tests {
             Sample {
                 model: &x,
                 surrogate: &s,
+                nonnegative: false,
             },
             &[0.25, 0.9],
             &[0.5],

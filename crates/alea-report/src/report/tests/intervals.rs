@@ -74,6 +74,7 @@ fn corrected_estimates_are_what_the_page_reads() {
         detected: true,
         bound: 0.6,
         difference: 0.5,
+        atom: false,
     });
     let dir = out_dir("corrected");
     let files = write_report(&dir, &input).unwrap();
