@@ -64,8 +64,10 @@ pub fn run_runs(
     // counted once it ends).
     let validation = alea_study::validation_runs::count(&study, &study.methods);
     let design = study.all_points().len();
+    // The paired solves of the budget's mesh and sliding parts (`alea_study::paired_runs`).
+    let paired = alea_study::paired_runs::count(&study);
     console.line(&format!(
-        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs{} -> {}",
+        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs{}{} -> {}",
         study.title(),
         study.params.names.len(),
         study.qois.len(),
@@ -74,6 +76,11 @@ pub fn run_runs(
         design + validation,
         if validation > 0 {
             format!(" ({validation} of them validation runs)")
+        } else {
+            String::new()
+        },
+        if paired > 0 {
+            format!(", plus {paired} paired solves for the error budget")
         } else {
             String::new()
         },
@@ -96,6 +103,12 @@ pub fn run_runs(
         runs.solve_seconds,
         runs.computed as f64 / runs.solve_seconds.max(1e-9)
     ));
+    if paired > 0 {
+        console.line(&format!(
+            "paired solves of the error budget: {} computed, {} resumed ({:.2} s)",
+            runs.paired.computed, runs.paired.resumed, runs.paired.seconds
+        ));
+    }
     console.line(&runs.linear_stage_line());
     let iterations: Vec<usize> = runs
         .records
