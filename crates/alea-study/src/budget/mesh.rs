@@ -3,7 +3,8 @@
 //! `[mesh]` that make it about twice as fine) at `2 d + 3` design points `xi_i` - the nominal
 //! point, along each parameter its 5 % and 95 % quantiles with the others nominal, and with
 //! two parameters or more the two diagonal points, every parameter at its 5 % and at its 95 %
-//! quantile (`2 d + 1` points with one parameter; [`design_size`]) - and
+//! quantile (`2 d + 1` points with one parameter; [`design_size`], [`design_points`]; solved
+//! by the run and stored, never by an output: `crate::paired_runs`) - and
 //!
 //! ```text
 //! delta_i = 2 |q_h(xi_i) - q_h/2(xi_i)|
