@@ -219,7 +219,15 @@ fn a_store_without_paired_solves_reports_the_part_not_estimated() {
         assert_eq!(r.mesh, None, "{}: not counted, not 0", r.statistic);
         assert_eq!(r.total, r.sum_of_parts());
     }
-    // Still none stored: the report solved nothing.
+    // `alea report DIR` says so in its notes, and solves nothing: still none stored.
+    let out = alea_report::study::rebuild(&d, "test", &alea_report::Silent).unwrap();
+    assert!(
+        out.notes
+            .iter()
+            .any(|n| n.starts_with("the error budget's mesh part is not estimated")),
+        "{:?}",
+        out.notes
+    );
     let store = alea_study::store::Store::open(&d, &s.hash, false).unwrap();
     assert!(store.paired_runs(&s.identity.run_hash).unwrap().is_empty());
     let _ = std::fs::remove_dir_all(&d);

@@ -196,6 +196,22 @@ pub fn rebuild(dir: &Path, command: &str, console: &dyn Console) -> Result<Outpu
         console.warning(&msg);
         notes.push(msg);
     }
+    // The budget's paired solves are the run's (`alea_study::paired_runs`): without them in
+    // the store their part is not estimated, and nothing is solved here.
+    let paired = &re.runs.paired;
+    for (part, check) in [("mesh", &paired.mesh), ("sliding", &paired.sliding)] {
+        if let Some(Err(why)) = check
+            && why == alea_study::paired_runs::NOT_SOLVED
+        {
+            let msg = format!(
+                "the error budget's {part} part is not estimated: its paired solves are not in the study directory                  (a study run by an older alea, or stopped before they were solved); solve them with `alea run {} --dir {}`",
+                re.study.source.path.display(),
+                dir.display()
+            );
+            console.warning(&msg);
+            notes.push(msg);
+        }
+    }
     let out = write_outputs(&re.study, &re.runs, dir, &settings, notes, true, console)?;
     console.line(&format!("done in {:.2} s", t_all.elapsed().as_secs_f64()));
     Ok(out)
