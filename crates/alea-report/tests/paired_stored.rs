@@ -222,9 +222,9 @@ fn a_store_without_paired_solves_reports_the_part_not_estimated() {
     // `alea report DIR` says so in its notes, and solves nothing: still none stored.
     let out = alea_report::study::rebuild(&d, "test", &alea_report::Silent).unwrap();
     assert!(
-        out.notes
-            .iter()
-            .any(|n| n.starts_with("the error budget's mesh part is not estimated")),
+        out.notes.iter().any(
+            |n| n.starts_with("the error budget's mesh part is not estimated") && !n.contains("  ")
+        ),
         "{:?}",
         out.notes
     );

@@ -204,7 +204,8 @@ pub fn rebuild(dir: &Path, command: &str, console: &dyn Console) -> Result<Outpu
             && why == alea_study::paired_runs::NOT_SOLVED
         {
             let msg = format!(
-                "the error budget's {part} part is not estimated: its paired solves are not in the study directory                  (a study run by an older alea, or stopped before they were solved); solve them with `alea run {} --dir {}`",
+                "the error budget's {part} part is not estimated: its paired solves are not in the study directory \
+                 (a study run by an older alea, or stopped before they were solved); solve them with `alea run {} --dir {}`",
                 re.study.source.path.display(),
                 dir.display()
             );
