@@ -474,34 +474,7 @@ pub(crate) fn execute(
             .cloned()
             .collect()
     };
-    let adaptive_start: usize = study
-        .methods
-        .iter()
-        .filter(|m| matches!(m.kind, MethodKind::Adaptive(_)))
-        .map(|m| m.points.len())
-        .sum();
-    // Without an adaptive method the validation runs are known now: counted from the start.
-    let validation_upfront = if adaptive_start == 0 {
-        crate::validation_runs::count(study, &methods)
-    } else {
-        0
-    };
-    let done_before = fixed
-        .iter()
-        .chain(&crate::validation_runs::points(study, validation_upfront))
-        .filter(|p| by_key.contains_key(&point_key(p)))
-        .count();
-    // The paired solves of the budget's mesh and sliding parts (module `paired_runs`).
-    let paired_total = crate::paired_runs::count(study);
-    let paired_done = if paired_total > 0 {
-        crate::paired_runs::settled(study, &store)?
-    } else {
-        0
-    };
-    progress.begin(
-        fixed.len() + adaptive_start + validation_upfront + paired_total,
-        done_before + paired_done,
-    );
+    let validation_upfront = begin(study, &methods, &fixed, &by_key, &store, progress)?;
     let mut runner = Runner {
         study,
         dir,
@@ -588,6 +561,49 @@ pub(crate) fn execute(
         },
         missing,
     ))
+}
+
+/// Tells `progress` how many runs the study has and how many of them are stored (`by_key`): the
+/// fixed designs' runs, the adaptive methods' start designs, the validation runs when they are
+/// known now (without an adaptive method) and the paired solves of the budget. Returns the
+/// validation runs counted.
+fn begin(
+    study: &Study,
+    methods: &[crate::method::Method],
+    fixed: &[Vec<f64>],
+    by_key: &HashMap<String, RunRecord>,
+    store: &Store,
+    progress: &dyn Progress,
+) -> Result<usize, StudyError> {
+    let adaptive_start: usize = study
+        .methods
+        .iter()
+        .filter(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+        .map(|m| m.points.len())
+        .sum();
+    // Without an adaptive method the validation runs are known now: counted from the start.
+    let validation_upfront = if adaptive_start == 0 {
+        crate::validation_runs::count(study, methods)
+    } else {
+        0
+    };
+    let done_before = fixed
+        .iter()
+        .chain(&crate::validation_runs::points(study, validation_upfront))
+        .filter(|p| by_key.contains_key(&point_key(p)))
+        .count();
+    // The paired solves of the budget's mesh and sliding parts (module `paired_runs`).
+    let paired_total = crate::paired_runs::count(study);
+    let paired_done = if paired_total > 0 {
+        crate::paired_runs::settled(study, store)?
+    } else {
+        0
+    };
+    progress.begin(
+        fixed.len() + adaptive_start + validation_upfront + paired_total,
+        done_before + paired_done,
+    );
+    Ok(validation_upfront)
 }
 
 /// The order of a study's runs: the fixed designs' points, the adaptive methods' runs in the
