@@ -233,7 +233,8 @@ fn a_store_without_paired_solves_reports_the_part_not_estimated() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Asks to stop once the first paired solve is done (the runs come first).
+/// Asks to stop once the first paired solve is done (the runs come first; `paired`: their
+/// number, 0 never to stop), counting the runs.
 struct StopAfterFirstPaired {
     paired: usize,
     total: std::sync::atomic::AtomicUsize,
@@ -252,7 +253,7 @@ impl alea_study::runner::Progress for StopAfterFirstPaired {
     }
     fn stop_requested(&self) -> bool {
         use std::sync::atomic::Ordering::SeqCst;
-        self.finished.load(SeqCst) > self.total.load(SeqCst) - self.paired
+        self.paired > 0 && self.finished.load(SeqCst) > self.total.load(SeqCst) - self.paired
     }
 }
 
@@ -276,10 +277,23 @@ fn an_interrupted_run_resumes_its_paired_solves() {
     let stored = alea_study::paired_runs::settled(&s, &store).unwrap();
     drop(store);
     assert!(stored >= 1 && stored < n, "{stored} of {n} stored");
-    let again = run_study(&s, &d, false, &NoProgress).unwrap();
+    // Resumed: the progress counts the paired solves, the stored ones as done, and each
+    // solved one as it finishes.
+    let progress = StopAfterFirstPaired {
+        paired: 0,
+        total: 0.into(),
+        finished: 0.into(),
+    };
+    let again = run_study(&s, &d, false, &progress).unwrap();
     assert_eq!(
         (again.paired.computed, again.paired.resumed),
         (n - stored, stored)
+    );
+    let total = progress.total.load(std::sync::atomic::Ordering::SeqCst);
+    assert_eq!(total, again.records.len() + n);
+    assert_eq!(
+        progress.finished.load(std::sync::atomic::Ordering::SeqCst),
+        total
     );
     assert!(again.paired.mesh.as_ref().is_some_and(|c| c.is_ok()));
     let _ = std::fs::remove_dir_all(&d);
