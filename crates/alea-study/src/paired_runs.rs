@@ -2,7 +2,7 @@
 //! (`[budget] large_sliding = true`), issue 36: the study's model and the other model (its
 //! refined-mesh study, its large-sliding study) solved cold at the
 //! [`design_size`](crate::budget::mesh::design_size) design points of
-//! [`design_points`](crate::budget::mesh::design_points), from which `crate::budget::mesh`
+//! [`design_points`], from which `crate::budget::mesh`
 //! makes the part.
 //!
 //! They belong to the **run phase**: the runner solves them after every design, adaptive,
