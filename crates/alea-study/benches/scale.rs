@@ -185,6 +185,7 @@ fn fields(k: usize, dir: &Path, draws_n: usize) -> Result<(), StudyError> {
         methods: study.methods.clone(),
         adaptive: vec![],
         cre: None,
+        paired: Default::default(),
         lock: alea_study::lock::StudyLock::acquire(dir, "scale benchmark")?,
     };
     let draws = alea_uq::design::monte_carlo(study.params.joint.as_ref(), draws_n, 7);

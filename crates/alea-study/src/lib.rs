@@ -30,6 +30,7 @@ pub mod limits;
 pub mod lock;
 pub mod method;
 pub mod output_settings;
+pub mod paired_runs;
 mod params;
 pub mod points;
 pub mod qoi;

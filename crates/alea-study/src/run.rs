@@ -73,6 +73,9 @@ pub struct RunContext<'a> {
     pub cre: Option<&'a CreSetup>,
     /// The study directory.
     pub dir: &'a Path,
+    /// Whether the run writes its ParaView files when `[output] vtu = true` (false for the
+    /// paired solves of the error budget, `crate::paired_runs`: they are not the study's runs).
+    pub files: bool,
     /// Whether the user asked to stop ([`crate::runner::Progress::stop_requested`]): the
     /// local executor starts no further group of runs once it returns true.
     pub stop: &'a (dyn Fn() -> bool + Sync),
@@ -284,7 +287,7 @@ impl RunContext<'_> {
             _ => (None, 0.0),
         };
         let fields: Vec<f64> = res.displacements.iter().flatten().copied().collect();
-        if study.output.vtu.unwrap_or(false) {
+        if self.files && study.output.vtu.unwrap_or(false) {
             let stem = run_file_stem(theta);
             match &study.steps {
                 None => {

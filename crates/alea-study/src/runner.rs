@@ -188,6 +188,7 @@ impl<'a> Runner<'a> {
             cre: cre.as_deref(),
             dir: self.dir,
             stop: &stop,
+            files: true,
         };
         for members in &gens {
             let mut pending: Vec<usize> = members
@@ -358,6 +359,27 @@ impl<'a> Runner<'a> {
     pub(crate) fn announce(&self, more: usize) {
         self.progress.more(more);
     }
+
+    /// The paired solves of the budget's mesh and sliding parts (module `paired_runs`): the
+    /// missing ones solved (when computing: a replay solves none), then every part's check read
+    /// from the store.
+    fn paired_solves(&mut self) -> Result<crate::paired_runs::PairedSolves, StudyError> {
+        let study = self.study;
+        let mut out = crate::paired_runs::PairedSolves::default();
+        if crate::paired_runs::count(study) == 0 {
+            return Ok(out);
+        }
+        if self.compute {
+            let progress = self.progress;
+            let finished = |r: &RunRecord| progress.finished(r);
+            let stop = || progress.stop_requested();
+            let (computed, resumed, seconds) =
+                crate::paired_runs::run(study, &self.store, &self.solver, &finished, &stop)?;
+            (out.computed, out.resumed, out.seconds) = (computed, resumed, seconds);
+        }
+        (out.mesh, out.sliding) = crate::paired_runs::read(study, &*self.store()?)?;
+        Ok(out)
+    }
 }
 
 impl<'a> crate::adaptive::AdaptiveRuns<'a> for Runner<'a> {
@@ -452,27 +474,7 @@ pub(crate) fn execute(
             .cloned()
             .collect()
     };
-    let adaptive_start: usize = study
-        .methods
-        .iter()
-        .filter(|m| matches!(m.kind, MethodKind::Adaptive(_)))
-        .map(|m| m.points.len())
-        .sum();
-    // Without an adaptive method the validation runs are known now: counted from the start.
-    let validation_upfront = if adaptive_start == 0 {
-        crate::validation_runs::count(study, &methods)
-    } else {
-        0
-    };
-    let done_before = fixed
-        .iter()
-        .chain(&crate::validation_runs::points(study, validation_upfront))
-        .filter(|p| by_key.contains_key(&point_key(p)))
-        .count();
-    progress.begin(
-        fixed.len() + adaptive_start + validation_upfront,
-        done_before,
-    );
+    let validation_upfront = begin(study, &methods, &fixed, &by_key, &store, progress)?;
     let mut runner = Runner {
         study,
         dir,
@@ -531,25 +533,9 @@ pub(crate) fn execute(
         // Stored ones are counted as resumed.
         runner.run_points(&validation)?;
     }
+    let paired = runner.paired_solves()?;
     progress.end();
-    let mut order: Vec<Vec<f64>> = fixed;
-    let mut seen: std::collections::HashSet<String> = order.iter().map(|p| point_key(p)).collect();
-    for m in &methods {
-        if matches!(m.kind, MethodKind::Adaptive(_)) {
-            order.extend(
-                m.points
-                    .iter()
-                    .filter(|p| seen.insert(point_key(p)))
-                    .cloned(),
-            );
-        }
-    }
-    order.extend(
-        confirmation
-            .into_iter()
-            .chain(validation)
-            .filter(|p| seen.insert(point_key(p))),
-    );
+    let order = run_order(fixed, &methods, confirmation, validation);
     let records: Vec<RunRecord> = order
         .iter()
         .filter_map(|p| runner.by_key.get(&point_key(p)).cloned())
@@ -570,8 +556,81 @@ pub(crate) fn execute(
             methods,
             adaptive,
             cre: runner.cre.clone(),
+            paired,
             lock,
         },
         missing,
     ))
+}
+
+/// Tells `progress` how many runs the study has and how many of them are stored (`by_key`): the
+/// fixed designs' runs, the adaptive methods' start designs, the validation runs when they are
+/// known now (without an adaptive method) and the paired solves of the budget. Returns the
+/// validation runs counted.
+fn begin(
+    study: &Study,
+    methods: &[crate::method::Method],
+    fixed: &[Vec<f64>],
+    by_key: &HashMap<String, RunRecord>,
+    store: &Store,
+    progress: &dyn Progress,
+) -> Result<usize, StudyError> {
+    let adaptive_start: usize = study
+        .methods
+        .iter()
+        .filter(|m| matches!(m.kind, MethodKind::Adaptive(_)))
+        .map(|m| m.points.len())
+        .sum();
+    // Without an adaptive method the validation runs are known now: counted from the start.
+    let validation_upfront = if adaptive_start == 0 {
+        crate::validation_runs::count(study, methods)
+    } else {
+        0
+    };
+    let done_before = fixed
+        .iter()
+        .chain(&crate::validation_runs::points(study, validation_upfront))
+        .filter(|p| by_key.contains_key(&point_key(p)))
+        .count();
+    // The paired solves of the budget's mesh and sliding parts (module `paired_runs`).
+    let paired_total = crate::paired_runs::count(study);
+    let paired_done = if paired_total > 0 {
+        crate::paired_runs::settled(study, store)?
+    } else {
+        0
+    };
+    progress.begin(
+        fixed.len() + adaptive_start + validation_upfront + paired_total,
+        done_before + paired_done,
+    );
+    Ok(validation_upfront)
+}
+
+/// The order of a study's runs: the fixed designs' points, the adaptive methods' runs in the
+/// order they were chosen, the confirmation runs, the validation runs (each point once).
+fn run_order(
+    fixed: Vec<Vec<f64>>,
+    methods: &[crate::method::Method],
+    confirmation: Vec<Vec<f64>>,
+    validation: Vec<Vec<f64>>,
+) -> Vec<Vec<f64>> {
+    let mut order: Vec<Vec<f64>> = fixed;
+    let mut seen: HashSet<String> = order.iter().map(|p| point_key(p)).collect();
+    for m in methods {
+        if matches!(m.kind, MethodKind::Adaptive(_)) {
+            order.extend(
+                m.points
+                    .iter()
+                    .filter(|p| seen.insert(point_key(p)))
+                    .cloned(),
+            );
+        }
+    }
+    order.extend(
+        confirmation
+            .into_iter()
+            .chain(validation)
+            .filter(|p| seen.insert(point_key(p))),
+    );
+    order
 }

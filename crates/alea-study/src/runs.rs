@@ -11,6 +11,7 @@ use crate::cre::CreSetup;
 use crate::estimate::SurrogateEstimate;
 use crate::lock::StudyLock;
 use crate::method::Method;
+use crate::paired_runs::PairedSolves;
 use crate::store::RunRecord;
 
 /// What `run_study` (module `runner`) returns.
@@ -38,6 +39,9 @@ pub struct StudyRuns {
     pub adaptive: Vec<AdaptiveOutcome>,
     /// Error estimation set-up, when the study estimates its error.
     pub cre: Option<Arc<CreSetup>>,
+    /// The paired solves of the error budget's mesh and sliding parts (`crate::paired_runs`):
+    /// their checks as stored, and this invocation's counts.
+    pub paired: PairedSolves,
     /// The study directory's lock, held as long as these runs are (outputs are written under
     /// it).
     pub lock: StudyLock,

@@ -8,7 +8,8 @@
 //! run hash, quantities' keys) and `run_data` (per run: `key` as in `runs`, `study_hash`, `fields` - the
 //! displacements of every substructure, f64 little-endian - and `cre`, the error-estimate
 //! values or NULL). `run_data` is a table of its own so that reading every run's row
-//! ([`Store::runs`]) never reads the fields.
+//! ([`Store::runs`]) never reads the fields. `paired_models` and `paired_runs` hold the paired
+//! solves of the error budget's mesh and sliding parts, apart from the runs (module `paired`).
 //!
 //! A run is committed atomically: its `runs` row and its `run_data` row are inserted in one
 //! transaction, and the runs solved together are committed together ([`Store::commit_group`]:
@@ -44,6 +45,9 @@ use std::path::{Path, PathBuf};
 use rusqlite::{Connection, OptionalExtension, params};
 
 use crate::StudyError;
+
+mod paired;
+pub use paired::{PairedModel, PairedRow};
 
 /// What defines a study's runs, as the store keeps it: the run hash and the quantities' keys
 /// in study order (`crate::run_hash::RunIdentity` computes them; the store does not depend on
@@ -362,7 +366,7 @@ impl Store {
         let old_runs = meta(&conn, "run_hash")?;
         let tx = conn.transaction().map_err(db_err(dir))?;
         let clear = |tx: &rusqlite::Transaction<'_>| {
-            tx.execute_batch("DELETE FROM runs; DELETE FROM run_data; DELETE FROM meta WHERE key = 'former_hashes';")
+            tx.execute_batch("DELETE FROM runs; DELETE FROM run_data; DELETE FROM paired_runs; DELETE FROM paired_models; DELETE FROM meta WHERE key = 'former_hashes';")
                 .map_err(db_err(dir))
         };
         let mut cleared = false;
@@ -446,6 +450,7 @@ impl Store {
                  cre BLOB);",
         )
         .map_err(db_err(dir))?;
+        conn.execute_batch(paired::SCHEMA).map_err(db_err(dir))?;
         let has = |column: &str| {
             conn.prepare(&format!("SELECT {column} FROM runs LIMIT 0"))
                 .is_ok()

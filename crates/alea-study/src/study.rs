@@ -542,7 +542,7 @@ fn refined_study(
 /// true` the study is also built with every small-sliding contact interface in large sliding
 /// (`alea_latin::large_sliding`: the pairing and its normals re-found in the deformed
 /// configuration of each run, the bodies still linear) and both are solved at the `2 d + 3`
-/// design points of the mesh part (`crate::budget::mesh::paired_check`: the nominal point,
+/// design points of the mesh part (`crate::budget::mesh::design_points`: the nominal point,
 /// along each parameter its 5 % and 95 % quantiles, and the two diagonal points); with
 /// `delta_i = q_small(xi_i) - q_large(xi_i)`,
 ///

@@ -649,7 +649,9 @@ def report(directory: PathLike) -> StudyOutputs:
     into ``samples.csv``, the mean / std fields and the HTML report (``report/report.html``
     with its plots), computing no run: for a study run by :func:`run` (which writes only the
     store), or one the command line ran with ``report = false`` or stopped before its outputs.
-    Runs missing from the store (a study stopped early) are left out, with a note. The output
+    Runs missing from the store (a study stopped early) are left out, with a note. Nor does it
+    solve the error budget's paired solves (``[budget] refined_mesh``, ``large_sliding``):
+    :func:`run` stores them; without them the part is "not estimated", with a note. The output
     files are the command line's, byte for byte.
 
     Returns

@@ -64,8 +64,10 @@ pub fn run_runs(
     // counted once it ends).
     let validation = alea_study::validation_runs::count(&study, &study.methods);
     let design = study.all_points().len();
+    // The paired solves of the budget's mesh and sliding parts (`alea_study::paired_runs`).
+    let paired = alea_study::paired_runs::count(&study);
     console.line(&format!(
-        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs{} -> {}",
+        "study '{}': {} parameter(s), {} quantit{} of interest, {} method(s), {} distinct runs{}{} -> {}",
         study.title(),
         study.params.names.len(),
         study.qois.len(),
@@ -74,6 +76,11 @@ pub fn run_runs(
         design + validation,
         if validation > 0 {
             format!(" ({validation} of them validation runs)")
+        } else {
+            String::new()
+        },
+        if paired > 0 {
+            format!(", plus {paired} paired solves for the error budget")
         } else {
             String::new()
         },
@@ -96,6 +103,12 @@ pub fn run_runs(
         runs.solve_seconds,
         runs.computed as f64 / runs.solve_seconds.max(1e-9)
     ));
+    if paired > 0 {
+        console.line(&format!(
+            "paired solves of the error budget: {} computed, {} resumed ({:.2} s)",
+            runs.paired.computed, runs.paired.resumed, runs.paired.seconds
+        ));
+    }
     console.line(&runs.linear_stage_line());
     let iterations: Vec<usize> = runs
         .records
@@ -182,6 +195,23 @@ pub fn rebuild(dir: &Path, command: &str, console: &dyn Console) -> Result<Outpu
         );
         console.warning(&msg);
         notes.push(msg);
+    }
+    // The budget's paired solves are the run's (`alea_study::paired_runs`): without them in
+    // the store their part is not estimated, and nothing is solved here.
+    let paired = &re.runs.paired;
+    for (part, check) in [("mesh", &paired.mesh), ("sliding", &paired.sliding)] {
+        if let Some(Err(why)) = check
+            && why == alea_study::paired_runs::NOT_SOLVED
+        {
+            let msg = format!(
+                "the error budget's {part} part is not estimated: its paired solves are not in the study directory \
+                 (a study run by an older alea, or stopped before they were solved); solve them with `alea run {} --dir {}`",
+                re.study.source.path.display(),
+                dir.display()
+            );
+            console.warning(&msg);
+            notes.push(msg);
+        }
     }
     let out = write_outputs(&re.study, &re.runs, dir, &settings, notes, true, console)?;
     console.line(&format!("done in {:.2} s", t_all.elapsed().as_secs_f64()));

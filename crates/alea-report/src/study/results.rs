@@ -1,14 +1,15 @@
 //! What a study gives without writing any output: the statistics of every method and the
 //! results of its reliability tables ([`analyse`], the same for `alea run`, `alea report` and
 //! Python's `alea.run`), the parameter points of their draws, and the runs kept in a study
-//! directory's store.
+//! directory's store. Nothing here solves: the budget's mesh and sliding parts come from the
+//! paired solves the run stored (`alea_study::paired_runs`).
 
 use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
 
 use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method};
-use alea_study::budget::mesh::Part;
+use alea_study::budget::mesh::{PairedResult, Part};
 use alea_study::method::{Method, MethodKind};
 use alea_study::reliability::{ReliabilityResult, analyse_reliability};
 use alea_study::runner::{Study, StudyRuns};
@@ -58,22 +59,27 @@ pub fn analyse_all(
         .iter()
         .map(|m| analyse_method(study, m, &runs.records, settings))
         .collect();
-    if let Some(refined) = &study.refined {
-        apply_paired_part(study, refined, Part::Mesh, &mut results);
+    if let Some(check) = &runs.paired.mesh {
+        apply_paired_part(study, check, Part::Mesh, &mut results);
     }
-    if let Some(large) = &study.large_sliding {
-        apply_paired_part(study, large, Part::Sliding, &mut results);
+    if let Some(check) = &runs.paired.sliding {
+        apply_paired_part(study, check, Part::Sliding, &mut results);
     }
     results
 }
 
 /// The mesh part (`[budget] refined_mesh`) or the sliding part (`[budget] large_sliding`) of
-/// every statistic's budget from paired solves of the study and `other`
-/// (`alea_study::budget::mesh`; the large-sliding study is built at load), or why it is not
-/// estimated.
-fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [MethodResult]) {
-    use alea_study::budget::mesh::{apply, paired_check};
-    let check = paired_check(study, other);
+/// every statistic's budget from the paired solves of the study and of its refined or
+/// large-sliding model (`alea_study::budget::mesh`), solved by the run and read from the store
+/// (`alea_study::paired_runs`: nothing is solved here), or why it is not estimated.
+fn apply_paired_part(
+    study: &Study,
+    check: &PairedResult,
+    which: Part,
+    results: &mut [MethodResult],
+) {
+    use alea_study::budget::mesh::apply;
+    let check = check.as_ref();
     for r in results.iter_mut() {
         for (q, stats) in r.qois.iter_mut().enumerate() {
             let samples = std::mem::take(&mut stats.samples);
@@ -129,7 +135,7 @@ fn apply_paired_part(study: &Study, other: &Study, which: Part, results: &mut [M
                             "no paired solve converged in both small and large sliding".to_string()
                         }
                     }),
-                    Err(e) => Some(e.to_string()),
+                    Err(why) => Some(why.to_string()),
                 };
                 if let Some(why) = not_estimated {
                     let why = format!("not estimated: {why}");

@@ -3,7 +3,8 @@
 //! `[mesh]` that make it about twice as fine) at `2 d + 3` design points `xi_i` - the nominal
 //! point, along each parameter its 5 % and 95 % quantiles with the others nominal, and with
 //! two parameters or more the two diagonal points, every parameter at its 5 % and at its 95 %
-//! quantile (`2 d + 1` points with one parameter; [`design_size`]) - and
+//! quantile (`2 d + 1` points with one parameter; [`design_size`], [`design_points`]; solved
+//! by the run and stored, never by an output: `crate::paired_runs`) - and
 //!
 //! ```text
 //! delta_i = 2 |q_h(xi_i) - q_h/2(xi_i)|
@@ -33,17 +34,13 @@
 
 use alea_uq::law::Marginal;
 
-use crate::StudyError;
-use crate::run::{RunContext, RunJob, RunSetup};
 use crate::study::Study;
-
-/// Quantity values of each design point (`None`: the run did not converge).
-type PointValues = Vec<Option<Vec<f64>>>;
 
 /// Paired solves of the study and another model of it (the refined mesh of the mesh part, the
 /// large-sliding model of the sliding part, `Study::large_sliding`): per quantity, the signed
 /// differences `q(xi_i) - q_other(xi_i)` at the design points (only where both runs
 /// converged).
+#[derive(Clone, Debug, PartialEq)]
 pub struct PairedCheck {
     /// The design points.
     pub points: Vec<Vec<f64>>,
@@ -224,12 +221,10 @@ pub fn design_size(dim: usize) -> usize {
     2 * dim + 1 + if dim >= 2 { 2 } else { 0 }
 }
 
-/// Solves `study` and `other` (its refined or large-sliding study) at the [`design_size`]
-/// design points (cold starts).
-///
-/// # Errors
-/// Building either solver.
-pub fn paired_check(study: &Study, other: &Study) -> Result<PairedCheck, StudyError> {
+/// The [`design_size`] design points of the paired solves of `study`: the nominal point, along
+/// each parameter its 5 % and 95 % quantiles (clamped to its range) with the others nominal,
+/// and with two parameters or more every parameter at its 5 %, then at its 95 % quantile.
+pub fn design_points(study: &Study) -> Vec<Vec<f64>> {
     let p = &study.params;
     let mut points = vec![p.nominal.clone()];
     for (j, m) in p.marginals.iter().enumerate() {
@@ -247,52 +242,47 @@ pub fn paired_check(study: &Study, other: &Study) -> Result<PairedCheck, StudyEr
             points.push(x);
         }
     }
-    let solve = |s: &Study| -> Result<(PointValues, usize), StudyError> {
-        let setup = RunSetup::build(s)?;
-        let ctx = RunContext {
-            study: s,
-            solver: &setup.solver,
-            cre: None,
-            dir: std::path::Path::new("."),
-            stop: &crate::run::never_stop,
-        };
-        let dofs = (0..setup.solver.num_subs())
-            .map(|k| setup.solver.model(k).mesh.num_nodes())
-            .sum::<usize>();
-        let values = points
-            .iter()
-            .map(|x| {
-                ctx.solve(&RunJob {
-                    theta: x.clone(),
-                    start: None,
-                })
-                .ok()
-                .filter(|o| o.rec.converged())
-                .map(|o| o.rec.qois)
-            })
-            .collect();
-        Ok((values, dofs))
-    };
-    let (coarse, n0) = solve(study)?;
-    let (fine, n1) = solve(other)?;
-    let pair = |q: usize, i: usize| match (&coarse[i], &fine[i]) {
-        (Some(a), Some(b)) if a[q].is_finite() && b[q].is_finite() => Some((a[q], a[q] - b[q])),
-        _ => None,
-    };
-    let n = points.len();
-    let diff = (0..study.qois.len())
-        .map(|q| (0..n).map(|i| pair(q, i).map(|p| p.1)).collect())
-        .collect();
-    let base = (0..study.qois.len())
-        .map(|q| (0..n).map(|i| pair(q, i).map(|p| p.0)).collect())
-        .collect();
-    Ok(PairedCheck {
-        points,
-        diff,
-        base,
-        nodes: (n0, n1),
-    })
+    points
 }
+
+/// The quantity values of one paired solve: `None` when it did not converge (or failed).
+pub type PointValues = Option<Vec<f64>>;
+
+impl PairedCheck {
+    /// The check of `qois` quantities from the paired solves at `points`: `coarse[i]` the
+    /// study's values at point `i`, `fine[i]` the other model's, `nodes` the two models' node
+    /// counts. A pair counts where both converged with a finite value.
+    pub fn from_solves(
+        qois: usize,
+        points: Vec<Vec<f64>>,
+        coarse: &[PointValues],
+        fine: &[PointValues],
+        nodes: (usize, usize),
+    ) -> Self {
+        let pair = |q: usize, i: usize| match (&coarse[i], &fine[i]) {
+            (Some(a), Some(b)) if a[q].is_finite() && b[q].is_finite() => Some((a[q], a[q] - b[q])),
+            _ => None,
+        };
+        let n = points.len();
+        let diff = (0..qois)
+            .map(|q| (0..n).map(|i| pair(q, i).map(|p| p.1)).collect())
+            .collect();
+        let base = (0..qois)
+            .map(|q| (0..n).map(|i| pair(q, i).map(|p| p.0)).collect())
+            .collect();
+        PairedCheck {
+            points,
+            diff,
+            base,
+            nodes,
+        }
+    }
+}
+
+/// What the study's paired solves give one part of the budget: the check, or why the part is
+/// not estimated (the error of building the other model's solver, or that the paired solves
+/// are not all stored - a study run by an older alea).
+pub type PairedResult = Result<PairedCheck, String>;
 
 /// Which part of a budget [`apply`] fills.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -395,7 +385,7 @@ mod tests {
                 samples.push(x + y);
             }
         }
-        // The design of `paired_check` on U(0, 1)^2: nominal, the 5 % / 95 % points, the
+        // The design of `design_points` on U(0, 1)^2: nominal, the 5 % / 95 % points, the
         // diagonal points.
         let design = [
             [0.5, 0.5],

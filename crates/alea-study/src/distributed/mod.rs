@@ -547,6 +547,7 @@ impl Worker {
             cre: s.cre.as_deref(),
             dir,
             stop: &crate::run::never_stop,
+            files: true,
         };
         let sizes = s.solver.interface_sizes();
         let (job_tx, job_rx) = mpsc::channel::<Group>();
