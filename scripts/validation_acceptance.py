@@ -124,7 +124,7 @@ constraint = [{{ group = "plane_bottom", x = 0.0, y = 0.0, z = 0.0 }}]
 [[substructure]]
 name = "block"
 cells = "block"
-young = "Eb"
+young = "{eb}"
 poisson = 0.0
 constraint = [{{ group = "block_top", x = 0.0, y = 0.0, z = -1e-3 }}]
 
@@ -221,7 +221,8 @@ def block_case(name, seed, params, g, threshold, ms, laws=None):
         seed=seed, title=name, threshold=threshold,
         mesh=os.path.join(ROOT, "examples", "block-on-plane-3d.msh"),
         parameters="\n".join(parameter(k, laws[k]) for k in params),
-        ep="Ep" if "Ep" in params else "210e3", methods=methods(*ms))
+        ep="Ep" if "Ep" in params else "210e3", eb="Eb" if "Eb" in params else "210e3",
+        methods=methods(*ms))
     return {"name": name, "kind": "block", "params": params, "laws": laws, "text": text,
             "threshold": threshold, "goal_tolerance": 0.01}
 
@@ -352,7 +353,7 @@ def rings_model(case, runs):
 
 def block_model(case):
     def law(rest):
-        eb, ep = rest["Eb"], rest.get("Ep", 210e3)
+        eb, ep = rest.get("Eb", 210e3), rest.get("Ep", 210e3)
         # N = 2 max(0, 1e-3 - g) / (1/Eb + 1/Ep) = a max(0, s - s0) with s = -g, s0 = -1e-3.
         return 2.0 / (1.0 / eb + 1.0 / ep), -1e-3
     return law, "g", 0.0
