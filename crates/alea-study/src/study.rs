@@ -95,6 +95,29 @@ impl Study {
             .join(", ")
     }
 
+    /// Why a design point reaches where the model is not defined, when it sits at an end of the
+    /// parameter box that a law without a bound there put at its 1e-6 tail quantile (grids and
+    /// adaptive meshes span the box): names the parameters and the way out.
+    fn box_end_hint(&self, theta: &[f64]) -> String {
+        let p = &self.params;
+        let at_open_end: Vec<String> = theta
+            .iter()
+            .enumerate()
+            .filter(|&(j, &v)| {
+                let (a, b) = p.marginals[j].support();
+                (v == p.lo[j] && !a.is_finite()) || (v == p.hi[j] && !b.is_finite())
+            })
+            .map(|(j, &v)| format!("{} = {v} ({})", p.names[j], p.descriptions[j]))
+            .collect();
+        if at_open_end.is_empty() {
+            return String::new();
+        }
+        format!(
+            "; the design spans each parameter's box, which for a law without a bound is its 1e-6 and 1 - 1e-6 quantiles: {} is such an end - a law that keeps the value valid (`truncated_normal` with `lo`, `lognormal`) avoids it",
+            at_open_end.join(", ")
+        )
+    }
+
     /// Loads and checks a study from its source text.
     pub fn from_source(source: Source) -> Result<Self, StudyError> {
         let file: ModelFile = source.parse()?;
@@ -345,9 +368,10 @@ impl Study {
                     sp.span(),
                     format!("substructure[{s}].young"),
                     format!(
-                        "evaluates to {}{place} at {}; must be > 0",
+                        "evaluates to {}{place} at {}; must be > 0{}",
                         v * par.young_nominal[s],
-                        at()
+                        at(),
+                        self.box_end_hint(theta)
                     ),
                 ));
             }

@@ -445,6 +445,32 @@ fn a_lognormal_modulus_has_a_box_away_from_zero() {
     );
 }
 
+/// A normal Young's modulus wide enough for its box's lower end (the 1e-6 quantile) to be
+/// negative: refused before any run, at the modulus's line, saying that the end is the law's
+/// tail quantile and naming the laws that avoid it.
+#[test]
+fn a_normal_modulus_whose_box_reaches_below_zero_says_why_and_what_to_use() {
+    let text = with_law("normal", "mean = 210e3\nstd = 60e3");
+    let s = Study::from_source(Source::from_text("wide.toml", &text)).expect("loads");
+    let dir = std::env::temp_dir().join(format!("alea-wide-normal-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let Err(e) = alea_study::runner::run_study(&s, &dir, false, &alea_study::runner::NoProgress)
+    else {
+        panic!("a negative modulus at the box's end must be refused");
+    };
+    let text = e.to_string();
+    for words in [
+        "wide.toml:",
+        "young",
+        "must be > 0",
+        "1e-6 and 1 - 1e-6 quantiles",
+        "truncated_normal",
+    ] {
+        assert!(text.contains(words), "'{words}' in {text}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The study with its `[mesh]` keys replaced by `mesh`.
 fn with_mesh(mesh: &str) -> String {
     study("", "tip", PL).replace(
