@@ -15,7 +15,8 @@
 //! e_q = sqrt( sum (q(x_i) - q~(x_i))^2 ) / sqrt( sum q(x_i)^2 ),
 //! ```
 //!
-//! the quantity's analogue of `i_sto` (an error over the size of what is measured). If some
+//! the quantity's analogue of `i_sto` (an error over the size of what is measured;
+//! `crate::budget::validation::PointwiseErrors`, the figures the budget reports). If some
 //! `e_q > target`, the target is not met: the leaves holding the validation points whose residual
 //! exceeds `target * rms(q)` are split (the worst point's leaf at least) and the loop goes on.
 //! What this guarantees: the loop does not stop at its target while its own validation sample
@@ -25,6 +26,7 @@
 
 use alea_uq::surrogate::{CellId, StochasticMesh};
 
+use crate::budget::validation::{PointwiseErrors, Sample};
 use crate::study::Study;
 
 /// What the validation runs say of a target stop.
@@ -66,34 +68,31 @@ pub fn check(
             .qois
             .get(q)
             .map_or_else(|| format!("quantity {q}"), |s| s.name.clone());
-        // (point index, residual, model value) where both are finite.
-        let pairs: Vec<(usize, f64, f64)> = validated
+        // (point index, residual, model value, surrogate value) where both are finite.
+        let pairs: Vec<(usize, f64, f64, f64)> = validated
             .iter()
             .enumerate()
             .filter_map(|(i, (_, qs))| {
                 let y = *qs.get(q)?;
                 let s = mesh.interpolate(&points[i], at_runs);
-                (y.is_finite() && s.is_finite()).then_some((i, y - s, y))
+                (y.is_finite() && s.is_finite()).then_some((i, y - s, y, s))
             })
             .collect();
-        if pairs.len() < 2 {
+        let model: Vec<f64> = pairs.iter().map(|p| p.2).collect();
+        let surrogate: Vec<f64> = pairs.iter().map(|p| p.3).collect();
+        let Some(errors) = PointwiseErrors::of(Sample {
+            model: &model,
+            surrogate: &surrogate,
+            nonnegative: false,
+        }) else {
             continue;
-        }
-        let n = pairs.len() as f64;
-        let rms = (pairs.iter().map(|p| p.1 * p.1).sum::<f64>() / n).sqrt();
-        let scale = (pairs.iter().map(|p| p.2 * p.2).sum::<f64>() / n).sqrt();
-        let relative = if scale > 0.0 {
-            rms / scale
-        } else if rms == 0.0 {
-            0.0
-        } else {
-            f64::INFINITY
         };
+        let relative = errors.relative;
         if relative <= target {
             held.push((name, relative));
             continue;
         }
-        let limit = target * scale;
+        let limit = target * errors.scale;
         let worst = pairs
             .iter()
             .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
