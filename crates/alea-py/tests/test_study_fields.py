@@ -112,5 +112,9 @@ def test_tables_equal_summary_json(study):
         assert bases["surrogate"] == q["budget"]["surrogate_basis"]
         assert bases["mesh"] == q["budget"]["mesh_basis"]
         assert bases["draws"] == q["budget"]["draws"]
+        errors = q["budget"]["validation_errors"]
+        assert bases["validation_runs"] == errors["runs"] >= 2
+        assert bases["validation_relative"] == errors["relative"]
+        assert bases["validation_rms"] == pytest.approx(errors["relative"] * errors["scale"], rel=1e-12)
     assert list(res.parameter_table["law"]) == [p["law"] for p in summary["parameters"]]
     np.testing.assert_array_equal(res.parameter_table["hi"], [p["hi"] for p in summary["parameters"]])

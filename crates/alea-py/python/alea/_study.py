@@ -93,8 +93,10 @@ class StudyResult:
     budget_bases : pandas.DataFrame
         How each budget was estimated: columns ``method``, ``quantity``, ``surrogate``,
         ``mesh`` and ``sliding`` (the basis of each part, or why it was not estimated; None
-        when the sliding part was not asked for) and ``draws`` (Monte
-        Carlo draws behind the statistics).
+        when the sliding part was not asked for), ``draws`` (Monte
+        Carlo draws behind the statistics) and the surrogate's residuals at the validation
+        runs, ``validation_runs``, ``validation_rms`` and ``validation_relative`` (their RMS
+        over the quantity's RMS, the quantity's analogue of ``i_sto``; None without them).
     reliability : list of dict
         The ``[[reliability]]`` analyses of the study file (as in ``summary.json``): the FORM
         design points, SORM, importance sampling and subset simulation with their intervals and
@@ -251,12 +253,22 @@ class StudyResult:
                 "mesh": s.get("mesh_basis"),
                 "sliding": s.get("sliding_basis"),
                 "draws": s.get("budget_draws"),
+                # The surrogate's residuals at the validation runs (None without them).
+                "validation_runs": (s.get("validation_errors") or {}).get("runs"),
+                "validation_rms": (s.get("validation_errors") or {}).get("rms"),
+                "validation_relative": (s.get("validation_errors") or {}).get("relative"),
             }
             for m in self._raw["methods"]
             for s in m["statistics"]
             if "surrogate_basis" in s
         ]
-        return pd.DataFrame(rows, columns=["method", "quantity", "surrogate", "mesh", "sliding", "draws"])
+        return pd.DataFrame(
+            rows,
+            columns=[
+                "method", "quantity", "surrogate", "mesh", "sliding", "draws",
+                "validation_runs", "validation_rms", "validation_relative",
+            ],
+        )
 
     def _sensitivity(self) -> Tuple[pd.DataFrame, pd.DataFrame]:
         of_variable = {}
