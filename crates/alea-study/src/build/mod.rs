@@ -4,7 +4,8 @@
 
 //!
 //! - [`parametric`]: the built model and how the parameters enter it;
-//! - [`mesh`]: the mesh generators' dispatch and the input hash;
+//! - [`mesh`]: the mesh generators' parameters and dispatch (`mesh/generators.rs`), the split
+//!   and the input hash;
 //! - [`model`]: substructures, loads and LATIN options of a model file, assembled into the
 //!   built model;
 //! - [`interfaces`]: the interfaces of a model file;
