@@ -1,24 +1,30 @@
 //! Statistics of a study: for each method, the surrogate over its converged runs, Monte Carlo
 //! on the surrogate (seeded, thread-count independent), moments, quantiles, a Gaussian kernel
 //! density estimate of the PDF, and failure probabilities `P(q > threshold)` with Wilson
-//! confidence intervals. The Monte Carlo method uses the run values themselves.
+//! confidence intervals. The Monte Carlo method uses the run values themselves. The
+//! surrogate's values at the draws, the comparison surrogates of the error budget there and
+//! the validation pairs are in `analysis/draws.rs`.
 
+mod draws;
+
+use std::collections::HashMap;
 use std::time::Instant;
 
 use alea_uq::design;
 use alea_uq::kde::{Bandwidth, Kde};
 use alea_uq::stats::{Summary, failure_probability, quantile_sorted};
-use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::StudyError;
 use crate::budget::{self, QoiBudget, SurrogatePart};
-use crate::failure_region::{
-    FailureRegion, RegionTally, binomial_region, local_weight, touches, two_nearest,
-};
+use crate::failure_region::{FailureRegion, binomial_region};
 use crate::method::{Method, MethodKind};
 use crate::store::{RunRecord, point_key};
 use crate::study::Study;
+use draws::{
+    DrawEvaluator, DrawnValues, comparison_surrogates, comparisons_at_draws,
+    failure_region_of_draws, smooth_fits_at_runs, surrogate_part,
+};
 
 /// `P(q > threshold)`.
 #[derive(Clone, Debug, Serialize)]
@@ -244,6 +250,21 @@ fn qoi_stats(
     }
 }
 
+/// The runs of a method's design, as the records hold them.
+struct MethodRuns {
+    /// The design points of the converged runs, in design order.
+    used_points: Vec<Vec<f64>>,
+    /// Per quantity, its values at them.
+    values: Vec<Vec<f64>>,
+    /// Per design point, whether its run ran and failed (not converged after its retries, or
+    /// without equilibrium).
+    failed: Vec<bool>,
+    /// How many did.
+    failed_runs: usize,
+    /// How many design points have no run.
+    missing: usize,
+}
+
 /// Analyses one method over the records of a study (records in any order).
 pub fn analyse_method(
     study: &Study,
@@ -251,8 +272,39 @@ pub fn analyse_method(
     records: &[RunRecord],
     s: &AnalysisSettings,
 ) -> MethodResult {
-    let by_key: std::collections::HashMap<String, &RunRecord> =
+    let by_key: HashMap<String, &RunRecord> =
         records.iter().map(|r| (point_key(&r.params), r)).collect();
+    let (runs, left_out) = method_runs(study, method, &by_key);
+    let mut out = MethodResult {
+        label: method.label.clone(),
+        description: method.description.clone(),
+        design_runs: method.points.len(),
+        runs_used: runs.used_points.len(),
+        left_out,
+        error: None,
+        failure_region: None,
+        qois: Vec::new(),
+        surrogate_seconds: 0.0,
+        monte_carlo_seconds: 0.0,
+        draws: 0,
+        points: Vec::new(),
+    };
+    if method.kind == MethodKind::MonteCarlo {
+        monte_carlo_stats(study, s, runs, &mut out);
+    } else {
+        surrogate_stats(study, method, &by_key, &runs, s, &mut out);
+    }
+    out
+}
+
+/// The runs of `method`'s design found in `by_key`, and those left out (not converged or
+/// missing) with their status.
+#[allow(clippy::type_complexity)]
+fn method_runs(
+    study: &Study,
+    method: &Method,
+    by_key: &HashMap<String, &RunRecord>,
+) -> (MethodRuns, Vec<(Vec<f64>, String)>) {
     let mut used_points = Vec::new();
     let mut values: Vec<Vec<f64>> = vec![Vec::new(); study.qois.len()];
     let mut left_out = Vec::new();
@@ -277,63 +329,169 @@ pub fn analyse_method(
         .collect();
     let failed_runs = failed.iter().filter(|&&f| f).count();
     let missing = method.points.len() - used_points.len() - failed_runs;
-    let mut out = MethodResult {
-        label: method.label.clone(),
-        description: method.description.clone(),
-        design_runs: method.points.len(),
-        runs_used: used_points.len(),
-        left_out,
-        error: None,
-        failure_region: None,
-        qois: Vec::new(),
-        surrogate_seconds: 0.0,
-        monte_carlo_seconds: 0.0,
-        draws: 0,
-        points: Vec::new(),
+    let runs = MethodRuns {
+        used_points,
+        values,
+        failed,
+        failed_runs,
+        missing,
     };
-    if method.kind == MethodKind::MonteCarlo {
-        out.draws = used_points.len();
-        // Two runs at least, except the single run of a study without parameters.
-        let needed = if study.params.names.is_empty() { 1 } else { 2 };
-        if used_points.len() < needed {
-            out.error = Some(format!(
-                "fewer than {needed} converged runs{}",
-                left_out_words(&out.left_out)
-            ));
-            return out;
-        }
-        let has_params = !study.params.names.is_empty();
-        out.qois = values
-            .into_iter()
-            .enumerate()
-            .map(|(q, v)| {
-                qoi_stats(
-                    study,
-                    q,
-                    v,
-                    s,
-                    has_params.then_some(SurrogatePart::Exact),
-                    None,
-                )
-            })
-            .collect();
-        if failed_runs > 0 {
-            out.failure_region = Some(binomial_region(
-                failed_runs,
-                used_points.len() + failed_runs,
-                s.confidence,
-            ));
-        }
-        return out;
+    (runs, left_out)
+}
+
+/// The Monte Carlo method's statistics: the run values themselves (their failed share as the
+/// failure region).
+fn monte_carlo_stats(
+    study: &Study,
+    s: &AnalysisSettings,
+    runs: MethodRuns,
+    out: &mut MethodResult,
+) {
+    let used = runs.used_points.len();
+    out.draws = used;
+    // Two runs at least, except the single run of a study without parameters.
+    let needed = if study.params.names.is_empty() { 1 } else { 2 };
+    if used < needed {
+        out.error = Some(format!(
+            "fewer than {needed} converged runs{}",
+            left_out_words(&out.left_out)
+        ));
+        return;
     }
+    let has_params = !study.params.names.is_empty();
+    out.qois = runs
+        .values
+        .into_iter()
+        .enumerate()
+        .map(|(q, v)| {
+            qoi_stats(
+                study,
+                q,
+                v,
+                s,
+                has_params.then_some(SurrogatePart::Exact),
+                None,
+            )
+        })
+        .collect();
+    if runs.failed_runs > 0 {
+        out.failure_region = Some(binomial_region(
+            runs.failed_runs,
+            used + runs.failed_runs,
+            s.confidence,
+        ));
+    }
+}
+
+/// A surrogate method's statistics: its surrogate over the runs, Monte Carlo on it outside
+/// the region of the failed runs, the error budget of each statistic and the Sobol' indices.
+fn surrogate_stats(
+    study: &Study,
+    method: &Method,
+    by_key: &HashMap<String, &RunRecord>,
+    runs: &MethodRuns,
+    s: &AnalysisSettings,
+    out: &mut MethodResult,
+) {
     // A local surrogate (piecewise linear, adaptive mesh) with failed runs is built on every
     // node, the failed ones holding a placeholder 0 that no kept draw uses.
     let local = matches!(
         method.kind,
         MethodKind::PiecewiseLinear { .. } | MethodKind::Adaptive(_)
     );
-    let tolerant = failed_runs > 0 && missing == 0 && local;
-    let (sur_points, sur_values) = if tolerant {
+    let tolerant = runs.failed_runs > 0 && runs.missing == 0 && local;
+    let (sur_points, sur_values) = surrogate_data(study, method, by_key, runs, tolerant);
+    let t0 = Instant::now();
+    let sur = match method.surrogate(&study.params, &sur_points) {
+        Ok(sur) => sur,
+        Err(e) => {
+            out.error = Some(format!(
+                "{}{}",
+                String::from(e),
+                left_out_words(&out.left_out)
+            ));
+            return;
+        }
+    };
+    out.surrogate_seconds = t0.elapsed().as_secs_f64();
+    let t0 = Instant::now();
+    let d = study.params.names.len();
+    let draws = design::monte_carlo(
+        study.params.joint.as_ref(),
+        s.samples,
+        study.seed.wrapping_add(0x9e37_79b9),
+    );
+    let pts = draws.points();
+    let nq = study.qois.len();
+    let evaluator = DrawEvaluator::new(study, method, &sur, &sur_values, tolerant, &runs.failed);
+    let per_draw = evaluator.at_draws(pts);
+    let keep: Vec<bool> = per_draw.iter().map(|(_, r)| evaluator.kept(r)).collect();
+    let validation = evaluator.validation_pairs(by_key);
+    if runs.failed_runs > 0 {
+        out.failure_region = Some(failure_region_of_draws(
+            &per_draw,
+            &keep,
+            tolerant,
+            runs.failed_runs,
+            s.confidence,
+        ));
+        if keep.iter().all(|&k| !k) {
+            out.error = Some(format!(
+                "every draw lies in the region of the failed runs{}",
+                left_out_words(&out.left_out)
+            ));
+            return;
+        }
+    }
+    let comparisons =
+        comparison_surrogates(study, method, &runs.used_points, runs.failed_runs, tolerant);
+    let drawn = DrawnValues {
+        per_draw: &per_draw,
+        keep: &keep,
+        coarse_per_draw: &comparisons_at_draws(&comparisons, pts, d, nq, &runs.values),
+        comparisons: &comparisons,
+        fits_at_runs: &smooth_fits_at_runs(&comparisons, &runs.used_points, d, nq, &runs.values),
+        validation: &validation,
+        values: &runs.values,
+    };
+    out.qois = (0..nq)
+        .map(|q| quantity_stats(study, q, s, &drawn))
+        .collect();
+    // Sobol' indices are variances over the whole box: not computed where a region is left out.
+    if runs.failed_runs == 0 {
+        for (q, stats) in out.qois.iter_mut().enumerate() {
+            stats.sobol = crate::sensitivity::sobol_stats(
+                study,
+                method,
+                &sur,
+                &runs.used_points,
+                &runs.values[q],
+            );
+        }
+    }
+    out.monte_carlo_seconds = t0.elapsed().as_secs_f64();
+    out.draws = keep.iter().filter(|&&k| k).count();
+    out.points = if runs.failed_runs == 0 {
+        pts.to_vec()
+    } else {
+        pts.chunks(d)
+            .zip(&keep)
+            .filter(|(_, k)| **k)
+            .flat_map(|(x, _)| x.iter().copied())
+            .collect()
+    };
+}
+
+/// The points and values the surrogate is built on: the converged runs, or with a `tolerant`
+/// (local) surrogate every design point, a failed one holding 0.
+fn surrogate_data(
+    study: &Study,
+    method: &Method,
+    by_key: &HashMap<String, &RunRecord>,
+    runs: &MethodRuns,
+    tolerant: bool,
+) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    if tolerant {
         let all: Vec<Vec<f64>> = (0..study.qois.len())
             .map(|q| {
                 method
@@ -348,269 +506,40 @@ pub fn analyse_method(
             .collect();
         (method.points.clone(), all)
     } else {
-        (used_points.clone(), values.clone())
-    };
-    let t0 = Instant::now();
-    let sur = match method.surrogate(&study.params, &sur_points) {
-        Ok(sur) => sur,
-        Err(e) => {
-            out.error = Some(format!(
-                "{}{}",
-                String::from(e),
-                left_out_words(&out.left_out)
-            ));
-            return out;
-        }
-    };
-    out.surrogate_seconds = t0.elapsed().as_secs_f64();
-    let t0 = Instant::now();
-    let d = study.params.names.len();
-    let draws = design::monte_carlo(
-        study.params.joint.as_ref(),
-        s.samples,
-        study.seed.wrapping_add(0x9e37_79b9),
-    );
-    let pts = draws.points();
-    let nq = study.qois.len();
-    // Weights once per draw, reused for every quantity; with failed runs, the draw's weight on
-    // them (module `failure_region`).
-    let design_norm: Vec<Vec<f64>> = if failed_runs > 0 && !tolerant {
-        method.points.iter().map(|p| study.normalise(p)).collect()
-    } else {
-        Vec::new()
-    };
-    // A draw's values on the surrogate and where it stands with respect to the failed runs.
-    let evaluate = |x: &[f64], t: &mut Vec<f64>, w: &mut Vec<(usize, f64)>| {
-        sur.weights(x, t, w);
-        let v: Vec<f64> = (0..nq)
-            .map(|q| w.iter().map(|&(k, wk)| wk * sur_values[q][k]).sum())
-            .collect();
-        let region = if tolerant {
-            let weight = local_weight(w, &failed);
-            DrawRegion {
-                weight,
-                whole: weight >= 1.0 - 1e-12,
-                touched: touches(w, &failed),
-            }
-        } else if design_norm.is_empty() {
-            DrawRegion::default()
-        } else {
-            let (a, b) = two_nearest(&study.normalise(x), &design_norm);
-            DrawRegion {
-                weight: f64::from(u8::from(failed[a])),
-                whole: failed[a] && failed[b],
-                touched: failed[a] || failed[b],
-            }
-        };
-        (v, region)
-    };
-    // Draws kept for the statistics: those outside the failure region.
-    let kept = |r: &DrawRegion| {
-        if tolerant {
-            !r.touched
-        } else {
-            r.weight == 0.0
-        }
-    };
-    let per_draw: Vec<(Vec<f64>, DrawRegion)> = pts
-        .par_chunks(d)
-        .map_init(|| (vec![0.0; d], Vec::new()), |(t, w), x| evaluate(x, t, w))
-        .collect();
-    let keep: Vec<bool> = per_draw.iter().map(|(_, r)| kept(r)).collect();
-    // The validation runs (module `crate::validation_runs`): the model and the surrogate at each
-    // converged one outside the failure region, per quantity.
-    let validation = {
-        let found = crate::validation_runs::found(study, &|k| by_key.contains_key(k));
-        let (mut t, mut w) = (vec![0.0; d], Vec::new());
-        let mut pairs: Vec<(Vec<f64>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); nq];
-        for p in &found {
-            let Some(r) = by_key.get(&point_key(p)).filter(|r| r.converged()) else {
-                continue;
-            };
-            let (v, region) = evaluate(p, &mut t, &mut w);
-            if kept(&region) {
-                for (q, (model, surrogate)) in pairs.iter_mut().enumerate() {
-                    model.push(r.qois[q]);
-                    surrogate.push(v[q]);
-                }
-            }
-        }
-        pairs
-    };
-    if failed_runs > 0 {
-        let mut tally = RegionTally::default();
-        for ((_, r), &k) in per_draw.iter().zip(&keep) {
-            tally.add(r.weight, r.whole, r.touched, !k);
-        }
-        let basis = if tolerant {
-            "the failure indicator interpolated by the method's surrogate; interval from the \
-             draws whose every node failed to those with any failed node"
-        } else {
-            "the draws whose nearest run failed; interval from those whose two nearest runs \
-             failed to those with either failed"
-        };
-        out.failure_region = Some(tally.region(failed_runs, s.confidence, basis));
-        if keep.iter().all(|&k| !k) {
-            out.error = Some(format!(
-                "every draw lies in the region of the failed runs{}",
-                left_out_words(&out.left_out)
-            ));
-            return out;
-        }
+        (runs.used_points.clone(), runs.values.clone())
     }
-    // The comparison surrogates of the error budget, at the same draws (with failed runs, a
-    // local method's coarser mesh would need them: only its smooth fits on the converged runs).
-    let comparisons = if tolerant {
-        let fits = budget::smooth_fits(&study.params, &used_points);
-        if fits.is_empty() {
-            Err(format!(
-                "{failed_runs} run(s) failed and the coarser mesh needs them; too few converged \
-                 runs for a smooth fit"
-            ))
-        } else {
-            Ok(fits)
-        }
-    } else {
-        budget::comparisons(method, &study.params, &used_points)
-    };
-    let coarse_per_draw: Vec<Vec<Vec<f64>>> = comparisons
-        .iter()
-        .flatten()
-        .map(|c| {
-            pts.par_chunks(d)
-                .map_init(
-                    || (vec![0.0; d], Vec::new()),
-                    |(t, w), x| {
-                        c.surrogate.weights(x, t, w);
-                        (0..nq)
-                            .map(|q| w.iter().map(|&(k, wk)| wk * values[q][c.runs[k]]).sum())
-                            .collect::<Vec<f64>>()
-                    },
-                )
-                .collect()
-        })
-        .collect();
-    // The smooth fits at the runs, for the check of their credibility per quantity.
-    let fits_at_runs: Vec<Vec<Vec<f64>>> = comparisons
-        .iter()
-        .flatten()
-        .map(|c| {
-            if !c.smooth {
-                return Vec::new();
-            }
-            let (mut t, mut w) = (vec![0.0; d], Vec::new());
-            used_points
-                .iter()
-                .map(|x| {
-                    c.surrogate.weights(x, &mut t, &mut w);
-                    (0..nq)
-                        .map(|q| w.iter().map(|&(k, wk)| wk * values[q][c.runs[k]]).sum())
-                        .collect()
-                })
-                .collect()
-        })
-        .collect();
-    out.qois = (0..nq)
-        .map(|q| {
-            // A quantity that cannot be negative: every surrogate's draws projected onto `>= 0`
-            // (the model's value is >= 0, so the projection only brings a draw nearer to it;
-            // a surrogate that spreads an atom at 0 - a contact that opens - below 0 otherwise
-            // puts its low quantiles there), the share and lowest of the negative ones kept for
-            // the draw-range warning.
-            let floor = study.qois[q].kind.nonnegative();
-            let project = |v: f64| if floor { v.max(0.0) } else { v };
-            let raw: Vec<f64> = per_draw
-                .iter()
-                .zip(&keep)
-                .filter(|(_, k)| **k)
-                .map(|(v, _)| v.0[q])
-                .collect();
-            let negative = if floor {
-                let below = raw.iter().filter(|&&v| v < 0.0).count();
-                let lowest = raw.iter().copied().fold(f64::INFINITY, f64::min);
-                (below as f64 / raw.len().max(1) as f64, lowest)
-            } else {
-                (0.0, f64::INFINITY)
-            };
-            let mine: Vec<f64> = raw.into_iter().map(project).collect();
-            let coarse: Vec<Vec<f64>> = coarse_per_draw
-                .iter()
-                .map(|c| {
-                    c.iter()
-                        .zip(&keep)
-                        .filter(|(_, k)| **k)
-                        .map(|(v, _)| project(v[q]))
-                        .collect()
-                })
-                .collect();
-            let part = match &comparisons {
-                Ok(cs) => {
-                    // A smooth fit counts for this quantity only where it follows the runs.
-                    let kept: Vec<usize> = (0..cs.len())
-                        .filter(|&i| {
-                            !cs[i].smooth
-                                || budget::credible_fit(
-                                    &fits_at_runs[i].iter().map(|v| v[q]).collect::<Vec<_>>(),
-                                    &values[q],
-                                    &coarse[i],
-                                    &mine,
-                                )
-                        })
-                        .collect();
-                    SurrogatePart::Comparison(
-                        kept.iter()
-                            .map(|&i| (coarse[i].as_slice(), cs[i].coarser, cs[i].sees_mean))
-                            .collect(),
-                        kept.iter()
-                            .map(|&i| cs[i].description.as_str())
-                            .collect::<Vec<_>>()
-                            .join(" and "),
-                    )
-                }
-                Err(why) => SurrogatePart::Unavailable(why),
-            };
-            let (model, at_runs) = &validation[q];
-            let surrogate: Vec<f64> = at_runs.iter().map(|&v| project(v)).collect();
-            let sample = (model.len() >= 2).then_some(budget::validation::Sample {
-                model,
-                surrogate: &surrogate,
-                nonnegative: floor,
-            });
-            let mut stats = qoi_stats(study, q, mine, s, Some(part), sample);
-            stats.negative = negative;
-            stats
-        })
-        .collect();
-    // Sobol' indices are variances over the whole box: not computed where a region is left out.
-    if failed_runs == 0 {
-        for (q, stats) in out.qois.iter_mut().enumerate() {
-            stats.sobol =
-                crate::sensitivity::sobol_stats(study, method, &sur, &used_points, &values[q]);
-        }
-    }
-    out.monte_carlo_seconds = t0.elapsed().as_secs_f64();
-    out.draws = keep.iter().filter(|&&k| k).count();
-    out.points = if failed_runs == 0 {
-        pts.to_vec()
-    } else {
-        pts.chunks(d)
-            .zip(&keep)
-            .filter(|(_, k)| **k)
-            .flat_map(|(x, _)| x.iter().copied())
-            .collect()
-    };
-    out
 }
 
-/// Where one draw stands with respect to the failed runs (module `failure_region`).
-#[derive(Clone, Copy, Default)]
-struct DrawRegion {
-    /// Its weight on failed runs, in [0, 1].
-    weight: f64,
-    /// Wholly in the region.
-    whole: bool,
-    /// Touching it.
-    touched: bool,
+/// Quantity `q`'s statistics on the kept draws, with its error budget.
+fn quantity_stats(study: &Study, q: usize, s: &AnalysisSettings, drawn: &DrawnValues) -> QoiStats {
+    // A quantity that cannot be negative: every surrogate's draws projected onto `>= 0`
+    // (the model's value is >= 0, so the projection only brings a draw nearer to it;
+    // a surrogate that spreads an atom at 0 - a contact that opens - below 0 otherwise
+    // puts its low quantiles there), the share and lowest of the negative ones kept for
+    // the draw-range warning.
+    let floor = study.qois[q].kind.nonnegative();
+    let project = |v: f64| if floor { v.max(0.0) } else { v };
+    let raw = drawn.kept_draws(q);
+    let negative = if floor {
+        let below = raw.iter().filter(|&&v| v < 0.0).count();
+        let lowest = raw.iter().copied().fold(f64::INFINITY, f64::min);
+        (below as f64 / raw.len().max(1) as f64, lowest)
+    } else {
+        (0.0, f64::INFINITY)
+    };
+    let mine: Vec<f64> = raw.into_iter().map(project).collect();
+    let coarse = drawn.kept_coarse_draws(q, project);
+    let part = surrogate_part(drawn, q, &coarse, &mine);
+    let (model, at_runs) = &drawn.validation[q];
+    let surrogate: Vec<f64> = at_runs.iter().map(|&v| project(v)).collect();
+    let sample = (model.len() >= 2).then_some(budget::validation::Sample {
+        model,
+        surrogate: &surrogate,
+        nonnegative: floor,
+    });
+    let mut stats = qoi_stats(study, q, mine, s, Some(part), sample);
+    stats.negative = negative;
+    stats
 }
 
 /// Response surface of the first quantity... of quantity `q` under `method` over the first two

@@ -3,15 +3,15 @@
 //! modules only (spec, params, build, qoi, method, limits), never on the runner or the
 //! services that use it.
 
+mod load_checks;
+
 use std::path::Path;
 
 use alea_latin::LatinSolver;
 
 use crate::StudyError;
 use crate::build::{BuiltModel, build_model, input_hash};
-use crate::limits::{
-    available_memory, check_study_file, check_total_runs, human_bytes, mean_fields_memory,
-};
+use crate::limits::{available_memory, check_total_runs, human_bytes, mean_fields_memory};
 use crate::method::{Method, MethodKind, build_methods};
 use crate::params::{ParamSpace, build_params};
 use crate::points::{PointIndex, canonicalise};
@@ -19,6 +19,7 @@ use crate::qoi::{Qoi, build_qois};
 use crate::source::Source;
 use crate::spec::{ModelFile, OutputSpec};
 use crate::store::point_key;
+use load_checks::{check_error_estimate_fits, check_study_tables};
 
 /// A loaded, validated study.
 pub struct Study {
@@ -122,29 +123,7 @@ impl Study {
     pub fn from_source(source: Source) -> Result<Self, StudyError> {
         let file: ModelFile = source.parse()?;
         let params = build_params(&source, &file)?;
-        if params.names.is_empty()
-            && let Some(m) = file.method.first()
-        {
-            return Err(source.error(m.kind.span(), "method[0].type", "methods need random parameters: without [[parameter]], leave out [[method]] (the study is then one deterministic run)"));
-        }
-        if file.quantity.is_empty() {
-            return Err(source.error(0..0, "quantity", "a study needs at least one [[quantity]]"));
-        }
-        if file.method.is_empty() && !params.names.is_empty() {
-            return Err(source.error(0..0, "method", "a study needs at least one [[method]]"));
-        }
-        check_study_file(&source, &file, params.names.len())?;
-        crate::settings_check::check(&source, &file)?;
-        // The error estimate's settings, when it runs: an [error] table not disabled, or an
-        // adaptive method (a study without either may have more parameters than its rules take).
-        let estimates = file
-            .error
-            .as_ref()
-            .is_some_and(|e| e.enabled.unwrap_or(true))
-            || file.method.iter().any(|m| m.kind.get_ref() == "adaptive");
-        if !params.names.is_empty() && estimates {
-            crate::error_settings::read(&source, file.error.as_ref(), params.names.len())?;
-        }
+        check_study_tables(&source, &file, &params)?;
         let model = build_model(&source, &file, &params)?;
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
@@ -165,16 +144,7 @@ impl Study {
         // Points that differ by round-off only are one run (module `points`).
         let mut index = PointIndex::new(&params.lo, &params.hi);
         canonicalise(&mut index, methods.iter_mut().map(|m| &mut m.points));
-        // A goal's `P(q > t)` is reported with its budget like the quantity's own thresholds.
-        for m in &methods {
-            if let MethodKind::Adaptive(a) = &m.kind
-                && let Some(g) = &a.goal
-                && let Some(t) = g.threshold
-                && !qois[g.quantity].thresholds.contains(&t)
-            {
-                qois[g.quantity].thresholds.push(t);
-            }
-        }
+        add_goal_thresholds(&methods, &mut qois);
         let reliability = crate::reliability::task::build_reliability(
             &source,
             &file.reliability,
@@ -182,30 +152,7 @@ impl Study {
             &methods,
             &params,
         )?;
-        let refined = match file
-            .budget
-            .as_ref()
-            .and_then(|b| b.get_ref().refined_mesh.as_ref())
-        {
-            Some(mesh) => {
-                let r = refined_study(&source, mesh)?;
-                // A field truncated by variance fraction may keep another number of modes on
-                // the finer mesh: the paired solves need the same parameters.
-                if r.params.names != params.names {
-                    return Err(source.error(
-                        mesh.span(),
-                        "budget.refined_mesh",
-                        format!(
-                            "the refined study's parameters ({}) differ from the study's ({}): a [[field]] keeps another number of KL modes on the finer mesh; give its `modes`",
-                            r.params.names.join(", "),
-                            params.names.join(", ")
-                        ),
-                    ));
-                }
-                Some(Box::new(r))
-            }
-            _ => None,
-        };
+        let refined = refined_budget_study(&source, &file, &params)?;
         let large_sliding = match &file.budget {
             Some(b) => sliding_study(&source, b)?.map(Box::new),
             None => None,
@@ -235,34 +182,7 @@ impl Study {
             step_models,
             step_solvers: std::sync::OnceLock::new(),
         };
-        if study.steps.is_some() && estimates_error(&study) {
-            return Err(study.source.error(
-                study.file.step[0].span(),
-                "step",
-                "the error estimate (an [error] table or an adaptive method) is for single-step runs: leave out [error] and adaptive methods, or the [[step]]s",
-            ));
-        }
-        if estimates_error(&study)
-            && let Some(i) = study
-                .model
-                .assembly
-                .interfaces
-                .iter()
-                .position(alea_latin::large_sliding::is_repaired)
-            && let Some(site) = study.model.interface_sites.get(i)
-        {
-            return Err(StudyError::Input {
-                file: site.file.clone(),
-                line: site.sliding,
-                field: format!("interface[{i}].sliding"),
-                message: "large sliding (the pairing re-found in the deformed configuration of \
-                          each run) gives every run its own interface points, while the error \
-                          estimate ([error], adaptive methods) needs the same interface layout \
-                          in every run: leave out [error] and adaptive methods, or use \
-                          sliding = \"small\""
-                    .into(),
-            });
-        }
+        check_error_estimate_fits(&study)?;
         check_cell_fields(&study)?;
         check_built(&study)?;
         // The runs the solver's set-up serves: what the condensed linear stage's set-up is
@@ -693,4 +613,48 @@ fn validation_runs_setting(
         ));
     }
     Ok(Some(n))
+}
+
+/// Adds the threshold of every adaptive method's goal `P(q > t)` to its quantity's thresholds:
+/// it is reported with its budget like the quantity's own.
+fn add_goal_thresholds(methods: &[Method], qois: &mut [Qoi]) {
+    for m in methods {
+        if let MethodKind::Adaptive(a) = &m.kind
+            && let Some(g) = &a.goal
+            && let Some(t) = g.threshold
+            && !qois[g.quantity].thresholds.contains(&t)
+        {
+            qois[g.quantity].thresholds.push(t);
+        }
+    }
+}
+
+/// The `[budget] refined_mesh` study, built and checked (the same parameters as the study's).
+fn refined_budget_study(
+    source: &Source,
+    file: &ModelFile,
+    params: &ParamSpace,
+) -> Result<Option<Box<Study>>, StudyError> {
+    let Some(mesh) = file
+        .budget
+        .as_ref()
+        .and_then(|b| b.get_ref().refined_mesh.as_ref())
+    else {
+        return Ok(None);
+    };
+    let r = refined_study(source, mesh)?;
+    // A field truncated by variance fraction may keep another number of modes on the finer
+    // mesh: the paired solves need the same parameters.
+    if r.params.names != params.names {
+        return Err(source.error(
+            mesh.span(),
+            "budget.refined_mesh",
+            format!(
+                "the refined study's parameters ({}) differ from the study's ({}): a [[field]] keeps another number of KL modes on the finer mesh; give its `modes`",
+                r.params.names.join(", "),
+                params.names.join(", ")
+            ),
+        ));
+    }
+    Ok(Some(Box::new(r)))
 }

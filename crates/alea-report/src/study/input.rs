@@ -3,8 +3,11 @@
 
 use alea_study::analysis::{AnalysisSettings, MethodResult, QoiStats, response_surface};
 use alea_study::atoms::split_atoms;
+use alea_study::budget::QoiBudget;
 use alea_study::method::Method;
+use alea_study::qoi::Qoi;
 use alea_study::runner::Study;
+use alea_study::sensitivity::SobolStats;
 use alea_study::store::RunRecord;
 
 use crate::report::{
@@ -39,6 +42,58 @@ pub(super) fn report_input(
 ) -> ReportInput {
     // The first method that produced statistics answers; the others are compared with it.
     let main_index = results.iter().position(|r| !r.qois.is_empty());
+    let qois = study
+        .qois
+        .iter()
+        .enumerate()
+        .filter_map(|(q, qoi)| {
+            let m = main_index?;
+            let s = results[m].qois.get(q)?;
+            let surface = surface_of(study, &methods[m], records, q);
+            Some(qoi_report(
+                study,
+                settings,
+                qoi,
+                s,
+                surface,
+                &results[m].label,
+            ))
+        })
+        .collect();
+    let comparison = (results.len() > 1).then(|| comparison_of(study, settings, results));
+    ReportInput {
+        title: study.title(),
+        study_file: study.file_name(),
+        units: unit_list(study),
+        method: main_index.map_or_else(
+            || "no method produced statistics (see the notes)".to_string(),
+            |m| format!("{}: {}", results[m].label, results[m].description),
+        ),
+        parameters: study
+            .params
+            .names
+            .iter()
+            .enumerate()
+            .map(|(j, n)| ParamInfo {
+                name: n.clone(),
+                law: study.params.descriptions[j].clone(),
+                lo: study.params.lo[j],
+                hi: study.params.hi[j],
+            })
+            .collect(),
+        runs: run_infos(records, main_index.is_some()),
+        residual_histories: residual_histories(records),
+        qois,
+        comparison,
+        timings: timings.to_vec(),
+        notes: notes.to_vec(),
+        error: None,
+        reliability: Vec::new(),
+    }
+}
+
+/// The study's units by name (the density only when given).
+fn unit_list(study: &Study) -> Vec<(String, String)> {
     let units = &study.model.units;
     let mut unit_list = vec![
         ("length".to_string(), units.length.clone()),
@@ -48,92 +103,115 @@ pub(super) fn report_input(
     if let Some(d) = &units.density {
         unit_list.push(("density".into(), d.clone()));
     }
-    let qois = study
-        .qois
-        .iter()
-        .enumerate()
-        .filter_map(|(q, qoi)| {
-            let m = main_index?;
-            let s = results[m].qois.get(q)?;
-            let surface =
-                response_surface(study, &methods[m], records, q, 41).map(|(x, y, values)| {
-                    Surface {
-                        param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
-                        x,
-                        y,
-                        values,
-                        points: methods[m]
-                            .points
-                            .iter()
-                            .filter_map(|p| {
-                                let r = records.iter().find(|r| &r.params == p)?;
-                                r.converged().then(|| [p[0], p[1], r.qois[q]])
-                            })
-                            .collect(),
-                    }
-                });
-            let (atoms, kde) = density(s, settings);
-            Some(QoiReport {
-                name: qoi.name.clone(),
-                unit: qoi.unit.clone(),
-                what: qoi.what.clone(),
-                samples: s.samples.clone(),
-                mean: s.mean,
-                std: s.std,
-                skewness: s.skewness,
-                quantiles: s.quantiles.clone(),
-                kde,
-                atoms,
-                failure: s
-                    .failure
-                    .iter()
-                    .map(|f| FailureInfo {
-                        threshold: f.threshold,
-                        probability: f.probability,
-                        ci_low: f.ci_low,
-                        ci_high: f.ci_high,
-                    })
-                    .collect(),
-                surface,
-                budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
-                budget_basis: s.budget.as_ref().map_or_else(Vec::new, |b| {
-                    let mut lines = vec![
-                        format!("Surrogate: {}.", b.surrogate_basis),
-                        format!(
-                            "Sampling: half-width of the confidence interval from the {} draws.",
-                            b.draws
-                        ),
-                        format!("Mesh: {}.", b.mesh_basis),
-                    ];
-                    if let Some(sliding) = &b.sliding_basis {
-                        lines.push(format!("Sliding: {sliding}."));
-                    }
-                    lines
-                }),
-                sobol: s.sobol.as_ref().map_or_else(Vec::new, |so| {
-                    study
-                        .params
-                        .names
-                        .iter()
-                        .zip(so.first.iter().zip(&so.total))
-                        .map(|(n, (f, t))| (n.clone(), *f, *t))
-                        .collect()
-                }),
-                sobol_basis: s.sobol.as_ref().map_or_else(String::new, |so| {
-                    if so.estimator == "pc_expansion" {
-                        format!("From the coefficients of the chaos expansion of method '{}' (exact for the surrogate).", results[m].label)
-                    } else {
-                        format!(
-                            "Saltelli / Jansen pick-freeze estimators on {} base draws of the surrogate of method '{}'.",
-                            alea_study::sensitivity::PICK_FREEZE_SAMPLES,
-                            results[m].label
-                        )
-                    }
-                }),
+    unit_list
+}
+
+/// Quantity `q`'s response surface under `method` over the first two parameters, with the
+/// converged runs on it (none with fewer than two parameters).
+fn surface_of(study: &Study, method: &Method, records: &[RunRecord], q: usize) -> Option<Surface> {
+    response_surface(study, method, records, q, 41).map(|(x, y, values)| Surface {
+        param_names: [study.params.names[0].clone(), study.params.names[1].clone()],
+        x,
+        y,
+        values,
+        points: method
+            .points
+            .iter()
+            .filter_map(|p| {
+                let r = records.iter().find(|r| &r.params == p)?;
+                r.converged().then(|| [p[0], p[1], r.qois[q]])
             })
-        })
-        .collect();
-    let comparison = (results.len() > 1).then(|| Comparison {
+            .collect(),
+    })
+}
+
+/// One quantity's part of the report from its statistics `s` under the main method (`label`).
+fn qoi_report(
+    study: &Study,
+    settings: &AnalysisSettings,
+    qoi: &Qoi,
+    s: &QoiStats,
+    surface: Option<Surface>,
+    label: &str,
+) -> QoiReport {
+    let (atoms, kde) = density(s, settings);
+    QoiReport {
+        name: qoi.name.clone(),
+        unit: qoi.unit.clone(),
+        what: qoi.what.clone(),
+        samples: s.samples.clone(),
+        mean: s.mean,
+        std: s.std,
+        skewness: s.skewness,
+        quantiles: s.quantiles.clone(),
+        kde,
+        atoms,
+        failure: s
+            .failure
+            .iter()
+            .map(|f| FailureInfo {
+                threshold: f.threshold,
+                probability: f.probability,
+                ci_low: f.ci_low,
+                ci_high: f.ci_high,
+            })
+            .collect(),
+        surface,
+        budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
+        budget_basis: s.budget.as_ref().map_or_else(Vec::new, budget_basis),
+        sobol: s.sobol.as_ref().map_or_else(Vec::new, |so| {
+            study
+                .params
+                .names
+                .iter()
+                .zip(so.first.iter().zip(&so.total))
+                .map(|(n, (f, t))| (n.clone(), *f, *t))
+                .collect()
+        }),
+        sobol_basis: s
+            .sobol
+            .as_ref()
+            .map_or_else(String::new, |so| sobol_basis(so, label)),
+    }
+}
+
+/// How each part of a quantity's error budget was obtained, one line each.
+fn budget_basis(b: &QoiBudget) -> Vec<String> {
+    let mut lines = vec![
+        format!("Surrogate: {}.", b.surrogate_basis),
+        format!(
+            "Sampling: half-width of the confidence interval from the {} draws.",
+            b.draws
+        ),
+        format!("Mesh: {}.", b.mesh_basis),
+    ];
+    if let Some(sliding) = &b.sliding_basis {
+        lines.push(format!("Sliding: {sliding}."));
+    }
+    lines
+}
+
+/// How the Sobol' indices were computed on the surrogate of method `label`.
+fn sobol_basis(so: &SobolStats, label: &str) -> String {
+    if so.estimator == "pc_expansion" {
+        format!(
+            "From the coefficients of the chaos expansion of method '{label}' (exact for the surrogate)."
+        )
+    } else {
+        format!(
+            "Saltelli / Jansen pick-freeze estimators on {} base draws of the surrogate of method '{label}'.",
+            alea_study::sensitivity::PICK_FREEZE_SAMPLES,
+        )
+    }
+}
+
+/// The comparison of the methods on the first quantity.
+fn comparison_of(
+    study: &Study,
+    settings: &AnalysisSettings,
+    results: &[MethodResult],
+) -> Comparison {
+    Comparison {
         qoi: study.qois[0].name.clone(),
         rows: results
             .iter()
@@ -151,7 +229,11 @@ pub(super) fn report_input(
                 })
             })
             .collect(),
-    });
+    }
+}
+
+/// The LATIN residual histories of the first four runs and of the slowest one.
+fn residual_histories(records: &[RunRecord]) -> Vec<(String, Vec<f64>)> {
     let mut histories: Vec<(String, Vec<f64>)> = records
         .iter()
         .take(4)
@@ -170,52 +252,30 @@ pub(super) fn report_input(
             worst.history.clone(),
         ));
     }
-    ReportInput {
-        title: study.title(),
-        study_file: study.file_name(),
-        units: unit_list,
-        method: main_index.map_or_else(
-            || "no method produced statistics (see the notes)".to_string(),
-            |m| format!("{}: {}", results[m].label, results[m].description),
-        ),
-        parameters: study
-            .params
-            .names
-            .iter()
-            .enumerate()
-            .map(|(j, n)| ParamInfo {
-                name: n.clone(),
-                law: study.params.descriptions[j].clone(),
-                lo: study.params.lo[j],
-                hi: study.params.hi[j],
-            })
-            .collect(),
-        runs: records
-            .iter()
-            .map(|r| RunInfo {
-                params: r.params.clone(),
-                status: r.status.clone(),
-                iterations: r.iterations,
-                seconds: r.seconds,
-                // Non-finite values only occur in runs that did not converge.
-                qois: if main_index.is_some() {
-                    r.qois
-                        .iter()
-                        .map(|v| if v.is_finite() { *v } else { 0.0 })
-                        .collect()
-                } else {
-                    Vec::new()
-                },
-            })
-            .collect(),
-        residual_histories: histories,
-        qois,
-        comparison,
-        timings: timings.to_vec(),
-        notes: notes.to_vec(),
-        error: None,
-        reliability: Vec::new(),
-    }
+    histories
+}
+
+/// Every run's line in the report (its quantities only when a method produced statistics,
+/// `with_qois`).
+fn run_infos(records: &[RunRecord], with_qois: bool) -> Vec<RunInfo> {
+    records
+        .iter()
+        .map(|r| RunInfo {
+            params: r.params.clone(),
+            status: r.status.clone(),
+            iterations: r.iterations,
+            seconds: r.seconds,
+            // Non-finite values only occur in runs that did not converge.
+            qois: if with_qois {
+                r.qois
+                    .iter()
+                    .map(|v| if v.is_finite() { *v } else { 0.0 })
+                    .collect()
+            } else {
+                Vec::new()
+            },
+        })
+        .collect()
 }
 
 /// The report's rare-event section from the `[[reliability]]` results.

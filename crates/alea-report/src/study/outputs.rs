@@ -6,11 +6,13 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use alea_study::StudyError;
-use alea_study::analysis::AnalysisSettings;
+use alea_study::analysis::{AnalysisSettings, MethodResult};
+use alea_study::estimate::ErrorSettings;
+use alea_study::reliability::ReliabilityResult;
 use alea_study::runner::{Study, StudyRuns};
 use alea_study::store::RunRecord;
 
-use super::estimate::estimate_all;
+use super::estimate::{MethodEstimate, estimate_all};
 use super::estimate_report::report_error;
 use super::estimate_text::print_estimates;
 use super::files::{write_samples, write_summary};
@@ -76,60 +78,13 @@ fn write_files(
         console.warning(&msg);
         notes.push(msg);
     };
-    let failed: Vec<&RunRecord> = runs.records.iter().filter(|r| !r.converged()).collect();
-    if !failed.is_empty() {
-        warn(format!(
-            "{} run(s) did not converge and are left out of the surrogates: {}",
-            failed.len(),
-            failed
-                .iter()
-                .take(10)
-                .map(|r| format!(
-                    "{:?} ({}, error indicator {:.1e} after {} iterations)",
-                    r.params, r.status, r.residual, r.iterations
-                ))
-                .collect::<Vec<_>>()
-                .join("; ")
-        ));
-    }
-    for w in alea_study::qoi::warnings::corner_warnings(study, &runs.records, dir)? {
-        warn(w.to_string());
-    }
-    for w in
-        alea_study::sliding_note::sliding_warnings(&runs.records, &runs.solver, &study.params.names)
-    {
-        warn(w);
-    }
+    run_warnings(study, runs, dir, &mut warn)?;
     let Analysis {
         results,
         seconds: analysis_seconds,
         reliability,
     } = analyse(study, runs, settings);
-    for r in &results {
-        if let Some(e) = &r.error {
-            warn(format!("method '{}' gave no statistics: {e}", r.label));
-        }
-        if let Some(f) = &r.failure_region {
-            warn(format!(
-                "method '{}': {} run(s) failed; the region they stand for has probability {:.4} \
-                 ({:.0}% interval [{:.4}, {:.4}]; {}) and its statistics describe the rest of the \
-                 law ({:.2}% of it left out)",
-                r.label,
-                f.failed_runs,
-                f.probability,
-                100.0 * settings.confidence,
-                f.ci_low,
-                f.ci_high,
-                f.basis,
-                100.0 * f.left_out
-            ));
-        }
-    }
-    for (r, m) in results.iter().zip(&runs.methods) {
-        for w in alea_study::draw_range::draw_range_warnings(study, m, r, &runs.records) {
-            warn(w);
-        }
-    }
+    method_warnings(study, runs, &results, settings.confidence, &mut warn);
     print_table(study, &results, settings.confidence, console);
     print_reliability(&reliability, console);
     for r in &reliability {
@@ -168,7 +123,113 @@ fn write_files(
     {
         samples = write_samples(study, dir, main, console)?;
     }
-    let mut fields = None;
+    let fields = write_fields(study, runs, dir, &results, &mut notes, console);
+    let mut files = None;
+    if report {
+        let parts = ReportParts {
+            results: &results,
+            reliability: &reliability,
+            err_settings: &err_settings,
+            estimates: &estimates,
+            analysis_seconds,
+            estimate_seconds,
+        };
+        files = Some(write_report_files(
+            study, runs, dir, settings, &parts, &notes, console,
+        )?);
+    }
+    check_produced(runs, &results)?;
+    Ok(Outputs {
+        summary,
+        samples,
+        fields,
+        error_fields: estimates.iter().find_map(|e| e.vtu.clone()),
+        report: files,
+        notes,
+    })
+}
+
+/// The warnings on the runs: those that did not converge, maxima on corners, sliding beyond
+/// small sliding.
+fn run_warnings(
+    study: &Study,
+    runs: &StudyRuns,
+    dir: &Path,
+    warn: &mut dyn FnMut(String),
+) -> Result<(), Error> {
+    let failed: Vec<&RunRecord> = runs.records.iter().filter(|r| !r.converged()).collect();
+    if !failed.is_empty() {
+        warn(format!(
+            "{} run(s) did not converge and are left out of the surrogates: {}",
+            failed.len(),
+            failed
+                .iter()
+                .take(10)
+                .map(|r| format!(
+                    "{:?} ({}, error indicator {:.1e} after {} iterations)",
+                    r.params, r.status, r.residual, r.iterations
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ));
+    }
+    for w in alea_study::qoi::warnings::corner_warnings(study, &runs.records, dir)? {
+        warn(w.to_string());
+    }
+    for w in
+        alea_study::sliding_note::sliding_warnings(&runs.records, &runs.solver, &study.params.names)
+    {
+        warn(w);
+    }
+    Ok(())
+}
+
+/// The warnings on the methods' statistics: no statistics, a failure region left out, draws
+/// out of the runs' range.
+fn method_warnings(
+    study: &Study,
+    runs: &StudyRuns,
+    results: &[MethodResult],
+    confidence: f64,
+    warn: &mut dyn FnMut(String),
+) {
+    for r in results {
+        if let Some(e) = &r.error {
+            warn(format!("method '{}' gave no statistics: {e}", r.label));
+        }
+        if let Some(f) = &r.failure_region {
+            warn(format!(
+                "method '{}': {} run(s) failed; the region they stand for has probability {:.4} \
+                 ({:.0}% interval [{:.4}, {:.4}]; {}) and its statistics describe the rest of the \
+                 law ({:.2}% of it left out)",
+                r.label,
+                f.failed_runs,
+                f.probability,
+                100.0 * confidence,
+                f.ci_low,
+                f.ci_high,
+                f.basis,
+                100.0 * f.left_out
+            ));
+        }
+    }
+    for (r, m) in results.iter().zip(&runs.methods) {
+        for w in alea_study::draw_range::draw_range_warnings(study, m, r, &runs.records) {
+            warn(w);
+        }
+    }
+}
+
+/// The mean / std fields of the first method with statistics and draws, unless switched off
+/// or the study has no parameter; a failure to write them is a warning (pushed on `notes`).
+fn write_fields(
+    study: &Study,
+    runs: &StudyRuns,
+    dir: &Path,
+    results: &[MethodResult],
+    notes: &mut Vec<String>,
+    console: &dyn Console,
+) -> Option<PathBuf> {
     if study.output.mean_fields.unwrap_or(true)
         && !study.params.names.is_empty()
         && let Some(m) = results
@@ -184,7 +245,7 @@ fn write_files(
                     results[m].label,
                     t0.elapsed().as_secs_f64()
                 ));
-                fields = Some(path);
+                return Some(path);
             }
             Err(e) => {
                 let msg = format!("mean / std fields not written: {e}");
@@ -193,38 +254,64 @@ fn write_files(
             }
         }
     }
-    let mut files = None;
-    if report {
-        let t0 = Instant::now();
-        let mut input = report_input(
-            study,
-            settings,
-            &runs.methods,
-            &results,
-            &runs.records,
-            &notes,
-            &[
-                ("solver set-up".into(), runs.setup_seconds),
-                ("solves".into(), runs.solve_seconds),
-                ("surrogates + Monte Carlo".into(), analysis_seconds),
-                ("stochastic error estimates".into(), estimate_seconds),
-            ],
-        );
-        input.error = report_error(study, runs, &err_settings, &estimates);
-        input.reliability = reliability_report(&reliability);
-        let written = report::write_report(&dir.join("report"), &input)?;
-        // Directories written before 2026-11-28 kept the report's input beside it
-        // (`report-input.json`, as large as every draw): an intermediate nothing reads, removed
-        // when the report is written again.
-        let _ = std::fs::remove_file(dir.join("report").join("report-input.json"));
-        console.line(&format!(
-            "report: {} ({} plots, {:.2} s)",
-            written.html.display(),
-            written.plots.len(),
-            t0.elapsed().as_secs_f64()
-        ));
-        files = Some(written);
-    }
+    None
+}
+
+/// What the report is written from, besides the study and its runs.
+struct ReportParts<'a> {
+    results: &'a [MethodResult],
+    reliability: &'a [ReliabilityResult],
+    err_settings: &'a ErrorSettings,
+    estimates: &'a [MethodEstimate],
+    /// Seconds of the surrogates and Monte Carlo.
+    analysis_seconds: f64,
+    /// Seconds of the stochastic error estimates.
+    estimate_seconds: f64,
+}
+
+/// The HTML report and its plots in `dir/report`.
+fn write_report_files(
+    study: &Study,
+    runs: &StudyRuns,
+    dir: &Path,
+    settings: &AnalysisSettings,
+    parts: &ReportParts,
+    notes: &[String],
+    console: &dyn Console,
+) -> Result<ReportFiles, Error> {
+    let t0 = Instant::now();
+    let mut input = report_input(
+        study,
+        settings,
+        &runs.methods,
+        parts.results,
+        &runs.records,
+        notes,
+        &[
+            ("solver set-up".into(), runs.setup_seconds),
+            ("solves".into(), runs.solve_seconds),
+            ("surrogates + Monte Carlo".into(), parts.analysis_seconds),
+            ("stochastic error estimates".into(), parts.estimate_seconds),
+        ],
+    );
+    input.error = report_error(study, runs, parts.err_settings, parts.estimates);
+    input.reliability = reliability_report(parts.reliability);
+    let written = report::write_report(&dir.join("report"), &input)?;
+    // Directories written before 2026-11-28 kept the report's input beside it
+    // (`report-input.json`, as large as every draw): an intermediate nothing reads, removed
+    // when the report is written again.
+    let _ = std::fs::remove_file(dir.join("report").join("report-input.json"));
+    console.line(&format!(
+        "report: {} ({} plots, {:.2} s)",
+        written.html.display(),
+        written.plots.len(),
+        t0.elapsed().as_secs_f64()
+    ));
+    Ok(written)
+}
+
+/// [`StudyError::Failed`] if no run converged or no method produced statistics.
+fn check_produced(runs: &StudyRuns, results: &[MethodResult]) -> Result<(), Error> {
     if !runs.records.iter().any(|r| r.converged()) {
         return Err(StudyError::Failed(format!(
             "no run converged ({} run(s); see summary.json for their status and error indicators): \
@@ -239,12 +326,5 @@ fn write_files(
         )
         .into());
     }
-    Ok(Outputs {
-        summary,
-        samples,
-        fields,
-        error_fields: estimates.iter().find_map(|e| e.vtu.clone()),
-        report: files,
-        notes,
-    })
+    Ok(())
 }

@@ -274,20 +274,8 @@ pub fn corrected(
         to_std(se_var_runs),
     ));
 
-    // Quantiles, by the corrected cdf. The upper end of the interval of the atom's share at 0
-    // (runs within the solver's tolerance of 0, relative to the largest run).
-    let atom_upper = sample.nonnegative.then(|| {
-        let top = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let at_zero: Vec<f64> = y
-            .iter()
-            .map(|v| f64::from(u8::from(v.abs() <= ZERO_TOLERANCE * top)))
-            .collect();
-        if at_zero.iter().any(|&z| z > 0.0) {
-            alea_uq::stats::failure_probability(&at_zero, 0.5, confidence).upper
-        } else {
-            0.0
-        }
-    });
+    // Quantiles, by the corrected cdf.
+    let atom_upper = atom_share_upper(y, sample.nonnegative, confidence);
     let mut sorted = draws.to_vec();
     sorted.sort_by(f64::total_cmp);
     let cdf = CorrectedCdf::new(&sorted, y, s);
@@ -341,6 +329,24 @@ pub fn corrected(
         ));
     }
     Some(out)
+}
+
+/// For a quantity that cannot be negative (`nonnegative`), the upper end of the interval of
+/// the atom's share at 0 among the model's values `y` at the validation runs (runs within the
+/// solver's tolerance of 0, relative to the largest run); `None` otherwise.
+fn atom_share_upper(y: &[f64], nonnegative: bool, confidence: f64) -> Option<f64> {
+    nonnegative.then(|| {
+        let top = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let at_zero: Vec<f64> = y
+            .iter()
+            .map(|v| f64::from(u8::from(v.abs() <= ZERO_TOLERANCE * top)))
+            .collect();
+        if at_zero.iter().any(|&z| z > 0.0) {
+            alea_uq::stats::failure_probability(&at_zero, 0.5, confidence).upper
+        } else {
+            0.0
+        }
+    })
 }
 
 /// Mean and unbiased variance (`0` for fewer than 2 values).

@@ -4,14 +4,20 @@
 
 //!
 //! - [`parametric`]: the built model and how the parameters enter it;
-//! - [`mesh`]: the mesh generators' dispatch and the input hash;
-//! - [`model`]: substructures, loads and interfaces of a model file;
+//! - [`mesh`]: the mesh generators' parameters and dispatch (`mesh/generators.rs`), the split
+//!   and the input hash;
+//! - [`model`]: substructures, loads and LATIN options of a model file, assembled into the
+//!   built model;
+//! - [`interfaces`]: the interfaces of a model file;
+//! - [`values`]: checked numbers, vectors and expressions of a model file;
 //! - [`checks`]: consistency checks of the built interfaces.
 
 mod checks;
+mod interfaces;
 mod mesh;
 mod model;
 mod parametric;
+mod values;
 
 pub use mesh::{build_mesh, input_files, input_hash};
 pub use model::build_model;

@@ -1,81 +1,23 @@
-//! Substructure models with their constraints and load cases, interfaces and LATIN options of
-//! a model file.
+//! Substructure models with their constraints and load cases, and LATIN options of a model
+//! file, assembled with its interfaces (`interfaces.rs`) into the built model.
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::{
-    Assembly, InterfaceSpec, LatinOptions, LinearStage, Pairing, SearchDirection, Substructure,
-};
-use toml::Spanned;
+use alea_latin::{Assembly, LatinOptions, LinearStage, SearchDirection, Substructure};
+use alea_mesh::Mesh;
 
 use super::checks::check_interfaces;
+use super::interfaces::build_interfaces;
 use super::mesh::build_mesh;
-use super::parametric::{BuiltModel, InterfaceSite, Parametric};
+use super::parametric::{BuiltModel, Parametric};
+use super::values::{compile, field_place, finite, positive, vec3};
 use crate::expr::Expr;
 use crate::params::ParamSpace;
 use crate::random_field::FieldDomain;
-use crate::spec::{LoadSpec, ModelFile, NumOrExpr};
+use crate::spec::{LoadSpec, ModelFile, SubstructureSpec};
 use crate::{Source, StudyError};
 
-/// Compiles a number-or-expression against `vars`.
-fn compile(
-    src: &Source,
-    v: &Spanned<NumOrExpr>,
-    vars: &[&str],
-    field: &str,
-) -> Result<Expr, StudyError> {
-    match v.get_ref() {
-        NumOrExpr::Num(x) => {
-            if !x.is_finite() {
-                return Err(src.error(v.span(), field, format!("must be finite, got {x}")));
-            }
-            Ok(Expr::constant(*x))
-        }
-        NumOrExpr::Expr(t) => Expr::parse(t, vars).map_err(|e| {
-            let t = crate::expr::abbreviate(t);
-            src.error(v.span(), field, format!("expression '{t}': {e}"))
-        }),
-    }
-}
-
-fn positive(src: &Source, v: &Spanned<f64>, field: &str) -> Result<f64, StudyError> {
-    let x = *v.get_ref();
-    if !(x.is_finite() && x > 0.0) {
-        return Err(src.error(
-            v.span(),
-            field,
-            format!("must be a finite number > 0, got {x}"),
-        ));
-    }
-    Ok(x)
-}
-
-fn finite(src: &Source, v: &Spanned<f64>, field: &str) -> Result<f64, StudyError> {
-    let x = *v.get_ref();
-    if !x.is_finite() {
-        return Err(src.error(v.span(), field, format!("must be finite, got {x}")));
-    }
-    Ok(x)
-}
-
-fn vec3(
-    src: &Source,
-    v: &Spanned<Vec<f64>>,
-    dim: usize,
-    field: &str,
-) -> Result<[f64; 3], StudyError> {
-    let a = v.get_ref();
-    if a.len() != dim || a.iter().any(|x| !x.is_finite()) {
-        return Err(src.error(
-            v.span(),
-            field,
-            format!("expected {dim} finite components, got {a:?}"),
-        ));
-    }
-    let mut o = [0.0; 3];
-    o[..dim].copy_from_slice(a);
-    Ok(o)
-}
-
+/// The force vector of load `l` on `model` (exactly one kind of load; `field` names it in
+/// errors).
 fn build_load(
     src: &Source,
     model: &Model,
@@ -151,15 +93,34 @@ fn build_load(
     Ok(loads.f)
 }
 
-/// Where a field lives, in words (for the errors of expressions that use it elsewhere).
-fn field_place(file: &ModelFile, domain: FieldDomain) -> String {
-    match domain {
-        FieldDomain::Interface(k) => format!("on interface '{}'", file.interface[k].name.get_ref()),
-        FieldDomain::Substructure(k) => format!(
-            "over the cells of substructure '{}'",
-            file.substructure[k].name.get_ref()
-        ),
-    }
+/// The names of the variables of a model file's expressions, in slot order.
+struct ModelVars<'a> {
+    /// The parameters (load factors).
+    params: Vec<&'a str>,
+    /// `young`'s: the parameters, then every field (only those over the substructure's own
+    /// cells may be used).
+    young: Vec<&'a str>,
+    /// The interface profiles' (`mu`, `gap`): the parameters, `x, y, z`, the defines, then
+    /// every field.
+    profile: Vec<&'a str>,
+}
+
+/// What the substructures of a model file build: the substructures and, per substructure, how
+/// the parameters enter it.
+struct BuiltSubstructures {
+    subs: Vec<Substructure>,
+    /// Their names, in order.
+    names: Vec<String>,
+    /// The names of each one's load cases.
+    load_names: Vec<Vec<String>>,
+    /// Each one's Young's modulus expression.
+    young: Vec<Expr>,
+    /// The fields each one's `young` uses.
+    young_fields: Vec<Vec<usize>>,
+    /// Each one's modulus at the nominal point.
+    young_nominal: Vec<f64>,
+    /// The factor of each load case of each one.
+    load_factors: Vec<Vec<Expr>>,
 }
 
 /// Builds meshes, models, constraints, loads and interfaces of a model file; parameters enter
@@ -169,6 +130,64 @@ pub fn build_model(
     file: &ModelFile,
     params: &ParamSpace,
 ) -> Result<BuiltModel, StudyError> {
+    let (vars, defines) = model_vars(src, file, params)?;
+    let mesh = build_mesh(src, &file.mesh)?;
+    let analysis = analysis_of(src, file, mesh.dim)?;
+    if file.substructure.is_empty() {
+        return Err(src.error(
+            0..0,
+            "substructure",
+            "at least one [[substructure]] is needed",
+        ));
+    }
+    let built_subs = build_substructures(src, file, params, &vars, &mesh, analysis)?;
+    let mut parametric = Parametric {
+        nparams: params.names.len(),
+        young: built_subs.young,
+        young_nominal: built_subs.young_nominal,
+        young_fields: built_subs.young_fields,
+        load_factors: built_subs.load_factors,
+        mu: Vec::new(),
+        gap: Vec::new(),
+        defines,
+        fields: params.fields.clone(),
+    };
+    let subs = built_subs.subs;
+    let names = built_subs.names;
+    let (interfaces, interface_sites) = build_interfaces(
+        src,
+        file,
+        params,
+        &vars.profile,
+        &names,
+        &subs,
+        &mut parametric,
+    )?;
+    let sv = &file.solver;
+    let options = latin_options(src, sv)?;
+    let assembly = Assembly { subs, interfaces };
+    let repairing = repairing_settings(src, sv, &assembly)?;
+    let built = BuiltModel {
+        mesh,
+        assembly,
+        load_names: built_subs.load_names,
+        options,
+        repairing,
+        units: file.units.clone(),
+        parametric,
+        interface_sites,
+    };
+    check_interfaces(src, &file.interface, &built)?;
+    Ok(built)
+}
+
+/// The variables of the model's expressions and the compiled `[[define]]`s (each a new name,
+/// an expression of the parameters, `x, y, z` and the defines before it).
+fn model_vars<'a>(
+    src: &Source,
+    file: &'a ModelFile,
+    params: &'a ParamSpace,
+) -> Result<(ModelVars<'a>, Vec<Expr>), StudyError> {
     let pvars: Vec<&str> = params.names.iter().map(|s| s.as_str()).collect();
     let mut profile_vars: Vec<&str> = pvars.clone();
     profile_vars.extend(["x", "y", "z"]);
@@ -190,15 +209,19 @@ pub fn build_model(
         defines.push(e);
     }
     profile_vars.extend(params.fields.iter().map(|f| f.name.as_str()));
-    // `young`: the parameters, then every field (only those over the substructure's own cells
-    // may be used, checked below).
     let mut young_vars: Vec<&str> = pvars.clone();
     young_vars.extend(params.fields.iter().map(|f| f.name.as_str()));
-    let mut young_e = Vec::new();
-    let mut young_fields = Vec::new();
-    let mut young_nominal = Vec::new();
-    let mut load_factors = Vec::new();
-    let mesh = build_mesh(src, &file.mesh)?;
+    let vars = ModelVars {
+        params: pvars,
+        young: young_vars,
+        profile: profile_vars,
+    };
+    Ok((vars, defines))
+}
+
+/// The `[analysis]` of the model file (type and thickness), which must fit the mesh's
+/// dimension `dim`.
+fn analysis_of(src: &Source, file: &ModelFile, dim: usize) -> Result<Analysis, StudyError> {
     let th = file
         .analysis
         .thickness
@@ -218,87 +241,56 @@ pub fn build_model(
             ));
         }
     };
-    if analysis.dim() != mesh.dim {
+    if analysis.dim() != dim {
         return Err(src.error(
             file.analysis.kind.span(),
             "analysis.type",
             format!(
                 "a {}D analysis does not fit the {}D mesh",
                 analysis.dim(),
-                mesh.dim
+                dim
             ),
         ));
     }
-    if file.substructure.is_empty() {
-        return Err(src.error(
-            0..0,
-            "substructure",
-            "at least one [[substructure]] is needed",
-        ));
-    }
-    let mut subs = Vec::new();
-    let mut load_names = Vec::new();
-    let mut names: Vec<String> = Vec::new();
+    Ok(analysis)
+}
+
+/// Builds every `[[substructure]]` (distinct names, modulus, material, cells, constraints and
+/// load cases) at the nominal point.
+fn build_substructures(
+    src: &Source,
+    file: &ModelFile,
+    params: &ParamSpace,
+    vars: &ModelVars,
+    mesh: &Mesh,
+    analysis: Analysis,
+) -> Result<BuiltSubstructures, StudyError> {
+    let mut out = BuiltSubstructures {
+        subs: Vec::new(),
+        names: Vec::new(),
+        load_names: Vec::new(),
+        young: Vec::new(),
+        young_fields: Vec::new(),
+        young_nominal: Vec::new(),
+        load_factors: Vec::new(),
+    };
     for (i, s) in file.substructure.iter().enumerate() {
         let f = |k: &str| format!("substructure[{i}].{k}");
         let name = s.name.get_ref().clone();
-        if names.contains(&name) {
+        if out.names.contains(&name) {
             return Err(src.error(
                 s.name.span(),
                 f("name"),
                 format!("duplicate substructure name '{name}'"),
             ));
         }
-        names.push(name.clone());
-        let ye = compile(src, &s.young, &young_vars, &f("young"))?;
-        let mut used = Vec::new();
-        for (j, fld) in params.fields.iter().enumerate() {
-            if !ye.uses(pvars.len() + j) {
-                continue;
-            }
-            if fld.domain != FieldDomain::Substructure(i) {
-                let place = field_place(file, fld.domain);
-                return Err(src.error(
-                    s.young.span(),
-                    f("young"),
-                    format!(
-                        "field '{}' lives {place}, not over the cells of '{name}'",
-                        fld.name
-                    ),
-                ));
-            }
-            used.push(j);
-        }
-        // The reference modulus: the parameters' nominal values, each field at its nominal
-        // value (all KL variables 0: the transform of the Gaussian mean, the same at every node).
-        let mut nominal = params.nominal.clone();
-        for fld in params.fields.iter() {
-            nominal.push(
-                fld.at_nodes(&params.nominal)
-                    .first()
-                    .copied()
-                    .unwrap_or(0.0),
-            );
-        }
-        let young = ye.eval(&nominal);
-        young_e.push(ye);
-        young_fields.push(used);
-        young_nominal.push(young);
-        let poisson = *s.poisson.get_ref();
-        let density = s.density.as_ref().map_or(0.0, |d| *d.get_ref());
-        let material = Material::new(young, poisson, density).map_err(|e| {
-            let (span, field) = if !(young.is_finite() && young > 0.0) {
-                (s.young.span(), f("young"))
-            } else if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
-                (s.poisson.span(), f("poisson"))
-            } else {
-                (
-                    s.density.as_ref().map_or(s.name.span(), |d| d.span()),
-                    f("density"),
-                )
-            };
-            src.error(span, field, e.to_string())
-        })?;
+        out.names.push(name.clone());
+        let (ye, used) = young_expression(src, file, params, vars, i, s, &name)?;
+        let young = ye.eval(&nominal_with_fields(params));
+        out.young.push(ye);
+        out.young_fields.push(used);
+        out.young_nominal.push(young);
+        let material = material_of(src, i, s, young)?;
         let sub_mesh = match &s.cells {
             Some(c) => {
                 mesh.extract(&[c.get_ref().as_str()])
@@ -310,208 +302,165 @@ pub fn build_model(
         let mut model = Model::new(sub_mesh, analysis)
             .map_err(|e| src.error(s.name.span(), f("name"), e.to_string()))?;
         model.set_material_all(material);
-        let mut cons = Constraints::new();
-        for (j, c) in s.constraint.iter().enumerate() {
-            let cf = |k: &str| format!("substructure[{i}].constraint[{j}].{k}");
-            let g = c.group.get_ref().as_str();
-            let ge = |e: alea_fem::FemError| src.error(c.group.span(), cf("group"), e.to_string());
-            let mut any = false;
-            for (comp, v) in [&c.x, &c.y, &c.z].into_iter().enumerate() {
-                if let Some(v) = v {
-                    let val = finite(src, v, &cf(["x", "y", "z"][comp]))?;
-                    if comp >= model.mesh.dim {
-                        return Err(src.error(v.span(), cf("z"), "no z component in a 2D model"));
-                    }
-                    cons.fix_component(&model.mesh, g, comp, val).map_err(ge)?;
-                    any = true;
-                }
-            }
-            if let Some(v) = &c.normal {
-                let val = finite(src, v, &cf("normal"))?;
-                cons.fix_normal(&model.mesh, g, val).map_err(ge)?;
-                any = true;
-            }
-            if !any {
-                return Err(src.error(
-                    c.group.span(),
-                    cf("group"),
-                    "constraint imposes nothing; give x, y, z and/or normal",
-                ));
-            }
-        }
-        let mut cases = Vec::new();
-        let mut lnames = Vec::new();
-        let mut factors = Vec::new();
-        for (j, l) in s.load.iter().enumerate() {
-            let field = format!("substructure[{i}].load[{j}]");
-            cases.push(build_load(src, &model, l, &field)?);
-            lnames.push(
-                l.name
-                    .as_ref()
-                    .map_or(String::new(), |n| n.get_ref().clone()),
-            );
-            factors.push(match &l.factor {
-                Some(fe) => compile(src, fe, &pvars, &format!("{field}.factor"))?,
-                None => Expr::constant(1.0),
-            });
-        }
-        load_factors.push(factors);
-        subs.push(Substructure {
+        let cons = constraints_of(src, i, s, &model)?;
+        let (cases, lnames, factors) = load_cases_of(src, i, s, &model, &vars.params)?;
+        out.load_factors.push(factors);
+        out.subs.push(Substructure {
             name,
             model,
             constraints: cons,
             load_cases: cases,
         });
-        load_names.push(lnames);
+        out.load_names.push(lnames);
     }
-    let mut parametric = Parametric {
-        nparams: params.names.len(),
-        young: young_e,
-        young_nominal,
-        young_fields,
-        load_factors,
-        mu: Vec::new(),
-        gap: Vec::new(),
-        defines,
-        fields: params.fields.clone(),
-    };
-    let mut interfaces = Vec::new();
-    let mut interface_sites = Vec::new();
-    for (i, it) in file.interface.iter().enumerate() {
-        let f = |k: &str| format!("interface[{i}].{k}");
-        let side = |v: &Spanned<[String; 2]>, key: &str| -> Result<(usize, String), StudyError> {
-            let [sub, group] = v.get_ref();
-            let idx = names.iter().position(|n| n == sub).ok_or_else(|| {
-                src.error(
-                    v.span(),
-                    f(key),
-                    format!(
-                        "unknown substructure '{sub}'; defined: {}",
-                        names.join(", ")
-                    ),
-                )
-            })?;
-            if subs[idx].model.mesh.facet_group(group).is_err() {
-                let avail: Vec<&String> = subs[idx].model.mesh.facet_groups.keys().collect();
-                return Err(src.error(
-                    v.span(),
-                    f(key),
-                    format!("substructure '{sub}' has no facet group '{group}'; it has: {avail:?}"),
-                ));
-            }
-            Ok((idx, group.clone()))
+    Ok(out)
+}
+
+/// Substructure `i`'s compiled `young` and the fields it uses (each must live over that
+/// substructure's cells).
+fn young_expression(
+    src: &Source,
+    file: &ModelFile,
+    params: &ParamSpace,
+    vars: &ModelVars,
+    i: usize,
+    s: &SubstructureSpec,
+    name: &str,
+) -> Result<(Expr, Vec<usize>), StudyError> {
+    let f = |k: &str| format!("substructure[{i}].{k}");
+    let ye = compile(src, &s.young, &vars.young, &f("young"))?;
+    let mut used = Vec::new();
+    for (j, fld) in params.fields.iter().enumerate() {
+        if !ye.uses(vars.params.len() + j) {
+            continue;
+        }
+        if fld.domain != FieldDomain::Substructure(i) {
+            let place = field_place(file, fld.domain);
+            return Err(src.error(
+                s.young.span(),
+                f("young"),
+                format!(
+                    "field '{}' lives {place}, not over the cells of '{name}'",
+                    fld.name
+                ),
+            ));
+        }
+        used.push(j);
+    }
+    Ok((ye, used))
+}
+
+/// The reference point of the modulus: the parameters' nominal values, each field at its
+/// nominal value (all KL variables 0: the transform of the Gaussian mean, the same at every
+/// node).
+fn nominal_with_fields(params: &ParamSpace) -> Vec<f64> {
+    let mut nominal = params.nominal.clone();
+    for fld in params.fields.iter() {
+        nominal.push(
+            fld.at_nodes(&params.nominal)
+                .first()
+                .copied()
+                .unwrap_or(0.0),
+        );
+    }
+    nominal
+}
+
+/// Substructure `i`'s material with modulus `young` (the error points at the value at fault).
+fn material_of(
+    src: &Source,
+    i: usize,
+    s: &SubstructureSpec,
+    young: f64,
+) -> Result<Material, StudyError> {
+    let f = |k: &str| format!("substructure[{i}].{k}");
+    let poisson = *s.poisson.get_ref();
+    let density = s.density.as_ref().map_or(0.0, |d| *d.get_ref());
+    Material::new(young, poisson, density).map_err(|e| {
+        let (span, field) = if !(young.is_finite() && young > 0.0) {
+            (s.young.span(), f("young"))
+        } else if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
+            (s.poisson.span(), f("poisson"))
+        } else {
+            (
+                s.density.as_ref().map_or(s.name.span(), |d| d.span()),
+                f("density"),
+            )
         };
-        let (s1, g1) = side(&it.side1, "side1")?;
-        let (s2, g2) = side(&it.side2, "side2")?;
-        let name = it.name.get_ref();
-        let mut spec = match it.law.get_ref().as_str() {
-            "perfect" => InterfaceSpec::perfect(name, s1, &g1, s2, &g2),
-            "coulomb" => InterfaceSpec::coulomb(name, s1, &g1, s2, &g2, 0.0),
-            other => {
-                return Err(src.error(
-                    it.law.span(),
-                    f("law"),
-                    format!("unknown law '{other}'; expected perfect or coulomb"),
-                ));
-            }
-        };
-        let mu = match &it.mu {
-            Some(m) => {
-                if let NumOrExpr::Num(v) = m.get_ref()
-                    && !(v.is_finite() && *v >= 0.0)
-                {
-                    return Err(src.error(
-                        m.span(),
-                        f("mu"),
-                        format!("friction coefficient must be finite and >= 0, got {v}"),
-                    ));
+        src.error(span, field, e.to_string())
+    })
+}
+
+/// Substructure `i`'s constraints on `model` (each imposes a component or the normal).
+fn constraints_of(
+    src: &Source,
+    i: usize,
+    s: &SubstructureSpec,
+    model: &Model,
+) -> Result<Constraints, StudyError> {
+    let mut cons = Constraints::new();
+    for (j, c) in s.constraint.iter().enumerate() {
+        let cf = |k: &str| format!("substructure[{i}].constraint[{j}].{k}");
+        let g = c.group.get_ref().as_str();
+        let ge = |e: alea_fem::FemError| src.error(c.group.span(), cf("group"), e.to_string());
+        let mut any = false;
+        for (comp, v) in [&c.x, &c.y, &c.z].into_iter().enumerate() {
+            if let Some(v) = v {
+                let val = finite(src, v, &cf(["x", "y", "z"][comp]))?;
+                if comp >= model.mesh.dim {
+                    return Err(src.error(v.span(), cf("z"), "no z component in a 2D model"));
                 }
-                compile(src, m, &profile_vars, &f("mu"))?
-            }
-            None => Expr::constant(0.0),
-        };
-        let gap = match &it.gap {
-            Some(g) => compile(src, g, &profile_vars, &f("gap"))?,
-            None => Expr::constant(0.0),
-        };
-        let first_field = profile_vars.len() - params.fields.len();
-        for (j, fld) in params.fields.iter().enumerate() {
-            for (e, key, v) in [(&mu, "mu", &it.mu), (&gap, "gap", &it.gap)] {
-                if fld.domain != FieldDomain::Interface(i) && e.uses(first_field + j) {
-                    let place = field_place(file, fld.domain);
-                    return Err(src.error(
-                        v.as_ref().map_or(it.name.span(), |v| v.span()),
-                        f(key),
-                        format!("field '{}' lives {place}, not on '{name}'", fld.name),
-                    ));
-                }
+                cons.fix_component(&model.mesh, g, comp, val).map_err(ge)?;
+                any = true;
             }
         }
-        if let Some(p) = &it.pairing {
-            spec.pairing = match p.get_ref().as_str() {
-                "auto" => Pairing::Auto,
-                "node" => Pairing::NodeToNode,
-                "mortar" => Pairing::Mortar,
-                other => {
-                    return Err(src.error(
-                        p.span(),
-                        f("pairing"),
-                        format!("unknown pairing '{other}'; expected auto, node or mortar"),
-                    ));
-                }
-            };
+        if let Some(v) = &c.normal {
+            let val = finite(src, v, &cf("normal"))?;
+            cons.fix_normal(&model.mesh, g, val).map_err(ge)?;
+            any = true;
         }
-        if let Some(sl) = &it.sliding {
-            spec.sliding = match sl.get_ref().as_str() {
-                "small" => alea_latin::Sliding::Small,
-                "large" if spec.law.uses_gap() => alea_latin::Sliding::Large,
-                "large" => {
-                    return Err(src.error(
-                        sl.span(),
-                        f("sliding"),
-                        "large sliding applies to contact interfaces (law = \"coulomb\"); a perfect interface keeps its pairing".to_string(),
-                    ));
-                }
-                other => {
-                    return Err(src.error(
-                        sl.span(),
-                        f("sliding"),
-                        format!("unknown sliding '{other}'; expected small or large"),
-                    ));
-                }
-            };
+        if !any {
+            return Err(src.error(
+                c.group.span(),
+                cf("group"),
+                "constraint imposes nothing; give x, y, z and/or normal",
+            ));
         }
-        if let Some(t) = &it.tolerance {
-            spec.match_tolerance = Some(positive(src, t, &f("tolerance"))?);
-        }
-        if let Some(d) = &it.search_distance {
-            let v = *d.get_ref();
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(src.error(
-                    d.span(),
-                    f("search_distance"),
-                    format!("must be finite and >= 0, got {v}"),
-                ));
-            }
-            spec.search_distance = Some(v);
-        }
-        let side2_line = src.line_of(it.side2.span().start);
-        let line_or =
-            |v: Option<std::ops::Range<usize>>| v.map_or(side2_line, |r| src.line_of(r.start));
-        interface_sites.push(InterfaceSite {
-            file: src.path.clone(),
-            side2: side2_line,
-            tolerance: line_or(it.tolerance.as_ref().map(|t| t.span())),
-            search_distance: line_or(it.search_distance.as_ref().map(|t| t.span())),
-            sliding: line_or(it.sliding.as_ref().map(|t| t.span())),
+    }
+    Ok(cons)
+}
+
+/// The load cases of substructure `i` on `model`: force vectors, names and factors
+/// (expressions of the parameters `pvars`).
+#[allow(clippy::type_complexity)]
+fn load_cases_of(
+    src: &Source,
+    i: usize,
+    s: &SubstructureSpec,
+    model: &Model,
+    pvars: &[&str],
+) -> Result<(Vec<Vec<f64>>, Vec<String>, Vec<Expr>), StudyError> {
+    let mut cases = Vec::new();
+    let mut lnames = Vec::new();
+    let mut factors = Vec::new();
+    for (j, l) in s.load.iter().enumerate() {
+        let field = format!("substructure[{i}].load[{j}]");
+        cases.push(build_load(src, model, l, &field)?);
+        lnames.push(
+            l.name
+                .as_ref()
+                .map_or(String::new(), |n| n.get_ref().clone()),
+        );
+        factors.push(match &l.factor {
+            Some(fe) => compile(src, fe, pvars, &format!("{field}.factor"))?,
+            None => Expr::constant(1.0),
         });
-        spec.mu = parametric.profile(&mu, &params.nominal);
-        spec.gap = parametric.profile(&gap, &params.nominal);
-        parametric.mu.push(mu);
-        parametric.gap.push(gap);
-        interfaces.push(spec);
     }
-    let sv = &file.solver;
+    Ok((cases, lnames, factors))
+}
+
+/// The LATIN options of the `[solver]` table (the defaults where a key is absent).
+fn latin_options(src: &Source, sv: &crate::spec::SolverSpec) -> Result<LatinOptions, StudyError> {
     let mut options = LatinOptions::default();
     if let Some(t) = &sv.tolerance {
         options.tolerance = positive(src, t, "solver.tolerance")?;
@@ -571,20 +520,7 @@ pub fn build_model(
             options.search_direction = SearchDirection::Split { factor, tangential };
         }
     }
-    let assembly = Assembly { subs, interfaces };
-    let repairing = repairing_settings(src, sv, &assembly)?;
-    let built = BuiltModel {
-        mesh,
-        assembly,
-        load_names,
-        options,
-        repairing,
-        units: file.units.clone(),
-        parametric,
-        interface_sites,
-    };
-    check_interfaces(src, &file.interface, &built)?;
-    Ok(built)
+    Ok(options)
 }
 
 /// The `[solver]` settings of large sliding (`alea_latin::large_sliding::Repairing`):

@@ -333,15 +333,7 @@ impl BatchExecutor for MpiExecutor {
         }
         st.batches += 1;
         if st.log.is_none() {
-            let path = ctx.dir.join("mpi-dispatch.log");
-            let file = std::fs::OpenOptions::new()
-                .create(true)
-                .append(true)
-                .open(&path)
-                .map_err(|source| StudyError::Io { path, source })?;
-            let mut w = std::io::BufWriter::new(file);
-            let _ = writeln!(w, "# job of {} ranks: batch, rank <- run", inner.size);
-            st.log = Some(w);
+            st.log = Some(open_dispatch_log(ctx.dir, inner.size)?);
         }
         let size = inner.size;
         // The runs go out in the groups the local executor solves together (consecutive runs,
@@ -372,43 +364,6 @@ impl BatchExecutor for MpiExecutor {
                 s.spawn(move || solver_thread(ctx, rx, tx));
             }
             drop(res_tx);
-            let handle = |r: usize,
-                          id: u64,
-                          out: Result<RunOutcome, String>,
-                          inflight: &mut Vec<Vec<(u64, usize)>>,
-                          left: &mut Vec<usize>,
-                          groups_out: &mut Vec<usize>,
-                          first_err: &mut Option<StudyError>,
-                          stats: &mut Stats|
-             -> Result<(), StudyError> {
-                let k = inflight[r]
-                    .iter()
-                    .position(|&(x, _)| x == id)
-                    .ok_or_else(|| {
-                        StudyError::Mpi(format!("rank {r} returned a run it was not given"))
-                    })?;
-                let (_, i) = inflight[r].swap_remove(k);
-                let g = i / RUNS_PER_BATCH;
-                left[g] -= 1;
-                if left[g] == 0 {
-                    groups_out[r] -= 1;
-                }
-                match out {
-                    Ok(o) => {
-                        if o.rec.params != jobs[i].theta {
-                            return Err(fail(r, i, "its result is for another point"));
-                        }
-                        stats.runs[r] += 1;
-                        if let Err(e) = commit(vec![o]) {
-                            first_err.get_or_insert(e);
-                        }
-                    }
-                    Err(why) => {
-                        first_err.get_or_insert(fail(r, i, &why));
-                    }
-                }
-                Ok(())
-            };
             let mut nap = Nap::new();
             let result = loop {
                 // Hand out work: other ranks first, rank 0 (which also commits) last.
@@ -471,7 +426,12 @@ impl BatchExecutor for MpiExecutor {
                     done.push((0, id, out));
                 }
                 for (r, id, out) in done {
-                    handle(
+                    let back = Back {
+                        jobs,
+                        commit,
+                        fail: &fail,
+                    };
+                    back.handle(
                         r,
                         id,
                         out,
@@ -494,6 +454,77 @@ impl BatchExecutor for MpiExecutor {
             Some(e) => Err(e),
             None => Ok(()),
         }
+    }
+}
+
+/// The dispatch log of the study directory `dir` (`mpi-dispatch.log`, appended to), its
+/// header line written for a job of `size` ranks.
+fn open_dispatch_log(
+    dir: &Path,
+    size: usize,
+) -> Result<std::io::BufWriter<std::fs::File>, StudyError> {
+    let path = dir.join("mpi-dispatch.log");
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&path)
+        .map_err(|source| StudyError::Io { path, source })?;
+    let mut w = std::io::BufWriter::new(file);
+    let _ = writeln!(w, "# job of {size} ranks: batch, rank <- run");
+    Ok(w)
+}
+
+/// What a result coming back from a rank is checked against and committed with.
+struct Back<'a> {
+    /// The jobs of the `execute` call.
+    jobs: &'a [RunJob],
+    /// Commits finished runs.
+    commit: &'a (dyn Fn(Vec<RunOutcome>) -> Result<(), StudyError> + Sync),
+    /// The error of rank `r` failing on job `i`.
+    fail: &'a dyn Fn(usize, usize, &str) -> StudyError,
+}
+
+impl Back<'_> {
+    /// Takes the result `out` of job `id` back from rank `r`: off its in-flight list, its group
+    /// counted, committed (or its error kept as the first one).
+    #[allow(clippy::too_many_arguments)]
+    fn handle(
+        &self,
+        r: usize,
+        id: u64,
+        out: Result<RunOutcome, String>,
+        inflight: &mut [Vec<(u64, usize)>],
+        left: &mut [usize],
+        groups_out: &mut [usize],
+        first_err: &mut Option<StudyError>,
+        stats: &mut Stats,
+    ) -> Result<(), StudyError> {
+        let (jobs, fail) = (self.jobs, self.fail);
+        let k = inflight[r]
+            .iter()
+            .position(|&(x, _)| x == id)
+            .ok_or_else(|| StudyError::Mpi(format!("rank {r} returned a run it was not given")))?;
+        let (_, i) = inflight[r].swap_remove(k);
+        let g = i / RUNS_PER_BATCH;
+        left[g] -= 1;
+        if left[g] == 0 {
+            groups_out[r] -= 1;
+        }
+        match out {
+            Ok(o) => {
+                if o.rec.params != jobs[i].theta {
+                    return Err(fail(r, i, "its result is for another point"));
+                }
+                stats.runs[r] += 1;
+                if let Err(e) = (self.commit)(vec![o]) {
+                    first_err.get_or_insert(e);
+                }
+            }
+            Err(why) => {
+                first_err.get_or_insert(fail(r, i, &why));
+            }
+        }
+        Ok(())
     }
 }
 

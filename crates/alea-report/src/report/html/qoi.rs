@@ -8,6 +8,8 @@ use super::super::{Comparison, QoiReport, ReliabilityReport, failure_statistic};
 use super::figures::{put_figure, with_unit};
 use super::interval::{Style, estimate, total, with_total};
 
+/// The section of quantity `k`: what it is, its statistics, quantiles, failure probabilities,
+/// error budget, Sobol' indices and figures.
 pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
     let _ = writeln!(
         o,
@@ -18,13 +20,25 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         let _ = writeln!(o, "<p>{}</p>", esc(&q.what));
     }
     o.push_str("<div class=\"tables\">\n");
-    // Statistics.
-    o.push_str("<div><h3>Statistics</h3><table><tbody>\n");
     let unit = if q.unit.trim().is_empty() {
         String::new()
     } else {
         format!(" {}", esc(&q.unit))
     };
+    statistics_table(o, q, &unit);
+    quantiles_table(o, q, &unit);
+    failure_table(o, q, &unit);
+    o.push_str("</div>\n</div>\n");
+    budget_table(o, q, &unit);
+    sobol_table(o, q);
+    qoi_figures(o, k, q, figures);
+    o.push_str("</section>\n");
+}
+
+/// The statistics (mean, standard deviation with their total intervals, coefficient of
+/// variation, skewness, samples) of a quantity (`unit`: its unit with a leading space).
+fn statistics_table(o: &mut String, q: &QoiReport, unit: &str) {
+    o.push_str("<div><h3>Statistics</h3><table><tbody>\n");
     let row = |o: &mut String, label: &str, value: String| {
         let _ = writeln!(o, "<tr><th>{label}</th><td class=\"n\">{value}</td></tr>");
     };
@@ -52,7 +66,10 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
     row(o, "Skewness", num(q.skewness, 3));
     row(o, "Monte Carlo samples", count(q.samples.len()));
     o.push_str("</tbody></table></div>\n");
-    // Quantiles.
+}
+
+/// The quantiles of a quantity, with their total intervals when any is estimated.
+fn quantiles_table(o: &mut String, q: &QoiReport, unit: &str) {
     o.push_str("<div><h3>Quantiles</h3>");
     if q.quantiles.is_empty() {
         o.push_str("<p class=\"ok-note\">None computed.</p>");
@@ -92,7 +109,10 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         o.push_str("</tbody></table>");
     }
     o.push_str("</div>\n");
-    // Failure.
+}
+
+/// The failure probabilities of a quantity with their total and sampling-only intervals.
+fn failure_table(o: &mut String, q: &QoiReport, unit: &str) {
     o.push_str("<div><h3>Failure probability</h3>");
     if q.failure.is_empty() {
         o.push_str("<p class=\"ok-note\">No threshold given.</p>");
@@ -120,9 +140,10 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
         }
         o.push_str("</tbody></table>");
     }
-    o.push_str("</div>\n</div>\n");
-    budget_table(o, q, &unit);
-    sobol_table(o, q);
+}
+
+/// The figures of quantity `k`: its density, distribution and response surface.
+fn qoi_figures(o: &mut String, k: usize, q: &QoiReport, figures: &[Figure]) {
     put_figure(
         o,
         figures,
@@ -162,7 +183,6 @@ pub(super) fn qoi_section(o: &mut String, k: usize, q: &QoiReport, figures: &[Fi
             ),
         );
     }
-    o.push_str("</section>\n");
 }
 
 /// Sobol' indices of every parameter (KL variables of random fields included).
