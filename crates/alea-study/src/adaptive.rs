@@ -85,6 +85,26 @@ enum Validated {
     Refined(usize),
 }
 
+/// Runs the validation points `vpoints` not in the store yet (announced to the progress first)
+/// and returns the converged runs among them, in order.
+fn run_validation_points<'a>(
+    runner: &mut impl AdaptiveRuns<'a>,
+    vpoints: &[Vec<f64>],
+) -> Result<Vec<RunRecord>, StudyError> {
+    let fresh = vpoints
+        .iter()
+        .filter(|p| !runner.by_key().contains_key(&point_key(p)))
+        .count();
+    runner.announce(fresh);
+    runner.run_points(vpoints)?;
+    Ok(vpoints
+        .iter()
+        .filter_map(|p| runner.by_key().get(&point_key(p)))
+        .filter(|r| r.converged())
+        .cloned()
+        .collect())
+}
+
 /// A goal whose budget is within its tolerance, checked against validation runs of the solver
 /// drawn from the input law independently of `mesh` (round `round`; module `goal_validation`):
 /// they agree (stop: goal reached), or the leaves holding the draws the surrogate gets wrong
@@ -101,17 +121,9 @@ fn validate_goal<'a>(
 ) -> Result<Validated, StudyError> {
     let study = runner.study();
     let vpoints = crate::goal_validation::points(study, *round);
-    let fresh = vpoints
-        .iter()
-        .filter(|p| !runner.by_key().contains_key(&point_key(p)))
-        .count();
-    runner.announce(fresh);
-    runner.run_points(&vpoints)?;
-    let validated: Vec<(Vec<f64>, f64)> = vpoints
-        .iter()
-        .filter_map(|p| runner.by_key().get(&point_key(p)))
-        .filter(|r| r.converged())
-        .map(|r| (r.params.clone(), r.qois[goal.quantity]))
+    let validated: Vec<(Vec<f64>, f64)> = run_validation_points(runner, &vpoints)?
+        .into_iter()
+        .map(|r| (r.params, r.qois[goal.quantity]))
         .collect();
     let value: Vec<f64> = g.records.iter().map(|r| r.value).collect();
     let verdict = crate::goal_validation::check(
@@ -179,17 +191,9 @@ fn validate_target<'a>(
     if vpoints.is_empty() {
         return Ok(Validated::Stop(head.to_string()));
     }
-    let fresh = vpoints
-        .iter()
-        .filter(|p| !runner.by_key().contains_key(&point_key(p)))
-        .count();
-    runner.announce(fresh);
-    runner.run_points(&vpoints)?;
-    let validated: Vec<(Vec<f64>, Vec<f64>)> = vpoints
-        .iter()
-        .filter_map(|p| runner.by_key().get(&point_key(p)))
-        .filter(|r| r.converged())
-        .map(|r| (r.params.clone(), r.qois.clone()))
+    let validated: Vec<(Vec<f64>, Vec<f64>)> = run_validation_points(runner, &vpoints)?
+        .into_iter()
+        .map(|r| (r.params, r.qois))
         .collect();
     let found = vpoints
         .iter()

@@ -160,28 +160,7 @@ impl Store {
         &self,
         write: impl FnOnce(&rusqlite::Transaction<'_>) -> rusqlite::Result<()>,
     ) -> Result<(), StudyError> {
-        let tx = rusqlite::Transaction::new_unchecked(
-            &self.conn,
-            rusqlite::TransactionBehavior::Immediate,
-        )
-        .map_err(db_err(&self.dir))?;
-        let now: Option<String> = tx
-            .query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
-                r.get(0)
-            })
-            .optional()
-            .map_err(db_err(&self.dir))?;
-        if now.as_deref() != Some(self.hash.as_str()) {
-            return Err(StudyError::Busy {
-                dir: self.dir.clone(),
-                holder: format!(
-                    "another study (hash {}, this study {}), started in it by another process; \
-                     this paired solve is not stored",
-                    now.as_deref().unwrap_or("none"),
-                    self.hash
-                ),
-            });
-        }
+        let tx = self.checked_transaction("this paired solve is")?;
         write(&tx).map_err(db_err(&self.dir))?;
         tx.commit().map_err(db_err(&self.dir))
     }

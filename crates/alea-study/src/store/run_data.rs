@@ -6,6 +6,38 @@
 use super::*;
 
 impl Store {
+    /// An immediate write transaction on the store, once the directory is checked to hold this
+    /// study still (no other writer between the check and the rows): `what` names the rows
+    /// refused otherwise ("this run is", "this paired solve is").
+    pub(super) fn checked_transaction(
+        &self,
+        what: &str,
+    ) -> Result<rusqlite::Transaction<'_>, StudyError> {
+        let tx = rusqlite::Transaction::new_unchecked(
+            &self.conn,
+            rusqlite::TransactionBehavior::Immediate,
+        )
+        .map_err(db_err(&self.dir))?;
+        let now: Option<String> = tx
+            .query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
+                r.get(0)
+            })
+            .optional()
+            .map_err(db_err(&self.dir))?;
+        if now.as_deref() != Some(self.hash.as_str()) {
+            return Err(StudyError::Busy {
+                dir: self.dir.clone(),
+                holder: format!(
+                    "another study (hash {}, this study {}), started in it by another process; \
+                     {what} not stored",
+                    now.as_deref().unwrap_or("none"),
+                    self.hash,
+                ),
+            });
+        }
+        Ok(tx)
+    }
+
     /// Commits a finished run: its row, its fields and, if given, its error estimate, in one
     /// transaction.
     ///
@@ -35,33 +67,12 @@ impl Store {
         }
         // One write transaction, taken at once: the study the directory holds is checked and
         // the rows inserted with no other writer in between.
-        let tx = rusqlite::Transaction::new_unchecked(
-            &self.conn,
-            rusqlite::TransactionBehavior::Immediate,
-        )
-        .map_err(db_err(&self.dir))?;
-        let now: Option<String> = tx
-            .query_row("SELECT value FROM meta WHERE key = 'study_hash'", [], |r| {
-                r.get(0)
-            })
-            .optional()
-            .map_err(db_err(&self.dir))?;
-        if now.as_deref() != Some(self.hash.as_str()) {
-            return Err(StudyError::Busy {
-                dir: self.dir.clone(),
-                holder: format!(
-                    "another study (hash {}, this study {}), started in it by another process; \
-                     {} not stored",
-                    now.as_deref().unwrap_or("none"),
-                    self.hash,
-                    if runs.len() == 1 {
-                        "this run is".to_string()
-                    } else {
-                        format!("these {} runs are", runs.len())
-                    }
-                ),
-            });
-        }
+        let what = if runs.len() == 1 {
+            "this run is".to_string()
+        } else {
+            format!("these {} runs are", runs.len())
+        };
+        let tx = self.checked_transaction(&what)?;
         {
             let mut row = tx
                 .prepare_cached(
