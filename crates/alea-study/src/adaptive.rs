@@ -181,12 +181,7 @@ fn validate_target<'a>(
     max_runs: usize,
 ) -> Result<Validated, StudyError> {
     let study = runner.study();
-    let n = study.validation_runs.unwrap_or_else(|| {
-        (mesh.num_runs() / 4).clamp(
-            crate::validation_runs::AUTO_MIN,
-            crate::validation_runs::AUTO_MAX,
-        )
-    });
+    let n = crate::validation_runs::count_for(study, mesh.num_runs());
     let vpoints = crate::validation_runs::points(study, n);
     if vpoints.is_empty() {
         return Ok(Validated::Stop(head.to_string()));

@@ -60,6 +60,12 @@ pub fn count(study: &Study, methods: &[Method]) -> usize {
     let Some(runs) = surrogate_runs else {
         return 0;
     };
+    count_for(study, runs)
+}
+
+/// The number of validation runs of `study` for a surrogate of `runs` runs: `[budget]
+/// validation_runs`, or a quarter of `runs` within [`AUTO_MIN`, `AUTO_MAX`].
+pub fn count_for(study: &Study, runs: usize) -> usize {
     match study.validation_runs {
         Some(n) => n,
         None => (runs / 4).clamp(AUTO_MIN, AUTO_MAX),
