@@ -369,9 +369,10 @@ fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
     assert!(cov >= 0.9, "coverage {cov:.3} < 0.9\n{report}");
     assert!(tig >= 0.75, "within 10x {tig:.3} < 0.75\n{report}");
     // Issue 40's acceptance, on this design set: with the quantiles q0.05 - q0.95, at least
-    // 93 % covered (measured 133 of 144, 92.4 %: asserted at 92 %), and a median total of at most
-    // 5x the true error where that error exceeds the sampling half-width (measured 3.5x).
-    tally.assert_with_quantiles(0.92, &report);
+    // 93 % covered (measured 137 of 144, 95.1 %, since a quantile's observed difference is at
+    // least the residuals' RMS; 133 before), and a median total of at most 5x the true error
+    // where that error exceeds the sampling half-width (measured 3.8x; 3.5x before).
+    tally.assert_with_quantiles(0.93, &report);
 }
 
 /// Adaptive stochastic meshes on the same analytic responses (the budget's comparisons of an

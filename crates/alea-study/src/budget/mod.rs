@@ -284,6 +284,15 @@ pub enum SurrogatePart<'a> {
     Unavailable(&'a str),
 }
 
+/// The relative precision of the runs (the solver's default tolerance): two comparison
+/// surrogates whose draws differ by less than this fraction of the values are the same fit of
+/// the runs. Measured: on a kink along a diagonal, `max(0, a x + b y) = (a x + b y + |a x + b
+/// y|) / 2`, the odd terms of degree 3 vanish on a symmetric design up to `1.2e-9` of the range,
+/// so a chaos of degree 3 and its degree-2 comparison differ by the runs' noise alone; below
+/// `1e-9` they counted as different and the surrogate part of every statistic was `3e-6` for
+/// errors of 20 - 44 N.
+const RUN_PRECISION: f64 = 1e-6;
+
 /// The budget of one quantity from its samples on the method's surrogate (or the model runs).
 pub fn qoi_budget(
     samples: &[f64],
@@ -311,7 +320,9 @@ pub fn qoi_budget(
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
                     (a.min(v), b.max(v))
                 });
-            let tol = 1e-9 * (hi - lo).abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+            // Equal within the runs' precision (the solver's tolerance, 1e-6 of the values):
+            // a top term that vanishes by symmetry is fitted to the runs' noise, not to 0.
+            let tol = RUN_PRECISION * (hi - lo).abs().max(hi.abs()).max(f64::MIN_POSITIVE);
             let differs = |c: &[f64]| c.iter().zip(samples).any(|(a, b)| (a - b).abs() > tol);
             // When the next coarser surrogate equals the method's (its top terms vanish), the
             // response may be exactly of lower degree (converged) or odd on a symmetric design
@@ -448,6 +459,29 @@ mod tests {
                 "statistic {i}: coverage {rate} (expected 0.95)"
             );
         }
+    }
+
+    /// A coarser comparison that equals the method's surrogate within the runs' precision
+    /// (its top terms vanish by symmetry and are fitted to the runs' noise) tells nothing: the
+    /// next coarser one that differs gives the surrogate part.
+    #[test]
+    fn a_comparison_equal_within_the_runs_precision_is_passed_over() {
+        let x = uniforms(5, 2000);
+        let noise: Vec<f64> = x.iter().map(|v| v * (1.0 + 1e-8)).collect();
+        let coarser: Vec<f64> = x.iter().map(|v| v + 0.1).collect();
+        let b = qoi_budget(
+            &x,
+            SurrogatePart::Comparison(
+                vec![(&noise, true, true), (&coarser, true, true)],
+                "test".into(),
+            ),
+            &[0.5],
+            &[],
+            0.95,
+            None,
+        );
+        let mean_part = b.rows[0].surrogate.expect("estimated");
+        assert!((mean_part - 0.1).abs() < 1e-9, "{:?}", b.rows[0]);
     }
 
     /// Few draws (Monte Carlo on the model): the exact binomial ranks. With 4 draws the 95 %
