@@ -2,7 +2,7 @@
 """Issue 40's acceptance on cases with EXACT statistics, built for it: contact in each, a kink
 off every grid and an atom at zero (a fit or a gap that opens), 2 to 4 parameters, 2D and 3D.
 
-usage: validation_acceptance.py [ALEA] [--keep DIR] [--set 1|3|4]
+usage: validation_acceptance.py [ALEA] [--keep DIR] [--set 1|3|4|5]
 
 ALEA defaults to target/release/alea (built first). Each case is a study written here, run with
 `alea run --threads 2`, and its every method's budget rows (mean, std, q0.05 - q0.95, P(N > t))
@@ -286,6 +286,36 @@ CASES4 = [
 ]
 
 
+# Evaluation set 5, written and committed after every rule of sessions 12 and 13 was fixed
+# (the atom rule, the quantiles' residual RMS, the runs' precision) and before it was first
+# run (`--set 5`): one parameter (rings and block), the shaft's modulus triangular, a diagonal
+# kink in 3 parameters with a normal hub modulus, 4 parameters with a lognormal modulus, the
+# plane's modulus normal in 3D, a small atom near the edge of the range, grids of 4, 6 and 9
+# points, chaos of degree 2 - 6 (regression, projection, sparse), standard polynomials,
+# adaptive loops with and without a target, two goals, Monte Carlo on the model.
+CASES5 = [
+    rings_case("rings-1 (d)", 43, ["d"], 1200.0,
+               [PL(4), PL(9), PC(3), PC(6), ADAPT(20), MC(20)],
+               laws={"d": (-0.015, 0.045)}),
+    block_case("block-3d one parameter (g)", 47, ["g"], (-3e-4, 1.4e-3), 120.0,
+               [PL(5), PROJ(4), POLY(3), TARGET(20, 0.01)]),
+    rings_case("rings-2 triangular E1, small atom (E1, d)", 53, ["E1", "d"], 2500.0,
+               [PL(6), PC(2), PROJ(5), SPARSE(5), ADAPT(25), MC(50)],
+               laws={"E1": {"law": "triangular", "lo": 170e3, "mode": 230e3, "hi": 250e3},
+                     "d": (-0.005, 0.06)}),
+    rings_case("rings-3 diagonal kink, normal E2 (E2, d, d2)", 59, ["E2", "d", "d2"], 800.0,
+               [PL(4), PC(4), POLY(2), TARGET(60, 0.03), GOAL(60, 800.0, 0.01)],
+               laws={"E2": {"law": "normal", "mean": 200e3, "std": 12e3},
+                     "d": (-0.03, 0.03), "d2": (-0.02, 0.02)}),
+    rings_case("rings-4 lognormal E1 (E1, E2, d, d2)", 61, ["E1", "E2", "d", "d2"], 1200.0,
+               [PL(3), SPARSE(3), ADAPT(80)],
+               laws={"E1": {"law": "lognormal", "mean": 205e3, "std": 15e3}}),
+    block_case("block-3d normal Ep (Eb, Ep, g)", 67, ["Eb", "Ep", "g"], (-2e-4, 1.6e-3), 100.0,
+               [PL(4), PC(3), ADAPT(40), GOAL(50, 100.0, 0.01)],
+               laws={"Ep": {"law": "normal", "mean": 215e3, "std": 12e3}}),
+]
+
+
 def runs_of(db, dim):
     """(params, N) of every converged run in a study's store."""
     con = sqlite3.connect(db)
@@ -418,7 +448,7 @@ def main(args):
     cases = CASES
     if "--set" in args:
         i = args.index("--set")
-        cases = {"1": CASES, "3": CASES3, "4": CASES4}[args[i + 1]]
+        cases = {"1": CASES, "3": CASES3, "4": CASES4, "5": CASES5}[args[i + 1]]
         del args[i:i + 2]
     alea = args[0] if args else os.path.join(ROOT, "target", "release", "alea")
     if not args:
