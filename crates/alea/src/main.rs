@@ -62,6 +62,9 @@ enum Command {
     Report {
         /// The study directory.
         dir: PathBuf,
+        /// No progress spinner.
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// Run a built-in demonstration case and write ParaView output.
     Demo {
@@ -135,7 +138,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Solve { case, out } => solve::solve_file(&case, &out),
         Command::Demo { name, out } => solve::demo(&name, &out),
-        Command::Report { dir } => study_cmd::rebuild_report(&dir),
+        Command::Report { dir, quiet } => study_cmd::rebuild_report(&dir, quiet),
         Command::Run {
             study,
             dir,

@@ -93,9 +93,35 @@ impl Progress for Bar {
     }
 }
 
-/// `alea report`: rebuilds every output of a study directory from its store alone.
-pub fn rebuild_report(dir: &Path) -> Result<()> {
-    alea_report::study::rebuild(dir, "alea report", &Terminal)?;
+/// The account of `alea report` under a spinner on stderr (the analysis takes seconds on a
+/// large study and prints nothing meanwhile): each line printed with the spinner cleared.
+struct Spinning {
+    spinner: ProgressBar,
+}
+
+impl Console for Spinning {
+    fn line(&self, text: &str) {
+        self.spinner.suspend(|| outln!("{text}"));
+    }
+    fn warning(&self, text: &str) {
+        self.spinner.suspend(|| errln!("warning: {text}"));
+    }
+}
+
+/// `alea report`: rebuilds every output of a study directory from its store alone, under a
+/// spinner unless quiet (or stderr is not a terminal).
+pub fn rebuild_report(dir: &Path, quiet: bool) -> Result<()> {
+    let spinner = if quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new_spinner()
+    };
+    spinner.set_message("analysing the study's runs (surrogates, draws, error budgets)");
+    spinner.enable_steady_tick(std::time::Duration::from_millis(120));
+    let console = Spinning { spinner };
+    let result = alea_report::study::rebuild(dir, "alea report", &console);
+    console.spinner.finish_and_clear();
+    result?;
     Ok(())
 }
 

@@ -226,9 +226,10 @@ fn samples_csv_holds_the_draws_asked_for() {
     let o = with("samples_rows = \"all\"\n");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(lines(), 1 + 20_000);
-    // `alea report` rebuilds it as the study file says.
+    // `alea report` rebuilds it as the study file says (`-q` as `alea run` takes it: no
+    // spinner, the same account).
     std::fs::remove_file(dir.join("samples.csv")).unwrap();
-    let o = alea().arg("report").arg(&dir).output().unwrap();
+    let o = alea().arg("report").arg(&dir).arg("-q").output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(lines(), 1 + 20_000);
     // Refused at load, at the key's line.
