@@ -2,7 +2,7 @@
 """Issue 40's acceptance on cases with EXACT statistics, built for it: contact in each, a kink
 off every grid and an atom at zero (a fit or a gap that opens), 2 to 4 parameters, 2D and 3D.
 
-usage: validation_acceptance.py [ALEA] [--keep DIR] [--set 1|3|4|5]
+usage: validation_acceptance.py [ALEA] [--keep DIR] [--set 1|3|4|5|6]
 
 ALEA defaults to target/release/alea (built first). Each case is a study written here, run with
 `alea run --threads 2`, and its every method's budget rows (mean, std, q0.05 - q0.95, P(N > t))
@@ -316,6 +316,29 @@ CASES5 = [
 ]
 
 
+# Evaluation set 6, written after set 5 was reported and before its own first run (`--set 6`):
+# the method variants no earlier set has - chaos and polynomials on Latin hypercube and Sobol'
+# designs of a stated size, sparse chaos on its default design, the adaptive method's
+# maximum-error criterion, a goal on the mean (relative tolerance, no threshold).
+DESIGN = lambda kind, p, design, n: [("type", '"%s"' % kind), ("degree", p),
+                                     ("design", '"%s"' % design), ("runs", n)]
+MAXERR = lambda n: [("type", '"adaptive"'), ("max_runs", n), ("criterion", '"max_error"')]
+MEANGOAL = lambda n, r: [("type", '"adaptive"'), ("max_runs", n), (
+    "goal", '{ quantity = "N", relative_tolerance = %r }' % r)]
+CASES6 = [
+    rings_case("rings-2 designs (E1, d)", 71, ["E1", "d"], 1500.0,
+               [DESIGN("pc_regression", 3, "lhs", 30), DESIGN("pc_regression", 4, "sobol", 40),
+                DESIGN("polynomial", 2, "sobol", 20), SPARSE(4), MAXERR(30)],
+               laws={"d": (-0.01, 0.05)}),
+    rings_case("rings-3 designs (E1, E2, d)", 73, ["E1", "E2", "d"], 1000.0,
+               [DESIGN("pc_regression", 2, "lhs", 40), DESIGN("polynomial", 3, "lhs", 50),
+                MAXERR(40), MEANGOAL(50, 0.01)],
+               laws={"E2": {"law": "normal", "mean": 205e3, "std": 10e3}}),
+    block_case("block-3d designs (Eb, g)", 79, ["Eb", "g"], (-4e-4, 1.8e-3), 150.0,
+               [DESIGN("pc_regression", 3, "sobol", 24), SPARSE(3), MAXERR(25)]),
+]
+
+
 def runs_of(db, dim):
     """(params, N) of every converged run in a study's store."""
     con = sqlite3.connect(db)
@@ -448,7 +471,7 @@ def main(args):
     cases = CASES
     if "--set" in args:
         i = args.index("--set")
-        cases = {"1": CASES, "3": CASES3, "4": CASES4, "5": CASES5}[args[i + 1]]
+        cases = {"1": CASES, "3": CASES3, "4": CASES4, "5": CASES5, "6": CASES6}[args[i + 1]]
         del args[i:i + 2]
     alea = args[0] if args else os.path.join(ROOT, "target", "release", "alea")
     if not args:
