@@ -29,6 +29,7 @@ mod law_keys;
 pub mod limits;
 pub mod lock;
 pub mod method;
+pub mod model_session;
 pub mod output_settings;
 pub mod paired_runs;
 mod params;

@@ -141,6 +141,53 @@ pub(crate) struct Runner<'a> {
 }
 
 impl<'a> Runner<'a> {
+    /// Opens the study directory's store (`restart`: discarding a previous version's runs),
+    /// keeps its usable runs (module `integrity`) and builds the solver once; with the index of
+    /// the stored runs' points, canonical in the order they were stored (a point within
+    /// round-off of a stored run is that run, module `points`).
+    pub(crate) fn open(
+        study: &'a Study,
+        dir: &'a Path,
+        restart: bool,
+        progress: &'a dyn Progress,
+        compute: bool,
+    ) -> Result<(Self, PointIndex), StudyError> {
+        let store = Store::open_study(dir, &study.hash, study.identity.keys(), restart)?;
+        store.save_study(&study.source.path, &study.source.text)?;
+        let note = |m: &str| progress.note(m);
+        let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, &note);
+        let mut index = PointIndex::new(&study.params.lo, &study.params.hi);
+        for r in &previous {
+            index.insert(&r.params);
+        }
+        let by_key: HashMap<String, RunRecord> = previous
+            .into_iter()
+            .map(|r| (point_key(&r.params), r))
+            .collect();
+        let RunSetup { solver, cre } = RunSetup::build(study)?;
+        let runner = Runner {
+            study,
+            dir,
+            store: Mutex::new(store),
+            sizes: solver.interface_sizes(),
+            solver,
+            by_key,
+            finished: Vec::new(),
+            finished_keys: HashSet::new(),
+            progress,
+            exec: executor(),
+            cre,
+            compute,
+            missing: 0,
+            computed: 0,
+            resumed: 0,
+            solve_seconds: 0.0,
+            estimate_seconds: 0.0,
+            slide_noted: std::sync::atomic::AtomicBool::new(false),
+        };
+        Ok((runner, index))
+    }
+
     /// Runs (or finds in the store) every point of `points` that is not finished yet, one
     /// generation of the schedule after the other, each run warm-started from its parents among
     /// the converged runs of the earlier generations and calls ([`crate::schedule`]).
@@ -441,16 +488,7 @@ pub(crate) fn execute(
     lock: StudyLock,
     compute: bool,
 ) -> Result<(StudyRuns, usize), StudyError> {
-    let store = Store::open_study(dir, &study.hash, study.identity.keys(), restart)?;
-    store.save_study(&study.source.path, &study.source.text)?;
-    let note = |m: &str| progress.note(m);
-    let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, &note);
-    // A design point within round-off of a stored run is that run (module `points`): the
-    // stored runs are canonical, in the order they were stored.
-    let mut index = PointIndex::new(&study.params.lo, &study.params.hi);
-    for r in &previous {
-        index.insert(&r.params);
-    }
+    let (mut runner, mut index) = Runner::open(study, dir, restart, progress, compute)?;
     let mut methods = study.methods.clone();
     canonicalise(
         &mut index,
@@ -459,11 +497,6 @@ pub(crate) fn execute(
             .filter(|m| !matches!(m.kind, MethodKind::Adaptive(_)))
             .map(|m| &mut m.points),
     );
-    let by_key: HashMap<String, RunRecord> = previous
-        .into_iter()
-        .map(|r| (point_key(&r.params), r))
-        .collect();
-    let RunSetup { solver, cre } = RunSetup::build(study)?;
     let fixed: Vec<Vec<f64>> = {
         let mut seen = std::collections::HashSet::new();
         methods
@@ -474,27 +507,14 @@ pub(crate) fn execute(
             .cloned()
             .collect()
     };
-    let validation_upfront = begin(study, &methods, &fixed, &by_key, &store, progress)?;
-    let mut runner = Runner {
+    let validation_upfront = begin(
         study,
-        dir,
-        store: Mutex::new(store),
-        sizes: solver.interface_sizes(),
-        solver,
-        by_key,
-        finished: Vec::new(),
-        finished_keys: HashSet::new(),
+        &methods,
+        &fixed,
+        &runner.by_key,
+        &*runner.store()?,
         progress,
-        exec: executor(),
-        cre,
-        compute,
-        missing: 0,
-        computed: 0,
-        resumed: 0,
-        solve_seconds: 0.0,
-        estimate_seconds: 0.0,
-        slide_noted: std::sync::atomic::AtomicBool::new(false),
-    };
+    )?;
     runner.run_points(&fixed)?;
     crate::sparse::select_bases(study, &mut methods, &runner.by_key);
     let mut adaptive = Vec::new();

@@ -4,9 +4,11 @@
 mod exit;
 mod out;
 mod run_report;
+mod serve;
 mod solve;
 mod solve_steps;
 mod study_cmd;
+mod umbridge;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -66,6 +68,29 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Serve a study's model over the UM-Bridge protocol (HTTP + JSON; the `umbridge` clients
+    /// of Python, C++, MATLAB, R, Julia): inputs the study's parameters, outputs its
+    /// quantities, each evaluation a run of the study stored in its directory.
+    Serve {
+        /// The study file (TOML).
+        study: PathBuf,
+        /// Study directory (default: out/<study file name>); a repeated point is answered
+        /// from its store.
+        #[arg(long)]
+        dir: Option<PathBuf>,
+        /// Discard the runs of a previous version of the study file.
+        #[arg(long)]
+        restart: bool,
+        /// Address to listen on (default: this machine only).
+        #[arg(long, default_value = "127.0.0.1")]
+        host: String,
+        /// Port (0: any free port; the address is printed).
+        #[arg(long, default_value_t = 4242)]
+        port: u16,
+        /// Worker threads of the solver (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// Run a built-in demonstration case and write ParaView output.
     Demo {
         /// Which demo: `dovetail` (blade root in its disk, frictional contact) or `kirsch`
@@ -86,6 +111,12 @@ fn run_single(
     quiet: bool,
     threads: Option<usize>,
 ) -> anyhow::Result<()> {
+    set_threads(threads)?;
+    study_cmd::run(study, dir, restart, quiet)
+}
+
+/// The global rayon pool's size (`None`: all cores).
+fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
     if let Some(n) = threads {
         let n = alea_study::limits::check_threads(n)?;
         rayon::ThreadPoolBuilder::new()
@@ -93,7 +124,7 @@ fn run_single(
             .build_global()
             .map_err(|e| anyhow::anyhow!("cannot start {n} worker threads: {e}"))?;
     }
-    study_cmd::run(study, dir, restart, quiet)
+    Ok(())
 }
 
 /// `alea run` under an MPI launcher (feature `mpi`): rank 0 runs the study with the MPI
@@ -139,6 +170,23 @@ fn main() -> ExitCode {
         Command::Solve { case, out } => solve::solve_file(&case, &out),
         Command::Demo { name, out } => solve::demo(&name, &out),
         Command::Report { dir, quiet } => study_cmd::rebuild_report(&dir, quiet),
+        Command::Serve {
+            study,
+            dir,
+            restart,
+            host,
+            port,
+            threads,
+        } => set_threads(threads).and_then(|()| {
+            let dir = dir.unwrap_or_else(|| alea_report::study::default_dir(&study));
+            serve::serve(&serve::ServeOptions {
+                study: &study,
+                dir: &dir,
+                restart,
+                host: &host,
+                port,
+            })
+        }),
         Command::Run {
             study,
             dir,
