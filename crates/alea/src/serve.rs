@@ -17,9 +17,9 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, mpsc};
 use std::time::{Duration, Instant};
 
-use alea_study::study::Study;
 use alea_study::model_session::{ModelSession, PointAnswer};
 use alea_study::runner::Progress;
+use alea_study::study::Study;
 use anyhow::{Context, Result, anyhow};
 use serde_json::Value;
 
@@ -101,11 +101,19 @@ pub fn serve(opts: &ServeOptions<'_>) -> Result<()> {
     );
     let server = Arc::new(server);
     let answered = Arc::new(AtomicUsize::new(0));
+    let busy_us = Arc::new(AtomicUsize::new(0));
     let http: Vec<_> = (0..HTTP_THREADS)
         .map(|_| {
-            let (server, jobs, stop, answered) =
-                (server.clone(), jobs_tx.clone(), stop.clone(), answered.clone());
-            std::thread::spawn(move || http_thread(&server, &jobs, &stop, &answered, sizes))
+            let (server, jobs, stop, answered, busy_us) = (
+                server.clone(),
+                jobs_tx.clone(),
+                stop.clone(),
+                answered.clone(),
+                busy_us.clone(),
+            );
+            std::thread::spawn(move || {
+                http_thread(&server, &jobs, &stop, &answered, &busy_us, sizes)
+            })
         })
         .collect();
     drop(jobs_tx);
@@ -115,9 +123,10 @@ pub fn serve(opts: &ServeOptions<'_>) -> Result<()> {
     let stored = model
         .join()
         .map_err(|_| anyhow!("the model thread panicked"))??;
+    let n = answered.load(Ordering::SeqCst);
     outln!(
-        "stopped: {} requests answered, {stored} runs in {}",
-        answered.load(Ordering::SeqCst),
+        "stopped: {n} requests answered (in the server {:.3} ms each on average, from the request read to the answer sent, solves included), {stored} runs in {}",
+        busy_us.load(Ordering::SeqCst) as f64 / 1e3 / n.max(1) as f64,
         opts.dir.display()
     );
     Ok(())
@@ -129,6 +138,7 @@ fn http_thread(
     jobs: &mpsc::Sender<Job>,
     stop: &AtomicBool,
     answered: &AtomicUsize,
+    busy_us: &AtomicUsize,
     sizes: Sizes,
 ) {
     while !stop.load(Ordering::SeqCst) {
@@ -137,6 +147,7 @@ fn http_thread(
             Ok(None) => continue,
             Err(_) => break,
         };
+        let t0 = Instant::now();
         let (status, body) = answer(&mut request, jobs, sizes);
         let response = tiny_http::Response::from_string(body.to_string())
             .with_status_code(status)
@@ -147,13 +158,22 @@ fn http_thread(
         // A client that dropped the connection gets nothing; the server goes on.
         let _ = request.respond(response);
         answered.fetch_add(1, Ordering::SeqCst);
+        busy_us.fetch_add(t0.elapsed().as_micros() as usize, Ordering::SeqCst);
     }
 }
 
 /// The answer to one request.
-fn answer(request: &mut tiny_http::Request, jobs: &mpsc::Sender<Job>, sizes: Sizes) -> (u16, Value) {
+fn answer(
+    request: &mut tiny_http::Request,
+    jobs: &mpsc::Sender<Job>,
+    sizes: Sizes,
+) -> (u16, Value) {
     if request.body_length().is_some_and(|n| n > MAX_BODY) {
-        return umbridge::error(413, "InvalidInput", &format!("the body exceeds {MAX_BODY} bytes"));
+        return umbridge::error(
+            413,
+            "InvalidInput",
+            &format!("the body exceeds {MAX_BODY} bytes"),
+        );
     }
     let mut body = Vec::new();
     let read = request
@@ -164,7 +184,11 @@ fn answer(request: &mut tiny_http::Request, jobs: &mpsc::Sender<Job>, sizes: Siz
         return umbridge::error(400, "InvalidInput", "the body could not be read");
     }
     if body.len() > MAX_BODY {
-        return umbridge::error(413, "InvalidInput", &format!("the body exceeds {MAX_BODY} bytes"));
+        return umbridge::error(
+            413,
+            "InvalidInput",
+            &format!("the body exceeds {MAX_BODY} bytes"),
+        );
     }
     let method = request.method().as_str().to_string();
     let path = request.url().split('?').next().unwrap_or("").to_string();
@@ -215,7 +239,12 @@ fn model_thread(
         "'{}' (inputs: {}; outputs: {})",
         study.title(),
         study.params.names.join(", "),
-        study.qois.iter().map(|q| q.name.as_str()).collect::<Vec<_>>().join(", ")
+        study
+            .qois
+            .iter()
+            .map(|q| q.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let _ = ready.send(Ok((sizes, description, session.stored_runs())));
     while !stop.load(Ordering::SeqCst) {
@@ -251,7 +280,9 @@ fn evaluate_batch(session: &mut ModelSession<'_>, batch: Vec<Job>) {
         Err(e) => {
             let message = e.to_string();
             for job in batch {
-                let _ = job.reply.send(umbridge::error(500, "ModelFailed", &message));
+                let _ = job
+                    .reply
+                    .send(umbridge::error(500, "ModelFailed", &message));
             }
         }
     }

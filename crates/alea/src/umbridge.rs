@@ -33,7 +33,10 @@ pub struct Sizes {
 
 /// An error answer.
 pub fn error(status: u16, kind: &str, message: &str) -> (u16, Value) {
-    (status, json!({ "error": { "type": kind, "message": message } }))
+    (
+        status,
+        json!({ "error": { "type": kind, "message": message } }),
+    )
 }
 
 /// Reads a request: `method` and `path` of the HTTP request, `body` its bytes.
@@ -59,15 +62,28 @@ pub fn parse(method: &str, path: &str, body: &[u8], sizes: Sizes) -> Request {
         return answer(error(
             404,
             "InvalidInput",
-            &format!("no such request '{path}' (UM-Bridge 1.0: /Info, {})", known.join(", ")),
+            &format!(
+                "no such request '{path}' (UM-Bridge 1.0: /Info, {})",
+                known.join(", ")
+            ),
         ));
     }
     if method != "POST" {
-        return answer(error(405, "InvalidInput", &format!("{path} is a POST request")));
+        return answer(error(
+            405,
+            "InvalidInput",
+            &format!("{path} is a POST request"),
+        ));
     }
     let body: Value = match serde_json::from_slice(body) {
         Ok(v) => v,
-        Err(e) => return answer(error(400, "InvalidInput", &format!("the body is not JSON: {e}"))),
+        Err(e) => {
+            return answer(error(
+                400,
+                "InvalidInput",
+                &format!("the body is not JSON: {e}"),
+            ));
+        }
     };
     match body.get("name").and_then(Value::as_str) {
         Some(MODEL) => {}
@@ -78,7 +94,13 @@ pub fn parse(method: &str, path: &str, body: &[u8], sizes: Sizes) -> Request {
                 &format!("model '{other}' not found; this server has one model, '{MODEL}'"),
             ));
         }
-        None => return answer(error(400, "InvalidInput", "the request has no string 'name'")),
+        None => {
+            return answer(error(
+                400,
+                "InvalidInput",
+                "the request has no string 'name'",
+            ));
+        }
     }
     if let Err(message) = check_config(&body) {
         return answer(error(400, "InvalidInput", &message));
@@ -99,7 +121,10 @@ pub fn parse(method: &str, path: &str, body: &[u8], sizes: Sizes) -> Request {
         _ => answer(error(
             400,
             "UnsupportedFeature",
-            &format!("{} is not supported: the model has no derivatives", &path[1..]),
+            &format!(
+                "{} is not supported: the model has no derivatives",
+                &path[1..]
+            ),
         )),
     }
 }
@@ -175,7 +200,10 @@ mod tests {
     fn sizes_info_and_evaluate_follow_the_protocol() {
         assert_eq!(
             parse("GET", "/Info", b"", SIZES),
-            Request::Answer(200, json!({ "protocolVersion": 1.0, "models": ["forward"] }))
+            Request::Answer(
+                200,
+                json!({ "protocolVersion": 1.0, "models": ["forward"] })
+            )
         );
         assert_eq!(
             post("/InputSizes", r#"{"name": "forward", "config": {}}"#),
@@ -186,7 +214,10 @@ mod tests {
             Request::Answer(200, json!({ "outputSizes": [3] }))
         );
         assert_eq!(
-            post("/Evaluate", r#"{"name": "forward", "input": [[1.5, -2]], "config": {}}"#),
+            post(
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1.5, -2]], "config": {}}"#
+            ),
             Request::Evaluate(vec![1.5, -2.0])
         );
     }
@@ -194,15 +225,47 @@ mod tests {
     #[test]
     fn bad_requests_are_errors_naming_their_cause() {
         let cases = [
-            ("/Evaluate", r#"{"name": "other", "input": [[1, 2]]}"#, "ModelNotFound"),
-            ("/Evaluate", r#"{"name": "forward", "input": [[1, 2, 3]]}"#, "InvalidInput"),
-            ("/Evaluate", r#"{"name": "forward", "input": [[1], [2]]}"#, "InvalidInput"),
-            ("/Evaluate", r#"{"name": "forward", "input": [[1, "a"]]}"#, "InvalidInput"),
-            ("/Evaluate", r#"{"name": "forward", "input": [[1, null]]}"#, "InvalidInput"),
-            ("/Evaluate", r#"{"name": "forward", "input": [[1, 2]], "config": {"x": 1}}"#, "InvalidInput"),
-            ("/Evaluate", r#"{"name": "forward", "input": [[1, 2]"#, "InvalidInput"),
+            (
+                "/Evaluate",
+                r#"{"name": "other", "input": [[1, 2]]}"#,
+                "ModelNotFound",
+            ),
+            (
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1, 2, 3]]}"#,
+                "InvalidInput",
+            ),
+            (
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1], [2]]}"#,
+                "InvalidInput",
+            ),
+            (
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1, "a"]]}"#,
+                "InvalidInput",
+            ),
+            (
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1, null]]}"#,
+                "InvalidInput",
+            ),
+            (
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1, 2]], "config": {"x": 1}}"#,
+                "InvalidInput",
+            ),
+            (
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1, 2]"#,
+                "InvalidInput",
+            ),
             ("/Gradient", r#"{"name": "forward"}"#, "UnsupportedFeature"),
-            ("/ApplyHessian", r#"{"name": "forward"}"#, "UnsupportedFeature"),
+            (
+                "/ApplyHessian",
+                r#"{"name": "forward"}"#,
+                "UnsupportedFeature",
+            ),
             ("/Nothing", r#"{"name": "forward"}"#, "InvalidInput"),
         ];
         for (path, body, kind) in cases {
@@ -210,7 +273,10 @@ mod tests {
         }
         // A number too large for f64 is infinite after parsing: refused.
         assert_eq!(
-            error_type(&post("/Evaluate", r#"{"name": "forward", "input": [[1, 1e999]]}"#)),
+            error_type(&post(
+                "/Evaluate",
+                r#"{"name": "forward", "input": [[1, 1e999]]}"#
+            )),
             "InvalidInput"
         );
     }

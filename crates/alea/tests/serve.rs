@@ -41,7 +41,14 @@ impl Drop for Server {
 
 fn start(dir: &Path) -> Server {
     let mut child = alea()
-        .args(["serve", study().to_str().unwrap(), "--port", "0", "--threads", "2"])
+        .args([
+            "serve",
+            study().to_str().unwrap(),
+            "--port",
+            "0",
+            "--threads",
+            "2",
+        ])
         .arg("--dir")
         .arg(dir)
         .stdout(Stdio::piped())
@@ -110,10 +117,15 @@ fn runs(dir: &Path) -> Vec<(Vec<f64>, Vec<f64>)> {
     let mut stmt = db
         .prepare("SELECT params, qois FROM runs WHERE status = 'converged' ORDER BY rowid")
         .unwrap();
-    stmt.query_map([], |r| Ok((floats(&r.get::<_, Vec<u8>>(0)?), floats(&r.get::<_, Vec<u8>>(1)?))))
-        .unwrap()
-        .map(Result::unwrap)
-        .collect()
+    stmt.query_map([], |r| {
+        Ok((
+            floats(&r.get::<_, Vec<u8>>(0)?),
+            floats(&r.get::<_, Vec<u8>>(1)?),
+        ))
+    })
+    .unwrap()
+    .map(Result::unwrap)
+    .collect()
 }
 
 #[test]
@@ -148,7 +160,13 @@ fn serves_the_study_model_over_um_bridge() {
         json!({ "inputSizes": [2] })
     );
     assert_eq!(
-        request(&addr, "POST", "/OutputSizes", r#"{"name": "forward", "config": {}}"#).1,
+        request(
+            &addr,
+            "POST",
+            "/OutputSizes",
+            r#"{"name": "forward", "config": {}}"#
+        )
+        .1,
         json!({ "outputSizes": [3] })
     );
     // Two client threads, six points each, concurrently.
@@ -174,7 +192,10 @@ fn serves_the_study_model_over_um_bridge() {
                 })
             })
             .collect();
-        handles.into_iter().flat_map(|h| h.join().unwrap()).collect()
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap())
+            .collect()
     });
     assert_eq!(answers.len(), points.len());
     let worst = answers
@@ -199,12 +220,37 @@ fn serves_the_study_model_over_um_bridge() {
 
     // Bad requests: an error naming the cause, and the server goes on.
     let bad = [
-        ("/Evaluate", r#"{"name": "forward", "input": [[1.0]]}"#, "InvalidInput", "has 1 values"),
-        ("/Evaluate", r#"{"name": "forward", "input": [[-1.0, 0.5]]}"#, "InvalidInput", "must be > 0"),
-        ("/Evaluate", r#"{"name": "forward", "input": [[2.4e5, 0.5]], "config": {"tol": 1}}"#, "InvalidInput", "unknown config key 'tol'"),
-        ("/Evaluate", r#"{"name": "other", "input": [[2.4e5, 0.5]]}"#, "ModelNotFound", "'other'"),
+        (
+            "/Evaluate",
+            r#"{"name": "forward", "input": [[1.0]]}"#,
+            "InvalidInput",
+            "has 1 values",
+        ),
+        (
+            "/Evaluate",
+            r#"{"name": "forward", "input": [[-1.0, 0.5]]}"#,
+            "InvalidInput",
+            "must be > 0",
+        ),
+        (
+            "/Evaluate",
+            r#"{"name": "forward", "input": [[2.4e5, 0.5]], "config": {"tol": 1}}"#,
+            "InvalidInput",
+            "unknown config key 'tol'",
+        ),
+        (
+            "/Evaluate",
+            r#"{"name": "other", "input": [[2.4e5, 0.5]]}"#,
+            "ModelNotFound",
+            "'other'",
+        ),
         ("/Evaluate", "{not json", "InvalidInput", "not JSON"),
-        ("/Gradient", r#"{"name": "forward"}"#, "UnsupportedFeature", "Gradient"),
+        (
+            "/Gradient",
+            r#"{"name": "forward"}"#,
+            "UnsupportedFeature",
+            "Gradient",
+        ),
     ];
     for (path, body, kind, phrase) in bad {
         let (status, v) = request(&addr, "POST", path, body);
