@@ -40,10 +40,14 @@ impl Drop for Server {
 }
 
 fn start(dir: &Path) -> Server {
+    start_study(&study(), dir)
+}
+
+fn start_study(study: &Path, dir: &Path) -> Server {
     let mut child = alea()
         .args([
             "serve",
-            study().to_str().unwrap(),
+            study.to_str().unwrap(),
             "--port",
             "0",
             "--threads",
@@ -279,4 +283,50 @@ fn serves_the_study_model_over_um_bridge() {
     assert_eq!(runs(&dir).len(), stored, "a stored point was solved again");
     let _ = std::fs::remove_dir_all(&dir);
     let _ = std::fs::remove_dir_all(&reference_dir);
+}
+
+/// The root pulled out of its slot (the pressure on its lower face reversed, as in
+/// alea-study's `no_equilibrium.rs`): no equilibrium exists at low friction, and the answer is
+/// an error naming the run's status, its certificate and its last residual - the same when
+/// asked again (the failed run is stored) - while the server goes on answering.
+#[test]
+fn a_run_without_equilibrium_is_an_error_naming_its_cause() {
+    let work = tmp("pulled");
+    std::fs::create_dir_all(&work).unwrap();
+    let text = std::fs::read_to_string(study()).unwrap();
+    let pulled = text.replace(
+        r#"{ name = "p", group = "S2_bottom", pressure = 1000.0 }"#,
+        r#"{ name = "p", group = "S2_bottom", pressure = -1000.0 }"#,
+    );
+    assert_ne!(pulled, text, "the example's load changed");
+    let file = work.join("pulled.toml");
+    std::fs::write(&file, pulled).unwrap();
+    let server = start_study(&file, &work.join("served"));
+    let mut messages = Vec::new();
+    for _ in 0..2 {
+        let (status, v) = evaluate(&server.addr, &[2.4e5, 0.3]);
+        assert_eq!(status, 500, "{v}");
+        assert_eq!(v["error"]["type"], "ModelFailed", "{v}");
+        let m = v["error"]["message"].as_str().unwrap().to_string();
+        assert!(
+            m.contains("no equilibrium")
+                && m.contains("substructure 'S2'")
+                && m.contains("residual"),
+            "{m}"
+        );
+        messages.push(m);
+    }
+    assert_eq!(messages[0], messages[1]);
+    assert_eq!(
+        request(
+            &server.addr,
+            "POST",
+            "/InputSizes",
+            r#"{"name": "forward"}"#
+        )
+        .0,
+        200
+    );
+    drop(server);
+    let _ = std::fs::remove_dir_all(&work);
 }
