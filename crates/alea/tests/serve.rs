@@ -330,3 +330,26 @@ fn a_run_without_equilibrium_is_an_error_naming_its_cause() {
     drop(server);
     let _ = std::fs::remove_dir_all(&work);
 }
+
+/// SIGTERM (what a batch system sends) ends the server cleanly: exit status 0 (its first line
+/// read, its stdout closed: the account it prints on stopping is no error either) and the run
+/// it finished in the store.
+#[test]
+fn sigterm_stops_the_server_cleanly() {
+    let dir = tmp("sigterm");
+    let mut server = start(&dir);
+    let (status, _) = evaluate(&server.addr, &[2.4e5, 0.5]);
+    assert_eq!(status, 200);
+    let pid = server.child.id().to_string();
+    assert!(
+        Command::new("kill")
+            .args(["-TERM", &pid])
+            .status()
+            .unwrap()
+            .success()
+    );
+    let exit = server.child.wait().unwrap();
+    assert!(exit.success(), "{exit:?}");
+    assert_eq!(runs(&dir).len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
