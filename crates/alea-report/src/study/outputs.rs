@@ -17,6 +17,7 @@ use super::estimate_report::report_error;
 use super::estimate_text::print_estimates;
 use super::files::{write_samples, write_summary};
 use super::input::{reliability_report, report_input};
+use super::result::{ResultParts, StudyResult};
 use super::results::{Analysis, analyse};
 use super::table::{print_reliability, print_table};
 use crate::console::Deferred;
@@ -107,16 +108,17 @@ fn write_files(
         console,
     ));
     let estimate_seconds = t0.elapsed().as_secs_f64();
-    let summary = write_summary(
+    let result = StudyResult::new(
         study,
-        dir,
-        &results,
-        runs,
-        &estimates,
-        &reliability,
-        &notes,
-        console,
-    )?;
+        &ResultParts {
+            results: &results,
+            runs,
+            estimates: &estimates,
+            reliability: &reliability,
+            notes: &notes,
+        },
+    );
+    let summary = write_summary(&result, dir, console)?;
     let mut samples = None;
     if study.output.samples_csv.unwrap_or(true)
         && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
