@@ -15,6 +15,7 @@ use alea_report::study::{analyse, run_runs, sample_points, stored_runs};
 use alea_report::{Error as OutputError, Silent, report::ReportError};
 use alea_study::StudyError;
 use alea_study::analysis::MethodResult;
+use alea_study::budget::Statistic;
 use alea_study::runner::{Progress, Study};
 use alea_study::store::RunRecord;
 use numpy::PyArray1;
@@ -484,8 +485,9 @@ fn method_dict<'py>(
         let rows = s.budget.as_ref().map_or(&[][..], |b| &b.rows[..]);
         let f = PyList::empty(py);
         for fs in &s.failure {
-            let statistic = format!("P(> {})", fs.threshold);
-            let row = rows.iter().find(|r| r.statistic == statistic);
+            let row = rows
+                .iter()
+                .find(|r| r.statistic == Statistic::Exceedance(fs.threshold));
             f.append((
                 fs.threshold,
                 fs.probability,
@@ -504,7 +506,7 @@ fn method_dict<'py>(
             for row in &b.rows {
                 let (lo, hi) = row.interval();
                 budget.append((
-                    row.statistic.as_str(),
+                    row.statistic.to_string(),
                     row.value,
                     row.mesh,
                     row.surrogate,

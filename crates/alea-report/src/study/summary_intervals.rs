@@ -8,7 +8,7 @@
 
 use alea_study::analysis::{FailureStat, QoiStats};
 use alea_study::budget::validation::PointwiseErrors;
-use alea_study::budget::{BudgetRow, QoiBudget};
+use alea_study::budget::{BudgetRow, QoiBudget, Statistic};
 use alea_study::sensitivity::SobolStats;
 use serde::Serialize;
 
@@ -130,8 +130,9 @@ impl From<&QoiBudget> for Budget {
 impl FailureProbability {
     /// `f` with the total interval of its row among `rows`.
     fn of(f: &FailureStat, rows: &[BudgetRow]) -> Self {
-        let statistic = format!("P(> {})", f.threshold);
-        let row = rows.iter().find(|r| r.statistic == statistic);
+        let row = rows
+            .iter()
+            .find(|r| r.statistic == Statistic::Exceedance(f.threshold));
         FailureProbability {
             threshold: f.threshold,
             probability: f.probability,
@@ -182,7 +183,7 @@ mod tests {
 
     fn row(statistic: &str, value: f64, sampling: f64, surrogate: f64) -> BudgetRow {
         BudgetRow {
-            statistic: statistic.into(),
+            statistic: statistic.parse().expect("a statistic"),
             value,
             mesh: None,
             surrogate: Some(surrogate),
