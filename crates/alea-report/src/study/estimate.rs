@@ -119,19 +119,27 @@ fn used_points(method: &Method, runs: &StudyRuns) -> Vec<Vec<f64>> {
 
 /// The entity that carries the largest part of `part(entity)`, with its share.
 pub(super) fn dominant(est: &Estimate, part: impl Fn(&EntityEstimate) -> f64) -> (String, f64) {
-    let total: f64 = est
-        .subs
-        .iter()
-        .chain(&est.interfaces)
-        .map(|e| part(e).max(0.0))
-        .sum();
+    let subs = est.subs.iter().map(|e| ("substructure", e, part(e)));
+    let interfaces = est.interfaces.iter().map(|e| ("interface", e, part(e)));
+    largest_share(
+        subs.chain(interfaces)
+            .map(|(kind, e, v)| (kind, e.name.as_str(), v)),
+    )
+}
+
+/// Among `(kind, name, part)` (substructures first, then interfaces), the entity that carries
+/// the largest part (`kind 'name'`), with its share of the sum of the parts (negative ones
+/// counted as 0).
+pub(super) fn largest_share<'a>(
+    parts: impl Iterator<Item = (&'a str, &'a str, f64)>,
+) -> (String, f64) {
+    let parts: Vec<(&str, &str, f64)> = parts.collect();
+    let total: f64 = parts.iter().map(|p| p.2.max(0.0)).sum();
     let mut best = (String::new(), 0.0);
-    for (kind, list) in [("substructure", &est.subs), ("interface", &est.interfaces)] {
-        for e in list.iter() {
-            let v = part(e).max(0.0);
-            if v > best.1 {
-                best = (format!("{kind} '{}'", e.name), v);
-            }
+    for (kind, name, v) in parts {
+        let v = v.max(0.0);
+        if v > best.1 {
+            best = (format!("{kind} '{name}'"), v);
         }
     }
     (best.0, if total > 0.0 { best.1 / total } else { 0.0 })

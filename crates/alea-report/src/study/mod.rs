@@ -2,12 +2,13 @@
 //! `alea report`) and the Python package (`alea.run`, `alea.report`, `alea.open_store`).
 //!
 //! Layered one way, no import circle: [`results`] (what a study gives without writing files)
-//! and the estimate services (`estimate.rs`, `estimate_text.rs`, `estimate_report.rs`), the
-//! typed result of a study ([`StudyResult`], `result.rs`; each quantity's statistics with
-//! their total intervals in `summary_intervals.rs`), the writers (`files.rs`: `summary.json`
-//! from the [`StudyResult`], `samples.csv`; `input.rs`: the report's input;
-//! `table.rs`: the statistics table), then `outputs.rs` (every output of a study whose runs are
-//! done) and this file (run a study file, rebuild a study directory).
+//! and the estimate services (`estimate.rs`, `estimate_text.rs`), the typed result of a study
+//! ([`StudyResult`], `result.rs`; each quantity's statistics with their total intervals in
+//! `summary_intervals.rs`), the writers (`files.rs`: `summary.json` from the [`StudyResult`],
+//! `samples.csv`; `input.rs` and `estimate_report.rs`: the report's input from the
+//! [`StudyResult`] and the draws; `table.rs`: the statistics table), then `outputs.rs` (every
+//! output of a study whose runs are done) and this file (run a study file, rebuild a study
+//! directory).
 
 mod estimate;
 mod estimate_report;
