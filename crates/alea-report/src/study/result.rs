@@ -14,6 +14,7 @@ use alea_study::store::{RunRecord, RunSlide};
 use serde::Serialize;
 
 use super::estimate::MethodEstimate;
+use super::results::Analysis;
 use super::summary_intervals::QuantityStatistics;
 
 /// Everything a study found, as `summary.json` holds it.
@@ -290,6 +291,28 @@ impl StudyResult {
             runs: parts.runs.records.iter().map(Run::from).collect(),
             notes: parts.notes.to_vec(),
         }
+    }
+}
+
+impl StudyResult {
+    /// The result of `study` analysed without its error estimates (Python's `alea.run`: no
+    /// method has an `error_estimate`), with the warnings `notes`.
+    pub fn of_analysis(
+        study: &Study,
+        runs: &StudyRuns,
+        analysis: &Analysis,
+        notes: &[String],
+    ) -> Self {
+        StudyResult::new(
+            study,
+            &ResultParts {
+                results: &analysis.results,
+                runs,
+                estimates: &[],
+                reliability: &analysis.reliability,
+                notes,
+            },
+        )
     }
 }
 
