@@ -455,3 +455,90 @@ impl From<&RunSlide> for Slide {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn method(error_estimate: Option<ErrorEstimate>) -> MethodOutcome {
+        MethodOutcome {
+            label: "m".into(),
+            description: "d".into(),
+            design_runs: 3,
+            runs_used: 3,
+            left_out: vec![],
+            error: None,
+            failure_region: None,
+            draws: 10,
+            qois: vec![],
+            error_estimate,
+            adaptive: None,
+        }
+    }
+
+    /// The optional parts are left out when absent, `null` where the file always had them; an
+    /// estimate that could not be made is `{"unavailable": why}`; a step without a goal has no
+    /// `goal`.
+    #[test]
+    fn optional_parts_keep_the_shape_of_summary_json() {
+        let v = serde_json::to_value(method(None)).unwrap();
+        let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+        assert_eq!(
+            keys,
+            [
+                "description",
+                "design_runs",
+                "draws",
+                "error",
+                "failure_region",
+                "label",
+                "left_out",
+                "qois",
+                "runs_used"
+            ],
+            "sorted, as summary.json has them"
+        );
+        assert!(v["error"].is_null() && v["failure_region"].is_null());
+        let why = ErrorEstimate::Unavailable {
+            unavailable: "no statistics".into(),
+        };
+        let v = serde_json::to_value(method(Some(why))).unwrap();
+        assert_eq!(
+            v["error_estimate"],
+            serde_json::json!({ "unavailable": "no statistics" })
+        );
+        let estimate = SurrogateError {
+            relative: 0.1,
+            i_geo: 0.05,
+            i_sto: 0.08,
+            e2: 0.01,
+            geo2: 0.0025,
+            sto2: 0.0064,
+            norm2: 1.0,
+            runs: 5,
+            rule_points: 9,
+            load_defect: 0.0,
+            violation_probability: 0.0,
+            max_violation: 0.0,
+            substructures_estimated: true,
+            negative_parts: vec![],
+            entities: vec![],
+        };
+        let step = AdaptiveStep {
+            runs: 5,
+            new_runs: 0,
+            thesis_cost: 12.5,
+            estimate,
+            qois: vec![StepQuantity {
+                mean: 1.0,
+                std: 0.5,
+                failure: vec![0.25],
+            }],
+            goal: vec![],
+        };
+        let v = serde_json::to_value(&step).unwrap();
+        assert!(v.get("goal").is_none(), "{v}");
+        assert_eq!(v["estimate"]["runs"], 5);
+        assert_eq!(v["qois"][0]["failure"][0], 0.25);
+    }
+}
