@@ -11,7 +11,9 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, mpsc};
 use std::time::Duration;
 
-use alea_report::study::{analyse, run_runs, sample_points, stored_runs};
+use alea_report::study::{
+    BudgetInterval, MethodOutcome, StudyResult, analyse, run_runs, sample_points, stored_runs,
+};
 use alea_report::{Error as OutputError, Silent, report::ReportError};
 use alea_study::StudyError;
 use alea_study::analysis::MethodResult;
@@ -199,9 +201,11 @@ struct StudyOutput {
     resumed: usize,
     setup_seconds: f64,
     solve_seconds: f64,
+    /// Each method's statistics with their draws and the parameter points of the draws.
     methods: Vec<(MethodResult, Option<Vec<f64>>)>,
-    /// The `[[reliability]]` results as JSON.
-    reliability: String,
+    /// The study's result, as in `summary.json` (without error estimates): what the methods'
+    /// dicts and the reliability results are made of, besides the draws.
+    result: StudyResult,
 }
 
 /// Names and units of a study, its parameters' laws and its random fields.
@@ -360,7 +364,7 @@ fn run(
 ) -> Result<StudyOutput, OutputError> {
     let ran = run_runs(path, dir, restart, progress, &Silent)?;
     let analysis = analyse(&ran.study, &ran.runs, &ran.settings);
-    let reliability = serde_json::to_string(&analysis.reliability).unwrap_or_else(|_| "[]".into());
+    let result = StudyResult::of_analysis(&ran.study, &ran.runs, &analysis, &[]);
     let methods = ran
         .runs
         .methods
@@ -379,7 +383,7 @@ fn run(
         setup_seconds: ran.runs.setup_seconds,
         solve_seconds: ran.runs.solve_seconds,
         methods,
-        reliability,
+        result,
     })
 }
 
@@ -424,28 +428,30 @@ fn records_dict<'py>(
     Ok(out)
 }
 
+/// One method's dict: `outcome` (its part of the study's result) with the timings and the
+/// draws of `r` (its statistics as analysed) and the parameter points of the draws.
 fn method_dict<'py>(
     py: Python<'py>,
-    r: &MethodResult,
+    (r, outcome): (&MethodResult, &MethodOutcome),
     points: Option<&Vec<f64>>,
     d: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    out.set_item("label", &r.label)?;
-    out.set_item("description", &r.description)?;
-    out.set_item("design_runs", r.design_runs)?;
-    out.set_item("runs_used", r.runs_used)?;
-    out.set_item("draws", r.draws)?;
-    out.set_item("error", r.error.as_deref())?;
+    out.set_item("label", &outcome.label)?;
+    out.set_item("description", &outcome.description)?;
+    out.set_item("design_runs", outcome.design_runs)?;
+    out.set_item("runs_used", outcome.runs_used)?;
+    out.set_item("draws", outcome.draws)?;
+    out.set_item("error", outcome.error.as_deref())?;
     out.set_item("surrogate_seconds", r.surrogate_seconds)?;
     out.set_item("monte_carlo_seconds", r.monte_carlo_seconds)?;
     let left = PyList::empty(py);
-    for (p, s) in &r.left_out {
+    for (p, s) in &outcome.left_out {
         left.append((p.clone(), s.as_str()))?;
     }
     out.set_item("left_out", left)?;
     // The region of the failed runs, left out of the statistics (None: no run failed).
-    match &r.failure_region {
+    match &outcome.failure_region {
         Some(f) => {
             let region = PyDict::new(py);
             region.set_item("failed_runs", f.failed_runs)?;
@@ -458,7 +464,7 @@ fn method_dict<'py>(
         None => out.set_item("failure_region", py.None())?,
     }
     let stats = PyList::empty(py);
-    for s in &r.qois {
+    for s in &outcome.qois {
         let q = PyDict::new(py);
         q.set_item("quantity", &s.name)?;
         q.set_item("unit", &s.unit)?;
@@ -481,19 +487,16 @@ fn method_dict<'py>(
         // Each failure probability: threshold, value, its sampling-only (Wilson) interval, then
         // the estimate and the total interval of its budget row (None without a budget; issue
         // 40, item 3).
-        let rows = s.budget.as_ref().map_or(&[][..], |b| &b.rows[..]);
         let f = PyList::empty(py);
         for fs in &s.failure {
-            let statistic = format!("P(> {})", fs.threshold);
-            let row = rows.iter().find(|r| r.statistic == statistic);
             f.append((
                 fs.threshold,
                 fs.probability,
                 fs.ci_low,
                 fs.ci_high,
-                row.map(|r| r.estimate()),
-                row.map(|r| r.interval().0),
-                row.map(|r| r.interval().1),
+                fs.estimate,
+                fs.interval.map(|i| i[0]),
+                fs.interval.map(|i| i[1]),
             ))?;
         }
         q.set_item("failure", f)?;
@@ -501,19 +504,23 @@ fn method_dict<'py>(
         // validation runs where there are some) and the total interval.
         let budget = PyList::empty(py);
         if let Some(b) = &s.budget {
-            for row in &b.rows {
-                let (lo, hi) = row.interval();
+            for BudgetInterval {
+                row,
+                estimate,
+                interval: [lo, hi],
+            } in &b.rows
+            {
                 budget.append((
-                    row.statistic.as_str(),
+                    row.statistic.to_string(),
                     row.value,
                     row.mesh,
                     row.surrogate,
                     row.sampling,
                     row.sliding,
                     row.total,
-                    row.estimate(),
-                    lo,
-                    hi,
+                    *estimate,
+                    *lo,
+                    *hi,
                 ))?;
             }
             q.set_item("surrogate_basis", &b.surrogate_basis)?;
@@ -606,11 +613,13 @@ pub fn run_study_file<'py>(
     dict.set_item("setup_seconds", out.setup_seconds)?;
     dict.set_item("solve_seconds", out.solve_seconds)?;
     let methods = PyList::empty(py);
-    for (r, p) in &out.methods {
-        methods.append(method_dict(py, r, p.as_ref(), d)?)?;
+    for ((r, p), outcome) in out.methods.iter().zip(&out.result.methods) {
+        methods.append(method_dict(py, (r, outcome), p.as_ref(), d)?)?;
     }
     dict.set_item("methods", methods)?;
-    dict.set_item("reliability_json", &out.reliability)?;
+    let reliability =
+        serde_json::to_string(&out.result.reliability).unwrap_or_else(|_| "[]".into());
+    dict.set_item("reliability_json", reliability)?;
     Ok(dict)
 }
 

@@ -12,6 +12,7 @@
 
 use alea_study::Source;
 use alea_study::analysis::AnalysisSettings;
+use alea_study::budget::Statistic;
 use alea_study::runner::{NoProgress, Study, run_study};
 
 /// The plate on an `n x n` mesh of `kind`; `refined`: the `[budget] refined_mesh` value.
@@ -127,19 +128,19 @@ fn check_mesh_budget(case: &str, reference: Study, coarse: Study) {
         budget.mesh_basis
     );
     let z95 = 1.644_853_626_951_472_2;
-    let truth = |name: &str| -> Option<f64> {
-        match name {
-            "mean" => Some(k),
-            "std" => Some(0.1 * k),
-            "q0.5" => Some(k),
-            "q0.95" => Some(k * (1.0 + 0.1 * z95)),
-            "P(> 330)" => Some(1.0 - norm_cdf((330.0 / k - 1.0) / 0.1)),
+    let truth = |statistic: Statistic| -> Option<f64> {
+        match statistic {
+            Statistic::Mean => Some(k),
+            Statistic::Std => Some(0.1 * k),
+            Statistic::Quantile(0.5) => Some(k),
+            Statistic::Quantile(0.95) => Some(k * (1.0 + 0.1 * z95)),
+            Statistic::Exceedance(330.0) => Some(1.0 - norm_cdf((330.0 / k - 1.0) / 0.1)),
             _ => None,
         }
     };
     let mut checked = 0;
     for row in &budget.rows {
-        let Some(t) = truth(&row.statistic) else {
+        let Some(t) = truth(row.statistic) else {
             continue;
         };
         let actual = (row.estimate() - t).abs();

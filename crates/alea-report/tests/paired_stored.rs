@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use alea_study::Source;
 use alea_study::analysis::AnalysisSettings;
-use alea_study::budget::QoiBudget;
+use alea_study::budget::{QoiBudget, Statistic};
 use alea_study::runner::{NoProgress, Study, StudyRuns, run_study};
 
 const STUDY: &str = r#"
@@ -160,7 +160,7 @@ fn a_report_reads_the_stored_paired_solves_and_solves_none() {
     let mean = tampered
         .rows
         .iter()
-        .find(|r| r.statistic == "mean")
+        .find(|r| r.statistic == Statistic::Mean)
         .unwrap();
     assert_eq!(mean.mesh, Some(expected));
     let _ = std::fs::remove_dir_all(&d);

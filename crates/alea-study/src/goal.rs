@@ -173,7 +173,7 @@ pub fn goal_step(
         .map(|r| {
             let row = &budget.rows[r];
             GoalRecord {
-                statistic: row.statistic.clone(),
+                statistic: row.statistic,
                 value: row.value,
                 surrogate: row.surrogate.unwrap_or(0.0),
                 sampling: row.sampling,

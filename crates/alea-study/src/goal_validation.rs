@@ -24,6 +24,7 @@
 
 use alea_uq::surrogate::{CellId, StochasticMesh};
 
+use crate::budget::Statistic;
 use crate::goal_settings::Goal;
 use crate::study::Study;
 
@@ -40,11 +41,11 @@ pub fn points(study: &Study, round: u32) -> Vec<Vec<f64>> {
 /// What the validation runs say about the surrogate.
 pub enum Verdict {
     /// Every estimate within the tolerance: `(statistic, estimated error)` per goal statistic.
-    Holds(Vec<(String, f64)>),
+    Holds(Vec<(Statistic, f64)>),
     /// Some estimate above it: the statistic, its estimated error and the leaves to split.
     Misses {
-        /// The statistic (`P(> t)`, `mean`, `std`).
-        statistic: String,
+        /// The statistic (`P(> t)`, the mean, the standard deviation).
+        statistic: Statistic,
         /// Its estimated error.
         error: f64,
         /// The leaves holding the draws the surrogate gets wrong (no duplicates).
@@ -96,7 +97,7 @@ pub fn check(
                 .map(|(_, q, s)| f64::from(u8::from(*q > t)) - f64::from(u8::from(*s > t)))
                 .sum::<f64>()
                 / n;
-            let statistic = format!("P(> {t})");
+            let statistic = Statistic::Exceedance(t);
             if tol(d.abs(), value.first().copied().unwrap_or(0.0)) {
                 Verdict::Holds(vec![(statistic, d.abs())])
             } else {
@@ -119,17 +120,17 @@ pub fn check(
                 crate::goal_settings::Tolerance::Absolute(a) => a,
                 crate::goal_settings::Tolerance::Relative(rel) => rel * v.abs(),
             };
-            for (statistic, error, v) in [("mean", mean, vm), ("std", rms, vs)] {
+            for (statistic, error, v) in [(Statistic::Mean, mean, vm), (Statistic::Std, rms, vs)] {
                 if !tol(error, v) {
                     let l = limit(v);
                     return Verdict::Misses {
-                        statistic: statistic.to_string(),
+                        statistic,
                         error,
                         leaves: leaves_of(&|q, s| (q - s).abs() > l),
                     };
                 }
             }
-            Verdict::Holds(vec![("mean".into(), mean), ("std".into(), rms)])
+            Verdict::Holds(vec![(Statistic::Mean, mean), (Statistic::Std, rms)])
         }
     }
 }

@@ -82,8 +82,8 @@ pub struct StepRecord {
 /// The error budget of one goal statistic at one adaptive step (`crate::goal`).
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct GoalRecord {
-    /// `mean`, `std` or `P(> t)`.
-    pub statistic: String,
+    /// The mean, the standard deviation or `P(> t)`.
+    pub statistic: crate::budget::Statistic,
     /// Its value on this step's surrogate.
     pub value: f64,
     /// Surrogate part of its budget.

@@ -459,7 +459,11 @@ fn budget_against_reference(
         let Some(q) = res.qois.first() else { continue };
         let budget = q.budget.as_ref().unwrap();
         for (name, t) in &exact {
-            let row = budget.rows.iter().find(|r| r.statistic == *name).unwrap();
+            let row = budget
+                .rows
+                .iter()
+                .find(|r| r.statistic.to_string() == *name)
+                .unwrap();
             let actual = (row.estimate() - t).abs();
             if matches!(m.kind, MethodKind::Adaptive(_)) && matches!(*name, "mean" | "std") {
                 adaptive.push((

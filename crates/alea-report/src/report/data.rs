@@ -200,14 +200,12 @@ pub use alea_study::budget::BudgetRow;
 /// the study's own type.
 pub use alea_study::atoms::Atom;
 
-/// The budget row of `statistic` (`mean`, `std`, `q0.05`, `P(> t)`) in `rows`, if estimated.
-pub fn budget_row<'a>(rows: &'a [BudgetRow], statistic: &str) -> Option<&'a BudgetRow> {
-    rows.iter().find(|r| r.statistic == statistic)
-}
+/// The statistic a budget row is of: the study's own type.
+pub use alea_study::budget::Statistic;
 
-/// The name of the budget row of `P(q > threshold)` (as `alea_study::budget` writes it).
-pub fn failure_statistic(threshold: f64) -> String {
-    format!("P(> {threshold})")
+/// The budget row of `statistic` in `rows`, if estimated.
+pub fn budget_row(rows: &[BudgetRow], statistic: Statistic) -> Option<&BudgetRow> {
+    rows.iter().find(|r| r.statistic == statistic)
 }
 
 /// The failure probability by one algorithm.

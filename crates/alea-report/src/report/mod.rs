@@ -32,7 +32,7 @@ use std::path::{Path, PathBuf};
 pub use data::{
     AdaptiveReport, Atom, BudgetRow, Comparison, ComparisonRow, EntityRow, ErrorReport, ErrorRow,
     FailureInfo, ParamInfo, QoiReport, ReliabilityReport, ReliabilityRow, ReportInput, RunInfo,
-    StepRow, Surface, budget_row, failure_statistic,
+    Statistic, StepRow, Surface, budget_row,
 };
 
 /// What went wrong while writing a report.

@@ -1,12 +1,11 @@
 //! The error estimates of a study's methods (the estimate of every method with a surrogate;
-//! adaptive methods reuse their last step) and their JSON for `summary.json`.
+//! adaptive methods reuse their last step); `result.rs` gives them their place in the study's result.
 
 use std::path::Path;
 
 use alea_estimate::density::PairMap;
 use alea_estimate::{EntityEstimate, Estimate};
 use alea_study::StudyError;
-use alea_study::adaptive::AdaptiveOutcome;
 use alea_study::analysis::MethodResult;
 use alea_study::estimate::{
     ErrorSettings, MethodEstimateInput, SurrogateEstimate, density_maps, error_settings,
@@ -120,78 +119,28 @@ fn used_points(method: &Method, runs: &StudyRuns) -> Vec<Vec<f64>> {
 
 /// The entity that carries the largest part of `part(entity)`, with its share.
 pub(super) fn dominant(est: &Estimate, part: impl Fn(&EntityEstimate) -> f64) -> (String, f64) {
-    let total: f64 = est
-        .subs
-        .iter()
-        .chain(&est.interfaces)
-        .map(|e| part(e).max(0.0))
-        .sum();
+    let subs = est.subs.iter().map(|e| ("substructure", e, part(e)));
+    let interfaces = est.interfaces.iter().map(|e| ("interface", e, part(e)));
+    largest_share(
+        subs.chain(interfaces)
+            .map(|(kind, e, v)| (kind, e.name.as_str(), v)),
+    )
+}
+
+/// Among `(kind, name, part)` (substructures first, then interfaces), the entity that carries
+/// the largest part (`kind 'name'`), with its share of the sum of the parts (negative ones
+/// counted as 0).
+pub(super) fn largest_share<'a>(
+    parts: impl Iterator<Item = (&'a str, &'a str, f64)>,
+) -> (String, f64) {
+    let parts: Vec<(&str, &str, f64)> = parts.collect();
+    let total: f64 = parts.iter().map(|p| p.2.max(0.0)).sum();
     let mut best = (String::new(), 0.0);
-    for (kind, list) in [("substructure", &est.subs), ("interface", &est.interfaces)] {
-        for e in list.iter() {
-            let v = part(e).max(0.0);
-            if v > best.1 {
-                best = (format!("{kind} '{}'", e.name), v);
-            }
+    for (kind, name, v) in parts {
+        let v = v.max(0.0);
+        if v > best.1 {
+            best = (format!("{kind} '{name}'"), v);
         }
     }
     (best.0, if total > 0.0 { best.1 / total } else { 0.0 })
-}
-
-fn entity_json(e: &EntityEstimate, kind: &str, est: &Estimate) -> serde_json::Value {
-    serde_json::json!({
-        "name": e.name, "kind": kind,
-        "e2": e.e2, "geo2": e.geo2, "sto2": e.sto2, "mean2": e.mean2, "std2": e.std2,
-        "relative": est.relative_of(e.e2), "i_geo": est.relative_of(e.geo2),
-        "i_sto": est.relative_of(e.sto2),
-    })
-}
-
-/// The JSON of one method's estimate.
-pub(super) fn error_json(e: &SurrogateEstimate) -> serde_json::Value {
-    let est = &e.estimate;
-    let entities: Vec<serde_json::Value> = est
-        .subs
-        .iter()
-        .map(|x| entity_json(x, "substructure", est))
-        .chain(
-            est.interfaces
-                .iter()
-                .map(|x| entity_json(x, "interface", est)),
-        )
-        .collect();
-    serde_json::json!({
-        "relative": est.relative(), "i_geo": est.i_geo(), "i_sto": est.i_sto(),
-        "e2": est.e2, "geo2": est.geo2, "sto2": est.sto2, "norm2": est.norm2,
-        "runs": e.runs, "rule_points": e.rule_points, "load_defect": e.load_defect,
-        "violation_probability": est.violation_probability, "max_violation": est.max_violation,
-        "substructures_estimated": e.substructures_estimated,
-        "negative_parts": est.negative_parts(),
-        "entities": entities,
-    })
-}
-
-/// The JSON of an adaptive loop.
-pub(super) fn adaptive_json(a: &AdaptiveOutcome) -> serde_json::Value {
-    let steps: Vec<serde_json::Value> = a
-        .steps
-        .iter()
-        .map(|s| {
-            let mut v = serde_json::json!({
-                "runs": s.runs, "new_runs": s.new_runs, "thesis_cost": s.thesis_cost,
-                "estimate": error_json(&s.error),
-                "qois": s.qois.iter().map(|q| serde_json::json!({
-                    "mean": q.mean, "std": q.std, "failure": q.failure,
-                })).collect::<Vec<_>>(),
-            });
-            if !s.goal.is_empty() {
-                v["goal"] = serde_json::json!(s.goal);
-            }
-            v
-        })
-        .collect();
-    serde_json::json!({
-        "stop": a.stop, "error": a.error, "steps": steps,
-        "runs": (0..a.mesh.num_runs()).map(|r| a.mesh.run_point(r).to_vec()).collect::<Vec<_>>(),
-    })
 }

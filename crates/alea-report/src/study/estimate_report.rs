@@ -1,9 +1,12 @@
-//! The report's error section from the error estimates.
+//! The report's error section from the study's result (the indicators of every method, the
+//! main method's entities, the adaptive steps) and from the error estimates (the main
+//! method's density map and error fields).
 
 use alea_study::estimate::ErrorSettings;
 use alea_study::runner::{Study, StudyRuns};
 
-use super::estimate::{MethodEstimate, dominant};
+use super::estimate::{MethodEstimate, largest_share};
+use super::result::{AdaptiveLoop, ErrorEstimate, StudyResult, SurrogateError};
 use crate::report::{AdaptiveReport, EntityRow, ErrorReport, ErrorRow, StepRow, Surface};
 
 /// The report's error section: indicators per method, the main method's entities, adaptive
@@ -11,26 +14,31 @@ use crate::report::{AdaptiveReport, EntityRow, ErrorReport, ErrorRow, StepRow, S
 pub(super) fn report_error(
     study: &Study,
     runs: &StudyRuns,
+    result: &StudyResult,
     settings: &ErrorSettings,
     estimates: &[MethodEstimate],
 ) -> Option<ErrorReport> {
     if estimates.is_empty() {
         return None;
     }
-    let methods = estimates
+    let methods = result
+        .methods
         .iter()
-        .filter_map(|me| {
-            let e = me.result.as_ref().ok()?;
-            let est = &e.estimate;
-            let (who, share) = dominant(est, |x| x.e2);
+        .filter_map(|m| {
+            let e = estimated(&m.error_estimate)?;
+            let (who, share) = largest_share(
+                e.entities
+                    .iter()
+                    .map(|x| (x.kind.as_str(), x.name.as_str(), x.e2)),
+            );
             Some(ErrorRow {
-                method: runs.methods[me.method].label.clone(),
+                method: m.label.clone(),
                 runs: e.runs,
-                relative: est.relative(),
-                i_geo: est.i_geo(),
-                i_sto: est.i_sto(),
+                relative: e.relative,
+                i_geo: e.i_geo,
+                i_sto: e.i_sto,
                 dominant: format!("{who}: {:.0} %", 100.0 * share),
-                violation: est.violation_probability.clamp(0.0, 1.0),
+                violation: e.violation_probability.clamp(0.0, 1.0),
             })
         })
         .collect();
@@ -40,20 +48,18 @@ pub(super) fn report_error(
         .or_else(|| estimates.iter().find(|me| me.result.is_ok()));
     let (main_label, entities, map, vtu) = match main {
         Some(me) => {
-            let e = me.result.as_ref().ok()?;
-            let est = &e.estimate;
-            let entities = est
-                .subs
+            let m = &result.methods[me.method];
+            let e = estimated(&m.error_estimate)?;
+            let entities = e
+                .entities
                 .iter()
-                .map(|x| (x, "substructure"))
-                .chain(est.interfaces.iter().map(|x| (x, "interface")))
-                .map(|(x, kind)| EntityRow {
+                .map(|x| EntityRow {
                     entity: x.name.clone(),
-                    kind: kind.into(),
-                    relative: est.relative_of(x.e2),
-                    i_geo: est.relative_of(x.geo2),
-                    i_sto: est.relative_of(x.sto2),
-                    mean_share: (kind == "substructure" && x.e2 > 0.0)
+                    kind: x.kind.clone(),
+                    relative: x.relative,
+                    i_geo: x.i_geo,
+                    i_sto: x.i_sto,
+                    mean_share: (x.kind == "substructure" && x.e2 > 0.0)
                         .then(|| (x.mean2 / x.e2).clamp(0.0, 1.0)),
                 })
                 .collect();
@@ -69,7 +75,7 @@ pub(super) fn report_error(
                 }
             });
             (
-                runs.methods[me.method].label.clone(),
+                m.label.clone(),
                 entities,
                 map,
                 me.vtu.as_ref().map(|p| p.display().to_string()),
@@ -77,33 +83,17 @@ pub(super) fn report_error(
         }
         None => (String::new(), Vec::new(), None, None),
     };
-    let qoi = study.qois.first();
+    let qoi = study
+        .qois
+        .first()
+        .map_or("-".to_string(), |q| q.name.clone());
+    // In the order the loops ran.
     let adaptive = runs
         .adaptive
         .iter()
-        .map(|a| AdaptiveReport {
-            method: runs.methods[a.method].label.clone(),
-            stop: a.stop.clone(),
-            qoi: qoi.map_or("-".to_string(), |q| q.name.clone()),
-            steps: a
-                .steps
-                .iter()
-                .map(|s| {
-                    let est = &s.error.estimate;
-                    let q = s.qois.first();
-                    StepRow {
-                        runs: s.runs,
-                        new_runs: s.new_runs,
-                        i_sto: est.i_sto(),
-                        i_geo: est.i_geo(),
-                        relative: est.relative(),
-                        mean: q.map_or(0.0, |q| q.mean),
-                        std: q.map_or(0.0, |q| q.std),
-                        failure: q.and_then(|q| q.failure.first().copied()),
-                        cost: s.thesis_cost,
-                    }
-                })
-                .collect(),
+        .filter_map(|a| {
+            let m = &result.methods[a.method];
+            Some(adaptive_report(&m.label, m.adaptive.as_ref()?, &qoi))
         })
         .collect();
     Some(ErrorReport {
@@ -115,4 +105,39 @@ pub(super) fn report_error(
         map,
         vtu,
     })
+}
+
+/// The estimate of a method that has one.
+fn estimated(e: &Option<ErrorEstimate>) -> Option<&SurrogateError> {
+    match e {
+        Some(ErrorEstimate::Estimated(e)) => Some(e),
+        _ => None,
+    }
+}
+
+/// The steps of the adaptive method `label`, with the statistics of the first quantity `qoi`.
+fn adaptive_report(label: &str, a: &AdaptiveLoop, qoi: &str) -> AdaptiveReport {
+    AdaptiveReport {
+        method: label.to_string(),
+        stop: a.stop.clone(),
+        qoi: qoi.to_string(),
+        steps: a
+            .steps
+            .iter()
+            .map(|s| {
+                let q = s.qois.first();
+                StepRow {
+                    runs: s.runs,
+                    new_runs: s.new_runs,
+                    i_sto: s.estimate.i_sto,
+                    i_geo: s.estimate.i_geo,
+                    relative: s.estimate.relative,
+                    mean: q.map_or(0.0, |q| q.mean),
+                    std: q.map_or(0.0, |q| q.std),
+                    failure: q.and_then(|q| q.failure.first().copied()),
+                    cost: s.thesis_cost,
+                }
+            })
+            .collect(),
+    }
 }

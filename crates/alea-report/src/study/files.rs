@@ -1,81 +1,24 @@
-//! `summary.json` (everything a study found, for programs; the total intervals beside the
-//! sampling-only ones: `summary_intervals.rs`) and `samples.csv` (the main method's draws).
+//! `summary.json` (everything a study found, for programs: a [`StudyResult`] written by
+//! `serde_json`) and `samples.csv` (the main method's draws).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use alea_study::analysis::MethodResult;
-use alea_study::runner::{Study, StudyRuns};
+use alea_study::runner::Study;
 
-use super::estimate::{MethodEstimate, adaptive_json, error_json};
-use super::summary_intervals::add_intervals;
+use super::result::StudyResult;
 use crate::{Console, Error};
 
-/// Writes `summary.json` into `dir`; returns its path.
+/// Writes `summary.json` (`result`) into `dir`; returns its path.
 pub(super) fn write_summary(
-    study: &Study,
+    result: &StudyResult,
     dir: &Path,
-    results: &[MethodResult],
-    study_runs: &StudyRuns,
-    estimates: &[MethodEstimate],
-    reliability: &[alea_study::reliability::ReliabilityResult],
-    notes: &[String],
     console: &dyn Console,
 ) -> Result<PathBuf, Error> {
-    let records = &study_runs.records;
-    let runs: Vec<serde_json::Value> = records
-        .iter()
-        .map(|r| {
-            serde_json::json!({
-                "params": r.params, "status": r.status, "iterations": r.iterations,
-                "residual": r.residual, "qois": r.qois,
-                "slide": r.slide.as_ref().map(|s| serde_json::json!({
-                    "interface": s.interface, "slip": s.slip, "ratio": s.ratio,
-                })),
-            })
-        })
-        .collect();
-    let methods: Vec<serde_json::Value> = results
-        .iter()
-        .enumerate()
-        .map(|(m, r)| {
-            let mut v = serde_json::json!({
-                "label": r.label, "description": r.description, "design_runs": r.design_runs,
-                "runs_used": r.runs_used, "left_out": r.left_out, "error": r.error,
-                "failure_region": r.failure_region,
-                "draws": r.draws, "qois": r.qois,
-            });
-            add_intervals(&mut v["qois"], &r.qois);
-            if let Some(e) = estimates.iter().find(|e| e.method == m) {
-                v["error_estimate"] = match &e.result {
-                    Ok(me) => error_json(me),
-                    Err(why) => serde_json::json!({ "unavailable": why }),
-                };
-            }
-            if let Some(a) = study_runs.adaptive.iter().find(|a| a.method == m) {
-                v["adaptive"] = adaptive_json(a);
-            }
-            v
-        })
-        .collect();
-    let v = serde_json::json!({
-        "title": study.title(),
-        "study_file": study.file_name(),
-        "study_hash": study.hash,
-        "seed": study.seed,
-        "units": {
-            "length": study.model.units.length, "force": study.model.units.force,
-            "stress": study.model.units.stress, "density": study.model.units.density,
-        },
-        "parameters": study.params.names.iter().enumerate().map(|(j, n)| serde_json::json!({
-            "name": n, "law": study.params.descriptions[j], "unit": study.params.units[j],
-            "lo": study.params.lo[j], "hi": study.params.hi[j], "nominal": study.params.nominal[j],
-        })).collect::<Vec<_>>(),
-        "methods": methods,
-        "reliability": reliability,
-        "runs": runs,
-        "notes": notes,
-    });
+    // Through a `serde_json::Value`: its maps keep their keys sorted, the order the file has
+    // always had.
+    let v = serde_json::to_value(result)?;
     let text = serde_json::to_string_pretty(&v)?;
     if text.contains("NaN") {
         return Err(Error::NonFinite);

@@ -1,14 +1,18 @@
-//! The report's input from a study's results: the main method's quantities with their
-//! response surfaces, the comparison of methods, the runs and a few LATIN histories.
+//! The report's input from a study's result ([`StudyResult`]: the header, the statistics and
+//! their budgets, the reliability tables) and what the report draws beyond it (the draws and
+//! their densities, the response surfaces, the runs' timings and a few LATIN histories): the
+//! main method's quantities, the comparison of methods, the runs.
 
 use alea_study::analysis::{AnalysisSettings, MethodResult, QoiStats, response_surface};
 use alea_study::atoms::split_atoms;
-use alea_study::budget::QoiBudget;
 use alea_study::method::Method;
 use alea_study::qoi::Qoi;
 use alea_study::runner::Study;
 use alea_study::sensitivity::SobolStats;
 use alea_study::store::RunRecord;
+
+use super::result::StudyResult;
+use super::summary_intervals::{Budget, QuantityStatistics};
 
 use crate::report::{
     Atom, Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
@@ -30,71 +34,82 @@ fn density(s: &QoiStats, settings: &AnalysisSettings) -> (Vec<Atom>, Vec<(f64, f
     }
 }
 
+/// What the report is drawn from besides the study's result: the analysis with its draws, the
+/// runs with their timings and histories, the warnings and the timings of the stages.
+pub(super) struct Drawn<'a> {
+    /// The analysis settings (the densities' bandwidth, points and confidence).
+    pub settings: &'a AnalysisSettings,
+    /// The methods (their points, for the response surfaces).
+    pub methods: &'a [Method],
+    /// The statistics of every method with their draws, in method order.
+    pub results: &'a [MethodResult],
+    /// The finished runs.
+    pub records: &'a [RunRecord],
+    /// The warnings (those of the files written after `summary.json` too).
+    pub notes: &'a [String],
+    /// Wall time per stage.
+    pub timings: &'a [(String, f64)],
+}
+
 /// The report's input (without the error section, which `estimate_report.rs` adds).
-pub(super) fn report_input(
-    study: &Study,
-    settings: &AnalysisSettings,
-    methods: &[Method],
-    results: &[MethodResult],
-    records: &[RunRecord],
-    notes: &[String],
-    timings: &[(String, f64)],
-) -> ReportInput {
+pub(super) fn report_input(study: &Study, result: &StudyResult, drawn: &Drawn) -> ReportInput {
     // The first method that produced statistics answers; the others are compared with it.
-    let main_index = results.iter().position(|r| !r.qois.is_empty());
+    let main_index = result.methods.iter().position(|r| !r.qois.is_empty());
     let qois = study
         .qois
         .iter()
         .enumerate()
         .filter_map(|(q, qoi)| {
             let m = main_index?;
-            let s = results[m].qois.get(q)?;
-            let surface = surface_of(study, &methods[m], records, q);
+            let quantity = result.methods[m].qois.get(q)?;
+            let s = drawn.results[m].qois.get(q)?;
+            let surface = surface_of(study, &drawn.methods[m], drawn.records, q);
             Some(qoi_report(
                 study,
-                settings,
+                drawn.settings,
                 qoi,
-                s,
+                (quantity, s),
                 surface,
-                &results[m].label,
+                &result.methods[m].label,
             ))
         })
         .collect();
-    let comparison = (results.len() > 1).then(|| comparison_of(study, settings, results));
+    let comparison = (result.methods.len() > 1).then(|| comparison_of(study, result, drawn));
     ReportInput {
-        title: study.title(),
-        study_file: study.file_name(),
-        units: unit_list(study),
+        title: result.title.clone(),
+        study_file: result.study_file.clone(),
+        units: unit_list(result),
         method: main_index.map_or_else(
             || "no method produced statistics (see the notes)".to_string(),
-            |m| format!("{}: {}", results[m].label, results[m].description),
+            |m| {
+                let r = &result.methods[m];
+                format!("{}: {}", r.label, r.description)
+            },
         ),
-        parameters: study
-            .params
-            .names
+        parameters: result
+            .parameters
             .iter()
-            .enumerate()
-            .map(|(j, n)| ParamInfo {
-                name: n.clone(),
-                law: study.params.descriptions[j].clone(),
-                lo: study.params.lo[j],
-                hi: study.params.hi[j],
+            .map(|p| ParamInfo {
+                name: p.name.clone(),
+                law: p.law.clone(),
+                lo: p.lo,
+                hi: p.hi,
             })
             .collect(),
-        runs: run_infos(records, main_index.is_some()),
-        residual_histories: residual_histories(records),
+        runs: run_infos(drawn.records, main_index.is_some()),
+        residual_histories: residual_histories(drawn.records),
         qois,
         comparison,
-        timings: timings.to_vec(),
-        notes: notes.to_vec(),
+        timings: drawn.timings.to_vec(),
+        notes: drawn.notes.to_vec(),
         error: None,
-        reliability: Vec::new(),
+        reliability: reliability_report(&result.reliability),
     }
 }
 
 /// The study's units by name (the density only when given).
-fn unit_list(study: &Study) -> Vec<(String, String)> {
-    let units = &study.model.units;
+fn unit_list(result: &StudyResult) -> Vec<(String, String)> {
+    let units = &result.units;
     let mut unit_list = vec![
         ("length".to_string(), units.length.clone()),
         ("force".into(), units.force.clone()),
@@ -125,12 +140,13 @@ fn surface_of(study: &Study, method: &Method, records: &[RunRecord], q: usize) -
     })
 }
 
-/// One quantity's part of the report from its statistics `s` under the main method (`label`).
+/// One quantity's part of the report from its statistics under the main method (`label`):
+/// `quantity` as the study's result holds them, `s` with their draws.
 fn qoi_report(
     study: &Study,
     settings: &AnalysisSettings,
     qoi: &Qoi,
-    s: &QoiStats,
+    (quantity, s): (&QuantityStatistics, &QoiStats),
     surface: Option<Surface>,
     label: &str,
 ) -> QoiReport {
@@ -140,13 +156,13 @@ fn qoi_report(
         unit: qoi.unit.clone(),
         what: qoi.what.clone(),
         samples: s.samples.clone(),
-        mean: s.mean,
-        std: s.std,
-        skewness: s.skewness,
-        quantiles: s.quantiles.clone(),
+        mean: quantity.mean,
+        std: quantity.std,
+        skewness: quantity.skewness,
+        quantiles: quantity.quantiles.clone(),
         kde,
         atoms,
-        failure: s
+        failure: quantity
             .failure
             .iter()
             .map(|f| FailureInfo {
@@ -157,9 +173,9 @@ fn qoi_report(
             })
             .collect(),
         surface,
-        budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
-        budget_basis: s.budget.as_ref().map_or_else(Vec::new, budget_basis),
-        sobol: s.sobol.as_ref().map_or_else(Vec::new, |so| {
+        budget: budget_rows(quantity),
+        budget_basis: quantity.budget.as_ref().map_or_else(Vec::new, budget_basis),
+        sobol: quantity.sobol.as_ref().map_or_else(Vec::new, |so| {
             study
                 .params
                 .names
@@ -168,15 +184,23 @@ fn qoi_report(
                 .map(|(n, (f, t))| (n.clone(), *f, *t))
                 .collect()
         }),
-        sobol_basis: s
+        sobol_basis: quantity
             .sobol
             .as_ref()
             .map_or_else(String::new, |so| sobol_basis(so, label)),
     }
 }
 
+/// The budget rows of a quantity's statistics (none without a budget).
+fn budget_rows(quantity: &QuantityStatistics) -> Vec<alea_study::budget::BudgetRow> {
+    quantity
+        .budget
+        .as_ref()
+        .map_or_else(Vec::new, |b| b.rows.iter().map(|r| r.row.clone()).collect())
+}
+
 /// How each part of a quantity's error budget was obtained, one line each.
-fn budget_basis(b: &QoiBudget) -> Vec<String> {
+fn budget_basis(b: &Budget) -> Vec<String> {
     let mut lines = vec![
         format!("Surrogate: {}.", b.surrogate_basis),
         format!(
@@ -206,26 +230,24 @@ fn sobol_basis(so: &SobolStats, label: &str) -> String {
 }
 
 /// The comparison of the methods on the first quantity.
-fn comparison_of(
-    study: &Study,
-    settings: &AnalysisSettings,
-    results: &[MethodResult],
-) -> Comparison {
+fn comparison_of(study: &Study, result: &StudyResult, drawn: &Drawn) -> Comparison {
     Comparison {
         qoi: study.qois[0].name.clone(),
-        rows: results
+        rows: result
+            .methods
             .iter()
-            .filter_map(|r| {
-                let s = r.qois.first()?;
-                let (atoms, kde) = density(s, settings);
+            .zip(drawn.results)
+            .filter_map(|(r, drawn_r)| {
+                let quantity = r.qois.first()?;
+                let (atoms, kde) = density(drawn_r.qois.first()?, drawn.settings);
                 Some(ComparisonRow {
                     method: r.label.clone(),
                     runs: r.runs_used,
-                    mean: s.mean,
-                    std: s.std,
+                    mean: quantity.mean,
+                    std: quantity.std,
                     kde,
                     atoms,
-                    budget: s.budget.as_ref().map_or_else(Vec::new, |b| b.rows.clone()),
+                    budget: budget_rows(quantity),
                 })
             })
             .collect(),
@@ -279,7 +301,7 @@ fn run_infos(records: &[RunRecord], with_qois: bool) -> Vec<RunInfo> {
 }
 
 /// The report's rare-event section from the `[[reliability]]` results.
-pub(super) fn reliability_report(
+fn reliability_report(
     results: &[alea_study::reliability::ReliabilityResult],
 ) -> Vec<ReliabilityReport> {
     results

@@ -2,10 +2,13 @@
 //! `alea report`) and the Python package (`alea.run`, `alea.report`, `alea.open_store`).
 //!
 //! Layered one way, no import circle: [`results`] (what a study gives without writing files)
-//! and the estimate services (`estimate.rs`, `estimate_text.rs`, `estimate_report.rs`), the
-//! writers (`files.rs`: `summary.json`, `samples.csv`; `input.rs`: the report's input;
-//! `table.rs`: the statistics table), then `outputs.rs` (every output of a study whose runs are
-//! done) and this file (run a study file, rebuild a study directory).
+//! and the estimate services (`estimate.rs`, `estimate_text.rs`), the typed result of a study
+//! ([`StudyResult`], `result.rs`; each quantity's statistics with their total intervals in
+//! `summary_intervals.rs`), the writers (`files.rs`: `summary.json` from the [`StudyResult`],
+//! `samples.csv`; `input.rs` and `estimate_report.rs`: the report's input from the
+//! [`StudyResult`] and the draws; `table.rs`: the statistics table), then `outputs.rs` (every
+//! output of a study whose runs are done) and this file (run a study file, rebuild a study
+//! directory).
 
 mod estimate;
 mod estimate_report;
@@ -13,6 +16,7 @@ mod estimate_text;
 mod files;
 mod input;
 mod outputs;
+mod result;
 mod results;
 mod summary_intervals;
 mod table;
@@ -24,9 +28,14 @@ use alea_study::analysis::{AnalysisSettings, analysis_settings};
 use alea_study::runner::{Progress, Study, StudyRuns, run_study};
 
 pub use outputs::{Outputs, write_outputs};
+pub use result::{
+    AdaptiveLoop, AdaptiveStep, EntityError, ErrorEstimate, MethodOutcome, Parameter, Run, Slide,
+    StepQuantity, StudyResult, SurrogateError, Units,
+};
 pub use results::{
     Analysis, StoredRuns, analyse, analyse_all, converged_runs, sample_points, stored_runs,
 };
+pub use summary_intervals::{Budget, BudgetInterval, FailureProbability, QuantityStatistics};
 
 use crate::{Console, Error};
 

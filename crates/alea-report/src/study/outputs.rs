@@ -8,7 +8,6 @@ use std::time::Instant;
 use alea_study::StudyError;
 use alea_study::analysis::{AnalysisSettings, MethodResult};
 use alea_study::estimate::ErrorSettings;
-use alea_study::reliability::ReliabilityResult;
 use alea_study::runner::{Study, StudyRuns};
 use alea_study::store::RunRecord;
 
@@ -16,7 +15,8 @@ use super::estimate::{MethodEstimate, estimate_all};
 use super::estimate_report::report_error;
 use super::estimate_text::print_estimates;
 use super::files::{write_samples, write_summary};
-use super::input::{reliability_report, report_input};
+use super::input::{Drawn, report_input};
+use super::result::{ResultParts, StudyResult};
 use super::results::{Analysis, analyse};
 use super::table::{print_reliability, print_table};
 use crate::console::Deferred;
@@ -107,16 +107,17 @@ fn write_files(
         console,
     ));
     let estimate_seconds = t0.elapsed().as_secs_f64();
-    let summary = write_summary(
+    let result = StudyResult::new(
         study,
-        dir,
-        &results,
-        runs,
-        &estimates,
-        &reliability,
-        &notes,
-        console,
-    )?;
+        &ResultParts {
+            results: &results,
+            runs,
+            estimates: &estimates,
+            reliability: &reliability,
+            notes: &notes,
+        },
+    );
+    let summary = write_summary(&result, dir, console)?;
     let mut samples = None;
     if study.output.samples_csv.unwrap_or(true)
         && let Some(main) = results.iter().find(|r| !r.qois.is_empty())
@@ -128,7 +129,7 @@ fn write_files(
     if report {
         let parts = ReportParts {
             results: &results,
-            reliability: &reliability,
+            result: &result,
             err_settings: &err_settings,
             estimates: &estimates,
             analysis_seconds,
@@ -259,8 +260,10 @@ fn write_fields(
 
 /// What the report is written from, besides the study and its runs.
 struct ReportParts<'a> {
+    /// The statistics with their draws.
     results: &'a [MethodResult],
-    reliability: &'a [ReliabilityResult],
+    /// The study's result.
+    result: &'a StudyResult,
     err_settings: &'a ErrorSettings,
     estimates: &'a [MethodEstimate],
     /// Seconds of the surrogates and Monte Carlo.
@@ -280,22 +283,28 @@ fn write_report_files(
     console: &dyn Console,
 ) -> Result<ReportFiles, Error> {
     let t0 = Instant::now();
-    let mut input = report_input(
-        study,
+    let timings = [
+        ("solver set-up".into(), runs.setup_seconds),
+        ("solves".into(), runs.solve_seconds),
+        ("surrogates + Monte Carlo".into(), parts.analysis_seconds),
+        ("stochastic error estimates".into(), parts.estimate_seconds),
+    ];
+    let drawn = Drawn {
         settings,
-        &runs.methods,
-        parts.results,
-        &runs.records,
+        methods: &runs.methods,
+        results: parts.results,
+        records: &runs.records,
         notes,
-        &[
-            ("solver set-up".into(), runs.setup_seconds),
-            ("solves".into(), runs.solve_seconds),
-            ("surrogates + Monte Carlo".into(), parts.analysis_seconds),
-            ("stochastic error estimates".into(), parts.estimate_seconds),
-        ],
+        timings: &timings,
+    };
+    let mut input = report_input(study, parts.result, &drawn);
+    input.error = report_error(
+        study,
+        runs,
+        parts.result,
+        parts.err_settings,
+        parts.estimates,
     );
-    input.error = report_error(study, runs, parts.err_settings, parts.estimates);
-    input.reliability = reliability_report(parts.reliability);
     let written = report::write_report(&dir.join("report"), &input)?;
     // Directories written before 2026-11-28 kept the report's input beside it
     // (`report-input.json`, as large as every draw): an intermediate nothing reads, removed

@@ -1,54 +1,189 @@
-//! The total intervals in `summary.json` (issue 40, item 3), added beside the fields that
-//! readers already use (none renamed): every budget row gets `estimate` (the statistic
-//! corrected by the validation runs where there are some, else its `value`) and `interval`
-//! (`[lo, hi]`, the total interval about it); every failure probability gets
-//! `sampling_interval` (its Wilson interval, the same bounds as `ci_low` / `ci_high`, which are
-//! sampling only), and `estimate` and `interval` from its budget row (`null` without a budget).
+//! The statistics of one quantity under one method as [`super::result::StudyResult`] holds
+//! them, with the total intervals (issue 40, item 3) beside the fields that readers already
+//! use (none renamed): every budget row has `estimate` (the statistic corrected by the
+//! validation runs where there are some, else its `value`) and `interval` (`[lo, hi]`, the
+//! total interval about it); every failure probability has `sampling_interval` (its Wilson
+//! interval, the same bounds as `ci_low` / `ci_high`, which are sampling only), and `estimate`
+//! and `interval` from its budget row (`null` without a budget).
 
-use alea_study::analysis::QoiStats;
-use alea_study::budget::BudgetRow;
-use serde_json::{Value, json};
+use alea_study::analysis::{FailureStat, QoiStats};
+use alea_study::budget::validation::PointwiseErrors;
+use alea_study::budget::{BudgetRow, QoiBudget, Statistic};
+use alea_study::sensitivity::SobolStats;
+use serde::Serialize;
 
-/// Adds the fields to `qois`, the JSON array of `stats` (same order).
-pub(super) fn add_intervals(qois: &mut Value, stats: &[QoiStats]) {
-    let Some(list) = qois.as_array_mut() else {
-        return;
-    };
-    for (q, s) in list.iter_mut().zip(stats) {
-        let rows: &[BudgetRow] = s.budget.as_ref().map_or(&[], |b| &b.rows);
-        if let Some(json_rows) = q.pointer_mut("/budget/rows").and_then(Value::as_array_mut) {
-            for (j, row) in json_rows.iter_mut().zip(rows) {
-                let (lo, hi) = row.interval();
-                j["estimate"] = json!(row.estimate());
-                j["interval"] = json!([lo, hi]);
-            }
+/// The statistics of one quantity of interest under one method
+/// (`alea_study::analysis::QoiStats` without its samples, with the total intervals).
+#[derive(Clone, Debug, Serialize)]
+pub struct QuantityStatistics {
+    /// Name.
+    pub name: String,
+    /// Unit.
+    pub unit: String,
+    /// Mean.
+    pub mean: f64,
+    /// Standard deviation.
+    pub std: f64,
+    /// Skewness.
+    pub skewness: f64,
+    /// Smallest sample.
+    pub min: f64,
+    /// Largest sample.
+    pub max: f64,
+    /// Half width of the confidence interval of the mean (Monte Carlo error).
+    pub mean_ci_half_width: f64,
+    /// `(probability, value)` quantiles.
+    pub quantiles: Vec<(f64, f64)>,
+    /// KDE bandwidth.
+    pub bandwidth: f64,
+    /// `(x, pdf)` of the KDE.
+    pub kde: Vec<(f64, f64)>,
+    /// Failure probabilities.
+    pub failure: Vec<FailureProbability>,
+    /// The error budget of each statistic (none for a study without random parameters).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub budget: Option<Budget>,
+    /// Sobol' indices of every parameter (studies with random fields).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sobol: Option<SobolStats>,
+}
+
+/// `P(q > threshold)` with its sampling and total intervals.
+#[derive(Clone, Debug, Serialize)]
+pub struct FailureProbability {
+    /// Threshold.
+    pub threshold: f64,
+    /// Estimate from the draws.
+    pub probability: f64,
+    /// Lower bound of the (sampling) confidence interval.
+    pub ci_low: f64,
+    /// Upper bound.
+    pub ci_high: f64,
+    /// `[ci_low, ci_high]`.
+    pub sampling_interval: [f64; 2],
+    /// Its budget row's estimate (`None`: no budget row).
+    pub estimate: Option<f64>,
+    /// Its budget row's total interval (`None`: no budget row).
+    pub interval: Option<[f64; 2]>,
+}
+
+/// The error budget of one quantity under one method (`alea_study::budget::QoiBudget` with
+/// the total intervals).
+#[derive(Clone, Debug, Serialize)]
+pub struct Budget {
+    /// One row per statistic: mean, std, the quantiles, each `P(q > t)`.
+    pub rows: Vec<BudgetInterval>,
+    /// How the surrogate part was estimated, or why it was not.
+    pub surrogate_basis: String,
+    /// How the validation runs corrected the statistics (`None`: no validation runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub validation_basis: Option<String>,
+    /// The surrogate's residuals at the validation runs (`None`: no validation runs).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub validation_errors: Option<PointwiseErrors>,
+    /// How the mesh part was estimated, or why it was not.
+    pub mesh_basis: String,
+    /// How the sliding part was estimated, or why it was not (`None`: not asked for).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sliding_basis: Option<String>,
+    /// Monte Carlo draws behind the statistics.
+    pub draws: usize,
+}
+
+/// A budget row with its estimate and total interval.
+#[derive(Clone, Debug, Serialize)]
+pub struct BudgetInterval {
+    /// The row.
+    #[serde(flatten)]
+    pub row: BudgetRow,
+    /// [`BudgetRow::estimate`].
+    pub estimate: f64,
+    /// [`BudgetRow::interval`].
+    pub interval: [f64; 2],
+}
+
+impl From<&BudgetRow> for BudgetInterval {
+    fn from(row: &BudgetRow) -> Self {
+        let (lo, hi) = row.interval();
+        BudgetInterval {
+            row: row.clone(),
+            estimate: row.estimate(),
+            interval: [lo, hi],
         }
-        if let Some(failures) = q.get_mut("failure").and_then(Value::as_array_mut) {
-            for (j, f) in failures.iter_mut().zip(&s.failure) {
-                j["sampling_interval"] = json!([f.ci_low, f.ci_high]);
-                let statistic = format!("P(> {})", f.threshold);
-                let row = rows.iter().find(|r| r.statistic == statistic);
-                j["estimate"] = json!(row.map(BudgetRow::estimate));
-                j["interval"] = json!(row.map(|r| {
-                    let (lo, hi) = r.interval();
-                    [lo, hi]
-                }));
-            }
+    }
+}
+
+impl From<&QoiBudget> for Budget {
+    fn from(b: &QoiBudget) -> Self {
+        Budget {
+            rows: b.rows.iter().map(BudgetInterval::from).collect(),
+            surrogate_basis: b.surrogate_basis.clone(),
+            validation_basis: b.validation_basis.clone(),
+            validation_errors: b.validation_errors.clone(),
+            mesh_basis: b.mesh_basis.clone(),
+            sliding_basis: b.sliding_basis.clone(),
+            draws: b.draws,
+        }
+    }
+}
+
+impl FailureProbability {
+    /// `f` with the total interval of its row among `rows`.
+    fn of(f: &FailureStat, rows: &[BudgetRow]) -> Self {
+        let row = rows
+            .iter()
+            .find(|r| r.statistic == Statistic::Exceedance(f.threshold));
+        FailureProbability {
+            threshold: f.threshold,
+            probability: f.probability,
+            ci_low: f.ci_low,
+            ci_high: f.ci_high,
+            sampling_interval: [f.ci_low, f.ci_high],
+            estimate: row.map(BudgetRow::estimate),
+            interval: row.map(|r| {
+                let (lo, hi) = r.interval();
+                [lo, hi]
+            }),
+        }
+    }
+}
+
+impl From<&QoiStats> for QuantityStatistics {
+    fn from(s: &QoiStats) -> Self {
+        let rows: &[BudgetRow] = s.budget.as_ref().map_or(&[], |b| &b.rows);
+        QuantityStatistics {
+            name: s.name.clone(),
+            unit: s.unit.clone(),
+            mean: s.mean,
+            std: s.std,
+            skewness: s.skewness,
+            min: s.min,
+            max: s.max,
+            mean_ci_half_width: s.mean_ci_half_width,
+            quantiles: s.quantiles.clone(),
+            bandwidth: s.bandwidth,
+            kde: s.kde.clone(),
+            failure: s
+                .failure
+                .iter()
+                .map(|f| FailureProbability::of(f, rows))
+                .collect(),
+            budget: s.budget.as_ref().map(Budget::from),
+            sobol: s.sobol.clone(),
         }
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use alea_study::analysis::FailureStat;
-    use alea_study::budget::QoiBudget;
     use alea_study::budget::validation::Corrected;
+    use serde_json::json;
 
     use super::*;
 
     fn row(statistic: &str, value: f64, sampling: f64, surrogate: f64) -> BudgetRow {
         BudgetRow {
-            statistic: statistic.into(),
+            statistic: statistic.parse().expect("a statistic"),
             value,
             mesh: None,
             surrogate: Some(surrogate),
@@ -113,8 +248,7 @@ mod tests {
             samples: vec![],
             negative: (0.0, f64::INFINITY),
         };
-        let mut v = serde_json::to_value(vec![&stats]).unwrap();
-        add_intervals(&mut v, std::slice::from_ref(&stats));
+        let v = serde_json::to_value(vec![QuantityStatistics::from(&stats)]).unwrap();
         let f = &v[0]["failure"][0];
         assert_eq!(f["ci_low"], json!(0.24), "old fields kept");
         assert_eq!(f["sampling_interval"], json!([0.24, 0.26]));

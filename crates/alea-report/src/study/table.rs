@@ -4,7 +4,7 @@
 //! probabilities with their total and sampling-only intervals.
 
 use alea_study::analysis::{MethodResult, QoiStats};
-use alea_study::budget::BudgetRow;
+use alea_study::budget::{BudgetRow, Statistic};
 use alea_study::runner::Study;
 
 use crate::Console;
@@ -51,8 +51,8 @@ pub(super) fn print_table(
         for r in results {
             match r.qois.get(q) {
                 Some(s) => {
-                    let (mean, mean_interval) = read(s, "mean", s.mean, 6);
-                    let (std, std_interval) = read(s, "std", s.std, 6);
+                    let (mean, mean_interval) = read(s, Statistic::Mean, s.mean, 6);
+                    let (std, std_interval) = read(s, Statistic::Std, s.std, 6);
                     console.line(&format!(
                         "  {:<34} {:>5} {mean:>12} {mean_interval:>24} {std:>12} {std_interval:>24} {:>9.3}",
                         r.label, r.runs_used, s.skewness
@@ -71,12 +71,12 @@ pub(super) fn print_table(
         {
             console.line(&format!("  error budget ({}):", r.label));
             for row in &b.rows {
-                if row.statistic.starts_with('q')
-                    && !["q0.05", "q0.5", "q0.95"].contains(&row.statistic.as_str())
+                if let Statistic::Quantile(p) = row.statistic
+                    && ![0.05, 0.5, 0.95].contains(&p)
                 {
                     continue;
                 }
-                let unit = if row.statistic.starts_with('P') {
+                let unit = if row.statistic.is_probability() {
                     ""
                 } else {
                     qoi.unit.as_str()
@@ -118,7 +118,7 @@ pub(super) fn print_table(
         for r in results {
             let Some(s) = r.qois.get(q) else { continue };
             for f in &s.failure {
-                let row = budget_row(s, &format!("P(> {})", f.threshold));
+                let row = budget_row(s, Statistic::Exceedance(f.threshold));
                 let total_words = row.map_or_else(String::new, |row| {
                     let (lo, hi) = row.interval();
                     format!("total interval [{}, {}] (budget); ", prob(lo), prob(hi))
@@ -145,7 +145,7 @@ pub(super) fn print_table(
 }
 
 /// The budget row of `statistic` of a quantity's statistics, if estimated.
-fn budget_row<'a>(s: &'a QoiStats, statistic: &str) -> Option<&'a BudgetRow> {
+fn budget_row(s: &QoiStats, statistic: Statistic) -> Option<&BudgetRow> {
     s.budget
         .as_ref()?
         .rows
@@ -155,7 +155,7 @@ fn budget_row<'a>(s: &'a QoiStats, statistic: &str) -> Option<&'a BudgetRow> {
 
 /// What a user reads of `statistic`: its estimate (the budget's, else `value`) and its total
 /// interval (`-` when not estimated), with `sig` significant digits.
-fn read(s: &QoiStats, statistic: &str, value: f64, sig: usize) -> (String, String) {
+fn read(s: &QoiStats, statistic: Statistic, value: f64, sig: usize) -> (String, String) {
     match budget_row(s, statistic) {
         Some(row) => {
             let (lo, hi) = row.interval();

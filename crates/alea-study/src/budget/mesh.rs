@@ -34,6 +34,7 @@
 
 use alea_uq::law::Marginal;
 
+use super::Statistic;
 use crate::study::Study;
 
 /// Paired solves of the study and another model of it (the refined mesh of the mesh part, the
@@ -327,14 +328,9 @@ pub fn apply(
         .filter(|v| v.is_finite())
         .unwrap_or(0.0);
     for row in &mut budget.rows {
-        let part = if row.statistic == "std" {
+        let part = if row.statistic == Statistic::Std {
             (0.5 * s).max(scaled)
-        } else if let Some(t) = row
-            .statistic
-            .strip_prefix("P(> ")
-            .and_then(|r| r.strip_suffix(')'))
-            .and_then(|t| t.parse::<f64>().ok())
-        {
+        } else if let Statistic::Exceedance(t) = row.statistic {
             match shifts {
                 Some(shift) => {
                     samples

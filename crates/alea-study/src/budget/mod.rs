@@ -28,9 +28,11 @@
 
 mod coarse;
 pub mod mesh;
+mod statistic;
 pub mod validation;
 
 pub use coarse::{Comparison, comparisons, credible_fit, smooth_fits};
+pub use statistic::{Statistic, UnknownStatistic};
 
 use alea_uq::special::norm_quantile;
 use alea_uq::stats::{Summary, failure_probability, quantile_sorted};
@@ -39,8 +41,8 @@ use serde::{Deserialize, Serialize};
 /// The budget of one statistic.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BudgetRow {
-    /// The statistic: `mean`, `std`, `q0.05` (quantile of order 0.05), `P(> t)`.
-    pub statistic: String,
+    /// The statistic (written `mean`, `std`, `q0.05` for the quantile of order 0.05, `P(> t)`).
+    pub statistic: Statistic,
     /// Its value.
     pub value: f64,
     /// Space-discretisation part (`None`: not estimated).
@@ -79,10 +81,10 @@ impl BudgetRow {
     pub fn interval(&self) -> (f64, f64) {
         let e = self.estimate();
         let (mut lo, mut hi) = (e - self.total, e + self.total);
-        if self.statistic.starts_with("P(") {
-            (lo, hi) = (lo.max(0.0), hi.min(1.0));
-        } else if self.statistic == "std" {
-            lo = lo.max(0.0);
+        match self.statistic {
+            Statistic::Exceedance(_) => (lo, hi) = (lo.max(0.0), hi.min(1.0)),
+            Statistic::Std => lo = lo.max(0.0),
+            Statistic::Mean | Statistic::Quantile(_) => {}
         }
         (lo, hi)
     }
@@ -126,8 +128,8 @@ pub struct QoiBudget {
 
 /// The statistics of a sample with the sampling half-width of each.
 struct Statistics {
-    /// `(name, value, sampling half-width)`.
-    rows: Vec<(String, f64, f64)>,
+    /// `(statistic, value, sampling half-width)`.
+    rows: Vec<(Statistic, f64, f64)>,
 }
 
 impl Statistics {
@@ -142,12 +144,12 @@ impl Statistics {
         sorted.sort_by(f64::total_cmp);
         let mut rows = vec![
             (
-                "mean".to_string(),
+                Statistic::Mean,
                 sum.mean,
                 finite(sum.mean_ci_half_width(confidence)),
             ),
             (
-                "std".to_string(),
+                Statistic::Std,
                 std,
                 finite(z * std * ((sum.kurtosis + 2.0).max(0.0) / (4.0 * nf)).sqrt()),
             ),
@@ -164,13 +166,13 @@ impl Statistics {
                 let (lo, hi) = (sorted[l], sorted[u]);
                 (value - lo).max(hi - value)
             };
-            rows.push((format!("q{p}"), value, finite(half)));
+            rows.push((Statistic::Quantile(p), value, finite(half)));
         }
         for &t in thresholds {
             let f = failure_probability(samples, t, confidence);
             // The Wilson interval is not centred on the estimate: its larger side.
             rows.push((
-                format!("P(> {t})"),
+                Statistic::Exceedance(t),
                 f.p,
                 finite((f.p - f.lower).max(f.upper - f.p)),
             ));
@@ -367,7 +369,7 @@ pub fn qoi_budget(
                 SurrogatePart::Unavailable(_) => None,
             };
             let mut row = BudgetRow {
-                statistic: name.clone(),
+                statistic: *name,
                 value: *value,
                 mesh: None,
                 surrogate: part,

@@ -4,10 +4,10 @@
 //! the statistic's budget row; the sampling-only interval is never shown without its label.
 
 use super::super::format::{num, prob};
-use super::super::{BudgetRow, budget_row};
+use super::super::{BudgetRow, Statistic, budget_row};
 
 /// The value users read of `statistic`: the budget row's estimate, else `value` (no budget).
-pub(super) fn estimate(rows: &[BudgetRow], statistic: &str, value: f64) -> f64 {
+pub(super) fn estimate(rows: &[BudgetRow], statistic: Statistic, value: f64) -> f64 {
     budget_row(rows, statistic).map_or(value, BudgetRow::estimate)
 }
 
@@ -28,14 +28,19 @@ impl Style {
 }
 
 /// `[lo, hi]`, the total interval of `statistic`, or `None` when it has no budget row.
-pub(super) fn total(rows: &[BudgetRow], statistic: &str, style: Style) -> Option<String> {
+pub(super) fn total(rows: &[BudgetRow], statistic: Statistic, style: Style) -> Option<String> {
     let (lo, hi) = budget_row(rows, statistic)?.interval();
     Some(format!("[{}, {}]", style.text(lo), style.text(hi)))
 }
 
 /// A table cell's text: the estimate of `statistic` followed by its total interval in a
 /// `ci` span (`value` alone when not estimated).
-pub(super) fn with_total(rows: &[BudgetRow], statistic: &str, value: f64, style: Style) -> String {
+pub(super) fn with_total(
+    rows: &[BudgetRow],
+    statistic: Statistic,
+    value: f64,
+    style: Style,
+) -> String {
     let e = style.text(estimate(rows, statistic, value));
     match total(rows, statistic, style) {
         Some(t) => format!("{e} <span class=\"ci\">{t}</span>"),

@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use super::super::format::{count, esc, num, prob};
 use super::super::plots::{Figure, Kind};
-use super::super::{Comparison, QoiReport, ReliabilityReport, failure_statistic};
+use super::super::{Comparison, QoiReport, ReliabilityReport, Statistic};
 use super::figures::{put_figure, with_unit};
 use super::interval::{Style, estimate, total, with_total};
 
@@ -44,18 +44,22 @@ fn statistics_table(o: &mut String, q: &QoiReport, unit: &str) {
     };
     // Each with its total interval (issue 40, item 3).
     let (mean, std) = (
-        estimate(&q.budget, "mean", q.mean),
-        estimate(&q.budget, "std", q.std),
+        estimate(&q.budget, Statistic::Mean, q.mean),
+        estimate(&q.budget, Statistic::Std, q.std),
     );
-    let with_interval = |statistic: &str, value: f64, sig: usize| {
+    let with_interval = |statistic: Statistic, value: f64, sig: usize| {
         let e = num(estimate(&q.budget, statistic, value), sig);
         match total(&q.budget, statistic, Style::Num(sig)) {
             Some(t) => format!("{e}{unit} <span class=\"ci\">total {t}</span>"),
             None => format!("{e}{unit}"),
         }
     };
-    row(o, "Mean", with_interval("mean", q.mean, 5));
-    row(o, "Standard deviation", with_interval("std", q.std, 4));
+    row(o, "Mean", with_interval(Statistic::Mean, q.mean, 5));
+    row(
+        o,
+        "Standard deviation",
+        with_interval(Statistic::Std, q.std, 4),
+    );
     if mean != 0.0 {
         row(
             o,
@@ -77,7 +81,7 @@ fn quantiles_table(o: &mut String, q: &QoiReport, unit: &str) {
         let intervals = q
             .quantiles
             .iter()
-            .any(|(p, _)| total(&q.budget, &format!("q{p}"), Style::Num(4)).is_some());
+            .any(|&(p, _)| total(&q.budget, Statistic::Quantile(p), Style::Num(4)).is_some());
         let _ = writeln!(
             o,
             "<table><thead><tr><th class=\"n\">Probability</th><th class=\"n\">Value</th>{}\
@@ -89,11 +93,11 @@ fn quantiles_table(o: &mut String, q: &QoiReport, unit: &str) {
             }
         );
         for &(p, v) in &q.quantiles {
-            let statistic = format!("q{p}");
+            let statistic = Statistic::Quantile(p);
             let cell = if intervals {
                 format!(
                     "<td class=\"n\">{}</td>",
-                    total(&q.budget, &statistic, Style::Num(4))
+                    total(&q.budget, statistic, Style::Num(4))
                         .unwrap_or_else(|| "not estimated".into())
                 )
             } else {
@@ -103,7 +107,7 @@ fn quantiles_table(o: &mut String, q: &QoiReport, unit: &str) {
                 o,
                 "<tr><td class=\"n\">{}</td><td class=\"n\">{}{unit}</td>{cell}</tr>",
                 prob(p),
-                num(estimate(&q.budget, &statistic, v), 4)
+                num(estimate(&q.budget, statistic, v), 4)
             );
         }
         o.push_str("</tbody></table>");
@@ -126,14 +130,14 @@ fn failure_table(o: &mut String, q: &QoiReport, unit: &str) {
              </tr></thead><tbody>\n",
         );
         for f in &q.failure {
-            let statistic = failure_statistic(f.threshold);
+            let statistic = Statistic::Exceedance(f.threshold);
             let _ = writeln!(
                 o,
                 "<tr><td class=\"n\">{}{unit}</td><td class=\"n\">{}</td>\
                  <td class=\"n\">{}</td><td class=\"n\">[{}, {}]</td></tr>",
                 num(f.threshold, 5),
-                prob(estimate(&q.budget, &statistic, f.probability)),
-                total(&q.budget, &statistic, Style::Prob).unwrap_or_else(|| "not estimated".into()),
+                prob(estimate(&q.budget, statistic, f.probability)),
+                total(&q.budget, statistic, Style::Prob).unwrap_or_else(|| "not estimated".into()),
                 prob(f.ci_low),
                 prob(f.ci_high)
             );
@@ -247,7 +251,7 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
     );
     let part = |v: Option<f64>| v.map_or_else(|| "not estimated".to_string(), |v| num(v, 2));
     for b in &q.budget {
-        let is_p = b.statistic.starts_with('P');
+        let is_p = b.statistic.is_probability();
         let u = if is_p { "" } else { unit };
         let style = if is_p { Style::Prob } else { Style::Num(5) };
         let corrected_cell = match (&b.validation, corrected) {
@@ -274,7 +278,7 @@ fn budget_table(o: &mut String, q: &QoiReport, unit: &str) {
             "<tr><th>{}</th><td class=\"n\">{}{u}</td>{corrected_cell}<td class=\"n\">{}</td>\
              <td class=\"n\">{}</td><td class=\"n\">{}</td>{sliding_cell}<td class=\"n\">{}</td>\
              <td class=\"n\">[{}, {}]</td></tr>",
-            esc(&b.statistic),
+            esc(&b.statistic.to_string()),
             style.text(b.value),
             part(b.mesh),
             part(b.surrogate),
@@ -345,10 +349,10 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
         .iter()
         .find(|r| r.method.to_lowercase().contains("reference"));
     // The failure probabilities any method has a budget row of, in their first order.
-    let mut thresholds: Vec<&str> = Vec::new();
+    let mut thresholds: Vec<Statistic> = Vec::new();
     for b in c.rows.iter().flat_map(|r| &r.budget) {
-        if b.statistic.starts_with("P(") && !thresholds.contains(&b.statistic.as_str()) {
-            thresholds.push(&b.statistic);
+        if b.statistic.is_probability() && !thresholds.contains(&b.statistic) {
+            thresholds.push(b.statistic);
         }
     }
     let _ = write!(
@@ -359,7 +363,7 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
          <th class=\"n\">Std</th>{}",
         thresholds
             .iter()
-            .map(|t| format!("<th class=\"n\">{}</th>", esc(t)))
+            .map(|t| format!("<th class=\"n\">{}</th>", esc(&t.to_string())))
             .collect::<String>()
     );
     if reference.is_some() {
@@ -374,7 +378,7 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
             "&mdash;".into()
         }
     };
-    let cell = |rows: &[_], statistic: &str, value: Option<f64>, style: Style| match value {
+    let cell = |rows: &[_], statistic: Statistic, value: Option<f64>, style: Style| match value {
         Some(v) if total(rows, statistic, style).is_some() => with_total(rows, statistic, v, style),
         Some(v) => format!("{} <span class=\"ci\">not estimated</span>", style.text(v)),
         None => "&mdash;".to_string(),
@@ -387,14 +391,14 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
             if is_ref { " class=\"ref\"" } else { "" },
             esc(&row.method),
             row.runs,
-            cell(&row.budget, "mean", Some(row.mean), Style::Num(5)),
-            cell(&row.budget, "std", Some(row.std), Style::Num(4))
+            cell(&row.budget, Statistic::Mean, Some(row.mean), Style::Num(5)),
+            cell(&row.budget, Statistic::Std, Some(row.std), Style::Num(4))
         );
-        for t in &thresholds {
+        for &t in &thresholds {
             let value = row
                 .budget
                 .iter()
-                .find(|b| b.statistic == *t)
+                .find(|b| b.statistic == t)
                 .map(|b| b.value);
             let _ = write!(
                 o,
@@ -410,12 +414,12 @@ pub(super) fn comparison(o: &mut String, c: &Comparison, figures: &[Figure]) {
                     o,
                     "<td class=\"n\">{}</td><td class=\"n\">{}</td>",
                     rel(
-                        estimate(&row.budget, "mean", row.mean),
-                        estimate(&r.budget, "mean", r.mean)
+                        estimate(&row.budget, Statistic::Mean, row.mean),
+                        estimate(&r.budget, Statistic::Mean, r.mean)
                     ),
                     rel(
-                        estimate(&row.budget, "std", row.std),
-                        estimate(&r.budget, "std", r.std)
+                        estimate(&row.budget, Statistic::Std, row.std),
+                        estimate(&r.budget, Statistic::Std, r.std)
                     )
                 );
             }

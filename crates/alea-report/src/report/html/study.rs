@@ -3,7 +3,7 @@
 use std::fmt::Write;
 
 use super::super::format::{esc, num, prob};
-use super::super::{BudgetRow, ReportInput, budget_row, failure_statistic};
+use super::super::{BudgetRow, ReportInput, Statistic, budget_row};
 use super::runs::is_converged;
 
 pub(super) fn notes(o: &mut String, input: &ReportInput) {
@@ -57,7 +57,7 @@ pub(super) fn overview(o: &mut String, input: &ReportInput) {
             // The mean with the total of its error budget (issue 40, item 3: "mean +- std"
             // read as an error bar), corrected by the validation runs where there are some;
             // the standard deviation on its own line.
-            let mean = budget_row(&q.budget, "mean");
+            let mean = budget_row(&q.budget, Statistic::Mean);
             let bar = mean.map_or_else(String::new, |r| {
                 format!("<span class=\"pm\">± {}</span> ", num(r.total, 2))
             });
@@ -74,12 +74,12 @@ pub(super) fn overview(o: &mut String, input: &ReportInput) {
                     " ± the total of its error budget"
                 },
                 num(
-                    budget_row(&q.budget, "std").map_or(q.std, BudgetRow::estimate),
+                    budget_row(&q.budget, Statistic::Std).map_or(q.std, BudgetRow::estimate),
                     3
                 )
             );
             if let Some(f) = q.failure.first() {
-                let row = budget_row(&q.budget, &failure_statistic(f.threshold));
+                let row = budget_row(&q.budget, Statistic::Exceedance(f.threshold));
                 let interval = match row {
                     Some(r) => {
                         let (lo, hi) = r.interval();

@@ -6,7 +6,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::super::format::count;
-use super::super::{BudgetRow, QoiReport, budget_row};
+use super::super::{BudgetRow, QoiReport, Statistic, budget_row};
 use super::common::{
     DrawResult, KDE, QUANTILE, axis_label, chart, configure_legend, err, grid, line_legend, ticks,
 };
@@ -63,7 +63,12 @@ pub(super) fn draw_cdf<DB: DrawingBackend>(
     let bars: Vec<_> = q
         .quantiles
         .iter()
-        .filter_map(|&(p, _)| Some((p, clipped_interval(&q.budget, &format!("q{p}"), (lo, hi))?)))
+        .filter_map(|&(p, _)| {
+            Some((
+                p,
+                clipped_interval(&q.budget, Statistic::Quantile(p), (lo, hi))?,
+            ))
+        })
         .collect();
     if !bars.is_empty() {
         chart
@@ -78,10 +83,10 @@ pub(super) fn draw_cdf<DB: DrawingBackend>(
                 q.quantiles
                     .iter()
                     .map(|&(p, v)| {
-                        let statistic = format!("q{p}");
+                        let statistic = Statistic::Quantile(p);
                         (
                             p,
-                            budget_row(&q.budget, &statistic).map_or(v, BudgetRow::estimate),
+                            budget_row(&q.budget, statistic).map_or(v, BudgetRow::estimate),
                         )
                     })
                     .filter(|(_, v)| *v >= lo && *v <= hi)

@@ -6,8 +6,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::super::Comparison;
 use super::super::format::prob;
+use super::super::{Comparison, Statistic};
 use super::common::{
     DrawResult, PALETTE, axis_label, by_x, chart, configure_legend, err, extend, grid, line_legend,
     pad, ticks,
@@ -76,7 +76,7 @@ pub(super) fn draw_comparison<DB: DrawingBackend>(
             ));
         }
         // The mean's total interval, one height per method near the axis.
-        if let Some(b) = clipped_interval(&row.budget, "mean", (x0, x1)) {
+        if let Some(b) = clipped_interval(&row.budget, Statistic::Mean, (x0, x1)) {
             let y = top * (0.03 + 0.03 * i as f64);
             chart
                 .draw_series(std::iter::once(error_bar(y, b, color)))

@@ -8,7 +8,7 @@ use plotters::element::ErrorBarOrientH;
 use plotters::prelude::*;
 
 use super::super::format::{num, prob};
-use super::super::{Atom, BudgetRow, budget_row};
+use super::super::{Atom, BudgetRow, Statistic, budget_row};
 use super::common::{DrawResult, err, font};
 
 type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
@@ -87,7 +87,7 @@ pub(super) fn draw_atoms<'a, DB: DrawingBackend + 'a>(
 /// `(lo, estimate, hi)`; `None` without a budget row or wholly off the range.
 pub(super) fn clipped_interval(
     rows: &[BudgetRow],
-    statistic: &str,
+    statistic: Statistic,
     (x0, x1): (f64, f64),
 ) -> Option<(f64, f64, f64)> {
     let row = budget_row(rows, statistic)?;
@@ -113,10 +113,10 @@ pub(super) fn draw_mean_band<'a, DB: DrawingBackend + 'a>(
     top: f64,
     color: RGBColor,
 ) -> DrawResult {
-    let Some((lo, _, hi)) = clipped_interval(rows, "mean", range) else {
+    let Some((lo, _, hi)) = clipped_interval(rows, Statistic::Mean, range) else {
         return Ok(());
     };
-    let Some((a, b)) = budget_row(rows, "mean").map(BudgetRow::interval) else {
+    let Some((a, b)) = budget_row(rows, Statistic::Mean).map(BudgetRow::interval) else {
         return Ok(());
     };
     chart

@@ -6,7 +6,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::super::format::num;
-use super::super::{BudgetRow, QoiReport, budget_row, failure_statistic};
+use super::super::{BudgetRow, QoiReport, Statistic, budget_row};
 use super::common::{DrawResult, MEAN, THRESHOLD, err, extend, line_legend, pad};
 
 /// The x range of a QoI's plots: samples, KDE grid, mean, and the thresholds that are not far
@@ -39,7 +39,7 @@ pub(super) fn qoi_x_range(q: &QoiReport, sorted: &[f64]) -> ((f64, f64), Vec<boo
         }
     }
     for b in &q.budget {
-        if b.statistic == "mean" || b.statistic.starts_with('q') {
+        if matches!(b.statistic, Statistic::Mean | Statistic::Quantile(_)) {
             let (a, c) = b.interval();
             extend(&mut r, a.max(lo - 0.5 * w));
             extend(&mut r, c.min(hi + 0.5 * w));
@@ -54,7 +54,7 @@ pub(super) fn draw_mean<'a, DB: DrawingBackend + 'a>(
     q: &QoiReport,
     top: f64,
 ) -> DrawResult {
-    let mean = budget_row(&q.budget, "mean").map_or(q.mean, BudgetRow::estimate);
+    let mean = budget_row(&q.budget, Statistic::Mean).map_or(q.mean, BudgetRow::estimate);
     chart
         .draw_series(DashedLineSeries::new(
             [(mean, 0.0), (mean, top)],
@@ -79,7 +79,7 @@ pub(super) fn draw_thresholds<'a, DB: DrawingBackend + 'a>(
             "P(q > {}) = {}{}",
             num(f.threshold, 4),
             num(
-                budget_row(&q.budget, &failure_statistic(f.threshold))
+                budget_row(&q.budget, Statistic::Exceedance(f.threshold))
                     .map_or(f.probability, BudgetRow::estimate),
                 3
             ),

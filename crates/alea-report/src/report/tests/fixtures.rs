@@ -40,7 +40,7 @@ pub(super) fn kde_of(m: f64, s: f64, n: usize) -> Vec<(f64, f64)> {
 /// A budget row with only a surrogate part (or none) and a sampling part.
 pub(super) fn row(statistic: &str, value: f64, surrogate: Option<f64>, sampling: f64) -> BudgetRow {
     BudgetRow {
-        statistic: statistic.into(),
+        statistic: statistic.parse().expect("a statistic"),
         value,
         mesh: None,
         surrogate,
