@@ -48,9 +48,9 @@ use crate::cre::CreSetup;
 use crate::estimate::{ErrorSettings, MethodEstimateInput, error_settings, estimate_method};
 use crate::goal;
 use crate::method::{AdaptiveSettings, Criterion, Method, Surrogate};
-pub use crate::runs::{AdaptiveOutcome, StepQoi, StepRecord};
 use crate::store::{RunRecord, Store, point_key};
 use crate::study::Study;
+pub use crate::study_runs::{AdaptiveOutcome, StepQoi, StepRecord};
 use goal_steps::{goal_budget_words, goal_step_of, values_of_goal};
 use refinement::{EstimateOfStep, refine_improved, refine_max_error, split_within};
 

@@ -32,9 +32,9 @@ use rayon::prelude::*;
 
 use crate::StudyError;
 use crate::method::MethodKind;
-use crate::runs::StudyRuns;
 use crate::store::{Store, point_key};
 use crate::study::Study;
+use crate::study_runs::StudyRuns;
 
 /// Mean and standard deviation of the fields of one substructure (node-major, like the
 /// solver's displacements).

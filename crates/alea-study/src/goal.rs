@@ -37,8 +37,8 @@ use rayon::prelude::*;
 
 use crate::budget::{SurrogatePart, credible_fit, qoi_budget, smooth_fits};
 use crate::method::Goal;
-pub use crate::runs::GoalRecord;
 use crate::study::Study;
+pub use crate::study_runs::GoalRecord;
 
 /// A surrogate's value at a clamped draw, with scratch space for its weights.
 type AtDraw<'a> = dyn Fn(&[f64], &mut Vec<f64>, &mut Vec<(usize, f64)>) -> f64 + Sync + 'a;

@@ -1,8 +1,8 @@
 //! The paired solves of the error budget's mesh part (`[budget] refined_mesh`) and sliding part
 //! (`[budget] large_sliding = true`), issue 36: the study's model and the other model (its
 //! refined-mesh study, its large-sliding study) solved cold at the
-//! [`design_size`](crate::budget::mesh::design_size) design points of
-//! [`design_points`], from which `crate::budget::mesh`
+//! [`design_size`](crate::budget::paired::design_size) design points of
+//! [`design_points`], from which `crate::budget::paired`
 //! makes the part.
 //!
 //! They belong to the **run phase**: the runner solves them after every design, adaptive,
@@ -36,15 +36,15 @@ use alea_latin::LatinSolver;
 use rayon::prelude::*;
 
 use crate::StudyError;
-use crate::budget::mesh::{PairedCheck, PairedResult, PointValues, design_points};
-use crate::run::{RunContext, RunJob, RunSetup};
+use crate::budget::paired::{PairedCheck, PairedResult, PointValues, design_points};
+use crate::solve::{RunContext, RunJob, RunSetup};
 use crate::store::{PairedModel, RunRecord, Store, point_key, remap_quantities};
 use crate::study::Study;
 
 /// Why a part is not estimated when its paired solves are not all stored.
 pub const NOT_SOLVED: &str = "run `alea run` again to solve the paired points";
 
-/// The paired solves of a study's run ([`StudyRuns::paired`](crate::runs::StudyRuns)).
+/// The paired solves of a study's run ([`StudyRuns::paired`](crate::study_runs::StudyRuns)).
 #[derive(Debug, Default)]
 pub struct PairedSolves {
     /// The mesh part's check, or why it is not estimated (`None`: no `[budget] refined_mesh`).

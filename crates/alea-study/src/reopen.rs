@@ -10,9 +10,9 @@
 use std::path::Path;
 
 use crate::lock::StudyLock;
-use crate::runs::StudyRuns;
 use crate::store::Store;
 use crate::study::Study;
+use crate::study_runs::StudyRuns;
 use crate::{Source, StudyError};
 
 /// A reopened study directory.

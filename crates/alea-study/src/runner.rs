@@ -14,7 +14,7 @@
 //! answers (ties to the earliest point).
 //!
 //! A generation's runs are independent of each other, so a [`BatchExecutor`] may solve them
-//! anywhere, in the fixed groups of [`crate::run::RUNS_PER_BATCH`] consecutive runs that share
+//! anywhere, in the fixed groups of [`crate::solve::RUNS_PER_BATCH`] consecutive runs that share
 //! their LATIN iterations' triangular solves ([`alea_latin::LatinSolver::run_batch`]):
 //! [`LocalExecutor`] on the rayon pool, the MPI executor (feature `mpi`,
 //! the `distributed` module) on other ranks. Each finished group of runs is committed to the
@@ -36,15 +36,15 @@ use crate::cre::CreSetup;
 use crate::lock::StudyLock;
 use crate::method::MethodKind;
 use crate::points::{PointIndex, canonicalise};
-use crate::run::executor;
-pub use crate::run::{
+use crate::schedule::{combine, generations, parents};
+use crate::solve::executor;
+pub use crate::solve::{
     BatchExecutor, LocalExecutor, RunContext, RunJob, RunOutcome, RunSetup, install_executor,
 };
-pub use crate::runs::StudyRuns;
-use crate::schedule::{combine, generations, parents};
 use crate::spatial::KdTree;
 use crate::store::{RunRecord, Store, point_key};
 pub use crate::study::{Study, estimates_error};
+pub use crate::study_runs::StudyRuns;
 
 /// Observer of a running study (progress bars live in the binary).
 pub trait Progress: Sync {

@@ -3,7 +3,7 @@
 //! and how many runs were stored before alea kept each run's slide (their slide is unknown).
 //!
 //! Each run's largest slide is stored with the run (`crate::store::RunSlide`, computed in
-//! `crate::run`), so these warnings are the same after the run that computed the runs, after
+//! `crate::solve`), so these warnings are the same after the run that computed the runs, after
 //! a resumption that computes none and after `alea report DIR`: the outputs (`summary.json`'s
 //! notes, the report's warnings, Python's `StudyOutputs.notes`) always carry them.
 

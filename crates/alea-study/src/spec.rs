@@ -455,9 +455,9 @@ pub struct MethodSpec {
 /// `[budget]`: `refined_mesh = { params = { n_flank = 48 } }` (or `cells = [..]`, or
 /// `file = "fine.msh"`): the keys of `[mesh]` that make a mesh about twice as fine; the model is
 /// solved on both meshes at a few design points and the differences give the mesh part of every
-/// statistic's error budget (`crate::budget::mesh`). `large_sliding = true`: the model is also
+/// statistic's error budget (`crate::budget::paired`). `large_sliding = true`: the model is also
 /// solved with every small-sliding contact interface in large sliding at the same points, and
-/// the differences give the sliding part (`crate::budget::mesh`). At least one of the two.
+/// the differences give the sliding part (`crate::budget::paired`). At least one of the two.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BudgetSpec {

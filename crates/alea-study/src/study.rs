@@ -486,7 +486,7 @@ fn refined_study(
 /// true` the study is also built with every small-sliding contact interface in large sliding
 /// (`alea_latin::large_sliding`: the pairing and its normals re-found in the deformed
 /// configuration of each run, the bodies still linear) and both are solved at the `2 d + 3`
-/// design points of the mesh part (`crate::budget::mesh::design_points`: the nominal point,
+/// design points of the mesh part (`crate::budget::paired::design_points`: the nominal point,
 /// along each parameter its 5 % and 95 % quantiles, and the two diagonal points); with
 /// `delta_i = q_small(xi_i) - q_large(xi_i)`,
 ///
@@ -500,7 +500,7 @@ fn refined_study(
 /// then changes the spread by about `r sigma`, which `S / 2` over a few points misses) and
 /// for `P(q > t)` the share of draws within their own shift of `t` under the model of the
 /// differences (the propagation of the mesh part,
-/// `crate::budget::mesh::apply`, without Richardson's factor: the difference is the change
+/// `crate::budget::paired::apply`, without Richardson's factor: the difference is the change
 /// itself, not one term of a converging sequence).
 ///
 /// What it measures: the first-order effect of the deformed geometry on the contact (where the

@@ -9,8 +9,8 @@ use alea_study::estimate::SurrogateEstimate;
 use alea_study::failure_region::FailureRegion;
 use alea_study::reliability::ReliabilityResult;
 use alea_study::runner::{Study, StudyRuns};
-use alea_study::runs::{AdaptiveOutcome, GoalRecord, StepQoi};
 use alea_study::store::{RunRecord, RunSlide};
+use alea_study::study_runs::{AdaptiveOutcome, GoalRecord, StepQoi};
 use serde::Serialize;
 
 use super::estimate::MethodEstimate;

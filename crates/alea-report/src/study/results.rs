@@ -9,7 +9,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use alea_study::analysis::{AnalysisSettings, MethodResult, analyse_method};
-use alea_study::budget::mesh::{PairedResult, Part};
+use alea_study::budget::paired::{PairedResult, Part};
 use alea_study::method::{Method, MethodKind};
 use alea_study::reliability::{ReliabilityResult, analyse_reliability};
 use alea_study::runner::{Study, StudyRuns};
@@ -70,7 +70,7 @@ pub fn analyse_all(
 
 /// The mesh part (`[budget] refined_mesh`) or the sliding part (`[budget] large_sliding`) of
 /// every statistic's budget from the paired solves of the study and of its refined or
-/// large-sliding model (`alea_study::budget::mesh`), solved by the run and read from the store
+/// large-sliding model (`alea_study::budget::paired`), solved by the run and read from the store
 /// (`alea_study::paired_runs`: nothing is solved here), or why it is not estimated.
 fn apply_paired_part(
     study: &Study,
@@ -78,7 +78,7 @@ fn apply_paired_part(
     which: Part,
     results: &mut [MethodResult],
 ) {
-    use alea_study::budget::mesh::apply;
+    use alea_study::budget::paired::apply;
     let check = check.as_ref();
     for r in results.iter_mut() {
         for (q, stats) in r.qois.iter_mut().enumerate() {

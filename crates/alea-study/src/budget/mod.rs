@@ -27,7 +27,7 @@
 //!   not asked for (`None`).
 
 mod coarse;
-pub mod mesh;
+pub mod paired;
 mod statistic;
 pub mod validation;
 

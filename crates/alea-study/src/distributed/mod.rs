@@ -54,7 +54,7 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
 use crate::StudyError;
-use crate::run::{BatchExecutor, RUNS_PER_BATCH, RunContext, RunJob, RunOutcome, RunSetup};
+use crate::solve::{BatchExecutor, RUNS_PER_BATCH, RunContext, RunJob, RunOutcome, RunSetup};
 use crate::store::run_file_stem;
 use crate::study::Study;
 pub use stats::Stats;
@@ -577,7 +577,7 @@ impl Worker {
             solver: &s.solver,
             cre: s.cre.as_deref(),
             dir,
-            stop: &crate::run::never_stop,
+            stop: &crate::solve::never_stop,
             files: true,
         };
         let sizes = s.solver.interface_sizes();

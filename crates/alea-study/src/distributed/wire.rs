@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use alea_latin::LocalState;
 
-use crate::run::{RunJob, RunOutcome};
+use crate::solve::{RunJob, RunOutcome};
 use crate::store::RunRecord;
 
 /// A message that does not decode (a bug or a mismatched build on another rank).

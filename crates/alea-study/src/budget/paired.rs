@@ -1,4 +1,5 @@
-//! The mesh part of the error budget (issue 19), from paired solves: the study's model is
+//! The mesh and sliding parts of the error budget (issue 19), from paired solves of the study
+//! and of a variant of it at the same design points. The mesh part: the study's model is
 //! solved on its mesh `h` and on a finer mesh `h/2` (`[budget] refined_mesh`: the keys of
 //! `[mesh]` that make it about twice as fine) at `2 d + 3` design points `xi_i` - the nominal
 //! point, along each parameter its 5 % and 95 % quantiles with the others nominal, and with
