@@ -5,7 +5,7 @@
 #   scripts/check-report.sh [REPORT_HTML] [OUT_PNG]
 #
 #   REPORT_HTML  the page to render. Default: build one from the report module's synthetic test
-#                study (cargo test -p alea-report --release report::tests::full_report_is_written, with
+#                study (cargo test -p alea-report --release tests::full_report_is_written, with
 #                ALEA_REPORT_TEST_OUT pointing at a fresh directory) and render that.
 #   OUT_PNG      the screenshot to write (default: report-screenshot.png in the current dir).
 #
@@ -31,7 +31,7 @@ if [[ -z "$report" ]]; then
     dir="$(mktemp -d)"
     echo "building the synthetic test report in $dir"
     (cd "$here" && ALEA_REPORT_TEST_OUT="$dir" \
-        cargo test -p alea-report --release report::tests::full_report_is_written -- --exact >/dev/null)
+        cargo test -p alea-report --release tests::full_report_is_written -- --exact >/dev/null)
     report="$dir/report.html"
 fi
 [[ -f "$report" ]] || { echo "error: no report at $report" >&2; exit 2; }

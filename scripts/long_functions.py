@@ -5,7 +5,7 @@ Inline test modules (`#[cfg(test)] mod x { ... }`) are left out of the functions
 test modules declared elsewhere (`#[cfg(test)] mod tests;`) are listed like any file.
 Usage: python3 scripts/long_functions.py [--fn N] [--file M] PATH...   (defaults 150 and 700;
 a PATH is a file or a folder searched for .rs files; exit code 1 when something is over), e.g.
-python3 scripts/long_functions.py crates/alea-study/src crates/alea-report/src"""
+python3 scripts/long_functions.py crates/alea-study/src crates/alea-pipeline/src"""
 import os, re, sys
 
 FN = re.compile(r'^\s*(pub(\([^)]*\))?\s+)?(const\s+)?(async\s+)?(unsafe\s+)?(extern\s+"[^"]*"\s+)?fn\s+(\w+)')

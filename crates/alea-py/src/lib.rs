@@ -18,7 +18,7 @@
 //!   callable (vectorised, `(n, d)` points to `n` values) or of a fitted `PolynomialChaos` /
 //!   `PiecewiseLinear` (evaluated in Rust), with `ReliabilityResult`;
 //! * [`study`]: running a study file, reading a study directory's store and rebuilding its
-//!   outputs (summary, samples, fields, HTML report), through `alea-report` as the CLI does.
+//!   outputs (summary, samples, fields, HTML report), through `alea-pipeline` as the CLI does.
 //!   Only with the cargo feature `solver` (default): without it (`--no-default-features`) the
 //!   module is the UQ toolkit of `alea-uq` alone, `_core.SOLVER` is `False`, and the Python
 //!   functions that need a solver (`alea.run`, `open_store`, `report`) raise

@@ -1,6 +1,6 @@
-//! Studies: the binding glue over `alea-report`'s study orchestration, the same that `alea run`
+//! Studies: the binding glue over `alea-pipeline`, the study pipeline, the same that `alea run`
 //! and `alea report` call: running a study file and analysing every method
-//! (`alea_report::study::run_runs`, `analyse`), reading the runs of a study directory's
+//! (`alea_pipeline::run_runs`, `analyse`), reading the runs of a study directory's
 //! store (`stored_runs`), and rebuilding every output of a study directory (`rebuild`).
 //!
 //! The results cross to Python as plain dicts of NumPy arrays; the `alea` package turns them
@@ -11,10 +11,11 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, mpsc};
 use std::time::Duration;
 
-use alea_report::study::{
+use alea_pipeline::{
     BudgetInterval, MethodOutcome, StudyResult, analyse, run_runs, sample_points, stored_runs,
 };
-use alea_report::{Error as OutputError, Silent, report::ReportError};
+use alea_pipeline::{Error as OutputError, Silent};
+use alea_report::ReportError;
 use alea_study::StudyError;
 use alea_study::analysis::MethodResult;
 use alea_study::runner::{Progress, Study};
@@ -661,7 +662,7 @@ pub fn read_store<'py>(
 #[pyfunction]
 pub fn rebuild_outputs<'py>(py: Python<'py>, directory: PathBuf) -> PyResult<Bound<'py, PyDict>> {
     let out = py
-        .detach(|| alea_report::study::rebuild(&directory, "alea.report", &Silent))
+        .detach(|| alea_pipeline::rebuild(&directory, "alea.report", &Silent))
         .map_err(|e| output_err(py, e))?;
     let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
     let dict = PyDict::new(py);

@@ -1,5 +1,5 @@
 """``alea.report(directory)``: every output of a study directory rebuilt from its store, by the
-same Rust orchestration as ``alea report DIR`` (crate ``alea-report``).
+same Rust orchestration as ``alea report DIR`` (crate ``alea-pipeline``).
 
 The plate of ``data/plate.toml`` is run from Python (which writes only the store), then
 ``report`` writes ``summary.json``, ``samples.csv``, the fields and the HTML report; the

@@ -89,14 +89,14 @@ pub fn code(e: &anyhow::Error) -> u8 {
 /// The exit code of one error, `None` if its kind is not known here.
 fn kind(cause: &(dyn std::error::Error + 'static)) -> Option<u8> {
     use alea_mesh::MeshError;
-    use alea_report::report::ReportError;
-    if let Some(o) = cause.downcast_ref::<alea_report::Error>() {
+    use alea_report::ReportError;
+    if let Some(o) = cause.downcast_ref::<alea_pipeline::Error>() {
         return Some(match o {
-            alea_report::Error::Study(s) => study_code(s),
-            alea_report::Error::Report(r) => report_code(r),
-            alea_report::Error::Write { .. } => FILES,
-            alea_report::Error::NoStore { .. } | alea_report::Error::Store { .. } => INPUT,
-            alea_report::Error::NonFinite | alea_report::Error::Json(_) => INTERNAL,
+            alea_pipeline::Error::Study(s) => study_code(s),
+            alea_pipeline::Error::Report(r) => report_code(r),
+            alea_pipeline::Error::Write { .. } => FILES,
+            alea_pipeline::Error::NoStore { .. } | alea_pipeline::Error::Store { .. } => INPUT,
+            alea_pipeline::Error::NonFinite | alea_pipeline::Error::Json(_) => INTERNAL,
         });
     }
     if let Some(s) = cause.downcast_ref::<StudyError>() {
@@ -139,8 +139,8 @@ fn study_code(s: &StudyError) -> u8 {
     }
 }
 
-fn report_code(r: &alea_report::report::ReportError) -> u8 {
-    use alea_report::report::ReportError;
+fn report_code(r: &alea_report::ReportError) -> u8 {
+    use alea_report::ReportError;
     match r {
         ReportError::Io { .. } | ReportError::Json { .. } => FILES,
         _ => INTERNAL,
@@ -225,25 +225,25 @@ mod tests {
 
     #[test]
     fn errors_of_the_study_outputs_keep_their_inner_codes() {
-        let busy = alea_report::Error::Study(StudyError::Busy {
+        let busy = alea_pipeline::Error::Study(StudyError::Busy {
             dir: "d".into(),
             holder: "h".into(),
         });
         assert_eq!(code(&busy.into()), BUSY);
-        let failed = alea_report::Error::Study(StudyError::Failed("f".into()));
+        let failed = alea_pipeline::Error::Study(StudyError::Failed("f".into()));
         assert_eq!(code(&failed.into()), COMPUTATION);
-        let write = alea_report::Error::Write {
+        let write = alea_pipeline::Error::Write {
             path: "summary.json".into(),
             source: std::io::Error::other("disk full"),
         };
         let e = anyhow::Error::from(write);
         assert_eq!(format!("{e:#}"), "writing summary.json: disk full");
         assert_eq!(code(&e), FILES);
-        let report = alea_report::Error::Report(alea_report::report::ReportError::Plot {
+        let report = alea_pipeline::Error::Report(alea_report::ReportError::Plot {
             plot: "pdf".into(),
             message: "m".into(),
         });
         assert_eq!(code(&report.into()), INTERNAL);
-        assert_eq!(code(&alea_report::Error::NonFinite.into()), INTERNAL);
+        assert_eq!(code(&alea_pipeline::Error::NonFinite.into()), INTERNAL);
     }
 }

@@ -1,4 +1,4 @@
-//! The `alea` command line. Thin: parsing arguments, calling `alea-report` (studies, their
+//! The `alea` command line. Thin: parsing arguments, calling `alea-pipeline` (studies, their
 //! outputs and reports) and `alea-study`, printing.
 
 mod exit;
@@ -178,7 +178,7 @@ fn main() -> ExitCode {
             port,
             threads,
         } => set_threads(threads).and_then(|()| {
-            let dir = dir.unwrap_or_else(|| alea_report::study::default_dir(&study));
+            let dir = dir.unwrap_or_else(|| alea_pipeline::default_dir(&study));
             serve::serve(&serve::ServeOptions {
                 study: &study,
                 dir: &dir,
@@ -194,7 +194,7 @@ fn main() -> ExitCode {
             threads,
             quiet,
         } => {
-            let dir = dir.unwrap_or_else(|| alea_report::study::default_dir(&study));
+            let dir = dir.unwrap_or_else(|| alea_pipeline::default_dir(&study));
             #[cfg(feature = "mpi")]
             {
                 match run_distributed(&study, &dir, restart, quiet, threads) {

@@ -1,10 +1,10 @@
-//! `alea run` and `alea report`: the study orchestration of `alea-report` with a progress bar
+//! `alea run` and `alea report`: the study pipeline of `alea-pipeline` with a progress bar
 //! and the account printed to stdout, warnings to stderr.
 
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use alea_report::Console;
+use alea_pipeline::Console;
 use alea_study::runner::Progress;
 use alea_study::store::RunRecord;
 use anyhow::Result;
@@ -119,7 +119,7 @@ pub fn rebuild_report(dir: &Path, quiet: bool) -> Result<()> {
     spinner.set_message("analysing the study's runs (surrogates, draws, error budgets)");
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
     let console = Spinning { spinner };
-    let result = alea_report::study::rebuild(dir, "alea report", &console);
+    let result = alea_pipeline::rebuild(dir, "alea report", &console);
     console.spinner.finish_and_clear();
     result?;
     Ok(())
@@ -127,6 +127,6 @@ pub fn rebuild_report(dir: &Path, quiet: bool) -> Result<()> {
 
 /// `alea run`: runs the study in `path` into `dir` and writes its outputs.
 pub fn run(path: &Path, dir: &Path, restart: bool, quiet: bool) -> Result<()> {
-    alea_report::study::run(path, dir, restart, &Bar::new(quiet), &Terminal)?;
+    alea_pipeline::run(path, dir, restart, &Bar::new(quiet), &Terminal)?;
     Ok(())
 }

@@ -1,7 +1,7 @@
 """Study results as pandas DataFrames and NumPy arrays.
 
 The numbers come from ``alea._core.run_study_file`` / ``read_store`` / ``rebuild_outputs`` (the
-study orchestration of the Rust crate ``alea-report``, the same the ``alea`` command line
+study orchestration of the Rust crate ``alea-pipeline``, the same the ``alea`` command line
 calls); this module only names and arranges them.
 """
 

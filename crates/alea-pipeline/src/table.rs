@@ -8,7 +8,7 @@ use alea_study::budget::{BudgetRow, Statistic};
 use alea_study::runner::Study;
 
 use crate::Console;
-use crate::report::format::{num, prob};
+use alea_report::format::{num, prob};
 
 /// Shows the table on `console` (the values themselves, at full precision, for a study without
 /// random parameters).

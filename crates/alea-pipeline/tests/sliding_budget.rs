@@ -63,7 +63,7 @@ fn sliding_part_covers_the_true_change_under_large_sliding() {
     let large = blade_root(true, None);
     let run = |s: &Study, tag: &str| {
         let runs = run_study(s, &dir.join(tag), false, &NoProgress).unwrap();
-        alea_report::study::analyse_all(s, &runs, &settings())
+        alea_pipeline::analyse_all(s, &runs, &settings())
     };
     let small_results = run(&small, "small");
     let large_results = run(&large, "large");

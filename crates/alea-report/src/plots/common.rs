@@ -17,7 +17,7 @@ pub(super) use super::util::{encode_png, err};
 use super::{Figure, Kind, Spec};
 
 /// DejaVu Sans (Bitstream Vera licence, see assets/fonts/DejaVu-LICENSE.txt).
-const FONT_TTF: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+const FONT_TTF: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 const FAMILY: &str = "sans-serif";
 
 /// Histogram bars, KDE curve, mean, thresholds, quantile markers.

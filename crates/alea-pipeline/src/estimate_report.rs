@@ -7,7 +7,7 @@ use alea_study::runner::{Study, StudyRuns};
 
 use super::estimate::{MethodEstimate, largest_share};
 use super::result::{AdaptiveLoop, ErrorEstimate, StudyResult, SurrogateError};
-use crate::report::{AdaptiveReport, EntityRow, ErrorReport, ErrorRow, StepRow, Surface};
+use alea_report::{AdaptiveReport, EntityRow, ErrorReport, ErrorRow, StepRow, Surface};
 
 /// The report's error section: indicators per method, the main method's entities, adaptive
 /// steps, the first density map.

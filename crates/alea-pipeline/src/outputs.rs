@@ -20,8 +20,8 @@ use super::result::{ResultParts, StudyResult};
 use super::results::{Analysis, analyse};
 use super::table::{print_reliability, print_table};
 use crate::console::Deferred;
-use crate::report::{self, ReportFiles};
 use crate::{Console, Error};
+use alea_report::ReportFiles;
 
 /// The files a study's outputs consist of, and the warnings they carry.
 #[derive(Debug, Clone)]
@@ -305,7 +305,7 @@ fn write_report_files(
         parts.err_settings,
         parts.estimates,
     );
-    let written = report::write_report(&dir.join("report"), &input)?;
+    let written = alea_report::write_report(&dir.join("report"), &input)?;
     // Directories written before 2026-11-28 kept the report's input beside it
     // (`report-input.json`, as large as every draw): an intermediate nothing reads, removed
     // when the report is written again.

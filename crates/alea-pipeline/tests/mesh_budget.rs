@@ -119,7 +119,7 @@ fn check_mesh_budget(case: &str, reference: Study, coarse: Study) {
         kde_points: 64,
         confidence: 0.95,
     };
-    let results = alea_report::study::analyse_all(&s, &runs, &settings);
+    let results = alea_pipeline::analyse_all(&s, &runs, &settings);
     let stats = &results[0].qois[0];
     let budget = stats.budget.as_ref().unwrap();
     assert!(

@@ -1,15 +1,36 @@
-//! The orchestration of a study over `alea-study`, shared by the `alea` CLI (`alea run`,
-//! `alea report`) and the Python package (`alea.run`, `alea.report`, `alea.open_store`).
+//! # alea-pipeline: a study from its file to its outputs, shared by the `alea` command line and
+//! the Python package
 //!
-//! Layered one way, no import circle: [`results`] (what a study gives without writing files)
-//! and the estimate services (`estimate.rs`, `estimate_text.rs`), the typed result of a study
-//! ([`StudyResult`], `result.rs`; each quantity's statistics with their total intervals in
-//! `summary_intervals.rs`), the writers (`files.rs`: `summary.json` from the [`StudyResult`],
-//! `samples.csv`; `input.rs` and `estimate_report.rs`: the report's input from the
-//! [`StudyResult`] and the draws; `table.rs`: the statistics table), then `outputs.rs` (every
-//! output of a study whose runs are done) and this file (run a study file, rebuild a study
-//! directory).
+//! One owner for a study's stages, in the order they run (each a function a front end calls):
+//!
+//! 1. **load and check** - [`alea_study::runner::Study::load`]: every setting validated, every
+//!    size checked, before the first run;
+//! 2. **run** - [`run_runs`]: every solve a study needs (design runs, adaptive steps,
+//!    validation runs, the error budget's paired solves), by `alea_study`'s runner and executor
+//!    (threads, or MPI ranks), each stored in the study directory as it finishes and resumed
+//!    after a kill;
+//! 3. **analyse** - [`analyse`] / [`analyse_all`] (`results.rs`): surrogates, Monte Carlo
+//!    statistics with their error budgets, reliability, Sobol' indices; from the stored runs
+//!    alone, no solve;
+//! 4. **estimate** - `estimate.rs`: the stochastic error estimate of each method (thesis
+//!    chapter 4), from the stored per-run estimates;
+//! 5. **write** - [`write_outputs`] (`outputs.rs`): the typed [`StudyResult`] (`result.rs`;
+//!    each quantity's statistics with their total intervals in `summary_intervals.rs`), and
+//!    from it `summary.json` and `samples.csv` (`files.rs`), the report's input (`input.rs`,
+//!    `estimate_report.rs`) drawn by `alea_report`, and the console's tables (`table.rs`,
+//!    `estimate_text.rs`).
+//!
+//! [`run`] (`alea run`, Python's `alea.run` with outputs) is stages 1 - 5; [`rebuild`]
+//! (`alea report DIR`, Python's `alea.report`) reopens a study directory and runs stages 3 - 5,
+//! computing no run; [`stored_runs`] (Python's `alea.open_store`) reads the runs. `alea serve`
+//! uses `alea_study::model_session` (stages 1 - 2 for points a client sends).
+//!
+//! What a study prints goes through a [`Console`] (the CLI prints to stdout / stderr, Python
+//! stays silent); errors are typed ([`Error`]), the front ends map them to exit codes or
+//! exceptions.
 
+mod console;
+mod error;
 mod estimate;
 mod estimate_report;
 mod estimate_text;
@@ -37,7 +58,8 @@ pub use results::{
 };
 pub use summary_intervals::{Budget, BudgetInterval, FailureProbability, QuantityStatistics};
 
-use crate::{Console, Error};
+pub use console::{Console, Silent};
+pub use error::Error;
 
 /// A study file whose runs are done (computed or resumed), not yet analysed.
 pub struct Ran {

@@ -14,7 +14,7 @@ use alea_study::store::RunRecord;
 use super::result::StudyResult;
 use super::summary_intervals::{Budget, QuantityStatistics};
 
-use crate::report::{
+use alea_report::{
     Atom, Comparison, ComparisonRow, FailureInfo, ParamInfo, QoiReport, ReliabilityReport,
     ReliabilityRow, ReportInput, RunInfo, Surface,
 };

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use alea_study::StudyError;
 
-use crate::report::ReportError;
+use alea_report::ReportError;
 
 /// An error of running a study or writing its outputs. The wrapped errors keep their own
 /// messages and sources (`transparent`), so a front end shows them exactly as it would the

@@ -85,7 +85,7 @@ fn dir(name: &str) -> PathBuf {
 
 /// The budget of the study's quantity from `runs`.
 fn budget(s: &Study, runs: &StudyRuns) -> QoiBudget {
-    let results = alea_report::study::analyse_all(s, runs, &settings());
+    let results = alea_pipeline::analyse_all(s, runs, &settings());
     results[0].qois[0].budget.clone().unwrap()
 }
 
@@ -220,7 +220,7 @@ fn a_store_without_paired_solves_reports_the_part_not_estimated() {
         assert_eq!(r.total, r.sum_of_parts());
     }
     // `alea report DIR` says so in its notes, and solves nothing: still none stored.
-    let out = alea_report::study::rebuild(&d, "test", &alea_report::Silent).unwrap();
+    let out = alea_pipeline::rebuild(&d, "test", &alea_pipeline::Silent).unwrap();
     assert!(
         out.notes.iter().any(
             |n| n.starts_with("the error budget's mesh part is not estimated") && !n.contains("  ")
