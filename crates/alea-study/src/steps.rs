@@ -281,7 +281,7 @@ pub fn study_steps(
 
 /// The run input of every step of `plan` for a run whose input is `input` (its `initial`
 /// state is that of the first step only): the loads scaled by the step's factors.
-fn step_inputs(plan: &Plan, input: &alea_latin::RunInput) -> Vec<alea_latin::RunInput> {
+pub fn step_inputs(plan: &Plan, input: &alea_latin::RunInput) -> Vec<alea_latin::RunInput> {
     plan.steps
         .iter()
         .enumerate()
@@ -305,7 +305,7 @@ fn step_inputs(plan: &Plan, input: &alea_latin::RunInput) -> Vec<alea_latin::Run
 /// displacements (`solver` for those of the file as written, `others[j - 1]` for
 /// `plan.files[j]`: the study's step solvers), with its loads scaled. Returns the results of
 /// the steps run: the history stops after a step that does not converge.
-pub(crate) fn run_study_history(
+pub fn run_study_history(
     plan: &Plan,
     solver: &alea_latin::LatinSolver,
     others: &[std::sync::Arc<alea_latin::LatinSolver>],
@@ -337,7 +337,7 @@ pub(crate) fn run_study_history(
 /// (`None`: one step, `input` itself) on the assembly of their imposed displacements
 /// (`assemblies[j]` for `plan.files[j]`), each re-paired in its deformed configuration. Returns
 /// the steps run: the history stops after a step that does not converge.
-pub(crate) fn run_large_sliding(
+pub fn run_large_sliding(
     plan: Option<&Plan>,
     assemblies: &[&alea_latin::Assembly],
     options: &alea_latin::LatinOptions,

@@ -162,7 +162,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
         return crate::solve_steps::solve_history(src, &file, &params, built, plan, out, &stem, t0);
     }
     if alea_latin::large_sliding::uses_large_sliding(&built.assembly) {
-        let step = crate::solve_steps::large_sliding_step(&built, None, &input)?;
+        let step = crate::solve_steps::large_sliding_solve(&built, &input)?;
         let (solver, res) = (&step.solver, &step.result);
         let path = out.join(format!("{stem}.vtm"));
         crate::run_report::report_run(&file, &built, solver, res, &input, &path, None)?;
