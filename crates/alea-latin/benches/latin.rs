@@ -58,11 +58,12 @@ fn grid() -> Vec<(f64, f64, Vec<f64>)> {
     pts
 }
 
-fn input(mu: f64, ef: f64, params: Vec<f64>) -> RunInput {
+/// The dovetail's input at `(mu, ef)`, started from `start` (`None`: cold).
+fn input(mu: f64, ef: f64, start: Option<&RunResult>) -> RunInput {
     RunInput {
         young_factors: vec![ef, ef, 1.0, 1.0],
         mu: vec![Some(constant(mu)), Some(constant(mu)), None, None],
-        params,
+        initial: start.map(|r| std::sync::Arc::new(r.end_state())),
         ..Default::default()
     }
 }
@@ -78,13 +79,18 @@ fn series(asm: &Assembly, opts: &LatinOptions, mode: &str) -> Series {
     let mut s = Series::default();
     let mut shared = (mode != "cold").then(|| LatinSolver::new(asm.clone(), opts.clone()).unwrap());
     let t0 = Instant::now();
-    for (mu, ef, params) in grid() {
-        let params = if mode == "warm" { params } else { vec![] };
+    for (mu, ef, _) in grid() {
+        // Warm: from the previous point of the snake-ordered grid, its nearest neighbour.
+        let start = if mode == "warm" {
+            s.results.last()
+        } else {
+            None
+        };
         let r = match shared.as_mut() {
-            Some(solver) => solver.run(&input(mu, ef, params)).unwrap(),
+            Some(solver) => solver.run(&input(mu, ef, start)).unwrap(),
             None => {
                 let mut solver = LatinSolver::new(asm.clone(), opts.clone()).unwrap();
-                solver.run(&input(mu, ef, params)).unwrap()
+                solver.run(&input(mu, ef, start)).unwrap()
             }
         };
         assert_eq!(r.status, RunStatus::Converged, "{mode} mu {mu} ef {ef}");
@@ -99,7 +105,7 @@ fn dovetail(asm: &Assembly, label: &str, opts: &LatinOptions) {
     println!("\n### {label}");
     let mut solver = LatinSolver::new(asm.clone(), opts.clone()).unwrap();
     let setup = solver.setup_seconds;
-    let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+    let r = solver.run(&input(0.5, 1.0, None)).unwrap();
     assert_eq!(r.status, RunStatus::Converged);
     let it = r.iterations as f64;
     let tm = r.timings;
@@ -266,7 +272,7 @@ fn diagnostics(asm: &Assembly) {
                     ..base.clone()
                 };
                 let mut solver = LatinSolver::new(asm.clone(), opts).unwrap();
-                let r = solver.run(&input(0.5, 1.0, vec![])).unwrap();
+                let r = solver.run(&input(0.5, 1.0, None)).unwrap();
                 println!(
                     "{label}, k factor {factor}: {:?} after {} iterations ({:.2} s)",
                     r.status, r.iterations, r.timings.total
@@ -289,18 +295,18 @@ fn diagnostics(asm: &Assembly) {
                 h.join(" ")
             );
         };
-        let r = solver.run(&input(0.3, 1.0, vec![0.25, 0.5])).unwrap();
-        show("cold mu 0.3", &r);
-        let r = solver.run(&input(0.5, 1.0, vec![0.5, 0.5])).unwrap();
-        show("warm mu 0.5 from 0.3", &r);
-        let r = solver.run(&input(0.5, 1.0625, vec![0.5, 0.75])).unwrap();
+        let r03 = solver.run(&input(0.3, 1.0, None)).unwrap();
+        show("cold mu 0.3", &r03);
+        let r05 = solver.run(&input(0.5, 1.0, Some(&r03))).unwrap();
+        show("warm mu 0.5 from 0.3", &r05);
+        let r = solver.run(&input(0.5, 1.0625, Some(&r05))).unwrap();
         show("warm E 1.0625 from 1", &r);
         let mut asm2 = asm.clone();
         for i in asm2.interfaces.iter_mut() {
             i.law = std::sync::Arc::new(alea_latin::Perfect);
         }
         let mut s2 = LatinSolver::new(asm2, base.clone()).unwrap();
-        let r = s2.run(&input(0.5, 1.0, vec![])).unwrap();
+        let r = s2.run(&input(0.5, 1.0, None)).unwrap();
         show("all perfect", &r);
     }
 }

@@ -8,8 +8,8 @@
 //! independently, curved bodies on flat ones, sides of different extent). [`LatinSolver`]
 //! factorises each substructure operator once and runs the LATIN iteration (thesis chapter
 //! 2.1; conventions and closed-form local stage in [`law`]) for any number of parameter points,
-//! each warm-started
-//! from the nearest finished one (multiresolution, thesis 5.1.3). A [`RunResult`] carries the
+//! each started from the interface state its caller gives (multiresolution, thesis 5.1.3: a
+//! study starts each run from its nearest finished ones). A [`RunResult`] carries the
 //! displacement of every substructure, the interface fields of both stages, the contact status
 //! per point, the residual history and the quantities of interest.
 //!

@@ -180,8 +180,6 @@ pub struct RunResult {
     pub iterations: usize,
     /// Error indicator after each iteration.
     pub residuals: Vec<f64>,
-    /// Index of the stored run used as the initial guess (`None`: cold start).
-    pub warm_start: Option<usize>,
     /// Node-major displacement of each substructure.
     pub displacements: Vec<Vec<f64>>,
     /// Interface fields.

@@ -186,7 +186,6 @@ fn stick_radius_follows_cattaneo_mindlin() {
         let r = solver
             .run(&RunInput {
                 load_factors: vec![vec![], vec![1.0, ratio]],
-                params: vec![ratio],
                 ..Default::default()
             })
             .unwrap();

@@ -181,7 +181,6 @@ fn stick_zone_half_width_follows_cattaneo_mindlin() {
         let r = solver
             .run(&RunInput {
                 load_factors: vec![vec![], vec![1.0, ratio]],
-                params: vec![ratio],
                 ..Default::default()
             })
             .unwrap();

@@ -100,7 +100,7 @@ fn compare(asm: Assembly, options: LatinOptions, inputs: &[RunInput], expect_con
 }
 
 /// 2D: the four-part dovetail (two Coulomb flanks, two perfect cuts, a floating root, coarse
-/// problem), runs with different friction and Young's-modulus factors, warm-started.
+/// problem), runs with different friction and Young's-modulus factors.
 #[test]
 fn dovetail_2d_condensed_matches_volume() {
     let asm = four_part_dovetail(1).unwrap();
@@ -109,7 +109,6 @@ fn dovetail_2d_condensed_matches_volume() {
         .map(|&(mu, ef)| RunInput {
             young_factors: vec![ef, ef, 1.0, 1.0],
             mu: vec![Some(constant(mu)), Some(constant(mu)), None, None],
-            params: vec![mu, ef],
             ..Default::default()
         })
         .collect();
@@ -204,7 +203,6 @@ fn blocks_3d_condensed_matches_volume() {
         .map(|&(ef, shear)| RunInput {
             young_factors: vec![1.0, ef],
             load_factors: vec![vec![], vec![1.0, shear]],
-            params: vec![ef, shear],
             ..Default::default()
         })
         .collect();

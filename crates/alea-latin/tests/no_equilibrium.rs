@@ -147,17 +147,3 @@ fn beyond_the_sliding_limit_there_is_no_static_equilibrium() {
         );
     }
 }
-
-#[test]
-fn a_run_without_equilibrium_is_never_a_warm_start() {
-    let limit = sliding_push();
-    let s = solver(1.5 * limit);
-    let r = s
-        .run_shared(&RunInput {
-            params: vec![0.5],
-            ..Default::default()
-        })
-        .unwrap();
-    assert_eq!(r.status, RunStatus::NoEquilibrium);
-    assert_eq!(s.stored_runs(), 0);
-}

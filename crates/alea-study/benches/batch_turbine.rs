@@ -61,7 +61,7 @@ fn main() {
             );
         }
         let points = &study.methods[0].points;
-        let input = |theta: &[f64]| study.model.parametric.run_input(theta, vec![]);
+        let input = |theta: &[f64]| study.model.parametric.run_input(theta);
         let centre = solver
             .run_shared(&input(&points[points.len() / 2]))
             .expect("centre run");

@@ -110,10 +110,10 @@ fn blade(reps: usize, threads: usize) {
     let setup_seconds = t0.elapsed().as_secs_f64();
     let (a, b) = ([240e3, 0.5], [245e3, 0.55]);
     let first = solver
-        .run_shared(&study.model.parametric.run_input(&a, vec![]))
+        .run_shared(&study.model.parametric.run_input(&a))
         .expect("first run");
     assert_eq!(first.status, RunStatus::Converged);
-    let mut input = study.model.parametric.run_input(&b, vec![]);
+    let mut input = study.model.parametric.run_input(&b);
     input.initial = Some(state_of(&first));
     let (sw, sc, res) = best_of(reps, || solver.run_shared(&input).expect("warm run"));
     assert_eq!(res.status, RunStatus::Converged);

@@ -62,7 +62,7 @@ fn run_case(case: &Case) {
             .points
             .par_iter()
             .map(|p| {
-                let input = study.model.parametric.run_input(p, vec![]);
+                let input = study.model.parametric.run_input(p);
                 let res = solver.run_shared(&input).expect("run");
                 let q = study
                     .qois

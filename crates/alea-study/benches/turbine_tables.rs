@@ -88,7 +88,7 @@ fn main() -> Result<(), StudyError> {
         .map(|p| {
             let solver = grid.model.solver().expect("solver");
             let r = solver
-                .run_shared(&grid.model.parametric.run_input(p, vec![]))
+                .run_shared(&grid.model.parametric.run_input(p))
                 .expect("run");
             (r.iterations, r.status == alea_latin::RunStatus::Converged)
         })

@@ -386,7 +386,7 @@ impl CreSetup {
         res: &RunResult,
     ) -> Result<CreRecord, StudyError> {
         let t0 = std::time::Instant::now();
-        let input = study.model.parametric.run_input(theta, vec![]);
+        let input = study.model.parametric.run_input(theta);
         let ns = solver.num_subs();
         let loads: Vec<LoadData> = (0..ns)
             .map(|s| {

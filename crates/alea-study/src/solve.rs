@@ -187,7 +187,7 @@ impl RunContext<'_> {
 
     /// The solver input of a job.
     fn input(&self, job: &RunJob) -> alea_latin::RunInput {
-        let mut input = self.study.model.parametric.run_input(&job.theta, vec![]);
+        let mut input = self.study.model.parametric.run_input(&job.theta);
         input.initial = job.start.clone();
         input
     }

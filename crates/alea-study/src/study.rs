@@ -312,7 +312,7 @@ impl Study {
                 }
             }
         }
-        let input = par.run_input(theta, vec![]);
+        let input = par.run_input(theta);
         for i in 0..solver.num_interfaces() {
             for p in solver.interface_points(i) {
                 let mu = input.mu[i].as_ref().map_or(p.mu, |f| f(p.x));

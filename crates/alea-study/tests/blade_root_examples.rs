@@ -69,7 +69,7 @@ fn blade_root_friction_work_rises_then_drops_where_the_flanks_stick() {
         LatinSolver::new(study.model.assembly.clone(), study.model.options.clone()).unwrap();
     let run = |e2: f64, mu: f64| {
         let res = solver
-            .run_shared(&study.model.parametric.run_input(&[e2, mu], vec![]))
+            .run_shared(&study.model.parametric.run_input(&[e2, mu]))
             .unwrap();
         assert_eq!(res.status, alea_latin::RunStatus::Converged);
         let g2 = res.interfaces.iter().find(|i| i.name == "G2").unwrap();

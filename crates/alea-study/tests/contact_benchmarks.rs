@@ -40,7 +40,7 @@ fn example(name: &str) -> (BuiltModel, ModelFile) {
 /// Solves with each substructure's load cases scaled by `factors` (empty: as in the file).
 fn solve(built: &BuiltModel, factors: &[Vec<f64>]) -> (LatinSolver, RunResult, Vec<Vec<f64>>) {
     let solver = LatinSolver::new(built.assembly.clone(), built.options.clone()).unwrap();
-    let mut input = built.parametric.run_input(&[], vec![]);
+    let mut input = built.parametric.run_input(&[]);
     if !factors.is_empty() {
         input.load_factors = factors.to_vec();
     }

@@ -109,7 +109,7 @@ fn contact_quantities_satisfy_equilibrium_and_partition_identities() {
     ];
     for mu in [0.1, 0.5, 0.9] {
         let res = solver
-            .run_shared(&base.model.parametric.run_input(&[240e3, mu], vec![]))
+            .run_shared(&base.model.parametric.run_input(&[240e3, mu]))
             .unwrap();
         let v = |name: &str| base.qois[q(name)].eval(&solver, &res).unwrap();
         let rn = v("Rx") * n[0] + v("Ry") * n[1];
@@ -158,7 +158,7 @@ fn contact_quantities_satisfy_equilibrium_and_partition_identities() {
         .unwrap();
         let solver = LatinSolver::new(st.model.assembly.clone(), st.model.options.clone()).unwrap();
         let res = solver
-            .run_shared(&st.model.parametric.run_input(&[240e3, 0.9], vec![]))
+            .run_shared(&st.model.parametric.run_input(&[240e3, 0.9]))
             .unwrap();
         let v = |name: &str| {
             let i = st.qois.iter().position(|q| q.name == name).unwrap();

@@ -22,9 +22,7 @@ fn build(name: &str, text: &str) -> BuiltModel {
 
 fn solve(built: &BuiltModel) -> RunResult {
     let solver = LatinSolver::new(built.assembly.clone(), built.options.clone()).unwrap();
-    solver
-        .run_shared(&built.parametric.run_input(&[], vec![]))
-        .unwrap()
+    solver.run_shared(&built.parametric.run_input(&[])).unwrap()
 }
 
 const GAP_CASE: &str = r#"

@@ -64,7 +64,7 @@ linear_stage = "{stage}"
 
 fn solve(built: &BuiltModel) -> (RunResult, LatinSolver) {
     let solver = LatinSolver::new(built.assembly.clone(), built.options.clone()).unwrap();
-    let input = built.parametric.run_input(&[], vec![]);
+    let input = built.parametric.run_input(&[]);
     (solver.run_shared(&input).unwrap(), solver)
 }
 

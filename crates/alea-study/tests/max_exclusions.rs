@@ -76,7 +76,7 @@ fn exclusions_move_the_maximum_off_the_singular_corners() {
     let solver =
         LatinSolver::new(study.model.assembly.clone(), study.model.options.clone()).unwrap();
     let res = solver
-        .run_shared(&study.model.parametric.run_input(&[200e3], vec![]))
+        .run_shared(&study.model.parametric.run_input(&[200e3]))
         .unwrap();
     let model = res.scaled_model(solver.model(0), 0);
     let u = &res.displacements[0];

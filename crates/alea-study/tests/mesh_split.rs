@@ -26,7 +26,7 @@ fn build(src: &Source) -> Result<BuiltModel, alea_study::StudyError> {
 
 fn solve(built: &BuiltModel) -> RunResult {
     let solver = LatinSolver::new(built.assembly.clone(), built.options.clone()).unwrap();
-    let input = built.parametric.run_input(&[], vec![]);
+    let input = built.parametric.run_input(&[]);
     solver.run_shared(&input).unwrap()
 }
 

@@ -46,9 +46,8 @@ fn punch_on_base_study_with_a_mortar_interface() {
     for r in &runs.records {
         let res = runs
             .solver
-            .run_shared(&study.model.parametric.run_input(&r.params, vec![]))
+            .run_shared(&study.model.parametric.run_input(&r.params))
             .unwrap();
-        assert!(res.warm_start.is_none());
         for (q, &v) in study.qois.iter().zip(&r.qois) {
             let c = q.eval(&runs.solver, &res).unwrap();
             let scale = match q.name.as_str() {

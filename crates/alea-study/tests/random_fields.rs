@@ -41,7 +41,7 @@ fn load(file: &str, edits: &[(&str, &str)]) -> Study {
 fn run(study: &Study, theta: &[f64]) -> (Vec<f64>, Vec<Vec<(f64, f64)>>) {
     let solver =
         LatinSolver::new(study.model.assembly.clone(), study.model.options.clone()).unwrap();
-    let input = study.model.parametric.run_input(theta, vec![]);
+    let input = study.model.parametric.run_input(theta);
     let inputs = (0..solver.num_interfaces())
         .map(|i| {
             solver
@@ -162,7 +162,7 @@ modes = 3
     // Away from the mean the gap moves, by at most a few standard deviations of the field.
     let mut theta = vec![0.0; d];
     theta[d - 3..].copy_from_slice(&[1.0, -1.0, 0.5]);
-    let input = field.model.parametric.run_input(&theta, vec![]);
+    let input = field.model.parametric.run_input(&theta);
     let solver =
         LatinSolver::new(field.model.assembly.clone(), field.model.options.clone()).unwrap();
     let mut moved = 0.0f64;
@@ -201,7 +201,7 @@ variance_fraction = 0.8"#;
     let x: Vec<[f64; 3]> = mesh.nodes().to_vec();
     let par = &study.model.parametric;
     let at = |theta: &[f64]| -> Vec<f64> {
-        let mu = par.run_input(theta, vec![]).mu[f.interface().unwrap()]
+        let mu = par.run_input(theta).mu[f.interface().unwrap()]
             .clone()
             .unwrap();
         x.iter().map(|&p| mu(p)).collect()
@@ -612,7 +612,7 @@ modes = 3"#;
         study.params.lo.clone(),
         study.params.hi.clone(),
     ] {
-        let input = study.model.parametric.run_input(&theta, vec![]);
+        let input = study.model.parametric.run_input(&theta);
         for i in 0..2 {
             for p in solver.interface_points(i) {
                 let mu = input.mu[i].as_ref().unwrap()(p.x);
@@ -743,7 +743,7 @@ correlation = [[1.0, 0.7], [0.7, 1.0]]
     // The parameters reach the model: P scales the pressure, E_root the root's modulus.
     let mut theta = study.params.nominal.clone();
     theta[1] = 1.1;
-    let input = study.model.parametric.run_input(&theta, vec![]);
+    let input = study.model.parametric.run_input(&theta);
     assert!((input.load_factors[1][0] - 1.1).abs() < 1e-15);
     let (q, _) = run(&study, &theta);
     assert!(q.iter().all(|v| v.is_finite()));

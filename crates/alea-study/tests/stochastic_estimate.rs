@@ -102,7 +102,7 @@ fn scratch(name: &str) -> std::path::PathBuf {
 /// `alea_cre::estimate_latin` on a fresh solver (traction `[4, -10] factor` on the block).
 fn deterministic_e2(s: &Study, theta_point: &[f64], factor: f64) -> f64 {
     let solver = LatinSolver::new(s.model.assembly.clone(), s.model.options.clone()).unwrap();
-    let input = s.model.parametric.run_input(theta_point, vec![]);
+    let input = s.model.parametric.run_input(theta_point);
     let run = solver.run_shared(&input).unwrap();
     assert_eq!(run.status, RunStatus::Converged);
     let loads = vec![

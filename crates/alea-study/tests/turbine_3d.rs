@@ -203,7 +203,7 @@ fn coarse_3d_turbine_root_is_in_equilibrium_and_symmetric_at_equal_wear() {
         [1.0, 0.0, 0.0, 1.0],
         [0.0, 1.0, 1.0, 1.0],
     ] {
-        let input = study.model.parametric.run_input(&theta, vec![]);
+        let input = study.model.parametric.run_input(&theta);
         let res = solver.run_shared(&input).unwrap();
         assert_eq!(res.status, RunStatus::Converged, "{theta:?}");
         // Loads on the root (x, y): the blade pull and the centrifugal force.

@@ -98,7 +98,7 @@ fn wear_gap_and_friction_profiles_match_the_thesis() {
         names.iter().position(|&n| n == "I2").unwrap(),
     );
     for (a, b) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.3, 0.7), (1.0, 1.0)] {
-        let input = study.model.parametric.run_input(&[a, b], vec![]);
+        let input = study.model.parametric.run_input(&[a, b]);
         let (mu_l, mu_r) = (input.mu[i1].clone().unwrap(), input.mu[i2].clone().unwrap());
         let (g_l, g_r) = (
             input.gap[i1].clone().unwrap(),
@@ -148,7 +148,7 @@ substructure = "D2"
         LatinSolver::new(study.model.assembly.clone(), study.model.options.clone()).unwrap();
     let run = |a: f64, b: f64| {
         let res = solver
-            .run_shared(&study.model.parametric.run_input(&[a, b], vec![]))
+            .run_shared(&study.model.parametric.run_input(&[a, b]))
             .unwrap();
         assert_eq!(res.status, alea_latin::RunStatus::Converged);
         let v: Vec<f64> = study

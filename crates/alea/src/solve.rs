@@ -42,7 +42,7 @@ fn solve_source(src: &Source, out: &Path) -> Result<()> {
     let params = build_params(src, &file)?;
     let built = build_model(src, &file, &params)?;
     let plan = alea_study::steps::plan_steps(src, &file)?;
-    let input = built.parametric.run_input(&params.nominal, vec![]);
+    let input = built.parametric.run_input(&params.nominal);
     if !params.names.is_empty() {
         outln!(
             "parameters at their nominal (mean) values: {}",

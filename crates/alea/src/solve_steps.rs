@@ -35,7 +35,7 @@ pub fn solve_history(
     for f in &plan.files[1..] {
         models.push(build_model(src, f, params)?);
     }
-    let input = models[0].parametric.run_input(&params.nominal, vec![]);
+    let input = models[0].parametric.run_input(&params.nominal);
     let inputs = step_inputs(&plan, &input);
     let name = |k: usize| format!("{stem}-{}-{}.vtm", k + 1, plan.steps[k].name);
     if large_sliding::uses_large_sliding(&models[0].assembly) {

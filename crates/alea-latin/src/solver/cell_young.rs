@@ -10,23 +10,20 @@
 //! coarse problem's responses of the changed substructures recomputed
 //! ([`LatinSolver::with_cell_young`]). Pairings and interface data are the set-up's.
 //!
-//! The run then proceeds as any other on that solver, warm-started as asked (the explicit
-//! `initial` state, or the nearest run of the set-up's store, copied over only for such a run),
-//! and a run that would have been remembered for warm starts is remembered by the set-up's
-//! solver.
+//! The run then proceeds as any other on that solver, from the state its input gives.
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Instant;
 
 use super::setup::{coarse_with, fem_err, operator_matrix};
-use super::{LatinSolver, RunInput, StoredRun, SubOperator};
+use super::{LatinSolver, RunInput, SubOperator};
 use crate::{LatinError, RunResult};
 
 impl LatinSolver {
     /// A solver sharing this one's pairings, interfaces, options and the factorisations of the
     /// substructures without cell factors, whose substructures `s` with `cell_young[s]` given
     /// (one factor per cell, > 0) are assembled and factorised with their cells' Young's
-    /// moduli multiplied by those factors. Its warm-start store starts empty.
+    /// moduli multiplied by those factors.
     ///
     /// # Errors
     /// If `cell_young` names more substructures than there are, a factor list has not one
@@ -79,7 +76,6 @@ impl LatinSolver {
             subs,
             ifaces,
             options: self.options.clone(),
-            store: Mutex::new(Vec::new()),
             model_size: self.model_size,
             coarse,
             configuration: self.configuration.clone(),
@@ -100,28 +96,12 @@ impl LatinSolver {
     pub(super) fn run_with_cell_young(&self, input: &RunInput) -> Result<RunResult, LatinError> {
         let t_start = Instant::now();
         let derived = self.with_cell_young(&input.cell_young)?;
-        // The set-up's finished runs are copied only for a run that looks its start up among
-        // them (no explicit start, a parameter point); a study gives every run its start.
-        if input.initial.is_none()
-            && !input.params.is_empty()
-            && let (Ok(from), Ok(mut to)) = (self.store.lock(), derived.store.lock())
-        {
-            to.extend(from.iter().map(|r| StoredRun {
-                params: r.params.clone(),
-                what: r.what.clone(),
-                fhat: r.fhat.clone(),
-            }));
-        }
-        let stored = derived.stored_runs();
         let mut plain = input.clone();
         plain.cell_young = Vec::new();
         let mut result = derived.run_shared(&plain)?;
         result.cell_young = input.cell_young.clone();
         // The run's own assembly and factorisations count in its time.
         result.timings.total = t_start.elapsed().as_secs_f64();
-        if let (Ok(mut from), Ok(mut to)) = (derived.store.lock(), self.store.lock()) {
-            to.extend(from.drain(stored..));
-        }
         Ok(result)
     }
 }

@@ -27,8 +27,7 @@
 //! `equilibrium`, options `equilibrium_tolerance` and `max_rigid_motion`); otherwise it goes on
 //! for a few iterations and ends as [`RunStatus::NoEquilibrium`]. A run that reaches
 //! `max_iterations` is not converged, or has no equilibrium when a substructure drifts beyond
-//! the bound or its sampled imbalance did not decrease over the second half of the run. Only
-//! converged runs are kept for warm starts.
+//! the bound or its sampled imbalance did not decrease over the second half of the run.
 //!
 //! **Coarse problem** (`LatinOptions::coarse`, default on; module `coarse`): after the plain
 //! linear stages, a small global problem on the interface resultants and moments corrects every
@@ -45,17 +44,17 @@
 //!
 //! **Multiresolution** (thesis 5.1.3): the solver keeps the set-up (meshes, dof maps, pairings,
 //! factorisations) between runs; a run may change the Young's-modulus factors, load factors,
-//! `mu(x)` and `g0(x)` without refactorisation, and starts from the stored local-stage solution
-//! `(W_hat, F_hat)` of the nearest finished run in parameter space (Euclidean distance of the
-//! caller's normalised parameters).
+//! `mu(x)` and `g0(x)` without refactorisation, and starts from the local-stage solution
+//! `(W_hat, F_hat)` its caller gives (`RunInput::initial`): a study's runner interpolates it
+//! from the nearest finished runs (`alea_study`'s schedule), which it stores on disk with every
+//! run. The solver keeps no runs of its own.
 
 //!
 //! **Files**: the types and the iteration itself (`run_shared`, this file); set-up
 //! (`setup.rs`); what a run starts from, with the warm start (`start.rs`); the linear stage
 //! (`linear_stage.rs`) and its interface-condensed form (`condensed.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
 //! (`local_stage.rs`); Anderson acceleration (`acceleration.rs`); stopping, status and the
-//! equilibrium check (`convergence.rs`); the run's result and the warm-start store
-//! (`result.rs`).
+//! equilibrium check (`convergence.rs`); the run's result (`result.rs`).
 
 mod acceleration;
 mod batch;
@@ -71,7 +70,7 @@ mod result;
 mod setup;
 mod start;
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Instant;
 
 use alea_fem::{Cholesky, DofMap, Ordering, SolveScratch};
@@ -217,9 +216,8 @@ pub struct RunInput {
     pub mu: Vec<Option<PointField>>,
     /// Initial gap field per interface.
     pub gap: Vec<Option<PointField>>,
-    /// Normalised parameter point (for the nearest-run warm start; empty: cold start).
-    pub params: Vec<f64>,
-    /// Explicit initial local-stage state (takes precedence over the nearest stored run).
+    /// The local-stage state the run starts from (the warm start; `None`: cold, or the end of
+    /// `previous_step`).
     pub initial: Option<Arc<LocalState>>,
     /// Young's-modulus factor of every cell of some substructures (`cell_young[s]`: one factor
     /// per cell of substructure `s`, multiplying its reference materials and its factor in
@@ -358,18 +356,11 @@ struct InterfaceState {
     status: Vec<PointStatus>,
 }
 
-struct StoredRun {
-    params: Vec<f64>,
-    what: Vec<[Vec<V3>; 2]>,
-    fhat: Vec<[Vec<V3>; 2]>,
-}
-
 /// The substructured LATIN solver with its multiresolution state.
 pub struct LatinSolver {
     subs: Vec<Arc<SubOperator>>,
     ifaces: Vec<InterfaceOperator>,
     options: LatinOptions,
-    store: Mutex<Vec<StoredRun>>,
     /// Diagonal of the assembly's bounding box (the scale of the rigid-motion bound).
     model_size: f64,
     /// The coarse problem (`LatinOptions::coarse`).
@@ -403,8 +394,6 @@ struct Run<'a> {
     base: Vec<Vec<f64>>,
     /// Per condensed substructure, the run's constant interface response and rigid moments.
     condensed: Vec<Option<condensed::RunCondensed>>,
-    /// Index of the stored run it started from.
-    warm: Option<usize>,
     istate: Vec<InterfaceState>,
     sstate: Vec<SubState>,
     /// Inverse of the macro operator at `alpha` (with the coarse problem).
@@ -533,30 +522,6 @@ impl LatinSolver {
     /// Law name of interface `i` ("perfect", "coulomb").
     pub fn interface_law(&self, i: usize) -> &'static str {
         self.ifaces[i].law.name()
-    }
-
-    /// Number of stored (finished) runs available for warm starts.
-    pub fn stored_runs(&self) -> usize {
-        self.store.lock().map_or(0, |s| s.len())
-    }
-
-    /// Forgets the stored runs (every later run starts cold).
-    pub fn clear_store(&mut self) {
-        if let Ok(mut s) = self.store.lock() {
-            s.clear();
-        }
-    }
-
-    /// Adds a finished run's local-stage state to the warm-start store (e.g. runs reloaded
-    /// from disk when a study resumes).
-    pub fn remember(&self, params: Vec<f64>, state: &LocalState) {
-        if let Ok(mut s) = self.store.lock() {
-            s.push(StoredRun {
-                params,
-                what: state.what.clone(),
-                fhat: state.fhat.clone(),
-            });
-        }
     }
 
     /// Number of points of each interface (the shape of a [`LocalState`]).

@@ -1,17 +1,15 @@
 //! Assembly of a finished run's [`RunResult`] (the last linear stage's displacements, the
-//! interface fields of both stages, status and equilibrium check) and the multiresolution
-//! store: only converged runs are kept for warm starts (thesis 5.1.3).
+//! interface fields of both stages, status and equilibrium check).
 
 use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::{LatinSolver, Run, StoredRun};
+use super::{LatinSolver, Run};
 use crate::{InterfaceResult, RunResult, RunStatus, SubEquilibrium};
 
 impl LatinSolver {
-    /// The result of a run that ended with `status` (remembered for warm starts when
-    /// converged); `t_start`: when the run started.
+    /// The result of a run that ended with `status`; `t_start`: when the run started.
     pub(super) fn finish_run(
         &self,
         mut run: Run<'_>,
@@ -57,21 +55,8 @@ impl LatinSolver {
                 }
             })
             .collect();
-        if status == RunStatus::Converged
-            && !run.input.params.is_empty()
-            && run.input.initial.is_none()
-            && run.input.previous_step.is_none()
-            && let Ok(mut store) = self.store.lock()
-        {
-            store.push(StoredRun {
-                params: run.input.params.clone(),
-                what: run.istate.iter().map(|s| s.what.clone()).collect(),
-                fhat: run.istate.iter().map(|s| s.fhat.clone()).collect(),
-            });
-        }
         let Run {
             alpha,
-            warm,
             residuals,
             mut timings,
             ..
@@ -81,7 +66,6 @@ impl LatinSolver {
             status,
             iterations: residuals.len(),
             residuals,
-            warm_start: warm,
             displacements,
             interfaces,
             young_factors: alpha,

@@ -6,7 +6,7 @@
 //! rigid modes left free by the constraints (module `equilibrium`) and the macro space of the
 //! coarse problem (module `coarse`).
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 use std::time::Instant;
 
 use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
@@ -91,7 +91,6 @@ impl LatinSolver {
             subs: ops,
             ifaces,
             options,
-            store: Mutex::new(Vec::new()),
             model_size,
             coarse,
             configuration,

@@ -2,8 +2,8 @@
 //! interface point data with the run's `mu(x)` and `g0(x)`, the constant part of every
 //! right-hand side (prescribed-displacement terms plus the loads times the run's load factors
 //! `/ alpha_s`), and the initial local-stage state
-//! `(W_hat, F_hat)`: the caller's, the nearest stored run's (multiresolution, thesis 5.1.3) or
-//! zero.
+//! `(W_hat, F_hat)`: the caller's (multiresolution, thesis 5.1.3: a study's runner gives the
+//! state interpolated from the nearest finished runs), the previous load step's, or zero.
 
 use super::{InterfaceState, LatinSolver, Run, RunInput, SubState};
 use crate::coarse::macro_inverse;
@@ -70,7 +70,7 @@ impl LatinSolver {
         let points = self.run_points(input)?;
         let base = self.constant_rhs(input, &alpha);
         let zero = input.previous_step.is_none() && self.zero_answer(&base, &points);
-        let (istate, warm) = self.initial_state(input, zero)?;
+        let istate = self.initial_state(input, zero)?;
         let macro_active = self.initially_closed(&points);
         let slip_origin = match &input.previous_step {
             Some(prev) => crate::steps::slip_origins(prev, &points),
@@ -100,7 +100,6 @@ impl LatinSolver {
             points,
             base,
             condensed,
-            warm,
             istate,
             sstate: self.sub_states(),
             macro_inv,
@@ -195,15 +194,13 @@ impl LatinSolver {
             })
     }
 
-    /// The state a run starts from: the caller's or the previous step's, else the nearest
-    /// stored run's, else zero; always zero when `zero` (the run's answer is zero,
+    /// The state a run starts from: the caller's or the previous step's, else zero; always zero when `zero` (the run's answer is zero,
     /// [`LatinSolver::zero_answer`]).
     fn initial_state(
         &self,
         input: &RunInput,
         zero: bool,
-    ) -> Result<(Vec<InterfaceState>, Option<usize>), LatinError> {
-        let mut warm = None;
+    ) -> Result<Vec<InterfaceState>, LatinError> {
         let mut istate: Vec<InterfaceState> = self
             .ifaces
             .iter()
@@ -219,7 +216,7 @@ impl LatinSolver {
             })
             .collect();
         if zero {
-            return Ok((istate, warm));
+            return Ok(istate);
         }
         if let Some(init) = input.initial.as_ref().or(input.previous_step.as_ref()) {
             if init.what.len() != istate.len()
@@ -239,35 +236,8 @@ impl LatinSolver {
                 st.what_last = init.what[i].clone();
                 st.fhat = init.fhat[i].clone();
             }
-        } else if !input.params.is_empty() {
-            let store = self
-                .store
-                .lock()
-                .map_err(|_| LatinError::Invalid("warm-start store poisoned".into()))?;
-            let best = store
-                .iter()
-                .enumerate()
-                .filter(|(_, r)| r.params.len() == input.params.len())
-                .map(|(k, r)| {
-                    let d: f64 = r
-                        .params
-                        .iter()
-                        .zip(&input.params)
-                        .map(|(a, b)| (a - b) * (a - b))
-                        .sum();
-                    (d, k)
-                })
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            if let Some((_, k)) = best {
-                warm = Some(k);
-                for (i, st) in istate.iter_mut().enumerate() {
-                    st.what = store[k].what[i].clone();
-                    st.what_last = store[k].what[i].clone();
-                    st.fhat = store[k].fhat[i].clone();
-                }
-            }
         }
-        Ok((istate, warm))
+        Ok(istate)
     }
 
     /// Zeroed linear-stage state and solve scratch of every substructure.

@@ -189,9 +189,8 @@ impl Parametric {
         Ok(model)
     }
 
-    /// The solver input for parameter point `theta`; `params` is the normalised point used
-    /// to find the nearest finished run.
-    pub fn run_input(&self, theta: &[f64], params: Vec<f64>) -> RunInput {
+    /// The solver input for parameter point `theta` (cold: the caller sets its start).
+    pub fn run_input(&self, theta: &[f64]) -> RunInput {
         let young: Vec<(f64, Option<Arc<Vec<f64>>>)> = (0..self.young.len())
             .map(|s| self.young_at(s, theta))
             .collect();
@@ -218,7 +217,6 @@ impl Parametric {
                 .iter()
                 .map(|e| Some(self.profile(e, theta)))
                 .collect(),
-            params,
             initial: None,
             previous_step: None,
             damped: false,
