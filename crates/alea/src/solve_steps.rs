@@ -46,21 +46,16 @@ pub fn solve_history(
         for (k, done) in steps.iter().enumerate() {
             outln!("step {} '{}':", k + 1, plan.steps[k].name);
             print_pairings(done, repairing);
-            let previous = k.checked_sub(1).map(|j| &steps[j]);
-            let origins = large_sliding::step_origins(done, previous);
+            let origins = large_sliding::step_origins(done, k.checked_sub(1).map(|j| &steps[j]));
             let model = &models[plan.steps[k].file];
-            let (solver, res) = (&done.solver, &done.result);
-            report_run(
-                file,
-                model,
-                solver,
-                res,
-                &inputs[k],
-                &out.join(name(k)),
-                Some(&origins),
-            )?;
-            print_dissipation(res, &origins);
-            stop_if_not_converged(&plan, k, solver, res, t0)?;
+            let step = Step {
+                k,
+                solver: &done.solver,
+                res: &done.result,
+                input: &inputs[k],
+                origins,
+            };
+            report_step(file, &plan, model, &step, &out.join(name(k)), t0)?;
         }
     } else {
         let solvers: Vec<Arc<LatinSolver>> = models
@@ -76,36 +71,54 @@ pub fn solve_history(
         let results = run_study_history(&plan, &solvers[0], &solvers[1..], &input)?;
         for (k, res) in results.iter().enumerate() {
             outln!("step {} '{}':", k + 1, plan.steps[k].name);
-            let file_k = plan.steps[k].file;
             let origins =
                 alea_latin::steps::step_origins(k.checked_sub(1).map(|j| &results[j]), res);
-            let (model, solver) = (&models[file_k], &solvers[file_k]);
-            report_run(
-                file,
-                model,
-                solver,
+            let file_k = plan.steps[k].file;
+            let step = Step {
+                k,
+                solver: &solvers[file_k],
                 res,
-                &inputs[k],
-                &out.join(name(k)),
-                Some(&origins),
-            )?;
-            print_dissipation(res, &origins);
-            stop_if_not_converged(&plan, k, solver, res, t0)?;
+                input: &inputs[k],
+                origins,
+            };
+            report_step(file, &plan, &models[file_k], &step, &out.join(name(k)), t0)?;
         }
     }
     outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     Ok(())
 }
 
-/// After step `k` of `plan` was reported: the error of a step that did not converge (the
-/// history stopped there).
-fn stop_if_not_converged(
-    plan: &Plan,
+/// Step `k` of a history, solved: its solver, result and input, and the slip origin of every
+/// point of every interface (the tangential jump at the step's start).
+struct Step<'a> {
     k: usize,
-    solver: &LatinSolver,
-    res: &RunResult,
+    solver: &'a LatinSolver,
+    res: &'a RunResult,
+    input: &'a RunInput,
+    origins: Vec<Vec<[f64; 3]>>,
+}
+
+/// Reports and writes `step` of `plan` (on `model`) to `path`, with its friction dissipation;
+/// the error of a step that did not converge (the history stopped there).
+fn report_step(
+    file: &ModelFile,
+    plan: &Plan,
+    model: &BuiltModel,
+    step: &Step<'_>,
+    path: &Path,
     t0: Instant,
 ) -> Result<()> {
+    let (k, solver, res) = (step.k, step.solver, step.res);
+    report_run(
+        file,
+        model,
+        solver,
+        res,
+        step.input,
+        path,
+        Some(&step.origins),
+    )?;
+    print_dissipation(res, &step.origins);
     if res.status == RunStatus::Converged {
         return Ok(());
     }
