@@ -71,6 +71,7 @@ pub(super) fn estimate_all(
                 }
                 if results[m].qois.is_empty() {
                     return Err(results[m]
+                        .account
                         .error
                         .clone()
                         .unwrap_or_else(|| "no statistics".into()));

@@ -32,7 +32,7 @@ pub(super) fn report_error(
                     .map(|x| (x.kind.as_str(), x.name.as_str(), x.e2)),
             );
             Some(ErrorRow {
-                method: m.label.clone(),
+                method: m.account.label.clone(),
                 runs: e.runs,
                 relative: e.relative,
                 i_geo: e.i_geo,
@@ -75,7 +75,7 @@ pub(super) fn report_error(
                 }
             });
             (
-                m.label.clone(),
+                m.account.label.clone(),
                 entities,
                 map,
                 me.vtu.as_ref().map(|p| p.display().to_string()),
@@ -93,7 +93,11 @@ pub(super) fn report_error(
         .iter()
         .filter_map(|a| {
             let m = &result.methods[a.method];
-            Some(adaptive_report(&m.label, m.adaptive.as_ref()?, &qoi))
+            Some(adaptive_report(
+                &m.account.label,
+                m.adaptive.as_ref()?,
+                &qoi,
+            ))
         })
         .collect();
     Some(ErrorReport {

@@ -85,7 +85,7 @@ pub(super) fn write_samples(
     console.line(&format!(
         "samples: {} ({written} on the {} surrogate)",
         path.display(),
-        r.label
+        r.account.label
     ));
     Ok(Some(path))
 }

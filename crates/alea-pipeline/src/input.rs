@@ -30,7 +30,7 @@ fn density(s: &QoiStats, settings: &AnalysisSettings) -> (Vec<Atom>, Vec<(f64, f
         settings.confidence,
     ) {
         Some(law) => (law.atoms, law.kde),
-        None => (Vec::new(), s.kde.clone()),
+        None => (Vec::new(), s.distribution.kde.clone()),
     }
 }
 
@@ -70,7 +70,7 @@ pub(super) fn report_input(study: &Study, result: &StudyResult, drawn: &Drawn) -
                 qoi,
                 (quantity, s),
                 surface,
-                &result.methods[m].label,
+                &result.methods[m].account.label,
             ))
         })
         .collect();
@@ -83,7 +83,7 @@ pub(super) fn report_input(study: &Study, result: &StudyResult, drawn: &Drawn) -
             || "no method produced statistics (see the notes)".to_string(),
             |m| {
                 let r = &result.methods[m];
-                format!("{}: {}", r.label, r.description)
+                format!("{}: {}", r.account.label, r.account.description)
             },
         ),
         parameters: result
@@ -156,10 +156,10 @@ fn qoi_report(
         unit: qoi.unit.clone(),
         what: qoi.what.clone(),
         samples: s.samples.clone(),
-        mean: quantity.mean,
-        std: quantity.std,
-        skewness: quantity.skewness,
-        quantiles: quantity.quantiles.clone(),
+        mean: quantity.distribution.mean,
+        std: quantity.distribution.std,
+        skewness: quantity.distribution.skewness,
+        quantiles: quantity.distribution.quantiles.clone(),
         kde,
         atoms,
         failure: quantity
@@ -241,10 +241,10 @@ fn comparison_of(study: &Study, result: &StudyResult, drawn: &Drawn) -> Comparis
                 let quantity = r.qois.first()?;
                 let (atoms, kde) = density(drawn_r.qois.first()?, drawn.settings);
                 Some(ComparisonRow {
-                    method: r.label.clone(),
-                    runs: r.runs_used,
-                    mean: quantity.mean,
-                    std: quantity.std,
+                    method: r.account.label.clone(),
+                    runs: r.account.runs_used,
+                    mean: quantity.distribution.mean,
+                    std: quantity.distribution.std,
                     kde,
                     atoms,
                     budget: budget_rows(quantity),

@@ -195,15 +195,18 @@ fn method_warnings(
     warn: &mut dyn FnMut(String),
 ) {
     for r in results {
-        if let Some(e) = &r.error {
-            warn(format!("method '{}' gave no statistics: {e}", r.label));
+        if let Some(e) = &r.account.error {
+            warn(format!(
+                "method '{}' gave no statistics: {e}",
+                r.account.label
+            ));
         }
-        if let Some(f) = &r.failure_region {
+        if let Some(f) = &r.account.failure_region {
             warn(format!(
                 "method '{}': {} run(s) failed; the region they stand for has probability {:.4} \
                  ({:.0}% interval [{:.4}, {:.4}]; {}) and its statistics describe the rest of the \
                  law ({:.2}% of it left out)",
-                r.label,
+                r.account.label,
                 f.failed_runs,
                 f.probability,
                 100.0 * confidence,
@@ -243,7 +246,7 @@ fn write_fields(
                 console.line(&format!(
                     "mean / std fields: {} ({}, {:.2} s)",
                     path.display(),
-                    results[m].label,
+                    results[m].account.label,
                     t0.elapsed().as_secs_f64()
                 ));
                 return Some(path);

@@ -4,9 +4,8 @@
 //! `summary.json` is this tree written by `serde_json` (`files.rs`).
 
 use alea_estimate::{EntityEstimate, Estimate};
-use alea_study::analysis::MethodResult;
+use alea_study::analysis::{MethodAccount, MethodResult};
 use alea_study::estimate::SurrogateEstimate;
-use alea_study::failure_region::FailureRegion;
 use alea_study::reliability::ReliabilityResult;
 use alea_study::runner::{Study, StudyRuns};
 use alea_study::store::{RunRecord, RunSlide};
@@ -75,20 +74,9 @@ pub struct Parameter {
 /// One method: its runs, its statistics, its error estimate and its adaptive loop.
 #[derive(Clone, Debug, Serialize)]
 pub struct MethodOutcome {
-    /// Label.
-    pub label: String,
-    /// Description.
-    pub description: String,
-    /// Design points.
-    pub design_runs: usize,
-    /// Runs used by the surrogate.
-    pub runs_used: usize,
-    /// Runs left out (not converged): their parameters and status.
-    pub left_out: Vec<(Vec<f64>, String)>,
-    /// Why the method produced no statistics, if it did not.
-    pub error: Option<String>,
-    /// The region attributed to failed runs (`None`: no run of the method failed).
-    pub failure_region: Option<FailureRegion>,
+    /// The method and its runs.
+    #[serde(flatten)]
+    pub account: MethodAccount,
     /// Monte Carlo draws.
     pub draws: usize,
     /// Statistics per quantity of interest.
@@ -321,13 +309,7 @@ impl MethodOutcome {
     fn new(m: usize, parts: &ResultParts) -> Self {
         let r = &parts.results[m];
         MethodOutcome {
-            label: r.label.clone(),
-            description: r.description.clone(),
-            design_runs: r.design_runs,
-            runs_used: r.runs_used,
-            left_out: r.left_out.clone(),
-            error: r.error.clone(),
-            failure_region: r.failure_region.clone(),
+            account: r.account.clone(),
             draws: r.draws,
             qois: r.qois.iter().map(QuantityStatistics::from).collect(),
             error_estimate: parts.estimates.iter().find(|e| e.method == m).map(|e| {
@@ -462,13 +444,15 @@ mod tests {
 
     fn method(error_estimate: Option<ErrorEstimate>) -> MethodOutcome {
         MethodOutcome {
-            label: "m".into(),
-            description: "d".into(),
-            design_runs: 3,
-            runs_used: 3,
-            left_out: vec![],
-            error: None,
-            failure_region: None,
+            account: MethodAccount {
+                label: "m".into(),
+                description: "d".into(),
+                design_runs: 3,
+                runs_used: 3,
+                left_out: vec![],
+                error: None,
+                failure_region: None,
+            },
             draws: 10,
             qois: vec![],
             error_estimate,

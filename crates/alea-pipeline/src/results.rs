@@ -175,7 +175,7 @@ pub fn sample_points(
 ) -> Option<Vec<f64>> {
     if method.kind == MethodKind::MonteCarlo && !result.qois.is_empty() {
         let used = converged_runs(&method.points, records);
-        let same = used.len() == result.runs_used
+        let same = used.len() == result.account.runs_used
             && result.qois.iter().enumerate().all(|(q, s)| {
                 s.samples.len() == used.len()
                     && s.samples.iter().zip(&used).all(|(v, (_, r))| {

@@ -6,38 +6,24 @@
 //! interval, the same bounds as `ci_low` / `ci_high`, which are sampling only), and `estimate`
 //! and `interval` from its budget row (`null` without a budget).
 
-use alea_study::analysis::{FailureStat, QoiStats};
+use alea_study::analysis::{Distribution, FailureStat, QoiStats};
 use alea_study::budget::validation::PointwiseErrors;
 use alea_study::budget::{BudgetRow, QoiBudget, Statistic};
 use alea_study::sensitivity::SobolStats;
 use serde::Serialize;
 
 /// The statistics of one quantity of interest under one method
-/// (`alea_study::analysis::QoiStats` without its samples, with the total intervals).
+/// (`alea_study::analysis::QoiStats` without its samples, with the total intervals; the
+/// same [`Distribution`]).
 #[derive(Clone, Debug, Serialize)]
 pub struct QuantityStatistics {
     /// Name.
     pub name: String,
     /// Unit.
     pub unit: String,
-    /// Mean.
-    pub mean: f64,
-    /// Standard deviation.
-    pub std: f64,
-    /// Skewness.
-    pub skewness: f64,
-    /// Smallest sample.
-    pub min: f64,
-    /// Largest sample.
-    pub max: f64,
-    /// Half width of the confidence interval of the mean (Monte Carlo error).
-    pub mean_ci_half_width: f64,
-    /// `(probability, value)` quantiles.
-    pub quantiles: Vec<(f64, f64)>,
-    /// KDE bandwidth.
-    pub bandwidth: f64,
-    /// `(x, pdf)` of the KDE.
-    pub kde: Vec<(f64, f64)>,
+    /// Moments, range, quantiles, density.
+    #[serde(flatten)]
+    pub distribution: Distribution,
     /// Failure probabilities.
     pub failure: Vec<FailureProbability>,
     /// The error budget of each statistic (none for a study without random parameters).
@@ -154,15 +140,7 @@ impl From<&QoiStats> for QuantityStatistics {
         QuantityStatistics {
             name: s.name.clone(),
             unit: s.unit.clone(),
-            mean: s.mean,
-            std: s.std,
-            skewness: s.skewness,
-            min: s.min,
-            max: s.max,
-            mean_ci_half_width: s.mean_ci_half_width,
-            quantiles: s.quantiles.clone(),
-            bandwidth: s.bandwidth,
-            kde: s.kde.clone(),
+            distribution: s.distribution.clone(),
             failure: s
                 .failure
                 .iter()
@@ -212,15 +190,17 @@ mod tests {
         let stats = QoiStats {
             name: "q".into(),
             unit: "MPa".into(),
-            mean: 10.0,
-            std: 2.0,
-            skewness: 0.0,
-            min: 0.0,
-            max: 20.0,
-            mean_ci_half_width: 0.01,
-            quantiles: vec![],
-            bandwidth: 0.1,
-            kde: vec![],
+            distribution: Distribution {
+                mean: 10.0,
+                std: 2.0,
+                skewness: 0.0,
+                min: 0.0,
+                max: 20.0,
+                mean_ci_half_width: 0.01,
+                quantiles: vec![],
+                bandwidth: 0.1,
+                kde: vec![],
+            },
             failure: vec![
                 FailureStat {
                     threshold: 14.0,

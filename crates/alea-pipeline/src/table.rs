@@ -23,7 +23,10 @@ pub(super) fn print_table(
         console.line("");
         for (q, qoi) in study.qois.iter().enumerate() {
             if let Some(s) = results.first().and_then(|r| r.qois.get(q)) {
-                console.line(&format!("{} = {:e} {}", qoi.name, s.mean, qoi.unit));
+                console.line(&format!(
+                    "{} = {:e} {}",
+                    qoi.name, s.distribution.mean, qoi.unit
+                ));
             }
         }
         console.line("");
@@ -51,16 +54,16 @@ pub(super) fn print_table(
         for r in results {
             match r.qois.get(q) {
                 Some(s) => {
-                    let (mean, mean_interval) = read(s, Statistic::Mean, s.mean, 6);
-                    let (std, std_interval) = read(s, Statistic::Std, s.std, 6);
+                    let (mean, mean_interval) = read(s, Statistic::Mean, s.distribution.mean, 6);
+                    let (std, std_interval) = read(s, Statistic::Std, s.distribution.std, 6);
                     console.line(&format!(
                         "  {:<34} {:>5} {mean:>12} {mean_interval:>24} {std:>12} {std_interval:>24} {:>9.3}",
-                        r.label, r.runs_used, s.skewness
+                        r.account.label, r.account.runs_used, s.distribution.skewness
                     ));
                 }
                 None => console.line(&format!(
                     "  {:<34} {:>5} {:>12} {:>24} {:>12} {:>24} {:>9}",
-                    r.label, r.runs_used, "-", "-", "-", "-", "-"
+                    r.account.label, r.account.runs_used, "-", "-", "-", "-", "-"
                 )),
             }
         }
@@ -69,7 +72,7 @@ pub(super) fn print_table(
             .find_map(|r| r.qois.get(q).map(|s| (r, s)))
             .and_then(|(r, s)| Some((r, s.budget.as_ref()?)))
         {
-            console.line(&format!("  error budget ({}):", r.label));
+            console.line(&format!("  error budget ({}):", r.account.label));
             for row in &b.rows {
                 if let Statistic::Quantile(p) = row.statistic
                     && ![0.05, 0.5, 0.95].contains(&p)
@@ -126,7 +129,7 @@ pub(super) fn print_table(
                 console.line(&format!(
                     "  {}P({} > {} {}) = {}  ({total_words}{:.0}% sampling-only interval [{}, {}])",
                     if several {
-                        format!("{}: ", r.label)
+                        format!("{}: ", r.account.label)
                     } else {
                         String::new()
                     },

@@ -77,9 +77,10 @@ fn sliding_part_covers_the_true_change_under_large_sliding() {
     );
     let true_value = |statistic: Statistic| -> Option<f64> {
         match statistic {
-            Statistic::Mean => Some(truth.mean),
-            Statistic::Std => Some(truth.std),
+            Statistic::Mean => Some(truth.distribution.mean),
+            Statistic::Std => Some(truth.distribution.std),
             Statistic::Quantile(p) => truth
+                .distribution
                 .quantiles
                 .iter()
                 .find(|(q, _)| (q - p).abs() < 1e-12)
@@ -137,10 +138,10 @@ fn sliding_part_covers_the_true_change_under_large_sliding() {
     // The change is large here: large sliding moves T's mean by more than 10 %.
     let mean = &budget.rows[0];
     assert!(
-        (mean.value - truth.mean).abs() > 0.1 * mean.value,
+        (mean.value - truth.distribution.mean).abs() > 0.1 * mean.value,
         "mean {} vs {}",
         mean.value,
-        truth.mean
+        truth.distribution.mean
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -438,21 +438,21 @@ fn method_dict<'py>(
     d: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    out.set_item("label", &outcome.label)?;
-    out.set_item("description", &outcome.description)?;
-    out.set_item("design_runs", outcome.design_runs)?;
-    out.set_item("runs_used", outcome.runs_used)?;
+    out.set_item("label", &outcome.account.label)?;
+    out.set_item("description", &outcome.account.description)?;
+    out.set_item("design_runs", outcome.account.design_runs)?;
+    out.set_item("runs_used", outcome.account.runs_used)?;
     out.set_item("draws", outcome.draws)?;
-    out.set_item("error", outcome.error.as_deref())?;
+    out.set_item("error", outcome.account.error.as_deref())?;
     out.set_item("surrogate_seconds", r.surrogate_seconds)?;
     out.set_item("monte_carlo_seconds", r.monte_carlo_seconds)?;
     let left = PyList::empty(py);
-    for (p, s) in &outcome.left_out {
+    for (p, s) in &outcome.account.left_out {
         left.append((p.clone(), s.as_str()))?;
     }
     out.set_item("left_out", left)?;
     // The region of the failed runs, left out of the statistics (None: no run failed).
-    match &outcome.failure_region {
+    match &outcome.account.failure_region {
         Some(f) => {
             let region = PyDict::new(py);
             region.set_item("failed_runs", f.failed_runs)?;
@@ -470,19 +470,19 @@ fn method_dict<'py>(
         q.set_item("quantity", &s.name)?;
         q.set_item("unit", &s.unit)?;
         for (key, value) in [
-            ("mean", s.mean),
-            ("std", s.std),
-            ("skewness", s.skewness),
-            ("min", s.min),
-            ("max", s.max),
-            ("mean_ci_half_width", s.mean_ci_half_width),
+            ("mean", s.distribution.mean),
+            ("std", s.distribution.std),
+            ("skewness", s.distribution.skewness),
+            ("min", s.distribution.min),
+            ("max", s.distribution.max),
+            ("mean_ci_half_width", s.distribution.mean_ci_half_width),
         ] {
             q.set_item(key, value)?;
         }
-        q.set_item("quantiles", s.quantiles.clone())?;
-        q.set_item("bandwidth", s.bandwidth)?;
-        let kx: Vec<f64> = s.kde.iter().map(|p| p.0).collect();
-        let ky: Vec<f64> = s.kde.iter().map(|p| p.1).collect();
+        q.set_item("quantiles", s.distribution.quantiles.clone())?;
+        q.set_item("bandwidth", s.distribution.bandwidth)?;
+        let kx: Vec<f64> = s.distribution.kde.iter().map(|p| p.0).collect();
+        let ky: Vec<f64> = s.distribution.kde.iter().map(|p| p.1).collect();
         q.set_item("kde_x", array1(py, kx))?;
         q.set_item("kde_pdf", array1(py, ky))?;
         // Each failure probability: threshold, value, its sampling-only (Wilson) interval, then

@@ -174,9 +174,9 @@ fn main() -> Result<(), StudyError> {
     let q = &m.qois[0];
     println!(
         "| reference | {} | - | - | {:.1} | {:.2} | {} |",
-        m.runs_used,
-        q.mean,
-        q.std,
+        m.account.runs_used,
+        q.distribution.mean,
+        q.distribution.std,
         q.failure
             .first()
             .map_or("-".into(), |f| format!("{:.2} %", 100.0 * f.probability))

@@ -537,8 +537,8 @@ fn step_qois(
         .qois
         .iter()
         .map(|q| StepQoi {
-            mean: q.mean,
-            std: q.std,
+            mean: q.distribution.mean,
+            std: q.distribution.std,
             failure: q.failure.iter().map(|f| f.probability).collect(),
         })
         .collect()

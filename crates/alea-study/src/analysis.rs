@@ -39,13 +39,11 @@ pub struct FailureStat {
     pub ci_high: f64,
 }
 
-/// Statistics of one quantity of interest under one method.
+/// What the draws of one quantity give: its moments, range, quantiles and kernel density. One
+/// part of [`QoiStats`], and of the typed result's statistics of a quantity (`alea-pipeline`),
+/// flattened into both.
 #[derive(Clone, Debug, Serialize)]
-pub struct QoiStats {
-    /// Name.
-    pub name: String,
-    /// Unit.
-    pub unit: String,
+pub struct Distribution {
     /// Mean.
     pub mean: f64,
     /// Standard deviation.
@@ -64,6 +62,18 @@ pub struct QoiStats {
     pub bandwidth: f64,
     /// `(x, pdf)` of the KDE.
     pub kde: Vec<(f64, f64)>,
+}
+
+/// Statistics of one quantity of interest under one method.
+#[derive(Clone, Debug, Serialize)]
+pub struct QoiStats {
+    /// Name.
+    pub name: String,
+    /// Unit.
+    pub unit: String,
+    /// Moments, range, quantiles, density.
+    #[serde(flatten)]
+    pub distribution: Distribution,
     /// Failure probabilities.
     pub failure: Vec<FailureStat>,
     /// The error budget of each statistic (none for a study without random parameters).
@@ -82,9 +92,12 @@ pub struct QoiStats {
     pub negative: (f64, f64),
 }
 
-/// The result of one method.
+/// What a method is and which runs it used: its label and description, its design, the runs
+/// its surrogate used and those left out, the region of its failed runs, and why it gave no
+/// statistics if it did not. One part of [`MethodResult`], and of the typed result's method
+/// (`alea-pipeline`), flattened into both.
 #[derive(Clone, Debug, Serialize)]
-pub struct MethodResult {
+pub struct MethodAccount {
     /// Label.
     pub label: String,
     /// Description.
@@ -100,6 +113,14 @@ pub struct MethodResult {
     /// The region attributed to failed runs, left out of the statistics (`None`: no run of
     /// the method failed; module [`crate::failure_region`]).
     pub failure_region: Option<FailureRegion>,
+}
+
+/// The result of one method.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodResult {
+    /// The method and its runs.
+    #[serde(flatten)]
+    pub account: MethodAccount,
     /// Statistics per quantity of interest.
     pub qois: Vec<QoiStats>,
     /// Seconds to build the surrogate.
@@ -226,22 +247,24 @@ fn qoi_stats(
     QoiStats {
         name: qoi.name.clone(),
         unit: qoi.unit.clone(),
-        mean: sum.mean,
-        std: if sum.std.is_finite() { sum.std } else { 0.0 },
-        skewness: if sum.skewness.is_finite() {
-            sum.skewness
-        } else {
-            0.0
+        distribution: Distribution {
+            mean: sum.mean,
+            std: if sum.std.is_finite() { sum.std } else { 0.0 },
+            skewness: if sum.skewness.is_finite() {
+                sum.skewness
+            } else {
+                0.0
+            },
+            min: sum.min,
+            max: sum.max,
+            mean_ci_half_width: {
+                let h = sum.mean_ci_half_width(s.confidence);
+                if h.is_finite() { h } else { 0.0 }
+            },
+            quantiles,
+            bandwidth,
+            kde: kde_curve,
         },
-        min: sum.min,
-        max: sum.max,
-        mean_ci_half_width: {
-            let h = sum.mean_ci_half_width(s.confidence);
-            if h.is_finite() { h } else { 0.0 }
-        },
-        quantiles,
-        bandwidth,
-        kde: kde_curve,
         failure,
         budget,
         sobol: None,
@@ -276,13 +299,15 @@ pub fn analyse_method(
         records.iter().map(|r| (point_key(&r.params), r)).collect();
     let (runs, left_out) = method_runs(study, method, &by_key);
     let mut out = MethodResult {
-        label: method.label.clone(),
-        description: method.description.clone(),
-        design_runs: method.points.len(),
-        runs_used: runs.used_points.len(),
-        left_out,
-        error: None,
-        failure_region: None,
+        account: MethodAccount {
+            label: method.label.clone(),
+            description: method.description.clone(),
+            design_runs: method.points.len(),
+            runs_used: runs.used_points.len(),
+            left_out,
+            error: None,
+            failure_region: None,
+        },
         qois: Vec::new(),
         surrogate_seconds: 0.0,
         monte_carlo_seconds: 0.0,
@@ -352,9 +377,9 @@ fn monte_carlo_stats(
     // Two runs at least, except the single run of a study without parameters.
     let needed = if study.params.names.is_empty() { 1 } else { 2 };
     if used < needed {
-        out.error = Some(format!(
+        out.account.error = Some(format!(
             "fewer than {needed} converged runs{}",
-            left_out_words(&out.left_out)
+            left_out_words(&out.account.left_out)
         ));
         return;
     }
@@ -375,7 +400,7 @@ fn monte_carlo_stats(
         })
         .collect();
     if runs.failed_runs > 0 {
-        out.failure_region = Some(binomial_region(
+        out.account.failure_region = Some(binomial_region(
             runs.failed_runs,
             used + runs.failed_runs,
             s.confidence,
@@ -405,10 +430,10 @@ fn surrogate_stats(
     let sur = match method.surrogate(&study.params, &sur_points) {
         Ok(sur) => sur,
         Err(e) => {
-            out.error = Some(format!(
+            out.account.error = Some(format!(
                 "{}{}",
                 String::from(e),
-                left_out_words(&out.left_out)
+                left_out_words(&out.account.left_out)
             ));
             return;
         }
@@ -428,7 +453,7 @@ fn surrogate_stats(
     let keep: Vec<bool> = per_draw.iter().map(|(_, r)| evaluator.kept(r)).collect();
     let validation = evaluator.validation_pairs(by_key);
     if runs.failed_runs > 0 {
-        out.failure_region = Some(failure_region_of_draws(
+        out.account.failure_region = Some(failure_region_of_draws(
             &per_draw,
             &keep,
             tolerant,
@@ -436,9 +461,9 @@ fn surrogate_stats(
             s.confidence,
         ));
         if keep.iter().all(|&k| !k) {
-            out.error = Some(format!(
+            out.account.error = Some(format!(
                 "every draw lies in the region of the failed runs{}",
-                left_out_words(&out.left_out)
+                left_out_words(&out.account.left_out)
             ));
             return;
         }

@@ -134,7 +134,7 @@ fn pc_and_monte_carlo_match_the_exact_law() {
     };
     for (m, method) in study.methods.iter().enumerate() {
         let res = analyse_method(&study, method, &runs.records, &settings);
-        assert!(res.error.is_none(), "{:?}", res.error);
+        assert!(res.account.error.is_none(), "{:?}", res.account.error);
         let q = &res.qois[0];
         let n = res.draws as f64;
         let se_mean = std / n.sqrt();
@@ -143,33 +143,33 @@ fn pc_and_monte_carlo_match_the_exact_law() {
         let slack = if m == 0 { 1e-4 * mean } else { 0.0 }; // surrogate error of the PC
         eprintln!(
             "{}: mean {} (exact {mean}), std {} (exact {std}), pf {} (exact {pf})",
-            res.label, q.mean, q.std, q.failure[0].probability
+            res.account.label, q.distribution.mean, q.distribution.std, q.failure[0].probability
         );
         assert!(
-            (q.mean - mean).abs() < 4.0 * se_mean + slack,
+            (q.distribution.mean - mean).abs() < 4.0 * se_mean + slack,
             "{}: mean {} vs {mean}",
-            res.label,
-            q.mean
+            res.account.label,
+            q.distribution.mean
         );
         assert!(
-            (q.std - std).abs() < 4.0 * se_std + slack,
+            (q.distribution.std - std).abs() < 4.0 * se_std + slack,
             "{}: std {} vs {std}",
-            res.label,
-            q.std
+            res.account.label,
+            q.distribution.std
         );
         let f = &q.failure[0];
         assert!(
             (f.probability - pf).abs() < 4.0 * se_pf + 2e-3 * (m == 0) as u8 as f64,
             "{}: pf {} vs {pf}",
-            res.label,
+            res.account.label,
             f.probability
         );
         assert!(f.ci_low <= f.probability && f.probability <= f.ci_high);
         if m == 0 {
             // The KDE integrates to 1 and follows the exact density of u = P s L / E:
             // f(u) = int f_E(e) f_P(u e/(s L)) e/(s L) de.
-            let h = q.kde[1].0 - q.kde[0].0;
-            let total: f64 = q.kde.iter().map(|p| p.1).sum::<f64>() * h;
+            let h = q.distribution.kde[1].0 - q.distribution.kde[0].0;
+            let total: f64 = q.distribution.kde.iter().map(|p| p.1).sum::<f64>() * h;
             assert!((total - 1.0).abs() < 1e-3, "KDE integral {total}");
             let exact_pdf = |u: f64| {
                 let k = 4000;
@@ -186,6 +186,7 @@ fn pc_and_monte_carlo_match_the_exact_law() {
                     / k as f64
             };
             let l1: f64 = q
+                .distribution
                 .kde
                 .iter()
                 .map(|&(u, p)| (p - exact_pdf(u)).abs())
@@ -265,12 +266,16 @@ fn mean_and_std_fields_agree_with_the_scalar_statistics() {
         fields[0].displacement_std[2 * tip],
     );
     assert!(
-        (m - q.mean).abs() < 1e-9 * q.mean.abs(),
+        (m - q.distribution.mean).abs() < 1e-9 * q.distribution.mean.abs(),
         "mean {m} vs {}",
-        q.mean
+        q.distribution.mean
     );
     // Population vs sample variance: a factor sqrt(n / (n - 1)).
-    assert!((s - q.std).abs() < 1e-4 * q.std, "std {s} vs {}", q.std);
+    assert!(
+        (s - q.distribution.std).abs() < 1e-4 * q.distribution.std,
+        "std {s} vs {}",
+        q.distribution.std
+    );
     // Uniaxial stress s = P * 200 MPa everywhere: von Mises mean = 200 E[P] = 200, std = 20.
     let vm_mean = &fields[0].von_mises_mean;
     let vm_std = &fields[0].von_mises_std;

@@ -125,13 +125,13 @@ unit = "MPa"
         res.qois[i].clone()
     };
     let t = q("T");
-    let cov = t.std / t.mean;
+    let cov = t.distribution.std / t.distribution.mean;
     assert!((0.15..=0.5).contains(&cov), "CoV of T = {cov}");
-    assert!(t.min > 0.0, "T min {}", t.min);
+    assert!(t.distribution.min > 0.0, "T min {}", t.distribution.min);
     // The regularised neck stress varies little and stays below the nodal maximum.
     let (neck, max) = (q("vm_neck"), q("vm_root_max"));
-    assert!(neck.mean > 0.0 && neck.std < 0.05 * neck.mean);
-    assert!(neck.mean < max.mean);
+    assert!(neck.distribution.mean > 0.0 && neck.distribution.std < 0.05 * neck.distribution.mean);
+    assert!(neck.distribution.mean < max.distribution.mean);
     // The nodal maximum over the root sits on a corner: a warning names it.
     let w = corner_warnings(&study, &runs.records, &dir).unwrap();
     assert!(
@@ -154,7 +154,11 @@ fn table_2_1_pattern_chaos_close_standard_and_piecewise_linear_lose_the_spread()
         .iter()
         .map(|m| {
             let r = analyse_method(&study, m, &runs.records, &s);
-            (r.label.clone(), r.qois[0].mean, r.qois[0].std)
+            (
+                r.account.label.clone(),
+                r.qois[0].distribution.mean,
+                r.qois[0].distribution.std,
+            )
         })
         .collect();
     let get = |l: &str| stats.iter().find(|s| s.0.starts_with(l)).unwrap();

@@ -346,7 +346,12 @@ fn budget_covers_the_true_error_of_mean_std_and_failure_probability() {
     for method in &study.methods {
         let records = analytic_records(&study, method);
         let res = analyse_method(&study, method, &records, &settings);
-        assert!(res.error.is_none(), "{}: {:?}", method.label, res.error);
+        assert!(
+            res.account.error.is_none(),
+            "{}: {:?}",
+            method.label,
+            res.account.error
+        );
         for (q, stats) in res.qois.iter().enumerate() {
             let budget = stats.budget.as_ref().expect("a budget");
             assert!(
@@ -448,7 +453,12 @@ fn adaptive_mesh_budget_covers_the_true_error() {
             };
             let records = analytic_records(&study, &method);
             let res = analyse_method(&study, &method, &records, &settings);
-            assert!(res.error.is_none(), "{}: {:?}", method.label, res.error);
+            assert!(
+                res.account.error.is_none(),
+                "{}: {:?}",
+                method.label,
+                res.account.error
+            );
             let stats = &res.qois[q];
             let budget = stats.budget.as_ref().expect("a budget");
             tally.add_quantiles(budget, &quantiles[q]);

@@ -443,15 +443,24 @@ fn budget_against_reference(
         confidence: 0.95,
     };
     let truth = &analyse_method(s, &runs.methods[0], &runs.records, &settings).qois[0];
-    let exact: Vec<(&str, f64)> = [("mean", truth.mean), ("std", truth.std)]
-        .into_iter()
-        .chain(truth.quantiles.iter().filter_map(|&(p, v)| match p {
-            0.05 => Some(("q0.05", v)),
-            0.5 => Some(("q0.5", v)),
-            0.95 => Some(("q0.95", v)),
-            _ => None,
-        }))
-        .collect();
+    let exact: Vec<(&str, f64)> = [
+        ("mean", truth.distribution.mean),
+        ("std", truth.distribution.std),
+    ]
+    .into_iter()
+    .chain(
+        truth
+            .distribution
+            .quantiles
+            .iter()
+            .filter_map(|&(p, v)| match p {
+                0.05 => Some(("q0.05", v)),
+                0.5 => Some(("q0.5", v)),
+                0.95 => Some(("q0.95", v)),
+                _ => None,
+            }),
+    )
+    .collect();
     let (mut n, mut covered, mut tight) = (0, 0, 0);
     let mut adaptive = Vec::new();
     for m in &runs.methods[1..] {

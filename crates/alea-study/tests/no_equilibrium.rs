@@ -240,20 +240,29 @@ fn failed_runs_leave_a_region_out_and_every_method_gives_statistics() {
             );
         }
         let res = alea_study::analysis::analyse_method(&s, m, &runs.records, &settings);
-        assert!(res.error.is_none(), "{}: {:?}", res.label, res.error);
-        assert!(res.qois.iter().all(|q| q.mean.is_finite() && q.std > 0.0));
+        assert!(
+            res.account.error.is_none(),
+            "{}: {:?}",
+            res.account.label,
+            res.account.error
+        );
+        assert!(
+            res.qois
+                .iter()
+                .all(|q| q.distribution.mean.is_finite() && q.distribution.std > 0.0)
+        );
         let meets = m.points.iter().any(|p| {
             runs.records
                 .iter()
                 .any(|r| &r.params == p && !r.converged())
         });
-        match &res.failure_region {
+        match &res.account.failure_region {
             Some(f) => {
                 regions += 1;
                 assert!(
                     f.ci_low <= 0.175 && f.ci_high >= 0.05,
                     "{}: P(region) = {} in [{}, {}]",
-                    res.label,
+                    res.account.label,
                     f.probability,
                     f.ci_low,
                     f.ci_high
@@ -261,7 +270,7 @@ fn failed_runs_leave_a_region_out_and_every_method_gives_statistics() {
                 assert!(f.ci_low <= f.probability && f.probability <= f.ci_high);
                 assert!(f.left_out > 0.0 && f.left_out < 0.5, "{f:?}");
             }
-            None => assert!(!meets, "{}: failed runs but no region", res.label),
+            None => assert!(!meets, "{}: failed runs but no region", res.account.label),
         }
     }
     assert!(regions >= 3, "{regions} methods met the region");

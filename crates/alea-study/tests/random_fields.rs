@@ -567,18 +567,18 @@ fn sparse_chaos_selects_a_reproducible_basis_and_matches_monte_carlo() {
     let mc = analyse_method(&study, &runs.methods[1], &runs.records, &settings);
     let (s, m) = (&sparse.qois[t], &mc.qois[t]);
     assert_eq!(s.sobol.as_ref().unwrap().estimator, "pc_expansion");
-    let se = m.std / 400f64.sqrt();
+    let se = m.distribution.std / 400f64.sqrt();
     assert!(
-        (s.mean - m.mean).abs() < 3.0 * se,
+        (s.distribution.mean - m.distribution.mean).abs() < 3.0 * se,
         "mean {} vs {} +- {se}",
-        s.mean,
-        m.mean
+        s.distribution.mean,
+        m.distribution.mean
     );
     assert!(
-        (s.std / m.std - 1.0).abs() < 0.15,
+        (s.distribution.std / m.distribution.std - 1.0).abs() < 0.15,
         "std {} vs {}",
-        s.std,
-        m.std
+        s.distribution.std,
+        m.distribution.std
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -146,7 +146,12 @@ fn a_loose_fit_converges_and_every_method_gives_statistics() {
     let analysis = alea_study::analysis::analysis_settings(&study).unwrap();
     for method in &runs.methods {
         let m = alea_study::analysis::analyse_method(&study, method, &runs.records, &analysis);
-        assert!(m.error.is_none(), "{}: {:?}", m.label, m.error);
+        assert!(
+            m.account.error.is_none(),
+            "{}: {:?}",
+            m.account.label,
+            m.account.error
+        );
         let budget = m.qois[0].budget.as_ref().expect("a budget");
         let row = budget
             .rows
@@ -159,7 +164,7 @@ fn a_loose_fit_converges_and_every_method_gives_statistics() {
         assert!(
             err <= row.total,
             "{}: P(N > 1) = {} +- {} misses [{exact_lo}, {exact_hi}]",
-            m.label,
+            m.account.label,
             row.value,
             row.total
         );
