@@ -1,6 +1,8 @@
 //! What the estimator needs of the model (a [`Layout`], fixed for a study) and of each run
 //! (a [`RunData`]), and a compact binary form of the latter for a study's store.
 
+use alea_uq::bytes::{ByteReader, ByteWriter, BytesError};
+
 use crate::EstimateError;
 
 /// One substructure: the length of its sample vectors and where each cell's samples start.
@@ -173,37 +175,28 @@ impl Layout {
 const MAGIC: &[u8; 8] = b"aleaCRE1";
 
 impl RunData {
-    /// Little-endian binary form: a magic, the counts, then every array in field order.
+    /// Little-endian binary form (`alea_uq::bytes`): a magic, the counts, then every array in
+    /// field order.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::new();
-        out.extend_from_slice(MAGIC);
-        let put_u64 =
-            |out: &mut Vec<u8>, v: usize| out.extend_from_slice(&(v as u64).to_le_bytes());
-        put_u64(&mut out, self.young.len());
-        put_u64(&mut out, self.jump.len());
+        let mut w = ByteWriter::new();
+        w.raw(MAGIC);
+        w.u64(self.young.len() as u64).u64(self.jump.len() as u64);
         for v in self.admissible.iter().chain(&self.fe) {
-            put_u64(&mut out, v.len());
+            w.u64(v.len() as u64);
         }
         for v in self.jump.iter().chain(&self.force) {
-            put_u64(&mut out, v.len());
+            w.u64(v.len() as u64);
         }
-        let put = |out: &mut Vec<u8>, v: f64| out.extend_from_slice(&v.to_le_bytes());
-        for &a in &self.young {
-            put(&mut out, a);
-        }
+        w.f64s(&self.young);
         for v in self.admissible.iter().chain(&self.fe) {
-            for &x in v {
-                put(&mut out, x);
-            }
+            w.f64s(v);
         }
         for v in self.jump.iter().chain(&self.force) {
             for p in v {
-                for &x in p {
-                    put(&mut out, x);
-                }
+                w.f64s(p);
             }
         }
-        out
+        w.into_bytes()
     }
 
     /// Inverse of [`RunData::to_bytes`].
@@ -211,27 +204,35 @@ impl RunData {
     /// # Errors
     /// [`EstimateError::Invalid`] for a truncated or foreign byte string.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, EstimateError> {
-        let mut c = Cursor { bytes, pos: 0 };
+        Self::read(&mut ByteReader::new(bytes)).map_err(|e| {
+            EstimateError::Invalid(format!(
+                "run data: truncated or not an estimator file ({e})"
+            ))
+        })
+    }
+
+    fn read(c: &mut ByteReader<'_>) -> Result<Self, BytesError> {
         if c.take(8)? != MAGIC {
-            return Err(Cursor::bad());
+            return Err(BytesError("no magic".into()));
         }
-        let ns = c.len()?;
-        let ni = c.len()?;
         // Every count is checked against the bytes left before anything is allocated.
-        if ns > bytes.len() / 8 || ni > bytes.len() / 8 {
-            return Err(Cursor::bad());
-        }
+        let ns = c.count(8)?;
+        let ni = c.count(8)?;
         let sub_lens = (0..2 * ns)
-            .map(|_| c.len())
+            .map(|_| c.count(8))
             .collect::<Result<Vec<_>, _>>()?;
         let if_lens = (0..2 * ni)
-            .map(|_| c.len())
+            .map(|_| c.count(24))
             .collect::<Result<Vec<_>, _>>()?;
         let total = ns as u128
             + sub_lens.iter().map(|&n| n as u128).sum::<u128>()
             + 3 * if_lens.iter().map(|&n| n as u128).sum::<u128>();
-        if total * 8 != (bytes.len() - c.pos) as u128 {
-            return Err(Cursor::bad());
+        if total * 8 != c.remaining() as u128 {
+            return Err(BytesError(format!(
+                "{} bytes of values where the counts say {}",
+                c.remaining(),
+                total * 8
+            )));
         }
         let young = c.f64s(ns)?;
         let mut admissible = Vec::with_capacity(ns);
@@ -242,7 +243,7 @@ impl RunData {
         for &n in &sub_lens[ns..] {
             fe.push(c.f64s(n)?);
         }
-        let mut points = |n: usize| -> Result<Vec<[f64; 3]>, EstimateError> {
+        let mut points = |n: usize| -> Result<Vec<[f64; 3]>, BytesError> {
             Ok(c.f64s(3 * n)?
                 .chunks_exact(3)
                 .map(|v| [v[0], v[1], v[2]])
@@ -263,44 +264,5 @@ impl RunData {
             jump,
             force,
         })
-    }
-}
-
-/// A reading position in a byte string.
-struct Cursor<'a> {
-    bytes: &'a [u8],
-    pos: usize,
-}
-
-impl<'a> Cursor<'a> {
-    fn bad() -> EstimateError {
-        EstimateError::Invalid("run data: truncated or not an estimator file".into())
-    }
-
-    fn take(&mut self, n: usize) -> Result<&'a [u8], EstimateError> {
-        let end = self
-            .pos
-            .checked_add(n)
-            .filter(|&e| e <= self.bytes.len())
-            .ok_or_else(Self::bad)?;
-        let s = &self.bytes[self.pos..end];
-        self.pos = end;
-        Ok(s)
-    }
-
-    fn len(&mut self) -> Result<usize, EstimateError> {
-        let b: [u8; 8] = self.take(8)?.try_into().map_err(|_| Self::bad())?;
-        usize::try_from(u64::from_le_bytes(b)).map_err(|_| Self::bad())
-    }
-
-    fn f64s(&mut self, n: usize) -> Result<Vec<f64>, EstimateError> {
-        let b = self.take(n.checked_mul(8).ok_or_else(Self::bad)?)?;
-        Ok(b.chunks_exact(8)
-            .map(|c| {
-                let mut a = [0u8; 8];
-                a.copy_from_slice(c);
-                f64::from_le_bytes(a)
-            })
-            .collect())
     }
 }

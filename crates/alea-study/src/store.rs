@@ -142,14 +142,14 @@ pub fn point_key(params: &[f64]) -> String {
         .join(":")
 }
 
+/// A vector as a BLOB (`alea_uq::bytes`, alea's one binary encoding).
 fn to_blob(v: &[f64]) -> Vec<u8> {
-    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+    alea_uq::bytes::f64s_to_le(v)
 }
 
+/// A BLOB as a vector.
 fn from_blob(b: &[u8]) -> Vec<f64> {
-    b.chunks_exact(8)
-        .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-        .collect()
+    alea_uq::bytes::f64s_from_le(b)
 }
 
 /// Magic bytes at the start of a field file (directories written before the data moved into

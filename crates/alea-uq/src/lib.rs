@@ -61,6 +61,7 @@
 //! own ChaCha8 stream, so results do not depend on the number of rayon threads.
 
 pub mod basis;
+pub mod bytes;
 pub mod copula;
 pub mod design;
 pub mod eigen;

@@ -560,7 +560,7 @@ impl Worker {
             Err(e) => w.u64(0).str(&e.to_string()),
         };
         let mut stash: VecDeque<Incoming> =
-            send(world, 0, TAG_READY, &w.buf, Some(TAG_STOP)).into();
+            send(world, 0, TAG_READY, &w.into_bytes(), Some(TAG_STOP)).into();
         let Ok((study, s)) = setup else {
             // Wait for rank 0 to stop the job (it reports the error).
             let mut nap = Nap::new();

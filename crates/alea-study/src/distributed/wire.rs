@@ -1,147 +1,44 @@
-//! The messages between ranks as bytes: little-endian `u64` and `f64`, lengths before vectors
-//! and strings. Hand-written (about a page): every `f64` must travel bit for bit, which a text
-//! format does not promise, and the messages are four flat records.
+//! The messages between ranks as bytes, in alea's one binary encoding (`alea_uq::bytes`:
+//! little-endian `u64` and `f64`, counts before vectors and strings, every `f64` bit for bit):
+//! four flat records - a job, a group of jobs, a result and the ranks' settings.
 
 use std::sync::Arc;
 
 use alea_latin::LocalState;
+pub(crate) use alea_uq::bytes::{ByteReader as Reader, ByteWriter as Writer, BytesError};
 
 use crate::solve::{RunJob, RunOutcome};
 use crate::store::RunRecord;
 
 /// A message that does not decode (a bug or a mismatched build on another rank).
-#[derive(Debug)]
-pub(crate) struct WireError(pub(crate) String);
-
-/// Appends values to a byte buffer.
-#[derive(Default)]
-pub(crate) struct Writer {
-    pub(crate) buf: Vec<u8>,
-}
-
-impl Writer {
-    pub(crate) fn u64(&mut self, v: u64) -> &mut Self {
-        self.buf.extend_from_slice(&v.to_le_bytes());
-        self
-    }
-    pub(crate) fn f64(&mut self, v: f64) -> &mut Self {
-        self.buf.extend_from_slice(&v.to_le_bytes());
-        self
-    }
-    pub(crate) fn f64s(&mut self, v: &[f64]) -> &mut Self {
-        self.u64(v.len() as u64);
-        self.buf.reserve(8 * v.len());
-        for x in v {
-            self.buf.extend_from_slice(&x.to_le_bytes());
-        }
-        self
-    }
-    pub(crate) fn str(&mut self, s: &str) -> &mut Self {
-        self.u64(s.len() as u64);
-        self.buf.extend_from_slice(s.as_bytes());
-        self
-    }
-    fn bytes(&mut self, b: &[u8]) -> &mut Self {
-        self.u64(b.len() as u64);
-        self.buf.extend_from_slice(b);
-        self
-    }
-}
-
-/// Reads values back in the order they were written.
-pub(crate) struct Reader<'a> {
-    buf: &'a [u8],
-    at: usize,
-}
-
-impl<'a> Reader<'a> {
-    pub(crate) fn new(buf: &'a [u8]) -> Self {
-        Reader { buf, at: 0 }
-    }
-    fn take(&mut self, n: usize) -> Result<&'a [u8], WireError> {
-        if self.buf.len() - self.at < n {
-            return Err(WireError(format!(
-                "message of {} bytes ends at byte {} while {n} more were expected",
-                self.buf.len(),
-                self.at
-            )));
-        }
-        let s = &self.buf[self.at..self.at + n];
-        self.at += n;
-        Ok(s)
-    }
-    pub(crate) fn u64(&mut self) -> Result<u64, WireError> {
-        let b = self.take(8)?;
-        Ok(u64::from_le_bytes(
-            b.try_into().map_err(|_| WireError("u64".into()))?,
-        ))
-    }
-    pub(crate) fn f64(&mut self) -> Result<f64, WireError> {
-        Ok(f64::from_bits(self.u64()?))
-    }
-    fn len(&mut self, width: usize) -> Result<usize, WireError> {
-        let n = self.u64()? as usize;
-        if n.checked_mul(width)
-            .is_none_or(|b| b > self.buf.len() - self.at)
-        {
-            return Err(WireError(format!("length {n} exceeds the message")));
-        }
-        Ok(n)
-    }
-    pub(crate) fn f64s(&mut self) -> Result<Vec<f64>, WireError> {
-        let n = self.len(8)?;
-        let b = self.take(8 * n)?;
-        Ok(b.chunks_exact(8)
-            .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-            .collect())
-    }
-    fn bytes(&mut self) -> Result<&'a [u8], WireError> {
-        let n = self.len(1)?;
-        self.take(n)
-    }
-    pub(crate) fn str(&mut self) -> Result<String, WireError> {
-        let n = self.len(1)?;
-        let b = self.take(n)?;
-        String::from_utf8(b.to_vec()).map_err(|e| WireError(e.to_string()))
-    }
-    pub(crate) fn end(&self) -> Result<(), WireError> {
-        if self.at == self.buf.len() {
-            Ok(())
-        } else {
-            Err(WireError(format!(
-                "{} trailing bytes in a message",
-                self.buf.len() - self.at
-            )))
-        }
-    }
-}
+pub(crate) type WireError = BytesError;
 
 /// A job: its id, its point and its warm-start state (empty: cold start). Returns the bytes and
 /// how many of them are the state.
 pub(crate) fn encode_job(id: u64, job: &RunJob) -> (Vec<u8>, usize) {
     let mut w = Writer::default();
-    w.u64(id).f64s(&job.theta);
-    let before = w.buf.len();
+    w.u64(id).f64s_counted(&job.theta);
+    let before = w.len();
     match &job.start {
-        Some(s) => w.u64(1).f64s(&s.to_vec()),
+        Some(s) => w.u64(1).f64s_counted(&s.to_vec()),
         None => w.u64(0),
     };
-    let state = w.buf.len() - before;
-    (w.buf, state)
+    let state = w.len() - before;
+    (w.into_bytes(), state)
 }
 
 /// Decodes a job; `sizes` are the interface point counts of this rank's solver.
 pub(crate) fn decode_job(buf: &[u8], sizes: &[usize]) -> Result<(u64, RunJob), WireError> {
     let mut r = Reader::new(buf);
     let id = r.u64()?;
-    let theta = r.f64s()?;
+    let theta = r.f64s_counted()?;
     let start = match r.u64()? {
         0 => None,
         _ => {
-            let v = r.f64s()?;
+            let v = r.f64s_counted()?;
             Some(Arc::new(LocalState::from_slice(sizes, &v).ok_or_else(
                 || {
-                    WireError(format!(
+                    BytesError(format!(
                         "a warm-start state of {} values does not fit this rank's interfaces",
                         v.len()
                     ))
@@ -161,10 +58,10 @@ pub(crate) fn encode_group(jobs: &[(u64, &RunJob)]) -> (Vec<u8>, usize) {
     let mut state = 0;
     for (id, job) in jobs {
         let (bytes, s) = encode_job(*id, job);
-        w.bytes(&bytes);
+        w.bytes_counted(&bytes);
         state += s;
     }
-    (w.buf, state)
+    (w.into_bytes(), state)
 }
 
 /// Decodes a group of jobs: each job, or its id (when it can be read) and why it does not
@@ -175,10 +72,10 @@ pub(crate) fn decode_group(
     sizes: &[usize],
 ) -> Result<Vec<Result<(u64, RunJob), (Option<u64>, WireError)>>, WireError> {
     let mut r = Reader::new(buf);
-    let n = r.len(8)?;
+    let n = r.count(8)?;
     let mut out = Vec::with_capacity(n);
     for _ in 0..n {
-        let b = r.bytes()?;
+        let b = r.bytes_counted()?;
         out.push(decode_job(b, sizes).map_err(|e| (Reader::new(b).u64().ok(), e)));
     }
     r.end()?;
@@ -193,18 +90,18 @@ pub(crate) fn encode_result(id: u64, out: &Result<RunOutcome, String>) -> Vec<u8
         Ok(o) => {
             let r = &o.rec;
             w.u64(1)
-                .f64s(&r.params)
+                .f64s_counted(&r.params)
                 .str(&r.status)
                 .u64(r.iterations as u64)
                 .f64(r.residual)
                 .f64(r.seconds)
-                .f64s(&r.qois)
-                .f64s(&r.history)
-                .f64s(&r.state)
-                .f64s(&o.fields)
+                .f64s_counted(&r.qois)
+                .f64s_counted(&r.history)
+                .f64s_counted(&r.state)
+                .f64s_counted(&o.fields)
                 .f64(o.estimate_seconds);
             match &o.cre {
-                Some(c) => w.u64(1).f64s(c),
+                Some(c) => w.u64(1).f64s_counted(c),
                 None => w.u64(0),
             };
             match &r.slide {
@@ -216,7 +113,7 @@ pub(crate) fn encode_result(id: u64, out: &Result<RunOutcome, String>) -> Vec<u8
             w.u64(0).str(msg);
         }
     }
-    w.buf
+    w.into_bytes()
 }
 
 /// Decodes a result.
@@ -227,21 +124,21 @@ pub(crate) fn decode_result(buf: &[u8]) -> Result<(u64, Result<RunOutcome, Strin
         0 => Err(r.str()?),
         _ => {
             let mut rec = RunRecord {
-                params: r.f64s()?,
+                params: r.f64s_counted()?,
                 status: r.str()?,
                 iterations: r.u64()? as usize,
                 residual: r.f64()?,
                 seconds: r.f64()?,
-                qois: r.f64s()?,
-                history: r.f64s()?,
-                state: r.f64s()?,
+                qois: r.f64s_counted()?,
+                history: r.f64s_counted()?,
+                state: r.f64s_counted()?,
                 slide: None,
             };
-            let fields = r.f64s()?;
+            let fields = r.f64s_counted()?;
             let estimate_seconds = r.f64()?;
             let cre = match r.u64()? {
                 0 => None,
-                _ => Some(r.f64s()?),
+                _ => Some(r.f64s_counted()?),
             };
             rec.slide = match r.u64()? {
                 0 => None,
