@@ -6,7 +6,8 @@
 //! runs still iterating - then each run's coarse correction, relaxation, local stage,
 //! acceleration and convergence check exactly as [`LatinSolver::run_shared`] does. A run that
 //! stops (converged, diverged, without equilibrium) leaves the batch; the others go on with
-//! fewer columns.
+//! fewer columns. A run alone is a batch of one ([`LatinSolver::run_shared`]): this is the
+//! one LATIN loop.
 //!
 //! **Same results as one at a time.** Column `j` of a multi-column solve is the solve of `r_j`
 //! alone in exact arithmetic. With a simplicial factor (2D substructures up to 50 flops
@@ -64,7 +65,13 @@ impl LatinSolver {
             .any(|i| i.cell_young.iter().any(Option::is_some))
         {
             // Each such run has operators of its own (module `cell_young`): nothing to share.
-            return inputs.iter().map(|i| self.run_shared(i)).collect();
+            return inputs
+                .iter()
+                .map(|i| match i.cell_young.iter().any(Option::is_some) {
+                    true => self.run_with_cell_young(i),
+                    false => self.run_shared(i),
+                })
+                .collect();
         }
         let t_start = Instant::now();
         let mut lanes: Vec<Result<Lane<'_>, LatinError>> = inputs

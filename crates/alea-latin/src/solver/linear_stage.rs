@@ -5,8 +5,6 @@
 //! correction (module `coarse` of the solver), the relaxation
 //! `(W, F) <- rho (W, F) + (1 - rho) (W, F)_previous`.
 
-use std::time::Instant;
-
 use rayon::prelude::*;
 
 use super::condensed::{Condensed, point_load};
@@ -23,29 +21,6 @@ impl LatinSolver {
         }
     }
 
-    /// The linear stage of every substructure from the run's local-stage state: plain solves,
-    /// coarse correction, relaxation (none in the first iteration).
-    pub(super) fn linear_stage(&self, run: &mut Run<'_>, first: bool) {
-        let t0 = Instant::now();
-        let solve_time: f64 = self
-            .subs
-            .par_iter()
-            .zip(run.sstate.par_iter_mut())
-            .enumerate()
-            .map(
-                |(s, (op, st))| match (&self.condensed[s], &run.condensed[s]) {
-                    (Some(cd), Some(rc)) => {
-                        condensed_stage(op, cd, st, &run.istate, &rc.w0, run.alpha[s])
-                    }
-                    _ => linear_stage(op, st, &run.istate, &run.base[s], run.alpha[s]),
-                },
-            )
-            .sum();
-        self.correct_and_relax(run, first);
-        run.timings.linear += t0.elapsed().as_secs_f64();
-        run.timings.triangular_solves += solve_time;
-    }
-
     /// After the plain solves: the coarse correction and the relaxation (none in the first
     /// iteration).
     pub(super) fn correct_and_relax(&self, run: &mut Run<'_>, first: bool) {
@@ -57,24 +32,6 @@ impl LatinSolver {
         };
         run.sstate.par_iter_mut().for_each(|st| relax(st, r));
     }
-}
-
-/// One plain linear stage of one substructure (without the coarse correction and the
-/// relaxation): `u`, and `W`, `F` into `w_new`, `f_new`; returns the seconds spent in the
-/// triangular solve.
-fn linear_stage(
-    op: &SubOperator,
-    st: &mut SubState,
-    istate: &[InterfaceState],
-    base: &[f64],
-    alpha: f64,
-) -> f64 {
-    assemble_rhs(op, istate, base, alpha, &mut st.rhs);
-    let t0 = Instant::now();
-    op.chol.solve_with(&mut st.rhs, &mut st.scratch);
-    let t = t0.elapsed().as_secs_f64();
-    interface_fields(op, st, istate, alpha);
-    t
 }
 
 /// The right-hand side `(f + M_Gamma (F_hat + k W_hat)) / alpha - A0 u_p` of one substructure
@@ -121,26 +78,6 @@ pub(super) fn interface_fields(
         }
         w
     });
-}
-
-/// The condensed linear stage of one substructure (module `condensed`): `v` from the
-/// local-stage state, `W = w0 + H v`, then `F`; `u` is left to be recovered (`st.stale`).
-/// Returns the seconds of the dense product.
-pub(super) fn condensed_stage(
-    op: &SubOperator,
-    cd: &Condensed,
-    st: &mut SubState,
-    istate: &[InterfaceState],
-    w0: &[f64],
-    alpha: f64,
-) -> f64 {
-    cd.gather(&op.links, istate, alpha, &mut st.v);
-    st.wi.copy_from_slice(w0);
-    let t0 = Instant::now();
-    cd.apply(&st.v, &mut st.wi);
-    let t = t0.elapsed().as_secs_f64();
-    condensed_fields(op, cd, st, istate, alpha);
-    t
 }
 
 /// `W` from the interface unknowns `st.wi` of a condensed substructure and `F = F_hat - k (W -

@@ -48,9 +48,9 @@
 //! `(W_hat, F_hat)` its caller gives (`RunInput::initial`): a study's runner interpolates it
 //! from the nearest finished runs (`alea_study`'s schedule), which it stores on disk with every
 //! run. The solver keeps no runs of its own.
-
 //!
-//! **Files**: the types and the iteration itself (`run_shared`, this file); set-up
+//! **Files**: the types (this file); the LATIN loop, one for a run alone (`run_shared`, a batch
+//! of one) and for runs in lockstep (`run_batch`, `batch.rs`); set-up
 //! (`setup.rs`); what a run starts from, with the warm start (`start.rs`); the linear stage
 //! (`linear_stage.rs`) and its interface-condensed form (`condensed.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
 //! (`local_stage.rs`); Anderson acceleration (`acceleration.rs`); stopping, status and the
@@ -71,16 +71,13 @@ mod setup;
 mod start;
 
 use std::sync::Arc;
-use std::time::Instant;
 
-use alea_fem::{Cholesky, DofMap, Ordering, SolveScratch};
+use alea_fem::{Cholesky, DofMap, Ordering};
 
 use crate::coarse::{InterfaceModes, SubMacro};
 use crate::equilibrium::RigidModes;
 use crate::interface::{InterfacePairing, SideProjection};
 use crate::{InterfaceLaw, LatinError, PointData, PointField, PointStatus, RunResult, RunTimings};
-use acceleration::Acceleration;
-use convergence::Monitor;
 use direction::PointDirection;
 
 type V3 = [f64; 3];
@@ -329,7 +326,6 @@ struct SubState {
     /// The coarse correction of the last linear stage, `(column, lambda)` of the substructure's
     /// macro responses (module `coarse`), applied only where the displacement is read.
     coarse_u: Vec<(usize, f64)>,
-    scratch: SolveScratch,
     /// Linear-stage `W`, `F` per link (relaxed).
     w: Vec<Vec<V3>>,
     f: Vec<Vec<V3>>,
@@ -538,28 +534,12 @@ impl LatinSolver {
     }
 
     /// [`LatinSolver::run`] through a shared reference: several runs may proceed at once on
-    /// different threads (each allocates its own scratch; the factorisations are shared).
+    /// different threads (each allocates its own scratch; the factorisations are shared). The
+    /// run is a batch of one ([`LatinSolver::run_batch`], module `batch`): one LATIN loop for
+    /// a run alone and for runs in lockstep, the same bits either way.
     pub fn run_shared(&self, input: &RunInput) -> Result<RunResult, LatinError> {
-        if input.cell_young.iter().any(Option::is_some) {
-            return self.run_with_cell_young(input);
-        }
-        let t_start = Instant::now();
-        let mut run = self.start(input)?;
-        let mut acceleration = Acceleration::new(self, &run.alpha, run.acceleration);
-        let mut monitor = Monitor::new(self);
-        let mut stopped = None;
-        for iteration in 0..run.max_iterations {
-            acceleration.apply_pending(&mut run.istate);
-            let x_in = acceleration.input(&run.istate);
-            self.linear_stage(&mut run, iteration == 0);
-            let (eta, eta_iterates) = self.local_stage(&mut run);
-            stopped = monitor.check(self, &mut run, iteration, eta);
-            if stopped.is_some() {
-                break;
-            }
-            acceleration.step(x_in, eta_iterates, &run.istate);
-        }
-        let (status, equilibrium) = monitor.finish(self, &run, stopped);
-        Ok(self.finish_run(run, status, equilibrium, t_start))
+        self.run_batch(std::slice::from_ref(input))
+            .pop()
+            .unwrap_or_else(|| Err(LatinError::Invalid("a batch of one gave no result".into())))
     }
 }

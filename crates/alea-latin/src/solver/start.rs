@@ -240,7 +240,7 @@ impl LatinSolver {
         Ok(istate)
     }
 
-    /// Zeroed linear-stage state and solve scratch of every substructure.
+    /// Zeroed linear-stage state of every substructure.
     fn sub_states(&self) -> Vec<SubState> {
         self.subs
             .iter()
@@ -251,7 +251,6 @@ impl LatinSolver {
                 stale: false,
                 rhs: vec![0.0; op.dofs.num_free()],
                 coarse_u: Vec::new(),
-                scratch: op.chol.solve_scratch(1),
                 w: op
                     .links
                     .iter()
