@@ -4,27 +4,44 @@
 
 use rayon::prelude::*;
 
-use crate::kinematics::{point_geometry, strain_operator};
+use crate::kinematics::point_geometry;
+use crate::reference::MAX_NODES;
 use crate::reference::node_coords;
 use crate::{FemError, Model, Quadrature, von_mises};
 
-fn cell_strain_at(model: &Model, c: usize, u: &[f64], xi: [f64; 3]) -> (Vec<f64>, f64, [f64; 3]) {
+fn cell_strain_at(model: &Model, c: usize, u: &[f64], xi: [f64; 3]) -> ([f64; 6], f64, [f64; 3]) {
     let kind = model.mesh.cell_type(c);
     let dim = model.mesh.dim;
     let nodes = model.mesh.cell_nodes(c);
-    let coords = model.cell_coords(c);
-    let g = point_geometry(kind, &coords, xi);
-    let nv = model.analysis.n_voigt();
-    let m = nodes.len() * dim;
-    let mut b = vec![0.0; nv * m];
-    strain_operator(&g, dim, &mut b);
-    let mut eps = vec![0.0; nv];
+    let mut coords = [[0.0; 3]; MAX_NODES];
+    for (x, &n) in coords.iter_mut().zip(nodes) {
+        *x = model.mesh.coords[n];
+    }
+    let g = point_geometry(kind, &coords[..nodes.len()], xi);
+    // `eps = B u_e` with the rows of `kinematics::strain_operator` (engineering shears), summed
+    // node by node and component by component in the order of the product `B u_e`, without
+    // forming `B` (no allocation per evaluation: this runs for every node of every cell of
+    // every run's stress recovery).
+    let mut eps = [0.0; 6];
     for (a, &n) in nodes.iter().enumerate() {
-        for c2 in 0..dim {
-            let ua = u[n * dim + c2];
-            for (k, e) in eps.iter_mut().enumerate() {
-                *e += b[k * m + a * dim + c2] * ua;
-            }
+        let [gx, gy, gz] = g.grad[a];
+        if dim == 2 {
+            let (ux, uy) = (u[n * 2], u[n * 2 + 1]);
+            eps[0] += gx * ux;
+            eps[2] += gy * ux;
+            eps[1] += gy * uy;
+            eps[2] += gx * uy;
+        } else {
+            let (ux, uy, uz) = (u[n * 3], u[n * 3 + 1], u[n * 3 + 2]);
+            eps[0] += gx * ux;
+            eps[4] += gz * ux;
+            eps[5] += gy * ux;
+            eps[1] += gy * uy;
+            eps[3] += gz * uy;
+            eps[5] += gx * uy;
+            eps[2] += gz * uz;
+            eps[3] += gy * uz;
+            eps[4] += gx * uz;
         }
     }
     (eps, g.det, g.x)
@@ -33,7 +50,8 @@ fn cell_strain_at(model: &Model, c: usize, u: &[f64], xi: [f64; 3]) -> (Vec<f64>
 /// Stress `[xx, yy, zz, yz, xz, xy]` of cell `c` at reference point `xi`.
 pub fn stress_at(model: &Model, c: usize, u: &[f64], xi: [f64; 3]) -> Result<[f64; 6], FemError> {
     let (eps, _, _) = cell_strain_at(model, c, u, xi);
-    Ok(model.material(c)?.stress(model.analysis, &eps))
+    let nv = model.analysis.n_voigt();
+    Ok(model.material(c)?.stress(model.analysis, &eps[..nv]))
 }
 
 /// A stress `[xx, yy, zz, yz, xz, xy]` at a physical point.
@@ -46,11 +64,12 @@ pub fn gauss_stresses(model: &Model, u: &[f64]) -> Result<Vec<Vec<PointStress>>,
         .map(|c| {
             let q = Quadrature::stiffness(model.mesh.cell_type(c));
             let mat = model.material(c)?;
+            let nv = model.analysis.n_voigt();
             Ok(q.points
                 .iter()
                 .map(|&xi| {
                     let (eps, _, x) = cell_strain_at(model, c, u, xi);
-                    (x, mat.stress(model.analysis, &eps))
+                    (x, mat.stress(model.analysis, &eps[..nv]))
                 })
                 .collect())
         })
@@ -61,21 +80,25 @@ pub fn gauss_stresses(model: &Model, u: &[f64]) -> Result<Vec<Vec<PointStress>>,
 /// gives at that node. Nodes in no cell get zero.
 pub fn nodal_stresses(model: &Model, u: &[f64]) -> Result<Vec<[f64; 6]>, FemError> {
     let n = model.mesh.num_nodes();
-    let per_cell: Vec<Vec<[f64; 6]>> = (0..model.mesh.num_cells())
+    // Each cell's stress at each of its nodes, in cell order (one flat list: no allocation
+    // per cell).
+    let per_node_of_cell: Vec<[f64; 6]> = (0..model.mesh.num_cells())
         .into_par_iter()
-        .map(|c| {
-            node_coords(model.mesh.cell_type(c))
-                .into_iter()
-                .map(|xi| stress_at(model, c, u, xi))
-                .collect::<Result<Vec<_>, _>>()
+        .flat_map_iter(|c| {
+            let refs = node_coords(model.mesh.cell_type(c));
+            (0..refs.len()).map(move |a| stress_at(model, c, u, refs[a]))
         })
         .collect::<Result<_, _>>()?;
     let mut acc = vec![[0.0; 6]; n];
     let mut count = vec![0u32; n];
-    for (c, s) in per_cell.iter().enumerate() {
-        for (a, &node) in model.mesh.cell_nodes(c).iter().enumerate() {
+    let mut at = per_node_of_cell.iter();
+    for c in 0..model.mesh.num_cells() {
+        for &node in model.mesh.cell_nodes(c) {
+            let s = at.next().ok_or_else(|| {
+                FemError::Setup("nodal stresses: a cell with more nodes than its type".into())
+            })?;
             for k in 0..6 {
-                acc[node][k] += s[a][k];
+                acc[node][k] += s[k];
             }
             count[node] += 1;
         }
@@ -133,8 +156,9 @@ pub fn strain_energy(model: &Model, u: &[f64]) -> Result<f64, FemError> {
             let mut e = 0.0;
             for (xi, w) in q.points.iter().zip(&q.weights) {
                 let (eps, det, _) = cell_strain_at(model, c, u, *xi);
-                let s = mat.stress(model.analysis, &eps);
-                let dot = if eps.len() == 3 {
+                let nv = model.analysis.n_voigt();
+                let s = mat.stress(model.analysis, &eps[..nv]);
+                let dot = if nv == 3 {
                     s[0] * eps[0] + s[1] * eps[1] + s[5] * eps[2]
                 } else {
                     (0..6).map(|k| s[k] * eps[k]).sum()
