@@ -28,6 +28,9 @@ pub(crate) struct Anderson {
     /// `gram[i][j] = dG_i . dG_j` for `j <= i` (rows follow `dg`): each step computes only the
     /// new difference's row, with the same dot products, so the same bits.
     gram: VecDeque<Vec<f64>>,
+    /// Buffers of the state's size no longer in use (differences that left the history, a
+    /// forgotten previous residual), reused by the next steps instead of allocating.
+    spare: Vec<Vec<f64>>,
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
@@ -42,28 +45,44 @@ impl Anderson {
             dg: VecDeque::new(),
             df: VecDeque::new(),
             gram: VecDeque::new(),
+            spare: Vec::new(),
         }
     }
 
     /// Forgets the history (next step is a plain fixed-point step).
     pub(crate) fn reset(&mut self) {
-        self.prev = None;
-        self.dg.clear();
-        self.df.clear();
+        if let Some((g, f)) = self.prev.take() {
+            self.spare.extend([g, f]);
+        }
+        self.spare
+            .extend(self.dg.drain(..).chain(self.df.drain(..)));
         self.gram.clear();
+    }
+
+    /// A buffer holding `values`.
+    fn buffer(&mut self, values: impl Iterator<Item = f64>) -> Vec<f64> {
+        let mut v = self.spare.pop().unwrap_or_default();
+        v.clear();
+        v.extend(values);
+        v
     }
 
     /// Given the input `x` of the last iteration and its image `f`, returns the next input.
     pub(crate) fn step(&mut self, x: &[f64], f: &[f64]) -> Vec<f64> {
-        let g: Vec<f64> = f.iter().zip(x).map(|(a, b)| a - b).collect();
-        if let Some((g0, f0)) = self.prev.take() {
-            self.dg
-                .push_back(g.iter().zip(&g0).map(|(a, b)| a - b).collect());
-            self.df
-                .push_back(f.iter().zip(&f0).map(|(a, b)| a - b).collect());
+        let g = self.buffer(f.iter().zip(x).map(|(a, b)| a - b));
+        if let Some((mut dg, mut df)) = self.prev.take() {
+            // The previous residual and image become the differences, in place.
+            for (d, a) in dg.iter_mut().zip(&g) {
+                *d = a - *d;
+            }
+            for (d, a) in df.iter_mut().zip(f) {
+                *d = a - *d;
+            }
+            self.dg.push_back(dg);
+            self.df.push_back(df);
             if self.dg.len() > self.depth {
-                self.dg.pop_front();
-                self.df.pop_front();
+                let old = [self.dg.pop_front(), self.df.pop_front()];
+                self.spare.extend(old.into_iter().flatten());
                 self.gram.pop_front();
                 for row in self.gram.iter_mut() {
                     row.remove(0);
@@ -73,7 +92,11 @@ impl Anderson {
             let row: Vec<f64> = self.dg.iter().map(|d| dot(last, d)).collect();
             self.gram.push_back(row);
         }
-        self.prev = Some((g.clone(), f.to_vec()));
+        let f_kept = self.buffer(f.iter().copied());
+        self.prev = Some((g, f_kept));
+        let Some((g, _)) = self.prev.as_ref() else {
+            return f.to_vec();
+        };
         let m = self.dg.len();
         let mut next = f.to_vec();
         if m == 0 {
@@ -89,14 +112,14 @@ impl Anderson {
                 a[i * m + j] = v;
                 a[j * m + i] = v;
             }
-            b[i] = dot(&self.dg[i], &g);
+            b[i] = dot(&self.dg[i], g);
         }
         let trace: f64 = (0..m).map(|i| a[i * m + i]).sum();
         if !(trace > 0.0 && trace.is_finite()) {
             self.reset();
             return next;
         }
-        let reg = 1e-10 * trace.max(dot(&g, &g));
+        let reg = 1e-10 * trace.max(dot(g, g));
         for i in 0..m {
             a[i * m + i] += reg;
         }

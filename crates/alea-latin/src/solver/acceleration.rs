@@ -20,6 +20,8 @@ pub(super) struct Acceleration<'a> {
     /// Accelerated state for the next iteration.
     pending: Option<Vec<f64>>,
     on: bool,
+    /// Length of the packed state: 2 sides x 6 values per interface point.
+    packed_len: usize,
 }
 
 impl<'a> Acceleration<'a> {
@@ -45,6 +47,7 @@ impl<'a> Acceleration<'a> {
             best_eta: f64::INFINITY,
             pending: None,
             on: depth > 0,
+            packed_len: solver.ifaces.iter().map(|op| 12 * op.weights.len()).sum(),
         }
     }
 
@@ -76,7 +79,7 @@ impl<'a> Acceleration<'a> {
     }
 
     fn pack(&self, istate: &[InterfaceState]) -> Vec<f64> {
-        let mut v = Vec::new();
+        let mut v = Vec::with_capacity(self.packed_len);
         for ((st, op), k) in istate.iter().zip(self.ifaces).zip(&self.scales) {
             for s in 0..2 {
                 let (dir, alpha) = k[s];
