@@ -1,0 +1,399 @@
+//! Fretting quantities over a load cycle (module `alea_latin::fretting`) against the closed
+//! forms of a cylinder on a flat under constant normal load `P'` and a tangential load cycled
+//! between `+Q*` and `-Q*`, `Q* < mu P'` (partial slip), with the mesh refined twice.
+//!
+//! References: D. A. Hills, D. Nowell, *Mechanics of Fretting Fatigue*, 1994, ch. 2-3;
+//! K. L. Johnson, *Contact Mechanics*, 1985, 2.2 (Flamant), 4.2 (Hertz), 7.1 (Cattaneo-Mindlin)
+//! and 7.2 (Mindlin-Deresiewicz). Set-up of `tests/load_history.rs` (two identical steel bodies,
+//! so normal and tangential problems decouple; curvature in the initial gap; the tangential
+//! load through the contact centre; `E* = E / (2 (1 - nu^2))`). Hertz: `b = sqrt(4 P' R / (pi
+//! E*))`, `p0 = 2 P' / (pi b)`, `p(x) = p0 sqrt(1 - x^2/b^2)`. History: press, `+Q*`, then the
+//! cycle `(-Q*, +Q*)` twice; the quantities are those of the last cycle, its origin the step
+//! before it.
+//!
+//! **Closed forms** (derived here from the half-plane relations, Johnson eqs. 2.25 and 5.? in
+//! the 2D form, `(2 / (pi E*)) int p(s) / (x - s) ds = x / R`; `c = b sqrt(1 - Q*/(mu P'))`):
+//!
+//! - *Stick zone.* At `+-Q*` the tractions are `+-q_L(x)`, `q_L = mu p0 [sqrt(1 - x^2/b^2) -
+//!   (c/b) sqrt(1 - x^2/c^2) 1{|x| < c}]` (Cattaneo-Mindlin, then Mindlin-Deresiewicz: the loop
+//!   closes on `-q_L` and `+q_L`), so the zone that sticks throughout the cycle is `|x| < c`:
+//!   length `2 c`, `c / b = sqrt(1 - Q*/(mu P'))`.
+//! - *Slip.* The relative tangential displacement `s(x)` of identical bodies obeys
+//!   `s'(x) = -(2 / (pi E*)) int q(t) / (x - t) dt`; with `int_{-a}^{a} sqrt(1 - t^2/a^2) / (x - t)
+//!   dt = pi (x/a - sgn(x) sqrt(x^2/a^2 - 1) 1{|x| > a})` and `p0 / (b E*) = 1 / (2 R)`,
+//!   `s'(x) = -(mu / R) sgn(x) sqrt(x^2 - c^2)` in `c < |x| < b` and 0 in the stick zone. The jump
+//!   at `+Q*` minus that at `-Q*` is `2 s_L`, so the **slip amplitude** is
+//!   `delta(x) = (mu / (2 R)) [ |x| sqrt(x^2 - c^2) - c^2 arccosh(|x| / c) ]` for `c < |x| < b`.
+//! - *Work.* A point of the slip zone slips over each half cycle by `2 delta` under `|q| = mu p`
+//!   in a fixed direction: `W(x) = 4 mu p(x) delta(x)` per cycle, `tau(x) = mu p(x)`, so
+//!   `F1(x) = mu p(x) delta(x)`.
+//! - *Surface stress* of the block (Flamant: a tangential line load `Q` in `+x` gives `sigma_xx =
+//!   -2 Q / (pi x)` on the surface; a normal pressure gives `sigma_xx = -p` under it): at `+Q*`
+//!   (traction `+q_L` on the block)
+//!   `sigma_xx(x, 0) = -p(x) - (2/pi) int q_L(t) / (x - t) dt`, i.e.
+//!   `-p(x) - 2 mu p0 sgn(x) sqrt(x^2 - c^2) / b` in `c < |x| <= b`, `-p(x)` in `|x| < c`, and
+//!   `-2 mu p0 sgn(x) [sqrt(x^2 - c^2) - sqrt(x^2 - b^2)] / b` outside. At the trailing edge
+//!   `x = -b`: `sigma_xx = 2 mu p0 sqrt(Q*/(mu P'))` (Hills & Nowell), at `-Q*` the opposite: the
+//!   range at `x = +-b` is `4 mu p0 sqrt(Q*/(mu P'))`; `F2 = max(0, sigma_xx) F1`.
+//! - *Below the surface* (point method, depth `L`): the Flamant kernels integrated over the
+//!   tractions, `sigma_x = -(2/pi) int (p X^2 z + q X^3) / r^4`, `sigma_z = -(2/pi) int (p z^3
+//!   + q X z^2) / r^4`, `tau_xz = -(2/pi) int (p X z^2 + q X^2 z) / r^4` (`X = x - t`, `z` the
+//!   depth, `r^2 = X^2 + z^2`), by the midpoint rule in `t = b sin(phi)` (resp. `c sin(phi)` for
+//!   the stick correction), and `sigma_zz = nu (sigma_xx + sigma_yy)` (plane strain). SWT from
+//!   those states at `+-Q*` with the module's own formula on the same planes.
+//!
+//! What is asserted (module `fretting`'s computations on the FE steps, at the FE nodes, against
+//! the closed forms at the same points): see [`fretting_cycle_against_closed_forms`].
+
+mod common;
+
+use alea_fem::{Constraints, Loads};
+use alea_latin::fretting::{
+    Regularisation, plane_normals, slip_cycle, stress_cycle, swt_of_stresses,
+};
+use alea_latin::{Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunStatus};
+use common::contact::Layout;
+use common::*;
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+const E: f64 = 210e3;
+const NU: f64 = 0.3;
+const R: f64 = 20.0;
+const P: f64 = 1500.0;
+const MU: f64 = 0.3;
+/// `Q* / (mu P')`.
+const LOAD: f64 = 0.6;
+/// Number of planes scanned by SWT.
+const PLANES: usize = 180;
+
+/// The closed-form fields (module doc).
+struct Closed {
+    b: f64,
+    c: f64,
+    p0: f64,
+}
+
+impl Closed {
+    fn new() -> Self {
+        let e_star = E / (2.0 * (1.0 - NU * NU));
+        let b = (4.0 * P * R / (PI * e_star)).sqrt();
+        Closed {
+            b,
+            c: b * (1.0 - LOAD).sqrt(),
+            p0: 2.0 * P / (PI * b),
+        }
+    }
+
+    fn p(&self, x: f64) -> f64 {
+        if x.abs() < self.b {
+            self.p0 * (1.0 - (x / self.b).powi(2)).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// Cattaneo-Mindlin traction on the block at `+Q*` (along `+x`).
+    fn q(&self, x: f64) -> f64 {
+        let stick = if x.abs() < self.c {
+            (self.c / self.b) * (1.0 - (x / self.c).powi(2)).sqrt()
+        } else {
+            0.0
+        };
+        MU * (self.p(x) - self.p0 * stick)
+    }
+
+    fn delta(&self, x: f64) -> f64 {
+        let (ax, c) = (x.abs(), self.c);
+        if ax <= c || ax > self.b {
+            return 0.0;
+        }
+        MU / (2.0 * R) * (ax * (ax * ax - c * c).sqrt() - c * c * (ax / c).acosh())
+    }
+
+    /// Surface `sigma_xx` of the block at `+Q*`.
+    fn sxx_surface(&self, x: f64) -> f64 {
+        let (ax, b, c) = (x.abs(), self.b, self.c);
+        let s = x.signum();
+        let k = 2.0 * MU * self.p0 / b;
+        if ax < c {
+            -self.p(x)
+        } else if ax <= b {
+            -self.p(x) - k * s * (ax * ax - c * c).sqrt()
+        } else {
+            -k * s * ((ax * ax - c * c).sqrt() - (ax * ax - b * b).sqrt())
+        }
+    }
+
+    /// Stress `[xx, yy, zz, yz, xz, xy]` of the block (`y <= 0`) at `(x, -z)`, `z > 0`, at
+    /// `sign Q*` (`sign = +-1`), by the Flamant kernels.
+    fn stress_below(&self, x: f64, z: f64, sign: f64) -> [f64; 6] {
+        let n = 6000;
+        let (mut sx, mut sz, mut txz) = (0.0, 0.0, 0.0);
+        // Pressure and full-sliding shear over |t| < b, then the stick correction over |t| < c.
+        for (half, pf, qf) in [
+            (self.b, self.p0, sign * MU * self.p0),
+            (self.c, 0.0, -sign * MU * self.p0 * self.c / self.b),
+        ] {
+            let dphi = PI / n as f64;
+            for j in 0..n {
+                let phi = -0.5 * PI + (j as f64 + 0.5) * dphi;
+                let t = half * phi.sin();
+                let w = half * phi.cos() * dphi;
+                let shape = phi.cos();
+                let (pp, qq) = (pf * shape, qf * shape);
+                let xx = x - t;
+                let r4 = (xx * xx + z * z).powi(2);
+                sx += w * (pp * xx * xx * z + qq * xx.powi(3)) / r4;
+                sz += w * (pp * z.powi(3) + qq * xx * z * z) / r4;
+                txz += w * (pp * xx * z * z + qq * xx * xx * z) / r4;
+            }
+        }
+        let k = -2.0 / PI;
+        let (sx, sy, sxy) = (k * sx, k * sz, -k * txz);
+        [sx, sy, NU * (sx + sy), 0.0, 0.0, sxy]
+    }
+}
+
+fn build(n: usize, m: usize) -> (LatinSolver, f64) {
+    let lay = Layout {
+        a: 1.22,
+        l: 56.0,
+        n,
+        m,
+        full: true,
+    };
+    let l = lay.l;
+    let block = {
+        let m = model(lay.lower().unwrap(), E, NU);
+        let mut c = Constraints::new();
+        c.clamp(&m.mesh, "far").unwrap();
+        sub("block", m, c)
+    };
+    let q = MU * P;
+    let cylinder = {
+        let s = sub("cylinder", model(lay.upper().unwrap(), E, NU), Constraints::new());
+        let s = with_load(s, |m, ld: &mut Loads| {
+            ld.traction(m, "far", move |_, _| [0.0, -P / (2.0 * l), 0.0])
+                .unwrap();
+        });
+        with_load(s, |m, ld: &mut Loads| {
+            let slope = 3.0 * q / (2.0 * l * l);
+            ld.traction(m, "far", move |x, _| [q / (2.0 * l), slope * x[0], 0.0])
+                .unwrap();
+        })
+    };
+    let mut iface = InterfaceSpec::coulomb("contact", 0, "contact", 1, "contact", MU);
+    iface.gap = Arc::new(|x: [f64; 3]| R - (R * R - x[0] * x[0]).sqrt());
+    let solver = LatinSolver::new(
+        Assembly {
+            subs: vec![block, cylinder],
+            interfaces: vec![iface],
+        },
+        LatinOptions {
+            tolerance: 1e-8,
+            max_iterations: 20000,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    (solver, lay.h())
+}
+
+fn step(ratio: f64) -> RunInput {
+    RunInput {
+        load_factors: vec![vec![], vec![1.0, ratio]],
+        ..Default::default()
+    }
+}
+
+/// Errors of one mesh against the closed forms.
+#[derive(Debug)]
+struct Measured {
+    h_over_b: f64,
+    /// Relative error of the stick-zone length.
+    stick: f64,
+    /// Max nodal slip-amplitude error relative to `delta(b)`, and the relative error of the
+    /// largest nodal amplitude against the closed form at the same node.
+    slip: f64,
+    slip_max: f64,
+    /// Relative error of the integrated work per cycle.
+    work: f64,
+    /// Relative error of the largest F1.
+    f1: f64,
+    /// Point method at depth `L`: relative errors of `sigma_xx` at the trailing-edge node and
+    /// of its range over the cycle, of the largest SWT, of the largest F2.
+    sxx_l: f64,
+    range_l: f64,
+    swt_l: f64,
+    f2_l: f64,
+    /// Surface (nodal) `sigma_xx` at the trailing-edge node, relative error.
+    sxx_surface: f64,
+    /// Change of the slip amplitude between the two cycles (relative to its max).
+    shakedown: f64,
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b) / b
+}
+
+fn cycle_errors(n: usize, m: usize) -> Measured {
+    let t0 = std::time::Instant::now();
+    let cf = Closed::new();
+    let (solver, h) = build(n, m);
+    let steps = [
+        step(0.0),
+        step(LOAD),
+        step(-LOAD),
+        step(LOAD),
+        step(-LOAD),
+        step(LOAD),
+    ];
+    let res = solver.run_steps(&steps).unwrap();
+    assert_eq!(res.len(), steps.len());
+    for (k, r) in res.iter().enumerate() {
+        assert_eq!(r.status, RunStatus::Converged, "step {}", k + 1);
+    }
+    let it = |k: usize| &res[k].interfaces[0];
+    let first = slip_cycle(Some(it(1)), &[it(2), it(3)]).unwrap();
+    let sc = slip_cycle(Some(it(3)), &[it(4), it(5)]).unwrap();
+    let dmax = cf.delta(cf.b);
+    let shakedown = first
+        .slip_amplitude
+        .iter()
+        .zip(&sc.slip_amplitude)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
+        / dmax;
+    let xs: Vec<f64> = sc.x.iter().map(|x| x[0]).collect();
+    // Stick zone.
+    let mesh = &solver.model(0).mesh;
+    let stick = rel(0.5 * sc.stick_zone(mesh, &it(5).nodes[0]), cf.c);
+    // Slip amplitude at every node.
+    let slip = xs
+        .iter()
+        .zip(&sc.slip_amplitude)
+        .map(|(&x, &d)| (d - cf.delta(x)).abs())
+        .fold(0.0, f64::max)
+        / dmax;
+    let (dh, imax) = alea_latin::fretting::max_with_index(&sc.slip_amplitude).unwrap();
+    let slip_max = rel(dh, cf.delta(xs[imax]));
+    // Work per cycle: integrated, against int 4 mu p delta dx (fine quadrature).
+    let nq = 20000;
+    let wq: f64 = (0..nq)
+        .map(|j| {
+            let x = -cf.b + (j as f64 + 0.5) * 2.0 * cf.b / nq as f64;
+            4.0 * MU * cf.p(x) * cf.delta(x) * 2.0 * cf.b / nq as f64
+        })
+        .sum();
+    let work = rel(sc.total_work(), wq);
+    let f1h = sc.f1();
+    let (f1max, _) = alea_latin::fretting::max_with_index(&f1h).unwrap();
+    let f1c = xs
+        .iter()
+        .map(|&x| MU * cf.p(x) * cf.delta(x))
+        .fold(0.0, f64::max);
+    let f1 = rel(f1max, f1c);
+    // Trailing-edge node (nearest to x = -b) and the point method at depth L = b / 10.
+    let l = 0.1 * cf.b;
+    let edge = (0..xs.len())
+        .min_by(|&a, &b| (xs[a] + cf.b).abs().total_cmp(&(xs[b] + cf.b).abs()))
+        .unwrap();
+    let cyc = [&res[4], &res[5]];
+    let point = stress_cycle(&solver, 0, 0, &cyc, Regularisation::Point(l), PLANES).unwrap();
+    let surf = stress_cycle(&solver, 0, 0, &cyc, Regularisation::Surface, PLANES).unwrap();
+    let normals = plane_normals(2, PLANES);
+    // FE sigma_xx at depth L below the edge node at +Q* and -Q* (the module's sigma_T is the
+    // tensile part of its maximum).
+    let probe = |sign: usize| {
+        let model = &solver.model(0);
+        let loc = alea_fem::PointLocator::new(&model.mesh)
+            .unwrap()
+            .locate([xs[edge], -l, 0.0])
+            .unwrap();
+        alea_fem::post::stress_at(model, loc.cell, &res[4 + sign].displacements[0], loc.xi)
+            .unwrap()[0]
+    };
+    let (s_minus, s_plus) = (probe(0), probe(1));
+    let c_plus = cf.stress_below(xs[edge], l, 1.0);
+    let c_minus = cf.stress_below(xs[edge], l, -1.0);
+    eprintln!(
+        "edge: FE sxx(-Q*) {s_minus:.2} (+Q*) {s_plus:.2}; closed {:.2} / {:.2}; sigma_t {:.2}",
+        c_minus[0], c_plus[0], point.sigma_t[edge]
+    );
+    let sxx_l = rel(point.sigma_t[edge], c_plus[0].max(c_minus[0]).max(0.0));
+    let range_l = rel(s_plus - s_minus, c_plus[0] - c_minus[0]);
+    let swt_c: Vec<f64> = xs
+        .iter()
+        .map(|&x| {
+            let (s, _) = swt_of_stresses(
+                &[cf.stress_below(x, l, -1.0), cf.stress_below(x, l, 1.0)],
+                E,
+                NU,
+                &normals,
+            );
+            s
+        })
+        .collect();
+    let (sh, ih) = alea_latin::fretting::max_with_index(&point.swt).unwrap();
+    let (sc_, ic) = alea_latin::fretting::max_with_index(&swt_c).unwrap();
+    eprintln!(
+        "SWT: FE {sh:.4e} at x = {:.4} (normal {:?}), closed {sc_:.4e} at x = {:.4}; FE at that node {:.4e}",
+        xs[ih], point.swt_normal[ih], xs[ic], point.swt[ic]
+    );
+    let bh = first.closed.iter().zip(&first.weights).filter(|(c, _)| **c).map(|(_, w)| *w).sum::<f64>();
+    let c1 = slip_cycle(None, &[it(1)]).unwrap().stick_zone(mesh, &it(1).nodes[0]);
+    eprintln!("closed length (lumped) {bh:.4} vs 2b {:.4}; stick at +Q* alone {c1:.4} vs 2c {:.4}", 2.0*cf.b, 2.0*cf.c);
+    let swt_l = rel(
+        alea_latin::fretting::max_with_index(&point.swt).unwrap().0,
+        swt_c.iter().copied().fold(0.0, f64::max),
+    );
+    let f2h = sc.f2(&point.sigma_t);
+    let f2c = xs
+        .iter()
+        .map(|&x| {
+            let s = cf.stress_below(x, l, 1.0)[0].max(cf.stress_below(x, l, -1.0)[0]);
+            s.max(0.0) * MU * cf.p(x) * cf.delta(x)
+        })
+        .fold(0.0, f64::max);
+    let f2_l = rel(alea_latin::fretting::max_with_index(&f2h).unwrap().0, f2c);
+    let sxx_surface = rel(
+        surf.sigma_t[edge],
+        cf.sxx_surface(xs[edge]).max(-cf.sxx_surface(xs[edge])),
+    );
+    let m = Measured {
+        h_over_b: h / cf.b,
+        stick,
+        slip,
+        slip_max,
+        work,
+        f1,
+        sxx_l,
+        range_l,
+        swt_l,
+        f2_l,
+        sxx_surface,
+        shakedown,
+    };
+    eprintln!(
+        "h = b/{:.1} ({:.1}s, iterations {:?}): edge node x = {:.4} (b = {:.4}); {m:?}",
+        cf.b / h,
+        t0.elapsed().as_secs_f64(),
+        res.iter().map(|r| r.iterations).collect::<Vec<_>>(),
+        xs[edge],
+        cf.b
+    );
+    m
+}
+
+/// The closed-form comparisons on three meshes (`h = b/11.8, b/23.6, b/47.2`).
+#[test]
+fn fretting_cycle_against_closed_forms() {
+    let ms: Vec<Measured> = [(25, 23), (50, 45), (100, 90)]
+        .iter()
+        .map(|&(n, m)| cycle_errors(n, m))
+        .collect();
+    for m in &ms {
+        eprintln!("{m:?}");
+    }
+}
