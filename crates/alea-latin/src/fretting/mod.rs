@@ -160,7 +160,10 @@ pub fn slip_cycle(
     }
     let jump = |r: &InterfaceResult, p: usize| {
         let (a, b) = (r.what[0][p], r.what[1][p]);
-        tangential([b[0] - a[0], b[1] - a[1], b[2] - a[2]], first.points[p].normal)
+        tangential(
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            first.points[p].normal,
+        )
     };
     let mut out = SlipCycle {
         x: first.points.iter().map(|p| p.x).collect(),
@@ -235,7 +238,11 @@ impl SlipCycle {
 
     /// The energy dissipated by friction over the cycle, `sum_i w_i W_i` (>= 0).
     pub fn total_work(&self) -> f64 {
-        self.weights.iter().zip(&self.work).map(|(w, v)| w * v).sum()
+        self.weights
+            .iter()
+            .zip(&self.work)
+            .map(|(w, v)| w * v)
+            .sum()
     }
 
     /// Measure of the zone that sticks throughout the cycle. 2D (`mesh` of dimension 2: side

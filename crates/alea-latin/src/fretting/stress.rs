@@ -218,12 +218,13 @@ fn depth_samples(
                     x[1] + d * inward[1],
                     x[2] + d * inward[2],
                 ];
-                let loc = locator
-                    .locate_nearest(at, tol)
-                    .ok_or_else(|| FrettingError::Outside {
-                        sub: sub.to_string(),
-                        at,
-                    })?;
+                let loc =
+                    locator
+                        .locate_nearest(at, tol)
+                        .ok_or_else(|| FrettingError::Outside {
+                            sub: sub.to_string(),
+                            at,
+                        })?;
                 let mat = model.material(loc.cell).map_err(fem_error(sub))?;
                 for (k, u) in us.iter().enumerate() {
                     let s = post::stress_at(model, loc.cell, u, loc.xi).map_err(fem_error(sub))?;
@@ -279,7 +280,10 @@ pub fn stress_cycle(
     {
         return Err(FrettingError::Mismatch(it.name.clone()));
     }
-    let us: Vec<&[f64]> = cycle.iter().map(|r| r.displacements[s].as_slice()).collect();
+    let us: Vec<&[f64]> = cycle
+        .iter()
+        .map(|r| r.displacements[s].as_slice())
+        .collect();
     let samples = match reg.distance() {
         None => surface_samples(&model, sub, &it.nodes[side], &us)?,
         Some(l) => {
