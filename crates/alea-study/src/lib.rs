@@ -9,6 +9,7 @@ pub mod atoms;
 pub mod budget;
 mod build;
 mod cell_field;
+pub mod cycle;
 pub mod cre;
 pub mod data_law;
 #[cfg(feature = "mpi")]

@@ -225,10 +225,13 @@ impl RunContext<'_> {
         let (Some(res), Some(&solver)) = (results.last(), solvers.last()) else {
             return Err(StudyError::Failed("no load step ran".into()));
         };
+        let view = study.steps.as_ref().map(|plan| {
+            crate::cycle::HistoryView::new(plan.steps.len(), plan.cycle.as_ref(), results.len())
+        });
         let qois = study
             .qois
             .iter()
-            .map(|q| crate::steps::eval_qoi(q, &solvers, &results, &origins))
+            .map(|q| crate::steps::eval_qoi(q, &solvers, &results, &origins, view.as_ref()))
             .collect::<Result<Vec<_>, _>>()?;
         let mut status = match (res.status, solver.equilibrium_report(res)) {
             (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),

@@ -298,7 +298,12 @@ impl Qoi {
                     })?
             }
             // Over a cycle: module `steps` evaluates it; a single state has no cycle.
-            QoiKind::Fretting(f) => f.eval(solver, None, &[res])?,
+            QoiKind::Fretting(_) => {
+                return Err(StudyError::Failed(format!(
+                    "quantity '{}' is measured over a load cycle, not on one state",
+                    self.name
+                )));
+            }
         })
     }
 
