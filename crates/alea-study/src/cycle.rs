@@ -114,9 +114,7 @@ pub fn plan_cycle(
                 return Err(src.error(
                     u.span(),
                     "cycle.until",
-                    format!(
-                        "the shakedown tolerance is a relative change in (0, 1), got {v}"
-                    ),
+                    format!("the shakedown tolerance is a relative change in (0, 1), got {v}"),
                 ));
             }
             Some(v)
@@ -203,8 +201,9 @@ impl HistoryView {
 }
 
 /// The largest change of the slip amplitude between the cycles `results[a..b]` and
-/// `results[b..c]` over the frictional interfaces, relative to the largest amplitude (0 when
-/// nothing slips).
+/// `results[b..c]` over the frictional interfaces, relative to the largest amplitude, or to
+/// `1e-6` times the largest tangential jump of the cycles if that is larger (a cycle that
+/// sticks everywhere has amplitudes of round-off size).
 pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -> f64 {
     let mut worst = 0.0f64;
     let n_ifaces = results.get(a).map_or(0, |r| r.interfaces.len());
@@ -217,7 +216,21 @@ pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -
         let (Some(old), Some(new)) = (amplitude(a, b), amplitude(b, c)) else {
             continue;
         };
-        let scale = new.iter().chain(&old).copied().fold(0.0, f64::max);
+        // Changes below 1e-6 of the largest tangential jump of the cycles are the solver's
+        // round-off (a cycle that sticks everywhere has amplitudes of that size).
+        let jump = results[a..c]
+            .iter()
+            .map(|r| {
+                let it = &r.interfaces[i];
+                (0..it.points.len())
+                    .map(|p| {
+                        let j = it.step_slip(p, &[]);
+                        (j[0] * j[0] + j[1] * j[1] + j[2] * j[2]).sqrt()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        let scale = new.iter().chain(&old).copied().fold(1e-6 * jump, f64::max);
         let change = old
             .iter()
             .zip(&new)
@@ -241,20 +254,27 @@ pub(crate) fn run_cycles(
 ) -> Result<(), StudyError> {
     for n in 0..c.repeat {
         for k in 0..c.len {
-            if results.last().is_some_and(|r| r.status != RunStatus::Converged) {
+            if results
+                .last()
+                .is_some_and(|r| r.status != RunStatus::Converged)
+            {
                 return Ok(());
             }
             let r = run(k, results.last())?;
             results.push(r);
         }
-        if results.last().is_some_and(|r| r.status != RunStatus::Converged) {
+        if results
+            .last()
+            .is_some_and(|r| r.status != RunStatus::Converged)
+        {
             return Ok(());
         }
         if let Some(tol) = c.until
             && n >= 1
         {
             let end = results.len();
-            if slip_change(results, end - 2 * c.len, end - c.len, end) <= tol {
+            let change = slip_change(results, end - 2 * c.len, end - c.len, end);
+            if change <= tol {
                 return Ok(());
             }
         }

@@ -9,8 +9,8 @@ pub mod atoms;
 pub mod budget;
 mod build;
 mod cell_field;
-pub mod cycle;
 pub mod cre;
+pub mod cycle;
 pub mod data_law;
 #[cfg(feature = "mpi")]
 pub mod distributed;

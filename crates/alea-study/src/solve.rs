@@ -240,8 +240,7 @@ impl RunContext<'_> {
         if let Some(plan) = &study.steps
             && res.status != RunStatus::Converged
         {
-            let k = results.len() - 1;
-            status = format!("step {} '{}': {status}", k + 1, plan.steps[k].name);
+            status = crate::steps::history_status(plan, &results, solver, status);
         }
         // The state later runs start from: that of the first step (every later step starts
         // from its own run's previous step). None with large sliding: the runs' pairings

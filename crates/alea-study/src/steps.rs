@@ -83,6 +83,35 @@ fn with_values(file: &ModelFile, values: &Values) -> ModelFile {
     f
 }
 
+/// The name of step `k` (`step-K` by default), usable in file names and not in `names`.
+fn step_name(
+    src: &Source,
+    st: &StepSpec,
+    k: usize,
+    names: &[String],
+) -> Result<String, StudyError> {
+    let Some(n) = &st.name else {
+        return Ok(format!("step-{}", k + 1));
+    };
+    let field = format!("step[{k}].name");
+    let v = n.get_ref().trim().to_string();
+    if v.is_empty()
+        || !v
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(src.error(
+            n.span(),
+            field,
+            format!("'{v}' is not a usable step name (letters, digits, '_' and '-')"),
+        ));
+    }
+    if names.contains(&v) {
+        return Err(src.error(n.span(), field, format!("duplicate step '{v}'")));
+    }
+    Ok(v)
+}
+
 /// Checks the `[[step]]` entries of `file` and returns their plan (`None` without steps).
 pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyError> {
     if file.step.is_empty() {
@@ -107,27 +136,7 @@ pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyE
     for (k, st) in file.step.iter().enumerate() {
         let st = st.get_ref();
         let f = |key: &str| format!("step[{k}].{key}");
-        let name = match &st.name {
-            Some(n) => {
-                let v = n.get_ref().trim().to_string();
-                if v.is_empty()
-                    || !v
-                        .chars()
-                        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-                {
-                    return Err(src.error(
-                        n.span(),
-                        f("name"),
-                        format!("'{v}' is not a usable step name (letters, digits, '_' and '-')"),
-                    ));
-                }
-                if names.contains(&v) {
-                    return Err(src.error(n.span(), f("name"), format!("duplicate step '{v}'")));
-                }
-                v
-            }
-            None => format!("step-{}", k + 1),
-        };
+        let name = step_name(src, st, k, &names)?;
         names.push(name.clone());
         for (lname, v) in &st.load {
             let field = f(&format!("load.{lname}"));
@@ -399,6 +408,39 @@ pub(crate) fn run_study_history(
         Ok(s.run_shared(&input)?)
     })?;
     Ok(results)
+}
+
+/// The status of a history whose last result (`results`' last, solved by `solver`) did not
+/// converge: the step (and cycle) it stopped at, or, for a `[cycle]` with `until` whose steps
+/// all converged, that it did not shake down within its cycles.
+pub(crate) fn history_status(
+    plan: &Plan,
+    results: &[alea_latin::RunResult],
+    solver: &alea_latin::LatinSolver,
+    status: String,
+) -> String {
+    let i = results.len().saturating_sub(1);
+    let Some(c) = plan.cycle.as_ref().filter(|c| i >= c.first && c.len > 0) else {
+        let name = plan.steps.get(i).map_or("?", |s| s.name.as_str());
+        return format!("step {} '{name}': {status}", i + 1);
+    };
+    let (n, k) = ((i - c.first) / c.len, (i - c.first) % c.len);
+    let solved = results
+        .last()
+        .and_then(|r| r.residuals.last())
+        .is_some_and(|&r| r <= solver.options().tolerance);
+    if let Some(tol) = c.until
+        && solved
+        && n + 1 == c.repeat
+        && k + 1 == c.len
+    {
+        return format!(
+            "no shakedown: the slip amplitude still changes by more than {tol} after {} cycles",
+            c.repeat
+        );
+    }
+    let name = plan.steps.get(c.first + k).map_or("?", |s| s.name.as_str());
+    format!("cycle {}, step '{name}': {status}", n + 1)
 }
 
 /// Runs one study run with large sliding (`alea_latin::large_sliding`): the steps of `plan`

@@ -10,8 +10,8 @@ use super::{
     KINDS, Qoi, QoiKind, check_fields, check_quantities, coords, describe, dist2, point3, positive,
 };
 use crate::spec::QuantitySpec;
-use alea_latin::fretting::Regularisation;
 use crate::{BuiltModel, Source, StudyError};
+use alea_latin::fretting::Regularisation;
 
 /// Builds the quantities of interest of a study file, checking every name.
 pub fn build_qois(
@@ -372,17 +372,23 @@ fn critical_distance(
             ),
         ));
     }
-    Ok(match q.critical_method.as_ref().map(|m| (m, m.get_ref().as_str())) {
-        None | Some((_, "point")) => Regularisation::Point(l),
-        Some((_, "line")) => Regularisation::Line(l),
-        Some((m, other)) => {
-            return Err(src.error(
-                m.span(),
-                f("critical_method"),
-                format!("unknown method '{other}'; expected point or line"),
-            ));
-        }
-    })
+    Ok(
+        match q
+            .critical_method
+            .as_ref()
+            .map(|m| (m, m.get_ref().as_str()))
+        {
+            None | Some((_, "point")) => Regularisation::Point(l),
+            Some((_, "line")) => Regularisation::Line(l),
+            Some((m, other)) => {
+                return Err(src.error(
+                    m.span(),
+                    f("critical_method"),
+                    format!("unknown method '{other}'; expected point or line"),
+                ));
+            }
+        },
+    )
 }
 
 /// `max_von_mises`: the nodes of the substructure's `group` (all by default) but the

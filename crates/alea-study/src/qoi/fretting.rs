@@ -109,18 +109,16 @@ impl FrettingQoi {
         let origin_it = origin.and_then(|o| o.interfaces.get(self.iface));
         let sc = slip_cycle(origin_it, &its).map_err(failed)?;
         let last = its[its.len() - 1];
-        let point = match self.node {
-            Some(node) => Some(
-                last.nodes[0]
-                    .iter()
-                    .position(|&n| n == node)
-                    .ok_or_else(|| StudyError::QoiOffInterface {
+        let point =
+            match self.node {
+                Some(node) => Some(last.nodes[0].iter().position(|&n| n == node).ok_or_else(
+                    || StudyError::QoiOffInterface {
                         qoi: self.field.label().into(),
                         interface: last.name.clone(),
-                    })?,
-            ),
-            None => None,
-        };
+                    },
+                )?),
+                None => None,
+            };
         let at_or_max = |v: &[f64]| match point {
             Some(p) => v[p],
             None => max_with_index(v).map_or(0.0, |m| m.0),
