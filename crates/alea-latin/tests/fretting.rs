@@ -8,11 +8,13 @@
 //! so normal and tangential problems decouple; curvature in the initial gap; the tangential
 //! load through the contact centre; `E* = E / (2 (1 - nu^2))`). Hertz: `b = sqrt(4 P' R / (pi
 //! E*))`, `p0 = 2 P' / (pi b)`, `p(x) = p0 sqrt(1 - x^2/b^2)`. History: press, `+Q*`, then the
-//! cycle `(-Q*, +Q*)` twice; the quantities are those of the last cycle, its origin the step
-//! before it.
+//! cycle `(-Q*, +Q*)` twice (once on the finest mesh); the quantities are those of the last
+//! cycle, its origin the step before it. The bodies are `l = 560 = 970 b` wide and deep (with
+//! `l = 97 b` the far-field stresses of the finite bodies, of order `P'/l`, shifted the maximum
+//! normal stress under the edge by about 2 % of it and SWT by 8 %).
 //!
-//! **Closed forms** (derived here from the half-plane relations, Johnson eqs. 2.25 and 5.? in
-//! the 2D form, `(2 / (pi E*)) int p(s) / (x - s) ds = x / R`; `c = b sqrt(1 - Q*/(mu P'))`):
+//! **Closed forms** (derived here from the half-plane relations, Johnson eq. 2.25, and the 2D
+//! Hertz equation `(2 / (pi E*)) int p(s) / (x - s) ds = x / R`; `c = b sqrt(1 - Q*/(mu P'))`):
 //!
 //! - *Stick zone.* At `+-Q*` the tractions are `+-q_L(x)`, `q_L = mu p0 [sqrt(1 - x^2/b^2) -
 //!   (c/b) sqrt(1 - x^2/c^2) 1{|x| < c}]` (Cattaneo-Mindlin, then Mindlin-Deresiewicz: the loop
@@ -251,8 +253,9 @@ fn critical_distance(cf: &Closed) -> f64 {
     0.1 * cf.b
 }
 
-/// FE `sigma_xx` of the block at `x` in the steps `res[k]`, `k` in `ks`, and its range.
+/// Range of the FE `sigma_xx` of the block at `x` over the last cycle (`+Q*` minus `-Q*`).
 fn sxx_range(solver: &LatinSolver, res: &[alea_latin::RunResult], x: [f64; 3]) -> f64 {
+    let last = res.len() - 1;
     let model = solver.model(0);
     let loc = alea_fem::PointLocator::new(&model.mesh)
         .unwrap()
@@ -261,15 +264,20 @@ fn sxx_range(solver: &LatinSolver, res: &[alea_latin::RunResult], x: [f64; 3]) -
     let s = |k: usize| {
         alea_fem::post::stress_at(model, loc.cell, &res[k].displacements[0], loc.xi).unwrap()[0]
     };
-    s(5) - s(4)
+    s(last) - s(last - 1)
 }
 
-fn cycle_errors(n: usize, m: usize) -> Measured {
+/// The errors of mesh `(n, m)` over the last of `cycles` cycles (the shakedown measure needs
+/// two; 0 with one).
+fn cycle_errors(n: usize, m: usize, cycles: usize) -> Measured {
     let t0 = std::time::Instant::now();
     let cf = Closed::new();
     let (solver, h) = build(n, m);
-    let steps = [LOAD, -LOAD, LOAD, -LOAD, LOAD].map(step);
-    let steps: Vec<RunInput> = std::iter::once(step(0.0)).chain(steps).collect();
+    let mut steps = vec![step(0.0), step(LOAD)];
+    for _ in 0..cycles {
+        steps.extend([step(-LOAD), step(LOAD)]);
+    }
+    let e = steps.len() - 1;
     let res = solver.run_steps(&steps).unwrap();
     assert_eq!(res.len(), steps.len());
     for (k, r) in res.iter().enumerate() {
@@ -277,7 +285,7 @@ fn cycle_errors(n: usize, m: usize) -> Measured {
     }
     let it = |k: usize| &res[k].interfaces[0];
     let first = slip_cycle(Some(it(1)), &[it(2), it(3)]).unwrap();
-    let sc = slip_cycle(Some(it(3)), &[it(4), it(5)]).unwrap();
+    let sc = slip_cycle(Some(it(e - 2)), &[it(e - 1), it(e)]).unwrap();
     let dmax = cf.delta(cf.b);
     let shakedown = first
         .slip_amplitude
@@ -288,7 +296,7 @@ fn cycle_errors(n: usize, m: usize) -> Measured {
         / dmax;
     let xs: Vec<f64> = sc.x.iter().map(|x| x[0]).collect();
     let stick = rel(
-        0.5 * sc.stick_zone(&solver.model(0).mesh, &it(5).nodes[0]),
+        0.5 * sc.stick_zone(&solver.model(0).mesh, &it(e).nodes[0]),
         cf.c,
     );
     // Slip amplitude at the nodes inside the closed-form contact (a node the coarse model
@@ -316,7 +324,7 @@ fn cycle_errors(n: usize, m: usize) -> Measured {
         .fold(0.0, f64::max);
     let f1 = rel(max_of(&sc.f1()), f1c);
     let l = critical_distance(&cf);
-    let cyc = [&res[4], &res[5]];
+    let cyc = [&res[e - 1], &res[e]];
     let point = stress_cycle(&solver, 0, 0, &cyc, Regularisation::Point(l), PLANES).unwrap();
     let line = stress_cycle(&solver, 0, 0, &cyc, Regularisation::Line(l), PLANES).unwrap();
     let surf = stress_cycle(&solver, 0, 0, &cyc, Regularisation::Surface, PLANES).unwrap();
@@ -381,14 +389,14 @@ fn rate(ms: &[Measured], e: impl Fn(&Measured) -> f64) -> f64 {
 ///   `L = b/10` within 2 % at the finest mesh, and the largest SWT (point method) within 3 %,
 ///   both errors smaller at the finest mesh than at the coarsest;
 /// - shakedown: the second cycle repeats the first (Mindlin-Deresiewicz: the loop is closed
-///   after the first loading).
+///   after the first loading), on the two coarser meshes (the finest runs one cycle).
 ///
 /// Measured: see BENCHMARKS.md ("Fretting quantities against closed forms").
 #[test]
 fn fretting_cycle_against_closed_forms() {
-    let ms: Vec<Measured> = [(25, 23), (50, 45), (100, 90)]
+    let ms: Vec<Measured> = [(25, 23, 2), (50, 45, 2), (100, 90, 1)]
         .iter()
-        .map(|&(n, m)| cycle_errors(n, m))
+        .map(|&(n, m, cycles)| cycle_errors(n, m, cycles))
         .collect();
     let fine = &ms[2];
     assert!(fine.stick.abs() < 0.01, "stick zone {:+.4}", fine.stick);
@@ -416,7 +424,7 @@ fn fretting_cycle_against_closed_forms() {
     );
     assert!(fine.swt_l.abs() < 0.03, "SWT at L");
     assert!(fine.swt_l.abs() < ms[0].swt_l.abs(), "SWT converges");
-    for m in &ms {
+    for m in &ms[..2] {
         assert!(m.shakedown < 1e-4, "the second cycle repeats the first");
     }
     for m in &ms {
