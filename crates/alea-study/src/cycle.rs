@@ -21,8 +21,13 @@
 //! The steps before the cycle run once; then the cycle's steps run in order, each from the end
 //! state of the previous step (module `steps`), `repeat` times, or with `until` until the
 //! **slip amplitude** of every frictional interface changes by less than `until` from one cycle
-//! to the next, `max_p |delta_n(p) - delta_{n-1}(p)| <= until max_p delta_n(p)` (at least two
-//! cycles; a run that does not get there within `repeat` cycles is reported not converged).
+//! to the next, relative to the largest amplitude of the cycles run so far:
+//! `max_p |delta_n(p) - delta_{n-1}(p)| <= until max_{m <= n, p} delta_m(p)` (at least two
+//! cycles; changes below `1e-6` of the largest tangential jump count as none, the solver's
+//! round-off; a run that does not get there within `repeat` cycles is reported not converged).
+//! The reference is the largest amplitude seen, not the current one, because a contact that
+//! shakes down to sticking (a wedged blade root) has an amplitude decaying geometrically to 0:
+//! its relative change from cycle to cycle stays constant while the amplitude vanishes.
 //! A quantity with `step = NAME` measures that step of the **last** cycle (a step before the
 //! cycle: its only run); the fretting quantities (`qoi::fretting`) are taken over the last
 //! cycle, from the state at the end of the step before it.
@@ -200,13 +205,13 @@ impl HistoryView {
     }
 }
 
-/// The largest change of the slip amplitude between the cycles `results[a..b]` and
-/// `results[b..c]` over the frictional interfaces, relative to the largest amplitude, or to
-/// `1e-6` times the largest tangential jump of the cycles if that is larger (a cycle that
-/// sticks everywhere has amplitudes of round-off size).
-pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -> f64 {
-    let mut worst = 0.0f64;
+/// Per frictional interface, the largest change of the slip amplitude between the cycles
+/// `results[a..b]` and `results[b..c]`, and the largest amplitude of either; the changes below
+/// `1e-6` of the largest tangential jump of the cycles count as none (solver round-off: a
+/// cycle that sticks everywhere has amplitudes of that size).
+pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -> Vec<(f64, f64)> {
     let n_ifaces = results.get(a).map_or(0, |r| r.interfaces.len());
+    let mut out = Vec::with_capacity(n_ifaces);
     for i in 0..n_ifaces {
         let amplitude = |from: usize, to: usize| {
             let origin = from.checked_sub(1).map(|o| &results[o].interfaces[i]);
@@ -214,10 +219,9 @@ pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -
             slip_cycle(origin, &its).ok().map(|s| s.slip_amplitude)
         };
         let (Some(old), Some(new)) = (amplitude(a, b), amplitude(b, c)) else {
+            out.push((0.0, 0.0));
             continue;
         };
-        // Changes below 1e-6 of the largest tangential jump of the cycles are the solver's
-        // round-off (a cycle that sticks everywhere has amplitudes of that size).
         let jump = results[a..c]
             .iter()
             .map(|r| {
@@ -230,17 +234,15 @@ pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -
                     .fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
-        let scale = new.iter().chain(&old).copied().fold(1e-6 * jump, f64::max);
+        let scale = new.iter().chain(&old).copied().fold(0.0, f64::max);
         let change = old
             .iter()
             .zip(&new)
             .map(|(x, y)| (x - y).abs())
             .fold(0.0, f64::max);
-        if scale > 0.0 {
-            worst = worst.max(change / scale);
-        }
+        out.push((if change <= 1e-6 * jump { 0.0 } else { change }, scale));
     }
-    worst
+    out
 }
 
 /// Runs the cycles of `c` after the steps already in `results`: `run(k, prev)` solves the
@@ -252,6 +254,8 @@ pub(crate) fn run_cycles(
     results: &mut Vec<RunResult>,
     mut run: impl FnMut(usize, Option<&RunResult>) -> Result<RunResult, StudyError>,
 ) -> Result<(), StudyError> {
+    // Per interface, the largest slip amplitude of the cycles so far.
+    let mut reference: Vec<f64> = Vec::new();
     for n in 0..c.repeat {
         for k in 0..c.len {
             if results
@@ -273,8 +277,14 @@ pub(crate) fn run_cycles(
             && n >= 1
         {
             let end = results.len();
-            let change = slip_change(results, end - 2 * c.len, end - c.len, end);
-            if change <= tol {
+            let changes = slip_change(results, end - 2 * c.len, end - c.len, end);
+            reference.resize(changes.len(), 0.0);
+            let mut done = true;
+            for ((change, scale), r) in changes.iter().zip(reference.iter_mut()) {
+                *r = r.max(*scale);
+                done &= *change <= tol * *r;
+            }
+            if done {
                 return Ok(());
             }
         }

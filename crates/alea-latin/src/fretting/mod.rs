@@ -22,9 +22,12 @@
 //! ```
 //! The work sum is the backward-Euler form of `int q . dj` over the cycle, exact for steps in
 //! which each point's slip keeps its direction (where a point slips, `|q| = mu p` and `q` is
-//! opposite to the slip increment: [`crate::steps`]). The slip amplitude is taken only at
-//! points closed in at least one step of the cycle (the relative motion of surfaces that stay
-//! apart is not slip; such points get 0). `sigma_T` is the stress parallel to the surface on
+//! opposite to the slip increment: [`crate::steps`]). The slip amplitude is the half range of
+//! the jumps of the steps in which the point is closed (the relative motion of surfaces apart
+//! is not slip: a point open throughout gets 0, and one that opens during the cycle counts
+//! its closed states only). The work counts every step's increment from the end of the step
+//! before, as the incremental law does (`crate::steps`): at a point that opens and closes
+//! within the cycle the two measures differ, and neither is a fretting slip in the usual sense. `sigma_T` is the stress parallel to the surface on
 //! the chosen substructure side (2D: along the in-plane tangent; 3D: the largest eigenvalue of
 //! the tangential block of `sigma`), its tensile part (Ruiz et al. use the tensile surface
 //! stress). SWT (Smith, Watson & Topper 1970, as a critical-plane parameter: Szolwinski & Farris
@@ -81,9 +84,10 @@ pub enum FrettingError {
     /// A critical distance that is not a positive finite length.
     #[error("the critical distance must be a positive finite length, got {0}")]
     CriticalDistance(f64),
-    /// A probe point at the critical distance lies outside the substructure.
+    /// No probe point at the critical distance lies inside the substructure (or the one asked
+    /// for does not).
     #[error(
-        "substructure '{sub}': the point ({:.6}, {:.6}, {:.6}) below the contact surface is outside its mesh (critical distance too large?)",
+        "substructure '{sub}': the critical distance below the contact surface at ({:.6}, {:.6}, {:.6}) leaves its mesh (critical distance too large?)",
         at[0], at[1], at[2]
     )]
     Outside {
@@ -121,7 +125,8 @@ pub struct SlipCycle {
     /// point sticks throughout; it vanishes like the square root of the distance to the edge
     /// of the stick zone).
     pub stick_margin: Vec<f64>,
-    /// Slip amplitude `delta_i` (length).
+    /// Slip amplitude `delta_i` (length): half the range of the jumps of the steps in which
+    /// the point is closed.
     pub slip_amplitude: Vec<f64>,
     /// Frictional work per cycle per unit area `W_i` (force / length).
     pub work: Vec<f64>,
@@ -190,9 +195,12 @@ pub fn slip_cycle(
             let margin = r.points[p].mu * dot(&f, &n).max(0.0) - qn;
             out.stick_margin[p] = out.stick_margin[p].min(margin);
             let st = r.status[p];
-            out.closed[p] |= matches!(st, PointStatus::Stick | PointStatus::Slip);
+            let closed = matches!(st, PointStatus::Stick | PointStatus::Slip);
+            out.closed[p] |= closed;
             out.stick[p] &= st == PointStatus::Stick;
-            jumps.push(j);
+            if closed {
+                jumps.push(j);
+            }
             prev = j;
         }
         if out.closed[p] {

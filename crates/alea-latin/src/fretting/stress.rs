@@ -65,6 +65,10 @@ pub struct StressCycle {
     pub swt: Vec<f64>,
     /// Unit normal of the critical plane.
     pub swt_normal: Vec<V3>,
+    /// False at the points whose probe at the critical distance leaves the substructure (at
+    /// the ends of an interface, near a corner of the body): their values are 0 and not
+    /// defined. All true at the surface.
+    pub probed: Vec<bool>,
 }
 
 fn tensor(s: &[f64; 6]) -> M3 {
@@ -150,8 +154,9 @@ fn parallel_stress(s: &M3, n: &V3, dim: usize) -> f64 {
     0.5 * (a11 + a22) + (0.25 * (a11 - a22).powi(2) + a12 * a12).sqrt()
 }
 
-/// Stress and strain tensors of every step at every point (`[point][step]`).
-type Samples = Vec<Vec<(M3, M3)>>;
+/// Stress and strain tensors of every step at every point (`[point][step]`); `None` where a
+/// probe left the mesh.
+type Samples = Vec<Option<Vec<(M3, M3)>>>;
 
 fn fem_error(sub: &str) -> impl Fn(alea_fem::FemError) -> FrettingError + '_ {
     move |source| FrettingError::Fem {
@@ -186,13 +191,15 @@ fn surface_samples(
             let mat = model
                 .material(cell_of.get(node).copied().unwrap_or(0))
                 .map_err(fem_error(sub))?;
-            Ok(nodal
-                .iter()
-                .map(|s| {
-                    let t = tensor(&s[node]);
-                    (t, strain(&t, mat.young, mat.poisson))
-                })
-                .collect())
+            Ok(Some(
+                nodal
+                    .iter()
+                    .map(|s| {
+                        let t = tensor(&s[node]);
+                        (t, strain(&t, mat.young, mat.poisson))
+                    })
+                    .collect(),
+            ))
         })
         .collect()
 }
@@ -218,13 +225,9 @@ fn depth_samples(
                     x[1] + d * inward[1],
                     x[2] + d * inward[2],
                 ];
-                let loc =
-                    locator
-                        .locate_nearest(at, tol)
-                        .ok_or_else(|| FrettingError::Outside {
-                            sub: sub.to_string(),
-                            at,
-                        })?;
+                let Some(loc) = locator.locate_nearest(at, tol) else {
+                    return Ok(None);
+                };
                 let mat = model.material(loc.cell).map_err(fem_error(sub))?;
                 for (k, u) in us.iter().enumerate() {
                     let s = post::stress_at(model, loc.cell, u, loc.xi).map_err(fem_error(sub))?;
@@ -238,7 +241,7 @@ fn depth_samples(
                     }
                 }
             }
-            Ok(acc)
+            Ok(Some(acc))
         })
         .collect()
 }
@@ -249,8 +252,8 @@ fn depth_samples(
 ///
 /// # Errors
 /// [`FrettingError::EmptyCycle`], [`FrettingError::Invalid`] (bad index or side, a critical
-/// distance in 3D), [`FrettingError::CriticalDistance`], [`FrettingError::Outside`],
-/// [`FrettingError::Fem`].
+/// distance in 3D), [`FrettingError::CriticalDistance`], [`FrettingError::Outside`] (no point
+/// has its probe inside the substructure), [`FrettingError::Fem`].
 pub fn stress_cycle(
     solver: &LatinSolver,
     iface: usize,
@@ -305,12 +308,26 @@ pub fn stress_cycle(
         }
     };
     let normals = plane_normals(dim, planes);
+    if !samples.iter().any(Option::is_some) {
+        let p = &it.points[0];
+        return Err(FrettingError::Outside {
+            sub: sub.to_string(),
+            at: p.x,
+        });
+    }
     let mut out = StressCycle {
         sigma_t: Vec::with_capacity(samples.len()),
         swt: Vec::with_capacity(samples.len()),
         swt_normal: Vec::with_capacity(samples.len()),
+        probed: samples.iter().map(Option::is_some).collect(),
     };
     for (p, steps) in samples.iter().enumerate() {
+        let Some(steps) = steps else {
+            out.sigma_t.push(0.0);
+            out.swt.push(0.0);
+            out.swt_normal.push(normals[0]);
+            continue;
+        };
         let n = it.points[p].normal;
         let st = steps
             .iter()

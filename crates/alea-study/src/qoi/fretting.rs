@@ -14,7 +14,9 @@
 //! `ruiz_f2` and `swt` take their stresses in the interface's side-1 substructure, or in
 //! `substructure` (one of the interface's two); `swt` needs a `critical_distance` (point or line
 //! method, `critical_method`), `ruiz_f2` takes one optionally (default: the surface nodal
-//! stresses, Ruiz's definition).
+//! stresses, Ruiz's definition). The largest value along the interface is taken over the points
+//! whose probe at the critical distance stays inside the substructure (at the ends of a flank,
+//! near a corner of the body, it can leave it).
 
 use alea_latin::fretting::{Regularisation, max_with_index, slip_cycle, stress_cycle};
 use alea_latin::{LatinSolver, RunResult};
@@ -144,6 +146,14 @@ impl FrettingQoi {
                     SWT_PLANES,
                 )
                 .map_err(failed)?;
+                if let Some(p) = point
+                    && !st.probed[p]
+                {
+                    return Err(failed(alea_latin::fretting::FrettingError::Outside {
+                        sub: solver.sub_name(last.subs[self.side]).to_string(),
+                        at: last.points[p].x,
+                    }));
+                }
                 if self.field == FrettingField::Swt {
                     at_or_max(&st.swt)
                 } else {
