@@ -373,3 +373,54 @@ pub fn swt_of_stresses(stresses: &[[f64; 6]], young: f64, nu: f64, normals: &[V3
         .collect();
     swt_of(&steps, normals)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Uniaxial `sigma_xx` between `+s1` and `-s2`: the critical plane is normal to `x` and
+    /// `SWT = s1 (s1 + s2) / (2 E)` (`eps_xx = sigma_xx / E`).
+    #[test]
+    fn swt_of_a_uniaxial_cycle() {
+        let (e, nu, s1, s2) = (200e3, 0.3, 100.0, 50.0);
+        let states = [
+            [s1, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [-s2, 0.0, 0.0, 0.0, 0.0, 0.0],
+        ];
+        for dim in [2, 3] {
+            let normals = plane_normals(dim, if dim == 2 { 180 } else { 4000 });
+            assert!(normals.iter().all(|n| (dot(n, n) - 1.0).abs() < 1e-12));
+            let (swt, n) = swt_of_stresses(&states, e, nu, &normals);
+            let want = s1 * (s1 + s2) / (2.0 * e);
+            // 2D scans x exactly; the 3D set comes within a few degrees of it.
+            let tol = if dim == 2 { 1e-12 } else { 1e-2 };
+            assert!((swt - want).abs() <= tol * want, "{dim}D: {swt} vs {want}");
+            assert!(n[0].abs() > 0.99, "{n:?}");
+        }
+    }
+
+    /// Pure shear `tau` reversed: the critical planes are at 45 degrees, with `sigma_n = tau`,
+    /// `Delta eps_n = 2 tau (1 + nu) / E`, so `SWT = tau^2 (1 + nu) / E`.
+    #[test]
+    fn swt_of_reversed_shear() {
+        let (e, nu, tau) = (200e3, 0.3, 80.0);
+        let states = [
+            [0.0, 0.0, 0.0, 0.0, 0.0, tau],
+            [0.0, 0.0, 0.0, 0.0, 0.0, -tau],
+        ];
+        let (swt, n) = swt_of_stresses(&states, e, nu, &plane_normals(2, 180));
+        let want = tau * tau * (1.0 + nu) / e;
+        assert!((swt - want).abs() < 1e-12 * want, "{swt} vs {want}");
+        assert!((n[0].abs() - n[1].abs()).abs() < 1e-9, "{n:?}");
+    }
+
+    /// The tensile stress parallel to a surface: 2D the tangent's, 3D the largest in the
+    /// tangent plane.
+    #[test]
+    fn parallel_stress_in_2d_and_3d() {
+        let s = tensor(&[10.0, -5.0, 3.0, 0.0, 0.0, 0.0]);
+        assert_eq!(parallel_stress(&s, &[0.0, 1.0, 0.0], 2), 10.0);
+        assert!((parallel_stress(&s, &[0.0, 1.0, 0.0], 3) - 10.0).abs() < 1e-12);
+        assert!((parallel_stress(&s, &[1.0, 0.0, 0.0], 3) - 3.0).abs() < 1e-12);
+    }
+}
