@@ -218,6 +218,9 @@ struct Measured {
     h_over_b: f64,
     /// Length of the zone that sticks throughout the cycle, against `2 c`.
     stick: f64,
+    /// Length of the zone that sticks in each step of the last cycle (`-Q*`, `+Q*`), against
+    /// `2 c` (the stick zone "through the cycle").
+    stick_steps: [f64; 2],
     /// Largest nodal slip-amplitude error, relative to `delta(b)` (nodes closed in the closed
     /// form as in the model), and the largest nodal amplitude against the closed form there.
     slip: f64,
@@ -300,6 +303,13 @@ fn cycle_errors(n: usize, m: usize, cycles: usize) -> Measured {
         0.5 * sc.stick_zone(&solver.model(0).mesh, &it(e).nodes[0]),
         cf.c,
     );
+    let stick_steps = [e - 1, e].map(|k| {
+        let one = slip_cycle(Some(it(k - 1)), &[it(k)]).unwrap();
+        rel(
+            0.5 * one.stick_zone(&solver.model(0).mesh, &it(k).nodes[0]),
+            cf.c,
+        )
+    });
     // Slip amplitude at the nodes inside the closed-form contact (a node the coarse model
     // closes beyond b has no closed-form slip to compare with).
     let slip = xs
@@ -355,6 +365,7 @@ fn cycle_errors(n: usize, m: usize, cycles: usize) -> Measured {
     let m = Measured {
         h_over_b: h / cf.b,
         stick,
+        stick_steps,
         slip,
         slip_max,
         work,
@@ -382,7 +393,8 @@ fn rate(ms: &[Measured], e: impl Fn(&Measured) -> f64) -> f64 {
 }
 
 /// The closed-form comparisons on three meshes, `h = b/11.8, b/23.6, b/47.2` (`l = 970 b`):
-/// - stick zone of the cycle within 1 % at the finest mesh, its error decreasing at a rate >= 1;
+/// - stick zone of the cycle, and of each of its steps, within 1 % at the finest mesh, the
+///   cycle's error decreasing at a rate >= 1;
 /// - slip amplitude within 2 % at every node (relative to its peak `delta(b)`) on the two finer
 ///   meshes, and the largest amplitude within 2 % of the closed form at its node;
 /// - frictional work per cycle and the largest F1 within 2 %, converging at a rate >= 1.5;
@@ -401,6 +413,9 @@ fn fretting_cycle_against_closed_forms() {
         .collect();
     let fine = &ms[2];
     assert!(fine.stick.abs() < 0.01, "stick zone {:+.4}", fine.stick);
+    for s in fine.stick_steps {
+        assert!(s.abs() < 0.01, "stick zone of a step {s:+.4}");
+    }
     let r = rate(&ms, |m| m.stick);
     assert!(r >= 1.0, "stick-zone rate {r:.2}");
     for m in &ms[1..] {
@@ -430,11 +445,13 @@ fn fretting_cycle_against_closed_forms() {
     }
     for m in &ms {
         eprintln!(
-            "h/b = {:.4}: stick {:+.3} %, slip {:.3} % (max {:+.3} %), work {:+.3} %, F1 {:+.3} %, \
+            "h/b = {:.4}: stick {:+.3} % (steps {:+.3} %, {:+.3} %), slip {:.3} % (max {:+.3} %), work {:+.3} %, F1 {:+.3} %, \
              range(sxx) at L {:+.3} %, SWT at L {:+.3} %; surface: range(sxx) {:+.3} %, F2 {:+.3} %; \
              SWT line {:.4e}; {:.1}s",
             m.h_over_b,
             100.0 * m.stick,
+            100.0 * m.stick_steps[0],
+            100.0 * m.stick_steps[1],
             100.0 * m.slip,
             100.0 * m.slip_max,
             100.0 * m.work,

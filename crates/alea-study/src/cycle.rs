@@ -296,3 +296,38 @@ pub(crate) fn run_cycles(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_view_points_at_the_last_complete_cycle() {
+        let c = CyclePlan {
+            first: 2,
+            len: 2,
+            repeat: 3,
+            until: None,
+        };
+        // press, up, then three cycles (down, back): 8 results.
+        let v = HistoryView::new(4, Some(&c), 8);
+        assert_eq!(v.index, vec![Some(0), Some(1), Some(6), Some(7)]);
+        assert_eq!(v.cycle, 6..8);
+        // Stopped in the second cycle's second step: the first cycle is the last complete one.
+        let v = HistoryView::new(4, Some(&c), 5);
+        assert_eq!(v.index, vec![Some(0), Some(1), Some(2), Some(3)]);
+        assert_eq!(v.cycle, 2..4);
+        // Stopped before the cycle: no cycle, the steps not run have no result.
+        let v = HistoryView::new(4, Some(&c), 1);
+        assert_eq!(v.index, vec![Some(0), None, None, None]);
+        assert!(v.cycle.is_empty());
+        // A cycle that is the whole history: its origin is the unloaded state.
+        let whole = CyclePlan { first: 0, ..c };
+        let v = HistoryView::new(2, Some(&whole), 6);
+        assert_eq!(v.index, vec![Some(4), Some(5)]);
+        assert_eq!(v.cycle, 4..6);
+        // Without a cycle, the identity.
+        let v = HistoryView::new(3, None, 3);
+        assert_eq!(v.index, vec![Some(0), Some(1), Some(2)]);
+    }
+}
