@@ -14,7 +14,9 @@
 //! per point, the residual history and the quantities of interest.
 //!
 //! Load histories ([`steps`]): a sequence of load steps, each warm-started from the previous
-//! one's interface state, with the Coulomb law applied incrementally.
+//! one's interface state, with the Coulomb law applied incrementally. Fretting quantities over
+//! a load cycle of such steps (slip amplitude, frictional work, stick zone, Ruiz F1 / F2, SWT):
+//! [`fretting`].
 //!
 //! This crate knows nothing about probability.
 
@@ -25,6 +27,7 @@ pub mod contact;
 pub mod dense;
 mod equilibrium;
 mod error;
+pub mod fretting;
 pub mod interface;
 pub mod large_sliding;
 pub mod law;

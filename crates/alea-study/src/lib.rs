@@ -10,6 +10,7 @@ pub mod budget;
 mod build;
 mod cell_field;
 pub mod cre;
+pub mod cycle;
 pub mod data_law;
 #[cfg(feature = "mpi")]
 pub mod distributed;

@@ -225,10 +225,13 @@ impl RunContext<'_> {
         let (Some(res), Some(&solver)) = (results.last(), solvers.last()) else {
             return Err(StudyError::Failed("no load step ran".into()));
         };
+        let view = study.steps.as_ref().map(|plan| {
+            crate::cycle::HistoryView::new(plan.steps.len(), plan.cycle.as_ref(), results.len())
+        });
         let qois = study
             .qois
             .iter()
-            .map(|q| crate::steps::eval_qoi(q, &solvers, &results, &origins))
+            .map(|q| crate::steps::eval_qoi(q, &solvers, &results, &origins, view.as_ref()))
             .collect::<Result<Vec<_>, _>>()?;
         let mut status = match (res.status, solver.equilibrium_report(res)) {
             (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),
@@ -237,8 +240,7 @@ impl RunContext<'_> {
         if let Some(plan) = &study.steps
             && res.status != RunStatus::Converged
         {
-            let k = results.len() - 1;
-            status = format!("step {} '{}': {status}", k + 1, plan.steps[k].name);
+            status = crate::steps::history_status(plan, &results, solver, status);
         }
         // The state later runs start from: that of the first step (every later step starts
         // from its own run's previous step). None with large sliding: the runs' pairings

@@ -404,6 +404,12 @@ pub struct QuantitySpec {
     /// Failure thresholds: P(q > threshold) is reported.
     #[serde(default)]
     pub thresholds: Vec<f64>,
+    /// ruiz_f2, swt: critical distance `L` below the surface (length; module `qoi::fretting`).
+    #[serde(default)]
+    pub critical_distance: Option<Spanned<f64>>,
+    /// ruiz_f2, swt: `point` (default: the stress at depth `L`) or `line` (averaged over `[0, L]`).
+    #[serde(default)]
+    pub critical_method: Option<Spanned<String>>,
 }
 
 /// `[[method]]`: how runs become a surrogate. The first method is the study's answer; the
@@ -650,4 +656,7 @@ pub struct ModelFile {
     /// `[[step]]`: a load history (module `steps`).
     #[serde(default)]
     pub step: Vec<Spanned<crate::step_spec::StepSpec>>,
+    /// `[cycle]`: the last steps repeated as a load cycle (module `cycle`).
+    #[serde(default)]
+    pub cycle: Option<Spanned<crate::step_spec::CycleSpec>>,
 }

@@ -1,5 +1,5 @@
-//! The `[[step]]` tables of a model file (schema only; the checks and the plan are in module
-//! `steps`).
+//! The `[[step]]` tables and the `[cycle]` table of a model file (schema only; the checks and
+//! the plan are in modules `steps` and `cycle`).
 
 use std::collections::BTreeMap;
 
@@ -41,4 +41,19 @@ pub struct StepConstraintSpec {
     /// New normal value.
     #[serde(default)]
     pub normal: Option<Spanned<f64>>,
+}
+
+/// `[cycle]`: the last `[[step]]`s of the history, repeated as a load cycle (module `cycle`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CycleSpec {
+    /// Names of the steps of the cycle: the last steps of the history, in their order.
+    pub steps: Spanned<Vec<Spanned<String>>>,
+    /// Number of cycles run (with `until`: at most this many, default 20).
+    #[serde(default)]
+    pub repeat: Option<Spanned<i64>>,
+    /// Shakedown tolerance: cycles are repeated until the slip amplitude changes by less than
+    /// this from one cycle to the next (relative to its largest value).
+    #[serde(default)]
+    pub until: Option<Spanned<f64>>,
 }

@@ -48,6 +48,8 @@ pub struct Plan {
     pub steps: Vec<StepPlan>,
     /// `files[0]` is the file as written; the others differ only by constraint values.
     pub files: Vec<ModelFile>,
+    /// The `[cycle]`: its steps are the last ones of `steps` (module `cycle`).
+    pub cycle: Option<crate::cycle::CyclePlan>,
 }
 
 type Values = Vec<Vec<[Option<f64>; 4]>>;
@@ -81,9 +83,39 @@ fn with_values(file: &ModelFile, values: &Values) -> ModelFile {
     f
 }
 
+/// The name of step `k` (`step-K` by default), usable in file names and not in `names`.
+fn step_name(
+    src: &Source,
+    st: &StepSpec,
+    k: usize,
+    names: &[String],
+) -> Result<String, StudyError> {
+    let Some(n) = &st.name else {
+        return Ok(format!("step-{}", k + 1));
+    };
+    let field = format!("step[{k}].name");
+    let v = n.get_ref().trim().to_string();
+    if v.is_empty()
+        || !v
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(src.error(
+            n.span(),
+            field,
+            format!("'{v}' is not a usable step name (letters, digits, '_' and '-')"),
+        ));
+    }
+    if names.contains(&v) {
+        return Err(src.error(n.span(), field, format!("duplicate step '{v}'")));
+    }
+    Ok(v)
+}
+
 /// Checks the `[[step]]` entries of `file` and returns their plan (`None` without steps).
 pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyError> {
     if file.step.is_empty() {
+        crate::cycle::plan_cycle(src, file, &[])?;
         return Ok(None);
     }
     let mut names: Vec<String> = Vec::new();
@@ -104,27 +136,7 @@ pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyE
     for (k, st) in file.step.iter().enumerate() {
         let st = st.get_ref();
         let f = |key: &str| format!("step[{k}].{key}");
-        let name = match &st.name {
-            Some(n) => {
-                let v = n.get_ref().trim().to_string();
-                if v.is_empty()
-                    || !v
-                        .chars()
-                        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-                {
-                    return Err(src.error(
-                        n.span(),
-                        f("name"),
-                        format!("'{v}' is not a usable step name (letters, digits, '_' and '-')"),
-                    ));
-                }
-                if names.contains(&v) {
-                    return Err(src.error(n.span(), f("name"), format!("duplicate step '{v}'")));
-                }
-                v
-            }
-            None => format!("step-{}", k + 1),
-        };
+        let name = step_name(src, st, k, &names)?;
         names.push(name.clone());
         for (lname, v) in &st.load {
             let field = f(&format!("load.{lname}"));
@@ -228,7 +240,12 @@ pub fn plan_steps(src: &Source, file: &ModelFile) -> Result<Option<Plan>, StudyE
         });
     }
     let files = sets.iter().map(|v| with_values(file, v)).collect();
-    Ok(Some(Plan { steps, files }))
+    let cycle = crate::cycle::plan_cycle(src, file, &names)?;
+    Ok(Some(Plan {
+        steps,
+        files,
+        cycle,
+    }))
 }
 
 /// The load history of a study: [`plan_steps`], plus what a study needs on top: each quantity
@@ -242,6 +259,7 @@ pub fn study_steps(
     qois: &mut [crate::qoi::Qoi],
 ) -> Result<Option<Plan>, StudyError> {
     let plan = plan_steps(src, file)?;
+    check_fretting(src, file, qois, plan.as_ref())?;
     let Some(plan) = plan else {
         if let Some((i, s)) = file
             .quantity
@@ -259,6 +277,10 @@ pub fn study_steps(
     };
     let names: Vec<&str> = plan.steps.iter().map(|s| s.name.as_str()).collect();
     for (i, (q, spec)) in qois.iter_mut().zip(&file.quantity).enumerate() {
+        if matches!(q.kind, crate::qoi::QoiKind::Fretting(_)) {
+            q.what = format!("{}, over the last load cycle", q.what);
+            continue;
+        }
         let k = match &spec.step {
             Some(s) => names.iter().position(|n| n == s.get_ref()).ok_or_else(|| {
                 src.error(
@@ -274,9 +296,47 @@ pub fn study_steps(
             None => names.len() - 1,
         };
         q.step = Some(k);
-        q.what = format!("{}, at the end of step '{}'", q.what, names[k]);
+        let cycle = match &plan.cycle {
+            Some(c) if k >= c.first => " of the last cycle",
+            _ => "",
+        };
+        q.what = format!("{}, at the end of step '{}'{cycle}", q.what, names[k]);
     }
     Ok(Some(plan))
+}
+
+/// A fretting quantity is measured over the `[cycle]`: the file must have one, and the
+/// quantity no `step`.
+fn check_fretting(
+    src: &Source,
+    file: &ModelFile,
+    qois: &[crate::qoi::Qoi],
+    plan: Option<&Plan>,
+) -> Result<(), StudyError> {
+    let has_cycle = plan.is_some_and(|p| p.cycle.is_some());
+    for (i, (q, spec)) in qois.iter().zip(&file.quantity).enumerate() {
+        if !matches!(q.kind, crate::qoi::QoiKind::Fretting(_)) {
+            continue;
+        }
+        if let Some(s) = &spec.step {
+            return Err(src.error(
+                s.span(),
+                format!("quantity[{i}].step"),
+                "a fretting quantity is measured over the last load cycle: leave out step",
+            ));
+        }
+        if !has_cycle {
+            return Err(src.error(
+                spec.kind.span(),
+                format!("quantity[{i}].kind"),
+                format!(
+                    "'{}' is measured over a load cycle: give the file [[step]]s and a [cycle] (docs/study-file.md)",
+                    spec.kind.get_ref()
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The run input of every step of `plan` for a run whose input is `input` (its `initial`
@@ -330,7 +390,57 @@ pub fn run_study_history(
             (s, i)
         })
         .collect();
-    Ok(alea_latin::steps::run_history(&steps)?)
+    let Some(cycle) = &plan.cycle else {
+        return Ok(alea_latin::steps::run_history(&steps)?);
+    };
+    // The steps before the cycle once, then the cycle's (module `cycle`).
+    let mut results = alea_latin::steps::run_history(&steps[..cycle.first])?;
+    if results.len() < cycle.first {
+        return Ok(results);
+    }
+    crate::cycle::run_cycles(cycle, &mut results, |k, prev| {
+        let (s, input) = &steps[cycle.first + k];
+        let mut input = input.clone();
+        if let Some(prev) = prev {
+            input.initial = None;
+            input.previous_step = Some(std::sync::Arc::new(prev.end_state()));
+        }
+        Ok(s.run_shared(&input)?)
+    })?;
+    Ok(results)
+}
+
+/// The status of a history whose last result (`results`' last, solved by `solver`) did not
+/// converge: the step (and cycle) it stopped at, or, for a `[cycle]` with `until` whose steps
+/// all converged, that it did not shake down within its cycles.
+pub(crate) fn history_status(
+    plan: &Plan,
+    results: &[alea_latin::RunResult],
+    solver: &alea_latin::LatinSolver,
+    status: String,
+) -> String {
+    let i = results.len().saturating_sub(1);
+    let Some(c) = plan.cycle.as_ref().filter(|c| i >= c.first && c.len > 0) else {
+        let name = plan.steps.get(i).map_or("?", |s| s.name.as_str());
+        return format!("step {} '{name}': {status}", i + 1);
+    };
+    let (n, k) = ((i - c.first) / c.len, (i - c.first) % c.len);
+    let solved = results
+        .last()
+        .and_then(|r| r.residuals.last())
+        .is_some_and(|&r| r <= solver.options().tolerance);
+    if let Some(tol) = c.until
+        && solved
+        && n + 1 == c.repeat
+        && k + 1 == c.len
+    {
+        return format!(
+            "no shakedown: the slip amplitude still changes by more than {tol} after {} cycles",
+            c.repeat
+        );
+    }
+    let name = plan.steps.get(c.first + k).map_or("?", |s| s.name.as_str());
+    format!("cycle {}, step '{name}': {status}", n + 1)
 }
 
 /// Runs one study run with large sliding (`alea_latin::large_sliding`): the steps of `plan`
@@ -371,14 +481,36 @@ pub fn run_large_sliding(
 /// the first are the step's own, on the jump from the step's start; the other quantities are
 /// states at the end of the step (`contact_slip` is the total tangential jump: the slip left
 /// by the history).
+///
+/// With a `[cycle]`, `view` says which results are the plan's steps (those of the last cycle
+/// for the cycle's steps), and a fretting quantity is evaluated over the last complete cycle
+/// (NaN if none completed).
 pub(crate) fn eval_qoi(
     q: &crate::qoi::Qoi,
     solvers: &[&alea_latin::LatinSolver],
     results: &[alea_latin::RunResult],
     origins: &[Vec<Vec<[f64; 3]>>],
+    view: Option<&crate::cycle::HistoryView>,
 ) -> Result<f64, StudyError> {
     use crate::qoi::QoiKind;
-    let k = q.step.unwrap_or(results.len().saturating_sub(1));
+    if let QoiKind::Fretting(f) = &q.kind {
+        let Some(range) = view.map(|v| v.cycle.clone()).filter(|r| !r.is_empty()) else {
+            return Ok(f64::NAN);
+        };
+        let Some(solver) = solvers.get(range.end - 1) else {
+            return Ok(f64::NAN);
+        };
+        let origin = range.start.checked_sub(1).and_then(|o| results.get(o));
+        let cycle: Vec<&alea_latin::RunResult> = results[range].iter().collect();
+        return f.eval(solver, origin, &cycle);
+    }
+    let k = match (view, q.step) {
+        (Some(v), Some(step)) => match v.index.get(step).copied().flatten() {
+            Some(k) => k,
+            None => return Ok(f64::NAN),
+        },
+        (_, step) => step.unwrap_or(results.len().saturating_sub(1)),
+    };
     let (Some(res), Some(solver)) = (results.get(k), solvers.get(k)) else {
         return Ok(f64::NAN);
     };

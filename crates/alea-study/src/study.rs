@@ -127,6 +127,15 @@ impl Study {
         let model = build_model(&source, &file, &params)?;
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
+        if let (Some(c), Some(crate::steps::Plan { cycle: Some(_), .. })) = (&file.cycle, &steps)
+            && alea_latin::large_sliding::uses_large_sliding(&model.assembly)
+        {
+            return Err(source.error(
+                c.span(),
+                "cycle",
+                "load cycles are not implemented with large sliding (an interface with sliding = \"large\")",
+            ));
+        }
         let step_models = match &steps {
             Some(plan) => plan.files[1..]
                 .iter()

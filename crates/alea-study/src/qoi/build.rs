@@ -4,12 +4,14 @@
 use toml::Spanned;
 
 use super::contact::{ContactField, ContactQoi, StatusSel};
+use super::fretting::{FrettingField, FrettingQoi};
 use super::stress::{NodeSet, Region};
 use super::{
     KINDS, Qoi, QoiKind, check_fields, check_quantities, coords, describe, dist2, point3, positive,
 };
 use crate::spec::QuantitySpec;
 use crate::{BuiltModel, Source, StudyError};
+use alea_latin::fretting::Regularisation;
 
 /// Builds the quantities of interest of a study file, checking every name.
 pub fn build_qois(
@@ -226,14 +228,167 @@ fn quantity_kind(input: &QuantityInput) -> Result<QoiKind, StudyError> {
             };
             input.contact(ContactField::Status(sel))?
         }
-        other => {
+        other => match FrettingField::parse(other) {
+            Some(field) => fretting_kind(input, field)?,
+            None => {
+                return Err(src.error(
+                    q.kind.span(),
+                    input.f("kind"),
+                    format!("unknown quantity '{other}'; expected {KINDS}"),
+                ));
+            }
+        },
+    })
+}
+
+/// A fretting quantity (module `qoi::fretting`): a frictional interface; `point` (not for
+/// `stick_zone`); for `ruiz_f2` and `swt` the side (`substructure`, one of the interface's) and
+/// the critical distance (required for `swt`), positive, in 2D, and smaller than the extent of
+/// the interface (the largest contact zone it can have).
+fn fretting_kind(input: &QuantityInput, field: FrettingField) -> Result<QoiKind, StudyError> {
+    let (src, q, model) = (input.src, input.q, input.model);
+    let f = |k: &str| input.f(k);
+    let kind = q.kind.get_ref();
+    let k = input.interface()?;
+    let spec = &model.assembly.interfaces[k];
+    let iface_span = q.interface.as_ref().map_or(q.kind.span(), |s| s.span());
+    if spec.law.name() == "perfect" {
+        return Err(src.error(
+            iface_span,
+            f("interface"),
+            format!(
+                "interface '{}' is perfect (bonded): it has no slip, friction or stick zone, so no '{kind}'",
+                spec.name
+            ),
+        ));
+    }
+    let node = match (&q.point, field) {
+        (Some(p), FrettingField::StickZone) => {
             return Err(src.error(
-                q.kind.span(),
-                input.f("kind"),
-                format!("unknown quantity '{other}'; expected {KINDS}"),
+                p.span(),
+                f("point"),
+                "a stick zone is a measure over the interface: leave out point",
             ));
         }
-    })
+        (Some(_), _) => match input.contact(ContactField::Pressure)? {
+            QoiKind::Contact(c) => c.node,
+            _ => None,
+        },
+        (None, _) => None,
+    };
+    let side = match &q.substructure {
+        None => 0,
+        Some(s) if !field.uses_stress() => {
+            return Err(src.error(
+                s.span(),
+                f("substructure"),
+                format!("not used by a '{kind}' quantity"),
+            ));
+        }
+        Some(s) => {
+            let idx = input.substructure()?;
+            if idx == spec.sub1 {
+                0
+            } else if idx == spec.sub2 {
+                1
+            } else {
+                return Err(src.error(
+                    s.span(),
+                    f("substructure"),
+                    format!(
+                        "'{}' is not a side of interface '{}'",
+                        s.get_ref(),
+                        spec.name
+                    ),
+                ));
+            }
+        }
+    };
+    let regularisation = critical_distance(input, field, spec)?;
+    Ok(QoiKind::Fretting(FrettingQoi {
+        iface: k,
+        field,
+        node,
+        side,
+        regularisation,
+    }))
+}
+
+/// The `critical_distance` and `critical_method` of a fretting quantity.
+fn critical_distance(
+    input: &QuantityInput,
+    field: FrettingField,
+    spec: &alea_latin::InterfaceSpec,
+) -> Result<Regularisation, StudyError> {
+    let (src, q, model) = (input.src, input.q, input.model);
+    let f = |k: &str| input.f(k);
+    let Some(d) = &q.critical_distance else {
+        if let Some(m) = &q.critical_method {
+            return Err(src.error(
+                m.span(),
+                f("critical_distance"),
+                "missing; critical_method needs a critical_distance",
+            ));
+        }
+        if field == FrettingField::Swt {
+            return Err(src.error(
+                q.kind.span(),
+                f("critical_distance"),
+                "missing; SWT at a contact edge depends on the mesh without a critical distance (a material length, e.g. half El Haddad's length for the point method)",
+            ));
+        }
+        return Ok(Regularisation::Surface);
+    };
+    let l = positive(src, d, f("critical_distance"))?;
+    if model.mesh.dim != 2 {
+        return Err(src.error(
+            d.span(),
+            f("critical_distance"),
+            "a critical distance is implemented in 2D only",
+        ));
+    }
+    let mesh = &model.assembly.subs[spec.sub1].model.mesh;
+    let nodes = mesh
+        .group_nodes(&spec.group1)
+        .map_err(|e| src.error(d.span(), f("interface"), e.to_string()))?;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for &n in &nodes {
+        for c in 0..3 {
+            lo[c] = lo[c].min(mesh.coords[n][c]);
+            hi[c] = hi[c].max(mesh.coords[n][c]);
+        }
+    }
+    let extent = (0..3)
+        .map(|c| (hi[c] - lo[c]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    if l >= extent {
+        return Err(src.error(
+            d.span(),
+            f("critical_distance"),
+            format!(
+                "{l} is not smaller than the contact zone: interface '{}' spans {extent:.6e}",
+                spec.name
+            ),
+        ));
+    }
+    Ok(
+        match q
+            .critical_method
+            .as_ref()
+            .map(|m| (m, m.get_ref().as_str()))
+        {
+            None | Some((_, "point")) => Regularisation::Point(l),
+            Some((_, "line")) => Regularisation::Line(l),
+            Some((m, other)) => {
+                return Err(src.error(
+                    m.span(),
+                    f("critical_method"),
+                    format!("unknown method '{other}'; expected point or line"),
+                ));
+            }
+        },
+    )
 }
 
 /// `max_von_mises`: the nodes of the substructure's `group` (all by default) but the

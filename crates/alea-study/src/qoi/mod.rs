@@ -6,7 +6,9 @@
 //! - stress quantities of a substructure ([`stress`]): the maximum nodal von Mises stress over
 //!   a node set (with nodes, groups or the neighbourhood of points left out), and its
 //!   regularised alternative, the average of the von Mises stress over a region;
-//! - a displacement component at a node.
+//! - a displacement component at a node;
+//! - fretting quantities over the last load cycle ([`fretting`]): slip amplitude, frictional
+//!   work per cycle, Ruiz F1 / F2, SWT, stick zone.
 //!
 //! A maximum taken on a node where two boundary groups meet is usually a singular value:
 //! [`warnings::corner_warnings`] reports it after a study.
@@ -15,6 +17,7 @@
 
 mod build;
 pub mod contact;
+pub mod fretting;
 pub mod stress;
 pub mod warnings;
 
@@ -24,6 +27,7 @@ use toml::Spanned;
 use crate::spec::QuantitySpec;
 use crate::{BuiltModel, Source, StudyError};
 use contact::{ContactField, ContactQoi};
+use fretting::FrettingQoi;
 use stress::{NodeSet, Region};
 
 pub use build::build_qois;
@@ -55,6 +59,8 @@ pub enum QoiKind {
     Displacement(usize, [f64; 3], usize),
     /// Contact pressure, slip or status on an interface.
     Contact(ContactQoi),
+    /// A fretting quantity over the last load cycle (module `cycle`).
+    Fretting(FrettingQoi),
 }
 
 /// A named quantity of interest.
@@ -76,7 +82,7 @@ pub struct Qoi {
     pub step: Option<usize>,
 }
 
-const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip or contact_status";
+const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip, contact_status, slip_amplitude, friction_work_cycle, ruiz_f1, ruiz_f2, swt or stick_zone";
 
 fn point3(
     src: &Source,
@@ -119,7 +125,8 @@ fn dist2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 fn check_fields(src: &Source, q: &QuantitySpec, i: usize) -> Result<(), StudyError> {
     let kind = q.kind.get_ref().as_str();
     let is_max = kind == "max_von_mises";
-    let uses: [(&str, bool, bool, std::ops::Range<usize>); 5] = [
+    let stress_fretting = kind == "ruiz_f2" || kind == "swt";
+    let uses: [(&str, bool, bool, std::ops::Range<usize>); 7] = [
         (
             "exclude_groups",
             !q.exclude_groups.is_empty(),
@@ -153,6 +160,18 @@ fn check_fields(src: &Source, q: &QuantitySpec, i: usize) -> Result<(), StudyErr
             q.status.is_some(),
             kind == "contact_status",
             q.status.as_ref().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "critical_distance",
+            q.critical_distance.is_some(),
+            stress_fretting,
+            q.critical_distance.as_ref().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "critical_method",
+            q.critical_method.is_some(),
+            stress_fretting,
+            q.critical_method.as_ref().map_or(0..0, |g| g.span()),
         ),
     ];
     for (name, given, allowed, span) in uses {
@@ -206,6 +225,24 @@ fn describe(kind: &QoiKind, model: &BuiltModel, group: Option<&str>) -> String {
                 None => format!("{field} over {}", iface(c.iface)),
             }
         }
+        QoiKind::Fretting(f) => {
+            let what = match (f.node, f.field) {
+                (_, fretting::FrettingField::StickZone) => "measure".to_string(),
+                (Some(n), _) => format!("at its side-1 node {n}"),
+                (None, fretting::FrettingField::WorkCycle) => "integrated".to_string(),
+                (None, _) => "largest".to_string(),
+            };
+            let cd = match f.regularisation {
+                alea_latin::fretting::Regularisation::Surface => String::new(),
+                alea_latin::fretting::Regularisation::Point(l) => {
+                    format!(", stress at depth {l} (point method)")
+                }
+                alea_latin::fretting::Regularisation::Line(l) => {
+                    format!(", stress averaged over depth {l} (line method)")
+                }
+            };
+            format!("{} on {}, {what}{cd}", f.field.label(), iface(f.iface))
+        }
     }
 }
 
@@ -231,6 +268,7 @@ impl QoiKind {
                 | QoiKind::MaxVonMises { .. }
                 | QoiKind::MeanVonMises { .. }
                 | QoiKind::Contact(_)
+                | QoiKind::Fretting(_)
         )
     }
 }
@@ -258,6 +296,13 @@ impl Qoi {
                         qoi: self.name.clone(),
                         interface: res.interfaces[c.iface].name.clone(),
                     })?
+            }
+            // Over a cycle: module `steps` evaluates it; a single state has no cycle.
+            QoiKind::Fretting(_) => {
+                return Err(StudyError::Failed(format!(
+                    "quantity '{}' is measured over a load cycle, not on one state",
+                    self.name
+                )));
             }
         })
     }

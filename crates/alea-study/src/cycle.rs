@@ -1,0 +1,333 @@
+//! `[cycle]`: the last `[[step]]`s of a load history repeated as a load cycle, a stated number
+//! of times or until the contact state is shakedown-periodic; the quantities are measured over
+//! the last cycle.
+//!
+//! ```toml
+//! [[step]]
+//! name = "press"
+//! load = { pull = 0.0 }
+//! [[step]]
+//! name = "up"
+//! load = { pull = 1.0 }
+//! [[step]]
+//! name = "down"
+//! load = { pull = -1.0 }
+//! [cycle]
+//! steps = ["up", "down"]   # the last steps of the history, in their order
+//! until = 1e-3             # shakedown tolerance on the slip amplitude (optional)
+//! repeat = 10              # cycles run (with until: at most; default 20)
+//! ```
+//!
+//! The steps before the cycle run once; then the cycle's steps run in order, each from the end
+//! state of the previous step (module `steps`), `repeat` times, or with `until` until the
+//! **slip amplitude** of every frictional interface changes by less than `until` from one cycle
+//! to the next, relative to the largest amplitude of the cycles run so far:
+//! `max_p |delta_n(p) - delta_{n-1}(p)| <= until max_{m <= n, p} delta_m(p)` (at least two
+//! cycles; changes below `1e-6` of the largest tangential jump count as none, the solver's
+//! round-off; a run that does not get there within `repeat` cycles is reported not converged).
+//! The reference is the largest amplitude seen, not the current one, because a contact that
+//! shakes down to sticking (a wedged blade root) has an amplitude decaying geometrically to 0:
+//! its relative change from cycle to cycle stays constant while the amplitude vanishes.
+//! A quantity with `step = NAME` measures that step of the **last** cycle (a step before the
+//! cycle: its only run); the fretting quantities (`qoi::fretting`) are taken over the last
+//! cycle, from the state at the end of the step before it.
+//!
+//! Checked at load (file, line, field): a cycle with no step, an unknown or repeated step, steps
+//! that are not the last ones of the history in their order, `repeat < 1`, `until` not in
+//! `(0, 1)`, a cycle without `[[step]]`s, and (module `steps`) a fretting quantity without a
+//! cycle or with a `step`.
+
+use alea_latin::fretting::slip_cycle;
+use alea_latin::{RunResult, RunStatus};
+
+use crate::spec::ModelFile;
+use crate::{Source, StudyError};
+
+/// Cycles run with `until` and no `repeat`.
+pub const DEFAULT_MAX_CYCLES: usize = 20;
+
+/// The cycle of a load history.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CyclePlan {
+    /// Index of the cycle's first step in the plan's steps.
+    pub first: usize,
+    /// Number of steps in the cycle (the plan's last ones).
+    pub len: usize,
+    /// Number of cycles (with `until`: at most).
+    pub repeat: usize,
+    /// Shakedown tolerance.
+    pub until: Option<f64>,
+}
+
+/// Checks the `[cycle]` of `file` against the step names `names` (in order).
+pub fn plan_cycle(
+    src: &Source,
+    file: &ModelFile,
+    names: &[String],
+) -> Result<Option<CyclePlan>, StudyError> {
+    let Some(spec) = &file.cycle else {
+        return Ok(None);
+    };
+    let c = spec.get_ref();
+    let steps = c.steps.get_ref();
+    if names.is_empty() {
+        return Err(src.error(
+            spec.span(),
+            "cycle",
+            "a cycle repeats [[step]]s: the file has none",
+        ));
+    }
+    if steps.is_empty() {
+        return Err(src.error(
+            c.steps.span(),
+            "cycle.steps",
+            "a cycle needs at least one step",
+        ));
+    }
+    for (j, s) in steps.iter().enumerate() {
+        if !names.contains(s.get_ref()) {
+            return Err(src.error(
+                s.span(),
+                format!("cycle.steps[{j}]"),
+                format!(
+                    "no step is named '{}' (steps: {})",
+                    s.get_ref(),
+                    names.join(", ")
+                ),
+            ));
+        }
+    }
+    let first = names.len().saturating_sub(steps.len());
+    let tail = &names[first..];
+    if steps.len() > names.len() || steps.iter().zip(tail).any(|(s, n)| s.get_ref() != n) {
+        return Err(src.error(
+            c.steps.span(),
+            "cycle.steps",
+            format!(
+                "a cycle is the last steps of the history, in their order: here [{}]",
+                tail.iter()
+                    .map(|n| format!("\"{n}\""))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    }
+    let until = match &c.until {
+        Some(u) => {
+            let v = *u.get_ref();
+            if !(v.is_finite() && v > 0.0 && v < 1.0) {
+                return Err(src.error(
+                    u.span(),
+                    "cycle.until",
+                    format!("the shakedown tolerance is a relative change in (0, 1), got {v}"),
+                ));
+            }
+            Some(v)
+        }
+        None => None,
+    };
+    let repeat = match &c.repeat {
+        Some(r) => {
+            let v = *r.get_ref();
+            if v < 1 {
+                return Err(src.error(
+                    r.span(),
+                    "cycle.repeat",
+                    format!("at least one cycle, got {v}"),
+                ));
+            }
+            usize::try_from(v).unwrap_or(usize::MAX)
+        }
+        None if until.is_some() => DEFAULT_MAX_CYCLES,
+        None => {
+            return Err(src.error(
+                spec.span(),
+                "cycle.repeat",
+                "missing; give repeat (the number of cycles) and/or until (a shakedown tolerance)",
+            ));
+        }
+    };
+    if until.is_some() && repeat < 2 {
+        return Err(src.error(
+            c.repeat.as_ref().map_or(spec.span(), |r| r.span()),
+            "cycle.repeat",
+            "shakedown (until) compares two cycles: repeat must be at least 2",
+        ));
+    }
+    Ok(Some(CyclePlan {
+        first,
+        len: steps.len(),
+        repeat,
+        until,
+    }))
+}
+
+/// Which results of a run's history the plan's steps are.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HistoryView {
+    /// Per plan step, its result (of the last cycle for the cycle's steps); `None` if the
+    /// history stopped before it.
+    pub index: Vec<Option<usize>>,
+    /// The results of the last complete cycle (empty without a cycle or before one ended).
+    pub cycle: std::ops::Range<usize>,
+}
+
+impl HistoryView {
+    /// The view of `n` results of a history of `steps` plan steps with cycle `cycle`.
+    pub fn new(steps: usize, cycle: Option<&CyclePlan>, n: usize) -> Self {
+        let Some(c) = cycle else {
+            return HistoryView {
+                index: (0..steps).map(|k| (k < n).then_some(k)).collect(),
+                cycle: 0..0,
+            };
+        };
+        let done = n.saturating_sub(c.first) / c.len.max(1);
+        let start = c.first + done.saturating_sub(1) * c.len;
+        let index = (0..steps)
+            .map(|k| {
+                if k < c.first {
+                    (k < n).then_some(k)
+                } else if done >= 1 {
+                    Some(start + k - c.first)
+                } else {
+                    (k < n).then_some(k)
+                }
+            })
+            .collect();
+        HistoryView {
+            index,
+            cycle: if done >= 1 {
+                start..start + c.len
+            } else {
+                0..0
+            },
+        }
+    }
+}
+
+/// Per frictional interface, the largest change of the slip amplitude between the cycles
+/// `results[a..b]` and `results[b..c]`, and the largest amplitude of either; the changes below
+/// `1e-6` of the largest tangential jump of the cycles count as none (solver round-off: a
+/// cycle that sticks everywhere has amplitudes of that size).
+pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -> Vec<(f64, f64)> {
+    let n_ifaces = results.get(a).map_or(0, |r| r.interfaces.len());
+    let mut out = Vec::with_capacity(n_ifaces);
+    for i in 0..n_ifaces {
+        let amplitude = |from: usize, to: usize| {
+            let origin = from.checked_sub(1).map(|o| &results[o].interfaces[i]);
+            let its: Vec<_> = results[from..to].iter().map(|r| &r.interfaces[i]).collect();
+            slip_cycle(origin, &its).ok().map(|s| s.slip_amplitude)
+        };
+        let (Some(old), Some(new)) = (amplitude(a, b), amplitude(b, c)) else {
+            out.push((0.0, 0.0));
+            continue;
+        };
+        let jump = results[a..c]
+            .iter()
+            .map(|r| {
+                let it = &r.interfaces[i];
+                (0..it.points.len())
+                    .map(|p| {
+                        let j = it.step_slip(p, &[]);
+                        (j[0] * j[0] + j[1] * j[1] + j[2] * j[2]).sqrt()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max);
+        let scale = new.iter().chain(&old).copied().fold(0.0, f64::max);
+        let change = old
+            .iter()
+            .zip(&new)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        out.push((if change <= 1e-6 * jump { 0.0 } else { change }, scale));
+    }
+    out
+}
+
+/// Runs the cycles of `c` after the steps already in `results`: `run(k, prev)` solves the
+/// cycle's step `k` from the end of result `prev`. Stops at the first step that does not
+/// converge, after `repeat` cycles, or at shakedown; a run that does not reach shakedown within
+/// `repeat` cycles has its last result marked not converged.
+pub(crate) fn run_cycles(
+    c: &CyclePlan,
+    results: &mut Vec<RunResult>,
+    mut run: impl FnMut(usize, Option<&RunResult>) -> Result<RunResult, StudyError>,
+) -> Result<(), StudyError> {
+    // Per interface, the largest slip amplitude of the cycles so far.
+    let mut reference: Vec<f64> = Vec::new();
+    for n in 0..c.repeat {
+        for k in 0..c.len {
+            if results
+                .last()
+                .is_some_and(|r| r.status != RunStatus::Converged)
+            {
+                return Ok(());
+            }
+            let r = run(k, results.last())?;
+            results.push(r);
+        }
+        if results
+            .last()
+            .is_some_and(|r| r.status != RunStatus::Converged)
+        {
+            return Ok(());
+        }
+        if let Some(tol) = c.until
+            && n >= 1
+        {
+            let end = results.len();
+            let changes = slip_change(results, end - 2 * c.len, end - c.len, end);
+            reference.resize(changes.len(), 0.0);
+            let mut done = true;
+            for ((change, scale), r) in changes.iter().zip(reference.iter_mut()) {
+                *r = r.max(*scale);
+                done &= *change <= tol * *r;
+            }
+            if done {
+                return Ok(());
+            }
+        }
+    }
+    if c.until.is_some()
+        && let Some(last) = results.last_mut()
+    {
+        last.status = RunStatus::NotConverged;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_view_points_at_the_last_complete_cycle() {
+        let c = CyclePlan {
+            first: 2,
+            len: 2,
+            repeat: 3,
+            until: None,
+        };
+        // press, up, then three cycles (down, back): 8 results.
+        let v = HistoryView::new(4, Some(&c), 8);
+        assert_eq!(v.index, vec![Some(0), Some(1), Some(6), Some(7)]);
+        assert_eq!(v.cycle, 6..8);
+        // Stopped in the second cycle's second step: the first cycle is the last complete one.
+        let v = HistoryView::new(4, Some(&c), 5);
+        assert_eq!(v.index, vec![Some(0), Some(1), Some(2), Some(3)]);
+        assert_eq!(v.cycle, 2..4);
+        // Stopped before the cycle: no cycle, the steps not run have no result.
+        let v = HistoryView::new(4, Some(&c), 1);
+        assert_eq!(v.index, vec![Some(0), None, None, None]);
+        assert!(v.cycle.is_empty());
+        // A cycle that is the whole history: its origin is the unloaded state.
+        let whole = CyclePlan { first: 0, ..c };
+        let v = HistoryView::new(2, Some(&whole), 6);
+        assert_eq!(v.index, vec![Some(4), Some(5)]);
+        assert_eq!(v.cycle, 4..6);
+        // Without a cycle, the identity.
+        let v = HistoryView::new(3, None, 3);
+        assert_eq!(v.index, vec![Some(0), Some(1), Some(2)]);
+    }
+}

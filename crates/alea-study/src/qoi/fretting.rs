@@ -1,0 +1,165 @@
+//! Fretting quantities of an interface over the last load cycle of a run (`[cycle]`, module
+//! `cycle`): the formulas, their references and which need a critical distance are in
+//! `alea_latin::fretting`.
+//!
+//! | kind                  | at `point` (nearest side-1 point)       | without `point`                  |
+//! |-----------------------|-----------------------------------------|----------------------------------|
+//! | `slip_amplitude`      | `delta_i` (length)                      | largest over the interface       |
+//! | `friction_work_cycle` | `W_i` (energy per area per cycle)       | `sum_i w_i W_i` (energy / cycle) |
+//! | `ruiz_f1`             | `tau_i delta_i`                         | largest                          |
+//! | `ruiz_f2`             | `sigma_T tau_i delta_i`                 | largest                          |
+//! | `swt`                 | SWT on the critical plane               | largest                          |
+//! | `stick_zone`          | -                                       | length (2D) / area (3D)          |
+//!
+//! `ruiz_f2` and `swt` take their stresses in the interface's side-1 substructure, or in
+//! `substructure` (one of the interface's two); `swt` needs a `critical_distance` (point or line
+//! method, `critical_method`), `ruiz_f2` takes one optionally (default: the surface nodal
+//! stresses, Ruiz's definition). The largest value along the interface is taken over the points
+//! whose probe at the critical distance stays inside the substructure (at the ends of a flank,
+//! near a corner of the body, it can leave it).
+
+use alea_latin::fretting::{Regularisation, max_with_index, slip_cycle, stress_cycle};
+use alea_latin::{LatinSolver, RunResult};
+
+use crate::StudyError;
+
+/// Planes scanned by SWT (2D: one degree apart).
+pub const SWT_PLANES: usize = 180;
+
+/// Which fretting quantity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrettingField {
+    /// Half the range of the tangential jump over the cycle.
+    SlipAmplitude,
+    /// Frictional work per cycle.
+    WorkCycle,
+    /// Ruiz's F1 = tau delta.
+    RuizF1,
+    /// Ruiz's F2 = sigma_T tau delta.
+    RuizF2,
+    /// Smith-Watson-Topper on the critical plane.
+    Swt,
+    /// Measure of the zone that sticks throughout the cycle.
+    StickZone,
+}
+
+impl FrettingField {
+    /// Parses a `[[quantity]]` kind.
+    pub fn parse(kind: &str) -> Option<Self> {
+        Some(match kind {
+            "slip_amplitude" => FrettingField::SlipAmplitude,
+            "friction_work_cycle" => FrettingField::WorkCycle,
+            "ruiz_f1" => FrettingField::RuizF1,
+            "ruiz_f2" => FrettingField::RuizF2,
+            "swt" => FrettingField::Swt,
+            "stick_zone" => FrettingField::StickZone,
+            _ => return None,
+        })
+    }
+
+    /// In words, for the reports.
+    pub fn label(self) -> &'static str {
+        match self {
+            FrettingField::SlipAmplitude => "slip amplitude",
+            FrettingField::WorkCycle => "frictional work per cycle",
+            FrettingField::RuizF1 => "Ruiz F1",
+            FrettingField::RuizF2 => "Ruiz F2",
+            FrettingField::Swt => "Smith-Watson-Topper parameter",
+            FrettingField::StickZone => "stick zone",
+        }
+    }
+
+    /// True for the quantities built on stresses.
+    pub fn uses_stress(self) -> bool {
+        matches!(self, FrettingField::RuizF2 | FrettingField::Swt)
+    }
+}
+
+/// A fretting quantity on one interface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrettingQoi {
+    /// Interface index.
+    pub iface: usize,
+    /// Which quantity.
+    pub field: FrettingField,
+    /// Side-1 mesh node of the point (`None`: over the interface).
+    pub node: Option<usize>,
+    /// Side whose substructure carries the stresses (0: side 1, 1: side 2).
+    pub side: usize,
+    /// Where the stresses are taken.
+    pub regularisation: Regularisation,
+}
+
+fn failed(e: alea_latin::fretting::FrettingError) -> StudyError {
+    StudyError::Failed(format!("fretting quantity: {e}"))
+}
+
+impl FrettingQoi {
+    /// The value over the cycle `cycle` (the results of its steps, solved by `solver`) from the
+    /// state `origin` (the step before the cycle; `None`: unloaded).
+    pub fn eval(
+        &self,
+        solver: &LatinSolver,
+        origin: Option<&RunResult>,
+        cycle: &[&RunResult],
+    ) -> Result<f64, StudyError> {
+        let its: Vec<_> = cycle
+            .iter()
+            .map(|r| r.interfaces.get(self.iface))
+            .collect::<Option<Vec<_>>>()
+            .ok_or_else(|| StudyError::Internal("fretting: no such interface".into()))?;
+        let origin_it = origin.and_then(|o| o.interfaces.get(self.iface));
+        let sc = slip_cycle(origin_it, &its).map_err(failed)?;
+        let last = its[its.len() - 1];
+        let point =
+            match self.node {
+                Some(node) => Some(last.nodes[0].iter().position(|&n| n == node).ok_or_else(
+                    || StudyError::QoiOffInterface {
+                        qoi: self.field.label().into(),
+                        interface: last.name.clone(),
+                    },
+                )?),
+                None => None,
+            };
+        let at_or_max = |v: &[f64]| match point {
+            Some(p) => v[p],
+            None => max_with_index(v).map_or(0.0, |m| m.0),
+        };
+        Ok(match self.field {
+            FrettingField::SlipAmplitude => at_or_max(&sc.slip_amplitude),
+            FrettingField::WorkCycle => match point {
+                Some(p) => sc.work[p],
+                None => sc.total_work(),
+            },
+            FrettingField::RuizF1 => at_or_max(&sc.f1()),
+            FrettingField::StickZone => {
+                let mesh = &solver.model(last.subs[0]).mesh;
+                sc.stick_zone(mesh, &last.nodes[0])
+            }
+            FrettingField::RuizF2 | FrettingField::Swt => {
+                let st = stress_cycle(
+                    solver,
+                    self.iface,
+                    self.side,
+                    cycle,
+                    self.regularisation,
+                    SWT_PLANES,
+                )
+                .map_err(failed)?;
+                if let Some(p) = point
+                    && !st.probed[p]
+                {
+                    return Err(failed(alea_latin::fretting::FrettingError::Outside {
+                        sub: solver.sub_name(last.subs[self.side]).to_string(),
+                        at: last.points[p].x,
+                    }));
+                }
+                if self.field == FrettingField::Swt {
+                    at_or_max(&st.swt)
+                } else {
+                    at_or_max(&sc.f2(&st.sigma_t))
+                }
+            }
+        })
+    }
+}
