@@ -37,19 +37,37 @@ pub fn solve_history(
     }
     let input = models[0].parametric.run_input(&params.nominal);
     let inputs = step_inputs(&plan, &input);
-    let name = |k: usize| format!("{stem}-{}-{}.vtm", k + 1, plan.steps[k].name);
+    // Result `k` of the history is step `step_of(k)` of the plan: with a `[cycle]`, the cycle's
+    // steps come back once per cycle run (module `alea_study::cycle`).
+    let step_of = |k: usize| match &plan.cycle {
+        Some(c) if k >= c.first && c.len > 0 => c.first + (k - c.first) % c.len,
+        _ => k,
+    };
+    let label = |k: usize| {
+        let j = step_of(k);
+        match &plan.cycle {
+            Some(c) if k >= c.first && c.len > 0 => format!(
+                "step {} '{}' (cycle {})",
+                k + 1,
+                plan.steps[j].name,
+                (k - c.first) / c.len + 1
+            ),
+            _ => format!("step {} '{}'", k + 1, plan.steps[j].name),
+        }
+    };
+    let name = |k: usize| format!("{stem}-{}-{}.vtm", k + 1, plan.steps[step_of(k)].name);
     if large_sliding::uses_large_sliding(&models[0].assembly) {
         outln!("{} load step(s), large sliding", plan.steps.len());
         let assemblies: Vec<&alea_latin::Assembly> = models.iter().map(|m| &m.assembly).collect();
         let (options, repairing) = (&models[0].options, &models[0].repairing);
         let steps = run_large_sliding(Some(&plan), &assemblies, options, repairing, &input)?;
         for (k, done) in steps.iter().enumerate() {
-            outln!("step {} '{}':", k + 1, plan.steps[k].name);
+            outln!("{}:", label(k));
             print_pairings(done, repairing);
             let origins = large_sliding::step_origins(done, k.checked_sub(1).map(|j| &steps[j]));
             let model = &models[plan.steps[k].file];
             let step = Step {
-                k,
+                label: label(k),
                 solver: &done.solver,
                 res: &done.result,
                 input: &inputs[k],
@@ -70,18 +88,32 @@ pub fn solve_history(
         );
         let results = run_study_history(&plan, &solvers[0], &solvers[1..], &input)?;
         for (k, res) in results.iter().enumerate() {
-            outln!("step {} '{}':", k + 1, plan.steps[k].name);
+            outln!("{}:", label(k));
             let origins =
                 alea_latin::steps::step_origins(k.checked_sub(1).map(|j| &results[j]), res);
-            let file_k = plan.steps[k].file;
+            let j = step_of(k);
+            let file_k = plan.steps[j].file;
             let step = Step {
-                k,
+                label: label(k),
                 solver: &solvers[file_k],
                 res,
-                input: &inputs[k],
+                input: &inputs[j],
                 origins,
             };
             report_step(file, &plan, &models[file_k], &step, &out.join(name(k)), t0)?;
+        }
+        if let Some(c) = plan.cycle.as_ref().filter(|c| c.len > 0) {
+            let cycles = results.len().saturating_sub(c.first) / c.len;
+            outln!(
+                "load cycle: {cycles} cycle(s) of {} step(s) run{}",
+                c.len,
+                match c.until {
+                    Some(tol) => format!(
+                        "; shaken down: the slip amplitude changed by at most {tol} of the largest in the last cycle"
+                    ),
+                    None => String::new(),
+                }
+            );
         }
     }
     outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
@@ -91,7 +123,8 @@ pub fn solve_history(
 /// Step `k` of a history, solved: its solver, result and input, and the slip origin of every
 /// point of every interface (the tangential jump at the step's start).
 struct Step<'a> {
-    k: usize,
+    /// `step K 'name'`, with the cycle when the step belongs to one.
+    label: String,
     solver: &'a LatinSolver,
     res: &'a RunResult,
     input: &'a RunInput,
@@ -108,7 +141,7 @@ fn report_step(
     path: &Path,
     t0: Instant,
 ) -> Result<()> {
-    let (k, solver, res) = (step.k, step.solver, step.res);
+    let (solver, res) = (step.solver, step.res);
     report_run(
         file,
         model,
@@ -122,10 +155,30 @@ fn report_step(
     if res.status == RunStatus::Converged {
         return Ok(());
     }
+    // A `[cycle]` with `until` whose last step converged but whose slip amplitude still
+    // changed: the history is marked not converged (module `alea_study::cycle`).
+    let solved = res
+        .residuals
+        .last()
+        .is_some_and(|&r| r <= solver.options().tolerance);
+    if let Some(c) = plan.cycle.as_ref().filter(|c| solved && c.until.is_some()) {
+        outln!(
+            "{}: the load cycle did not shake down within {} cycles ([cycle] until = {}; {:.2} s in all)",
+            step.label,
+            c.repeat,
+            c.until.unwrap_or(0.0),
+            t0.elapsed().as_secs_f64()
+        );
+        return Err(alea_study::StudyError::Failed(format!(
+            "no shakedown: the slip amplitude still changes by more than {} after {} cycles",
+            c.until.unwrap_or(0.0),
+            c.repeat
+        ))
+        .into());
+    }
     outln!(
-        "step {} '{}' did not converge: the later steps are not run ({:.2} s in all)",
-        k + 1,
-        plan.steps[k].name,
+        "{} did not converge: the later steps are not run ({:.2} s in all)",
+        step.label,
         t0.elapsed().as_secs_f64()
     );
     Err(not_converged(solver, res).into())

@@ -100,6 +100,46 @@ fn press_nudge_slide_and_back_follow_coulomb_on_the_resultants() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `alea solve` of a `[cycle]`: the cycle's steps come back once per cycle, each named with
+/// its cycle and written to its own files, and every slide and slide back is at the Coulomb
+/// limit, `Q = +-mu N` (a rigid-plastic loop: the cycles repeat, so `until` shakes down after
+/// two).
+#[test]
+fn a_load_cycle_repeats_its_steps_and_shakes_down() {
+    let dir = tmp("cycle");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (case, _) = variant(
+        &dir,
+        "cycle",
+        &[],
+        "\n[cycle]\nsteps = [\"slide\", \"back\"]\nrepeat = 4\nuntil = 1e-3\n",
+    );
+    let out = dir.join("out");
+    let o = solve(&case, &out);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("step 5 'slide' (cycle 2):"), "{t}");
+    assert!(t.contains("step 6 'back' (cycle 2):"), "{t}");
+    assert!(
+        !t.contains("(cycle 3)"),
+        "shaken down after two cycles: {t}"
+    );
+    assert!(
+        t.contains("load cycle: 2 cycle(s) of 2 step(s) run; shaken down"),
+        "{t}"
+    );
+    let r = resultants(&t);
+    assert_eq!(r.len(), 6, "{t}");
+    let (mu, n) = (0.3, 400.0);
+    for (k, (fx, _)) in r.iter().enumerate().skip(2) {
+        let q = -fx;
+        let want = if k % 2 == 0 { mu * n } else { -mu * n };
+        assert!((q - want).abs() < 1e-6 * mu * n, "step {}: Q = {q}", k + 1);
+    }
+    assert!(out.join("cycle-6-back.vtm").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// Writes the example with `edit` applied (`from` replaced by `to`) and `tail` appended.
 fn variant(dir: &Path, name: &str, edits: &[(&str, &str)], tail: &str) -> (PathBuf, String) {
     let s = std::fs::read_to_string(root().join("examples/press-then-slide.toml")).unwrap();
