@@ -404,12 +404,20 @@ pub struct QuantitySpec {
     /// Failure thresholds: P(q > threshold) is reported.
     #[serde(default)]
     pub thresholds: Vec<f64>,
-    /// ruiz_f2, swt: critical distance `L` below the surface (length; module `qoi::fretting`).
+    /// ruiz_f2, swt, fatemi_socie: critical distance `L` below the surface (length; module
+    /// `qoi::fretting`).
     #[serde(default)]
     pub critical_distance: Option<Spanned<f64>>,
-    /// ruiz_f2, swt: `point` (default: the stress at depth `L`) or `line` (averaged over `[0, L]`).
+    /// ruiz_f2, swt, fatemi_socie: `point` (default: the stress at depth `L`) or `line`
+    /// (averaged over `[0, L]`).
     #[serde(default)]
     pub critical_method: Option<Spanned<String>>,
+    /// fatemi_socie: the material's normal-stress sensitivity `k` (dimensionless, >= 0).
+    #[serde(default)]
+    pub normal_stress_factor: Option<Spanned<f64>>,
+    /// fatemi_socie: the material's yield stress `sigma_y` (stress units, > 0).
+    #[serde(default)]
+    pub yield_stress: Option<Spanned<f64>>,
 }
 
 /// `[[method]]`: how runs become a surrogate. The first method is the study's answer; the

@@ -152,6 +152,36 @@ name = "slip_left"
 kind = "contact_slip"
 interface = "contact"
 point = [0.0, 0.0]
+
+[[quantity]]
+name = "fs0"
+kind = "fatemi_socie"
+interface = "contact"
+substructure = "base"
+point = [10.0, 0.0]
+critical_distance = 0.5
+normal_stress_factor = 0.0
+yield_stress = 250.0
+
+[[quantity]]
+name = "fs05"
+kind = "fatemi_socie"
+interface = "contact"
+substructure = "base"
+point = [10.0, 0.0]
+critical_distance = 0.5
+normal_stress_factor = 0.5
+yield_stress = 250.0
+
+[[quantity]]
+name = "fs1"
+kind = "fatemi_socie"
+interface = "contact"
+substructure = "base"
+point = [10.0, 0.0]
+critical_distance = 0.5
+normal_stress_factor = 1.0
+yield_stress = 250.0
 "#;
 
 fn run(cycle: &str, name: &str) -> Vec<Vec<f64>> {
@@ -186,9 +216,31 @@ fn cycle_quantities_are_consistent_and_shake_down() {
         }
     }
     for q in &until {
-        let [delta, work, d_down, d_back, f1, f2, swt, stick, _] = q[..] else {
-            panic!("9 quantities");
+        let [
+            delta,
+            work,
+            d_down,
+            d_back,
+            f1,
+            f2,
+            swt,
+            stick,
+            _,
+            fs0,
+            fs05,
+            fs1,
+        ] = q[..]
+        else {
+            panic!("12 quantities");
         };
+        // Fatemi-Socie at one point: its critical plane does not depend on the material
+        // constants, so the parameter is linear in k there (the factor 1 + k sigma_n / sigma_y
+        // is far from its floor at these stresses): the constants reach the quantity.
+        assert!(fs0 > 0.0 && fs0.is_finite(), "FS {fs0}");
+        assert!(
+            ((fs1 - fs0) - 2.0 * (fs05 - fs0)).abs() <= 1e-9 * fs0,
+            "FS {fs0}, {fs05}, {fs1}"
+        );
         eprintln!(
             "delta {delta:.4e} mm, work {work:.4e} N mm/mm (steps {d_down:.4e} + {d_back:.4e}), \
              F1 {f1:.4e}, F2 {f2:.4e}, SWT {swt:.4e}, stick {stick:.3} mm"
@@ -308,6 +360,41 @@ fn bad_cycles_and_fretting_quantities_are_refused_at_load() {
         "critical_distance = 1.0",
         "quantity[0].critical_distance",
         "not used by a 'slip_amplitude' quantity",
+    );
+    // Fatemi-Socie: both material constants required, k >= 0, yield stress > 0, and neither
+    // on another kind.
+    let fs = |extra: &str| {
+        format!(
+            "[[quantity]]\nname = \"f\"\nkind = \"fatemi_socie\"\ninterface = \"contact\"\ncritical_distance = 0.5\n{extra}"
+        )
+    };
+    refused(
+        CYCLE,
+        &fs("normal_stress_factor = 0.5\n"),
+        "kind = \"fatemi_socie\"",
+        "quantity[0].yield_stress",
+        "missing",
+    );
+    refused(
+        CYCLE,
+        &fs("normal_stress_factor = -0.5\nyield_stress = 250.0\n"),
+        "normal_stress_factor = -0.5",
+        "quantity[0].normal_stress_factor",
+        ">= 0",
+    );
+    refused(
+        CYCLE,
+        &fs("normal_stress_factor = 0.5\nyield_stress = 0.0\n"),
+        "yield_stress = 0.0",
+        "quantity[0].yield_stress",
+        "must be > 0",
+    );
+    refused(
+        CYCLE,
+        &format!("{}yield_stress = 250.0\n", swt("0.5")),
+        "yield_stress = 250.0",
+        "quantity[0].yield_stress",
+        "not used by a 'swt' quantity",
     );
     // A perfect (bonded) interface has no slip.
     let text = model(CYCLE, DELTA).replace("law = \"coulomb\"\nmu = \"mu\"", "law = \"perfect\"");

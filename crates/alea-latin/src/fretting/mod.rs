@@ -1,6 +1,6 @@
 //! Fretting quantities over one load cycle of a contact interface: slip amplitude, frictional
-//! work per cycle, stick zone, Ruiz's F1 and F2, and the Smith-Watson-Topper parameter on
-//! critical planes.
+//! work per cycle, stick zone, Ruiz's F1 and F2, and the Smith-Watson-Topper and Fatemi-Socie
+//! parameters on critical planes.
 //!
 //! A **cycle** is a sequence of `K >= 1` load-step results (module [`crate::steps`]: each step
 //! starts from the end state of the previous one, the Coulomb law applied incrementally), and
@@ -18,6 +18,8 @@
 //!   Ruiz F1             F1_i = tau_i delta_i                          (Ruiz, Boddington & Chen 1984)
 //!   Ruiz F2             F2_i = sigma_T,i tau_i delta_i,   sigma_T,i = max(0, max_k t.sigma_k.t)
 //!   SWT                 SWT_i = max_planes max(0, max_k sigma_n,k) (max_k eps_n,k - min_k eps_n,k) / 2
+//!   Fatemi-Socie        FS_i = Delta gamma / 2 max(0, 1 + k sigma_n,max / sigma_y) on the plane of the
+//!                       largest Delta gamma / 2 = max_t (max_k t.eps_k.n - min_k t.eps_k.n)
 //!   stick zone          measure of the points that stick in every step of the cycle
 //! ```
 //! The work sum is the backward-Euler form of `int q . dj` over the cycle, exact for steps in
@@ -60,7 +62,10 @@
 
 mod stress;
 
-pub use stress::{Regularisation, StressCycle, plane_normals, stress_cycle, swt_of_stresses};
+pub use stress::{
+    Regularisation, StressCycle, fatemi_socie, fs_of_stresses, plane_normals, stress_cycle,
+    swt_of_stresses,
+};
 
 use alea_mesh::Mesh;
 use alea_mesh::vec3::dot;

@@ -1,6 +1,7 @@
 //! The stress-based fretting quantities of a cycle (module doc of [`crate::fretting`]): the
-//! tensile stress parallel to the surface `sigma_T` (for Ruiz's F2) and the Smith-Watson-Topper
-//! parameter on critical planes, at the surface or regularised by a critical distance.
+//! tensile stress parallel to the surface `sigma_T` (for Ruiz's F2), the Smith-Watson-Topper
+//! and the Fatemi-Socie parameters on critical planes, at the surface or regularised by a critical
+//! distance.
 
 use alea_fem::{Model, PointLocator, post};
 use alea_mesh::vec3::dot;
@@ -65,6 +66,11 @@ pub struct StressCycle {
     pub swt: Vec<f64>,
     /// Unit normal of the critical plane.
     pub swt_normal: Vec<V3>,
+    /// Fatemi-Socie: the shear strain range `Delta gamma / 2` on the plane of the largest one
+    /// (engineering shear, so the range of the tensor component `t.eps.n`) ([`fs_of_stresses`]).
+    pub fs_shear: Vec<f64>,
+    /// Fatemi-Socie: the largest normal stress over the cycle on that plane.
+    pub fs_normal: Vec<f64>,
     /// False at the points whose probe at the critical distance leaves the substructure (at
     /// the ends of an interface, near a corner of the body): their values are 0 and not
     /// defined. All true at the surface.
@@ -127,7 +133,14 @@ fn parallel_stress(s: &M3, n: &V3, dim: usize) -> f64 {
     if dim == 2 {
         return quad(s, &[-n[1], n[0], 0.0]);
     }
-    // A tangent basis (t1, t2) of the plane normal to n.
+    let (t1, t2) = tangent_basis(n);
+    let (a11, a22) = (quad(s, &t1), quad(s, &t2));
+    let a12 = bilinear(&t1, s, &t2);
+    0.5 * (a11 + a22) + (0.25 * (a11 - a22).powi(2) + a12 * a12).sqrt()
+}
+
+/// A tangent basis `(t1, t2)` of the plane normal to the unit vector `n`.
+fn tangent_basis(n: &V3) -> (V3, V3) {
     let a = if n[0].abs() < 0.9 {
         [1.0, 0.0, 0.0]
     } else {
@@ -144,14 +157,18 @@ fn parallel_stress(s: &M3, n: &V3, dim: usize) -> f64 {
         n[2] * t1[0] - n[0] * t1[2],
         n[0] * t1[1] - n[1] * t1[0],
     ];
-    let (a11, a22) = (quad(s, &t1), quad(s, &t2));
-    let mut a12 = 0.0;
+    (t1, t2)
+}
+
+/// `a . t . b`.
+fn bilinear(a: &V3, t: &M3, b: &V3) -> f64 {
+    let mut v = 0.0;
     for i in 0..3 {
         for j in 0..3 {
-            a12 += t1[i] * s[i][j] * t2[j];
+            v += a[i] * t[i][j] * b[j];
         }
     }
-    0.5 * (a11 + a22) + (0.25 * (a11 - a22).powi(2) + a12 * a12).sqrt()
+    v
 }
 
 /// Stress and strain tensors of every step at every point (`[point][step]`); `None` where a
@@ -319,6 +336,8 @@ pub fn stress_cycle(
         sigma_t: Vec::with_capacity(samples.len()),
         swt: Vec::with_capacity(samples.len()),
         swt_normal: Vec::with_capacity(samples.len()),
+        fs_shear: Vec::with_capacity(samples.len()),
+        fs_normal: Vec::with_capacity(samples.len()),
         probed: samples.iter().map(Option::is_some).collect(),
     };
     for (p, steps) in samples.iter().enumerate() {
@@ -326,6 +345,8 @@ pub fn stress_cycle(
             out.sigma_t.push(0.0);
             out.swt.push(0.0);
             out.swt_normal.push(normals[0]);
+            out.fs_shear.push(0.0);
+            out.fs_normal.push(0.0);
             continue;
         };
         let n = it.points[p].normal;
@@ -337,6 +358,9 @@ pub fn stress_cycle(
         let (swt, normal) = swt_of(steps, &normals);
         out.swt.push(swt);
         out.swt_normal.push(normal);
+        let (shear, normal_stress, _) = fs_of(steps, &normals, dim);
+        out.fs_shear.push(shear);
+        out.fs_normal.push(normal_stress);
     }
     Ok(out)
 }
@@ -372,6 +396,96 @@ pub fn swt_of_stresses(stresses: &[[f64; 6]], young: f64, nu: f64, normals: &[V3
         })
         .collect();
     swt_of(&steps, normals)
+}
+
+/// Shear directions scanned in each plane in 3D (every 15 degrees over a half turn).
+const SHEAR_DIRECTIONS: usize = 12;
+
+/// Fatemi-Socie's critical plane of one point's steps among `normals` (Fatemi & Socie 1988):
+/// the plane of the largest shear strain range `Delta gamma / 2 = max_t (max_k t.eps_k.n -
+/// min_k t.eps_k.n)` over the shear directions `t` of the plane (2D: the in-plane tangent
+/// `(-n_y, n_x)`; 3D: [`SHEAR_DIRECTIONS`] directions), and on it the largest normal stress
+/// `max_k n.sigma_k.n`. Planes whose range is within `1e-9` of the largest tie; the tie goes to
+/// the larger normal stress (the more damaging plane). Returns `(Delta gamma / 2,
+/// sigma_n,max, n)`.
+pub(crate) fn fs_of(steps: &[(M3, M3)], normals: &[V3], dim: usize) -> (f64, f64, V3) {
+    let directions = |n: &V3| -> Vec<V3> {
+        if dim == 2 {
+            return vec![[-n[1], n[0], 0.0]];
+        }
+        let (t1, t2) = tangent_basis(n);
+        (0..SHEAR_DIRECTIONS)
+            .map(|j| {
+                let phi = std::f64::consts::PI * j as f64 / SHEAR_DIRECTIONS as f64;
+                let (c, s) = (phi.cos(), phi.sin());
+                [0, 1, 2].map(|i| c * t1[i] + s * t2[i])
+            })
+            .collect()
+    };
+    let planes: Vec<(f64, f64, V3)> = normals
+        .iter()
+        .map(|n| {
+            let range = directions(n)
+                .iter()
+                .map(|t| {
+                    let (lo, hi) = steps.iter().fold(
+                        (f64::INFINITY, f64::NEG_INFINITY),
+                        |(lo, hi), (_, e)| {
+                            let g = bilinear(t, e, n);
+                            (lo.min(g), hi.max(g))
+                        },
+                    );
+                    hi - lo
+                })
+                .fold(0.0, f64::max);
+            let sn = steps
+                .iter()
+                .map(|(s, _)| quad(s, n))
+                .fold(f64::NEG_INFINITY, f64::max);
+            (range, sn, *n)
+        })
+        .collect();
+    let largest = planes.iter().map(|p| p.0).fold(0.0, f64::max);
+    planes
+        .into_iter()
+        .filter(|p| p.0 >= largest * (1.0 - 1e-9))
+        .fold(None, |best: Option<(f64, f64, V3)>, p| match best {
+            Some(b) if b.1 >= p.1 => Some(b),
+            _ => Some(p),
+        })
+        .unwrap_or((
+            0.0,
+            0.0,
+            normals.first().copied().unwrap_or([1.0, 0.0, 0.0]),
+        ))
+}
+
+/// Fatemi-Socie's parameter from the shear strain range and normal stress of its plane
+/// ([`StressCycle::fs_shear`], [`StressCycle::fs_normal`]), with the material's normal-stress
+/// sensitivity `k` and yield stress `sigma_y`: `Delta gamma / 2 (1 + k sigma_n,max / sigma_y)`,
+/// the factor floored at 0 (a normal stress that closes the cracks faster than `-sigma_y / k`
+/// does not make the parameter negative).
+pub fn fatemi_socie(shear: f64, normal: f64, k: f64, yield_stress: f64) -> f64 {
+    shear * (1.0 + k * normal / yield_stress).max(0.0)
+}
+
+/// [`fs_of`] of a sequence of stresses `[xx, yy, zz, yz, xz, xy]` of an isotropic material
+/// (`young`, `nu`), for closed-form fields: `(Delta gamma / 2, sigma_n,max, n)`.
+pub fn fs_of_stresses(
+    stresses: &[[f64; 6]],
+    young: f64,
+    nu: f64,
+    normals: &[V3],
+    dim: usize,
+) -> (f64, f64, V3) {
+    let steps: Vec<(M3, M3)> = stresses
+        .iter()
+        .map(|s| {
+            let t = tensor(s);
+            (t, strain(&t, young, nu))
+        })
+        .collect();
+    fs_of(&steps, normals, dim)
 }
 
 #[cfg(test)]
@@ -422,5 +536,43 @@ mod tests {
         assert_eq!(parallel_stress(&s, &[0.0, 1.0, 0.0], 2), 10.0);
         assert!((parallel_stress(&s, &[0.0, 1.0, 0.0], 3) - 10.0).abs() < 1e-12);
         assert!((parallel_stress(&s, &[1.0, 0.0, 0.0], 3) - 3.0).abs() < 1e-12);
+    }
+
+    /// Fatemi-Socie under reversed shear `tau` (2D): the planes of largest shear strain range
+    /// are normal to `x` and `y`, with `Delta gamma / 2 = tau / G = 2 tau (1 + nu) / E` and no
+    /// normal stress; under a uniaxial cycle `+s1 / -s2` the planes at 45 degrees, with `Delta
+    /// gamma / 2 = (1 + nu) (s1 + s2) / (2 E)` and `sigma_n,max = s1 / 2` (2D exactly on the
+    /// one-degree scan, 3D within the Fibonacci set's few degrees).
+    #[test]
+    fn fatemi_socie_of_reversed_shear_and_of_a_uniaxial_cycle() {
+        let (e, nu, tau) = (200e3, 0.3, 80.0);
+        let shear = [
+            [0.0, 0.0, 0.0, 0.0, 0.0, tau],
+            [0.0, 0.0, 0.0, 0.0, 0.0, -tau],
+        ];
+        let (g, sn, n) = fs_of_stresses(&shear, e, nu, &plane_normals(2, 180), 2);
+        let want = 2.0 * tau * (1.0 + nu) / e;
+        assert!((g - want).abs() < 1e-12 * want, "{g} vs {want}");
+        assert!(sn.abs() < 1e-12 * tau, "{sn}");
+        assert!(
+            n[0].abs() > 1.0 - 1e-12 || n[1].abs() > 1.0 - 1e-12,
+            "{n:?}"
+        );
+        let (s1, s2) = (100.0, 50.0);
+        let uni = [
+            [s1, 0.0, 0.0, 0.0, 0.0, 0.0],
+            [-s2, 0.0, 0.0, 0.0, 0.0, 0.0],
+        ];
+        let want = (1.0 + nu) * (s1 + s2) / (2.0 * e);
+        for (dim, planes, tol) in [(2, 180, 1e-12), (3, 4000, 2e-3)] {
+            let (g, sn, n) = fs_of_stresses(&uni, e, nu, &plane_normals(dim, planes), dim);
+            assert!((g - want).abs() <= tol * want, "{dim}D: {g} vs {want}");
+            assert!((sn - s1 / 2.0).abs() <= 20.0 * tol * s1, "{dim}D: {sn}");
+            assert!((n[0].abs() - 0.5f64.sqrt()).abs() < 0.05, "{dim}D: {n:?}");
+        }
+        // The parameter: the normal stress raises it by k sigma_n / sigma_y; a compressive one
+        // lowers it, not below 0.
+        assert!((fatemi_socie(2.0, 50.0, 0.5, 250.0) - 2.0 * 1.1).abs() < 1e-15);
+        assert_eq!(fatemi_socie(2.0, -1000.0, 0.5, 250.0), 0.0);
     }
 }

@@ -305,13 +305,51 @@ fn fretting_kind(input: &QuantityInput, field: FrettingField) -> Result<QoiKind,
         }
     };
     let regularisation = critical_distance(input, field, spec)?;
+    let fatemi_socie = match field {
+        FrettingField::FatemiSocie => Some(fatemi_socie_constants(input)?),
+        _ => None,
+    };
     Ok(QoiKind::Fretting(FrettingQoi {
         iface: k,
         field,
         node,
         side,
         regularisation,
+        fatemi_socie,
     }))
+}
+
+/// Fatemi-Socie's `normal_stress_factor` `k` (finite, >= 0) and `yield_stress` (> 0), both
+/// required: material constants have no default.
+fn fatemi_socie_constants(input: &QuantityInput) -> Result<(f64, f64), StudyError> {
+    let (src, q) = (input.src, input.q);
+    let f = |k: &str| input.f(k);
+    let missing = |key: &str, what: &str| {
+        src.error(
+            q.kind.span(),
+            f(key),
+            format!("missing; a fatemi_socie quantity needs the material's {what}"),
+        )
+    };
+    let k = q.normal_stress_factor.as_ref().ok_or_else(|| {
+        missing(
+            "normal_stress_factor",
+            "normal-stress sensitivity k (dimensionless, typically 0.3 - 1)",
+        )
+    })?;
+    let kv = *k.get_ref();
+    if !(kv.is_finite() && kv >= 0.0) {
+        return Err(src.error(
+            k.span(),
+            f("normal_stress_factor"),
+            format!("must be finite and >= 0, got {kv}"),
+        ));
+    }
+    let sy = q
+        .yield_stress
+        .as_ref()
+        .ok_or_else(|| missing("yield_stress", "yield stress (stress units, > 0)"))?;
+    Ok((kv, positive(src, sy, f("yield_stress"))?))
 }
 
 /// The `critical_distance` and `critical_method` of a fretting quantity.
@@ -330,11 +368,14 @@ fn critical_distance(
                 "missing; critical_method needs a critical_distance",
             ));
         }
-        if field == FrettingField::Swt {
+        if matches!(field, FrettingField::Swt | FrettingField::FatemiSocie) {
             return Err(src.error(
                 q.kind.span(),
                 f("critical_distance"),
-                "missing; SWT at a contact edge depends on the mesh without a critical distance (a material length, e.g. half El Haddad's length for the point method)",
+                format!(
+                    "missing; {} at a contact edge depends on the mesh without a critical distance (a material length, e.g. half El Haddad's length for the point method)",
+                    field.label()
+                ),
             ));
         }
         return Ok(Regularisation::Surface);

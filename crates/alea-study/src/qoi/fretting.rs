@@ -18,7 +18,9 @@
 //! whose probe at the critical distance stays inside the substructure (at the ends of a flank,
 //! near a corner of the body, it can leave it).
 
-use alea_latin::fretting::{Regularisation, max_with_index, slip_cycle, stress_cycle};
+use alea_latin::fretting::{
+    Regularisation, fatemi_socie, max_with_index, slip_cycle, stress_cycle,
+};
 use alea_latin::{LatinSolver, RunResult};
 
 use crate::StudyError;
@@ -39,6 +41,8 @@ pub enum FrettingField {
     RuizF2,
     /// Smith-Watson-Topper on the critical plane.
     Swt,
+    /// Fatemi-Socie on the plane of the largest shear strain range.
+    FatemiSocie,
     /// Measure of the zone that sticks throughout the cycle.
     StickZone,
 }
@@ -52,6 +56,7 @@ impl FrettingField {
             "ruiz_f1" => FrettingField::RuizF1,
             "ruiz_f2" => FrettingField::RuizF2,
             "swt" => FrettingField::Swt,
+            "fatemi_socie" => FrettingField::FatemiSocie,
             "stick_zone" => FrettingField::StickZone,
             _ => return None,
         })
@@ -65,13 +70,17 @@ impl FrettingField {
             FrettingField::RuizF1 => "Ruiz F1",
             FrettingField::RuizF2 => "Ruiz F2",
             FrettingField::Swt => "Smith-Watson-Topper parameter",
+            FrettingField::FatemiSocie => "Fatemi-Socie parameter",
             FrettingField::StickZone => "stick zone",
         }
     }
 
     /// True for the quantities built on stresses.
     pub fn uses_stress(self) -> bool {
-        matches!(self, FrettingField::RuizF2 | FrettingField::Swt)
+        matches!(
+            self,
+            FrettingField::RuizF2 | FrettingField::Swt | FrettingField::FatemiSocie
+        )
     }
 }
 
@@ -88,6 +97,8 @@ pub struct FrettingQoi {
     pub side: usize,
     /// Where the stresses are taken.
     pub regularisation: Regularisation,
+    /// Fatemi-Socie's material constants `(k, sigma_y)` (`None` for the other quantities).
+    pub fatemi_socie: Option<(f64, f64)>,
 }
 
 fn failed(e: alea_latin::fretting::FrettingError) -> StudyError {
@@ -136,7 +147,7 @@ impl FrettingQoi {
                 let mesh = &solver.model(last.subs[0]).mesh;
                 sc.stick_zone(mesh, &last.nodes[0])
             }
-            FrettingField::RuizF2 | FrettingField::Swt => {
+            FrettingField::RuizF2 | FrettingField::Swt | FrettingField::FatemiSocie => {
                 let st = stress_cycle(
                     solver,
                     self.iface,
@@ -154,10 +165,23 @@ impl FrettingQoi {
                         at: last.points[p].x,
                     }));
                 }
-                if self.field == FrettingField::Swt {
-                    at_or_max(&st.swt)
-                } else {
-                    at_or_max(&sc.f2(&st.sigma_t))
+                match (self.field, self.fatemi_socie) {
+                    (FrettingField::Swt, _) => at_or_max(&st.swt),
+                    (FrettingField::FatemiSocie, Some((k, sy))) => {
+                        let fs: Vec<f64> = st
+                            .fs_shear
+                            .iter()
+                            .zip(&st.fs_normal)
+                            .map(|(&g, &sn)| fatemi_socie(g, sn, k, sy))
+                            .collect();
+                        at_or_max(&fs)
+                    }
+                    (FrettingField::FatemiSocie, None) => {
+                        return Err(StudyError::Internal(
+                            "a Fatemi-Socie quantity without its material constants".into(),
+                        ));
+                    }
+                    _ => at_or_max(&sc.f2(&st.sigma_t)),
                 }
             }
         })

@@ -82,7 +82,7 @@ pub struct Qoi {
     pub step: Option<usize>,
 }
 
-const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip, contact_status, slip_amplitude, friction_work_cycle, ruiz_f1, ruiz_f2, swt or stick_zone";
+const KINDS: &str = "interface_work, friction_dissipation, interface_force, max_von_mises, mean_von_mises, displacement, contact_pressure, contact_slip, contact_status, slip_amplitude, friction_work_cycle, ruiz_f1, ruiz_f2, swt, fatemi_socie or stick_zone";
 
 fn point3(
     src: &Source,
@@ -125,8 +125,8 @@ fn dist2(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 fn check_fields(src: &Source, q: &QuantitySpec, i: usize) -> Result<(), StudyError> {
     let kind = q.kind.get_ref().as_str();
     let is_max = kind == "max_von_mises";
-    let stress_fretting = kind == "ruiz_f2" || kind == "swt";
-    let uses: [(&str, bool, bool, std::ops::Range<usize>); 7] = [
+    let stress_fretting = matches!(kind, "ruiz_f2" | "swt" | "fatemi_socie");
+    let uses: [(&str, bool, bool, std::ops::Range<usize>); 9] = [
         (
             "exclude_groups",
             !q.exclude_groups.is_empty(),
@@ -172,6 +172,18 @@ fn check_fields(src: &Source, q: &QuantitySpec, i: usize) -> Result<(), StudyErr
             q.critical_method.is_some(),
             stress_fretting,
             q.critical_method.as_ref().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "normal_stress_factor",
+            q.normal_stress_factor.is_some(),
+            kind == "fatemi_socie",
+            q.normal_stress_factor.as_ref().map_or(0..0, |g| g.span()),
+        ),
+        (
+            "yield_stress",
+            q.yield_stress.is_some(),
+            kind == "fatemi_socie",
+            q.yield_stress.as_ref().map_or(0..0, |g| g.span()),
         ),
     ];
     for (name, given, allowed, span) in uses {
