@@ -52,7 +52,8 @@ mod common;
 
 use alea_fem::{Constraints, Loads};
 use alea_latin::fretting::{
-    Regularisation, plane_normals, slip_cycle, stress_cycle, swt_of_stresses,
+    Regularisation, fatemi_socie, fs_of_stresses, plane_normals, slip_cycle, stress_cycle,
+    swt_of_stresses,
 };
 use alea_latin::{Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunStatus};
 use common::contact::Layout;
@@ -278,6 +279,9 @@ struct Measured {
     f2_surface: f64,
     /// Largest SWT of the line method against the closed form averaged the same way.
     swt_line: f64,
+    /// Largest Fatemi-Socie parameter (point method, depth `L`; `k = 0.5`, `sigma_y = 1000`)
+    /// against the closed form at the same points.
+    fs_l: f64,
     /// Change of the slip amplitude between the two cycles, relative to `delta(b)`.
     shakedown: f64,
     seconds: f64,
@@ -403,6 +407,24 @@ fn cycle_errors(n: usize, m: usize, cycles: usize) -> Measured {
             swt_of_stresses(&states, E, NU, &normals).0
         })
         .fold(0.0, f64::max);
+    // Fatemi-Socie with k = 0.5, sigma_y = 1000 MPa, from the FE stresses at depth L and from
+    // the closed-form ones at the same points.
+    let (k_fs, sy) = (0.5, 1000.0);
+    let fs_fe: Vec<f64> = point
+        .fs_shear
+        .iter()
+        .zip(&point.fs_normal)
+        .map(|(&g, &sn)| fatemi_socie(g, sn, k_fs, sy))
+        .collect();
+    let fs_c = xs
+        .iter()
+        .map(|&x| {
+            let states = [cf.stress_below(x, l, -1.0), cf.stress_below(x, l, 1.0)];
+            let (g, sn, _) = fs_of_stresses(&states, E, NU, &normals, 2);
+            fatemi_socie(g, sn, k_fs, sy)
+        })
+        .fold(0.0, f64::max);
+    let fs_l = rel(max_of(&fs_fe), fs_c);
     let f2c = xs
         .iter()
         .map(|&x| cf.sigma_t_surface(x) * MU * cf.p(x) * cf.delta(x))
@@ -421,6 +443,7 @@ fn cycle_errors(n: usize, m: usize, cycles: usize) -> Measured {
         range_surface,
         f2_surface,
         swt_line: rel(max_of(&line.swt), swt_line_c),
+        fs_l,
         shakedown,
         seconds: t0.elapsed().as_secs_f64(),
     };
@@ -487,6 +510,12 @@ fn fretting_cycle_against_closed_forms() {
     );
     assert!(fine.swt_l.abs() < 0.03, "SWT at L");
     assert!(fine.swt_l.abs() < ms[0].swt_l.abs(), "SWT converges");
+    assert!(
+        fine.fs_l.abs() < 0.03,
+        "Fatemi-Socie at L {:+.4}",
+        fine.fs_l
+    );
+    assert!(fine.fs_l.abs() < ms[0].fs_l.abs(), "Fatemi-Socie converges");
     assert!(fine.swt_line.abs() < 0.03, "SWT, line method");
     assert!(
         fine.swt_line.abs() < ms[1].swt_line.abs() && ms[1].swt_line.abs() < ms[0].swt_line.abs(),
@@ -499,7 +528,7 @@ fn fretting_cycle_against_closed_forms() {
         eprintln!(
             "h/b = {:.4}: stick {:+.3} % (steps {:+.3} %, {:+.3} %), slip {:.3} % (max {:+.3} %), work {:+.3} %, F1 {:+.3} %, \
              range(sxx) at L {:+.3} %, SWT at L {:+.3} %; surface: range(sxx) {:+.3} %, F2 {:+.3} %; \
-             SWT line {:+.3} %; {:.1}s",
+             SWT line {:+.3} %; FS at L {:+.3} %; {:.1}s",
             m.h_over_b,
             100.0 * m.stick,
             100.0 * m.stick_steps[0],
@@ -513,6 +542,7 @@ fn fretting_cycle_against_closed_forms() {
             100.0 * m.range_surface,
             100.0 * m.f2_surface,
             100.0 * m.swt_line,
+            100.0 * m.fs_l,
             m.seconds
         );
     }
