@@ -388,14 +388,19 @@ pub(crate) fn swt_of(steps: &[(M3, M3)], normals: &[V3]) -> (f64, V3) {
 /// stresses of an isotropic material (`young`, `nu`), on the critical plane among `normals`:
 /// the same formula as [`stress_cycle`], for closed-form fields.
 pub fn swt_of_stresses(stresses: &[[f64; 6]], young: f64, nu: f64, normals: &[V3]) -> (f64, V3) {
-    let steps: Vec<(M3, M3)> = stresses
+    swt_of(&elastic_states(stresses, young, nu), normals)
+}
+
+/// The stress and strain tensors of stresses `[xx, yy, zz, yz, xz, xy]` of an isotropic
+/// material (`young`, `nu`).
+fn elastic_states(stresses: &[[f64; 6]], young: f64, nu: f64) -> Vec<(M3, M3)> {
+    stresses
         .iter()
         .map(|s| {
             let t = tensor(s);
             (t, strain(&t, young, nu))
         })
-        .collect();
-    swt_of(&steps, normals)
+        .collect()
 }
 
 /// Shear directions scanned in each plane in 3D (every 15 degrees over a half turn).
@@ -478,14 +483,7 @@ pub fn fs_of_stresses(
     normals: &[V3],
     dim: usize,
 ) -> (f64, f64, V3) {
-    let steps: Vec<(M3, M3)> = stresses
-        .iter()
-        .map(|s| {
-            let t = tensor(s);
-            (t, strain(&t, young, nu))
-        })
-        .collect();
-    fs_of(&steps, normals, dim)
+    fs_of(&elastic_states(stresses, young, nu), normals, dim)
 }
 
 #[cfg(test)]
