@@ -87,10 +87,15 @@ impl LatinSolver {
                 })
             })
             .collect();
-        let mut scratch: Vec<SolveScratch> = self
+        // Per substructure, the solve's scratch and the block of right-hand sides, allocated
+        // once for the batch (not in every iteration).
+        let mut scratch: Vec<(SolveScratch, Vec<f64>)> = self
             .subs
             .iter()
-            .map(|op| op.chol.solve_scratch(inputs.len()))
+            .map(|op| {
+                let block = Vec::with_capacity(op.dofs.num_free() * inputs.len());
+                (op.chol.solve_scratch(inputs.len()), block)
+            })
             .collect();
         let max_iterations = lanes
             .iter()
@@ -153,7 +158,11 @@ impl LatinSolver {
     /// The plain linear stage of every active run: per substructure (in parallel) the
     /// right-hand sides of all runs as the columns of one block, one solve, then each run's
     /// `W`, `F`. Returns the seconds of the triangular solves (summed over substructures).
-    fn batch_solves(&self, active: &mut [&mut Lane<'_>], scratch: &mut [SolveScratch]) -> f64 {
+    fn batch_solves(
+        &self,
+        active: &mut [&mut Lane<'_>],
+        scratch: &mut [(SolveScratch, Vec<f64>)],
+    ) -> f64 {
         let nsub = self.subs.len();
         // Per substructure: each run's state of it, with what its right-hand side needs.
         let mut per_sub: Vec<Vec<Column<'_>>> = (0..nsub).map(|_| Vec::new()).collect();
@@ -176,7 +185,7 @@ impl LatinSolver {
             .zip(self.condensed.par_iter())
             .zip(per_sub.par_iter_mut())
             .zip(scratch.par_iter_mut())
-            .map(|(((op, cd), cols), scratch)| {
+            .map(|(((op, cd), cols), (scratch, block))| {
                 if let Some(cd) = cd {
                     return condensed_block(op, cd, cols);
                 }
@@ -187,12 +196,13 @@ impl LatinSolver {
                     }
                     return 0.0;
                 }
-                let mut block = vec![0.0; n * cols.len()];
+                block.clear();
+                block.resize(n * cols.len(), 0.0);
                 for ((_, istate, base, alpha, _), r) in cols.iter().zip(block.chunks_exact_mut(n)) {
                     assemble_rhs(op, istate, base, *alpha, r);
                 }
                 let t0 = Instant::now();
-                op.chol.solve_with(&mut block, scratch);
+                op.chol.solve_with(block, scratch);
                 let t = t0.elapsed().as_secs_f64();
                 for ((st, istate, _, alpha, _), u) in cols.iter_mut().zip(block.chunks_exact(n)) {
                     st.rhs.copy_from_slice(u);
