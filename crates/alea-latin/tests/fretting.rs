@@ -50,16 +50,13 @@
 
 mod common;
 
-use alea_fem::{Constraints, Loads};
 use alea_latin::fretting::{
     Regularisation, fatemi_socie, fs_of_stresses, plane_normals, slip_cycle, stress_cycle,
     swt_of_stresses,
 };
-use alea_latin::{Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunStatus};
-use common::contact::Layout;
-use common::*;
+use alea_latin::{LatinSolver, RunInput, RunStatus};
+use common::contact::{CylinderLoad, Layout, cylinder_on_block};
 use std::f64::consts::PI;
-use std::sync::Arc;
 
 const E: f64 = 210e3;
 const NU: f64 = 0.3;
@@ -204,46 +201,17 @@ fn build(n: usize, m: usize) -> (LatinSolver, f64) {
         m,
         full: true,
     };
-    let l = lay.l;
-    let block = {
-        let m = model(lay.lower().unwrap(), E, NU);
-        let mut c = Constraints::new();
-        c.clamp(&m.mesh, "far").unwrap();
-        sub("block", m, c)
-    };
-    let q = MU * P;
-    let cylinder = {
-        let s = sub(
-            "cylinder",
-            model(lay.upper().unwrap(), E, NU),
-            Constraints::new(),
-        );
-        let s = with_load(s, |m, ld: &mut Loads| {
-            ld.traction(m, "far", move |_, _| [0.0, -P / (2.0 * l), 0.0])
-                .unwrap();
-        });
-        with_load(s, |m, ld: &mut Loads| {
-            let slope = 3.0 * q / (2.0 * l * l);
-            ld.traction(m, "far", move |x, _| [q / (2.0 * l), slope * x[0], 0.0])
-                .unwrap();
-        })
-    };
-    let mut iface = InterfaceSpec::coulomb("contact", 0, "contact", 1, "contact", MU);
-    iface.gap = Arc::new(|x: [f64; 3]| R - (R * R - x[0] * x[0]).sqrt());
-    let solver = LatinSolver::new(
-        Assembly {
-            subs: vec![block, cylinder],
-            interfaces: vec![iface],
-        },
-        LatinOptions {
-            tolerance: 1e-8,
-            max_iterations: 20000,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    (solver, lay.h())
+    (cylinder_on_block(&lay, &LOADING), lay.h())
 }
+
+/// The bodies and loads of every mesh.
+const LOADING: CylinderLoad = CylinderLoad {
+    young: E,
+    poisson: NU,
+    p: P,
+    mu: MU,
+    radius: R,
+};
 
 fn step(ratio: f64) -> RunInput {
     RunInput {

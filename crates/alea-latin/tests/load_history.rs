@@ -37,15 +37,10 @@
 
 mod common;
 
-use alea_fem::{Constraints, Loads};
-use alea_latin::{
-    Assembly, InterfaceResult, InterfaceSpec, LatinOptions, LatinSolver, PointStatus, RunInput,
-    RunResult, RunStatus,
-};
-use common::contact::Layout;
+use alea_latin::{InterfaceResult, LatinSolver, PointStatus, RunInput, RunResult, RunStatus};
+use common::contact::{CylinderLoad, Layout, cylinder_on_block};
 use common::*;
 use std::f64::consts::PI;
-use std::sync::Arc;
 
 const E: f64 = 210e3;
 const NU: f64 = 0.3;
@@ -142,45 +137,20 @@ fn build(n: usize, m: usize) -> Model {
         m,
         full: true,
     };
-    let l = lay.l;
-    let block = {
-        let m = model(lay.lower().unwrap(), E, NU);
-        let mut c = Constraints::new();
-        c.clamp(&m.mesh, "far").unwrap();
-        sub("block", m, c)
-    };
-    let q = MU * P;
-    let upper = lay.upper().unwrap();
+    let solver = cylinder_on_block(
+        &lay,
+        &CylinderLoad {
+            young: E,
+            poisson: NU,
+            p: P,
+            mu: MU,
+            radius: R,
+        },
+    );
+    let (upper, l) = (&solver.model(1).mesh, lay.l);
     let top = (0..upper.num_nodes())
         .find(|&k| upper.coords[k][0].abs() < 1e-9 && (upper.coords[k][1] - l).abs() < 1e-9)
         .expect("node at the top centre");
-    let cylinder = {
-        let s = sub("cylinder", model(upper, E, NU), Constraints::new());
-        let s = with_load(s, |m, ld: &mut Loads| {
-            ld.traction(m, "far", move |_, _| [0.0, -P / (2.0 * l), 0.0])
-                .unwrap();
-        });
-        // mu P' along x through the contact centre (see tests/cattaneo_mindlin.rs).
-        with_load(s, |m, ld: &mut Loads| {
-            let slope = 3.0 * q / (2.0 * l * l);
-            ld.traction(m, "far", move |x, _| [q / (2.0 * l), slope * x[0], 0.0])
-                .unwrap();
-        })
-    };
-    let mut iface = InterfaceSpec::coulomb("contact", 0, "contact", 1, "contact", MU);
-    iface.gap = Arc::new(|x: [f64; 3]| R - (R * R - x[0] * x[0]).sqrt());
-    let solver = LatinSolver::new(
-        Assembly {
-            subs: vec![block, cylinder],
-            interfaces: vec![iface],
-        },
-        LatinOptions {
-            tolerance: 1e-8,
-            max_iterations: 20000,
-            ..Default::default()
-        },
-    )
-    .unwrap();
     Model {
         solver,
         top,

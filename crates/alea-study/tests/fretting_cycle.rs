@@ -153,41 +153,23 @@ kind = "contact_slip"
 interface = "contact"
 point = [0.0, 0.0]
 
-[[quantity]]
-name = "fs0"
-kind = "fatemi_socie"
-interface = "contact"
-substructure = "base"
-point = [10.0, 0.0]
-critical_distance = 0.5
-normal_stress_factor = 0.0
-yield_stress = 250.0
-
-[[quantity]]
-name = "fs05"
-kind = "fatemi_socie"
-interface = "contact"
-substructure = "base"
-point = [10.0, 0.0]
-critical_distance = 0.5
-normal_stress_factor = 0.5
-yield_stress = 250.0
-
-[[quantity]]
-name = "fs1"
-kind = "fatemi_socie"
-interface = "contact"
-substructure = "base"
-point = [10.0, 0.0]
-critical_distance = 0.5
-normal_stress_factor = 1.0
-yield_stress = 250.0
 "#;
 
+/// Fatemi-Socie at the interface point `(10, 0)`, with normal-stress sensitivity `k` and
+/// yield stress 250 MPa.
+fn fatemi_socie(k: f64) -> String {
+    format!(
+        "[[quantity]]\nname = \"fs{k}\"\nkind = \"fatemi_socie\"\ninterface = \"contact\"\n\
+         substructure = \"base\"\npoint = [10.0, 0.0]\ncritical_distance = 0.5\n\
+         normal_stress_factor = {k:?}\nyield_stress = 250.0\n\n"
+    )
+}
+
 fn run(cycle: &str, name: &str) -> Vec<Vec<f64>> {
+    let quantities = format!("{QUANTITIES}{}", [0.0, 0.5, 1.0].map(fatemi_socie).concat());
     let study = Study::from_source(Source::from_text(
         "fretting.toml",
-        &model(cycle, QUANTITIES),
+        &model(cycle, &quantities),
     ))
     .unwrap();
     let dir = std::env::temp_dir().join(format!("alea-fretting-{name}-{}", std::process::id()));

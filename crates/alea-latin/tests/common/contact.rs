@@ -38,3 +38,60 @@ pub fn linear_fit(t: &[f64], y: &[f64]) -> (f64, f64) {
     let c1 = (n * sty - st * sy) / (n * stt - st * st);
     ((sy - c1 * st) / n, c1)
 }
+
+/// Elastic constants and loading of [`cylinder_on_block`].
+pub struct CylinderLoad {
+    /// Young's modulus and Poisson's ratio of both bodies.
+    pub young: f64,
+    pub poisson: f64,
+    /// Normal load per unit length `P'`, friction coefficient, cylinder radius.
+    pub p: f64,
+    pub mu: f64,
+    pub radius: f64,
+}
+
+/// The cylinder (upper body) on the block clamped at its far face, on `lay`: load case 0 of
+/// the cylinder presses it by `P'` (uniform traction on its far face), load case 1 pushes it
+/// along `x` by `mu P'` through the contact centre (the traction's linear part balances the
+/// moment); a Coulomb interface whose initial gap is the cylinder's curvature
+/// `R - sqrt(R^2 - x^2)`. LATIN to `1e-8`, at most 20 000 iterations.
+pub fn cylinder_on_block(lay: &Layout, c: &CylinderLoad) -> alea_latin::LatinSolver {
+    use alea_fem::{Constraints, Loads};
+    let (l, p, q, r) = (lay.l, c.p, c.mu * c.p, c.radius);
+    let block = {
+        let m = super::model(lay.lower().unwrap(), c.young, c.poisson);
+        let mut cs = Constraints::new();
+        cs.clamp(&m.mesh, "far").unwrap();
+        super::sub("block", m, cs)
+    };
+    let cylinder = {
+        let s = super::sub(
+            "cylinder",
+            super::model(lay.upper().unwrap(), c.young, c.poisson),
+            Constraints::new(),
+        );
+        let s = super::with_load(s, |m, ld: &mut Loads| {
+            ld.traction(m, "far", move |_, _| [0.0, -p / (2.0 * l), 0.0])
+                .unwrap();
+        });
+        super::with_load(s, |m, ld: &mut Loads| {
+            let slope = 3.0 * q / (2.0 * l * l);
+            ld.traction(m, "far", move |x, _| [q / (2.0 * l), slope * x[0], 0.0])
+                .unwrap();
+        })
+    };
+    let mut iface = alea_latin::InterfaceSpec::coulomb("contact", 0, "contact", 1, "contact", c.mu);
+    iface.gap = std::sync::Arc::new(move |x: [f64; 3]| r - (r * r - x[0] * x[0]).sqrt());
+    alea_latin::LatinSolver::new(
+        alea_latin::Assembly {
+            subs: vec![block, cylinder],
+            interfaces: vec![iface],
+        },
+        alea_latin::LatinOptions {
+            tolerance: 1e-8,
+            max_iterations: 20000,
+            ..Default::default()
+        },
+    )
+    .unwrap()
+}
