@@ -245,14 +245,15 @@ pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -
     out
 }
 
-/// Runs the cycles of `c` after the steps already in `results`: `run(k, prev)` solves the
-/// cycle's step `k` from the end of result `prev`. Stops at the first step that does not
+/// Runs the cycles of `c` after the steps already in `results`: `run(k, n, done)` solves the
+/// cycle's step `k` of cycle `n` (from 0) after the results `done` (the history so far: its
+/// last is the end state the step starts from). Stops at the first step that does not
 /// converge, after `repeat` cycles, or at shakedown; a run that does not reach shakedown within
 /// `repeat` cycles has its last result marked not converged.
 pub(crate) fn run_cycles(
     c: &CyclePlan,
     results: &mut Vec<RunResult>,
-    mut run: impl FnMut(usize, Option<&RunResult>) -> Result<RunResult, StudyError>,
+    mut run: impl FnMut(usize, usize, &[RunResult]) -> Result<RunResult, StudyError>,
 ) -> Result<(), StudyError> {
     // Per interface, the largest slip amplitude of the cycles so far.
     let mut reference: Vec<f64> = Vec::new();
@@ -264,7 +265,7 @@ pub(crate) fn run_cycles(
             {
                 return Ok(());
             }
-            let r = run(k, results.last())?;
+            let r = run(k, n, results)?;
             results.push(r);
         }
         if results

@@ -237,6 +237,58 @@ fn cycle_quantities_are_consistent_and_shake_down() {
     }
 }
 
+/// A cycle's steps from the second cycle on start their LATIN iterate from the same step of
+/// the previous cycle, and the first cycle's return to an earlier step's loads from that step
+/// (`alea_study::steps`): only the start of the iteration, so the answers are those of the
+/// same history written as plain steps, each started from the step before, to the solver
+/// tolerance (1e-9 here).
+#[test]
+fn a_cycle_gives_the_answers_of_its_steps_written_out() {
+    let quantities = |down: &str, back: &str| {
+        format!(
+            "{DELTA}\n[[quantity]]\nname = \"d_down\"\nkind = \"friction_dissipation\"\n\
+             interface = \"contact\"\nstep = \"{down}\"\n\n[[quantity]]\nname = \"d_back\"\n\
+             kind = \"friction_dissipation\"\ninterface = \"contact\"\nstep = \"{back}\"\n"
+        )
+    };
+    let solve = |text: String| {
+        let study = Study::from_source(Source::from_text("written.toml", &text)).unwrap();
+        let dir = std::env::temp_dir().join(format!(
+            "alea-fretting-written-{}-{}",
+            text.len(),
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&dir);
+        let runs = run_study(&study, &dir, false, &NoProgress).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        runs.records
+            .iter()
+            .map(|r| {
+                assert!(r.converged(), "{}", r.status);
+                r.qois.clone()
+            })
+            .collect::<Vec<_>>()
+    };
+    let cycle = solve(model(
+        "[cycle]\nsteps = [\"down\", \"back\"]\nrepeat = 3",
+        &quantities("down", "back"),
+    ));
+    let written = solve(model(
+        "[[step]]\nname = \"down2\"\nload = { shear = -1.0 }\n\n\
+         [[step]]\nname = \"back2\"\nload = { shear = 1.0 }\n\n\
+         [[step]]\nname = \"down3\"\nload = { shear = -1.0 }\n\n\
+         [[step]]\nname = \"back3\"\nload = { shear = 1.0 }\n",
+        &quantities("down3", "back3").replace(DELTA, ""),
+    ));
+    for (c, w) in cycle.iter().zip(&written) {
+        // The cycle's: slip amplitude, then the two dissipations of the last cycle.
+        assert!(c[1] > 0.0 && c[2] > 0.0, "{c:?}");
+        for (x, y) in c[1..].iter().zip(w) {
+            assert!((x - y).abs() <= 1e-6 * y.abs(), "{c:?} against {w:?}");
+        }
+    }
+}
+
 fn refused(cycle: &str, quantities: &str, needle: &str, field: &str, words: &str) {
     let text = model(cycle, quantities);
     let e = Study::from_source(Source::from_text("checks.toml", &text)).expect_err("refused");
