@@ -1,6 +1,6 @@
 //! Sobol' indices of every parameter (each KL variable of a random field is one) on a method's
-//! surrogate, written for studies with random fields (`[[field]]`): which modes of which field
-//! drive a quantity.
+//! surrogate, written for every study whose inputs are independent: which parameter - and with
+//! random fields (`[[field]]`), which modes of which field - drives a quantity.
 //!
 //! * Polynomial chaos (regression, sparse, projection): exact for the expansion `q~ = sum_a c_a
 //!   Psi_a`, `S_i = sum_{a: only xi_i} c_a^2 / V`, `S_Ti = sum_{a: xi_i in a} c_a^2 / V`, `V =
@@ -76,7 +76,7 @@ pub fn sobol_stats(
     let params = &study.params;
     // With a dependent `[joint]` (a copula of the parameters beside the KL variables) the
     // variance does not split into the shares of independent inputs: no classical indices.
-    if params.fields.is_empty() || !params.joint.is_independent() {
+    if !params.joint.is_independent() {
         return None;
     }
     let d = params.names.len();
