@@ -400,6 +400,10 @@ pub struct InterfacePairing {
     pub geometric_gap: Vec<f64>,
     /// Projections of side 1 and side 2.
     pub sides: [SideProjection; 2],
+    /// Cyclic symmetry (module [`crate::cyclic`]): the rotation `R` from side 1's frame, the
+    /// frame of the points, to side 2's (side 2's fields are stored in its own frame); `None`
+    /// for an ordinary interface (both sides in the same frame).
+    pub rotation: Option<crate::cyclic::Mat3>,
 }
 
 impl InterfacePairing {
@@ -411,6 +415,24 @@ impl InterfacePairing {
     /// True if there is no point.
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
+    }
+
+    /// A vector of side `s`'s frame in the points' frame (side 1's): `R^T v` on side 2 of a
+    /// cyclic interface, `v` otherwise.
+    pub fn to_points(&self, s: usize, v: [f64; 3]) -> [f64; 3] {
+        match (&self.rotation, s) {
+            (Some(r), 1) => crate::cyclic::apply_transpose(r, &v),
+            _ => v,
+        }
+    }
+
+    /// A vector of the points' frame in side `s`'s frame: `R v` on side 2 of a cyclic
+    /// interface, `v` otherwise.
+    pub fn to_side(&self, s: usize, v: [f64; 3]) -> [f64; 3] {
+        match (&self.rotation, s) {
+            (Some(r), 1) => crate::cyclic::apply(r, &v),
+            _ => v,
+        }
     }
 }
 
@@ -448,5 +470,6 @@ pub fn pair_node_to_node(
             SideProjection::identity(g1.nodes, g1.weights),
             SideProjection::identity(nodes2, weights2),
         ],
+        rotation: None,
     })
 }

@@ -145,7 +145,8 @@ fn interface_operator(
             )));
         }
     }
-    if spec.sub1 == spec.sub2 {
+    crate::cyclic::check_spec(spec, subs)?;
+    if spec.sub1 == spec.sub2 && spec.cyclic.is_none() {
         return Err(LatinError::Invalid(format!(
             "interface '{}' joins substructure '{}' to itself",
             spec.name, subs[spec.sub1].name
@@ -161,6 +162,11 @@ fn interface_operator(
         .mesh
         .facet_group(&spec.group2)
         .map_err(mesh_err(&s2.name))?;
+    // A cyclic interface pairs side 1 with side 2 mapped back by its rotation.
+    let mapped = spec
+        .cyclic
+        .as_ref()
+        .map(|c| crate::cyclic::mapped_back(c, &s2.model.mesh));
     let sides = [
         (
             &s1.model.mesh,
@@ -168,7 +174,7 @@ fn interface_operator(
             s1.model.analysis.thickness(),
         ),
         (
-            &s2.model.mesh,
+            mapped.as_ref().unwrap_or(&s2.model.mesh),
             spec.group2.as_str(),
             s2.model.analysis.thickness(),
         ),
@@ -182,20 +188,24 @@ fn interface_operator(
             &spec.name,
             sides,
             spec.search_distance,
-            spec.law.uses_gap(),
+            spec.law.uses_gap() || spec.cyclic.is_some(),
             [&fixed1, &fixed2],
         )
     };
+    let cyc = |e| crate::cyclic::pairing_error(spec, e);
     let pairing = match (given, spec.pairing) {
         (Some(p), _) => p,
-        (None, Pairing::NodeToNode) => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
-        (None, Pairing::Mortar) => mortar()?,
+        (None, Pairing::NodeToNode) => {
+            pair_node_to_node(&spec.name, sides, spec.match_tolerance).map_err(cyc)?
+        }
+        (None, Pairing::Mortar) => mortar().map_err(cyc)?,
         (None, Pairing::Auto) => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
             Ok(p) => p,
-            Err(LatinError::Unmatched { .. }) => mortar()?,
+            Err(LatinError::Unmatched { .. }) => mortar().map_err(cyc)?,
             Err(e) => return Err(e),
         },
     };
+    let pairing = crate::cyclic::finish(spec, pairing, sides)?;
     let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
         .map_err(mesh_err(&s1.name))?;
     // Characteristic length and side moduli for the default search direction.
@@ -328,6 +338,15 @@ pub(super) fn coarse_with(
             m
         })
         .collect();
+    let rotated: Vec<Option<InterfaceModes>> = ifaces
+        .iter()
+        .zip(&modes)
+        .map(|(op, m)| op.pairing.rotation.map(|r| m.rotated(&r)))
+        .collect();
+    let side_modes = |l: &Link| match (&rotated[l.iface], l.side) {
+        (Some(m), 1) => m,
+        _ => &modes[l.iface],
+    };
     let subs: Vec<SubMacro> = ops
         .par_iter()
         .enumerate()
@@ -343,7 +362,7 @@ pub(super) fn coarse_with(
                 .map(|l| MacroLink {
                     proj: &l.proj,
                     dir: &l.dir,
-                    modes: &modes[l.iface],
+                    modes: side_modes(l),
                 })
                 .collect();
             SubMacro::new(&op.dofs, &op.chol, &links, &op.rigid, &op.model.mesh.coords)
@@ -352,6 +371,7 @@ pub(super) fn coarse_with(
     Coarse {
         n: offset,
         modes,
+        rotated,
         subs,
     }
 }
