@@ -46,7 +46,8 @@
 
 use alea_mesh::Mesh;
 
-use crate::interface::{InterfacePairing, side_geometry};
+use crate::interface::{InterfacePairing, Pairing, pair_node_to_node, side_geometry};
+use crate::mortar::pair_mortar;
 use crate::{InterfaceSpec, LatinError, Sliding, Substructure};
 
 type V3 = [f64; 3];
@@ -206,6 +207,56 @@ pub(crate) fn check_spec(spec: &InterfaceSpec, subs: &[Substructure]) -> Result<
     Ok(())
 }
 
+/// The checks of a cyclic interface that the solver's set-up makes ([`check_spec`], then the
+/// pairing of side 1 with side 2 mapped back by the rotation and the cover of the mapped faces,
+/// [`finish`]), without building a solver: a study checks its file with it when it is loaded.
+/// Nothing for an interface without `cyclic`.
+///
+/// # Errors
+/// [`LatinError::Cyclic`] (or [`LatinError::Invalid`] for a substructure index out of range).
+pub fn check_faces(spec: &InterfaceSpec, subs: &[Substructure]) -> Result<(), LatinError> {
+    let Some(c) = &spec.cyclic else {
+        return Ok(());
+    };
+    let (Some(s1), Some(s2)) = (subs.get(spec.sub1), subs.get(spec.sub2)) else {
+        return Err(LatinError::Invalid(format!(
+            "interface '{}': a side refers to a missing substructure",
+            spec.name
+        )));
+    };
+    check_spec(spec, subs)?;
+    let mapped = mapped_back(c, &s2.model.mesh);
+    let sides = [
+        (
+            &s1.model.mesh,
+            spec.group1.as_str(),
+            s1.model.analysis.thickness(),
+        ),
+        (&mapped, spec.group2.as_str(), s2.model.analysis.thickness()),
+    ];
+    let free = |_: usize| false;
+    let mortar = || {
+        pair_mortar(
+            &spec.name,
+            sides,
+            spec.search_distance,
+            true,
+            [&free, &free],
+        )
+    };
+    let node = || pair_node_to_node(&spec.name, sides, spec.match_tolerance);
+    let pairing = match spec.pairing {
+        Pairing::NodeToNode => node(),
+        Pairing::Mortar => mortar(),
+        Pairing::Auto => match node() {
+            Err(LatinError::Unmatched { .. }) => mortar(),
+            other => other,
+        },
+    }
+    .map_err(|e| pairing_error(spec, e))?;
+    finish(spec, pairing, sides).map(|_| ())
+}
+
 /// A copy of `mesh` with every node mapped back by the inverse rotation, `c + R^T (x - c)`.
 pub(crate) fn mapped_back(c: &Cyclic, mesh: &Mesh) -> Mesh {
     let mut m = mesh.clone();
@@ -233,9 +284,9 @@ pub(crate) fn pairing_error(spec: &InterfaceSpec, e: LatinError) -> LatinError {
              {side2} nodes; a side-1 node is {worst:e} from the nearest mapped side-2 node at \
              {at:?}, tolerance {tol:e})"
         ),
-        LatinError::Pairing { message, .. } => format!(
-            "side 1 mapped by the rotation does not face side 2 ({message})"
-        ),
+        LatinError::Pairing { message, .. } => {
+            format!("side 1 mapped by the rotation does not face side 2 ({message})")
+        }
         other => return other,
     };
     LatinError::Cyclic {
@@ -311,7 +362,11 @@ mod tests {
         let c = Cyclic::new(30.0, [1.0, 2.0, 0.0], [0.0, 0.0, 2.0]).unwrap();
         let x = [3.0, 2.0, 0.5];
         let y = c.map_point(&x);
-        let want = [1.0 + 2.0 * 0.5f64.sqrt() * 0.0 + 2.0 * (30f64.to_radians()).cos(), 2.0 + 2.0 * (30f64.to_radians()).sin(), 0.5];
+        let want = [
+            1.0 + 2.0 * 0.5f64.sqrt() * 0.0 + 2.0 * (30f64.to_radians()).cos(),
+            2.0 + 2.0 * (30f64.to_radians()).sin(),
+            0.5,
+        ];
         for k in 0..3 {
             assert!((y[k] - want[k]).abs() < 1e-14, "{y:?} vs {want:?}");
         }
@@ -326,7 +381,10 @@ mod tests {
             assert!((w[k] - v[k]).abs() < 1e-14);
         }
         for bad in [0.0, -10.0, 181.0, f64::NAN, f64::INFINITY] {
-            assert!(Cyclic::new(bad, [0.0; 3], [0.0, 0.0, 1.0]).is_err(), "{bad}");
+            assert!(
+                Cyclic::new(bad, [0.0; 3], [0.0, 0.0, 1.0]).is_err(),
+                "{bad}"
+            );
         }
         assert!(Cyclic::new(180.0, [0.0; 3], [0.0, 0.0, 1.0]).is_ok());
         assert!(Cyclic::new(10.0, [0.0; 3], [0.0; 3]).is_err());

@@ -225,7 +225,9 @@ pub fn pair_nodes(
                 .map(|k| (x2[j][k] - p[k]).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            if d < best.0 {
+            // Within the tolerance in every direction, not only in x (the window): mirror
+            // images in y, z would otherwise pair.
+            if d <= tol && d < best.0 {
                 best = (d, j);
             }
         }

@@ -44,8 +44,8 @@ pub mod sliding;
 mod solver;
 pub mod steps;
 
-pub use cyclic::Cyclic;
 pub use assembly::{Assembly, InterfaceSpec, PointField, Sliding, Substructure, constant};
+pub use cyclic::Cyclic;
 pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
 pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};

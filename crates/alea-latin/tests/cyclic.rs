@@ -57,7 +57,11 @@ fn loaded(name: &str, mesh: Mesh, normal_zero: bool) -> Substructure {
     }
     let mut l = Loads::new(&model);
     l.traction(&model, "outer", |x, n| {
-        [TAU * -n[1] - P * n[0], TAU * n[0] - P * n[1], 0.3 * TAU * x[2]]
+        [
+            TAU * -n[1] - P * n[0],
+            TAU * n[0] - P * n[1],
+            0.3 * TAU * x[2],
+        ]
     })
     .unwrap();
     l.centrifugal(&model, None, OMEGA, [0.0; 3], [0.0, 0.0, 1.0])
@@ -87,7 +91,12 @@ fn solve(subs: Vec<Substructure>, interfaces: Vec<InterfaceSpec>, tol: f64) -> V
     let t = std::time::Instant::now();
     let mut solver = LatinSolver::new(Assembly { subs, interfaces }, options(tol)).unwrap();
     let res = solver.run(&RunInput::default()).unwrap();
-    assert_eq!(res.status, RunStatus::Converged, "{:?}", res.residuals.last());
+    assert_eq!(
+        res.status,
+        RunStatus::Converged,
+        "{:?}",
+        res.residuals.last()
+    );
     eprintln!(
         "{} iterations, {:.3} s",
         res.iterations,
@@ -226,6 +235,16 @@ fn cyclic_set_up_refusals() {
         s(),
     );
     assert!(msg.contains("node to node"), "{msg}");
+    // The faces the wrong way round: side 2 mapped back lands 90 degrees from side 1 (its
+    // mirror image in the x axis: a node pairing that compared x alone accepted it).
+    let msg = setup_error(
+        vec![InterfaceSpec {
+            cyclic: Some(Cyclic::new(45.0, [0.0; 3], [0.0, 0.0, 1.0]).unwrap()),
+            ..InterfaceSpec::perfect("cyc", 0, "side1", 0, "side0")
+        }],
+        s(),
+    );
+    assert!(msg.contains("mapped by the rotation"), "{msg}");
     // A contact law.
     let msg = setup_error(
         vec![InterfaceSpec {

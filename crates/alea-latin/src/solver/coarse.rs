@@ -79,9 +79,7 @@ impl LatinSolver {
             .zip(sstate.par_iter_mut())
             .zip(cs.subs.par_iter())
             .enumerate()
-            .for_each(|(s, ((op, st), sm))| {
-                coarse_correction(op, sm, cs, st, &lambda, alpha[s])
-            });
+            .for_each(|(s, ((op, st), sm))| coarse_correction(op, sm, cs, st, &lambda, alpha[s]));
     }
 }
 
