@@ -46,8 +46,7 @@
 
 use alea_mesh::Mesh;
 
-use crate::interface::{InterfacePairing, Pairing, pair_node_to_node, side_geometry};
-use crate::mortar::pair_mortar;
+use crate::interface::{InterfacePairing, pair_sides, side_geometry};
 use crate::{InterfaceSpec, LatinError, Sliding, Substructure};
 
 type V3 = [f64; 3];
@@ -215,9 +214,9 @@ pub(crate) fn check_spec(spec: &InterfaceSpec, subs: &[Substructure]) -> Result<
 /// # Errors
 /// [`LatinError::Cyclic`] (or [`LatinError::Invalid`] for a substructure index out of range).
 pub fn check_faces(spec: &InterfaceSpec, subs: &[Substructure]) -> Result<(), LatinError> {
-    let Some(c) = &spec.cyclic else {
+    if spec.cyclic.is_none() {
         return Ok(());
-    };
+    }
     let (Some(s1), Some(s2)) = (subs.get(spec.sub1), subs.get(spec.sub2)) else {
         return Err(LatinError::Invalid(format!(
             "interface '{}': a side refers to a missing substructure",
@@ -225,36 +224,7 @@ pub fn check_faces(spec: &InterfaceSpec, subs: &[Substructure]) -> Result<(), La
         )));
     };
     check_spec(spec, subs)?;
-    let mapped = mapped_back(c, &s2.model.mesh);
-    let sides = [
-        (
-            &s1.model.mesh,
-            spec.group1.as_str(),
-            s1.model.analysis.thickness(),
-        ),
-        (&mapped, spec.group2.as_str(), s2.model.analysis.thickness()),
-    ];
-    let free = |_: usize| false;
-    let mortar = || {
-        pair_mortar(
-            &spec.name,
-            sides,
-            spec.search_distance,
-            true,
-            [&free, &free],
-        )
-    };
-    let node = || pair_node_to_node(&spec.name, sides, spec.match_tolerance);
-    let pairing = match spec.pairing {
-        Pairing::NodeToNode => node(),
-        Pairing::Mortar => mortar(),
-        Pairing::Auto => match node() {
-            Err(LatinError::Unmatched { .. }) => mortar(),
-            other => other,
-        },
-    }
-    .map_err(|e| pairing_error(spec, e))?;
-    finish(spec, pairing, sides).map(|_| ())
+    pair_sides(spec, [s1, s2], None).map(|_| ())
 }
 
 /// A copy of `mesh` with every node mapped back by the inverse rotation, `c + R^T (x - c)`.

@@ -190,7 +190,7 @@ fn ring_3d_cyclic_sector_equals_the_full_ring() {
 #[test]
 fn mortar_cyclic_sectors_equal_the_full_ring() {
     let (n, deg) = (6, 60.0);
-    let mesh = |k: usize| sector(deg, k, if k % 2 == 0 { 5 } else { 7 }, 4, false);
+    let mesh = |k: usize| sector(deg, k, if k.is_multiple_of(2) { 5 } else { 7 }, 4, false);
     let full = ring(n, mesh, Pairing::Mortar);
     let two = solve(
         vec![loaded("A", mesh(0), false), loaded("B", mesh(1), false)],

@@ -18,8 +18,7 @@ use super::{
 };
 use crate::coarse::{InterfaceModes, MacroLink, SubMacro};
 use crate::equilibrium::RigidModes;
-use crate::interface::{InterfacePairing, Pairing, pair_node_to_node, side_geometry};
-use crate::mortar::pair_mortar;
+use crate::interface::{InterfacePairing, pair_sides, side_geometry};
 use crate::{Assembly, InterfaceSpec, LatinError, PointData, Substructure};
 
 pub(super) fn fem_err(sub: &str) -> impl Fn(alea_fem::FemError) -> LatinError + '_ {
@@ -162,50 +161,7 @@ fn interface_operator(
         .mesh
         .facet_group(&spec.group2)
         .map_err(mesh_err(&s2.name))?;
-    // A cyclic interface pairs side 1 with side 2 mapped back by its rotation.
-    let mapped = spec
-        .cyclic
-        .as_ref()
-        .map(|c| crate::cyclic::mapped_back(c, &s2.model.mesh));
-    let sides = [
-        (
-            &s1.model.mesh,
-            spec.group1.as_str(),
-            s1.model.analysis.thickness(),
-        ),
-        (
-            mapped.as_ref().unwrap_or(&s2.model.mesh),
-            spec.group2.as_str(),
-            s2.model.analysis.thickness(),
-        ),
-    ];
-    let held1 = DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem_err(&s1.name))?;
-    let held2 = DofMap::for_mesh(&s2.model.mesh, &s2.constraints).map_err(fem_err(&s2.name))?;
-    let fixed1 = |n: usize| held1.node_dofs(n).is_empty();
-    let fixed2 = |n: usize| held2.node_dofs(n).is_empty();
-    let mortar = || {
-        pair_mortar(
-            &spec.name,
-            sides,
-            spec.search_distance,
-            spec.law.uses_gap() || spec.cyclic.is_some(),
-            [&fixed1, &fixed2],
-        )
-    };
-    let cyc = |e| crate::cyclic::pairing_error(spec, e);
-    let pairing = match (given, spec.pairing) {
-        (Some(p), _) => p,
-        (None, Pairing::NodeToNode) => {
-            pair_node_to_node(&spec.name, sides, spec.match_tolerance).map_err(cyc)?
-        }
-        (None, Pairing::Mortar) => mortar().map_err(cyc)?,
-        (None, Pairing::Auto) => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
-            Ok(p) => p,
-            Err(LatinError::Unmatched { .. }) => mortar().map_err(cyc)?,
-            Err(e) => return Err(e),
-        },
-    };
-    let pairing = crate::cyclic::finish(spec, pairing, sides)?;
+    let pairing = pair_sides(spec, [s1, s2], given)?;
     let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
         .map_err(mesh_err(&s1.name))?;
     // Characteristic length and side moduli for the default search direction.
