@@ -214,3 +214,64 @@ fn bad_cyclic_settings_are_refused_at_load() {
     let e = Study::from_source(Source::from_text("cyclic.toml", &text)).expect_err("refused");
     assert!(e.to_string().contains("angel"), "{e}");
 }
+
+/// `examples/turbine-2d-cyclic.toml` (four substructures, contact lines, the cyclic interface
+/// between D2's and D1's sector sides) in small sliding at tolerance 1e-9, and the same model
+/// with the thesis's `normal = 0` side constraints instead: under the mirror-symmetric load
+/// (`L = 0`: pull and centrifugal) both are exact, so they agree to the solver tolerance; under
+/// a lateral load (`L = 5` MPa) `normal = 0` is off (measured: 4.1e-10 at `L = 0`, 2.0e-2 in
+/// the displacements and 2 MPa on each fillet at `L = 5`).
+#[test]
+fn turbine_cyclic_equals_normal_zero_for_a_symmetric_load_only() {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/turbine-2d-cyclic.toml");
+    let cyclic = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("sliding = \"large\"\n", "")
+        .replace("tolerance = 1e-6", "tolerance = 1e-9");
+    let block = cyclic.find("# Cyclic symmetry: D2's").unwrap();
+    let end = block + cyclic[block..].find("\n\n").unwrap();
+    let mut normal = format!("{}{}", &cyclic[..block], &cyclic[end + 2..]);
+    for d in ["D1", "D2"] {
+        normal = normal.replace(
+            &format!("{{ group = \"{d}_bottom\", x = 0.0, y = 0.0 }}"),
+            &format!("{{ group = \"{d}_bottom\", x = 0.0, y = 0.0 }}, {{ group = \"{d}_side\", normal = 0.0 }}"),
+        );
+    }
+    assert!(normal.contains("D2_side\", normal") && !normal.contains("cyclic = {"));
+    let solve = |text: &str, l: f64| {
+        let study = Study::from_source(Source::from_text("turbine.toml", text)).unwrap();
+        let solver = study.model.solver().unwrap();
+        let res = solver
+            .run_shared(&study.model.parametric.run_input(&[l]))
+            .unwrap();
+        assert_eq!(res.status, RunStatus::Converged);
+        let q: Vec<f64> = study
+            .qois
+            .iter()
+            .map(|q| q.eval(&solver, &res).unwrap())
+            .collect();
+        (res.displacements, q)
+    };
+    let rel = |a: &[Vec<f64>], b: &[Vec<f64>]| {
+        let (mut num, mut den) = (0.0, 0.0);
+        for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
+            num += (x - y) * (x - y);
+            den += y * y;
+        }
+        (num / den).sqrt()
+    };
+    let (uc, qc) = solve(&cyclic, 0.0);
+    let (un, qn) = solve(&normal, 0.0);
+    let e0 = rel(&uc, &un);
+    let (uc5, qc5) = solve(&cyclic, 5.0);
+    let (un5, qn5) = solve(&normal, 5.0);
+    let e5 = rel(&uc5, &un5);
+    eprintln!(
+        "turbine: cyclic vs normal = 0 at L = 0: {e0:.2e} (vm {:.4} / {:.4}, fillets {:.4} / {:.4}); at L = 5: {e5:.2e} (vm right {:.1} / {:.1}, left {:.1} / {:.1})",
+        qc[0], qn[0], qc[0], qc[1], qc5[0], qn5[0], qc5[1], qn5[1]
+    );
+    assert!(e0 <= 1e-5, "{e0:e}");
+    assert!((qc[0] - qc[1]).abs() <= 1e-6 * qc[0], "{qc:?}");
+    assert!(e5 > 1e-2, "{e5:e}");
+}
