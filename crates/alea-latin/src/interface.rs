@@ -18,6 +18,10 @@
 //! the nodes only nearly coincide (within the tolerance; each side's own weights then differ
 //! slightly and the LATIN iteration had no fixed point, issue 21).
 //!
+//! **Cyclic interfaces** (module [`crate::cyclic`]): [`pair_sides`] pairs side 1 with side 2's
+//! mesh mapped back by the interface's rotation, and the pairing records the rotation
+//! ([`InterfacePairing::rotation`]); side 2's fields stay in its own frame.
+//!
 //! The interface mass `M_Gamma,ij = int N_i N_j dS` (times the thickness in 2D) is lumped with
 //! the HRZ rule (diagonal proportional to the consistent diagonal, scaled to the facet measure),
 //! which keeps every weight positive for quadratic facets too. The normal at a node is the

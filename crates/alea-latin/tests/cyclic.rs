@@ -263,4 +263,23 @@ fn cyclic_set_up_refusals() {
         s(),
     );
     assert!(msg.contains("z axis"), "{msg}");
+    // A sector reaching its axis on one substructure: the quarter square [0, 1]^2 about the
+    // origin, ymin turned by 90 degrees onto xmin, both faces holding the corner node.
+    let square = sub(
+        "Q",
+        common::model(
+            generate::rectangle(1.0, 1.0, 3, 3, CellType::Quad4).unwrap(),
+            E,
+            0.3,
+        ),
+        Constraints::new(),
+    );
+    let msg = setup_error(
+        vec![InterfaceSpec {
+            cyclic: Some(Cyclic::new(90.0, [0.0; 3], [0.0, 0.0, 1.0]).unwrap()),
+            ..InterfaceSpec::perfect("cyc", 0, "ymin", 0, "xmin")
+        }],
+        vec![square],
+    );
+    assert!(msg.contains("share node"), "{msg}");
 }
