@@ -8,6 +8,10 @@
 //! interface between them and the cyclic one on the outer faces); their displacements must be
 //! the reference's first sector(s) to the solver tolerance. The `normal = 0` sector (the sides'
 //! normal displacement held, exact for mirror-symmetric loads only) is measurably wrong.
+//! The same in 3D (the sectors extruded, Hex8), and with non-matching faces (mortar) in 2D and
+//! 3D. Measured (relative error of the displacements against the ring, LATIN tolerance 1e-8,
+//! the ring's 1e-10): 2D 2.1e-9, 3D 1.2e-8, mortar 2.8e-9 (2D) and 9.4e-9 (3D); `normal = 0`
+//! 0.95 (2D) and 0.92 (3D).
 
 mod common;
 
@@ -184,13 +188,18 @@ fn ring_3d_cyclic_sector_equals_the_full_ring() {
     check(true, 6, 3, 3);
 }
 
-/// Non-matching faces (mortar): sectors alternate between two meshes (5 and 7 radial cells),
-/// so each face meets a differently divided one. Two cyclic sectors (A, B) against the ring
-/// A B A B ... paired the same way.
-#[test]
-fn mortar_cyclic_sectors_equal_the_full_ring() {
+/// Non-matching faces (mortar): sectors alternate between two meshes (5 and 7 radial cells in
+/// 2D, 3 and 4 in 3D), so each face meets a differently divided one. Two cyclic sectors
+/// (A, B) against the ring A B A B ... paired the same way.
+fn check_mortar(three_d: bool) {
     let (n, deg) = (6, 60.0);
-    let mesh = |k: usize| sector(deg, k, if k.is_multiple_of(2) { 5 } else { 7 }, 4, false);
+    let nr = |k: usize| match (three_d, k.is_multiple_of(2)) {
+        (false, true) => 5,
+        (false, false) => 7,
+        (true, true) => 3,
+        (true, false) => 4,
+    };
+    let mesh = |k: usize| sector(deg, k, nr(k), 4, three_d);
     let full = ring(n, mesh, Pairing::Mortar);
     let two = solve(
         vec![loaded("A", mesh(0), false), loaded("B", mesh(1), false)],
@@ -207,8 +216,21 @@ fn mortar_cyclic_sectors_equal_the_full_ring() {
         1e-8,
     );
     let e = rel(&[(&two[0], &full[0]), (&two[1], &full[1])]);
-    eprintln!("mortar, two cyclic sectors vs the ring: {e:.2e}");
+    eprintln!(
+        "mortar {}D, two cyclic sectors vs the ring: {e:.2e}",
+        if three_d { 3 } else { 2 }
+    );
     assert!(e <= 1e-5, "{e:e}");
+}
+
+#[test]
+fn mortar_cyclic_sectors_equal_the_full_ring_2d() {
+    check_mortar(false);
+}
+
+#[test]
+fn mortar_cyclic_sectors_equal_the_full_ring_3d() {
+    check_mortar(true);
 }
 
 fn setup_error(interfaces: Vec<InterfaceSpec>, subs: Vec<Substructure>) -> String {
