@@ -17,8 +17,8 @@ mod common;
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
 use alea_latin::{
-    Assembly, Cyclic, InterfaceSpec, LatinError, LatinOptions, LatinSolver, Pairing, RunInput,
-    RunStatus, Substructure,
+    Assembly, Cyclic, InterfaceSpec, LatinError, LatinOptions, LatinSolver, LinearStage, Pairing,
+    RunInput, RunStatus, Substructure,
 };
 use alea_mesh::{CellType, Mesh, generate};
 use common::sub;
@@ -308,7 +308,8 @@ fn cyclic_set_up_refusals() {
 
 /// The coarse problem on a cyclic interface (side 2's macro basis rotated, module
 /// `alea_latin::coarse`): two sectors, B floating (held only by its interfaces), against the
-/// ring whose odd sectors float; with and without the coarse problem. (With side 1's macro
+/// ring whose odd sectors float; with and without the coarse problem, by volume solves and
+/// condensed on the interfaces. (With side 1's macro
 /// basis on side 2 unrotated the coarse run did not converge: 5000 iterations, 0.44 off.)
 #[test]
 fn floating_sector_through_the_coarse_problem() {
@@ -327,7 +328,11 @@ fn floating_sector_through_the_coarse_problem() {
         .map(|k| InterfaceSpec::perfect(&format!("I{k}"), (k + 1) % n, "side0", k, "side1"))
         .collect();
     let full = solve(subs, interfaces, 1e-10);
-    for coarse in [true, false] {
+    for (coarse, linear_stage) in [
+        (true, LinearStage::Volume),
+        (false, LinearStage::Volume),
+        (true, LinearStage::Condensed),
+    ] {
         let subs = (0..2)
             .map(|k| clamp_odd(k, sector(deg, k, 6, 5, false)))
             .collect();
@@ -342,6 +347,7 @@ fn floating_sector_through_the_coarse_problem() {
             },
             LatinOptions {
                 coarse,
+                linear_stage,
                 ..options(1e-8)
             },
         )
@@ -352,7 +358,7 @@ fn floating_sector_through_the_coarse_problem() {
             (&res.displacements[1], &full[1]),
         ]);
         eprintln!(
-            "floating B, coarse {coarse}: {} iterations, {e:.2e}, {:.3} s",
+            "floating B, coarse {coarse}, {linear_stage:?}: {} iterations, {e:.2e}, {:.3} s",
             res.iterations,
             t.elapsed().as_secs_f64()
         );
