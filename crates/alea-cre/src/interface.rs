@@ -73,7 +73,11 @@ pub fn interface_term(ir: &InterfaceResult, tolerance: f64) -> Result<InterfaceE
         )));
     }
     let jump = |i: usize| -> [f64; 3] {
-        let (a, b) = (ir.what_prev[0][i], ir.what_prev[1][i]);
+        // Side 2 in the points' frame (a cyclic interface's `R^T W_2`).
+        let (a, b) = (
+            ir.what_prev[0][i],
+            ir.pairing.to_points(1, ir.what_prev[1][i]),
+        );
         let p = &ir.points[i];
         [
             b[0] - a[0] + p.gap * p.normal[0],
@@ -91,7 +95,7 @@ pub fn interface_term(ir: &InterfaceResult, tolerance: f64) -> Result<InterfaceE
             let v = ir.what_prev[s][i];
             w_scale = w_scale.max(dot(&v, &v).sqrt());
         }
-        let f = ir.fhat[1][i];
+        let f = ir.side2_force(i);
         f_scale = f_scale.max(dot(&f, &f).sqrt());
     }
     let w_tol = tolerance * w_scale.max(f64::MIN_POSITIVE);
@@ -102,7 +106,7 @@ pub fn interface_term(ir: &InterfaceResult, tolerance: f64) -> Result<InterfaceE
     let mut term = 0.0;
     for i in 0..np {
         let w = jump(i);
-        let f = ir.fhat[1][i];
+        let f = ir.side2_force(i);
         let n = ir.points[i].normal;
         let mut viol: f64 = 0.0;
         let e = if perfect {

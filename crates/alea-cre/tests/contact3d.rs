@@ -69,6 +69,7 @@ fn result(points: Vec<State>, law: &'static str) -> InterfaceResult {
                 SideProjection::identity(vec![], vec![]),
                 SideProjection::identity(vec![], vec![]),
             ],
+            rotation: None,
         }),
         points: vec![],
         weights: vec![],

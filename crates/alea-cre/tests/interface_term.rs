@@ -31,6 +31,7 @@ fn result(points: Vec<(f64, f64, [f64; 2], [f64; 2])>, law: &'static str) -> Int
                 SideProjection::identity(vec![], vec![]),
                 SideProjection::identity(vec![], vec![]),
             ],
+            rotation: None,
         }),
         points: vec![],
         weights: vec![],

@@ -5,6 +5,7 @@ use std::sync::Arc;
 use alea_fem::{Constraints, Model};
 
 use crate::InterfaceLaw;
+use crate::cyclic::Cyclic;
 use crate::interface::Pairing;
 
 /// A scalar field along an interface: `x -> value` (friction coefficient, initial gap, ...).
@@ -62,6 +63,9 @@ pub struct InterfaceSpec {
     /// (the pairing re-found from the deformed configuration during the solve, contact
     /// interfaces only; module [`crate::large_sliding`]).
     pub sliding: Sliding,
+    /// Cyclic symmetry: side 2 is side 1's image by this rotation, and the interface ties
+    /// `u_2 = R u_1`, `F_2 = -R F_1` (perfect interfaces only; module [`crate::cyclic`]).
+    pub cyclic: Option<Cyclic>,
 }
 
 /// Whether a contact interface keeps the pairing of the initial configuration.
@@ -85,6 +89,7 @@ impl std::fmt::Debug for InterfaceSpec {
             .field("law", &self.law.name())
             .field("pairing", &self.pairing)
             .field("sliding", &self.sliding)
+            .field("cyclic", &self.cyclic)
             .finish()
     }
 }
@@ -105,6 +110,7 @@ impl InterfaceSpec {
             match_tolerance: None,
             search_distance: None,
             sliding: Sliding::Small,
+            cyclic: None,
         }
     }
 

@@ -73,6 +73,13 @@
 //! 3D). The first iteration, before any local stage, counts an interface open when its initial
 //! gap is positive at every point.
 //!
+//! # Cyclic interfaces
+//! On a cyclic interface (module [`crate::cyclic`]) side 2's fields are in its own frame,
+//! rotated by `R` from the points' frame: its macro basis is `R e_j`, so that the macro
+//! constraint balances the rotated resultant and moment, `E^T (M_1 F_1 + M_2 R^T F_2) = 0`.
+//! When both sides belong to one substructure, its two links' responses to the same macro
+//! unknown are two columns of the same index, whose sum is its response.
+//!
 //! # Search direction
 //! A large search direction `k` makes the micro (short-wavelength) interface modes converge in
 //! a mesh-independent number of iterations but leaves the long-wavelength (macro) ones to a
@@ -174,6 +181,19 @@ impl InterfaceModes {
             }
         }
         InterfaceModes { offset, modes }
+    }
+
+    /// The same macro unknowns seen from the other side of a cyclic interface: every mode
+    /// rotated, `R e_j(p)` (module [`crate::cyclic`]).
+    pub fn rotated(&self, r: &crate::cyclic::Mat3) -> Self {
+        InterfaceModes {
+            offset: self.offset,
+            modes: self
+                .modes
+                .iter()
+                .map(|e| e.iter().map(|v| crate::cyclic::apply(r, v)).collect())
+                .collect(),
+        }
     }
 
     /// Number of modes.

@@ -82,9 +82,9 @@ pub fn contact_rows_since(it: &InterfaceResult, origin: Option<&[[f64; 3]]>) -> 
         .map(|i| {
             let p = &it.points[i];
             let n = p.normal;
-            let phi = it.fhat[1][i];
+            let phi = it.side2_force(i);
             let a = it.what[0][i];
-            let b = it.what[1][i];
+            let b = it.pairing.to_points(1, it.what[1][i]);
             let jump = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
             let total_slip = tangential(jump, &n);
             let j0 = origin.and_then(|o| o.get(i)).copied().unwrap_or([0.0; 3]);

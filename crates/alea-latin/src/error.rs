@@ -58,6 +58,15 @@ pub enum LatinError {
         /// What is wrong.
         message: String,
     },
+    /// The two faces of a cyclic interface do not map onto each other under its rotation, or
+    /// the interface is not one that cyclic symmetry applies to (module [`crate::cyclic`]).
+    #[error("interface '{interface}': cyclic symmetry: {message}")]
+    Cyclic {
+        /// Interface name.
+        interface: String,
+        /// What is wrong.
+        message: String,
+    },
     /// The dense interface operators of the condensed linear stage (forced by
     /// `LinearStage::Condensed`) would not fit in a quarter of the available memory.
     #[error(

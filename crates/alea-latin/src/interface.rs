@@ -18,6 +18,10 @@
 //! the nodes only nearly coincide (within the tolerance; each side's own weights then differ
 //! slightly and the LATIN iteration had no fixed point, issue 21).
 //!
+//! **Cyclic interfaces** (module [`crate::cyclic`]): [`pair_sides`] pairs side 1 with side 2's
+//! mesh mapped back by the interface's rotation, and the pairing records the rotation
+//! ([`InterfacePairing::rotation`]); side 2's fields stay in its own frame.
+//!
 //! The interface mass `M_Gamma,ij = int N_i N_j dS` (times the thickness in 2D) is lumped with
 //! the HRZ rule (diagonal proportional to the consistent diagonal, scaled to the facet measure),
 //! which keeps every weight positive for quadratic facets too. The normal at a node is the
@@ -28,7 +32,11 @@ use alea_fem::{Quadrature, kinematics::facet_geometry};
 use alea_mesh::Mesh;
 use alea_mesh::vec3::norm;
 
+use alea_fem::DofMap;
+
 use crate::LatinError;
+use crate::cyclic;
+use crate::mortar::pair_mortar;
 
 /// Lumped weights and normals of the nodes of one facet group.
 #[derive(Clone, Debug)]
@@ -225,7 +233,9 @@ pub fn pair_nodes(
                 .map(|k| (x2[j][k] - p[k]).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            if d < best.0 {
+            // Within the tolerance in every direction, not only in x (the window): mirror
+            // images in y, z would otherwise pair.
+            if d <= tol && d < best.0 {
                 best = (d, j);
             }
         }
@@ -256,6 +266,76 @@ pub fn pair_nodes(
         });
     }
     Ok(partner)
+}
+
+/// Pairs the two sides of interface `spec` (substructures `subs = [side 1's, side 2's]`) as
+/// `spec.pairing` asks - node to node, mortar, or node to node when the sides match and
+/// mortar otherwise - unless the caller `given` the pairing; a cyclic interface pairs side 1
+/// with side 2 mapped back by its rotation and checks that the faces cover each other (module
+/// [`crate::cyclic`]). Mortar points are not put on nodes held in every direction by their
+/// substructure's constraints (module [`crate::mortar`]).
+///
+/// # Errors
+/// The pairing's errors ([`LatinError::Unmatched`], [`LatinError::Pairing`]; for a cyclic
+/// interface [`LatinError::Cyclic`]) and a substructure's constraints that do not apply.
+pub(crate) fn pair_sides(
+    spec: &crate::InterfaceSpec,
+    subs: [&crate::Substructure; 2],
+    given: Option<InterfacePairing>,
+) -> Result<InterfacePairing, LatinError> {
+    let [s1, s2] = subs;
+    let fem = |sub: &str| {
+        let sub = sub.to_string();
+        move |source| LatinError::Fem {
+            sub: sub.clone(),
+            source,
+        }
+    };
+    // A cyclic interface pairs side 1 with side 2 mapped back by its rotation.
+    let mapped = spec
+        .cyclic
+        .as_ref()
+        .map(|c| cyclic::mapped_back(c, &s2.model.mesh));
+    let sides = [
+        (
+            &s1.model.mesh,
+            spec.group1.as_str(),
+            s1.model.analysis.thickness(),
+        ),
+        (
+            mapped.as_ref().unwrap_or(&s2.model.mesh),
+            spec.group2.as_str(),
+            s2.model.analysis.thickness(),
+        ),
+    ];
+    let held1 = DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem(&s1.name))?;
+    let held2 = DofMap::for_mesh(&s2.model.mesh, &s2.constraints).map_err(fem(&s2.name))?;
+    let fixed1 = |n: usize| held1.node_dofs(n).is_empty();
+    let fixed2 = |n: usize| held2.node_dofs(n).is_empty();
+    let mortar = || {
+        pair_mortar(
+            &spec.name,
+            sides,
+            spec.search_distance,
+            spec.law.uses_gap() || spec.cyclic.is_some(),
+            [&fixed1, &fixed2],
+        )
+    };
+    let cyc = |e| cyclic::pairing_error(spec, e);
+    let pairing = match (given, spec.pairing) {
+        (Some(p), _) => p,
+        (None, Pairing::NodeToNode) => {
+            pair_node_to_node(&spec.name, sides, spec.match_tolerance).map_err(cyc)?
+        }
+        (None, Pairing::Mortar) => mortar().map_err(cyc)?,
+        (None, Pairing::Auto) => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
+            Ok(p) => p,
+            Err(LatinError::Unmatched { .. }) => mortar().map_err(cyc)?,
+            Err(e) => return Err(e),
+        },
+    };
+    let pairing = cyclic::finish(spec, pairing, sides)?;
+    Ok(pairing)
 }
 
 /// How an interface's points are found from its two sides.
@@ -400,6 +480,10 @@ pub struct InterfacePairing {
     pub geometric_gap: Vec<f64>,
     /// Projections of side 1 and side 2.
     pub sides: [SideProjection; 2],
+    /// Cyclic symmetry (module [`crate::cyclic`]): the rotation `R` from side 1's frame, the
+    /// frame of the points, to side 2's (side 2's fields are stored in its own frame); `None`
+    /// for an ordinary interface (both sides in the same frame).
+    pub rotation: Option<crate::cyclic::Mat3>,
 }
 
 impl InterfacePairing {
@@ -411,6 +495,24 @@ impl InterfacePairing {
     /// True if there is no point.
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
+    }
+
+    /// A vector of side `s`'s frame in the points' frame (side 1's): `R^T v` on side 2 of a
+    /// cyclic interface, `v` otherwise.
+    pub fn to_points(&self, s: usize, v: [f64; 3]) -> [f64; 3] {
+        match (&self.rotation, s) {
+            (Some(r), 1) => crate::cyclic::apply_transpose(r, &v),
+            _ => v,
+        }
+    }
+
+    /// A vector of the points' frame in side `s`'s frame: `R v` on side 2 of a cyclic
+    /// interface, `v` otherwise.
+    pub fn to_side(&self, s: usize, v: [f64; 3]) -> [f64; 3] {
+        match (&self.rotation, s) {
+            (Some(r), 1) => crate::cyclic::apply(r, &v),
+            _ => v,
+        }
     }
 }
 
@@ -448,5 +550,6 @@ pub fn pair_node_to_node(
             SideProjection::identity(g1.nodes, g1.weights),
             SideProjection::identity(nodes2, weights2),
         ],
+        rotation: None,
     })
 }

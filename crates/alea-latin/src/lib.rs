@@ -18,12 +18,16 @@
 //! a load cycle of such steps (slip amplitude, frictional work, stick zone, Ruiz F1 / F2, SWT):
 //! [`fretting`].
 //!
+//! Cyclic symmetry (zero harmonic): a perfect interface joining a sector's two faces through
+//! the sector's rotation, `u(B) = R u(A)`, `F_B = -R F_A` ([`cyclic`]).
+//!
 //! This crate knows nothing about probability.
 
 mod anderson;
 mod assembly;
 mod coarse;
 pub mod contact;
+pub mod cyclic;
 pub mod dense;
 mod equilibrium;
 mod error;
@@ -41,6 +45,7 @@ mod solver;
 pub mod steps;
 
 pub use assembly::{Assembly, InterfaceSpec, PointField, Sliding, Substructure, constant};
+pub use cyclic::Cyclic;
 pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
 pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};

@@ -136,9 +136,11 @@ pub fn write_step(
             let proj = &it.pairing.sides[side];
             if proj.is_identity() {
                 for (i, &node) in it.nodes[side].iter().enumerate() {
-                    let n = it.points[i].normal;
+                    // Normal and jump in the side's own frame (a cyclic side 2's: rotated).
+                    let n = it.pairing.to_side(side, it.points[i].normal);
                     let fh = it.fhat[side][i];
-                    f.set(node, it.status[i].code() as f64, &n, &fh, &it.jump(i));
+                    let j = it.pairing.to_side(side, it.jump(i));
+                    f.set(node, it.status[i].code() as f64, &n, &fh, &j);
                 }
                 continue;
             }
@@ -152,10 +154,12 @@ pub fn write_step(
                     let a = acc.entry(node).or_default();
                     let w = m * c;
                     a.weight += w;
+                    let n = it.pairing.to_side(side, it.points[p].normal);
+                    let j = it.pairing.to_side(side, it.jump(p));
                     for k in 0..3 {
                         a.force[k] += w * it.fhat[side][p][k];
-                        a.normal[k] += w * it.points[p].normal[k];
-                        a.jump[k] += w * it.jump(p)[k];
+                        a.normal[k] += w * n[k];
+                        a.jump[k] += w * j[k];
                     }
                     if w > a.best.0 {
                         a.best = (w, it.status[p].code() as f64);

@@ -93,9 +93,10 @@ pub struct InterfaceResult {
 }
 
 impl InterfaceResult {
-    /// Local-stage jump including the shape defect, `[W_hat] + g0 n` at point `i`.
+    /// Local-stage jump including the shape defect, `[W_hat] + g0 n` at point `i` (on a
+    /// cyclic interface in side 1's frame, `R^T W_hat_2 - W_hat_1`, module [`crate::cyclic`]).
     pub fn jump(&self, i: usize) -> [f64; 3] {
-        let (a, b) = (self.what[0][i], self.what[1][i]);
+        let (a, b) = (self.what[0][i], self.pairing.to_points(1, self.what[1][i]));
         let p = &self.points[i];
         [
             b[0] - a[0] + p.gap * p.normal[0],
@@ -104,12 +105,19 @@ impl InterfaceResult {
         ]
     }
 
+    /// The local-stage force on side 2 at point `i`, `F_hat_2`, in the points' frame (side 1's:
+    /// `R^T F_hat_2` on a cyclic interface, module [`crate::cyclic`]; `fhat[1]` holds it in
+    /// side 2's own frame).
+    pub fn side2_force(&self, i: usize) -> [f64; 3] {
+        self.pairing.to_points(1, self.fhat[1][i])
+    }
+
     /// Work of the interface forces `int ([W_hat] + g0 n) . F_hat_2 dS` (thesis 2.3.2: the
     /// work of the friction forces; with the gap included, the normal part vanishes by
     /// complementarity, so this is `int [W_hat]_t . F_t dS <= 0` for Coulomb contact).
     pub fn work(&self) -> f64 {
         (0..self.points.len())
-            .map(|i| self.weights[i] * dot(&self.jump(i), &self.fhat[1][i]))
+            .map(|i| self.weights[i] * dot(&self.jump(i), &self.side2_force(i)))
             .sum()
     }
 
@@ -119,7 +127,7 @@ impl InterfaceResult {
             .map(|i| {
                 let n = self.points[i].normal;
                 let j = self.jump(i);
-                let f = self.fhat[1][i];
+                let f = self.side2_force(i);
                 let (jn, fn_) = (dot(&j, &n), dot(&f, &n));
                 let jt = [j[0] - jn * n[0], j[1] - jn * n[1], j[2] - jn * n[2]];
                 let ft = [f[0] - fn_ * n[0], f[1] - fn_ * n[1], f[2] - fn_ * n[2]];
@@ -128,7 +136,7 @@ impl InterfaceResult {
             .sum()
     }
 
-    /// Resultant force exerted on side 2, `int F_hat_2 dS`.
+    /// Resultant force exerted on side 2, `int F_hat_2 dS` (in side 2's frame).
     pub fn resultant(&self) -> [f64; 3] {
         let mut r = [0.0; 3];
         for (m, f) in self.weights.iter().zip(&self.fhat[1]) {
@@ -142,7 +150,7 @@ impl InterfaceResult {
     /// Normal and tangential magnitudes of the force on side 2 at point `i`.
     pub fn normal_tangential(&self, i: usize) -> (f64, f64) {
         let n = self.points[i].normal;
-        let f = self.fhat[1][i];
+        let f = self.side2_force(i);
         let fn_ = dot(&f, &n);
         let ft = [f[0] - fn_ * n[0], f[1] - fn_ * n[1], f[2] - fn_ * n[2]];
         (fn_, dot(&ft, &ft).sqrt())

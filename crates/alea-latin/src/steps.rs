@@ -124,7 +124,11 @@ pub fn step_origins(prev: Option<&RunResult>, cur: &RunResult) -> Vec<Vec<V3>> {
         .map(|(i, it)| {
             (0..it.points.len())
                 .map(|p| match prev.and_then(|r| r.interfaces.get(i)) {
-                    Some(old) => tangential(old.what[0][p], old.what[1][p], it.points[p].normal),
+                    Some(old) => tangential(
+                        old.what[0][p],
+                        old.pairing.to_points(1, old.what[1][p]),
+                        it.points[p].normal,
+                    ),
                     None => [0.0; 3],
                 })
                 .collect()
@@ -144,7 +148,11 @@ impl crate::InterfaceResult {
     /// tangential jump at the start of the step ([`step_origins`]; zero: since the unloaded
     /// state, the total tangential jump).
     pub fn step_slip(&self, p: usize, origin: &[V3]) -> V3 {
-        let jt = tangential(self.what[0][p], self.what[1][p], self.points[p].normal);
+        let jt = tangential(
+            self.what[0][p],
+            self.pairing.to_points(1, self.what[1][p]),
+            self.points[p].normal,
+        );
         let j0 = origin.get(p).copied().unwrap_or([0.0; 3]);
         [jt[0] - j0[0], jt[1] - j0[1], jt[2] - j0[2]]
     }
@@ -153,7 +161,7 @@ impl crate::InterfaceResult {
     /// (`origin`: `j0` per point, [`step_origins`]).
     pub fn step_friction_dissipation(&self, origin: &[V3]) -> f64 {
         (0..self.points.len())
-            .map(|p| -self.weights[p] * dot(&self.step_slip(p, origin), &self.fhat[1][p]))
+            .map(|p| -self.weights[p] * dot(&self.step_slip(p, origin), &self.side2_force(p)))
             .sum()
     }
 
@@ -167,7 +175,7 @@ impl crate::InterfaceResult {
                 let j = self.jump(p);
                 let j0 = origin.get(p).copied().unwrap_or([0.0; 3]);
                 let d = [j[0] - j0[0], j[1] - j0[1], j[2] - j0[2]];
-                self.weights[p] * dot(&d, &self.fhat[1][p])
+                self.weights[p] * dot(&d, &self.side2_force(p))
             })
             .sum()
     }

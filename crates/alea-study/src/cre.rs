@@ -426,7 +426,11 @@ impl CreSetup {
             .map(|ir| {
                 (0..ir.points.len())
                     .map(|i| {
-                        let (a, b) = (ir.what_prev[0][i], ir.what_prev[1][i]);
+                        // Side 2 in the points' frame (a cyclic interface's `R^T W_2`).
+                        let (a, b) = (
+                            ir.what_prev[0][i],
+                            ir.pairing.to_points(1, ir.what_prev[1][i]),
+                        );
                         let p = &ir.points[i];
                         [
                             b[0] - a[0] + p.gap * p.normal[0],
@@ -437,7 +441,11 @@ impl CreSetup {
                     .collect()
             })
             .collect();
-        let force = res.interfaces.iter().map(|ir| ir.fhat[1].clone()).collect();
+        let force = res
+            .interfaces
+            .iter()
+            .map(|ir| (0..ir.points.len()).map(|i| ir.side2_force(i)).collect())
+            .collect();
         Ok(CreRecord {
             young: res.young_factors.clone(),
             coefficients,

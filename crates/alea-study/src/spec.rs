@@ -211,6 +211,24 @@ pub struct InterfaceSpecToml {
     /// solve, module `alea_latin::large_sliding`).
     #[serde(default)]
     pub sliding: Option<Spanned<String>>,
+    /// Cyclic symmetry (zero harmonic, perfect interfaces): side 2 is side 1's image by the
+    /// rotation of `angle_deg` about `axis` through `center` (module `alea_latin::cyclic`).
+    #[serde(default)]
+    pub cyclic: Option<Spanned<CyclicSpec>>,
+}
+
+/// `cyclic = { angle_deg = 15.0, center = [0, 0], axis = [0, 0, 1] }` of an `[[interface]]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CyclicSpec {
+    /// Sector angle in degrees, in `(0, 180]`.
+    pub angle_deg: Spanned<f64>,
+    /// A point of the axis (2 or 3 coordinates). Default the origin.
+    #[serde(default)]
+    pub center: Option<Spanned<Vec<f64>>>,
+    /// Axis direction (3 components, right-hand rule). Default `[0, 0, 1]`.
+    #[serde(default)]
+    pub axis: Option<Spanned<Vec<f64>>>,
 }
 
 /// `[solver]`.

@@ -220,6 +220,7 @@ fn one_way(
             SideProjection::identity(vec![], vec![]),
             SideProjection::identity(vec![], vec![]),
         ],
+        rotation: None,
     };
     let mut rows: [(Vec<usize>, Vec<usize>, Vec<f64>); 2] = Default::default();
     for r in rows.iter_mut() {

@@ -8,7 +8,7 @@
 use rayon::prelude::*;
 
 use super::{Coarse, LatinSolver, Run, SubOperator, SubState};
-use crate::coarse::{InterfaceModes, SubMacro, macro_inverse};
+use crate::coarse::{SubMacro, macro_inverse};
 use crate::{PointData, PointStatus};
 
 impl Coarse {
@@ -67,7 +67,8 @@ impl LatinSolver {
             for side in 0..2 {
                 let (s, l) = (op.sub[side], op.link[side]);
                 let w = &self.subs[s].links[l].proj.weights;
-                cs.modes[i].add_resultants(w, &sstate[s].f_new[l], &mut b);
+                cs.side_modes(i, side)
+                    .add_resultants(w, &sstate[s].f_new[l], &mut b);
             }
         }
         let lambda: Vec<f64> = (0..n)
@@ -78,9 +79,7 @@ impl LatinSolver {
             .zip(sstate.par_iter_mut())
             .zip(cs.subs.par_iter())
             .enumerate()
-            .for_each(|(s, ((op, st), sm))| {
-                coarse_correction(op, sm, &cs.modes, st, &lambda, alpha[s])
-            });
+            .for_each(|(s, ((op, st), sm))| coarse_correction(op, sm, cs, st, &lambda, alpha[s]));
     }
 }
 
@@ -92,7 +91,7 @@ impl LatinSolver {
 fn coarse_correction(
     op: &SubOperator,
     sm: &SubMacro,
-    modes: &[InterfaceModes],
+    cs: &Coarse,
     st: &mut SubState,
     lambda: &[f64],
     alpha: f64,
@@ -100,7 +99,7 @@ fn coarse_correction(
     // Forces from the whole response (admissible with the corrected displacement: a rigid
     // motion in the free modes does no work), displacements without the free rigid part.
     for (li, l) in op.links.iter().enumerate() {
-        let im = &modes[l.iface];
+        let im = cs.side_modes(l.iface, l.side);
         let lam = &lambda[im.offset..im.offset + im.len()];
         for p in 0..l.proj.len() {
             let mut e = [0.0; 3];

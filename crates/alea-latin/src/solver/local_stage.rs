@@ -24,8 +24,9 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::direction::Series;
-use super::{InterfaceOperator, InterfaceState, LatinSolver, Run, SubOperator, SubState};
+use super::{InterfaceOperator, InterfaceState, LatinSolver, Run, SubOperator, SubState, V3};
 use crate::PointData;
+use crate::cyclic::{apply, apply_transpose};
 use crate::law::local_stage_from;
 use alea_mesh::vec3::dot;
 
@@ -126,6 +127,23 @@ fn local_stage(
         &sstate[op.sub[0]].f[op.link[0]],
         &sstate[op.sub[1]].f[op.link[1]],
     ];
+    // Cyclic symmetry (module `crate::cyclic`): side 2 seen in side 1's frame, `R^T W_2`,
+    // `R^T F_2`; its local-stage values are rotated back below. The direction of a cyclic
+    // (perfect) interface is isotropic, so every norm is the same in either frame.
+    let rot = op.pairing.rotation;
+    let back = |v: &Vec<V3>| -> Vec<V3> {
+        v.iter()
+            .map(|x| rot.map_or(*x, |r| apply_transpose(&r, x)))
+            .collect()
+    };
+    let (w1r, f1r) = match rot {
+        Some(_) => (back(w[1]), back(f[1])),
+        None => (Vec::new(), Vec::new()),
+    };
+    let (w, f) = match rot {
+        Some(_) => ([w[0], &w1r], [f[0], &f1r]),
+        None => (w, f),
+    };
     std::mem::swap(&mut st.what_prev, &mut st.what_last);
     let (mut dist, mut norm_s, mut norm_h, mut norm_in) = (0.0, 0.0, 0.0, 0.0);
     for (i, p) in pts.iter().enumerate() {
@@ -210,6 +228,11 @@ fn local_stage(
             norm_s += m * (d[s].energy(al[s], &w[s][i]) + d[s].co_energy(al[s], &f[s][i]));
             norm_h +=
                 m * (d[s].energy(al[s], &st.what[s][i]) + d[s].co_energy(al[s], &st.fhat[s][i]));
+        }
+    }
+    if let Some(r) = &rot {
+        for v in st.what[1].iter_mut().chain(st.fhat[1].iter_mut()) {
+            *v = apply(r, v);
         }
     }
     st.what_last[0].clone_from(&st.what[0]);

@@ -376,7 +376,20 @@ struct Coarse {
     /// Number of macro unknowns.
     n: usize,
     modes: Vec<InterfaceModes>,
+    /// Side 2's macro basis where it differs from side 1's: the rotated modes `R e_j` of a
+    /// cyclic interface (module `crate::cyclic`).
+    rotated: Vec<Option<InterfaceModes>>,
     subs: Vec<SubMacro>,
+}
+
+impl Coarse {
+    /// The macro basis of side `side` of interface `i`.
+    fn side_modes(&self, i: usize, side: usize) -> &InterfaceModes {
+        match (&self.rotated[i], side) {
+            (Some(m), 1) => m,
+            _ => &self.modes[i],
+        }
+    }
 }
 
 /// The working state of one run.

@@ -18,8 +18,7 @@ use super::{
 };
 use crate::coarse::{InterfaceModes, MacroLink, SubMacro};
 use crate::equilibrium::RigidModes;
-use crate::interface::{InterfacePairing, Pairing, pair_node_to_node, side_geometry};
-use crate::mortar::pair_mortar;
+use crate::interface::{InterfacePairing, pair_sides, side_geometry};
 use crate::{Assembly, InterfaceSpec, LatinError, PointData, Substructure};
 
 pub(super) fn fem_err(sub: &str) -> impl Fn(alea_fem::FemError) -> LatinError + '_ {
@@ -145,7 +144,8 @@ fn interface_operator(
             )));
         }
     }
-    if spec.sub1 == spec.sub2 {
+    crate::cyclic::check_spec(spec, subs)?;
+    if spec.sub1 == spec.sub2 && spec.cyclic.is_none() {
         return Err(LatinError::Invalid(format!(
             "interface '{}' joins substructure '{}' to itself",
             spec.name, subs[spec.sub1].name
@@ -161,41 +161,7 @@ fn interface_operator(
         .mesh
         .facet_group(&spec.group2)
         .map_err(mesh_err(&s2.name))?;
-    let sides = [
-        (
-            &s1.model.mesh,
-            spec.group1.as_str(),
-            s1.model.analysis.thickness(),
-        ),
-        (
-            &s2.model.mesh,
-            spec.group2.as_str(),
-            s2.model.analysis.thickness(),
-        ),
-    ];
-    let held1 = DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem_err(&s1.name))?;
-    let held2 = DofMap::for_mesh(&s2.model.mesh, &s2.constraints).map_err(fem_err(&s2.name))?;
-    let fixed1 = |n: usize| held1.node_dofs(n).is_empty();
-    let fixed2 = |n: usize| held2.node_dofs(n).is_empty();
-    let mortar = || {
-        pair_mortar(
-            &spec.name,
-            sides,
-            spec.search_distance,
-            spec.law.uses_gap(),
-            [&fixed1, &fixed2],
-        )
-    };
-    let pairing = match (given, spec.pairing) {
-        (Some(p), _) => p,
-        (None, Pairing::NodeToNode) => pair_node_to_node(&spec.name, sides, spec.match_tolerance)?,
-        (None, Pairing::Mortar) => mortar()?,
-        (None, Pairing::Auto) => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
-            Ok(p) => p,
-            Err(LatinError::Unmatched { .. }) => mortar()?,
-            Err(e) => return Err(e),
-        },
-    };
+    let pairing = pair_sides(spec, [s1, s2], given)?;
     let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
         .map_err(mesh_err(&s1.name))?;
     // Characteristic length and side moduli for the default search direction.
@@ -328,6 +294,15 @@ pub(super) fn coarse_with(
             m
         })
         .collect();
+    let rotated: Vec<Option<InterfaceModes>> = ifaces
+        .iter()
+        .zip(&modes)
+        .map(|(op, m)| op.pairing.rotation.map(|r| m.rotated(&r)))
+        .collect();
+    let side_modes = |l: &Link| match (&rotated[l.iface], l.side) {
+        (Some(m), 1) => m,
+        _ => &modes[l.iface],
+    };
     let subs: Vec<SubMacro> = ops
         .par_iter()
         .enumerate()
@@ -343,7 +318,7 @@ pub(super) fn coarse_with(
                 .map(|l| MacroLink {
                     proj: &l.proj,
                     dir: &l.dir,
-                    modes: &modes[l.iface],
+                    modes: side_modes(l),
                 })
                 .collect();
             SubMacro::new(&op.dofs, &op.chol, &links, &op.rigid, &op.model.mesh.coords)
@@ -352,6 +327,7 @@ pub(super) fn coarse_with(
     Coarse {
         n: offset,
         modes,
+        rotated,
         subs,
     }
 }

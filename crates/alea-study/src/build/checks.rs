@@ -1,6 +1,7 @@
 //! Consistency checks of a built model, done when the file is loaded so that every mistake is
 //! an input error naming file, line and field (exit code 2), never a failure of the solver
-//! set-up: two sides on two different substructures; when the sides' nodes pair one to one
+//! set-up: two sides on two different substructures (or, for a cyclic interface, side 2 mapped
+//! back by its rotation falling on side 1: `alea_latin::cyclic::check_faces`); when the sides' nodes pair one to one
 //! (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]), paired nodes have
 //! opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet belongs to two
 //! interfaces (sides that do not match are paired by the mortar method, whose errors are
@@ -30,7 +31,12 @@ pub fn check_interfaces(
     let mut owner: HashMap<(usize, Vec<usize>), usize> = HashMap::new();
     for (i, (spec, it)) in specs.iter().zip(&model.assembly.interfaces).enumerate() {
         let field = format!("interface[{i}]");
-        if it.sub1 == it.sub2 {
+        if let Some(c) = &spec.cyclic {
+            // Side 2 mapped back by the rotation must fall on side 1 (the solver's own
+            // pairing and cover checks, module `alea_latin::cyclic`).
+            alea_latin::cyclic::check_faces(it, subs)
+                .map_err(|e| src.error(c.span(), format!("{field}.cyclic"), e.to_string()))?;
+        } else if it.sub1 == it.sub2 {
             return Err(src.error(
                 spec.side2.span(),
                 format!("{field}.side2"),
@@ -82,6 +88,9 @@ pub fn check_interfaces(
         // Sides that do not match node to node are paired by the mortar method or rejected
         // when the solver is built (`BuiltModel::solver`, naming the tolerance or search
         // distance field); the facing check below is for coincident nodes.
+        if it.cyclic.is_some() {
+            continue;
+        }
         let Ok(partner) = pair_nodes(
             &it.name,
             &x(it.sub1, &g1.nodes),

@@ -9,7 +9,7 @@ use super::values::{compile, field_place, positive};
 use crate::expr::Expr;
 use crate::params::ParamSpace;
 use crate::random_field::FieldDomain;
-use crate::spec::{InterfaceSpecToml, ModelFile, NumOrExpr};
+use crate::spec::{CyclicSpec, InterfaceSpecToml, ModelFile, NumOrExpr};
 use crate::{Source, StudyError};
 
 /// Builds every `[[interface]]` between the substructures `subs` (named `names`) at the
@@ -148,7 +148,8 @@ fn friction_and_gap(
     Ok((mu, gap))
 }
 
-/// Sets interface `i`'s `pairing`, `sliding`, `tolerance` and `search_distance` on `spec`.
+/// Sets interface `i`'s `pairing`, `sliding`, `cyclic`, `tolerance` and `search_distance` on
+/// `spec`.
 fn apply_interface_settings(
     src: &Source,
     i: usize,
@@ -190,6 +191,9 @@ fn apply_interface_settings(
             }
         };
     }
+    if let Some(c) = &it.cyclic {
+        spec.cyclic = Some(cyclic(src, i, c, spec.law.name())?);
+    }
     if let Some(t) = &it.tolerance {
         spec.match_tolerance = Some(positive(src, t, &f("tolerance"))?);
     }
@@ -207,6 +211,60 @@ fn apply_interface_settings(
     Ok(())
 }
 
+/// Interface `i`'s `cyclic` table (law `law`): a perfect interface, an angle in `(0, 180]`
+/// degrees, a finite centre of 2 or 3 coordinates, a finite non-zero axis of 3 components.
+fn cyclic(
+    src: &Source,
+    i: usize,
+    c: &Spanned<CyclicSpec>,
+    law: &str,
+) -> Result<alea_latin::Cyclic, StudyError> {
+    let f = |k: &str| format!("interface[{i}].cyclic{k}");
+    if law != "perfect" {
+        return Err(src.error(
+            c.span(),
+            f(""),
+            format!(
+                "cyclic symmetry applies to perfect interfaces (law = \"perfect\"), not to '{law}'"
+            ),
+        ));
+    }
+    let cs = c.get_ref();
+    let angle = *cs.angle_deg.get_ref();
+    alea_latin::cyclic::check_angle(angle)
+        .map_err(|m| src.error(cs.angle_deg.span(), f(".angle_deg"), m))?;
+    let center = match &cs.center {
+        Some(v) => {
+            let x = v.get_ref();
+            if !(x.len() == 2 || x.len() == 3) || x.iter().any(|c| !c.is_finite()) {
+                return Err(src.error(
+                    v.span(),
+                    f(".center"),
+                    format!("must be 2 or 3 finite coordinates, got {x:?}"),
+                ));
+            }
+            [x[0], x[1], x.get(2).copied().unwrap_or(0.0)]
+        }
+        None => [0.0; 3],
+    };
+    let axis = match &cs.axis {
+        Some(v) => {
+            let x = v.get_ref();
+            if x.len() != 3 || x.iter().any(|c| !c.is_finite()) || x.iter().all(|&c| c == 0.0) {
+                return Err(src.error(
+                    v.span(),
+                    f(".axis"),
+                    format!("must be 3 finite components, not all zero, got {x:?}"),
+                ));
+            }
+            [x[0], x[1], x[2]]
+        }
+        None => [0.0, 0.0, 1.0],
+    };
+    alea_latin::Cyclic::new(angle, center, axis)
+        .map_err(|e| src.error(c.span(), f(""), e.to_string()))
+}
+
 /// The lines of the model file where interface `it`'s settings are (or would go: `side2`'s),
 /// for the messages that suggest changing them.
 fn interface_site(src: &Source, it: &InterfaceSpecToml) -> InterfaceSite {
@@ -219,5 +277,6 @@ fn interface_site(src: &Source, it: &InterfaceSpecToml) -> InterfaceSite {
         tolerance: line_or(it.tolerance.as_ref().map(|t| t.span())),
         search_distance: line_or(it.search_distance.as_ref().map(|t| t.span())),
         sliding: line_or(it.sliding.as_ref().map(|t| t.span())),
+        cyclic: line_or(it.cyclic.as_ref().map(|t| t.span())),
     }
 }

@@ -259,6 +259,8 @@ pub struct InterfaceSite {
     pub search_distance: usize,
     /// Line of `sliding` (of `side2` if not given).
     pub sliding: usize,
+    /// Line of `cyclic` (of `side2` if not given).
+    pub cyclic: usize,
 }
 
 impl BuiltModel {
@@ -268,9 +270,10 @@ impl BuiltModel {
     /// the field.
     pub fn solver(&self) -> Result<alea_latin::LatinSolver, StudyError> {
         alea_latin::LatinSolver::new(self.assembly.clone(), self.options.clone()).map_err(|e| {
-            let (name, unmatched) = match &e {
-                alea_latin::LatinError::Unmatched { interface, .. } => (interface, true),
-                alea_latin::LatinError::Pairing { interface, .. } => (interface, false),
+            let (name, unmatched, cyclic) = match &e {
+                alea_latin::LatinError::Unmatched { interface, .. } => (interface, true, false),
+                alea_latin::LatinError::Pairing { interface, .. } => (interface, false, false),
+                alea_latin::LatinError::Cyclic { interface, .. } => (interface, false, true),
                 _ => return StudyError::Latin(e),
             };
             let found = self
@@ -280,7 +283,9 @@ impl BuiltModel {
                 .position(|i| &i.name == name);
             match found.and_then(|i| Some((i, self.interface_sites.get(i)?))) {
                 Some((i, site)) => {
-                    let (field, line) = if unmatched {
+                    let (field, line) = if cyclic {
+                        ("cyclic", site.cyclic)
+                    } else if unmatched {
                         ("tolerance", site.tolerance)
                     } else if self.assembly.interfaces[i].search_distance.is_some() {
                         ("search_distance", site.search_distance)

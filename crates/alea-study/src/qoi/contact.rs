@@ -77,7 +77,7 @@ impl ContactQoi {
     fn value(&self, it: &InterfaceResult, i: usize) -> f64 {
         let n = it.points[i].normal;
         match self.field {
-            ContactField::Pressure => dot(&it.fhat[1][i], &n),
+            ContactField::Pressure => dot(&it.side2_force(i), &n),
             ContactField::Slip => {
                 let j = it.jump(i);
                 let jn = dot(&j, &n);
