@@ -119,6 +119,18 @@ impl Constraints {
         self
     }
 
+    /// The constraints of the nodes kept by `map` (`map(old) = Some(new)`), renumbered: the
+    /// constraints of a part of the mesh (module `alea_latin::split`).
+    pub fn restricted(&self, map: impl Fn(usize) -> Option<usize>) -> Constraints {
+        Constraints {
+            items: self
+                .items
+                .iter()
+                .filter_map(|&(n, d, v)| map(n).map(|m| (m, d, v)))
+                .collect(),
+        }
+    }
+
     /// Number of individual constraints.
     pub fn len(&self) -> usize {
         self.items.len()

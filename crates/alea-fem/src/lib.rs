@@ -20,6 +20,7 @@ mod loads;
 pub mod locate;
 mod material;
 mod model;
+pub mod partition;
 pub mod post;
 mod problem;
 pub mod quadrature;

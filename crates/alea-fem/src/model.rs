@@ -106,6 +106,33 @@ impl Model {
         Ok(())
     }
 
+    /// The model of some of its cells: `mesh` is the sub-mesh of cells `cells` of this
+    /// model's mesh (`cells[new] = old`, as [`alea_mesh::Mesh::extract_with_cells`] gives),
+    /// each keeping its material (module `alea_latin::split`).
+    ///
+    /// # Errors
+    /// If `cells` does not have one entry per cell of `mesh`, or names a cell this model does
+    /// not have.
+    pub fn restricted(&self, mesh: Mesh, cells: &[usize]) -> Result<Model, FemError> {
+        if cells.len() != mesh.num_cells() {
+            return Err(FemError::Setup(format!(
+                "{} cells mapped for a mesh of {}",
+                cells.len(),
+                mesh.num_cells()
+            )));
+        }
+        if let Some(&c) = cells.iter().find(|&&c| c >= self.cell_material.len()) {
+            return Err(FemError::Setup(format!("cell {c} is not in the model")));
+        }
+        let cell_material = cells.iter().map(|&c| self.cell_material[c]).collect();
+        Ok(Model {
+            mesh,
+            analysis: self.analysis,
+            materials: self.materials.clone(),
+            cell_material,
+        })
+    }
+
     /// Checks that every cell has a material.
     pub fn check(&self) -> Result<(), FemError> {
         if let Some(c) = self.cell_material.iter().position(|m| m.is_none()) {

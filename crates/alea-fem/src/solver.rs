@@ -92,6 +92,10 @@ impl std::fmt::Debug for Cholesky {
 }
 
 /// METIS nested-dissection ordering of the block graph; returns `(perm_fwd, perm_inv)` on dofs.
+/// METIS keeps its random-number state in process globals: one call at a time (module
+/// [`crate::partition`] too).
+pub(crate) static METIS_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 fn metis_order(a: &SymCsc, block_of_dof: &[usize]) -> Result<(Vec<usize>, Vec<usize>), FemError> {
     let n = a.n;
     let nb = block_of_dof.iter().map(|&b| b + 1).max().unwrap_or(0);
@@ -125,7 +129,6 @@ fn metis_order(a: &SymCsc, block_of_dof: &[usize]) -> Result<(Vec<usize>, Vec<us
         // substructures set up in parallel) would interleave it and give orderings, hence
         // rounding, that change from one run to the next. One call at a time; each call seeds
         // the generator itself, so the ordering is then reproducible.
-        static METIS_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
         let _guard = METIS_LOCK.lock().unwrap_or_else(|e| e.into_inner());
         let status = unsafe {
             metis_sys::METIS_SetDefaultOptions(options.as_mut_ptr());

@@ -66,6 +66,10 @@ pub struct InterfaceSpec {
     /// Cyclic symmetry: side 2 is side 1's image by this rotation, and the interface ties
     /// `u_2 = R u_1`, `F_2 = -R F_1` (perfect interfaces only; module [`crate::cyclic`]).
     pub cyclic: Option<Cyclic>,
+    /// The length and side moduli of the default search direction `k_0 = factor E / L`
+    /// (`None`: from the sides' groups, module `solver::setup`): a piece of a split interface
+    /// keeps its whole interface's (module [`crate::split`]).
+    pub direction_scale: Option<DirectionScale>,
 }
 
 /// Whether a contact interface keeps the pairing of the initial configuration.
@@ -111,6 +115,7 @@ impl InterfaceSpec {
             search_distance: None,
             sliding: Sliding::Small,
             cyclic: None,
+            direction_scale: None,
         }
     }
 
@@ -129,6 +134,16 @@ impl InterfaceSpec {
             ..Self::perfect(name, sub1, group1, sub2, group2)
         }
     }
+}
+
+/// The length `L` and the side moduli `[E_1, E_2]` of an interface's default search
+/// direction (module `solver::setup`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionScale {
+    /// Characteristic length (2D: the side-1 length; 3D: the square root of its area).
+    pub length: f64,
+    /// Mean Young's modulus of the cells along each side.
+    pub young: [f64; 2],
 }
 
 /// Substructures and interfaces.

@@ -42,9 +42,12 @@ mod result;
 pub mod samples;
 pub mod sliding;
 mod solver;
+pub mod split;
 pub mod steps;
 
-pub use assembly::{Assembly, InterfaceSpec, PointField, Sliding, Substructure, constant};
+pub use assembly::{
+    Assembly, DirectionScale, InterfaceSpec, PointField, Sliding, Substructure, constant,
+};
 pub use cyclic::Cyclic;
 pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;

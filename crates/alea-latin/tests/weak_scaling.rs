@@ -73,13 +73,7 @@ fn block(dims: [usize; 3]) -> Assembly {
             for i in 0..a {
                 let s = index(i, j, k);
                 let mut tie = |t: usize, g1: &str, g2: &str| {
-                    interfaces.push(InterfaceSpec::perfect(
-                        &format!("{s}-{t}"),
-                        s,
-                        g1,
-                        t,
-                        g2,
-                    ))
+                    interfaces.push(InterfaceSpec::perfect(&format!("{s}-{t}"), s, g1, t, g2))
                 };
                 if i + 1 < a {
                     tie(index(i + 1, j, k), "xmax", "xmin");
@@ -152,7 +146,14 @@ fn the_block_of_cubes_equals_one_mesh_of_it() {
 #[test]
 fn iterations_grow_little_from_4_to_64_substructures() {
     let mut counts = Vec::new();
-    for dims in [[2, 2, 1], [2, 2, 2], [4, 2, 2], [3, 3, 3], [4, 4, 2], [4, 4, 4]] {
+    for dims in [
+        [2, 2, 1],
+        [2, 2, 2],
+        [4, 2, 2],
+        [3, 3, 3],
+        [4, 4, 2],
+        [4, 4, 4],
+    ] {
         let asm = block(dims);
         let t = std::time::Instant::now();
         let r = solve(&asm, 1e-6);

@@ -70,6 +70,8 @@ mod result;
 mod setup;
 mod start;
 
+pub(crate) use setup::direction_scale;
+
 use std::sync::Arc;
 
 use alea_fem::{Cholesky, DofMap, Ordering};

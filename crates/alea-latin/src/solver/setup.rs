@@ -162,15 +162,6 @@ fn interface_operator(
         .facet_group(&spec.group2)
         .map_err(mesh_err(&s2.name))?;
     let pairing = pair_sides(spec, [s1, s2], given)?;
-    let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
-        .map_err(mesh_err(&s1.name))?;
-    // Characteristic length and side moduli for the default search direction.
-    let total: f64 = g1.weights.iter().sum();
-    let len = if s1.model.mesh.dim == 2 {
-        total / s1.model.analysis.thickness()
-    } else {
-        total.sqrt()
-    };
     let tangential = match search_direction {
         SearchDirection::Split { tangential, .. } => *tangential,
         SearchDirection::Auto { .. } | SearchDirection::Fixed(_) => 1.0,
@@ -182,9 +173,12 @@ fn interface_operator(
     }
     let k0 = match search_direction {
         SearchDirection::Auto { factor } | SearchDirection::Split { factor, .. } => {
-            let e1 = side_young(&s1.model, &spec.group1).map_err(fem_err(&s1.name))?;
-            let e2 = side_young(&s2.model, &spec.group2).map_err(fem_err(&s2.name))?;
-            [factor * e1 / len, factor * e2 / len]
+            let scale = match spec.direction_scale {
+                Some(scale) => scale,
+                None => direction_scale(spec, subs)?,
+            };
+            let [e1, e2] = scale.young;
+            [factor * e1 / scale.length, factor * e2 / scale.length]
         }
         SearchDirection::Fixed(k) => *k.get(i).ok_or_else(|| {
             LatinError::Invalid(format!(
@@ -333,6 +327,33 @@ pub(super) fn coarse_with(
 }
 
 /// Mean Young's modulus of the cells along a facet group.
+/// The characteristic length and side moduli of interface `spec`'s default search direction:
+/// the length of side 1 (2D; the square root of its area in 3D) and the mean modulus of the
+/// cells along each side.
+///
+/// # Errors
+/// A group that is not a facet group of its substructure.
+pub(crate) fn direction_scale(
+    spec: &InterfaceSpec,
+    subs: &[Substructure],
+) -> Result<crate::DirectionScale, LatinError> {
+    let (s1, s2) = (&subs[spec.sub1], &subs[spec.sub2]);
+    let g1 = side_geometry(&s1.model.mesh, &spec.group1, s1.model.analysis.thickness())
+        .map_err(mesh_err(&s1.name))?;
+    let total: f64 = g1.weights.iter().sum();
+    let length = if s1.model.mesh.dim == 2 {
+        total / s1.model.analysis.thickness()
+    } else {
+        total.sqrt()
+    };
+    let e1 = side_young(&s1.model, &spec.group1).map_err(fem_err(&s1.name))?;
+    let e2 = side_young(&s2.model, &spec.group2).map_err(fem_err(&s2.name))?;
+    Ok(crate::DirectionScale {
+        length,
+        young: [e1, e2],
+    })
+}
+
 fn side_young(model: &alea_fem::Model, group: &str) -> Result<f64, alea_fem::FemError> {
     let facets = model
         .mesh

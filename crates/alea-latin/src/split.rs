@@ -1,0 +1,588 @@
+//! Automatic subdomains (issue 38): large substructures split into parts joined by perfect
+//! interfaces, solved by the two-scale LATIN, and the answer given back on the user's
+//! substructures and interfaces.
+//!
+//! A substructure `Omega_s` asked to split in `k` parts is cut along the facets between the
+//! parts of a METIS k-way partition of its cells (`alea_fem::partition`): `Omega_s = U_j
+//! Omega_s^j`. Every part is a substructure of its own (its cells with their materials, the
+//! constraints of its nodes, the load cases' nodal forces of the nodes it owns: a node on a cut
+//! belongs to several parts and its force goes to the first, the perfect interface carries the
+//! rest), and every pair of parts sharing facets is joined by a perfect interface
+//! `Gamma_jm` (thesis (1.3): `W_j = W_m`, `F_j + F_m = 0`), node to node on the coincident
+//! copies of the cut's nodes. Each interface of the user between `Omega_s` and `Omega_t` is
+//! paired once on the undivided substructures; its points are then shared among pieces, one
+//! per pair of parts `(j, m)` holding the point's side-1 and side-2 nodes, each piece solved
+//! with the user's points (a given pairing) and the user's search direction (its length and
+//! moduli: the same `k_0 = E / L` as undivided, module `solver::setup`). The LATIN answer is
+//! that of the undivided model (the cuts' interfaces are perfect), to the solver tolerance;
+//! the coarse problem keeps the iteration count nearly flat with the number of parts
+//! (`tests/weak_scaling.rs`).
+//!
+//! [`Split::merge`] gives a run's result back on the user's assembly: each user node's
+//! displacement from the part that owns it, each user interface's point data from its
+//! pieces, each substructure's equilibrium check from its worst part. Not split: a
+//! substructure on a cyclic or large-sliding interface, or whose modulus varies from cell to
+//! cell in a run (refused by [`Split::new`] / [`Split::input`]).
+//!
+//! Why: a sparse factorisation of a 3D part of `n` unknowns costs `O(n^2)` to build and
+//! `O(n^{4/3})` to store and to solve with; `k` parts of `n / k` cost `O(n^2 / k)` and
+//! `O(n^{4/3} k^{-1/3})`, plus the interfaces (BENCHMARKS.md "Automatic subdomains").
+
+use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
+
+use alea_mesh::{Facet, Mesh};
+
+use crate::interface::{InterfacePairing, SideProjection, pair_sides};
+use crate::{
+    Assembly, InterfaceResult, InterfaceSpec, LatinError, LatinOptions, LatinSolver, LocalState,
+    RunInput, RunResult, Substructure,
+};
+
+/// The parts of one user substructure.
+#[derive(Clone, Debug)]
+struct Parts {
+    /// Inner substructure of each part.
+    inner: Vec<usize>,
+    /// Per part, its node of each user node (`usize::MAX`: not in the part).
+    local: Vec<Vec<usize>>,
+    /// The part and node that own each user node (its displacement, its nodal forces).
+    owner: Vec<(usize, usize)>,
+}
+
+/// The pieces of one user interface.
+#[derive(Clone, Debug)]
+enum Pieces {
+    /// Neither side split: the inner interface is the user's.
+    Whole(usize),
+    /// Its pairing on the undivided substructures and, per piece, the inner interface and
+    /// the user points it holds.
+    Split {
+        pairing: Arc<InterfacePairing>,
+        pieces: Vec<(usize, Vec<usize>)>,
+    },
+}
+
+/// A user assembly with some substructures split into parts (module doc).
+#[derive(Clone)]
+pub struct Split {
+    /// The assembly the LATIN runs on: the parts, the pieces and the cuts' interfaces.
+    pub inner: Assembly,
+    user: Arc<Assembly>,
+    pairings: Vec<Option<InterfacePairing>>,
+    parts: Vec<Parts>,
+    pieces: Vec<Pieces>,
+}
+
+impl Split {
+    /// Splits substructure `s` of `assembly` into `parts[s]` parts (1 or a missing entry: not
+    /// split).
+    ///
+    /// # Errors
+    /// A substructure on a cyclic or large-sliding interface asked to split, a partition that
+    /// fails, and the pairing errors of the interfaces of split substructures.
+    pub fn new(assembly: &Assembly, parts: &[usize]) -> Result<Split, LatinError> {
+        let want = |s: usize| parts.get(s).copied().unwrap_or(1).max(1);
+        for spec in &assembly.interfaces {
+            let special = spec.cyclic.is_some() || spec.sliding == crate::Sliding::Large;
+            if special && (want(spec.sub1) > 1 || want(spec.sub2) > 1) {
+                return Err(LatinError::Invalid(format!(
+                    "interface '{}' is cyclic or in large sliding: its substructures cannot be \
+                     split into subdomains",
+                    spec.name
+                )));
+            }
+        }
+        let mut inner = Assembly::default();
+        let mut all_parts = Vec::with_capacity(assembly.subs.len());
+        let mut cut_groups = Vec::new();
+        for (s, sub) in assembly.subs.iter().enumerate() {
+            let (subs, p, cuts) = split_substructure(sub, want(s), inner.subs.len())?;
+            inner.subs.extend(subs);
+            all_parts.push(p);
+            cut_groups.push(cuts);
+        }
+        let mut pairings = Vec::new();
+        let mut pieces = Vec::with_capacity(assembly.interfaces.len());
+        for spec in &assembly.interfaces {
+            let (s1, s2) = (spec.sub1, spec.sub2);
+            if all_parts[s1].inner.len() == 1 && all_parts[s2].inner.len() == 1 {
+                let mut whole = spec.clone();
+                whole.sub1 = all_parts[s1].inner[0];
+                whole.sub2 = all_parts[s2].inner[0];
+                pieces.push(Pieces::Whole(inner.interfaces.len()));
+                inner.interfaces.push(whole);
+                pairings.push(None);
+                continue;
+            }
+            let scale = crate::solver::direction_scale(spec, &assembly.subs)?;
+            let pairing = pair_sides(spec, [&assembly.subs[s1], &assembly.subs[s2]], None)?;
+            let mut by_parts: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
+            for p in 0..pairing.len() {
+                let j = part_of(&all_parts[s1], &pairing.sides[0], p, &spec.name)?;
+                let m = part_of(&all_parts[s2], &pairing.sides[1], p, &spec.name)?;
+                by_parts.entry((j, m)).or_default().push(p);
+            }
+            let mut list = Vec::new();
+            for ((j, m), points) in by_parts {
+                let (a, b) = (all_parts[s1].inner[j], all_parts[s2].inner[m]);
+                for (sub, group) in [(a, &spec.group1), (b, &spec.group2)] {
+                    let mesh = &mut inner.subs[sub].model.mesh;
+                    mesh.facet_groups.entry(group.clone()).or_default();
+                }
+                let piece = InterfaceSpec {
+                    name: format!("{}#{j}-{m}", spec.name),
+                    sub1: a,
+                    sub2: b,
+                    direction_scale: Some(scale),
+                    ..spec.clone()
+                };
+                let restricted = restrict(
+                    &pairing,
+                    &points,
+                    [&all_parts[s1].local[j], &all_parts[s2].local[m]],
+                );
+                list.push((inner.interfaces.len(), points));
+                inner.interfaces.push(piece);
+                pairings.push(Some(restricted));
+            }
+            pieces.push(Pieces::Split {
+                pairing: Arc::new(pairing),
+                pieces: list,
+            });
+        }
+        for (s, cuts) in cut_groups.into_iter().enumerate() {
+            for (j, m) in cuts {
+                let (a, b) = (all_parts[s].inner[j], all_parts[s].inner[m]);
+                inner.interfaces.push(InterfaceSpec::perfect(
+                    &format!("{}#cut{j}-{m}", assembly.subs[s].name),
+                    a,
+                    &cut_group(m),
+                    b,
+                    &cut_group(j),
+                ));
+                pairings.push(None);
+            }
+        }
+        Ok(Split {
+            inner,
+            user: Arc::new(assembly.clone()),
+            pairings,
+            parts: all_parts,
+            pieces,
+        })
+    }
+
+    /// The number of parts of each user substructure.
+    pub fn parts(&self) -> Vec<usize> {
+        self.parts.iter().map(|p| p.inner.len()).collect()
+    }
+
+    /// The LATIN solver of the split assembly.
+    ///
+    /// # Errors
+    /// As [`LatinSolver::with_pairings`].
+    pub fn solver(&self, options: LatinOptions) -> Result<LatinSolver, LatinError> {
+        LatinSolver::with_pairings(self.inner.clone(), options, self.pairings.clone(), None)
+    }
+
+    /// A user run's input on the split assembly (`solver` from [`Split::solver`]): each
+    /// part with its substructure's factors, each piece with its interface's fields, the
+    /// start states restricted to the pieces (the cuts start from zero).
+    ///
+    /// # Errors
+    /// A modulus varying from cell to cell (not supported), a start state of another
+    /// assembly.
+    pub fn input(&self, solver: &LatinSolver, input: &RunInput) -> Result<RunInput, LatinError> {
+        if input.cell_young.iter().any(|c| c.is_some()) {
+            return Err(LatinError::Invalid(
+                "a Young's modulus varying from cell to cell in a split substructure".into(),
+            ));
+        }
+        let mut out = input.clone();
+        let per_part = |v: &dyn Fn(usize) -> Option<f64>| -> Vec<f64> {
+            let mut o = vec![1.0; self.inner.subs.len()];
+            for (s, p) in self.parts.iter().enumerate() {
+                for &i in &p.inner {
+                    o[i] = v(s).unwrap_or(1.0);
+                }
+            }
+            o
+        };
+        if !input.young_factors.is_empty() {
+            out.young_factors = per_part(&|s| input.young_factors.get(s).copied());
+        }
+        if !input.load_factors.is_empty() {
+            let mut lf = vec![Vec::new(); self.inner.subs.len()];
+            for (s, p) in self.parts.iter().enumerate() {
+                for &i in &p.inner {
+                    lf[i] = input.load_factors.get(s).cloned().unwrap_or_default();
+                }
+            }
+            out.load_factors = lf;
+        }
+        let n = self.inner.interfaces.len();
+        for (field, user) in [(&mut out.mu, &input.mu), (&mut out.gap, &input.gap)] {
+            if user.is_empty() {
+                continue;
+            }
+            *field = vec![None; n];
+            for (i, pieces) in self.pieces.iter().enumerate() {
+                for k in pieces.inner() {
+                    field[k] = user.get(i).cloned().flatten();
+                }
+            }
+        }
+        out.cell_young = Vec::new();
+        out.initial = match &input.initial {
+            Some(st) => Some(Arc::new(self.state(solver, st)?)),
+            None => None,
+        };
+        out.previous_step = match &input.previous_step {
+            Some(st) => Some(Arc::new(self.state(solver, st)?)),
+            None => None,
+        };
+        Ok(out)
+    }
+
+    /// A user's local-stage state on the split assembly: the pieces take their points'
+    /// values, the cuts zero.
+    fn state(&self, solver: &LatinSolver, user: &LocalState) -> Result<LocalState, LatinError> {
+        if user.what.len() != self.pieces.len() {
+            return Err(LatinError::Invalid(format!(
+                "a start state of {} interfaces for {}",
+                user.what.len(),
+                self.pieces.len()
+            )));
+        }
+        let n = self.inner.interfaces.len();
+        let zeros = |i: usize| {
+            let np = solver.interface_points(i).len();
+            [vec![[0.0; 3]; np], vec![[0.0; 3]; np]]
+        };
+        let mut what: Vec<[Vec<[f64; 3]>; 2]> = (0..n).map(zeros).collect();
+        let mut fhat = what.clone();
+        for (i, pieces) in self.pieces.iter().enumerate() {
+            match pieces {
+                Pieces::Whole(k) => {
+                    what[*k] = user.what[i].clone();
+                    fhat[*k] = user.fhat[i].clone();
+                }
+                Pieces::Split { pieces, .. } => {
+                    for (k, points) in pieces {
+                        for s in 0..2 {
+                            what[*k][s] = points.iter().map(|&p| user.what[i][s][p]).collect();
+                            fhat[*k][s] = points.iter().map(|&p| user.fhat[i][s][p]).collect();
+                        }
+                    }
+                }
+            }
+        }
+        Ok(LocalState { what, fhat })
+    }
+
+    /// A run's result on the split assembly given back on the user's assembly (module doc).
+    pub fn merge(&self, input: &RunInput, r: RunResult) -> RunResult {
+        let dim = self.user.subs.first().map_or(2, |s| s.model.mesh.dim);
+        let displacements = self
+            .parts
+            .iter()
+            .map(|p| {
+                let mut u = vec![0.0; p.owner.len() * dim];
+                for (n, &(j, l)) in p.owner.iter().enumerate() {
+                    let v = &r.displacements[p.inner[j]];
+                    u[n * dim..n * dim + dim].copy_from_slice(&v[l * dim..l * dim + dim]);
+                }
+                u
+            })
+            .collect();
+        let interfaces = self
+            .pieces
+            .iter()
+            .enumerate()
+            .map(|(i, pieces)| self.merge_interface(i, pieces, &r.interfaces))
+            .collect();
+        let equilibrium = self
+            .parts
+            .iter()
+            .map(|p| {
+                p.inner
+                    .iter()
+                    .map(|&i| r.equilibrium[i])
+                    .max_by(|a, b| a.relative_imbalance.total_cmp(&b.relative_imbalance))
+                    .expect("a substructure has at least one part")
+            })
+            .collect();
+        let young_factors = (0..self.parts.len())
+            .map(|s| input.young_factors.get(s).copied().unwrap_or(1.0))
+            .collect();
+        RunResult {
+            status: r.status,
+            iterations: r.iterations,
+            residuals: r.residuals,
+            displacements,
+            interfaces,
+            young_factors,
+            cell_young: Vec::new(),
+            equilibrium,
+            timings: r.timings,
+        }
+    }
+
+    fn merge_interface(
+        &self,
+        i: usize,
+        pieces: &Pieces,
+        inner: &[InterfaceResult],
+    ) -> InterfaceResult {
+        let spec = &self.user.interfaces[i];
+        let (pairing, list) = match pieces {
+            Pieces::Whole(k) => {
+                let mut r = inner[*k].clone();
+                r.subs = [spec.sub1, spec.sub2];
+                return r;
+            }
+            Pieces::Split { pairing, pieces } => (pairing, pieces),
+        };
+        let np = pairing.len();
+        let first = &inner[list[0].0];
+        let mut out = InterfaceResult {
+            name: spec.name.clone(),
+            law: first.law,
+            subs: [spec.sub1, spec.sub2],
+            nodes: [0, 1].map(|s| {
+                let proj = &pairing.sides[s];
+                (0..proj.len()).map(|p| proj.main_node(p)).collect()
+            }),
+            pairing: pairing.clone(),
+            points: vec![first.points[0]; np],
+            weights: pairing.weights.clone(),
+            w: [vec![[0.0; 3]; np], vec![[0.0; 3]; np]],
+            f: [vec![[0.0; 3]; np], vec![[0.0; 3]; np]],
+            what: [vec![[0.0; 3]; np], vec![[0.0; 3]; np]],
+            what_prev: [vec![[0.0; 3]; np], vec![[0.0; 3]; np]],
+            fhat: [vec![[0.0; 3]; np], vec![[0.0; 3]; np]],
+            status: vec![first.status[0]; np],
+        };
+        for (k, points) in list {
+            let piece = &inner[*k];
+            for (q, &p) in points.iter().enumerate() {
+                out.points[p] = piece.points[q];
+                out.status[p] = piece.status[q];
+                for s in 0..2 {
+                    out.w[s][p] = piece.w[s][q];
+                    out.f[s][p] = piece.f[s][q];
+                    out.what[s][p] = piece.what[s][q];
+                    out.what_prev[s][p] = piece.what_prev[s][q];
+                    out.fhat[s][p] = piece.fhat[s][q];
+                }
+            }
+        }
+        out
+    }
+}
+
+impl Pieces {
+    /// The inner interfaces of a user interface.
+    fn inner(&self) -> Vec<usize> {
+        match self {
+            Pieces::Whole(k) => vec![*k],
+            Pieces::Split { pieces, .. } => pieces.iter().map(|(k, _)| *k).collect(),
+        }
+    }
+}
+
+fn cut_group(neighbour: usize) -> String {
+    format!("__cut_{neighbour}")
+}
+
+/// The part of `parts` holding every node of row `p` of `proj` (the first such part).
+fn part_of(
+    parts: &Parts,
+    proj: &SideProjection,
+    p: usize,
+    name: &str,
+) -> Result<usize, LatinError> {
+    let row = &proj.nodes[proj.ptr[p]..proj.ptr[p + 1]];
+    (0..parts.inner.len())
+        .find(|&j| row.iter().all(|&n| parts.local[j][n] != usize::MAX))
+        .ok_or_else(|| {
+            LatinError::Invalid(format!(
+                "interface '{name}': point {p} spans two subdomains of a split substructure"
+            ))
+        })
+}
+
+/// The pairing's points `points`, their nodes renumbered to the parts' (`local[s][user]`).
+fn restrict(
+    pairing: &InterfacePairing,
+    points: &[usize],
+    local: [&Vec<usize>; 2],
+) -> InterfacePairing {
+    let pick = |v: &[[f64; 3]]| points.iter().map(|&p| v[p]).collect::<Vec<_>>();
+    let sides = [0, 1].map(|s| {
+        let proj = &pairing.sides[s];
+        let mut ptr = vec![0];
+        let (mut nodes, mut coef) = (Vec::new(), Vec::new());
+        for &p in points {
+            for e in proj.ptr[p]..proj.ptr[p + 1] {
+                nodes.push(local[s][proj.nodes[e]]);
+                coef.push(proj.coef[e]);
+            }
+            ptr.push(nodes.len());
+        }
+        SideProjection {
+            weights: points.iter().map(|&p| proj.weights[p]).collect(),
+            ptr,
+            nodes,
+            coef,
+        }
+    });
+    InterfacePairing {
+        kind: pairing.kind,
+        x: pick(&pairing.x),
+        normals: pick(&pairing.normals),
+        weights: points.iter().map(|&p| pairing.weights[p]).collect(),
+        geometric_gap: points.iter().map(|&p| pairing.geometric_gap[p]).collect(),
+        sides,
+        rotation: pairing.rotation,
+    }
+}
+
+/// Substructure `sub` in `k` parts (inner indices from `first`): the parts, their maps, and
+/// the pairs of parts `(j, m)`, `j < m`, that share facets (each part's mesh then has the
+/// facet group `__cut_m` of its facets shared with part `m`).
+#[allow(clippy::type_complexity)]
+fn split_substructure(
+    sub: &Substructure,
+    k: usize,
+    first: usize,
+) -> Result<(Vec<Substructure>, Parts, Vec<(usize, usize)>), LatinError> {
+    let mesh = &sub.model.mesh;
+    let n = mesh.num_nodes();
+    if k == 1 {
+        return Ok((
+            vec![sub.clone()],
+            Parts {
+                inner: vec![first],
+                local: vec![(0..n).collect()],
+                owner: (0..n).map(|i| (0, i)).collect(),
+            },
+            Vec::new(),
+        ));
+    }
+    let fem = |source| LatinError::Fem {
+        sub: sub.name.clone(),
+        source,
+    };
+    let part = alea_fem::partition::partition_cells(mesh, k).map_err(fem)?;
+    let mut marked = mesh.clone();
+    for j in 0..k {
+        let cells: Vec<usize> = (0..part.len()).filter(|&c| part[c] == j).collect();
+        marked.add_cells_to_group(&format!("__part_{j}"), cells);
+    }
+    let mut meshes = Vec::with_capacity(k);
+    let mut nodes = Vec::with_capacity(k);
+    let mut cells = Vec::with_capacity(k);
+    for j in 0..k {
+        let (m, nm, cm) = marked
+            .extract_with_cells(&[&format!("__part_{j}")])
+            .map_err(|e| LatinError::Invalid(format!("substructure '{}': {e}", sub.name)))?;
+        meshes.push(m);
+        nodes.push(nm);
+        cells.push(cm);
+    }
+    let mut local = vec![vec![usize::MAX; n]; k];
+    for j in 0..k {
+        for (l, &u) in nodes[j].iter().enumerate() {
+            local[j][u] = l;
+        }
+    }
+    let mut owner = vec![(usize::MAX, usize::MAX); n];
+    for j in (0..k).rev() {
+        for (l, &u) in nodes[j].iter().enumerate() {
+            owner[u] = (j, l);
+        }
+    }
+    let cuts = add_cut_groups(mesh, &part, &local, &mut meshes);
+    let dim = mesh.dim;
+    let mut subs = Vec::with_capacity(k);
+    for (j, m) in meshes.into_iter().enumerate() {
+        let model = sub.model.restricted(m, &cells[j]).map_err(fem)?;
+        let constraints = sub.constraints.restricted(|u| {
+            let l = local[j][u];
+            (l != usize::MAX).then_some(l)
+        });
+        let load_cases = sub
+            .load_cases
+            .iter()
+            .map(|f| {
+                let mut g = vec![0.0; nodes[j].len() * dim];
+                for (l, &u) in nodes[j].iter().enumerate() {
+                    if owner[u] == (j, l) {
+                        g[l * dim..l * dim + dim].copy_from_slice(&f[u * dim..u * dim + dim]);
+                    }
+                }
+                g
+            })
+            .collect();
+        subs.push(Substructure {
+            name: format!("{}#{j}", sub.name),
+            model,
+            constraints,
+            load_cases,
+        });
+    }
+    Ok((
+        subs,
+        Parts {
+            inner: (first..first + k).collect(),
+            local,
+            owner,
+        },
+        cuts,
+    ))
+}
+
+/// Adds to each part's mesh the facet groups `__cut_m` of its cells' facets shared with part
+/// `m` (oriented outward from the part), and returns the pairs `(j, m)`, `j < m`, that share
+/// facets.
+fn add_cut_groups(
+    mesh: &Mesh,
+    part: &[usize],
+    local: &[Vec<usize>],
+    meshes: &mut [Mesh],
+) -> Vec<(usize, usize)> {
+    let mut by_key: HashMap<Vec<usize>, Vec<(usize, Facet)>> = HashMap::new();
+    for (c, kind, nodes) in mesh.cells() {
+        for (fk, loc) in kind.facets() {
+            let f = Facet {
+                kind: *fk,
+                nodes: loc.iter().map(|&i| nodes[i]).collect(),
+            };
+            by_key.entry(f.key()).or_default().push((c, f));
+        }
+    }
+    let mut groups: BTreeMap<(usize, usize), Vec<Facet>> = BTreeMap::new();
+    for shared in by_key.values() {
+        if let [(a, fa), (b, fb)] = shared.as_slice() {
+            let (pa, pb) = (part[*a], part[*b]);
+            if pa != pb {
+                for (p, q, f) in [(pa, pb, fa), (pb, pa, fb)] {
+                    groups.entry((p, q)).or_default().push(Facet {
+                        kind: f.kind,
+                        nodes: f.nodes.iter().map(|&u| local[p][u]).collect(),
+                    });
+                }
+            }
+        }
+    }
+    let mut pairs = Vec::new();
+    for ((p, q), facets) in groups {
+        meshes[p].add_facets_to_group(&cut_group(q), facets);
+        if p < q {
+            pairs.push((p, q));
+        }
+    }
+    pairs
+}
