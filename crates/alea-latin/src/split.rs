@@ -13,7 +13,9 @@
 //! paired once on the undivided substructures; its points are then shared among pieces, one
 //! per pair of parts `(j, m)` holding the point's side-1 and side-2 nodes, each piece solved
 //! with the user's points (a given pairing) and the user's search direction (its length and
-//! moduli: the same `k_0 = E / L` as undivided, module `solver::setup`). The LATIN answer is
+//! moduli: the same `k_0 = E / L` as undivided, module `solver::setup`). A cut lies inside one
+//! body, so its search direction is the stiffness of a layer of cells, `k = E / h` with `h` its
+//! mean facet size ([`Split::solver`]). The LATIN answer is
 //! that of the undivided model (the cuts' interfaces are perfect), to the solver tolerance;
 //! the coarse problem keeps the iteration count nearly flat with the number of parts
 //! (`tests/weak_scaling.rs`).

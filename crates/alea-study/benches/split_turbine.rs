@@ -2,7 +2,8 @@
 //! `examples/turbine-3d-wear.toml` with `[mesh] split = ALEA_SPLIT_MESH` (default 1: every
 //! cell split in 8, about 660 000 dof), its substructures undivided (`ALEA_SPLIT_TARGET=0`) or
 //! each split into `ceil(dof / ALEA_SPLIT_TARGET)` parts; set-up time, then `ALEA_SPLIT_RUNS`
-//! runs (default 2: the middle design point, then the first warm-started from it), their
+//! runs (default 2: the middle design point, then the first warm-started from it; the study's
+//! tolerance or `ALEA_SPLIT_TOL`), their
 //! iterations and times, and a checksum of the displacements (per substructure, the root mean
 //! square and the largest component) to compare the configurations, which run in separate
 //! processes so that each one's peak memory can be read (`/usr/bin/time -f %M`).
@@ -59,11 +60,18 @@ fn main() {
         dofs.iter().sum::<usize>(),
         dofs
     );
+    let mut options = study.model.options.clone();
+    if let Some(tol) = std::env::var("ALEA_SPLIT_TOL")
+        .ok()
+        .and_then(|v| v.parse().ok())
+    {
+        options.tolerance = tol;
+    }
     let t0 = Instant::now();
     let split = (target > 0).then(|| Split::new(asm, &parts).expect("split"));
     let solver: LatinSolver = match &split {
-        Some(s) => s.solver(study.model.options.clone()).expect("solver"),
-        None => LatinSolver::new(asm.clone(), study.model.options.clone()).expect("solver"),
+        Some(s) => s.solver(options.clone()).expect("solver"),
+        None => LatinSolver::new(asm.clone(), options.clone()).expect("solver"),
     };
     println!("set-up {:.2} s", t0.elapsed().as_secs_f64());
     let points = &study.methods[0].points;
