@@ -217,7 +217,8 @@ impl Split {
 
     /// A user run's input on the split assembly (`solver` from [`Split::solver`]): each
     /// part with its substructure's factors, each piece with its interface's fields, the
-    /// start states restricted to the pieces (the cuts start from zero).
+    /// start states restricted to the pieces (the cuts start from zero) - or, given as a state
+    /// of the split assembly (an inner run's `end_state()`, cuts included), taken as they are.
     ///
     /// # Errors
     /// A modulus varying from cell to cell (not supported), a start state of another
@@ -277,6 +278,11 @@ impl Split {
     /// A user's local-stage state on the split assembly: the pieces take their points'
     /// values, the cuts zero.
     fn state(&self, solver: &LatinSolver, user: &LocalState) -> Result<LocalState, LatinError> {
+        // A state of the split assembly itself (a previous inner run's end, with its cuts):
+        // taken as it is.
+        if user.what.len() == self.inner.interfaces.len() {
+            return Ok(user.clone());
+        }
         if user.what.len() != self.pieces.len() {
             return Err(LatinError::Invalid(format!(
                 "a start state of {} interfaces for {}",

@@ -90,8 +90,23 @@ fn compare(dim: usize, parts: [usize; 2]) {
     assert_eq!(split.parts(), parts.to_vec());
     let solver = split.solver(options()).unwrap();
     let input = split.input(&solver, &RunInput::default()).unwrap();
-    let r = split.merge(&input, solver.run_shared(&input).unwrap());
+    let inner = solver.run_shared(&input).unwrap();
+    let end = std::sync::Arc::new(inner.end_state());
+    let r = split.merge(&input, inner);
     assert_eq!(r.status, RunStatus::Converged);
+    // Warm-started from the split assembly's own end state (cuts included), a run of the
+    // same input starts at its answer.
+    let again = split
+        .input(
+            &solver,
+            &RunInput {
+                initial: Some(end),
+                ..RunInput::default()
+            },
+        )
+        .unwrap();
+    let rerun = solver.run_shared(&again).unwrap();
+    assert!(rerun.iterations <= 2, "{} iterations", rerun.iterations);
     let rel = |a: &[f64], b: &[f64]| {
         let num: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum();
         let den: f64 = b.iter().map(|y| y * y).sum();

@@ -5,7 +5,9 @@
 //! runs (default 2: the middle design point, then the first warm-started from it; the study's
 //! tolerance or `ALEA_SPLIT_TOL`), their
 //! iterations and times, and a checksum of the displacements (per substructure, the root mean
-//! square and the largest component) to compare the configurations, which run in separate
+//! square and the largest component) to compare the configurations (`ALEA_SPLIT_KEEP_CUTS=1`:
+//! the warm start is the split assembly's own end state, cuts included, not the user-level
+//! one), which run in separate
 //! processes so that each one's peak memory can be read (`/usr/bin/time -f %M`).
 //!
 //! `ALEA_SPLIT_TARGET=40000 /usr/bin/time -f "%e s %M kB" cargo bench -p alea-study --bench
@@ -80,6 +82,8 @@ fn main() {
         .take(runs)
         .collect();
     let mut start: Option<Arc<alea_latin::LocalState>> = None;
+    let mut next: Option<Arc<alea_latin::LocalState>> = None;
+    let keep_cuts = std::env::var("ALEA_SPLIT_KEEP_CUTS").is_ok_and(|v| v == "1");
     for theta in &thetas {
         let mut input = study.model.parametric.run_input(theta);
         input.initial = start.clone();
@@ -87,7 +91,13 @@ fn main() {
         let r: RunResult = match &split {
             Some(s) => {
                 let inner: RunInput = s.input(&solver, &input).expect("input");
-                s.merge(&input, solver.run_shared(&inner).expect("run"))
+                let res = solver.run_shared(&inner).expect("run");
+                let inner_end = Arc::new(res.end_state());
+                let merged = s.merge(&input, res);
+                if keep_cuts {
+                    next = Some(inner_end);
+                }
+                merged
             }
             None => solver.run_shared(&input).expect("run"),
         };
@@ -106,6 +116,6 @@ fn main() {
             r.iterations,
             t.elapsed().as_secs_f64()
         );
-        start = Some(Arc::new(r.end_state()));
+        start = next.take().or_else(|| Some(Arc::new(r.end_state())));
     }
 }
