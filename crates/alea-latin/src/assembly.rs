@@ -5,8 +5,8 @@ use std::sync::Arc;
 use alea_fem::{Constraints, Model};
 
 use crate::InterfaceLaw;
-use crate::cyclic::Cyclic;
 use crate::interface::Pairing;
+use crate::rotation::Cyclic;
 
 /// A scalar field along an interface: `x -> value` (friction coefficient, initial gap, ...).
 pub type PointField = Arc<dyn Fn([f64; 3]) -> f64 + Send + Sync>;
@@ -64,7 +64,7 @@ pub struct InterfaceSpec {
     /// interfaces only; module [`crate::large_sliding`]).
     pub sliding: Sliding,
     /// Cyclic symmetry: side 2 is side 1's image by this rotation, and the interface ties
-    /// `u_2 = R u_1`, `F_2 = -R F_1` (perfect interfaces only; module [`crate::cyclic`]).
+    /// `u_2 = R u_1`, `F_2 = -R F_1` (perfect interfaces only; module `cyclic`).
     pub cyclic: Option<Cyclic>,
     /// The length and side moduli of the default search direction `k_0 = factor E / L`
     /// (`None`: from the sides' groups, module `solver::setup`): a piece of a split interface

@@ -18,7 +18,7 @@
 //! the nodes only nearly coincide (within the tolerance; each side's own weights then differ
 //! slightly and the LATIN iteration had no fixed point, issue 21).
 //!
-//! **Cyclic interfaces** (module [`crate::cyclic`]): [`pair_sides`] pairs side 1 with side 2's
+//! **Cyclic interfaces** (module `cyclic`): `sides::pair_sides` pairs side 1 with side 2's
 //! mesh mapped back by the interface's rotation, and the pairing records the rotation
 //! ([`InterfacePairing::rotation`]); side 2's fields stay in its own frame.
 //!
@@ -32,11 +32,7 @@ use alea_fem::{Quadrature, kinematics::facet_geometry};
 use alea_mesh::Mesh;
 use alea_mesh::vec3::norm;
 
-use alea_fem::DofMap;
-
 use crate::LatinError;
-use crate::cyclic;
-use crate::mortar::pair_mortar;
 
 /// Lumped weights and normals of the nodes of one facet group.
 #[derive(Clone, Debug)]
@@ -268,76 +264,6 @@ pub fn pair_nodes(
     Ok(partner)
 }
 
-/// Pairs the two sides of interface `spec` (substructures `subs = [side 1's, side 2's]`) as
-/// `spec.pairing` asks - node to node, mortar, or node to node when the sides match and
-/// mortar otherwise - unless the caller `given` the pairing; a cyclic interface pairs side 1
-/// with side 2 mapped back by its rotation and checks that the faces cover each other (module
-/// [`crate::cyclic`]). Mortar points are not put on nodes held in every direction by their
-/// substructure's constraints (module [`crate::mortar`]).
-///
-/// # Errors
-/// The pairing's errors ([`LatinError::Unmatched`], [`LatinError::Pairing`]; for a cyclic
-/// interface [`LatinError::Cyclic`]) and a substructure's constraints that do not apply.
-pub(crate) fn pair_sides(
-    spec: &crate::InterfaceSpec,
-    subs: [&crate::Substructure; 2],
-    given: Option<InterfacePairing>,
-) -> Result<InterfacePairing, LatinError> {
-    let [s1, s2] = subs;
-    let fem = |sub: &str| {
-        let sub = sub.to_string();
-        move |source| LatinError::Fem {
-            sub: sub.clone(),
-            source,
-        }
-    };
-    // A cyclic interface pairs side 1 with side 2 mapped back by its rotation.
-    let mapped = spec
-        .cyclic
-        .as_ref()
-        .map(|c| cyclic::mapped_back(c, &s2.model.mesh));
-    let sides = [
-        (
-            &s1.model.mesh,
-            spec.group1.as_str(),
-            s1.model.analysis.thickness(),
-        ),
-        (
-            mapped.as_ref().unwrap_or(&s2.model.mesh),
-            spec.group2.as_str(),
-            s2.model.analysis.thickness(),
-        ),
-    ];
-    let held1 = DofMap::for_mesh(&s1.model.mesh, &s1.constraints).map_err(fem(&s1.name))?;
-    let held2 = DofMap::for_mesh(&s2.model.mesh, &s2.constraints).map_err(fem(&s2.name))?;
-    let fixed1 = |n: usize| held1.node_dofs(n).is_empty();
-    let fixed2 = |n: usize| held2.node_dofs(n).is_empty();
-    let mortar = || {
-        pair_mortar(
-            &spec.name,
-            sides,
-            spec.search_distance,
-            spec.law.uses_gap() || spec.cyclic.is_some(),
-            [&fixed1, &fixed2],
-        )
-    };
-    let cyc = |e| cyclic::pairing_error(spec, e);
-    let pairing = match (given, spec.pairing) {
-        (Some(p), _) => p,
-        (None, Pairing::NodeToNode) => {
-            pair_node_to_node(&spec.name, sides, spec.match_tolerance).map_err(cyc)?
-        }
-        (None, Pairing::Mortar) => mortar().map_err(cyc)?,
-        (None, Pairing::Auto) => match pair_node_to_node(&spec.name, sides, spec.match_tolerance) {
-            Ok(p) => p,
-            Err(LatinError::Unmatched { .. }) => mortar().map_err(cyc)?,
-            Err(e) => return Err(e),
-        },
-    };
-    let pairing = cyclic::finish(spec, pairing, sides)?;
-    Ok(pairing)
-}
-
 /// How an interface's points are found from its two sides.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Pairing {
@@ -483,7 +409,7 @@ pub struct InterfacePairing {
     /// Cyclic symmetry (module [`crate::cyclic`]): the rotation `R` from side 1's frame, the
     /// frame of the points, to side 2's (side 2's fields are stored in its own frame); `None`
     /// for an ordinary interface (both sides in the same frame).
-    pub rotation: Option<crate::cyclic::Mat3>,
+    pub rotation: Option<crate::rotation::Mat3>,
 }
 
 impl InterfacePairing {
@@ -501,7 +427,7 @@ impl InterfacePairing {
     /// cyclic interface, `v` otherwise.
     pub fn to_points(&self, s: usize, v: [f64; 3]) -> [f64; 3] {
         match (&self.rotation, s) {
-            (Some(r), 1) => crate::cyclic::apply_transpose(r, &v),
+            (Some(r), 1) => crate::rotation::apply_transpose(r, &v),
             _ => v,
         }
     }
@@ -510,7 +436,7 @@ impl InterfacePairing {
     /// interface, `v` otherwise.
     pub fn to_side(&self, s: usize, v: [f64; 3]) -> [f64; 3] {
         match (&self.rotation, s) {
-            (Some(r), 1) => crate::cyclic::apply(r, &v),
+            (Some(r), 1) => crate::rotation::apply(r, &v),
             _ => v,
         }
     }

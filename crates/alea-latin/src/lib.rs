@@ -39,7 +39,9 @@ pub mod mortar;
 pub mod output;
 pub mod reactions;
 mod result;
+mod rotation;
 pub mod samples;
+pub mod sides;
 pub mod sliding;
 mod solver;
 pub mod split;
@@ -48,12 +50,12 @@ pub mod steps;
 pub use assembly::{
     Assembly, DirectionScale, InterfaceSpec, PointField, Sliding, Substructure, constant,
 };
-pub use cyclic::Cyclic;
 pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
 pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};
 pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
+pub use rotation::Cyclic;
 pub use solver::{
     LatinOptions, LatinSolver, LinearStage, LinearStageSummary, LocalState, RunInput,
     SearchDirection,

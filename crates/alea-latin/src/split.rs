@@ -35,7 +35,8 @@ use std::sync::Arc;
 
 use alea_mesh::{Facet, Mesh};
 
-use crate::interface::{InterfacePairing, SideProjection, pair_sides};
+use crate::interface::{InterfacePairing, SideProjection};
+use crate::sides::pair_sides;
 use crate::{
     Assembly, InterfaceResult, InterfaceSpec, LatinError, LatinOptions, LatinSolver, LocalState,
     RunInput, RunResult, SearchDirection, Substructure,

@@ -18,7 +18,8 @@ use super::{
 };
 use crate::coarse::{InterfaceModes, MacroLink, SubMacro};
 use crate::equilibrium::RigidModes;
-use crate::interface::{InterfacePairing, pair_sides, side_geometry};
+use crate::interface::{InterfacePairing, side_geometry};
+use crate::sides::pair_sides;
 use crate::{Assembly, InterfaceSpec, LatinError, PointData, Substructure};
 
 pub(super) fn fem_err(sub: &str) -> impl Fn(alea_fem::FemError) -> LatinError + '_ {

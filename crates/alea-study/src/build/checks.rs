@@ -1,7 +1,7 @@
 //! Consistency checks of a built model, done when the file is loaded so that every mistake is
 //! an input error naming file, line and field (exit code 2), never a failure of the solver
 //! set-up: two sides on two different substructures (or, for a cyclic interface, side 2 mapped
-//! back by its rotation falling on side 1: `alea_latin::cyclic::check_faces`); when the sides' nodes pair one to one
+//! back by its rotation falling on side 1: `alea_latin::sides::check_faces`); when the sides' nodes pair one to one
 //! (the same pairing as the solver's, [`alea_latin::interface::pair_nodes`]), paired nodes have
 //! opposite normals (`n1 . n2 < -0.5`: the sides face each other); no facet belongs to two
 //! interfaces (sides that do not match are paired by the mortar method, whose errors are
@@ -34,7 +34,7 @@ pub fn check_interfaces(
         if let Some(c) = &spec.cyclic {
             // Side 2 mapped back by the rotation must fall on side 1 (the solver's own
             // pairing and cover checks, module `alea_latin::cyclic`).
-            alea_latin::cyclic::check_faces(it, subs)
+            alea_latin::sides::check_faces(it, subs)
                 .map_err(|e| src.error(c.span(), format!("{field}.cyclic"), e.to_string()))?;
         } else if it.sub1 == it.sub2 {
             return Err(src.error(
