@@ -141,7 +141,17 @@ def test_parameter_table_and_budget_bases(study):
     assert (p.loc["E", "lo"], p.loc["E", "hi"], p.loc["E", "nominal"]) == (A, B, 0.5 * (A + B))
     assert p.loc["P", "nominal"] == 1.0 and "normal" in p.loc["P", "law"]
     assert p["field"].isna().all() and res.fields == [] and res.field_modes.empty
-    assert res.sensitivity.empty  # Sobol' indices are written for studies with random fields
+    # Sobol' indices (every study with independent inputs; chaos: exact from the expansion):
+    # u = P s L / E with P, E independent, so V_P = Var(P) E[1/E]^2 and V_E = Var(1/E) E[P]^2
+    # (times (s L)^2), the interaction being the rest.
+    m = math.log(B / A) / (B - A)
+    v = 1.01 / (A * B) - m * m
+    s_p, s_e = 0.01 * m * m / v, (1.0 / (A * B) - m * m) / v
+    sob = res.sensitivity.loc[("PC regression p=4", "tip")]
+    assert sob.loc["P", "first"] == pytest.approx(s_p, abs=2e-3)
+    assert sob.loc["E", "first"] == pytest.approx(s_e, abs=2e-3)
+    assert sob.loc["P", "total"] == pytest.approx(1.0 - s_e, abs=2e-3)
+    assert sob.loc["E", "total"] == pytest.approx(1.0 - s_p, abs=2e-3)
     bases = res.budget_bases.set_index("method")
     assert bases.loc["PC regression p=4", "surrogate"] == res.budget_basis[("PC regression p=4", "tip")]
     assert bases.loc["Monte Carlo", "draws"] == 200
