@@ -4,7 +4,9 @@
 //!
 //! **What a point is.** The interface points of every pairing of a re-paired interface are
 //! multiplier nodes of one side `P`, the side of its first pairing (kept by every re-pairing):
-//! a point is a **material point of side `P`**, named by its mesh node. Its partner on the
+//! a point is a **material point of side `P`**, named by its mesh node
+//! (`InterfacePairing::point_nodes`; at the edge of the covered zone its position and row are
+//! those of the covered part of its support, and change with the coverage). Its partner on the
 //! other side is the material point its projection row reaches in the current configuration,
 //! and changes from step to step. The set of points can change too: a node of `P` that the
 //! other side stops covering (at the ends of a contact that slides) has no point in that
@@ -38,6 +40,17 @@ use alea_mesh::vec3::dot;
 
 use super::{FrettingError, SlipCycle, V3, dist, tangential};
 use crate::{InterfaceResult, PointStatus};
+
+/// The mesh node of each point of `it`, on the side carrying them: the pairing's
+/// (`InterfacePairing::point_nodes`, the multiplier nodes), else the node of largest
+/// coefficient of that side's rows.
+fn point_nodes(it: &InterfaceResult, side: usize) -> &[usize] {
+    if it.pairing.point_nodes.len() == it.points.len() {
+        &it.pairing.point_nodes
+    } else {
+        &it.nodes[side]
+    }
+}
 
 /// One step of a cycle on a re-paired interface: its interface result (on the step's last
 /// pairing) and the tangential jump at the step's start at each of its points
@@ -77,7 +90,7 @@ pub fn slip_cycle_repaired(
         let it = s.result;
         let np = it.points.len();
         let lengths = [
-            it.nodes[point_side].len(),
+            point_nodes(it, point_side).len(),
             it.weights.len(),
             it.what[0].len(),
             it.what[1].len(),
@@ -88,12 +101,8 @@ pub fn slip_cycle_repaired(
         if it.name != first.name || it.law != first.law || lengths.iter().any(|&l| l != np) {
             return Err(mismatch());
         }
-        let before = index.len();
-        index.extend(it.nodes[point_side].iter().map(|&n| (n, 0)));
-        if index.len() - before > np {
-            return Err(mismatch());
-        }
-        let mut distinct = it.nodes[point_side].clone();
+        index.extend(point_nodes(it, point_side).iter().map(|&n| (n, 0)));
+        let mut distinct = point_nodes(it, point_side).to_vec();
         distinct.sort_unstable();
         distinct.dedup();
         if distinct.len() != np {
@@ -120,8 +129,9 @@ pub fn slip_cycle_repaired(
     let mut present = vec![0usize; np];
     for s in steps {
         let it = s.result;
+        let nodes = point_nodes(it, point_side);
         for p in 0..it.points.len() {
-            let i = index[&it.nodes[point_side][p]];
+            let i = index[&nodes[p]];
             present[i] += 1;
             out.x[i] = it.points[p].x;
             out.weights[i] = it.weights[p];
