@@ -2,8 +2,8 @@
 //! in its deformed configuration, module `alea_latin::large_sliding`), checked against truths,
 //! not snapshots, on the block pressed on a base of `tests/fretting_cycle.rs` (mu uncertain,
 //! a small Monte Carlo study):
-//! - sheared by a load with partial slip (slides of about 1e-3 of a cell): the quantities of the
-//!   small-sliding cycle, to the solver and pairing tolerances;
+//! - sheared by a load with partial slip, slides of 1e-8 of a cell: the quantities of the
+//!   small-sliding cycle, to the solver tolerance;
 //! - the same history written as plain `[[step]]`s (a cycle of one repetition over the last
 //!   two): the same answers to round-off (large-sliding steps have no warm start, so the two
 //!   are the same solves);
@@ -214,23 +214,36 @@ fn differences(a: &[Vec<f64>], b: &[Vec<f64>]) -> Vec<f64> {
         .collect()
 }
 
+/// Slides of 1e-8 of a cell (loads scaled by 1e-6): large sliding is small sliding to the
+/// solver tolerance. The difference is geometric, of the order of the slide over the cell for
+/// the integrals (measured: 3e-5 at loads scaled by 1e-3, slides of 1e-5 cell; 3 % at the
+/// loads of `tests/fretting_cycle.rs`, slides of 0.8 % of a cell, for the slip amplitude of
+/// 3e-4 of the slide), so the tolerance here is that of the solver: 1e-9 on states whose
+/// cycle increments are 1e-2 - 1e-4 of them (the slip amplitude is 3e-4 of the slip, the work
+/// per cycle 1 % of the first loading's dissipation), so 1e-5 (measured: 2.5e-6 at most, on
+/// the dissipation of a step).
+/// The stick zone is compared to a cell only: the points of a slip zone at the friction limit
+/// with no slip increment in a step (`|q| = mu p`, slip 1e-17) are stick or slip by
+/// round-off, in either model.
 #[test]
 fn tiny_slides_give_the_small_sliding_cycle() {
     let q = quantities("down", "back");
-    let (small, ts) = run(&model(&sheared(1e-3), "small", SHEAR_STEPS, CYCLE, &q), "tiny-small");
-    let (large, tl) = run(&model(&sheared(1e-3), "large", SHEAR_STEPS, CYCLE, &q), "tiny-large");
+    let tiny = sheared(1e-6);
+    let (small, ts) = run(&model(&tiny, "small", SHEAR_STEPS, CYCLE, &q), "tiny-small");
+    let (large, tl) = run(&model(&tiny, "large", SHEAR_STEPS, CYCLE, &q), "tiny-large");
     let d = differences(&large, &small);
     for ((name, e), (s, l)) in NAMES.iter().zip(&d).zip(small[0].iter().zip(&large[0])) {
         eprintln!("{name:>7}: small {s:.6e}, large {l:.6e}, largest relative difference {e:.2e}");
     }
     eprintln!("seconds: small {ts:.2}, large {tl:.2}");
-    for r in &large {
+    for (r, s) in large.iter().zip(&small) {
         // The work per cycle is the sum of the cycle steps' dissipations.
         assert!((r[1] - (r[2] + r[3])).abs() <= 1e-9 * r[1], "{r:?}");
         assert!(r[0] > 0.0 && r[1] > 0.0 && r[7] > 0.0 && r[7] < 40.0, "{r:?}");
+        assert!((r[7] - s[7]).abs() <= 2.0, "stick zone {} against {}", r[7], s[7]);
     }
-    for (name, e) in NAMES.iter().zip(&d) {
-        assert!(*e <= 1e-3, "{name}: {e:e}");
+    for (name, e) in NAMES.iter().zip(&d).take(7) {
+        assert!(*e <= 1e-5, "{name}: {e:e}");
     }
 }
 
