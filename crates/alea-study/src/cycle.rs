@@ -171,22 +171,23 @@ pub fn plan_cycle(
 /// point only while the sides do not slide apart) and any quantity at a `point` (the nearest
 /// side-1 point: the points of a re-paired interface are on the side the first pairing chose,
 /// the coarser one, and side 1's node facing a side-2 point changes with the slide). Refused
-/// with the file, line and field of the quantity.
+/// with the file, line and field of the quantity. `budget`: the check is that of the sliding
+/// part of `[budget]`, whose solves put every contact interface in large sliding (the
+/// message says so); otherwise of the interfaces with `sliding = "large"`.
 pub fn check_large_sliding_fretting(
     src: &Source,
     file: &ModelFile,
     qois: &[crate::qoi::Qoi],
     assembly: &alea_latin::Assembly,
+    budget: bool,
 ) -> Result<(), StudyError> {
     for (i, (q, spec)) in qois.iter().zip(&file.quantity).enumerate() {
         let crate::qoi::QoiKind::Fretting(f) = &q.kind else {
             continue;
         };
-        let Some(it) = assembly
-            .interfaces
-            .get(f.iface)
-            .filter(|it| alea_latin::large_sliding::is_repaired(it))
-        else {
+        let Some(it) = assembly.interfaces.get(f.iface).filter(|it| {
+            alea_latin::large_sliding::is_repaired(it) || (budget && it.law.uses_gap())
+        }) else {
             continue;
         };
         let at_point = f.node.is_some();
@@ -210,10 +211,20 @@ pub fn check_large_sliding_fretting(
                  two sides that slide apart (docs/study-file.md, [cycle]); use ruiz_f1 and swt",
             ),
         };
+        let context = if budget {
+            " (the sliding part of [budget], large_sliding = true, solves the study with \
+             sliding = \"large\" on every contact interface)"
+        } else {
+            ""
+        };
         return Err(src.error(
             span,
             field,
-            format!("'{}' on interface '{}': {why}", spec.name.get_ref(), it.name),
+            format!(
+                "'{}' on interface '{}'{context}: {why}",
+                spec.name.get_ref(),
+                it.name
+            ),
         ));
     }
     Ok(())

@@ -128,7 +128,14 @@ impl Study {
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
         if steps.as_ref().is_some_and(|p| p.cycle.is_some()) {
-            crate::cycle::check_large_sliding_fretting(&source, &file, &qois, &model.assembly)?;
+            // Also for the sliding part of the budget, at the quantity's line of this file.
+            let budget = file
+                .budget
+                .as_ref()
+                .and_then(|b| b.get_ref().large_sliding.as_ref())
+                .is_some_and(|f| *f.get_ref());
+            let (src, a) = (&source, &model.assembly);
+            crate::cycle::check_large_sliding_fretting(src, &file, &qois, a, budget)?;
         }
         let step_models = match &steps {
             Some(plan) => plan.files[1..]

@@ -381,6 +381,27 @@ fn fretting_quantities_without_meaning_under_repairing_are_refused_at_load() {
         "quantity[0].point",
         "leave out point",
     );
+    // The sliding part of the budget of a small-sliding study with such a quantity: refused
+    // at the quantity's line, saying why.
+    let text = model(
+        &sheared(1e-3),
+        "small",
+        SHEAR_STEPS,
+        CYCLE,
+        "[[quantity]]\nname = \"f2\"\nkind = \"ruiz_f2\"\ninterface = \"contact\"\n\n\
+         [budget]\nlarge_sliding = true\n",
+    );
+    let msg = Study::from_source(Source::from_text("checks.toml", &text))
+        .expect_err("refused")
+        .to_string();
+    let line = |needle: &str| text.lines().position(|l| l.contains(needle)).unwrap() + 1;
+    assert!(
+        msg.contains(&format!("checks.toml:{}:", line("kind = \"ruiz_f2\"")))
+            && msg.contains("quantity[0].kind")
+            && msg.contains("the sliding part of [budget]")
+            && msg.contains("slide apart"),
+        "{msg}"
+    );
     // The same quantities in small sliding load.
     let text = model(
         &sheared(1e-3),
