@@ -32,10 +32,29 @@
 //! cycle: its only run); the fretting quantities (`qoi::fretting`) are taken over the last
 //! cycle, from the state at the end of the step before it.
 //!
+//! **Large sliding** (`sliding = "large"`, `alea_latin::large_sliding`): every step of the
+//! cycle is a large-sliding step, re-paired from the previous step's pairing and end state
+//! (`steps::run_large_sliding`, the same [`run_cycles`] over `SlidingStep`s); there is no warm
+//! start from the previous cycle (`steps::cycle_start` starts a LATIN iterate on the same
+//! interface points, and a re-paired step starts from its predicted configuration on the
+//! pairing found there). A point of a re-paired interface is a material point of the side
+//! carrying the points (`alea_latin::fretting::slip_cycle_repaired`: the multiplier node of
+//! side `P`, whose partner changes with the slide); shakedown compares the amplitudes of the
+//! same nodes from cycle to cycle (a point present in one cycle only changes by its amplitude),
+//! and the fretting quantities take each step on its own pairing, the work from the step's
+//! slip origin `j0_k = [Pi_k u_{k-1}]_t`:
+//!
+//! ```text
+//!   delta_i = 1/2 max_{k,l closed} |j_k - j_l|,   j_k = [Pi_k u_k]_t
+//!   W = sum_k sum_i w_i^k (-(j_k - j0_k) . q_k)   (= the sum of the steps' friction dissipations)
+//! ```
+//!
 //! Checked at load (file, line, field): a cycle with no step, an unknown or repeated step, steps
 //! that are not the last ones of the history in their order, `repeat < 1`, `until` not in
-//! `(0, 1)`, a cycle without `[[step]]`s, and (module `steps`) a fretting quantity without a
-//! cycle or with a `step`.
+//! `(0, 1)`, a cycle without `[[step]]`s, (module `steps`) a fretting quantity without a
+//! cycle or with a `step`, and ([`check_large_sliding_fretting`]) `ruiz_f2` or a fretting
+//! quantity at a `point` on a re-paired interface (or on any contact interface with the
+//! sliding part of `[budget]`).
 
 use std::collections::BTreeMap;
 
@@ -326,8 +345,10 @@ fn amplitudes<T: HistoryStep>(
     let sc = match steps.get(from).and_then(|s| s.point_side(i)) {
         Some(side) => {
             // The amplitude does not depend on the origins (only the work does).
-            let zeros: Vec<Vec<[f64; 3]>> =
-                its.iter().map(|it| vec![[0.0; 3]; it.points.len()]).collect();
+            let zeros: Vec<Vec<[f64; 3]>> = its
+                .iter()
+                .map(|it| vec![[0.0; 3]; it.points.len()])
+                .collect();
             let cycle: Vec<CycleStep<'_>> = its
                 .iter()
                 .zip(&zeros)
@@ -380,7 +401,11 @@ pub(crate) fn slip_change<T: HistoryStep>(
                     .fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
-        let scale = new.values().chain(old.values()).copied().fold(0.0, f64::max);
+        let scale = new
+            .values()
+            .chain(old.values())
+            .copied()
+            .fold(0.0, f64::max);
         let change = old
             .keys()
             .chain(new.keys())

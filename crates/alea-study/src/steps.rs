@@ -418,7 +418,8 @@ pub fn run_study_history(
 /// the first loading's level starts from that loading's end). Only the start of the iteration:
 /// the friction law's origin is the previous step's end in every case, and the answer is the
 /// same to the solver tolerance; measured in BENCHMARKS "Fretting" (5 - 10x fewer iterations
-/// in the steps that repeat).
+/// in the steps that repeat). Small sliding only: with large sliding the state of another
+/// step lives on another pairing ([`run_large_sliding`]).
 fn cycle_start<'a>(
     plan: &Plan,
     cycle: &crate::cycle::CyclePlan,

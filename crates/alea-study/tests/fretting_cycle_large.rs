@@ -239,8 +239,16 @@ fn tiny_slides_give_the_small_sliding_cycle() {
     for (r, s) in large.iter().zip(&small) {
         // The work per cycle is the sum of the cycle steps' dissipations.
         assert!((r[1] - (r[2] + r[3])).abs() <= 1e-9 * r[1], "{r:?}");
-        assert!(r[0] > 0.0 && r[1] > 0.0 && r[7] > 0.0 && r[7] < 40.0, "{r:?}");
-        assert!((r[7] - s[7]).abs() <= 2.0, "stick zone {} against {}", r[7], s[7]);
+        assert!(
+            r[0] > 0.0 && r[1] > 0.0 && r[7] > 0.0 && r[7] < 40.0,
+            "{r:?}"
+        );
+        assert!(
+            (r[7] - s[7]).abs() <= 2.0,
+            "stick zone {} against {}",
+            r[7],
+            s[7]
+        );
     }
     for (name, e) in NAMES.iter().zip(&d).take(7) {
         assert!(*e <= 1e-5, "{name}: {e:e}");
@@ -315,12 +323,15 @@ fn a_cycle_slid_over_cells_dissipates_its_steps_work_and_shakes_down() {
     let q = quantities("down", "back");
     let steps = slid_steps(5.0);
     let until = "[cycle]\nsteps = [\"down\", \"back\"]\nuntil = 1e-6\nrepeat = 6";
-    let (large, params, tl) = run_with_params(&model(SLID, "large", &steps, until, &q), "slid-until");
+    let (large, params, tl) =
+        run_with_params(&model(SLID, "large", &steps, until, &q), "slid-until");
     let (twice, _) = run(&model(SLID, "large", &steps, CYCLE, &q), "slid-twice");
     // Small sliding needs many iterations for a block slid far (docs/study-file.md,
     // linear_stage).
-    let small_model = model(SLID, "small", &steps, CYCLE, &q)
-        .replace("tolerance = 1e-9\n", "tolerance = 1e-9\nmax_iterations = 20000\n");
+    let small_model = model(SLID, "small", &steps, CYCLE, &q).replace(
+        "tolerance = 1e-9\n",
+        "tolerance = 1e-9\nmax_iterations = 20000\n",
+    );
     let (small, ts) = run(&small_model, "slid-small");
     let d = differences(&large, &small);
     for ((name, e), (s, l)) in NAMES.iter().zip(&d).zip(small[0].iter().zip(&large[0])) {
@@ -342,8 +353,14 @@ fn a_cycle_slid_over_cells_dissipates_its_steps_work_and_shakes_down() {
         // Coulomb's law in gross slip: the force mu N (N = 10 MPa x 40 mm) over the path
         // 4 delta.
         let coulomb = 4.0 * theta[0] * 400.0 * delta;
-        eprintln!("mu {}: work {work:.6e}, 4 mu N delta {coulomb:.6e}", theta[0]);
-        assert!((work / coulomb - 1.0).abs() <= 1e-2, "{work} against {coulomb}");
+        eprintln!(
+            "mu {}: work {work:.6e}, 4 mu N delta {coulomb:.6e}",
+            theta[0]
+        );
+        assert!(
+            (work / coulomb - 1.0).abs() <= 1e-2,
+            "{work} against {coulomb}"
+        );
     }
     // Large sliding is measurably another model here: the block overhangs the base by 5 mm
     // at the ends of the cycle, its contact zone and the stresses under its edges move.

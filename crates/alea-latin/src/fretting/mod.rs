@@ -234,12 +234,7 @@ pub fn slip_cycle(
             out.stick_margin[p] = out.stick_margin[p].min(0.0);
         }
     }
-    out.dissipated = out
-        .weights
-        .iter()
-        .zip(&out.work)
-        .map(|(w, v)| w * v)
-        .sum();
+    out.dissipated = out.weights.iter().zip(&out.work).map(|(w, v)| w * v).sum();
     Ok(out)
 }
 

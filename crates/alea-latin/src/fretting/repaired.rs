@@ -80,9 +80,7 @@ pub fn slip_cycle_repaired(
         return Err(FrettingError::PerfectInterface(first.name.clone()));
     }
     if point_side > 1 {
-        return Err(FrettingError::Invalid(format!(
-            "side {point_side}: 0 or 1"
-        )));
+        return Err(FrettingError::Invalid(format!("side {point_side}: 0 or 1")));
     }
     let mismatch = || FrettingError::Mismatch(first.name.clone());
     let mut index: BTreeMap<usize, usize> = BTreeMap::new();
