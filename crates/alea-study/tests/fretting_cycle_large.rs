@@ -20,7 +20,7 @@ use alea_study::runner::{NoProgress, Study, run_study};
 
 /// The block on the base, its top loaded by `top` (loads and/or constraint), with the
 /// interface's `sliding`, then `steps`, `cycle` and `quantities`.
-pub fn model(top: &str, sliding: &str, steps: &str, cycle: &str, quantities: &str) -> String {
+fn model(top: &str, sliding: &str, steps: &str, cycle: &str, quantities: &str) -> String {
     format!(
         r#"
 [study]
@@ -87,7 +87,7 @@ runs = 2
 
 /// Pressed by `10 s` MPa and sheared by a load `+-2.2 s` MPa, `T / (mu N) <= 0.73`: partial
 /// slip, the slides proportional to `s` (in small sliding every displacement is).
-pub fn sheared(s: f64) -> String {
+fn sheared(s: f64) -> String {
     format!(
         "load = [\n  {{ name = \"press\", group = \"upper_top\", traction = [0.0, {:?}] }},\n  \
          {{ name = \"shear\", group = \"upper_top\", traction = [{:?}, 0.0] }},\n]",
@@ -96,7 +96,7 @@ pub fn sheared(s: f64) -> String {
     )
 }
 
-pub const SHEAR_STEPS: &str = r#"
+const SHEAR_STEPS: &str = r#"
 [[step]]
 name = "press"
 load = { shear = 0.0 }
@@ -114,10 +114,10 @@ name = "back"
 load = { shear = 1.0 }
 "#;
 
-pub const CYCLE: &str = "[cycle]\nsteps = [\"down\", \"back\"]\nrepeat = 2";
+const CYCLE: &str = "[cycle]\nsteps = [\"down\", \"back\"]\nrepeat = 2";
 
 /// The fretting quantities a cycle in large sliding gives, and the two steps' dissipations.
-pub fn quantities(down: &str, back: &str) -> String {
+fn quantities(down: &str, back: &str) -> String {
     format!(
         r#"
 [[quantity]]
@@ -297,18 +297,18 @@ fn a_large_sliding_cycle_gives_the_answers_of_its_steps_written_out() {
 }
 
 /// Slid by `+-5` mm (2.5 cells) by an imposed displacement of its top, pressed by 10 MPa.
-pub const SLID: &str = r#"constraint = [ { group = "upper_top", x = 0.0 } ]
+const SLID: &str = r#"constraint = [ { group = "upper_top", x = 0.0 } ]
 load = [ { name = "press", group = "upper_top", traction = [0.0, -10.0] } ]"#;
 
 /// A step that moves the block's top to `x`.
-pub fn slid_step(name: &str, x: f64) -> String {
+fn slid_step(name: &str, x: f64) -> String {
     format!(
         "[[step]]\nname = \"{name}\"\nconstraint = [ {{ substructure = \"block\", group = \"upper_top\", x = {x:?} }} ]\n\n"
     )
 }
 
 /// Press, then slide the block's top to `d`, `-d` and `d`.
-pub fn slid_steps(d: f64) -> String {
+fn slid_steps(d: f64) -> String {
     [
         slid_step("press", 0.0),
         slid_step("up", d),
