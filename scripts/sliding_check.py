@@ -5,7 +5,8 @@ usage: sliding_check.py STUDY.toml [ALEA]
 
 Writes two copies of STUDY.toml next to it in a temporary directory (its .msh files copied too):
 - "small": the study with `[budget] large_sliding = true` (the sliding part: paired solves in
-  small and large sliding at the 2 d + 3 design points of `alea_study::budget::mesh`);
+  small and large sliding at the 2 d + 3 design points of `alea_study::budget::mesh`; a
+  `[budget]` of the study is replaced by this one, in both copies);
 - "large": the study with `sliding = "large"` on every `law = "coulomb"` interface, without its
   `[[reliability]]` tables, on the same design;
 runs both with ALEA (default target/release/alea, 2 threads), then prints, for every method,
@@ -41,8 +42,9 @@ def main(study, alea):
     work = tempfile.mkdtemp(prefix="alea-sliding-")
     for msh in glob.glob(os.path.join(os.path.dirname(os.path.abspath(study)), "*.msh")):
         shutil.copy(msh, work)
-    if re.search(r"(?m)^\[budget\]", text):
-        sys.exit("the study already has a [budget] table")
+    # A [budget] of the study is left out of both copies (its mesh part is not what is
+    # checked); the small copy gets one with the sliding part alone.
+    text = "".join(b for b in re.split(r"(?m)^(?=\[)", text) if not b.startswith("[budget]"))
     small = re.sub(r"(?m)^\[solver\]", "[budget]\nlarge_sliding = true\n\n[solver]", text, count=1)
     if "large_sliding" not in small:
         small = text + "\n[budget]\nlarge_sliding = true\n"

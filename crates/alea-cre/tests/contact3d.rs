@@ -70,6 +70,7 @@ fn result(points: Vec<State>, law: &'static str) -> InterfaceResult {
                 SideProjection::identity(vec![], vec![]),
             ],
             rotation: None,
+            point_nodes: Vec::new(),
         }),
         points: vec![],
         weights: vec![],

@@ -32,6 +32,7 @@ fn result(points: Vec<(f64, f64, [f64; 2], [f64; 2])>, law: &'static str) -> Int
                 SideProjection::identity(vec![], vec![]),
             ],
             rotation: None,
+            point_nodes: Vec::new(),
         }),
         points: vec![],
         weights: vec![],

@@ -406,10 +406,16 @@ pub struct InterfacePairing {
     pub geometric_gap: Vec<f64>,
     /// Projections of side 1 and side 2.
     pub sides: [SideProjection; 2],
-    /// Cyclic symmetry (module [`crate::cyclic`]): the rotation `R` from side 1's frame, the
+    /// Cyclic symmetry (module `cyclic`): the rotation `R` from side 1's frame, the
     /// frame of the points, to side 2's (side 2's fields are stored in its own frame); `None`
     /// for an ordinary interface (both sides in the same frame).
     pub rotation: Option<crate::rotation::Mat3>,
+    /// The mesh node each point is, on the side carrying the points: a mortar pairing's
+    /// multiplier node (whichever side carries them), a node-to-node pairing's side-1 node.
+    /// Points of two pairings of one interface with the same side and node are the same
+    /// material point (large sliding, `crate::fretting::slip_cycle_repaired`). Empty where
+    /// unknown.
+    pub point_nodes: Vec<usize>,
 }
 
 impl InterfacePairing {
@@ -466,6 +472,7 @@ pub fn pair_node_to_node(
     // relative weight difference, issue 21); on exactly matching sides they are the same.
     let weights2 = g1.weights.clone();
     let n = x1.len();
+    let point_nodes = g1.nodes.clone();
     Ok(InterfacePairing {
         kind: PairingKind::NodeToNode,
         x: x1,
@@ -477,5 +484,6 @@ pub fn pair_node_to_node(
             SideProjection::identity(nodes2, weights2),
         ],
         rotation: None,
+        point_nodes,
     })
 }

@@ -489,6 +489,8 @@ fn restrict(
         geometric_gap: points.iter().map(|&p| pairing.geometric_gap[p]).collect(),
         sides,
         rotation: pairing.rotation,
+        // Used by large sliding only, which a split substructure does not take.
+        point_nodes: Vec::new(),
     }
 }
 

@@ -32,13 +32,35 @@
 //! cycle: its only run); the fretting quantities (`qoi::fretting`) are taken over the last
 //! cycle, from the state at the end of the step before it.
 //!
+//! **Large sliding** (`sliding = "large"`, `alea_latin::large_sliding`): every step of the
+//! cycle is a large-sliding step, re-paired from the previous step's pairing and end state
+//! (`steps::run_large_sliding`, the same [`run_cycles`] over `SlidingStep`s); there is no warm
+//! start from the previous cycle (`steps::cycle_start` starts a LATIN iterate on the same
+//! interface points, and a re-paired step starts from its predicted configuration on the
+//! pairing found there). A point of a re-paired interface is a material point of the side
+//! carrying the points (`alea_latin::fretting::slip_cycle_repaired`: the multiplier node of
+//! side `P`, whose partner changes with the slide); shakedown compares the amplitudes of the
+//! same nodes from cycle to cycle (a point present in one cycle only changes by its amplitude),
+//! and the fretting quantities take each step on its own pairing, the work from the step's
+//! slip origin `j0_k = [Pi_k u_{k-1}]_t`:
+//!
+//! ```text
+//!   delta_i = 1/2 max_{k,l closed} |j_k - j_l|,   j_k = [Pi_k u_k]_t
+//!   W = sum_k sum_i w_i^k (-(j_k - j0_k) . q_k)   (= the sum of the steps' friction dissipations)
+//! ```
+//!
 //! Checked at load (file, line, field): a cycle with no step, an unknown or repeated step, steps
 //! that are not the last ones of the history in their order, `repeat < 1`, `until` not in
-//! `(0, 1)`, a cycle without `[[step]]`s, and (module `steps`) a fretting quantity without a
-//! cycle or with a `step`.
+//! `(0, 1)`, a cycle without `[[step]]`s, (module `steps`) a fretting quantity without a
+//! cycle or with a `step`, and ([`check_large_sliding_fretting`]) `ruiz_f2` or a fretting
+//! quantity at a `point` on a re-paired interface (or on any contact interface with the
+//! sliding part of `[budget]`).
 
-use alea_latin::fretting::slip_cycle;
-use alea_latin::{RunResult, RunStatus};
+use std::collections::BTreeMap;
+
+use alea_latin::fretting::{CycleStep, slip_cycle, slip_cycle_repaired};
+use alea_latin::large_sliding::SlidingStep;
+use alea_latin::{InterfaceResult, RunResult, RunStatus};
 
 use crate::spec::ModelFile;
 use crate::{Source, StudyError};
@@ -162,6 +184,71 @@ pub fn plan_cycle(
     }))
 }
 
+/// The fretting quantities a `[cycle]` with a re-paired interface (`sliding = "large"`) cannot
+/// give: Ruiz's F2 (its `sigma_T`, at a material point of the stress substructure, and its
+/// `tau delta`, at a material point of the side carrying the interface points, are the same
+/// point only while the sides do not slide apart) and any quantity at a `point` (the nearest
+/// side-1 point: the points of a re-paired interface are on the side the first pairing chose,
+/// the coarser one, and side 1's node facing a side-2 point changes with the slide). Refused
+/// with the file, line and field of the quantity. `budget`: the check is that of the sliding
+/// part of `[budget]`, whose solves put every contact interface in large sliding (the
+/// message says so); otherwise of the interfaces with `sliding = "large"`.
+pub fn check_large_sliding_fretting(
+    src: &Source,
+    file: &ModelFile,
+    qois: &[crate::qoi::Qoi],
+    assembly: &alea_latin::Assembly,
+    budget: bool,
+) -> Result<(), StudyError> {
+    for (i, (q, spec)) in qois.iter().zip(&file.quantity).enumerate() {
+        let crate::qoi::QoiKind::Fretting(f) = &q.kind else {
+            continue;
+        };
+        let Some(it) = assembly.interfaces.get(f.iface).filter(|it| {
+            alea_latin::large_sliding::is_repaired(it) || (budget && it.law.uses_gap())
+        }) else {
+            continue;
+        };
+        let at_point = f.node.is_some();
+        if !crate::qoi::fretting::refused_with_large_sliding(f.field, at_point) {
+            continue;
+        }
+        let (span, field, why) = match (&spec.point, at_point) {
+            (Some(p), true) => (
+                p.span(),
+                format!("quantity[{i}].point"),
+                "a fretting quantity at a point is not available on an interface with \
+                 sliding = \"large\": its points are material points of the side its first \
+                 pairing chose and the point facing a side-1 node changes with the slide; \
+                 leave out point (the largest over the interface)",
+            ),
+            _ => (
+                spec.kind.span(),
+                format!("quantity[{i}].kind"),
+                "ruiz_f2 is not available on an interface with sliding = \"large\": its \
+                 surface stress and its slip and traction belong to material points of the \
+                 two sides that slide apart (docs/study-file.md, [cycle]); use ruiz_f1 and swt",
+            ),
+        };
+        let context = if budget {
+            " (the sliding part of [budget], large_sliding = true, solves the study with \
+             sliding = \"large\" on every contact interface)"
+        } else {
+            ""
+        };
+        return Err(src.error(
+            span,
+            field,
+            format!(
+                "'{}' on interface '{}'{context}: {why}",
+                spec.name.get_ref(),
+                it.name
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Which results of a run's history the plan's steps are.
 #[derive(Clone, Debug, PartialEq)]
 pub struct HistoryView {
@@ -205,27 +292,107 @@ impl HistoryView {
     }
 }
 
+/// A solved step of a load history, as the cycle sees it: its result and, per interface, the
+/// side carrying the points of a re-paired interface (large sliding,
+/// `alea_latin::fretting::slip_cycle_repaired`; `None`: the same points in every step).
+pub(crate) trait HistoryStep {
+    /// The step's result.
+    fn result(&self) -> &RunResult;
+    /// The step's result, to mark it not converged.
+    fn result_mut(&mut self) -> &mut RunResult;
+    /// The side carrying the points of interface `i` if it is re-paired.
+    fn point_side(&self, i: usize) -> Option<usize>;
+}
+
+impl HistoryStep for RunResult {
+    fn result(&self) -> &RunResult {
+        self
+    }
+    fn result_mut(&mut self) -> &mut RunResult {
+        self
+    }
+    fn point_side(&self, _: usize) -> Option<usize> {
+        None
+    }
+}
+
+impl HistoryStep for SlidingStep {
+    fn result(&self) -> &RunResult {
+        &self.result
+    }
+    fn result_mut(&mut self) -> &mut RunResult {
+        &mut self.result
+    }
+    fn point_side(&self, i: usize) -> Option<usize> {
+        self.point_sides.get(i).copied().flatten()
+    }
+}
+
+/// The slip amplitude of interface `i` over the cycle `steps[from..to]`, per point, keyed by
+/// the point's index (the same points in every step) or, on a re-paired interface, by its node
+/// on the side carrying the points (module doc of `alea_latin::fretting::slip_cycle_repaired`:
+/// the points of two cycles are the same material points when they have the same node).
+fn amplitudes<T: HistoryStep>(
+    steps: &[T],
+    i: usize,
+    from: usize,
+    to: usize,
+) -> Option<BTreeMap<usize, f64>> {
+    let its: Vec<&InterfaceResult> = steps[from..to]
+        .iter()
+        .map(|s| s.result().interfaces.get(i))
+        .collect::<Option<_>>()?;
+    let sc = match steps.get(from).and_then(|s| s.point_side(i)) {
+        Some(side) => {
+            // The amplitude does not depend on the origins (only the work does).
+            let zeros: Vec<Vec<[f64; 3]>> = its
+                .iter()
+                .map(|it| vec![[0.0; 3]; it.points.len()])
+                .collect();
+            let cycle: Vec<CycleStep<'_>> = its
+                .iter()
+                .zip(&zeros)
+                .map(|(it, z)| CycleStep {
+                    result: it,
+                    origin: z,
+                })
+                .collect();
+            let sc = slip_cycle_repaired(&cycle, side).ok()?;
+            return Some(sc.nodes.iter().copied().zip(sc.slip_amplitude).collect());
+        }
+        None => {
+            let origin = from
+                .checked_sub(1)
+                .and_then(|o| steps[o].result().interfaces.get(i));
+            slip_cycle(origin, &its).ok()?
+        }
+    };
+    Some(sc.slip_amplitude.into_iter().enumerate().collect())
+}
+
 /// Per frictional interface, the largest change of the slip amplitude between the cycles
-/// `results[a..b]` and `results[b..c]`, and the largest amplitude of either; the changes below
-/// `1e-6` of the largest tangential jump of the cycles count as none (solver round-off: a
-/// cycle that sticks everywhere has amplitudes of that size).
-pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -> Vec<(f64, f64)> {
-    let n_ifaces = results.get(a).map_or(0, |r| r.interfaces.len());
+/// `steps[a..b]` and `steps[b..c]` (per point: [`amplitudes`]; a point of one cycle only
+/// changes by its amplitude), and the largest amplitude of either; the changes below `1e-6`
+/// of the largest tangential jump of the cycles count as none (solver round-off: a cycle that
+/// sticks everywhere has amplitudes of that size).
+pub(crate) fn slip_change<T: HistoryStep>(
+    steps: &[T],
+    a: usize,
+    b: usize,
+    c: usize,
+) -> Vec<(f64, f64)> {
+    let n_ifaces = steps.get(a).map_or(0, |r| r.result().interfaces.len());
     let mut out = Vec::with_capacity(n_ifaces);
     for i in 0..n_ifaces {
-        let amplitude = |from: usize, to: usize| {
-            let origin = from.checked_sub(1).map(|o| &results[o].interfaces[i]);
-            let its: Vec<_> = results[from..to].iter().map(|r| &r.interfaces[i]).collect();
-            slip_cycle(origin, &its).ok().map(|s| s.slip_amplitude)
-        };
-        let (Some(old), Some(new)) = (amplitude(a, b), amplitude(b, c)) else {
+        let (Some(old), Some(new)) = (amplitudes(steps, i, a, b), amplitudes(steps, i, b, c))
+        else {
             out.push((0.0, 0.0));
             continue;
         };
-        let jump = results[a..c]
+        let jump = steps[a..c]
             .iter()
             .map(|r| {
-                let it = &r.interfaces[i];
+                let it = &r.result().interfaces[i];
                 (0..it.points.len())
                     .map(|p| {
                         let j = it.step_slip(p, &[]);
@@ -234,51 +401,57 @@ pub(crate) fn slip_change(results: &[RunResult], a: usize, b: usize, c: usize) -
                     .fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);
-        let scale = new.iter().chain(&old).copied().fold(0.0, f64::max);
+        let scale = new
+            .values()
+            .chain(old.values())
+            .copied()
+            .fold(0.0, f64::max);
         let change = old
-            .iter()
-            .zip(&new)
-            .map(|(x, y)| (x - y).abs())
+            .keys()
+            .chain(new.keys())
+            .map(|k| {
+                let v = |m: &BTreeMap<usize, f64>| m.get(k).copied().unwrap_or(0.0);
+                (v(&old) - v(&new)).abs()
+            })
             .fold(0.0, f64::max);
         out.push((if change <= 1e-6 * jump { 0.0 } else { change }, scale));
     }
     out
 }
 
-/// Runs the cycles of `c` after the steps already in `results`: `run(k, n, done)` solves the
-/// cycle's step `k` of cycle `n` (from 0) after the results `done` (the history so far: its
+/// Runs the cycles of `c` after the steps already in `steps`: `run(k, n, done)` solves the
+/// cycle's step `k` of cycle `n` (from 0) after the steps `done` (the history so far: its
 /// last is the end state the step starts from). Stops at the first step that does not
 /// converge, after `repeat` cycles, or at shakedown; a run that does not reach shakedown within
 /// `repeat` cycles has its last result marked not converged.
-pub(crate) fn run_cycles(
+pub(crate) fn run_cycles<T: HistoryStep>(
     c: &CyclePlan,
-    results: &mut Vec<RunResult>,
-    mut run: impl FnMut(usize, usize, &[RunResult]) -> Result<RunResult, StudyError>,
+    steps: &mut Vec<T>,
+    mut run: impl FnMut(usize, usize, &[T]) -> Result<T, StudyError>,
 ) -> Result<(), StudyError> {
+    let stopped = |steps: &[T]| {
+        steps
+            .last()
+            .is_some_and(|r| r.result().status != RunStatus::Converged)
+    };
     // Per interface, the largest slip amplitude of the cycles so far.
     let mut reference: Vec<f64> = Vec::new();
     for n in 0..c.repeat {
         for k in 0..c.len {
-            if results
-                .last()
-                .is_some_and(|r| r.status != RunStatus::Converged)
-            {
+            if stopped(steps) {
                 return Ok(());
             }
-            let r = run(k, n, results)?;
-            results.push(r);
+            let r = run(k, n, steps)?;
+            steps.push(r);
         }
-        if results
-            .last()
-            .is_some_and(|r| r.status != RunStatus::Converged)
-        {
+        if stopped(steps) {
             return Ok(());
         }
         if let Some(tol) = c.until
             && n >= 1
         {
-            let end = results.len();
-            let changes = slip_change(results, end - 2 * c.len, end - c.len, end);
+            let end = steps.len();
+            let changes = slip_change(steps, end - 2 * c.len, end - c.len, end);
             reference.resize(changes.len(), 0.0);
             let mut done = true;
             for ((change, scale), r) in changes.iter().zip(reference.iter_mut()) {
@@ -291,9 +464,9 @@ pub(crate) fn run_cycles(
         }
     }
     if c.until.is_some()
-        && let Some(last) = results.last_mut()
+        && let Some(last) = steps.last_mut()
     {
-        last.status = RunStatus::NotConverged;
+        last.result_mut().status = RunStatus::NotConverged;
     }
     Ok(())
 }

@@ -200,6 +200,12 @@ impl RunContext<'_> {
         let repaired = matches!(runs, StepRuns::Repaired(_));
         // Per step: its result, its solver (large sliding: that of its last pairing) and the
         // tangential jump at its start (where its slip, work and dissipation count from).
+        let point_sides = match &runs {
+            StepRuns::Paired(_) => Vec::new(),
+            StepRuns::Repaired(steps) => steps
+                .last()
+                .map_or_else(Vec::new, |s| s.point_sides.clone()),
+        };
         let (results, solvers, origins) = match runs {
             StepRuns::Paired(results) => {
                 let origins = (0..results.len())
@@ -231,7 +237,10 @@ impl RunContext<'_> {
         let qois = study
             .qois
             .iter()
-            .map(|q| crate::steps::eval_qoi(q, &solvers, &results, &origins, view.as_ref()))
+            .map(|q| {
+                let v = view.as_ref();
+                crate::steps::eval_qoi(q, &solvers, &results, &origins, v, &point_sides)
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let mut status = match (res.status, solver.equilibrium_report(res)) {
             (RunStatus::NoEquilibrium, Some(why)) => format!("no equilibrium: {why}"),

@@ -418,7 +418,8 @@ pub fn run_study_history(
 /// the first loading's level starts from that loading's end). Only the start of the iteration:
 /// the friction law's origin is the previous step's end in every case, and the answer is the
 /// same to the solver tolerance; measured in BENCHMARKS "Fretting" (5 - 10x fewer iterations
-/// in the steps that repeat).
+/// in the steps that repeat). Small sliding only: with large sliding the state of another
+/// step lives on another pairing ([`run_large_sliding`]).
 fn cycle_start<'a>(
     plan: &Plan,
     cycle: &crate::cycle::CyclePlan,
@@ -481,8 +482,10 @@ pub(crate) fn history_status(
 
 /// Runs one study run with large sliding (`alea_latin::large_sliding`): the steps of `plan`
 /// (`None`: one step, `input` itself) on the assembly of their imposed displacements
-/// (`assemblies[j]` for `plan.files[j]`), each re-paired in its deformed configuration. Returns
-/// the steps run: the history stops after a step that does not converge.
+/// (`assemblies[j]` for `plan.files[j]`), each re-paired in its deformed configuration from
+/// the end of the step before it; with a `[cycle]`, its steps repeated as in
+/// [`run_study_history`] (module `cycle`), one result per step run. Returns the steps run: the
+/// history stops after a step that does not converge.
 pub fn run_large_sliding(
     plan: Option<&Plan>,
     assemblies: &[&alea_latin::Assembly],
@@ -504,9 +507,36 @@ pub fn run_large_sliding(
             })
             .collect::<Result<_, _>>()?,
     };
-    Ok(alea_latin::large_sliding::run_history(
-        &steps, options, repairing,
-    )?)
+    let Some(cycle) = plan.and_then(|p| p.cycle.as_ref()) else {
+        return Ok(alea_latin::large_sliding::run_history(
+            &steps, options, repairing,
+        )?);
+    };
+    // The steps before the cycle once, then the cycle's (module `cycle`), each re-paired from
+    // the end of the step before it. No warm start from the previous cycle (`cycle_start`):
+    // a large-sliding step starts from its predicted configuration on the pairing found there
+    // (`alea_latin::large_sliding`), and the previous cycle's state is on other pairings.
+    let mut done = alea_latin::large_sliding::run_history(
+        &steps[..cycle.first.min(steps.len())],
+        options,
+        repairing,
+    )?;
+    if done.len() < cycle.first {
+        return Ok(done);
+    }
+    crate::cycle::run_cycles(cycle, &mut done, |k, _, done| {
+        let (assembly, input) = steps
+            .get(cycle.first + k)
+            .ok_or_else(|| StudyError::Internal("a cycle step out of the plan".into()))?;
+        Ok(alea_latin::large_sliding::run_step(
+            assembly,
+            options,
+            repairing,
+            done.last(),
+            input,
+        )?)
+    })?;
+    Ok(done)
 }
 
 /// The value of `q` for a run whose steps gave `results` (one result without steps), each
@@ -520,13 +550,16 @@ pub fn run_large_sliding(
 ///
 /// With a `[cycle]`, `view` says which results are the plan's steps (those of the last cycle
 /// for the cycle's steps), and a fretting quantity is evaluated over the last complete cycle
-/// (NaN if none completed).
+/// (NaN if none completed); on an interface `i` with `point_sides[i] = Some(side)` (re-paired,
+/// large sliding: the side carrying its points) by `FrettingQoi::eval_repaired`, with the
+/// steps' `origins`.
 pub(crate) fn eval_qoi(
     q: &crate::qoi::Qoi,
     solvers: &[&alea_latin::LatinSolver],
     results: &[alea_latin::RunResult],
     origins: &[Vec<Vec<[f64; 3]>>],
     view: Option<&crate::cycle::HistoryView>,
+    point_sides: &[Option<usize>],
 ) -> Result<f64, StudyError> {
     use crate::qoi::QoiKind;
     if let QoiKind::Fretting(f) = &q.kind {
@@ -536,6 +569,19 @@ pub(crate) fn eval_qoi(
         let Some(solver) = solvers.get(range.end - 1) else {
             return Ok(f64::NAN);
         };
+        if let Some(side) = point_sides.get(f.iface).copied().flatten() {
+            // A re-paired interface: per step its own pairing and slip origin.
+            let cycle: Vec<&alea_latin::RunResult> = results[range.clone()].iter().collect();
+            let starts = origins
+                .get(range)
+                .and_then(|o| {
+                    o.iter()
+                        .map(|o| o.get(f.iface).map(Vec::as_slice))
+                        .collect::<Option<Vec<_>>>()
+                })
+                .ok_or_else(|| StudyError::Internal("no slip origin for a cycle step".into()))?;
+            return f.eval_repaired(solver, &cycle, &starts, side);
+        }
         let origin = range.start.checked_sub(1).and_then(|o| results.get(o));
         let cycle: Vec<&alea_latin::RunResult> = results[range].iter().collect();
         return f.eval(solver, origin, &cycle);

@@ -127,14 +127,15 @@ impl Study {
         let model = build_model(&source, &file, &params)?;
         let mut qois = build_qois(&source, &file.quantity, &model)?;
         let steps = crate::steps::study_steps(&source, &file, &mut qois)?;
-        if let (Some(c), Some(crate::steps::Plan { cycle: Some(_), .. })) = (&file.cycle, &steps)
-            && alea_latin::large_sliding::uses_large_sliding(&model.assembly)
-        {
-            return Err(source.error(
-                c.span(),
-                "cycle",
-                "load cycles are not implemented with large sliding (an interface with sliding = \"large\")",
-            ));
+        if steps.as_ref().is_some_and(|p| p.cycle.is_some()) {
+            // Also for the sliding part of the budget, at the quantity's line of this file.
+            let budget = file
+                .budget
+                .as_ref()
+                .and_then(|b| b.get_ref().large_sliding.as_ref())
+                .is_some_and(|f| *f.get_ref());
+            let (src, a) = (&source, &model.assembly);
+            crate::cycle::check_large_sliding_fretting(src, &file, &qois, a, budget)?;
         }
         let step_models = match &steps {
             Some(plan) => plan.files[1..]

@@ -65,16 +65,18 @@ pub fn solve_history(
             outln!("{}:", label(k));
             print_pairings(done, repairing);
             let origins = large_sliding::step_origins(done, k.checked_sub(1).map(|j| &steps[j]));
-            let model = &models[plan.steps[k].file];
+            let j = step_of(k);
+            let model = &models[plan.steps[j].file];
             let step = Step {
                 label: label(k),
                 solver: &done.solver,
                 res: &done.result,
-                input: &inputs[k],
+                input: &inputs[j],
                 origins,
             };
             report_step(file, &plan, model, &step, &out.join(name(k)), t0)?;
         }
+        print_cycles(&plan, steps.len());
     } else {
         let solvers: Vec<Arc<LatinSolver>> = models
             .iter()
@@ -102,22 +104,27 @@ pub fn solve_history(
             };
             report_step(file, &plan, &models[file_k], &step, &out.join(name(k)), t0)?;
         }
-        if let Some(c) = plan.cycle.as_ref().filter(|c| c.len > 0) {
-            let cycles = results.len().saturating_sub(c.first) / c.len;
-            outln!(
-                "load cycle: {cycles} cycle(s) of {} step(s) run{}",
-                c.len,
-                match c.until {
-                    Some(tol) => format!(
-                        "; shaken down: the slip amplitude changed by at most {tol} of the largest in the last cycle"
-                    ),
-                    None => String::new(),
-                }
-            );
-        }
+        print_cycles(&plan, results.len());
     }
     outln!("({:.2} s in all)", t0.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// The number of cycles of a history of `n` steps run (all converged), with its shakedown.
+fn print_cycles(plan: &Plan, n: usize) {
+    if let Some(c) = plan.cycle.as_ref().filter(|c| c.len > 0) {
+        let cycles = n.saturating_sub(c.first) / c.len;
+        outln!(
+            "load cycle: {cycles} cycle(s) of {} step(s) run{}",
+            c.len,
+            match c.until {
+                Some(tol) => format!(
+                    "; shaken down: the slip amplitude changed by at most {tol} of the largest in the last cycle"
+                ),
+                None => String::new(),
+            }
+        );
+    }
 }
 
 /// Step `k` of a history, solved: its solver, result and input, and the slip origin of every

@@ -60,7 +60,10 @@
 //! 763-775. The closed-form verification (Cattaneo-Mindlin / Mindlin-Deresiewicz cylinder on a
 //! flat) is `tests/fretting.rs`.
 
+mod repaired;
 mod stress;
+
+pub use repaired::{CycleStep, slip_cycle_repaired};
 
 pub use stress::{
     Regularisation, StressCycle, fatemi_socie, fs_of_stresses, plane_normals, stress_cycle,
@@ -137,6 +140,14 @@ pub struct SlipCycle {
     pub work: Vec<f64>,
     /// Largest tangential traction over the cycle `tau_i`.
     pub tau: Vec<f64>,
+    /// Mesh node of each point on the side carrying the points (side 1 for
+    /// [`slip_cycle`]: `InterfaceResult::nodes[0]`; the point side for
+    /// [`slip_cycle_repaired`]).
+    pub nodes: Vec<usize>,
+    /// The energy dissipated by friction over the cycle, `sum_k sum_i w_i^k W_i^k` (each
+    /// step's contribution with its own weights: with large sliding the weights of the
+    /// points at the edge of the covered zone change with the pairing).
+    pub dissipated: f64,
 }
 
 fn tangential(v: V3, n: V3) -> V3 {
@@ -184,6 +195,8 @@ pub fn slip_cycle(
         slip_amplitude: vec![0.0; np],
         work: vec![0.0; np],
         tau: vec![0.0; np],
+        nodes: first.nodes[0].clone(),
+        dissipated: 0.0,
     };
     for p in 0..np {
         let n = first.points[p].normal;
@@ -221,6 +234,7 @@ pub fn slip_cycle(
             out.stick_margin[p] = out.stick_margin[p].min(0.0);
         }
     }
+    out.dissipated = out.weights.iter().zip(&out.work).map(|(w, v)| w * v).sum();
     Ok(out)
 }
 
@@ -249,13 +263,10 @@ impl SlipCycle {
         self.f1().iter().zip(sigma_t).map(|(f, s)| f * s).collect()
     }
 
-    /// The energy dissipated by friction over the cycle, `sum_i w_i W_i` (>= 0).
+    /// The energy dissipated by friction over the cycle, `sum_i w_i W_i` (>= 0;
+    /// [`SlipCycle::dissipated`]).
     pub fn total_work(&self) -> f64 {
-        self.weights
-            .iter()
-            .zip(&self.work)
-            .map(|(w, v)| w * v)
-            .sum()
+        self.dissipated
     }
 
     /// Measure of the zone that sticks throughout the cycle. 2D (`mesh` of dimension 2: side

@@ -221,6 +221,7 @@ fn one_way(
             SideProjection::identity(vec![], vec![]),
         ],
         rotation: None,
+        point_nodes: Vec::new(),
     };
     let mut rows: [(Vec<usize>, Vec<usize>, Vec<f64>); 2] = Default::default();
     for r in rows.iter_mut() {
@@ -267,6 +268,7 @@ fn one_way(
             .map(|i| geometry1.normals[i])
             .unwrap_or([0.0; 3]);
         pairing.x.push(x1);
+        pairing.point_nodes.push(node);
         pairing.normals.push(normal);
         pairing.weights.push(m);
         pairing.geometric_gap.push(if with_gap {

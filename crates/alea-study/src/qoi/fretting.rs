@@ -19,7 +19,8 @@
 //! near a corner of the body, it can leave it).
 
 use alea_latin::fretting::{
-    Regularisation, fatemi_socie, max_with_index, slip_cycle, stress_cycle,
+    CycleStep, Regularisation, fatemi_socie, max_with_index, slip_cycle, slip_cycle_repaired,
+    stress_cycle,
 };
 use alea_latin::{LatinSolver, RunResult};
 
@@ -99,6 +100,12 @@ pub struct FrettingQoi {
     pub regularisation: Regularisation,
     /// Fatemi-Socie's material constants `(k, sigma_y)` (`None` for the other quantities).
     pub fatemi_socie: Option<(f64, f64)>,
+}
+
+/// True for the quantities a re-paired interface (large sliding) cannot give meaning to, or
+/// not at a given point (module doc): Ruiz's F2 and any quantity at a `point`.
+pub fn refused_with_large_sliding(field: FrettingField, at_point: bool) -> bool {
+    field == FrettingField::RuizF2 || at_point
 }
 
 fn failed(e: alea_latin::fretting::FrettingError) -> StudyError {
@@ -184,6 +191,85 @@ impl FrettingQoi {
                     _ => at_or_max(&sc.f2(&st.sigma_t)),
                 }
             }
+        })
+    }
+
+    /// The value over the cycle `cycle` of a run with large sliding, whose interface is
+    /// re-paired with its points on side `point_side` (module doc): step `k` on its own
+    /// pairing, its slip counted from `origins[k]` (per point of the step,
+    /// `alea_latin::large_sliding::step_origins`).
+    pub fn eval_repaired(
+        &self,
+        solver: &LatinSolver,
+        cycle: &[&RunResult],
+        origins: &[&[[f64; 3]]],
+        point_side: usize,
+    ) -> Result<f64, StudyError> {
+        if refused_with_large_sliding(self.field, self.node.is_some()) {
+            return Err(StudyError::Internal(format!(
+                "{} is refused at load with large sliding",
+                self.field.label()
+            )));
+        }
+        let steps: Vec<CycleStep<'_>> = cycle
+            .iter()
+            .zip(origins)
+            .map(|(r, o)| {
+                r.interfaces.get(self.iface).map(|it| CycleStep {
+                    result: it,
+                    origin: o,
+                })
+            })
+            .collect::<Option<Vec<_>>>()
+            .filter(|s| s.len() == cycle.len())
+            .ok_or_else(|| StudyError::Internal("fretting: no such interface".into()))?;
+        let sc = slip_cycle_repaired(&steps, point_side).map_err(failed)?;
+        let max = |v: &[f64]| max_with_index(v).map_or(0.0, |m| m.0);
+        Ok(match self.field {
+            FrettingField::SlipAmplitude => max(&sc.slip_amplitude),
+            FrettingField::WorkCycle => sc.total_work(),
+            FrettingField::RuizF1 => max(&sc.f1()),
+            FrettingField::StickZone => {
+                let sub = steps[0].result.subs[point_side];
+                sc.stick_zone(&solver.model(sub).mesh, &sc.nodes)
+            }
+            FrettingField::Swt | FrettingField::FatemiSocie => {
+                // The stresses at the material points of the step with the most points (the
+                // largest covered zone), through every step of the cycle: SWT and
+                // Fatemi-Socie are maxima and ranges over the steps, in any order.
+                let widest = (0..cycle.len())
+                    .max_by_key(|&k| steps[k].result.points.len())
+                    .unwrap_or(0);
+                let mut order: Vec<&RunResult> = vec![cycle[widest]];
+                order.extend((0..cycle.len()).filter(|&k| k != widest).map(|k| cycle[k]));
+                let st = stress_cycle(
+                    solver,
+                    self.iface,
+                    self.side,
+                    &order,
+                    self.regularisation,
+                    SWT_PLANES,
+                )
+                .map_err(failed)?;
+                match (self.field, self.fatemi_socie) {
+                    (FrettingField::FatemiSocie, Some((k, sy))) => {
+                        let fs: Vec<f64> = st
+                            .fs_shear
+                            .iter()
+                            .zip(&st.fs_normal)
+                            .map(|(&g, &sn)| fatemi_socie(g, sn, k, sy))
+                            .collect();
+                        max(&fs)
+                    }
+                    (FrettingField::FatemiSocie, None) => {
+                        return Err(StudyError::Internal(
+                            "a Fatemi-Socie quantity without its material constants".into(),
+                        ));
+                    }
+                    _ => max(&st.swt),
+                }
+            }
+            FrettingField::RuizF2 => return Err(StudyError::Internal("refused at load".into())),
         })
     }
 }
