@@ -46,15 +46,7 @@ pub fn partition_cells(mesh: &Mesh, parts: usize) -> Result<Vec<usize>, FemError
             }
         }
     }
-    let mut xadj = Vec::with_capacity(n + 1);
-    let mut adjncy = Vec::new();
-    xadj.push(0i32);
-    for l in adj.iter_mut() {
-        l.sort_unstable();
-        l.dedup();
-        adjncy.extend_from_slice(l);
-        xadj.push(adjncy.len() as i32);
-    }
+    let (mut xadj, mut adjncy) = crate::solver::metis_graph(adj);
     let mut nvtxs = n as i32;
     let mut ncon = 1i32;
     let mut nparts = parts as i32;

@@ -92,6 +92,21 @@ impl std::fmt::Debug for Cholesky {
 }
 
 /// METIS nested-dissection ordering of the block graph; returns `(perm_fwd, perm_inv)` on dofs.
+/// The CSR arrays `(xadj, adjncy)` METIS reads, from adjacency lists (sorted and
+/// deduplicated here; no self loops).
+pub(crate) fn metis_graph(mut adj: Vec<Vec<i32>>) -> (Vec<i32>, Vec<i32>) {
+    let mut xadj = Vec::with_capacity(adj.len() + 1);
+    let mut adjncy = Vec::new();
+    xadj.push(0i32);
+    for l in adj.iter_mut() {
+        l.sort_unstable();
+        l.dedup();
+        adjncy.extend_from_slice(l);
+        xadj.push(adjncy.len() as i32);
+    }
+    (xadj, adjncy)
+}
+
 /// METIS keeps its random-number state in process globals: one call at a time (module
 /// [`crate::partition`] too).
 pub(crate) static METIS_LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
@@ -109,15 +124,7 @@ fn metis_order(a: &SymCsc, block_of_dof: &[usize]) -> Result<(Vec<usize>, Vec<us
             }
         }
     }
-    let mut xadj = Vec::with_capacity(nb + 1);
-    let mut adjncy = Vec::new();
-    xadj.push(0i32);
-    for l in adj.iter_mut() {
-        l.sort_unstable();
-        l.dedup();
-        adjncy.extend_from_slice(l);
-        xadj.push(adjncy.len() as i32);
-    }
+    let (mut xadj, mut adjncy) = metis_graph(adj);
     let mut perm = vec![0i32; nb];
     let mut iperm = vec![0i32; nb];
     if nb > 1 {

@@ -83,6 +83,27 @@ pub fn restrict(ref_mesh: &Mesh, reference: &[f64], mesh: &Mesh) -> Vec<f64> {
     out
 }
 
+/// The relative energy `E(u - u_ref) / E(u_ref)` of the difference between the substructures'
+/// displacements `displacements` and a reference solution `reference` on one mesh `whole` of
+/// the assembly (restricted to each substructure's nodes by coordinates).
+#[allow(dead_code)]
+pub fn relative_energy_error(
+    whole: &Mesh,
+    reference: &[f64],
+    subs: &[Substructure],
+    displacements: &[Vec<f64>],
+) -> f64 {
+    let (mut num, mut den) = (0.0, 0.0);
+    for (sub, u) in subs.iter().zip(displacements) {
+        let m = &sub.model;
+        let r = restrict(whole, reference, &m.mesh);
+        let diff: Vec<f64> = r.iter().zip(u).map(|(a, b)| a - b).collect();
+        num += energy(m, &diff);
+        den += energy(m, &r);
+    }
+    num / den
+}
+
 /// Structured box `[x0, x0 + l] ` (per direction) of `Hex8`, `Tet4` or `Tet10` cells.
 pub fn cuboid(x0: [f64; 3], l: [f64; 3], n: [usize; 3], kind: CellType) -> Mesh {
     let mut m = generate::box_mesh(l, n, kind).unwrap();
