@@ -150,6 +150,46 @@ pub struct SlipCycle {
     pub dissipated: f64,
 }
 
+impl SlipCycle {
+    /// Records point `i`'s state in one step of the cycle: its tangential force `q` and force
+    /// `f` on side 2, normal `n`, friction coefficient `mu`, status. Returns whether it is
+    /// closed in that step (its jump then counts in the slip amplitude).
+    pub(crate) fn record_step(
+        &mut self,
+        i: usize,
+        q: [f64; 3],
+        f: [f64; 3],
+        n: [f64; 3],
+        mu: f64,
+        status: PointStatus,
+    ) -> bool {
+        let qn = dot(&q, &q).sqrt();
+        self.tau[i] = self.tau[i].max(qn);
+        let margin = mu * dot(&f, &n).max(0.0) - qn;
+        self.stick_margin[i] = self.stick_margin[i].min(margin);
+        let closed = matches!(status, PointStatus::Stick | PointStatus::Slip);
+        self.closed[i] |= closed;
+        self.stick[i] &= status == PointStatus::Stick;
+        closed
+    }
+
+    /// Point `i`'s slip amplitude, half the largest distance between the tangential jumps
+    /// `jumps` of its closed steps (0 with none), and its stick margin floored at 0 where it
+    /// does not stick throughout.
+    pub(crate) fn finish_point(&mut self, i: usize, jumps: &[[f64; 3]]) {
+        let mut range = 0.0f64;
+        for (a, ja) in jumps.iter().enumerate() {
+            for jb in &jumps[a + 1..] {
+                range = range.max(dist(ja, jb));
+            }
+        }
+        self.slip_amplitude[i] = 0.5 * range;
+        if !self.stick[i] {
+            self.stick_margin[i] = self.stick_margin[i].min(0.0);
+        }
+    }
+}
+
 fn tangential(v: V3, n: V3) -> V3 {
     let vn = dot(&v, &n);
     [v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]]
@@ -208,31 +248,12 @@ pub fn slip_cycle(
             let q = tangential(f, n);
             let d = [j[0] - prev[0], j[1] - prev[1], j[2] - prev[2]];
             out.work[p] -= dot(&d, &q);
-            let qn = dot(&q, &q).sqrt();
-            out.tau[p] = out.tau[p].max(qn);
-            let margin = r.points[p].mu * dot(&f, &n).max(0.0) - qn;
-            out.stick_margin[p] = out.stick_margin[p].min(margin);
-            let st = r.status[p];
-            let closed = matches!(st, PointStatus::Stick | PointStatus::Slip);
-            out.closed[p] |= closed;
-            out.stick[p] &= st == PointStatus::Stick;
-            if closed {
+            if out.record_step(p, q, f, n, r.points[p].mu, r.status[p]) {
                 jumps.push(j);
             }
             prev = j;
         }
-        if out.closed[p] {
-            let mut range = 0.0f64;
-            for (a, ja) in jumps.iter().enumerate() {
-                for jb in &jumps[a + 1..] {
-                    range = range.max(dist(ja, jb));
-                }
-            }
-            out.slip_amplitude[p] = 0.5 * range;
-        }
-        if !out.stick[p] {
-            out.stick_margin[p] = out.stick_margin[p].min(0.0);
-        }
+        out.finish_point(p, &jumps);
     }
     out.dissipated = out.weights.iter().zip(&out.work).map(|(w, v)| w * v).sum();
     Ok(out)

@@ -38,8 +38,8 @@ use std::collections::BTreeMap;
 
 use alea_mesh::vec3::dot;
 
-use super::{FrettingError, SlipCycle, V3, dist, tangential};
-use crate::{InterfaceResult, PointStatus};
+use super::{FrettingError, SlipCycle, V3, tangential};
+use crate::InterfaceResult;
 
 /// The mesh node of each point of `it`, on the side carrying them: the pairing's
 /// (`InterfacePairing::point_nodes`, the multiplier nodes), else the node of largest
@@ -139,15 +139,7 @@ pub fn slip_cycle_repaired(
             let w = -dot(&it.step_slip(p, s.origin), &q);
             out.work[i] += w;
             out.dissipated += it.weights[p] * w;
-            let qn = dot(&q, &q).sqrt();
-            out.tau[i] = out.tau[i].max(qn);
-            let margin = it.points[p].mu * dot(&f, &n).max(0.0) - qn;
-            out.stick_margin[i] = out.stick_margin[i].min(margin);
-            let st = it.status[p];
-            let closed = matches!(st, PointStatus::Stick | PointStatus::Slip);
-            out.closed[i] |= closed;
-            out.stick[i] &= st == PointStatus::Stick;
-            if closed {
+            if out.record_step(i, q, f, n, it.points[p].mu, it.status[p]) {
                 jumps[i].push(it.step_slip(p, &[]));
             }
         }
@@ -155,16 +147,7 @@ pub fn slip_cycle_repaired(
     for i in 0..np {
         // Absent from a step: open there (no partner).
         out.stick[i] &= present[i] == steps.len();
-        let mut range = 0.0f64;
-        for (a, ja) in jumps[i].iter().enumerate() {
-            for jb in &jumps[i][a + 1..] {
-                range = range.max(dist(ja, jb));
-            }
-        }
-        out.slip_amplitude[i] = 0.5 * range;
-        if !out.stick[i] {
-            out.stick_margin[i] = out.stick_margin[i].min(0.0);
-        }
+        out.finish_point(i, &jumps[i]);
     }
     Ok(out)
 }
