@@ -19,8 +19,8 @@
 //! near a corner of the body, it can leave it).
 
 use alea_latin::fretting::{
-    CycleStep, Regularisation, fatemi_socie, max_with_index, slip_cycle, slip_cycle_repaired,
-    stress_cycle,
+    CycleStep, Regularisation, StressCycle, fatemi_socie, max_with_index, slip_cycle,
+    slip_cycle_repaired, stress_cycle,
 };
 use alea_latin::{LatinSolver, RunResult};
 
@@ -113,6 +113,22 @@ fn failed(e: alea_latin::fretting::FrettingError) -> StudyError {
 }
 
 impl FrettingQoi {
+    /// The Fatemi-Socie parameter at every point of a stress cycle, with this quantity's
+    /// material constants.
+    fn fatemi_socie_values(&self, st: &StressCycle) -> Result<Vec<f64>, StudyError> {
+        let Some((k, sy)) = self.fatemi_socie else {
+            return Err(StudyError::Internal(
+                "a Fatemi-Socie quantity without its material constants".into(),
+            ));
+        };
+        Ok(st
+            .fs_shear
+            .iter()
+            .zip(&st.fs_normal)
+            .map(|(&g, &sn)| fatemi_socie(g, sn, k, sy))
+            .collect())
+    }
+
     /// The value over the cycle `cycle` (the results of its steps, solved by `solver`) from the
     /// state `origin` (the step before the cycle; `None`: unloaded).
     pub fn eval(
@@ -172,22 +188,9 @@ impl FrettingQoi {
                         at: last.points[p].x,
                     }));
                 }
-                match (self.field, self.fatemi_socie) {
-                    (FrettingField::Swt, _) => at_or_max(&st.swt),
-                    (FrettingField::FatemiSocie, Some((k, sy))) => {
-                        let fs: Vec<f64> = st
-                            .fs_shear
-                            .iter()
-                            .zip(&st.fs_normal)
-                            .map(|(&g, &sn)| fatemi_socie(g, sn, k, sy))
-                            .collect();
-                        at_or_max(&fs)
-                    }
-                    (FrettingField::FatemiSocie, None) => {
-                        return Err(StudyError::Internal(
-                            "a Fatemi-Socie quantity without its material constants".into(),
-                        ));
-                    }
+                match self.field {
+                    FrettingField::Swt => at_or_max(&st.swt),
+                    FrettingField::FatemiSocie => at_or_max(&self.fatemi_socie_values(&st)?),
                     _ => at_or_max(&sc.f2(&st.sigma_t)),
                 }
             }
@@ -251,21 +254,8 @@ impl FrettingQoi {
                     SWT_PLANES,
                 )
                 .map_err(failed)?;
-                match (self.field, self.fatemi_socie) {
-                    (FrettingField::FatemiSocie, Some((k, sy))) => {
-                        let fs: Vec<f64> = st
-                            .fs_shear
-                            .iter()
-                            .zip(&st.fs_normal)
-                            .map(|(&g, &sn)| fatemi_socie(g, sn, k, sy))
-                            .collect();
-                        max(&fs)
-                    }
-                    (FrettingField::FatemiSocie, None) => {
-                        return Err(StudyError::Internal(
-                            "a Fatemi-Socie quantity without its material constants".into(),
-                        ));
-                    }
+                match self.field {
+                    FrettingField::FatemiSocie => max(&self.fatemi_socie_values(&st)?),
                     _ => max(&st.swt),
                 }
             }
