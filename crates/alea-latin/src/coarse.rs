@@ -436,23 +436,23 @@ pub(crate) fn macro_inverse(
             l[(c, r)] = v;
         }
     }
-    let mut inv = vec![0.0; n * n];
     let Ok(evd) = l.self_adjoint_eigen(Side::Lower) else {
         // No correction rather than a wrong one (an eigen-solver failure on a small symmetric
         // matrix would be a bug).
-        return inv;
+        return vec![0.0; n * n];
     };
     let (s, u) = (evd.S(), evd.U());
     let smax = (0..n).map(|k| s[k].abs()).fold(0.0f64, f64::max);
-    for k in 0..n {
-        if s[k] > 1e-10 * smax {
-            let d = 1.0 / s[k];
-            for r in 0..n {
-                let ur = u[(r, k)] * d;
-                for c in 0..n {
-                    inv[r * n + c] += ur * u[(c, k)];
-                }
-            }
+    // `L^+ = U_k D_k^-1 U_k^T` over the kept eigenpairs, one matrix product (with subdomains
+    // the macro space has thousands of unknowns: a product, not a triple loop).
+    let kept: Vec<usize> = (0..n).filter(|&k| s[k] > 1e-10 * smax).collect();
+    let uk = Mat::<f64>::from_fn(n, kept.len(), |r, j| u[(r, kept[j])]);
+    let scaled = Mat::<f64>::from_fn(n, kept.len(), |r, j| uk[(r, j)] / s[kept[j]]);
+    let pinv = &scaled * uk.transpose();
+    let mut inv = vec![0.0; n * n];
+    for r in 0..n {
+        for c in 0..n {
+            inv[r * n + c] = pinv[(r, c)];
         }
     }
     inv

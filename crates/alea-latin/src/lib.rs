@@ -44,7 +44,8 @@ pub mod samples;
 pub mod sides;
 pub mod sliding;
 mod solver;
-pub mod split;
+pub use solver::split;
+mod state;
 pub mod steps;
 
 pub use assembly::{
@@ -57,6 +58,7 @@ pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, P
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
 pub use rotation::Cyclic;
 pub use solver::{
-    LatinOptions, LatinSolver, LinearStage, LinearStageSummary, LocalState, RunInput,
-    SearchDirection,
+    LatinOptions, LatinSolver, LinearStage, LinearStageSummary, RunInput, SearchDirection,
+    Subdomains,
 };
+pub use state::LocalState;

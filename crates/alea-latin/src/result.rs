@@ -202,6 +202,11 @@ pub struct RunResult {
     pub equilibrium: Vec<SubEquilibrium>,
     /// Timings.
     pub timings: RunTimings,
+    /// The local-stage state of the solved interfaces when the model was cut into subdomains
+    /// (the pieces of the user's interfaces and the cuts, module [`crate::split`]): what
+    /// [`RunResult::end_state`] gives, so that a run warm-started from this one starts its
+    /// cuts too. `None`: the state is that of [`RunResult::interfaces`].
+    pub split_state: Option<std::sync::Arc<crate::state::LocalState>>,
 }
 
 impl RunResult {

@@ -70,6 +70,9 @@ impl RunResult {
     /// The local-stage state `(W_hat, F_hat)` at the end of this run: the start of the next
     /// load step ([`RunInput::previous_step`]).
     pub fn end_state(&self) -> LocalState {
+        if let Some(state) = &self.split_state {
+            return (**state).clone();
+        }
         LocalState {
             what: self.interfaces.iter().map(|i| i.what.clone()).collect(),
             fhat: self.interfaces.iter().map(|i| i.fhat.clone()).collect(),

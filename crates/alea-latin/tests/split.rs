@@ -151,3 +151,100 @@ fn a_split_contact_model_gives_the_undivided_answer_in_2d() {
 fn a_split_contact_model_gives_the_undivided_answer_in_3d() {
     compare(3, [3, 2]);
 }
+
+/// The solver cuts the model by itself (`LatinOptions::subdomains`) and speaks of the user's
+/// model: its accessors, a run's input and result, a warm start, a modulus varying from cell
+/// to cell - all as the undivided solver's, to the solver tolerance.
+#[test]
+fn the_solver_cuts_the_model_by_itself_and_speaks_of_the_users_model() {
+    let asm = press_and_shear(3);
+    let mut whole = LatinSolver::new(asm.clone(), options()).unwrap();
+    assert!(
+        whole.split().is_none(),
+        "a small model is not cut by default"
+    );
+    let cut = LatinSolver::new(
+        asm.clone(),
+        LatinOptions {
+            subdomains: alea_latin::Subdomains::Always,
+            subdomain_dofs: 150,
+            ..options()
+        },
+    )
+    .unwrap();
+    // 972 and 300 unknowns in parts of about 150.
+    assert_eq!(cut.split().unwrap().parts(), vec![6, 2]);
+    assert_eq!(cut.num_subs(), 2);
+    assert_eq!(cut.num_solved_subs(), 8);
+    assert_eq!(cut.num_interfaces(), 1);
+    assert_eq!(cut.sub_name(1), "block");
+    assert_eq!(cut.interface_name(0), "contact");
+    assert_eq!(cut.interface_law(0), whole.interface_law(0));
+    assert_eq!(cut.interface_nodes(0), whole.interface_nodes(0));
+    assert_eq!(cut.interface_weights(0), whole.interface_weights(0));
+    let xs =
+        |s: &LatinSolver| -> Vec<[f64; 3]> { s.interface_points(0).iter().map(|p| p.x).collect() };
+    assert_eq!(xs(&cut), xs(&whole));
+    assert_eq!(
+        cut.model(0).mesh.num_cells(),
+        whole.model(0).mesh.num_cells()
+    );
+
+    // A modulus varying from cell to cell: each part takes its cells' factors.
+    let cells = asm.subs[0].model.mesh.num_cells();
+    let factors: Vec<f64> = (0..cells).map(|c| 0.5 + (c % 7) as f64 / 6.0).collect();
+    let input = RunInput {
+        cell_young: vec![Some(std::sync::Arc::new(factors)), None],
+        ..RunInput::default()
+    };
+    let reference = whole.run(&input).unwrap();
+    let r = cut.run_shared(&input).unwrap();
+    assert_eq!(r.status, RunStatus::Converged);
+    assert!(cut.equilibrium_report(&r).is_none());
+    assert_eq!(r.cell_young, input.cell_young);
+    let rel = |a: &[f64], b: &[f64]| {
+        let num: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum();
+        let den: f64 = b.iter().map(|y| y * y).sum();
+        (num / den).sqrt()
+    };
+    for s in 0..2 {
+        let e = rel(&r.displacements[s], &reference.displacements[s]);
+        assert!(e < 1e-6, "substructure {s}: {e:.2e}");
+    }
+    let flat = |v: &[[f64; 3]]| v.iter().flatten().copied().collect::<Vec<_>>();
+    let (a, b) = (&r.interfaces[0], &reference.interfaces[0]);
+    assert!(rel(&flat(&a.fhat[0]), &flat(&b.fhat[0])) < 1e-6);
+    assert_eq!(a.status, b.status);
+    // Its energy is that of the varying modulus.
+    let vm = |res: &alea_latin::RunResult, solver: &LatinSolver| {
+        let m = res.scaled_model(solver.model(0), 0);
+        alea_fem::post::strain_energy(&m, &res.displacements[0]).unwrap()
+    };
+    let (v1, v0) = (vm(&r, &cut), vm(&reference, &whole));
+    assert!((v1 - v0).abs() < 1e-5 * v0, "{v1} against {v0}");
+
+    // Its end state keeps the cuts: the shape the solver takes, and a warm start from it
+    // starts at the answer.
+    let end = r.end_state();
+    assert_eq!(
+        end.what.iter().map(|w| w[0].len()).collect::<Vec<_>>(),
+        cut.interface_sizes()
+    );
+    assert!(cut.interface_sizes().len() > 1);
+    let warm = cut
+        .run_shared(&RunInput {
+            initial: Some(std::sync::Arc::new(end)),
+            ..input.clone()
+        })
+        .unwrap();
+    assert!(warm.iterations <= 2, "{} iterations", warm.iterations);
+    // A start state of the user's interfaces is taken too.
+    let user_state = reference.end_state();
+    let from_user = cut
+        .run_shared(&RunInput {
+            initial: Some(std::sync::Arc::new(user_state)),
+            ..input
+        })
+        .unwrap();
+    assert_eq!(from_user.status, RunStatus::Converged);
+}

@@ -274,6 +274,13 @@ pub struct SolverSpec {
     /// on each substructure's interface) or `"volume"` (a sparse solve per iteration).
     #[serde(default)]
     pub linear_stage: Option<Spanned<String>>,
+    /// Automatic subdomains: `"auto"` (default: substructures above the break-even size cut
+    /// into parts), `"always"` or `"never"`.
+    #[serde(default)]
+    pub subdomains: Option<Spanned<String>>,
+    /// Target size of a subdomain, in unknowns. Default 20000.
+    #[serde(default)]
+    pub subdomain_dofs: Option<Spanned<usize>>,
 }
 
 /// `[study]`.

@@ -58,8 +58,18 @@ struct Lane<'a> {
 impl LatinSolver {
     /// Runs the LATIN iteration for every input of `inputs` together (module doc); the
     /// results in input order. An input that does not start (invalid) gets its error, the
-    /// others run.
+    /// others run. On a model cut into subdomains the inputs and results are the user's
+    /// (module [`super::split`]).
     pub fn run_batch(&self, inputs: &[RunInput]) -> Vec<Result<RunResult, LatinError>> {
+        match &self.split {
+            Some(split) => split.run_batch(self, inputs),
+            None => self.run_solved(inputs),
+        }
+    }
+
+    /// [`LatinSolver::run_batch`] on the solved substructures and interfaces (the
+    /// subdomains and the cuts when the model is split).
+    pub(super) fn run_solved(&self, inputs: &[RunInput]) -> Vec<Result<RunResult, LatinError>> {
         if inputs
             .iter()
             .any(|i| i.cell_young.iter().any(Option::is_some))
@@ -69,7 +79,10 @@ impl LatinSolver {
                 .iter()
                 .map(|i| match i.cell_young.iter().any(Option::is_some) {
                     true => self.run_with_cell_young(i),
-                    false => self.run_shared(i),
+                    false => self
+                        .run_solved(std::slice::from_ref(i))
+                        .pop()
+                        .expect("a batch of one gives one result"),
                 })
                 .collect();
         }

@@ -88,6 +88,7 @@ impl LatinSolver {
                 .map(|(c, &ch)| if ch { None } else { c.clone() })
                 .collect(),
             setup_seconds: t0.elapsed().as_secs_f64(),
+            split: None,
         })
     }
 
@@ -98,7 +99,10 @@ impl LatinSolver {
         let derived = self.with_cell_young(&input.cell_young)?;
         let mut plain = input.clone();
         plain.cell_young = Vec::new();
-        let mut result = derived.run_shared(&plain)?;
+        let mut result = derived
+            .run_solved(std::slice::from_ref(&plain))
+            .pop()
+            .expect("a batch of one gives one result")?;
         result.cell_young = input.cell_young.clone();
         // The run's own assembly and factorisations count in its time.
         result.timings.total = t_start.elapsed().as_secs_f64();

@@ -141,7 +141,7 @@ impl LatinSolver {
             .enumerate()
             .filter(|(_, e)| !e.holds(o.equilibrium_tolerance, o.max_rigid_motion))
             .max_by(|a, b| badness(a.1).total_cmp(&badness(b.1)))?;
-        let dim = self.subs[s].model.mesh.dim;
+        let dim = self.model(s).mesh.dim;
         let force = e.force[..dim]
             .iter()
             .map(|v| format!("{v:.4e}"))
@@ -158,7 +158,7 @@ impl LatinSolver {
         Some(format!(
             "substructure '{}': unbalanced force ({force}), moment {moment} = {:.3e} of its load \
              (tolerance {:.1e}); rigid motion {:.3e} x the model size (bound {})",
-            self.subs[s].name,
+            self.sub_name(s),
             e.relative_imbalance,
             o.equilibrium_tolerance,
             e.relative_rigid_motion,

@@ -53,8 +53,22 @@ impl LatinSolver {
         let tot = sums.iter().fold([0.0; 4], |acc, v| {
             [acc[0] + v[0], acc[1] + v[1], acc[2] + v[2], acc[3] + v[3]]
         });
-        let start = *run.start_norm.get_or_insert(tot[3].sqrt());
-        (indicator(tot, start), indicator(tot, 0.0))
+        // With subdomains (module `split`) the stopping test's scale is that of the user's
+        // interfaces alone: the cuts carry the body's inner forces, whose size would dilute the
+        // indicator (measured: 14x the undivided model's error at the same indicator). The
+        // distance still counts the cuts.
+        let scale = match &self.split {
+            Some(split) => sums
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| !split.is_cut(*i))
+                .fold([tot[0], 0.0, 0.0, 0.0], |acc, (_, v)| {
+                    [acc[0], acc[1] + v[1], acc[2] + v[2], acc[3] + v[3]]
+                }),
+            None => tot,
+        };
+        let start = *run.start_norm.get_or_insert(scale[3].sqrt());
+        (indicator(scale, start), indicator(tot, 0.0))
     }
 }
 

@@ -68,6 +68,7 @@ mod linear_stage;
 mod local_stage;
 mod result;
 mod setup;
+pub mod split;
 mod start;
 
 pub(crate) use setup::direction_scale;
@@ -79,6 +80,7 @@ use alea_fem::{Cholesky, DofMap, Ordering};
 use crate::coarse::{InterfaceModes, SubMacro};
 use crate::equilibrium::RigidModes;
 use crate::interface::{InterfacePairing, SideProjection};
+use crate::state::LocalState;
 use crate::{InterfaceLaw, LatinError, PointData, PointField, PointStatus, RunResult, RunTimings};
 use direction::PointDirection;
 
@@ -184,6 +186,25 @@ pub struct LatinOptions {
     /// Runs the solver's set-up is expected to serve (default 1): [`LinearStage::Auto`]
     /// weighs the condensed stage's set-up against the iterations of that many runs.
     pub expected_runs: usize,
+    /// Automatic subdomains (module [`split`]): whether large substructures are cut into
+    /// parts joined by perfect interfaces (default [`Subdomains::Auto`]).
+    pub subdomains: Subdomains,
+    /// The target size of a subdomain, in unknowns (default [`split::SUBDOMAIN_DOFS`]).
+    pub subdomain_dofs: usize,
+}
+
+/// Whether the solver cuts substructures into subdomains (module [`split`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Subdomains {
+    /// Substructures of at least [`split::AUTO_MIN_DOFS`] unknowns are cut into parts of about
+    /// `subdomain_dofs` (the break-even size measured in `BENCHMARKS.md`).
+    #[default]
+    Auto,
+    /// Every substructure of at least `2 x subdomain_dofs` unknowns is cut into parts of about
+    /// `subdomain_dofs`.
+    Always,
+    /// No substructure is cut.
+    Never,
 }
 
 impl Default for LatinOptions {
@@ -200,6 +221,8 @@ impl Default for LatinOptions {
             max_rigid_motion: 10.0,
             linear_stage: LinearStage::Auto,
             expected_runs: 1,
+            subdomains: Subdomains::Auto,
+            subdomain_dofs: split::SUBDOMAIN_DOFS,
         }
     }
 }
@@ -235,54 +258,6 @@ pub struct RunInput {
     /// Anderson acceleration (the plain, relaxed LATIN iteration: slower, but it does not
     /// cycle) and twice the iteration limit. `false`: the options as set up.
     pub damped: bool,
-}
-
-/// The local-stage state `(W_hat, F_hat)` on both sides of every interface: everything a run
-/// needs to start from (thesis 5.1.3).
-#[derive(Clone, Debug, PartialEq)]
-pub struct LocalState {
-    /// `W_hat` per interface, `[side 1, side 2]`, per point.
-    pub what: Vec<[Vec<V3>; 2]>,
-    /// `F_hat` per interface, `[side 1, side 2]`, per point.
-    pub fhat: Vec<[Vec<V3>; 2]>,
-}
-
-impl LocalState {
-    /// Flattens to little-endian-friendly `f64`s: for each interface, `what[0], what[1],
-    /// fhat[0], fhat[1]` point by point, 3 components each.
-    pub fn to_vec(&self) -> Vec<f64> {
-        let mut out = Vec::new();
-        for (w, f) in self.what.iter().zip(&self.fhat) {
-            for arr in [&w[0], &w[1], &f[0], &f[1]] {
-                for p in arr.iter() {
-                    out.extend_from_slice(p);
-                }
-            }
-        }
-        out
-    }
-
-    /// Inverse of [`LocalState::to_vec`] given the number of points of each interface.
-    pub fn from_slice(points: &[usize], data: &[f64]) -> Option<Self> {
-        let total: usize = points.iter().map(|n| 12 * n).sum();
-        if data.len() != total {
-            return None;
-        }
-        let mut it = data.chunks_exact(3).map(|c| [c[0], c[1], c[2]]);
-        let mut what = Vec::new();
-        let mut fhat = Vec::new();
-        for &n in points {
-            let mut take = || {
-                (0..n)
-                    .map(|_| it.next().unwrap_or([0.0; 3]))
-                    .collect::<Vec<V3>>()
-            };
-            let (w0, w1, f0, f1) = (take(), take(), take(), take());
-            what.push([w0, w1]);
-            fhat.push([f0, f1]);
-        }
-        Some(LocalState { what, fhat })
-    }
 }
 
 /// One side of one interface seen from its substructure: the projection of the side's nodal
@@ -371,6 +346,10 @@ pub struct LatinSolver {
     condensed: Vec<condensed::SharedCondensed>,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
+    /// The user's assembly when the solved one is its substructures cut into subdomains
+    /// (module [`split`]): the public accessors and the runs' inputs and results then speak of
+    /// the user's substructures and interfaces.
+    split: Option<Arc<split::Split>>,
 }
 
 /// The macro space and the substructures' responses (module `coarse`).
@@ -445,24 +424,42 @@ impl LatinSolver {
         self.options.relaxation = relaxation;
     }
 
-    /// Number of substructures.
+    /// Number of substructures (the user's: a substructure cut into subdomains counts once).
     pub fn num_subs(&self) -> usize {
-        self.subs.len()
+        match &self.split {
+            Some(split) => split.user.subs.len(),
+            None => self.subs.len(),
+        }
     }
 
     /// The model of substructure `s`.
     pub fn model(&self, s: usize) -> &alea_fem::Model {
-        &self.subs[s].model
+        match &self.split {
+            Some(split) => &split.user.subs[s].model,
+            None => &self.subs[s].model,
+        }
     }
 
-    /// The factorisation of substructure `s`: its order, the entries of its factor and whether
-    /// the factor is stored in supernodes ([`alea_fem::FactorKind`]).
+    /// The user's substructures cut into subdomains (module [`split`]), if any was.
+    pub fn split(&self) -> Option<&split::Split> {
+        self.split.as_deref()
+    }
+
+    /// Number of substructures solved: the subdomains when the model is split, else
+    /// [`LatinSolver::num_subs`].
+    pub fn num_solved_subs(&self) -> usize {
+        self.subs.len()
+    }
+
+    /// The factorisation of solved substructure `s` (`s < num_solved_subs()`): its order, the
+    /// entries of its factor and whether the factor is stored in supernodes
+    /// ([`alea_fem::FactorKind`]).
     pub fn factor_summary(&self, s: usize) -> (usize, usize, bool) {
         let c = &self.subs[s].chol;
         (c.n(), c.nnz_factor(), c.is_supernodal())
     }
 
-    /// How each substructure's linear stage is solved: condensed on its interface or by
+    /// How each solved substructure's linear stage is solved: condensed on its interface or by
     /// volume solves (module `condensed`), with the sizes the choice was made from.
     pub fn linear_stage_summary(&self) -> Vec<LinearStageSummary> {
         self.subs
@@ -481,22 +478,34 @@ impl LatinSolver {
 
     /// Name of substructure `s`.
     pub fn sub_name(&self, s: usize) -> &str {
-        &self.subs[s].name
+        match &self.split {
+            Some(split) => &split.user.subs[s].name,
+            None => &self.subs[s].name,
+        }
     }
 
-    /// Number of interfaces.
+    /// Number of interfaces (the user's: the cuts between subdomains are not counted).
     pub fn num_interfaces(&self) -> usize {
-        self.ifaces.len()
+        match &self.split {
+            Some(split) => split.user.interfaces.len(),
+            None => self.ifaces.len(),
+        }
     }
 
     /// Interface point data (positions, normals, default mu and gap) of interface `i`.
     pub fn interface_points(&self, i: usize) -> &[PointData] {
-        &self.ifaces[i].points
+        match &self.split {
+            Some(split) => &split.user_interface(i).points,
+            None => &self.ifaces[i].points,
+        }
     }
 
     /// The pairing of interface `i` (node to node or mortar, point weights, projections).
     pub fn interface_pairing(&self, i: usize) -> &InterfacePairing {
-        &self.ifaces[i].pairing
+        match &self.split {
+            Some(split) => &split.user_interface(i).pairing,
+            None => &self.ifaces[i].pairing,
+        }
     }
 
     /// Displacement of every substructure (node-major) in the configuration the interfaces
@@ -508,7 +517,10 @@ impl LatinSolver {
 
     /// Name of interface `i`.
     pub fn interface_name(&self, i: usize) -> &str {
-        &self.ifaces[i].name
+        match &self.split {
+            Some(split) => &split.user_interface(i).name,
+            None => &self.ifaces[i].name,
+        }
     }
 
     /// Substructures `[side 1, side 2]` of interface `i` and, for each side, the mesh node of
@@ -517,25 +529,40 @@ impl LatinSolver {
     /// point's projection row (side 1: the point's own node), as in
     /// [`crate::InterfaceResult::nodes`].
     pub fn interface_nodes(&self, i: usize) -> ([usize; 2], [Vec<usize>; 2]) {
-        let op = &self.ifaces[i];
+        let (subs, pairing) = match &self.split {
+            Some(split) => {
+                let u = split.user_interface(i);
+                (u.subs, &u.pairing)
+            }
+            None => (self.ifaces[i].sub, &self.ifaces[i].pairing),
+        };
         let nodes = |s: usize| {
-            let proj = &op.pairing.sides[s];
+            let proj = &pairing.sides[s];
             (0..proj.len()).map(|p| proj.main_node(p)).collect()
         };
-        (op.sub, [nodes(0), nodes(1)])
+        (subs, [nodes(0), nodes(1)])
     }
 
     /// Lumped integration weight of each point of interface `i` (side 1).
     pub fn interface_weights(&self, i: usize) -> &[f64] {
-        &self.ifaces[i].weights
+        match &self.split {
+            Some(split) => &split.user_interface(i).weights,
+            None => &self.ifaces[i].weights,
+        }
     }
 
     /// Law name of interface `i` ("perfect", "coulomb").
     pub fn interface_law(&self, i: usize) -> &'static str {
-        self.ifaces[i].law.name()
+        match &self.split {
+            Some(split) => split.user_interface(i).law,
+            None => self.ifaces[i].law.name(),
+        }
     }
 
-    /// Number of points of each interface (the shape of a [`LocalState`]).
+    /// The shape of the [`LocalState`] a run starts from and ends with
+    /// ([`RunResult::end_state`]): the number of points of each interface solved - with
+    /// subdomains, the pieces of the user's interfaces and the cuts between subdomains
+    /// (module [`split`]), so that a warm start keeps the cuts' state too.
     pub fn interface_sizes(&self) -> Vec<usize> {
         self.ifaces.iter().map(|i| i.points.len()).collect()
     }

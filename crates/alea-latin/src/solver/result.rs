@@ -72,6 +72,7 @@ impl LatinSolver {
             cell_young: Vec::new(),
             equilibrium,
             timings,
+            split_state: None,
         }
     }
 }

@@ -56,6 +56,13 @@ impl LatinSolver {
     ) -> Result<Self, LatinError> {
         let t0 = Instant::now();
         check_options(&options)?;
+        // Automatic subdomains (module `split`): not for a re-pairing (large sliding).
+        if configuration.is_none()
+            && pairings.iter().all(Option::is_none)
+            && let Some(parts) = super::split::plan(&assembly, &options)
+        {
+            return super::split::build(&assembly, options, &parts);
+        }
         let Assembly { subs, interfaces } = assembly;
         let nsub = subs.len();
         let model_size = bounding_diagonal(subs.iter().flat_map(|s| s.model.mesh.coords.iter()));
@@ -96,6 +103,7 @@ impl LatinSolver {
             configuration,
             condensed,
             setup_seconds: t0.elapsed().as_secs_f64(),
+            split: None,
         })
     }
 }

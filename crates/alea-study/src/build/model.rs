@@ -2,7 +2,7 @@
 //! file, assembled with its interfaces (`interfaces.rs`) into the built model.
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::{Assembly, LatinOptions, LinearStage, SearchDirection, Substructure};
+use alea_latin::{Assembly, LatinOptions, LinearStage, SearchDirection, Subdomains, Substructure};
 use alea_mesh::Mesh;
 
 use super::checks::check_interfaces;
@@ -505,6 +505,7 @@ fn latin_options(src: &Source, sv: &crate::spec::SolverSpec) -> Result<LatinOpti
             }
         };
     }
+    subdomain_options(src, sv, &mut options)?;
     if let Some(k) = &sv.search_direction_factor {
         options.search_direction = SearchDirection::Auto {
             factor: positive(src, k, "solver.search_direction_factor")?,
@@ -522,6 +523,52 @@ fn latin_options(src: &Source, sv: &crate::spec::SolverSpec) -> Result<LatinOpti
     }
     Ok(options)
 }
+
+/// The `[solver]` settings of automatic subdomains (`alea_latin::split`): `subdomains` one of
+/// `"auto"`, `"always"`, `"never"`; `subdomain_dofs` at least [`MIN_SUBDOMAIN_DOFS`], and
+/// refused with `"never"` (it would have no effect).
+fn subdomain_options(
+    src: &Source,
+    sv: &crate::spec::SolverSpec,
+    options: &mut LatinOptions,
+) -> Result<(), StudyError> {
+    if let Some(m) = &sv.subdomains {
+        options.subdomains = match m.get_ref().as_str() {
+            "auto" => Subdomains::Auto,
+            "always" => Subdomains::Always,
+            "never" => Subdomains::Never,
+            other => {
+                return Err(src.error(
+                    m.span(),
+                    "solver.subdomains",
+                    format!("must be \"auto\", \"always\" or \"never\", got \"{other}\""),
+                ));
+            }
+        };
+    }
+    if let Some(d) = &sv.subdomain_dofs {
+        let v = *d.get_ref();
+        if v < MIN_SUBDOMAIN_DOFS {
+            return Err(src.error(
+                d.span(),
+                "solver.subdomain_dofs",
+                format!("must be at least {MIN_SUBDOMAIN_DOFS} unknowns, got {v}"),
+            ));
+        }
+        if options.subdomains == Subdomains::Never {
+            return Err(src.error(
+                d.span(),
+                "solver.subdomain_dofs",
+                "has no effect with subdomains = \"never\"".to_string(),
+            ));
+        }
+        options.subdomain_dofs = v;
+    }
+    Ok(())
+}
+
+/// The smallest subdomain `[solver] subdomain_dofs` takes: a few cells of quadratic elements.
+pub const MIN_SUBDOMAIN_DOFS: usize = 100;
 
 /// The `[solver]` settings of large sliding (`alea_latin::large_sliding::Repairing`):
 /// `repair_tolerance` in (0, 0.5] (beyond half the mesh size a pairing no longer pairs the

@@ -35,12 +35,91 @@ use std::sync::Arc;
 
 use alea_mesh::{Facet, Mesh};
 
+use super::Subdomains;
 use crate::interface::{InterfacePairing, SideProjection};
 use crate::sides::pair_sides;
 use crate::{
     Assembly, InterfaceResult, InterfaceSpec, LatinError, LatinOptions, LatinSolver, LocalState,
-    RunInput, RunResult, SearchDirection, Substructure,
+    PointData, RunInput, RunResult, SearchDirection, Substructure,
 };
+
+/// The default target size of a subdomain, in unknowns ([`LatinOptions::subdomain_dofs`]).
+/// Measured on the 3D turbine refined once (602 100 unknowns, `BENCHMARKS.md` "Automatic
+/// subdomains"): parts of 33 000 and 19 000 unknowns ran equally fast, the smaller in 12 %
+/// less memory.
+pub const SUBDOMAIN_DOFS: usize = 20_000;
+
+/// The size from which [`Subdomains::Auto`] cuts a substructure: the break-even measured on
+/// the 3D turbine (`BENCHMARKS.md` "Automatic subdomains"), below which the undivided
+/// substructure's run is faster.
+pub const AUTO_MIN_DOFS: usize = 200_000;
+
+/// The number of parts of each substructure of `assembly` that `options` ask for
+/// ([`LatinOptions::subdomains`]); `None` when none is cut. A substructure on a cyclic
+/// interface is never cut (its pairing is not shared among pieces), nor is any substructure of
+/// an assembly with a large-sliding interface.
+pub fn plan(assembly: &Assembly, options: &LatinOptions) -> Option<Vec<usize>> {
+    // Large sliding re-pairs the whole assembly at every pass (module `crate::large_sliding`):
+    // its passes must solve the same substructures.
+    if assembly
+        .interfaces
+        .iter()
+        .any(|spec| spec.sliding == crate::Sliding::Large)
+    {
+        return None;
+    }
+    let min = match options.subdomains {
+        Subdomains::Never => return None,
+        Subdomains::Auto => AUTO_MIN_DOFS,
+        Subdomains::Always => 2 * options.subdomain_dofs.max(1),
+    };
+    let parts: Vec<usize> = assembly
+        .subs
+        .iter()
+        .enumerate()
+        .map(|(s, sub)| {
+            let special = assembly.interfaces.iter().any(|spec| {
+                (spec.sub1 == s || spec.sub2 == s)
+                    && (spec.cyclic.is_some() || spec.sliding == crate::Sliding::Large)
+            });
+            let n = sub.model.mesh.num_nodes() * sub.model.mesh.dim;
+            if special || n < min {
+                return 1;
+            }
+            ((n as f64 / options.subdomain_dofs.max(1) as f64).round() as usize).max(2)
+        })
+        .collect();
+    parts.iter().any(|&k| k > 1).then_some(parts)
+}
+
+/// The solver of `assembly` cut into `parts[s]` parts per substructure: the LATIN runs on the
+/// parts, its accessors, inputs and results speak of the user's assembly (module doc).
+pub(super) fn build(
+    assembly: &Assembly,
+    options: LatinOptions,
+    parts: &[usize],
+) -> Result<LatinSolver, LatinError> {
+    let t0 = std::time::Instant::now();
+    let mut split = Split::new(assembly, parts)?;
+    let mut solver = split.solver(options.clone())?;
+    split.user_interfaces = split.user_interfaces(&solver);
+    solver.options = options;
+    solver.split = Some(Arc::new(split));
+    solver.setup_seconds = t0.elapsed().as_secs_f64();
+    Ok(solver)
+}
+
+/// What the user sees of one of its interfaces when its substructures are split: its
+/// pairing on the undivided substructures and its points' data.
+#[derive(Clone, Debug)]
+pub(super) struct UserInterface {
+    pub(super) name: String,
+    pub(super) law: &'static str,
+    pub(super) subs: [usize; 2],
+    pub(super) points: Vec<PointData>,
+    pub(super) weights: Vec<f64>,
+    pub(super) pairing: Arc<InterfacePairing>,
+}
 
 /// The parts of one user substructure.
 #[derive(Clone, Debug)]
@@ -49,6 +128,8 @@ struct Parts {
     inner: Vec<usize>,
     /// Per part, its node of each user node (`usize::MAX`: not in the part).
     local: Vec<Vec<usize>>,
+    /// Per part, the user cell of each of its cells.
+    cells: Vec<Vec<usize>>,
     /// The part and node that own each user node (its displacement, its nodal forces).
     owner: Vec<(usize, usize)>,
 }
@@ -71,7 +152,10 @@ enum Pieces {
 pub struct Split {
     /// The assembly the LATIN runs on: the parts, the pieces and the cuts' interfaces.
     pub inner: Assembly,
-    user: Arc<Assembly>,
+    pub(super) user: Arc<Assembly>,
+    /// The user's interfaces as the accessors of a split solver give them (empty until the
+    /// solver is built, [`build`]).
+    user_interfaces: Vec<UserInterface>,
     pairings: Vec<Option<InterfacePairing>>,
     parts: Vec<Parts>,
     pieces: Vec<Pieces>,
@@ -183,6 +267,7 @@ impl Split {
         Ok(Split {
             inner,
             user: Arc::new(assembly.clone()),
+            user_interfaces: Vec::new(),
             pairings,
             parts: all_parts,
             pieces,
@@ -195,6 +280,17 @@ impl Split {
         self.parts.iter().map(|p| p.inner.len()).collect()
     }
 
+    /// Whether solved interface `i` is a cut between two subdomains (not a piece of a user
+    /// interface).
+    pub fn is_cut(&self, i: usize) -> bool {
+        self.cuts.binary_search(&i).is_ok()
+    }
+
+    /// The solved substructures (indices in [`Split::inner`]) of user substructure `s`.
+    pub fn parts_of(&self, s: usize) -> &[usize] {
+        &self.parts[s].inner
+    }
+
     /// The LATIN solver of the split assembly.
     ///
     /// # Errors
@@ -204,6 +300,8 @@ impl Split {
     /// (which is tuned for the user's interfaces, often contact).
     pub fn solver(&self, options: LatinOptions) -> Result<LatinSolver, LatinError> {
         let mut inner = self.inner.clone();
+        let mut options = options;
+        options.subdomains = Subdomains::Never;
         let factor = match options.search_direction {
             SearchDirection::Auto { factor } | SearchDirection::Split { factor, .. } => factor,
             SearchDirection::Fixed(_) => 1.0,
@@ -225,12 +323,8 @@ impl Split {
     /// A modulus varying from cell to cell (not supported), a start state of another
     /// assembly.
     pub fn input(&self, solver: &LatinSolver, input: &RunInput) -> Result<RunInput, LatinError> {
-        if input.cell_young.iter().any(|c| c.is_some()) {
-            return Err(LatinError::Invalid(
-                "a Young's modulus varying from cell to cell in a split substructure".into(),
-            ));
-        }
         let mut out = input.clone();
+        out.cell_young = self.cell_young(&input.cell_young)?;
         let per_part = |v: &dyn Fn(usize) -> Option<f64>| -> Vec<f64> {
             let mut o = vec![1.0; self.inner.subs.len()];
             for (s, p) in self.parts.iter().enumerate() {
@@ -264,7 +358,6 @@ impl Split {
                 }
             }
         }
-        out.cell_young = Vec::new();
         out.initial = match &input.initial {
             Some(st) => Some(Arc::new(self.state(solver, st)?)),
             None => None,
@@ -293,7 +386,7 @@ impl Split {
         }
         let n = self.inner.interfaces.len();
         let zeros = |i: usize| {
-            let np = solver.interface_points(i).len();
+            let np = solver.ifaces[i].points.len();
             [vec![[0.0; 3]; np], vec![[0.0; 3]; np]]
         };
         let mut what: Vec<[Vec<[f64; 3]>; 2]> = (0..n).map(zeros).collect();
@@ -352,6 +445,7 @@ impl Split {
         let young_factors = (0..self.parts.len())
             .map(|s| input.young_factors.get(s).copied().unwrap_or(1.0))
             .collect();
+        let split_state = Some(Arc::new(r.end_state()));
         RunResult {
             status: r.status,
             iterations: r.iterations,
@@ -359,10 +453,130 @@ impl Split {
             displacements,
             interfaces,
             young_factors,
-            cell_young: Vec::new(),
+            cell_young: input.cell_young.clone(),
             equilibrium,
             timings: r.timings,
+            split_state,
         }
+    }
+
+    /// The runs of `inputs` (the user's) on `solver`, the split solver built by [`build`]:
+    /// each input mapped onto the parts, the batch solved, each result merged back.
+    pub(super) fn run_batch(
+        &self,
+        solver: &LatinSolver,
+        inputs: &[RunInput],
+    ) -> Vec<Result<RunResult, LatinError>> {
+        let mapped: Vec<Result<RunInput, LatinError>> =
+            inputs.iter().map(|i| self.input(solver, i)).collect();
+        let valid: Vec<RunInput> = mapped
+            .iter()
+            .filter_map(|m| m.as_ref().ok())
+            .cloned()
+            .collect();
+        let mut results = solver.run_solved(&valid).into_iter();
+        mapped
+            .into_iter()
+            .zip(inputs)
+            .map(|(m, input)| {
+                m?;
+                let r = results
+                    .next()
+                    .ok_or_else(|| LatinError::Invalid("a batch gave fewer results".into()))??;
+                Ok(self.merge(input, r))
+            })
+            .collect()
+    }
+
+    /// The user's interface `i` (module doc; a solver built by [`build`]).
+    pub(super) fn user_interface(&self, i: usize) -> &UserInterface {
+        &self.user_interfaces[i]
+    }
+
+    /// The user's interfaces seen from `solver`, the solver of the parts: a whole interface
+    /// as the solver paired it, a split one with its undivided pairing and its pieces' points.
+    fn user_interfaces(&self, solver: &LatinSolver) -> Vec<UserInterface> {
+        self.pieces
+            .iter()
+            .enumerate()
+            .map(|(i, pieces)| {
+                let spec = &self.user.interfaces[i];
+                let subs = [spec.sub1, spec.sub2];
+                match pieces {
+                    Pieces::Whole(k) => {
+                        let op = &solver.ifaces[*k];
+                        UserInterface {
+                            name: spec.name.clone(),
+                            law: op.law.name(),
+                            subs,
+                            points: op.points.clone(),
+                            weights: op.weights.clone(),
+                            pairing: op.pairing.clone(),
+                        }
+                    }
+                    Pieces::Split { pairing, pieces } => {
+                        let first = &solver.ifaces[pieces[0].0];
+                        let np = pairing.len();
+                        let mut points = vec![first.points[0]; np];
+                        let mut weights = vec![0.0; np];
+                        for (k, list) in pieces {
+                            let op = &solver.ifaces[*k];
+                            for (q, &p) in list.iter().enumerate() {
+                                points[p] = op.points[q];
+                                weights[p] = op.weights[q];
+                            }
+                        }
+                        UserInterface {
+                            name: spec.name.clone(),
+                            law: first.law.name(),
+                            subs,
+                            points,
+                            weights,
+                            pairing: pairing.clone(),
+                        }
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// The user's cell factors of Young's modulus (`RunInput::cell_young`) on the parts: each
+    /// part takes its cells' factors.
+    ///
+    /// # Errors
+    /// A factor list that has not one entry per cell of its substructure.
+    fn cell_young(
+        &self,
+        user: &[Option<Arc<Vec<f64>>>],
+    ) -> Result<Vec<Option<Arc<Vec<f64>>>>, LatinError> {
+        if user.iter().all(Option::is_none) {
+            return Ok(Vec::new());
+        }
+        let mut out = vec![None; self.inner.subs.len()];
+        for (s, factors) in user.iter().enumerate() {
+            let Some(factors) = factors.as_ref().filter(|f| !f.is_empty()) else {
+                continue;
+            };
+            let p = self.parts.get(s).ok_or_else(|| {
+                LatinError::Invalid(format!(
+                    "cell Young's-modulus factors given for {} substructures, there are {}",
+                    user.len(),
+                    self.parts.len()
+                ))
+            })?;
+            let cells = self.user.subs[s].model.mesh.num_cells();
+            if factors.len() != cells {
+                return Err(LatinError::Invalid(format!(
+                    "substructure '{}': {} cell Young's-modulus factors for {cells} cells",
+                    self.user.subs[s].name,
+                    factors.len()
+                )));
+            }
+            for (j, &i) in p.inner.iter().enumerate() {
+                out[i] = Some(Arc::new(p.cells[j].iter().map(|&c| factors[c]).collect()));
+            }
+        }
+        Ok(out)
     }
 
     fn merge_interface(
@@ -511,6 +725,7 @@ fn split_substructure(
             Parts {
                 inner: vec![first],
                 local: vec![(0..n).collect()],
+                cells: vec![(0..mesh.num_cells()).collect()],
                 owner: (0..n).map(|i| (0, i)).collect(),
             },
             Vec::new(),
@@ -583,6 +798,7 @@ fn split_substructure(
         Parts {
             inner: (first..first + k).collect(),
             local,
+            cells,
             owner,
         },
         cuts,
