@@ -274,6 +274,11 @@ pub struct SolverSpec {
     /// on each substructure's interface) or `"volume"` (a sparse solve per iteration).
     #[serde(default)]
     pub linear_stage: Option<Spanned<String>>,
+    /// MPI ranks that solve one run together, each owning some substructures (`alea run`
+    /// under `mpirun`, feature `mpi`; `alea_study::distributed`). Default 1. Not part of what
+    /// defines a run: the results are the same bits for any value.
+    #[serde(default)]
+    pub ranks_per_run: Option<Spanned<i64>>,
 }
 
 /// `[study]`.

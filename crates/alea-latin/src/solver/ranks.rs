@@ -148,6 +148,11 @@ impl LatinSolver {
         }
     }
 
+    /// Ranks this solver's runs are spread over (1 for a solver of one process).
+    pub fn rank_count(&self) -> usize {
+        self.ranks.as_ref().map_or(1, |r| r.exchange.size())
+    }
+
     /// Whether this rank holds the factorisation of substructure `s` (always, for a solver
     /// of one process).
     pub fn holds_factor(&self, s: usize) -> bool {
