@@ -58,8 +58,8 @@ use crate::StudyError;
 use crate::solve::{BatchExecutor, RUNS_PER_BATCH, RunContext, RunJob, RunOutcome, RunSetup};
 use crate::store::run_file_stem;
 use crate::study::Study;
-pub use group::{MpiExchange, ranks_per_run};
 use group::Place;
+pub use group::{MpiExchange, ranks_per_run};
 pub use stats::Stats;
 use transport::{Incoming, Nap, send, try_receive};
 
@@ -426,7 +426,13 @@ impl BatchExecutor for MpiExecutor {
                                     out.iter().map(|(id, j)| (*id, j)).collect();
                                 let (bytes, _) = wire::encode_group(&refs);
                                 for m in inner.place.members() {
-                                    arrived.extend(send(world, m, TAG_JOB, &bytes, Some(TAG_RESULT)));
+                                    arrived.extend(send(
+                                        world,
+                                        m,
+                                        TAG_JOB,
+                                        &bytes,
+                                        Some(TAG_RESULT),
+                                    ));
                                 }
                                 job_tx.send(out).map_err(|_| {
                                     StudyError::Mpi("rank 0's solver threads stopped".into())
@@ -642,10 +648,7 @@ impl Worker {
                 // The first rank of a group hears from rank 0; the others from it (jobs) and
                 // rank 0 (stop).
                 let boss = if head { Some(0) } else { None };
-                while let Some(m) = stash
-                    .pop_front()
-                    .or_else(|| try_receive(world, boss, None))
-                {
+                while let Some(m) = stash.pop_front().or_else(|| try_receive(world, boss, None)) {
                     busy = true;
                     match m.1 {
                         TAG_STOP => stop = true,
