@@ -165,7 +165,7 @@ fn ranks_per_run_gives_the_single_process_summary() {
     let mut reference = std::collections::HashMap::new();
     for (np, per_run) in [(2, 2), (4, 2), (4, 4)] {
         let path = base.join(format!("r{per_run}/study.toml"));
-        if !reference.contains_key(&per_run) {
+        if let std::collections::hash_map::Entry::Vacant(e) = reference.entry(per_run) {
             std::fs::create_dir_all(path.parent().unwrap()).unwrap();
             std::fs::write(&path, text_of(per_run)).unwrap();
             assert!(
@@ -176,7 +176,7 @@ fn ranks_per_run_gives_the_single_process_summary() {
             let one = base.join(format!("one-r{per_run}"));
             let o = single(&path, &one);
             assert!(o.status.success(), "{}", text(&o));
-            reference.insert(per_run, std::fs::read(one.join("summary.json")).unwrap());
+            e.insert(std::fs::read(one.join("summary.json")).unwrap());
         }
         let dir = base.join(format!("np{np}-r{per_run}"));
         let o = distributed(np, &path, &dir);

@@ -117,6 +117,6 @@ pub fn ranks_per_run(path: &std::path::Path) -> usize {
         .get("solver")
         .and_then(|s| s.get("ranks_per_run"))
         .and_then(toml::Value::as_integer)
-        .filter(|&r| r >= 1 && r <= crate::settings_check::MAX_RANKS_PER_RUN)
+        .filter(|r| (1..=crate::settings_check::MAX_RANKS_PER_RUN).contains(r))
         .map_or(1, |r| r as usize)
 }
