@@ -39,6 +39,10 @@
 //!
 //! Threads per rank: `--threads` if given, else the node's cores divided by the ranks on the
 //! node (from `MPI_Comm_split_type(SHARED)`).
+//!
+//! **Ranks per run** (`[solver] ranks_per_run = R`, module `group`): the ranks form groups of
+//! `R`, each solving one run spread over its ranks (each factorises only its substructures);
+//! the groups' first ranks take the place of the ranks above, with one solver thread each.
 
 mod group;
 mod stats;
