@@ -83,6 +83,15 @@ pub enum LatinError {
         /// Its interface unknowns.
         unknowns: usize,
     },
+    /// The set-up of a substructure owned by another rank failed, in a solver spread over
+    /// ranks (module [`crate::ranks`]): every rank stops with the first failing rank's error.
+    #[error("rank {rank}: {message}")]
+    OtherRank {
+        /// The rank whose set-up failed.
+        rank: usize,
+        /// Its error.
+        message: String,
+    },
     /// Inconsistent set-up or run input.
     #[error("{0}")]
     Invalid(String),

@@ -37,6 +37,7 @@ pub mod large_sliding;
 pub mod law;
 pub mod mortar;
 pub mod output;
+pub mod ranks;
 pub mod reactions;
 mod result;
 mod rotation;
@@ -55,6 +56,7 @@ pub use equilibrium::SubEquilibrium;
 pub use error::LatinError;
 pub use interface::{InterfacePairing, Pairing, PairingKind, SideProjection};
 pub use law::{CoulombContact, InterfaceLaw, LocalSolution, Perfect, PointData, PointStatus};
+pub use ranks::{RankExchange, ThreadExchange};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
 pub use rotation::Cyclic;
 pub use solver::{

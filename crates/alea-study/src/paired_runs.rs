@@ -171,7 +171,9 @@ pub fn run(
         }
         let hash = model.identity.run_hash.as_str();
         let built;
-        let solver = if std::ptr::eq(model, study) {
+        // A solver spread over ranks solves only with its group (the executor's runs): the
+        // paired solves, on this rank alone, get a solver of their own.
+        let solver = if std::ptr::eq(model, study) && solver.rank_count() == 1 {
             solver
         } else {
             match RunSetup::build(model) {

@@ -93,6 +93,13 @@ pub fn run_form(table: &toml::Table) -> String {
     for k in NOT_RUN_DEFINING {
         kept.remove(*k);
     }
+    // The ranks a run is spread over change no bit of it (module `alea_latin::ranks`).
+    if let Some(toml::Value::Table(solver)) = kept.get_mut("solver") {
+        solver.remove("ranks_per_run");
+        if solver.is_empty() {
+            kept.remove("solver");
+        }
+    }
     for list in ["parameter", "field"] {
         if let Some(toml::Value::Array(items)) = kept.get_mut(list) {
             for item in items {

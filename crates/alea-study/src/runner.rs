@@ -164,7 +164,7 @@ impl<'a> Runner<'a> {
             .into_iter()
             .map(|r| (point_key(&r.params), r))
             .collect();
-        let RunSetup { solver, cre } = RunSetup::build(study)?;
+        let RunSetup { solver, cre } = RunSetup::build_for_runs(study)?;
         let runner = Runner {
             study,
             dir,

@@ -27,6 +27,7 @@ use crate::{Source, StudyError};
 /// [`StudyError::Input`] at the first setting that would be ignored or name that collides.
 pub fn check(src: &Source, file: &ModelFile) -> Result<(), StudyError> {
     check_joint(src, file)?;
+    check_ranks_per_run(src, file)?;
     for (i, m) in file.method.iter().enumerate() {
         check_method(src, i, m)?;
     }
@@ -83,6 +84,28 @@ fn check_joint(src: &Source, file: &ModelFile) -> Result<(), StudyError> {
 }
 
 /// The design a method runs on, as `build_methods` chooses it.
+/// Most MPI ranks one run may be spread over.
+pub const MAX_RANKS_PER_RUN: i64 = 4096;
+
+/// `[solver] ranks_per_run` in 1 - [`MAX_RANKS_PER_RUN`]; the number of ranks of a job must
+/// then be a multiple of it (checked when the job starts, `crate::distributed`).
+fn check_ranks_per_run(src: &Source, file: &ModelFile) -> Result<(), StudyError> {
+    let Some(r) = &file.solver.ranks_per_run else {
+        return Ok(());
+    };
+    let v = *r.get_ref();
+    if !(1..=MAX_RANKS_PER_RUN).contains(&v) {
+        return Err(src.error(
+            r.span(),
+            "solver.ranks_per_run",
+            format!(
+                "must be between 1 and {MAX_RANKS_PER_RUN} (MPI ranks solving one run together, each owning some substructures), got {v}"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn design_of(m: &MethodSpec) -> Option<String> {
     let given = m.design.as_ref().map(|d| d.get_ref().clone());
     match m.kind.get_ref().as_str() {

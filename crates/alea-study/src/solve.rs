@@ -51,7 +51,22 @@ impl RunSetup {
     /// Builds the solver (and factorises), then the error estimator's set-up if the study has
     /// one.
     pub fn build(study: &Study) -> Result<Self, StudyError> {
-        let solver = Arc::new(study.model.solver()?);
+        Self::build_on(study, None)
+    }
+
+    /// [`RunSetup::build`] of the solver of the study's runs: spread over the ranks of the
+    /// exchange installed by [`install_rank_exchange`] if any (`[solver] ranks_per_run` under
+    /// `mpirun`: each rank factorises the substructures it owns, module `alea_latin::ranks`).
+    /// Every rank of the group builds it at the same time and solves the same runs.
+    pub fn build_for_runs(study: &Study) -> Result<Self, StudyError> {
+        Self::build_on(study, RANKS.get().cloned())
+    }
+
+    fn build_on(
+        study: &Study,
+        ranks: Option<Arc<dyn alea_latin::RankExchange>>,
+    ) -> Result<Self, StudyError> {
+        let solver = Arc::new(study.model.solver_on(ranks)?);
         let cre = if estimates_error(study) {
             Some(Arc::new(CreSetup::new(study, &solver)?))
         } else {
@@ -413,6 +428,15 @@ impl BatchExecutor for LocalExecutor {
             .collect();
         results.into_iter().collect()
     }
+}
+
+static RANKS: std::sync::OnceLock<Arc<dyn alea_latin::RankExchange>> = std::sync::OnceLock::new();
+
+/// Installs the ranks the study's runs are spread over ([`RunSetup::build_for_runs`]; the MPI
+/// launch installs its group's, `crate::distributed`). Returns false if some were installed
+/// already.
+pub fn install_rank_exchange(ranks: Arc<dyn alea_latin::RankExchange>) -> bool {
+    RANKS.set(ranks).is_ok()
 }
 
 static EXECUTOR: std::sync::OnceLock<Box<dyn BatchExecutor + Send>> = std::sync::OnceLock::new();

@@ -281,6 +281,11 @@ pub struct SolverSpec {
     /// Target size of a subdomain, in unknowns. Default 20000.
     #[serde(default)]
     pub subdomain_dofs: Option<Spanned<usize>>,
+    /// MPI ranks that solve one run together, each owning some substructures (`alea run`
+    /// under `mpirun`, feature `mpi`; `alea_study::distributed`). Default 1. Not part of what
+    /// defines a run: the results are the same bits for any value.
+    #[serde(default)]
+    pub ranks_per_run: Option<Spanned<i64>>,
 }
 
 /// `[study]`.

@@ -140,7 +140,8 @@ fn run_distributed(
 ) -> Option<anyhow::Result<()>> {
     use alea_study::distributed::{Role, start};
     use out::outln;
-    match start(threads) {
+    let per_run = alea_study::distributed::ranks_per_run(study);
+    match start(threads, per_run) {
         Err(e) => Some(Err(e.into())),
         Ok(Role::Single) => None,
         Ok(Role::Worker(w)) => {
@@ -153,6 +154,13 @@ fn run_distributed(
         Ok(Role::Leader(leader)) => {
             alea_study::runner::install_executor(leader.executor());
             let result = study_cmd::run(study, dir, restart, quiet);
+            if let (true, Err(e)) = (per_run > 1, &result) {
+                // The other ranks of rank 0's group may wait for it in an exchange that will
+                // not come: the job ends here (mpirun stops the other ranks).
+                errln!("error: {}", exit::message(e));
+                let _ = out::finish();
+                std::process::exit(i32::from(exit::code(e)));
+            }
             match leader.finish() {
                 Ok(stats) if stats.batches > 0 => outln!("{}", stats.summary()),
                 Ok(_) => {}

@@ -147,6 +147,72 @@ fn two_and_three_ranks_give_the_single_process_summary() {
     let _ = std::fs::remove_dir_all(&base);
 }
 
+/// `[solver] ranks_per_run` (issue 38): one run spread over a group of ranks, each owning some
+/// of the model's 3 substructures, and groups solving runs at once - 2 ranks in one group, 4
+/// ranks in 2 groups of 2 and in one group of 4 - give the single process's `summary.json`
+/// (the setting changes no bit of a run, module `alea_latin::ranks`, nor the run hash).
+#[test]
+fn ranks_per_run_gives_the_single_process_summary() {
+    let base = tmp("per-run");
+    let plain = study(&base, "");
+    let text_of = |per_run: usize| {
+        std::fs::read_to_string(&plain).unwrap().replace(
+            "[solver]\n",
+            &format!("[solver]\nranks_per_run = {per_run}\n"),
+        )
+    };
+    // Per setting, its study file and the single process's summary of it (which ignores it).
+    let mut reference = std::collections::HashMap::new();
+    for (np, per_run) in [(2, 2), (4, 2), (4, 4)] {
+        let path = base.join(format!("r{per_run}/study.toml"));
+        if let std::collections::hash_map::Entry::Vacant(e) = reference.entry(per_run) {
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(&path, text_of(per_run)).unwrap();
+            assert!(
+                std::fs::read_to_string(&path)
+                    .unwrap()
+                    .contains("ranks_per_run")
+            );
+            let one = base.join(format!("one-r{per_run}"));
+            let o = single(&path, &one);
+            assert!(o.status.success(), "{}", text(&o));
+            e.insert(std::fs::read(one.join("summary.json")).unwrap());
+        }
+        let dir = base.join(format!("np{np}-r{per_run}"));
+        let o = distributed(np, &path, &dir);
+        let t = text(&o);
+        assert!(o.status.success(), "{np} ranks, {per_run} per run: {t}");
+        // Only the first rank of each group reports runs.
+        let per_rank: Vec<usize> = t
+            .split("runs per rank [")
+            .nth(1)
+            .and_then(|s| s.split(']').next())
+            .unwrap()
+            .split(", ")
+            .map(|v| v.parse().unwrap())
+            .collect();
+        for (r, n) in per_rank.iter().enumerate() {
+            assert_eq!(
+                *n > 0,
+                r % per_run == 0,
+                "{np} ranks, {per_run} per run: {t}"
+            );
+        }
+        assert_same(
+            &reference[&per_run],
+            &std::fs::read(dir.join("summary.json")).unwrap(),
+            &format!("{np} ranks, {per_run} per run"),
+        );
+    }
+    // A job whose ranks are not a multiple of the setting is refused.
+    let path = base.join("study-3.toml");
+    std::fs::write(&path, text_of(3)).unwrap();
+    let o = distributed(2, &path, &base.join("bad"));
+    assert!(!o.status.success());
+    assert!(text(&o).contains("multiple"), "{}", text(&o));
+    let _ = std::fs::remove_dir_all(&base);
+}
+
 /// Processes whose parent is `pid`.
 fn children(pid: u32) -> Vec<u32> {
     let mut out = Vec::new();

@@ -86,6 +86,8 @@ impl LatinSolver {
                 })
                 .collect();
         }
+        // A solver spread over ranks runs one batch at a time (module `ranks`).
+        let _turn = self.ranks.as_ref().map(|r| r.turn());
         let t_start = Instant::now();
         let mut lanes: Vec<Result<Lane<'_>, LatinError>> = inputs
             .iter()
@@ -102,12 +104,15 @@ impl LatinSolver {
             .collect();
         // Per substructure, the solve's scratch and the block of right-hand sides, allocated
         // once for the batch (not in every iteration).
-        let mut scratch: Vec<(SolveScratch, Vec<f64>)> = self
+        let mut scratch: Vec<(Option<SolveScratch>, Vec<f64>)> = self
             .subs
             .iter()
             .map(|op| {
+                let Some(chol) = &op.chol else {
+                    return (None, Vec::new());
+                };
                 let block = Vec::with_capacity(op.dofs.num_free() * inputs.len());
-                (op.chol.solve_scratch(inputs.len()), block)
+                (Some(chol.solve_scratch(inputs.len())), block)
             })
             .collect();
         let max_iterations = lanes
@@ -134,6 +139,7 @@ impl LatinSolver {
                 .collect();
             let t0 = Instant::now();
             let solve_time = self.batch_solves(&mut active, &mut scratch);
+            self.share_fields(active.iter_mut().map(|l| &mut l.run.sstate).collect());
             let share = 1.0 / active.len() as f64;
             for l in active.iter_mut() {
                 self.correct_and_relax(&mut l.run, iteration == 0);
@@ -171,10 +177,11 @@ impl LatinSolver {
     /// The plain linear stage of every active run: per substructure (in parallel) the
     /// right-hand sides of all runs as the columns of one block, one solve, then each run's
     /// `W`, `F`. Returns the seconds of the triangular solves (summed over substructures).
+    /// With ranks, only this rank's substructures (module `ranks`).
     fn batch_solves(
         &self,
         active: &mut [&mut Lane<'_>],
-        scratch: &mut [(SolveScratch, Vec<f64>)],
+        scratch: &mut [(Option<SolveScratch>, Vec<f64>)],
     ) -> f64 {
         let nsub = self.subs.len();
         // Per substructure: each run's state of it, with what its right-hand side needs.
@@ -199,6 +206,10 @@ impl LatinSolver {
             .zip(per_sub.par_iter_mut())
             .zip(scratch.par_iter_mut())
             .map(|(((op, cd), cols), (scratch, block))| {
+                let (Some(chol), Some(scratch)) = (&op.chol, scratch) else {
+                    // Another rank's substructure (module `ranks`).
+                    return 0.0;
+                };
                 if let Some(cd) = cd {
                     return condensed_block(op, cd, cols);
                 }
@@ -215,7 +226,7 @@ impl LatinSolver {
                     assemble_rhs(op, istate, base, *alpha, r);
                 }
                 let t0 = Instant::now();
-                op.chol.solve_with(block, scratch);
+                chol.solve_with(block, scratch);
                 let t = t0.elapsed().as_secs_f64();
                 for ((st, istate, _, alpha, _), u) in cols.iter_mut().zip(block.chunks_exact(n)) {
                     st.rhs.copy_from_slice(u);

@@ -42,36 +42,48 @@ impl LatinSolver {
         }
         let mut subs = self.subs.clone();
         let mut changed = vec![false; subs.len()];
-        for (s, factors) in cell_young.iter().enumerate() {
-            let Some(factors) = factors.as_ref().filter(|f| !f.is_empty()) else {
-                continue;
-            };
-            let op = &self.subs[s];
-            let mut model = op.model.clone();
-            model
-                .scale_young_per_cell(factors)
-                .map_err(fem_err(&op.name))?;
-            let (a0, r_presc) = operator_matrix(&op.name, &model, &op.dofs, &op.links)?;
-            // Same mesh, dofs and links: the pattern of the set-up's operator.
-            let mut chol = op.chol.same_pattern();
-            chol.factorize(&a0).map_err(fem_err(&op.name))?;
-            changed[s] = true;
-            subs[s] = Arc::new(SubOperator {
-                name: op.name.clone(),
-                model,
-                dofs: op.dofs.clone(),
-                chol,
-                r_ext: op.r_ext.clone(),
-                r_presc,
-                links: op.links.clone(),
-                rigid: op.rigid.clone(),
-            });
-        }
+        let mut rebuild = || -> Result<(), LatinError> {
+            for (s, factors) in cell_young.iter().enumerate() {
+                let Some(factors) = factors.as_ref().filter(|f| !f.is_empty()) else {
+                    continue;
+                };
+                let op = &self.subs[s];
+                let mut model = op.model.clone();
+                model
+                    .scale_young_per_cell(factors)
+                    .map_err(fem_err(&op.name))?;
+                changed[s] = true;
+                // Another rank's substructure: its scaled model only (module `ranks`).
+                let (chol, r_presc) = match &op.chol {
+                    Some(c) => {
+                        let (a0, r_presc) = operator_matrix(&op.name, &model, &op.dofs, &op.links)?;
+                        // Same mesh, dofs and links: the pattern of the set-up's operator.
+                        let mut chol = c.same_pattern();
+                        chol.factorize(&a0).map_err(fem_err(&op.name))?;
+                        (Some(chol), r_presc)
+                    }
+                    None => (None, Vec::new()),
+                };
+                subs[s] = Arc::new(SubOperator {
+                    name: op.name.clone(),
+                    model,
+                    dofs: op.dofs.clone(),
+                    chol,
+                    r_ext: op.r_ext.clone(),
+                    r_presc,
+                    links: op.links.clone(),
+                    rigid: op.rigid.clone(),
+                });
+            }
+            Ok(())
+        };
+        let built = rebuild();
+        Self::agree(self.ranks.as_deref(), built)?;
         let ifaces = self.ifaces.clone();
         let coarse = self
             .coarse
             .as_ref()
-            .map(|c| coarse_with(&subs, &ifaces, Some((c, &changed))));
+            .map(|c| coarse_with(&subs, &ifaces, Some((c, &changed)), self.ranks.as_deref()));
         Ok(LatinSolver {
             subs,
             ifaces,
@@ -87,6 +99,8 @@ impl LatinSolver {
                 .zip(&changed)
                 .map(|(c, &ch)| if ch { None } else { c.clone() })
                 .collect(),
+            // The same ranks and owners (the set-up's factor sizes reported).
+            ranks: self.ranks.clone(),
             setup_seconds: t0.elapsed().as_secs_f64(),
             split: None,
         })

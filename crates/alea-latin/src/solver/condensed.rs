@@ -189,8 +189,10 @@ impl Condensed {
                     for (j, out) in (c0..c1).zip(block.chunks_exact_mut(nf)) {
                         column(j, out);
                     }
-                    let mut scratch = op.chol.solve_scratch(c1 - c0);
-                    op.chol.solve_with(&mut block, &mut scratch);
+                    if let Some(chol) = &op.chol {
+                        let mut scratch = chol.solve_scratch(c1 - c0);
+                        chol.solve_with(&mut block, &mut scratch);
+                    }
                 }
                 (c0..c1)
                     .map(|j| {
@@ -492,16 +494,16 @@ pub(super) fn check_memory(names: &[&str], sizes: &[usize]) -> Result<(), LatinE
 /// Shared handle of a substructure's condensed stage.
 pub(super) type SharedCondensed = Option<Arc<Condensed>>;
 
-/// The condensed stage of every substructure as `mode` asks (module doc, "When");
-/// `deformed`: the interfaces were re-paired in a deformed configuration (large sliding), kept
-/// on the volume path by `Auto`.
-pub(super) fn build_all(
+/// Which substructures are condensed as `mode` asks (module doc, "When"), from the entries
+/// `nnz` of every substructure's factor; `deformed`: the interfaces were re-paired in a
+/// deformed configuration (large sliding), kept on the volume path by `Auto`.
+pub(super) fn choose(
     ops: &[Arc<SubOperator>],
-    coarse: Option<&super::Coarse>,
+    nnz: &[usize],
     mode: super::LinearStage,
     expected_runs: usize,
     deformed: bool,
-) -> Result<Vec<SharedCondensed>, LatinError> {
+) -> Result<Vec<bool>, LatinError> {
     let sizes: Vec<usize> = ops
         .iter()
         .map(|op| interface_unknowns(op.dofs.dim, &op.links))
@@ -517,10 +519,10 @@ pub(super) fn build_all(
             if deformed {
                 vec![false; ops.len()]
             } else {
-                let mut want: Vec<bool> = ops
+                let mut want: Vec<bool> = nnz
                     .iter()
                     .zip(&sizes)
-                    .map(|(op, &n)| pays(n, op.chol.nnz_factor(), expected_runs))
+                    .map(|(&nnz, &n)| pays(n, nnz, expected_runs))
                     .collect();
                 // Within the memory share: the smallest operators first.
                 let budget = MEMORY_SHARE * alea_mesh::input::available_memory() as f64;
@@ -537,10 +539,21 @@ pub(super) fn build_all(
             }
         }
     };
+    Ok(want)
+}
+
+/// The condensed stage of the substructures with `want[s]` that this rank holds the factor of
+/// (module `ranks`; every one in a single process).
+pub(super) fn build_all(
+    ops: &[Arc<SubOperator>],
+    coarse: Option<&super::Coarse>,
+    want: &[bool],
+) -> Result<Vec<SharedCondensed>, LatinError> {
     ops.par_iter()
         .enumerate()
         .map(|(s, op)| {
-            if !want[s] || op.dofs.num_free() == 0 || sizes[s] == 0 {
+            let n = interface_unknowns(op.dofs.dim, &op.links);
+            if !want[s] || op.chol.is_none() || op.dofs.num_free() == 0 || n == 0 {
                 return Ok(None);
             }
             let cm = coarse.map(|c| &c.subs[s]);
@@ -577,7 +590,7 @@ impl super::LatinSolver {
             .zip(self.condensed.par_iter())
             .zip(per_sub.par_iter_mut())
             .for_each(|((op, cd), cols)| {
-                let (Some(cd), false) = (cd, cols.is_empty()) else {
+                let (Some(cd), Some(chol), false) = (cd, &op.chol, cols.is_empty()) else {
                     return;
                 };
                 let nf = op.dofs.num_free();
@@ -587,8 +600,8 @@ impl super::LatinSolver {
                     cd.scatter(op, &st.v, r);
                 }
                 if nf > 0 {
-                    let mut scratch = op.chol.solve_scratch(cols.len());
-                    op.chol.solve_with(&mut block, &mut scratch);
+                    let mut scratch = chol.solve_scratch(cols.len());
+                    chol.solve_with(&mut block, &mut scratch);
                 }
                 for ((st, _), u) in cols.iter_mut().zip(block.chunks_exact(nf.max(1))) {
                     st.rhs.copy_from_slice(&u[..nf]);

@@ -177,7 +177,8 @@ impl LatinSolver {
     }
 
     /// Equilibrium of every substructure under its loads (with the run's load factors) and the
-    /// local-stage interface forces, with its rigid motion (module `equilibrium`).
+    /// local-stage interface forces, with its rigid motion (module `equilibrium`); with ranks,
+    /// each substructure's from its owner (module `ranks`).
     fn equilibrium(
         &self,
         istate: &[InterfaceState],
@@ -185,13 +186,14 @@ impl LatinSolver {
         cond: &[Option<RunCondensed>],
         load_factors: &[Vec<f64>],
     ) -> Vec<SubEquilibrium> {
-        self.subs
+        let mut eq: Vec<SubEquilibrium> = self
+            .subs
             .par_iter()
             .zip(sstate.par_iter())
             .enumerate()
             .map(|(s, (op, st))| {
                 let rm = &op.rigid;
-                if rm.num_free() == 0 {
+                if rm.num_free() == 0 || !self.owns(s) {
                     return SubEquilibrium::default();
                 }
                 let coords = &op.model.mesh.coords;
@@ -214,7 +216,10 @@ impl LatinSolver {
                 };
                 rm.finish(&g, scale, coords, moments, self.model_size)
             })
-            .collect()
+            .collect();
+        let floating: Vec<bool> = self.subs.iter().map(|o| o.rigid.num_free() > 0).collect();
+        self.share_equilibrium(&mut eq, &floating);
+        eq
     }
 }
 

@@ -54,7 +54,8 @@
 //! (`setup.rs`); what a run starts from, with the warm start (`start.rs`); the linear stage
 //! (`linear_stage.rs`) and its interface-condensed form (`condensed.rs`); the coarse step (`coarse.rs`); the local stage and the error indicator
 //! (`local_stage.rs`); Anderson acceleration (`acceleration.rs`); stopping, status and the
-//! equilibrium check (`convergence.rs`); the run's result (`result.rs`).
+//! equilibrium check (`convergence.rs`); the run's result (`result.rs`); one run spread over
+//! ranks, each owning some substructures (`ranks.rs`, module [`crate::ranks`]).
 
 mod acceleration;
 mod batch;
@@ -66,6 +67,7 @@ pub(crate) mod direction;
 mod existence;
 mod linear_stage;
 mod local_stage;
+mod ranks;
 mod result;
 mod setup;
 pub mod split;
@@ -276,7 +278,8 @@ struct SubOperator {
     name: String,
     model: alea_fem::Model,
     dofs: DofMap,
-    chol: Cholesky,
+    /// `None`: the substructure is another rank's (module `ranks`).
+    chol: Option<Cholesky>,
     r_ext: Vec<Vec<f64>>,
     r_presc: Vec<f64>,
     links: Vec<Link>,
@@ -344,6 +347,8 @@ pub struct LatinSolver {
     /// The condensed linear stage of each substructure (`None`: volume solves; module
     /// `condensed`).
     condensed: Vec<condensed::SharedCondensed>,
+    /// The ranks one run is spread over (module `ranks`; `None`: one process).
+    ranks: Option<Arc<ranks::Ranks>>,
     /// Seconds spent in set-up (assembly + factorisation).
     pub setup_seconds: f64,
     /// The user's assembly when the solved one is its substructures cut into subdomains
@@ -453,10 +458,14 @@ impl LatinSolver {
 
     /// The factorisation of solved substructure `s` (`s < num_solved_subs()`): its order, the
     /// entries of its factor and whether the factor is stored in supernodes
-    /// ([`alea_fem::FactorKind`]).
+    /// ([`alea_fem::FactorKind`]). On a solver spread over ranks, the owner's factor
+    /// ([`LatinSolver::with_ranks`]).
     pub fn factor_summary(&self, s: usize) -> (usize, usize, bool) {
-        let c = &self.subs[s].chol;
-        (c.n(), c.nnz_factor(), c.is_supernodal())
+        match (&self.subs[s].chol, &self.ranks) {
+            (Some(c), _) => (c.n(), c.nnz_factor(), c.is_supernodal()),
+            (None, Some(r)) => r.factors[s],
+            (None, None) => (0, 0, false),
+        }
     }
 
     /// How each solved substructure's linear stage is solved: condensed on its interface or by
@@ -465,13 +474,20 @@ impl LatinSolver {
         self.subs
             .iter()
             .zip(&self.condensed)
-            .map(|(op, cd)| LinearStageSummary {
-                name: op.name.clone(),
-                dofs: op.dofs.num_free(),
-                factor_entries: op.chol.nnz_factor(),
-                interface_unknowns: condensed::interface_unknowns(op.dofs.dim, &op.links),
-                condensed: cd.is_some(),
-                bytes: cd.as_ref().map_or(0.0, |c| c.bytes()),
+            .enumerate()
+            .map(|(s, (op, cd))| {
+                let bytes = match &self.ranks {
+                    Some(r) => r.condensed[s],
+                    None => cd.as_ref().map(|c| c.bytes()),
+                };
+                LinearStageSummary {
+                    name: op.name.clone(),
+                    dofs: op.dofs.num_free(),
+                    factor_entries: self.factor_summary(s).1,
+                    interface_unknowns: condensed::interface_unknowns(op.dofs.dim, &op.links),
+                    condensed: bytes.is_some(),
+                    bytes: bytes.unwrap_or(0.0),
+                }
             })
             .collect()
     }

@@ -20,13 +20,18 @@ impl LatinSolver {
         // Final fields: the last linear stage's displacement (recovered from its interface
         // data on a condensed substructure, module `condensed`).
         self.recover_volumes(&mut [&mut run]);
-        let displacements: Vec<Vec<f64>> = self
+        // With ranks, each from its owner (module `ranks`).
+        let mut displacements: Vec<Vec<f64>> = self
             .subs
             .par_iter()
             .zip(run.sstate.par_iter())
             .enumerate()
-            .map(|(s, (op, st))| op.dofs.expand(&self.displacement(s, st)))
+            .map(|(s, (op, st))| match self.owns(s) {
+                true => op.dofs.expand(&self.displacement(s, st)),
+                false => Vec::new(),
+            })
             .collect();
+        self.share_displacements(&mut displacements);
         let points = std::mem::take(&mut run.points);
         let interfaces: Vec<InterfaceResult> = self
             .ifaces

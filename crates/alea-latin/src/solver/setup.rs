@@ -13,6 +13,7 @@ use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
 use rayon::prelude::*;
 
 use super::direction::PointDirection;
+use super::ranks::Ranks;
 use super::{
     Coarse, InterfaceOperator, LatinOptions, LatinSolver, Link, SearchDirection, SubOperator,
 };
@@ -51,8 +52,20 @@ impl LatinSolver {
     pub fn with_pairings(
         assembly: Assembly,
         options: LatinOptions,
+        pairings: Vec<Option<InterfacePairing>>,
+        configuration: Option<Vec<Vec<f64>>>,
+    ) -> Result<Self, LatinError> {
+        Self::set_up(assembly, options, pairings, configuration, None)
+    }
+
+    /// [`LatinSolver::with_pairings`] on the ranks of `ranks` (`None`: one process): only the
+    /// owned substructures are assembled and factorised (module `ranks`).
+    pub(super) fn set_up(
+        assembly: Assembly,
+        options: LatinOptions,
         mut pairings: Vec<Option<InterfacePairing>>,
         configuration: Option<Vec<Vec<f64>>>,
+        mut ranks: Option<Ranks>,
     ) -> Result<Self, LatinError> {
         let t0 = Instant::now();
         check_options(&options)?;
@@ -61,7 +74,9 @@ impl LatinSolver {
             && pairings.iter().all(Option::is_none)
             && let Some(parts) = super::split::plan(&assembly, &options)
         {
-            return super::split::build(&assembly, options, &parts);
+            // Over ranks, the subdomains are spread (module `ranks`).
+            let exchange = ranks.map(|r| r.exchange());
+            return super::split::build(&assembly, options, &parts, exchange);
         }
         let Assembly { subs, interfaces } = assembly;
         let nsub = subs.len();
@@ -81,19 +96,47 @@ impl LatinSolver {
             )?);
         }
         let ordering = options.ordering;
-        let ops: Vec<Arc<SubOperator>> = subs
+        let owned: Vec<bool> = (0..nsub)
+            .map(|s| ranks.as_ref().is_none_or(|r| r.owns(s)))
+            .collect();
+        let ops: Result<Vec<Arc<SubOperator>>, LatinError> = subs
             .into_par_iter()
             .zip(links.into_par_iter())
-            .map(|(sub, links)| build_operator(sub, links, ordering).map(Arc::new))
-            .collect::<Result<_, _>>()?;
-        let coarse = options.coarse.then(|| build_coarse(&ops, &ifaces));
-        let condensed = super::condensed::build_all(
+            .zip(owned.into_par_iter())
+            .map(|((sub, links), own)| build_operator(sub, links, ordering, own).map(Arc::new))
+            .collect();
+        let ops = Self::agree(ranks.as_ref(), ops)?;
+        let factors: Vec<_> = ops
+            .iter()
+            .map(|o| o.chol.as_ref().map(factor_info))
+            .collect();
+        let factors = match &mut ranks {
+            Some(r) => {
+                r.factors = super::ranks::share_factors(r, &factors);
+                r.factors.clone()
+            }
+            None => factors.into_iter().flatten().collect(),
+        };
+        let coarse = options
+            .coarse
+            .then(|| coarse_with(&ops, &ifaces, None, ranks.as_ref()));
+        let nnz: Vec<usize> = factors.iter().map(|f| f.1).collect();
+        let want = super::condensed::choose(
             &ops,
-            coarse.as_ref(),
+            &nnz,
             options.linear_stage,
             options.expected_runs,
             configuration.is_some(),
         )?;
+        let condensed = super::condensed::build_all(&ops, coarse.as_ref(), &want);
+        let condensed = Self::agree(ranks.as_ref(), condensed)?;
+        if let Some(r) = &mut ranks {
+            let bytes: Vec<Option<f64>> = condensed
+                .iter()
+                .map(|c| c.as_ref().map(|c| c.bytes()))
+                .collect();
+            r.condensed = super::ranks::share_condensed(r, &want, &bytes);
+        }
         Ok(LatinSolver {
             subs: ops,
             ifaces,
@@ -102,6 +145,7 @@ impl LatinSolver {
             coarse,
             configuration,
             condensed,
+            ranks: ranks.map(Arc::new),
             setup_seconds: t0.elapsed().as_secs_f64(),
             split: None,
         })
@@ -275,17 +319,14 @@ fn directions(
 }
 
 /// The macro space of the coarse problem (interface resultants and moments, module `coarse`)
-/// and every substructure's responses to it.
-pub(super) fn build_coarse(ops: &[Arc<SubOperator>], ifaces: &[InterfaceOperator]) -> Coarse {
-    coarse_with(ops, ifaces, None)
-}
-
-/// [`build_coarse`] keeping the substructure responses of `previous` where `changed` is false
-/// (the same macro space: same interfaces).
+/// and every substructure's responses to it, keeping the responses of `previous` where
+/// `changed` is false (the same macro space: same interfaces); with `ranks`, each
+/// substructure's responses computed by its owner and its interface values shared.
 pub(super) fn coarse_with(
     ops: &[Arc<SubOperator>],
     ifaces: &[InterfaceOperator],
     previous: Option<(&Coarse, &[bool])>,
+    ranks: Option<&Ranks>,
 ) -> Coarse {
     let dim = ops.first().map_or(2, |o| o.model.mesh.dim);
     let mut offset = 0;
@@ -306,15 +347,23 @@ pub(super) fn coarse_with(
         (Some(m), 1) => m,
         _ => &modes[l.iface],
     };
-    let subs: Vec<SubMacro> = ops
+    let fresh = |s: usize| previous.is_none_or(|(_, changed)| changed[s]);
+    let mut subs: Vec<SubMacro> = ops
         .par_iter()
         .enumerate()
         .map(|(s, op)| {
-            if let Some((prev, changed)) = previous
-                && !changed[s]
+            if let Some((prev, _)) = previous
+                && !fresh(s)
             {
                 return prev.subs[s].clone();
             }
+            let Some(chol) = &op.chol else {
+                // Another rank's: shared below.
+                return SubMacro {
+                    columns: Vec::new(),
+                    l0: Vec::new(),
+                };
+            };
             let links: Vec<MacroLink<'_>> = op
                 .links
                 .iter()
@@ -324,9 +373,13 @@ pub(super) fn coarse_with(
                     modes: side_modes(l),
                 })
                 .collect();
-            SubMacro::new(&op.dofs, &op.chol, &links, &op.rigid, &op.model.mesh.coords)
+            SubMacro::new(&op.dofs, chol, &links, &op.rigid, &op.model.mesh.coords)
         })
         .collect();
+    if let Some(r) = ranks {
+        let want: Vec<bool> = (0..ops.len()).map(fresh).collect();
+        super::ranks::share_macros(r, &mut subs, &want);
+    }
     Coarse {
         n: offset,
         modes,
@@ -374,18 +427,31 @@ fn side_young(model: &alea_fem::Model, group: &str) -> Result<f64, alea_fem::Fem
     Ok(sum / facets.len().max(1) as f64)
 }
 
+/// Order, factor entries and supernodal storage of a factorisation.
+fn factor_info(c: &Cholesky) -> (usize, usize, bool) {
+    (c.n(), c.nnz_factor(), c.is_supernodal())
+}
+
+/// The operator of one substructure; `own`: this rank computes it (module `ranks`), else
+/// no operator, factor nor right-hand sides are made.
 fn build_operator(
     sub: Substructure,
     links: Vec<Link>,
     ordering: Ordering,
+    own: bool,
 ) -> Result<SubOperator, LatinError> {
     let name = sub.name.clone();
     let model = sub.model;
     let dofs = DofMap::for_mesh(&model.mesh, &sub.constraints).map_err(fem_err(&name))?;
-    let (a0, r_presc) = operator_matrix(&name, &model, &dofs, &links)?;
-    let mut chol =
-        Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
-    chol.factorize(&a0).map_err(fem_err(&name))?;
+    let (chol, r_presc) = if own {
+        let (a0, r_presc) = operator_matrix(&name, &model, &dofs, &links)?;
+        let mut chol =
+            Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
+        chol.factorize(&a0).map_err(fem_err(&name))?;
+        (Some(chol), r_presc)
+    } else {
+        (None, Vec::new())
+    };
     let dim = model.mesh.dim;
     let n_nodes = model.mesh.num_nodes() * model.mesh.dim;
     if let Some(f) = sub.load_cases.iter().find(|f| f.len() != n_nodes) {
@@ -401,7 +467,11 @@ fn build_operator(
         &sub.load_cases,
         (0..model.mesh.num_nodes()).any(|n| dofs.prescribed(n).iter().any(|&v| v != 0.0)),
     );
-    let r_ext: Vec<Vec<f64>> = sub.load_cases.iter().map(|f| dofs.reduce(f)).collect();
+    let r_ext: Vec<Vec<f64>> = sub
+        .load_cases
+        .iter()
+        .map(|f| if own { dofs.reduce(f) } else { Vec::new() })
+        .collect();
     Ok(SubOperator {
         name,
         model,

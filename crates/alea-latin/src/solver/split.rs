@@ -30,7 +30,7 @@
 //! `O(n^{4/3})` to store and to solve with; `k` parts of `n / k` cost `O(n^2 / k)` and
 //! `O(n^{4/3} k^{-1/3})`, plus the interfaces (BENCHMARKS.md "Automatic subdomains").
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use alea_mesh::{Facet, Mesh};
@@ -94,14 +94,18 @@ pub fn plan(assembly: &Assembly, options: &LatinOptions) -> Option<Vec<usize>> {
 
 /// The solver of `assembly` cut into `parts[s]` parts per substructure: the LATIN runs on the
 /// parts, its accessors, inputs and results speak of the user's assembly (module doc).
+///
+/// With `exchange`, the subdomains are spread over its ranks (module `ranks`): each rank
+/// factorises its own.
 pub(super) fn build(
     assembly: &Assembly,
     options: LatinOptions,
     parts: &[usize],
+    exchange: Option<Arc<dyn crate::ranks::RankExchange>>,
 ) -> Result<LatinSolver, LatinError> {
     let t0 = std::time::Instant::now();
     let mut split = Split::new(assembly, parts)?;
-    let mut solver = split.solver(options.clone())?;
+    let mut solver = split.solver_on(options.clone(), exchange)?;
     split.user_interfaces = split.user_interfaces(&solver);
     solver.options = options;
     solver.split = Some(Arc::new(split));
@@ -299,6 +303,16 @@ impl Split {
     /// The cuts' search direction is `k = CUT_DIRECTION E / h`, whatever the options' factor
     /// (which is tuned for the user's interfaces, often contact).
     pub fn solver(&self, options: LatinOptions) -> Result<LatinSolver, LatinError> {
+        self.solver_on(options, None)
+    }
+
+    /// [`Split::solver`], spread over the ranks of `exchange` when given
+    /// ([`LatinSolver::with_ranks`]).
+    fn solver_on(
+        &self,
+        options: LatinOptions,
+        exchange: Option<Arc<dyn crate::ranks::RankExchange>>,
+    ) -> Result<LatinSolver, LatinError> {
         let mut inner = self.inner.clone();
         let mut options = options;
         options.subdomains = Subdomains::Never;
@@ -311,7 +325,8 @@ impl Split {
                 scale.length *= factor / CUT_DIRECTION;
             }
         }
-        LatinSolver::with_pairings(inner, options, self.pairings.clone(), None)
+        let ranks = exchange.map(|e| super::ranks::Ranks::for_assembly(e, &inner));
+        LatinSolver::set_up(inner, options, self.pairings.clone(), None, ranks)
     }
 
     /// A user run's input on the split assembly (`solver` from [`Split::solver`]): each
@@ -814,7 +829,8 @@ fn add_cut_groups(
     local: &[Vec<usize>],
     meshes: &mut [Mesh],
 ) -> Vec<(usize, usize)> {
-    let mut by_key: HashMap<Vec<usize>, Vec<(usize, Facet)>> = HashMap::new();
+    // Ordered by facet key: the cut groups, hence the cuts' points, the same in every process.
+    let mut by_key: BTreeMap<Vec<usize>, Vec<(usize, Facet)>> = BTreeMap::new();
     for (c, kind, nodes) in mesh.cells() {
         for (fk, loc) in kind.facets() {
             let f = Facet {

@@ -184,8 +184,9 @@ impl LatinSolver {
     /// interface). The cold start then converges in one iteration, while a warm start from a
     /// neighbour whose contact is closed would shrink towards zero iterate by iterate (issue 35:
     /// a loose shrink fit).
+    /// With ranks, the owners' right-hand sides (the others' are empty here).
     fn zero_answer(&self, base: &[Vec<f64>], points: &[Vec<PointData>]) -> bool {
-        base.iter().flatten().all(|&v| v == 0.0)
+        self.everywhere(base.iter().flatten().all(|&v| v == 0.0))
             && self.ifaces.iter().zip(points).all(|(op, pts)| {
                 pts.iter().all(|p| {
                     let sol = op.law.local_stage(p, [0.0; 3], 1.0);
@@ -249,7 +250,15 @@ impl LatinSolver {
                 v: vec![0.0; cd.as_ref().map_or(0, |c| c.n)],
                 wi: vec![0.0; cd.as_ref().map_or(0, |c| c.n)],
                 stale: false,
-                rhs: vec![0.0; op.dofs.num_free()],
+                // No volume vector for another rank's substructure (module `ranks`).
+                rhs: vec![
+                    0.0;
+                    if op.chol.is_some() {
+                        op.dofs.num_free()
+                    } else {
+                        0
+                    }
+                ],
                 coarse_u: Vec::new(),
                 w: op
                     .links

@@ -269,7 +269,21 @@ impl BuiltModel {
     /// distance, ...) is an input error naming the file, the `[[interface]]` entry's line and
     /// the field.
     pub fn solver(&self) -> Result<alea_latin::LatinSolver, StudyError> {
-        alea_latin::LatinSolver::new(self.assembly.clone(), self.options.clone()).map_err(|e| {
+        self.solver_on(None)
+    }
+
+    /// [`BuiltModel::solver`] spread over the ranks of `ranks` (`None`: one process; module
+    /// `alea_latin::ranks`).
+    pub fn solver_on(
+        &self,
+        ranks: Option<std::sync::Arc<dyn alea_latin::RankExchange>>,
+    ) -> Result<alea_latin::LatinSolver, StudyError> {
+        let (asm, options) = (self.assembly.clone(), self.options.clone());
+        let built = match ranks {
+            Some(r) => alea_latin::LatinSolver::with_ranks(asm, options, r),
+            None => alea_latin::LatinSolver::new(asm, options),
+        };
+        built.map_err(|e| {
             let (name, unmatched, cyclic) = match &e {
                 alea_latin::LatinError::Unmatched { interface, .. } => (interface, true, false),
                 alea_latin::LatinError::Pairing { interface, .. } => (interface, false, false),

@@ -39,7 +39,12 @@
 //!
 //! Threads per rank: `--threads` if given, else the node's cores divided by the ranks on the
 //! node (from `MPI_Comm_split_type(SHARED)`).
+//!
+//! **Ranks per run** (`[solver] ranks_per_run = R`, module `group`): the ranks form groups of
+//! `R`, each solving one run spread over its ranks (each factorises only its substructures);
+//! the groups' first ranks take the place of the ranks above, with one solver thread each.
 
+mod group;
 mod stats;
 mod transport;
 mod wire;
@@ -57,6 +62,8 @@ use crate::StudyError;
 use crate::solve::{BatchExecutor, RUNS_PER_BATCH, RunContext, RunJob, RunOutcome, RunSetup};
 use crate::store::run_file_stem;
 use crate::study::Study;
+use group::Place;
+pub use group::{MpiExchange, ranks_per_run};
 pub use stats::Stats;
 use transport::{Incoming, Nap, send, try_receive};
 
@@ -85,16 +92,31 @@ fn launched_by_mpi() -> bool {
 
 /// Initialises MPI if an MPI launcher started this process, sizes the rayon pool of this rank
 /// (`threads`, else the node's cores over the ranks on the node) and says what this process is.
-pub fn start(threads: Option<usize>) -> Result<Role, StudyError> {
+/// With `per_run` ranks per run (`[solver] ranks_per_run`, [`ranks_per_run`]), the ranks are
+/// split into groups of `per_run` (module `group`) and the group's exchange is installed for
+/// the study's solver ([`crate::solve::install_rank_exchange`]).
+pub fn start(threads: Option<usize>, per_run: usize) -> Result<Role, StudyError> {
     if !launched_by_mpi() {
         return Ok(Role::Single);
     }
-    let (universe, provided) = mpi::initialize_with_threading(Threading::Funneled)
+    let per_run = per_run.max(1);
+    let need = if per_run > 1 {
+        Threading::Multiple
+    } else {
+        Threading::Funneled
+    };
+    let (universe, provided) = mpi::initialize_with_threading(need)
         .ok_or_else(|| StudyError::Mpi("MPI was initialised twice".into()))?;
-    if provided == Threading::Single {
-        return Err(StudyError::Mpi(
-            "the MPI library does not support threads (MPI_THREAD_FUNNELED needed)".into(),
-        ));
+    let rank_of = |t: Threading| match t {
+        Threading::Single => 0,
+        Threading::Funneled => 1,
+        Threading::Serialized => 2,
+        Threading::Multiple => 3,
+    };
+    if rank_of(provided) < rank_of(need) {
+        return Err(StudyError::Mpi(format!(
+            "the MPI library does not support the threads needed ({need:?}; {provided:?} provided)"
+        )));
     }
     let world = universe.world();
     let (rank, size) = (world.rank(), world.size());
@@ -107,6 +129,14 @@ pub fn start(threads: Option<usize>) -> Result<Role, StudyError> {
     if size == 1 {
         return Ok(Role::Single);
     }
+    if per_run > 1 {
+        let exchange = group::split(&world, per_run)?;
+        crate::solve::install_rank_exchange(Arc::new(exchange));
+    }
+    let place = Place::of(rank as usize, per_run);
+    // In groups, one solver thread per rank: a group solves one group of runs at a time, its
+    // ranks in the same order.
+    let solvers = if per_run > 1 { 1 } else { threads };
     let comm = World {
         comm: world,
         thread: std::thread::current().id(),
@@ -116,9 +146,10 @@ pub fn start(threads: Option<usize>) -> Result<Role, StudyError> {
             inner: Arc::new(LeaderInner {
                 world: comm,
                 size: size as usize,
+                place,
                 state: Mutex::new(LeaderState {
                     ready: None,
-                    capacity: vec![threads; size as usize],
+                    capacity: vec![solvers; size as usize],
                     stats: Stats {
                         ranks: size as usize,
                         threads: vec![threads; size as usize],
@@ -136,7 +167,8 @@ pub fn start(threads: Option<usize>) -> Result<Role, StudyError> {
         Ok(Role::Worker(Worker {
             world: comm,
             rank: rank as usize,
-            threads,
+            place,
+            threads: solvers,
             _universe: universe,
         }))
     }
@@ -232,6 +264,8 @@ struct LeaderState {
 struct LeaderInner {
     world: World,
     size: usize,
+    /// Rank 0's group (module `group`).
+    place: Place,
     state: Mutex<LeaderState>,
 }
 
@@ -284,7 +318,8 @@ fn wait_ready(world: &SimpleCommunicator, size: usize, st: &mut LeaderState) -> 
                 left -= 1;
                 nap.reset();
                 let mut rd = wire::Reader::new(&bytes);
-                let threads = rd.u64().unwrap_or(1).max(1) as usize;
+                // 0 from the ranks of a group other than its first (module `group`).
+                let threads = rd.u64().unwrap_or(1) as usize;
                 st.capacity[r] = threads;
                 st.stats.threads[r] = threads;
                 match rd.u64() {
@@ -390,6 +425,19 @@ impl BatchExecutor for MpiExecutor {
                             }
                             groups_out[r] += 1;
                             if r == 0 {
+                                // Rank 0's group solves it with rank 0 (module `group`).
+                                let refs: Vec<(u64, &RunJob)> =
+                                    out.iter().map(|(id, j)| (*id, j)).collect();
+                                let (bytes, _) = wire::encode_group(&refs);
+                                for m in inner.place.members() {
+                                    arrived.extend(send(
+                                        world,
+                                        m,
+                                        TAG_JOB,
+                                        &bytes,
+                                        Some(TAG_RESULT),
+                                    ));
+                                }
                                 job_tx.send(out).map_err(|_| {
                                     StudyError::Mpi("rank 0's solver threads stopped".into())
                                 })?;
@@ -533,6 +581,9 @@ impl Back<'_> {
 pub struct Worker {
     world: World,
     rank: usize,
+    /// Its group (module `group`): the first rank talks to rank 0, the others to it.
+    place: Place,
+    /// Solver threads.
     threads: usize,
     _universe: mpi::environment::Universe,
 }
@@ -550,11 +601,13 @@ impl Worker {
     pub fn serve(self, path: &Path, dir: &Path) -> Result<(), StudyError> {
         let world = self.world.get()?;
         let setup = Study::load(path).and_then(|study| {
-            let s = RunSetup::build(&study)?;
+            let s = RunSetup::build_for_runs(&study)?;
             Ok((study, s))
         });
+        let head = self.place.head == self.rank;
         let mut w = wire::Writer::default();
-        w.u64(self.threads as u64);
+        // The runs it takes at once: none for the ranks of a group other than its first.
+        w.u64(if head { self.threads as u64 } else { 0 });
         match &setup {
             Ok(_) => w.u64(1),
             Err(e) => w.u64(0).str(&e.to_string()),
@@ -596,14 +649,20 @@ impl Worker {
             let mut nap = Nap::new();
             let result = 'serve: loop {
                 let mut busy = false;
-                while let Some(m) = stash
-                    .pop_front()
-                    .or_else(|| try_receive(world, Some(0), None))
-                {
+                // The first rank of a group hears from rank 0; the others from it (jobs) and
+                // rank 0 (stop).
+                let boss = if head { Some(0) } else { None };
+                while let Some(m) = stash.pop_front().or_else(|| try_receive(world, boss, None)) {
                     busy = true;
                     match m.1 {
                         TAG_STOP => stop = true,
                         TAG_JOB => {
+                            // Its group solves the job with it (module `group`).
+                            if head {
+                                for r in self.place.members() {
+                                    stash.extend(send(world, r, TAG_JOB, &m.2, None));
+                                }
+                            }
                             // A group of runs solved together; a run that does not decode is
                             // answered at once (with its id if it can be read, so rank 0 names
                             // the run), the others are solved.
@@ -615,6 +674,7 @@ impl Worker {
                             for entry in entries {
                                 match entry {
                                     Ok(job) => group.push(job),
+                                    Err(_) if !head => {}
                                     Err((id, e)) => {
                                         let bytes = wire::encode_result(
                                             id.unwrap_or(u64::MAX),
@@ -646,8 +706,11 @@ impl Worker {
                 while let Ok((id, out)) = res_rx.try_recv() {
                     busy = true;
                     in_flight -= 1;
-                    let bytes = wire::encode_result(id, &out);
-                    stash.extend(send(world, 0, TAG_RESULT, &bytes, None));
+                    // The group's first rank answers for the group.
+                    if head {
+                        let bytes = wire::encode_result(id, &out);
+                        stash.extend(send(world, 0, TAG_RESULT, &bytes, None));
+                    }
                 }
                 if stop && in_flight == 0 {
                     break Ok(());
