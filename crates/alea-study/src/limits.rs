@@ -68,12 +68,29 @@ pub fn human_bytes(b: f64) -> String {
 }
 
 /// Estimated peak memory (bytes) of the factorisations of a mesh of `nodes` nodes in `dim`
-/// dimensions (module doc).
-pub fn mesh_memory(nodes: f64, dim: usize) -> f64 {
+/// dimensions (module doc), its factorised parts at most `part_dofs` unknowns when automatic
+/// subdomains may cut it ([`subdomain_dofs`]): in 3D the fill of a part grows like the cube
+/// root of its size, so cut parts bound it.
+pub fn mesh_memory(nodes: f64, dim: usize, part_dofs: Option<usize>) -> f64 {
     if dim == 2 {
         5e3 * nodes
     } else {
-        30e3 * nodes * (nodes / 30_000.0).cbrt().max(1.0)
+        let part = part_dofs.map_or(nodes, |d| nodes.min(d as f64 / dim as f64));
+        30e3 * nodes * (part / 30_000.0).cbrt().max(1.0)
+    }
+}
+
+/// The largest part, in unknowns, that `[solver] subdomains` leaves a substructure
+/// (`alea_latin::split::plan`): `None` with `"never"`.
+pub fn subdomain_dofs(solver: &crate::spec::SolverSpec) -> Option<usize> {
+    let target = solver
+        .subdomain_dofs
+        .as_ref()
+        .map_or(alea_latin::split::SUBDOMAIN_DOFS, |d| *d.get_ref());
+    match solver.subdomains.as_ref().map(|s| s.get_ref().as_str()) {
+        Some("never") => None,
+        Some("always") => Some(2 * target),
+        _ => Some(alea_latin::split::AUTO_MIN_DOFS.max(target)),
     }
 }
 
@@ -233,11 +250,15 @@ pub fn mesh_estimate(
 ///
 /// # Errors
 /// [`StudyError::Input`] naming the field, with the cell and memory estimates.
-pub fn check_mesh(src: &Source, spec: &MeshSpec) -> Result<(), StudyError> {
+pub fn check_mesh(
+    src: &Source,
+    spec: &MeshSpec,
+    part_dofs: Option<usize>,
+) -> Result<(), StudyError> {
     let Some((nodes, block_cells, dim, span, field)) = mesh_estimate(spec) else {
         return Ok(());
     };
-    let need = mesh_memory(nodes, dim);
+    let need = mesh_memory(nodes, dim, part_dofs);
     let have = available_memory() as f64;
     if need > have || !need.is_finite() {
         return Err(src.error(
@@ -266,9 +287,10 @@ pub fn check_split(
     nodes: usize,
     dim: usize,
     split: usize,
+    part_dofs: Option<usize>,
 ) -> Result<(), StudyError> {
     let refined = nodes as f64 * power(1 << dim, split);
-    let need = mesh_memory(refined, dim);
+    let need = mesh_memory(refined, dim, part_dofs);
     let have = available_memory() as f64;
     if need > have || !need.is_finite() {
         return Err(src.error(

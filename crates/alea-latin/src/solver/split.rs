@@ -22,9 +22,28 @@
 //!
 //! [`Split::merge`] gives a run's result back on the user's assembly: each user node's
 //! displacement from the part that owns it, each user interface's point data from its
-//! pieces, each substructure's equilibrium check from its worst part. Not split: a
-//! substructure on a cyclic or large-sliding interface, or whose modulus varies from cell to
-//! cell in a run (refused by [`Split::new`] / [`Split::input`]).
+//! pieces, each substructure's equilibrium check from its worst part, and the run's end state
+//! on the solved interfaces, cuts included ([`crate::RunResult::split_state`]), so that a run
+//! warm-started from it starts its cuts too (measured on the 3D turbine refined once: 68
+//! iterations instead of 128 with the cuts started from zero). A modulus varying from cell to
+//! cell is taken part by part. Not split: a substructure on a cyclic interface (refused by
+//! [`Split::new`]), any substructure of an assembly with a large-sliding interface.
+//!
+//! **In the solver** ([`LatinOptions::subdomains`], [`plan`], [`build`]): `LatinSolver::new`
+//! cuts each substructure of at least [`AUTO_MIN_DOFS`] unknowns (`Auto`), or of at least
+//! twice the target (`Always`), into `round(n / subdomain_dofs)` parts, and the solver then
+//! runs on the parts while its accessors (`num_subs`, `model`, `interface_points`, ...), its
+//! runs' inputs and its results speak of the user's substructures and interfaces: studies,
+//! quantities, outputs and the error estimate see the user's model. The stopping indicator's
+//! scale is then the user's interfaces' (module `local_stage`): the cuts carry the inner forces
+//! of a body, whose size would dilute `eta` (at the same indicator the split model's error was
+//! 14x the undivided one's; with the user's scale it is the same, `alea-study
+//! tests/subdomains.rs`). Over MPI ranks (`LatinSolver::with_ranks`, module `ranks`) the
+//! subdomains are spread over the ranks, each factorising its own.
+//!
+//! **Cost.** The coarse problem has `6` unknowns per interface in 3D (`3` in 2D), cuts
+//! included, and is inverted densely per run (module `crate::coarse`): thousands of
+//! subdomains would make it the bottleneck; the default target size keeps it to hundreds.
 //!
 //! Why: a sparse factorisation of a 3D part of `n` unknowns costs `O(n^2)` to build and
 //! `O(n^{4/3})` to store and to solve with; `k` parts of `n / k` cost `O(n^2 / k)` and
@@ -49,10 +68,10 @@ use crate::{
 /// less memory.
 pub const SUBDOMAIN_DOFS: usize = 20_000;
 
-/// The size from which [`Subdomains::Auto`] cuts a substructure: the break-even measured on
-/// the 3D turbine (`BENCHMARKS.md` "Automatic subdomains"), below which the undivided
-/// substructure's run is faster.
-pub const AUTO_MIN_DOFS: usize = 200_000;
+/// The size from which [`Subdomains::Auto`] cuts a substructure, above the break-even measured
+/// on the 3D turbine (`BENCHMARKS.md` "Automatic subdomains": runs 2.3x slower cut at 20 000
+/// unknowns per substructure, 2x faster at 130 000 - 160 000, even at about 60 000).
+pub const AUTO_MIN_DOFS: usize = 80_000;
 
 /// The number of parts of each substructure of `assembly` that `options` ask for
 /// ([`LatinOptions::subdomains`]); `None` when none is cut. A substructure on a cyclic

@@ -288,13 +288,19 @@ pub fn split_count(src: &Source, spec: &MeshSpec) -> Result<usize, StudyError> {
     }
 }
 
-/// The mesh of a `[mesh]` table: generated or read, then refined `split` times.
+/// The mesh of a `[mesh]` table: generated or read, then refined `split` times; its size
+/// checked against the memory of factorised parts of at most `part_dofs` unknowns
+/// ([`crate::limits::subdomain_dofs`]; `None`: undivided).
 ///
 /// # Errors
 /// [`StudyError::Input`] naming the field of the table at fault.
-pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+pub fn build_mesh(
+    src: &Source,
+    spec: &MeshSpec,
+    part_dofs: Option<usize>,
+) -> Result<Mesh, StudyError> {
     let split = split_count(src, spec)?;
-    let mesh = build_base_mesh(src, spec)?;
+    let mesh = build_base_mesh(src, spec, part_dofs)?;
     if split == 0 {
         return Ok(mesh);
     }
@@ -302,7 +308,14 @@ pub fn build_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
         .split
         .as_ref()
         .map_or(spec.generator.span(), |s| s.span());
-    crate::limits::check_split(src, span.clone(), mesh.num_nodes(), mesh.dim, split)?;
+    crate::limits::check_split(
+        src,
+        span.clone(),
+        mesh.num_nodes(),
+        mesh.dim,
+        split,
+        part_dofs,
+    )?;
     mesh.refined(split)
         .map_err(|e| src.error(span, "mesh.split", e.to_string()))
 }
@@ -314,7 +327,7 @@ mod tests {
     #[test]
     fn the_generators_checked_for_their_keys_are_the_generators_built() {
         let spec: MeshSpec = toml::from_str("generator = \"disc\"").unwrap();
-        let e = build_mesh(&Source::from_text("t.toml", ""), &spec)
+        let e = build_mesh(&Source::from_text("t.toml", ""), &spec, None)
             .unwrap_err()
             .to_string();
         let list = e
@@ -358,7 +371,7 @@ mod tests {
         for text in cases {
             let f: F = toml::from_str(&format!("[mesh]\n{text}\n")).unwrap();
             let src = Source::from_text("t.toml", text);
-            let mesh = build_mesh(&src, &f.mesh).unwrap();
+            let mesh = build_mesh(&src, &f.mesh, None).unwrap();
             let (nodes, ..) = crate::limits::mesh_estimate(&f.mesh).unwrap();
             let ratio = nodes / mesh.num_nodes() as f64;
             assert!(

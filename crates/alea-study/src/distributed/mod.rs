@@ -44,6 +44,7 @@
 //! `R`, each solving one run spread over its ranks (each factorises only its substructures);
 //! the groups' first ranks take the place of the ranks above, with one solver thread each.
 
+mod dispatch;
 mod group;
 mod stats;
 mod transport;
@@ -368,7 +369,7 @@ impl BatchExecutor for MpiExecutor {
         }
         st.batches += 1;
         if st.log.is_none() {
-            st.log = Some(open_dispatch_log(ctx.dir, inner.size)?);
+            st.log = Some(dispatch::open_dispatch_log(ctx.dir, inner.size)?);
         }
         let size = inner.size;
         // The runs go out in the groups the local executor solves together (consecutive runs,
@@ -424,31 +425,8 @@ impl BatchExecutor for MpiExecutor {
                                 inflight[r].push((id, i));
                             }
                             groups_out[r] += 1;
-                            if r == 0 {
-                                // Rank 0's group solves it with rank 0 (module `group`).
-                                let refs: Vec<(u64, &RunJob)> =
-                                    out.iter().map(|(id, j)| (*id, j)).collect();
-                                let (bytes, _) = wire::encode_group(&refs);
-                                for m in inner.place.members() {
-                                    arrived.extend(send(
-                                        world,
-                                        m,
-                                        TAG_JOB,
-                                        &bytes,
-                                        Some(TAG_RESULT),
-                                    ));
-                                }
-                                job_tx.send(out).map_err(|_| {
-                                    StudyError::Mpi("rank 0's solver threads stopped".into())
-                                })?;
-                            } else {
-                                let refs: Vec<(u64, &RunJob)> =
-                                    out.iter().map(|(id, j)| (*id, j)).collect();
-                                let (bytes, state) = wire::encode_group(&refs);
-                                st.stats.job_bytes += bytes.len() as u64;
-                                st.stats.state_bytes += state as u64;
-                                arrived.extend(send(world, r, TAG_JOB, &bytes, Some(TAG_RESULT)));
-                            }
+                            arrived
+                                .extend(dispatch::send_group(world, inner, st, r, out, &job_tx)?);
                         }
                     }
                     if let Some(log) = st.log.as_mut() {
@@ -503,23 +481,6 @@ impl BatchExecutor for MpiExecutor {
             None => Ok(()),
         }
     }
-}
-
-/// The dispatch log of the study directory `dir` (`mpi-dispatch.log`, appended to), its
-/// header line written for a job of `size` ranks.
-fn open_dispatch_log(
-    dir: &Path,
-    size: usize,
-) -> Result<std::io::BufWriter<std::fs::File>, StudyError> {
-    let path = dir.join("mpi-dispatch.log");
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&path)
-        .map_err(|source| StudyError::Io { path, source })?;
-    let mut w = std::io::BufWriter::new(file);
-    let _ = writeln!(w, "# job of {size} ranks: batch, rank <- run");
-    Ok(w)
 }
 
 /// What a result coming back from a rank is checked against and committed with.

@@ -89,9 +89,13 @@ impl MeshInput<'_> {
 }
 
 /// The mesh of the table's generator, before any split.
-pub(super) fn build_base_mesh(src: &Source, spec: &MeshSpec) -> Result<Mesh, StudyError> {
+pub(super) fn build_base_mesh(
+    src: &Source,
+    spec: &MeshSpec,
+    part_dofs: Option<usize>,
+) -> Result<Mesh, StudyError> {
     check_generator_keys(src, spec)?;
-    crate::limits::check_mesh(src, spec)?;
+    crate::limits::check_mesh(src, spec, part_dofs)?;
     let input = MeshInput { src, spec };
     let mesh_err = |e| input.mesh_err(e);
     match spec.generator.get_ref().as_str() {
