@@ -90,6 +90,7 @@ pub fn subdomain_dofs(solver: &crate::spec::SolverSpec) -> Option<usize> {
     match solver.subdomains.as_ref().map(|s| s.get_ref().as_str()) {
         Some("never") => None,
         Some("always") => Some(2 * target),
+        // 3D only (`alea_latin::split::plan`); `mesh_memory` caps 3D meshes only.
         _ => Some(alea_latin::split::AUTO_MIN_DOFS.max(target)),
     }
 }

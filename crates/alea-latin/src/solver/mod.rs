@@ -198,8 +198,8 @@ pub struct LatinOptions {
 /// Whether the solver cuts substructures into subdomains (module [`split`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Subdomains {
-    /// Substructures of at least [`split::AUTO_MIN_DOFS`] unknowns are cut into parts of about
-    /// `subdomain_dofs` (the break-even size measured in `BENCHMARKS.md`).
+    /// 3D substructures of at least [`split::AUTO_MIN_DOFS`] unknowns are cut into parts of
+    /// about `subdomain_dofs` (the break-even size measured in `BENCHMARKS.md`).
     #[default]
     Auto,
     /// Every substructure of at least `2 x subdomain_dofs` unknowns is cut into parts of about

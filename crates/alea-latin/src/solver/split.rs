@@ -30,7 +30,7 @@
 //! [`Split::new`]), any substructure of an assembly with a large-sliding interface.
 //!
 //! **In the solver** ([`LatinOptions::subdomains`], [`plan`], [`build`]): `LatinSolver::new`
-//! cuts each substructure of at least [`AUTO_MIN_DOFS`] unknowns (`Auto`), or of at least
+//! cuts each 3D substructure of at least [`AUTO_MIN_DOFS`] unknowns (`Auto`), or of at least
 //! twice the target (`Always`), into `round(n / subdomain_dofs)` parts, and the solver then
 //! runs on the parts while its accessors (`num_subs`, `model`, `interface_points`, ...), its
 //! runs' inputs and its results speak of the user's substructures and interfaces: studies,
@@ -102,7 +102,10 @@ pub fn plan(assembly: &Assembly, options: &LatinOptions) -> Option<Vec<usize>> {
                     && (spec.cyclic.is_some() || spec.sliding == crate::Sliding::Large)
             });
             let n = sub.model.mesh.num_nodes() * sub.model.mesh.dim;
-            if special || n < min {
+            // `Auto` cuts 3D substructures only: the break-even was measured in 3D, where a
+            // factor's fill grows like `n^{4/3}`; a 2D factor's grows like `n log n`.
+            let auto_2d = options.subdomains == Subdomains::Auto && sub.model.mesh.dim < 3;
+            if special || auto_2d || n < min {
                 return 1;
             }
             ((n as f64 / options.subdomain_dofs.max(1) as f64).round() as usize).max(2)
@@ -676,12 +679,15 @@ impl Pieces {
     }
 }
 
-/// The factor of the cuts' search direction `k = CUT_DIRECTION E / h` (module doc). Measured
-/// (LATIN iterations of the first two runs of the 3D turbine, 82 524 dof in 10 parts, user
-/// factor 0.5; then the 3D / 2D contact tests of `tests/split.rs`, user factor 3): 0.25: 50 /
-/// 61, 62 / 58; 0.5: 52 / 58, 43 / 49; 1: 51 / 58, 41 / 49; 2: 54 / 59, 55 / 49. The cuts
-/// with the user's `factor E / L` instead: 97 / 98 on the turbine (undivided: 55 / 44).
-const CUT_DIRECTION: f64 = 1.0;
+/// The factor of the cuts' search direction `k = CUT_DIRECTION E / h` (module doc).
+/// Measured with the stopping test on the user's interfaces (session 16; mean LATIN
+/// iterations of two cold runs of the 3D turbine, user factor 0.5): refined once, 602 100 dof
+/// in 8 / 8 / 7 / 7 parts (undivided: 86), 0.125: 127, **0.25: 110.5**, 0.5: 118.5, 1: 155;
+/// unrefined, 82 524 dof in 10 parts (undivided 59.5), 0.25: 61, 0.5: 63.5, 1: 65.5, 2: 71.5,
+/// 4: 86. Earlier, with the indicator over every interface: flat from 0.25 to 2 on the
+/// unrefined turbine and the contact tests of `tests/split.rs`; the user's `factor E / L`
+/// instead of `E / h`: 97 / 98 iterations on the turbine (undivided: 55 / 44).
+const CUT_DIRECTION: f64 = 0.25;
 
 fn cut_group(neighbour: usize) -> String {
     format!("__cut_{neighbour}")
