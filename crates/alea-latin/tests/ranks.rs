@@ -22,14 +22,11 @@ mod common;
 use std::sync::Arc;
 use std::time::Duration;
 
-use alea_fem::Constraints;
 use alea_latin::split::Split;
 use alea_latin::{
-    Assembly, InterfaceSpec, LatinOptions, LatinSolver, LinearStage, RankExchange, RunInput,
-    RunResult, RunStatus, ThreadExchange,
+    Assembly, LatinOptions, LatinSolver, LinearStage, RankExchange, RunInput, RunResult, RunStatus,
+    ThreadExchange,
 };
-use alea_mesh::CellType;
-use common::*;
 
 fn options(linear_stage: LinearStage) -> LatinOptions {
     LatinOptions {
@@ -50,57 +47,11 @@ fn cut_options(linear_stage: LinearStage) -> LatinOptions {
     }
 }
 
-/// The two bodies in contact (as `tests/split.rs`), cut into 3 + 2 substructures when `cut`
+/// The two bodies in contact of `tests/split.rs`, cut into 3 + 2 substructures when `cut`
 /// (then paired by mortar: the contact's pieces do not match node to node), else paired node
 /// to node in 2D.
 fn press_and_shear(dim: usize, cut: bool) -> Assembly {
-    let (base, block) = if dim == 3 {
-        (
-            solid(
-                cuboid([0.0; 3], [4.0, 4.0, 1.0], [8, 8, 3], CellType::Hex8),
-                200e3,
-                0.3,
-            ),
-            solid(
-                cuboid([1.0, 1.0, 1.0], [2.0, 2.0, 1.0], [4, 4, 3], CellType::Hex8),
-                70e3,
-                0.3,
-            ),
-        )
-    } else {
-        (
-            model(rect(0.0, 0.0, 4.0, 1.0, 24, 6, CellType::Quad4), 200e3, 0.3),
-            model(rect(0.0, 1.0, 4.0, 1.0, 24, 6, CellType::Quad4), 70e3, 0.3),
-        )
-    };
-    let (bottom, top) = if dim == 3 {
-        ("zmin", "zmax")
-    } else {
-        ("ymin", "ymax")
-    };
-    let mut c = Constraints::new();
-    c.clamp(&base.mesh, bottom).unwrap();
-    let base = sub("base", base, c);
-    let block = with_load(sub("block", block, Constraints::new()), |m, l| {
-        l.traction(m, top, |_, _| {
-            if dim == 3 {
-                [25.0, 10.0, -100.0]
-            } else {
-                [25.0, -100.0, 0.0]
-            }
-        })
-        .unwrap();
-    });
-    let mut contact = InterfaceSpec::coulomb("contact", 0, top, 1, bottom, 0.3);
-    contact.pairing = if dim == 3 || cut {
-        alea_latin::Pairing::Mortar
-    } else {
-        alea_latin::Pairing::NodeToNode
-    };
-    let asm = Assembly {
-        subs: vec![base, block],
-        interfaces: vec![contact],
-    };
+    let asm = common::press_and_shear(dim, cut);
     match cut {
         true => Split::new(&asm, &[3, 2]).unwrap().inner,
         false => asm,

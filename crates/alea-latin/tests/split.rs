@@ -16,10 +16,8 @@
 
 mod common;
 
-use alea_fem::Constraints;
 use alea_latin::split::Split;
-use alea_latin::{Assembly, InterfaceSpec, LatinOptions, LatinSolver, RunInput, RunStatus};
-use alea_mesh::CellType;
+use alea_latin::{LatinOptions, LatinSolver, RunInput, RunStatus};
 use common::*;
 
 fn options() -> LatinOptions {
@@ -31,58 +29,8 @@ fn options() -> LatinOptions {
     }
 }
 
-fn press_and_shear(dim: usize) -> Assembly {
-    let (base, block) = if dim == 3 {
-        (
-            solid(
-                cuboid([0.0; 3], [4.0, 4.0, 1.0], [8, 8, 3], CellType::Hex8),
-                200e3,
-                0.3,
-            ),
-            solid(
-                cuboid([1.0, 1.0, 1.0], [2.0, 2.0, 1.0], [4, 4, 3], CellType::Hex8),
-                70e3,
-                0.3,
-            ),
-        )
-    } else {
-        (
-            model(rect(0.0, 0.0, 4.0, 1.0, 24, 6, CellType::Quad4), 200e3, 0.3),
-            model(rect(0.0, 1.0, 4.0, 1.0, 24, 6, CellType::Quad4), 70e3, 0.3),
-        )
-    };
-    let (bottom, top) = if dim == 3 {
-        ("zmin", "zmax")
-    } else {
-        ("ymin", "ymax")
-    };
-    let mut c = Constraints::new();
-    c.clamp(&base.mesh, bottom).unwrap();
-    let base = sub("base", base, c);
-    let block = with_load(sub("block", block, Constraints::new()), |m, l| {
-        l.traction(m, top, |_, _| {
-            if dim == 3 {
-                [25.0, 10.0, -100.0]
-            } else {
-                [25.0, -100.0, 0.0]
-            }
-        })
-        .unwrap();
-    });
-    let mut contact = InterfaceSpec::coulomb("contact", 0, top, 1, bottom, 0.3);
-    contact.pairing = if dim == 3 {
-        alea_latin::Pairing::Mortar
-    } else {
-        alea_latin::Pairing::NodeToNode
-    };
-    Assembly {
-        subs: vec![base, block],
-        interfaces: vec![contact],
-    }
-}
-
 fn compare(dim: usize, parts: [usize; 2]) {
-    let asm = press_and_shear(dim);
+    let asm = press_and_shear(dim, false);
     let mut whole = LatinSolver::new(asm.clone(), options()).unwrap();
     let reference = whole.run(&RunInput::default()).unwrap();
     assert_eq!(reference.status, RunStatus::Converged);
@@ -157,7 +105,7 @@ fn a_split_contact_model_gives_the_undivided_answer_in_3d() {
 /// to cell - all as the undivided solver's, to the solver tolerance.
 #[test]
 fn the_solver_cuts_the_model_by_itself_and_speaks_of_the_users_model() {
-    let asm = press_and_shear(3);
+    let asm = press_and_shear(3, false);
     let mut whole = LatinSolver::new(asm.clone(), options()).unwrap();
     assert!(
         whole.split().is_none(),

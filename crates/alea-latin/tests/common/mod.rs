@@ -5,7 +5,7 @@ pub mod contact;
 pub mod contact3d;
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::Substructure;
+use alea_latin::{Assembly, InterfaceSpec, Substructure};
 use alea_mesh::{CellType, Mesh, generate};
 
 /// Structured rectangle `[x0, x0 + lx] x [y0, y0 + ly]`.
@@ -171,4 +171,57 @@ pub fn zone_edge<T>(
         EdgeStep::Inward => (x(&prof[i]) - x(&prof[prev])).abs(),
     };
     (xi + h * di / (dp - di)).clamp(xi, xo)
+}
+
+/// Two bodies in contact (`tests/split.rs`, `tests/ranks.rs`): a clamped base, a block pressed
+/// and sheared on it by a traction on its top, Coulomb contact with `mu = 0.3` (partial slip);
+/// paired by mortar in 3D, and in 2D when `mortar`, else node to node.
+pub fn press_and_shear(dim: usize, mortar: bool) -> Assembly {
+    let (base, block) = if dim == 3 {
+        (
+            solid(
+                cuboid([0.0; 3], [4.0, 4.0, 1.0], [8, 8, 3], CellType::Hex8),
+                200e3,
+                0.3,
+            ),
+            solid(
+                cuboid([1.0, 1.0, 1.0], [2.0, 2.0, 1.0], [4, 4, 3], CellType::Hex8),
+                70e3,
+                0.3,
+            ),
+        )
+    } else {
+        (
+            model(rect(0.0, 0.0, 4.0, 1.0, 24, 6, CellType::Quad4), 200e3, 0.3),
+            model(rect(0.0, 1.0, 4.0, 1.0, 24, 6, CellType::Quad4), 70e3, 0.3),
+        )
+    };
+    let (bottom, top) = if dim == 3 {
+        ("zmin", "zmax")
+    } else {
+        ("ymin", "ymax")
+    };
+    let mut c = Constraints::new();
+    c.clamp(&base.mesh, bottom).unwrap();
+    let base = sub("base", base, c);
+    let block = with_load(sub("block", block, Constraints::new()), |m, l| {
+        l.traction(m, top, |_, _| {
+            if dim == 3 {
+                [25.0, 10.0, -100.0]
+            } else {
+                [25.0, -100.0, 0.0]
+            }
+        })
+        .unwrap();
+    });
+    let mut contact = InterfaceSpec::coulomb("contact", 0, top, 1, bottom, 0.3);
+    contact.pairing = if dim == 3 || mortar {
+        alea_latin::Pairing::Mortar
+    } else {
+        alea_latin::Pairing::NodeToNode
+    };
+    Assembly {
+        subs: vec![base, block],
+        interfaces: vec![contact],
+    }
 }
