@@ -68,10 +68,11 @@ use crate::{
 /// less memory.
 pub const SUBDOMAIN_DOFS: usize = 20_000;
 
-/// The size from which [`Subdomains::Auto`] cuts a substructure, above the break-even measured
-/// on the 3D turbine (`BENCHMARKS.md` "Automatic subdomains": runs 2.3x slower cut at 20 000
-/// unknowns per substructure, 2x faster at 130 000 - 160 000, even at about 60 000).
-pub const AUTO_MIN_DOFS: usize = 80_000;
+/// The size from which [`Subdomains::Auto`] cuts a substructure, at the break-even measured
+/// on the 3D turbine (`BENCHMARKS.md` "Automatic subdomains", "In studies"): runs 1.8 - 2.3x
+/// slower cut at about 20 000 unknowns per substructure, 1.28x faster at 130 000 - 160 000,
+/// even at 80 000 - 95 000 by log-interpolation; above it, the memory falls too.
+pub const AUTO_MIN_DOFS: usize = 100_000;
 
 /// The number of parts of each substructure of `assembly` that `options` ask for
 /// ([`LatinOptions::subdomains`]); `None` when none is cut. A substructure on a cyclic
