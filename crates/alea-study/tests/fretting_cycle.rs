@@ -18,89 +18,43 @@
 //!
 //! And the load checks: file, line and field of each refused input.
 
+mod fretting_block;
+
 use alea_study::Source;
 use alea_study::runner::{NoProgress, Study, run_study};
 
+/// The block on the base (`fretting_block`), pressed and sheared by the loads the steps
+/// scale: pressed, then the shear up, down and back up.
 fn model(cycle: &str, quantities: &str) -> String {
-    format!(
-        r#"
-[study]
-title = "fretting cycle"
-seed = 3
+    fretting_block::block_on_base(
+        "fretting cycle",
+        "load = [\n  { name = \"press\", group = \"upper_top\", traction = [0.0, -10.0] },\n  \
+         { name = \"shear\", group = \"upper_top\", traction = [2.2, 0.0] },\n]",
+        "small",
+        STEPS,
+        cycle,
+        quantities,
+        3,
+    )
+}
 
-[units]
-length = "mm"
-force = "N"
-stress = "MPa"
-
-[mesh]
-generator = "stacked_blocks"
-kind = "quad4"
-params = {{ width = 40.0, h_lower = 20.0, h_upper = 20.0, n_x = 20, n_lower = 10, n_upper = 10 }}
-
-[analysis]
-type = "plane_strain"
-thickness = 1.0
-
-[[parameter]]
-name = "mu"
-law = "uniform"
-lo = 0.3
-hi = 0.35
-
-[[substructure]]
-name = "base"
-cells = "lower"
-young = 70e3
-poisson = 0.3
-constraint = [ {{ group = "lower_bottom", x = 0.0, y = 0.0 }} ]
-
-[[substructure]]
-name = "block"
-cells = "upper"
-young = 210e3
-poisson = 0.3
-load = [
-  {{ name = "press", group = "upper_top", traction = [0.0, -10.0] }},
-  {{ name = "shear", group = "upper_top", traction = [2.2, 0.0] }},
-]
-
-[[interface]]
-name = "contact"
-side1 = ["base", "lower_top"]
-side2 = ["block", "upper_bottom"]
-law = "coulomb"
-mu = "mu"
-
-[solver]
-tolerance = 1e-9
-
+const STEPS: &str = r#"
 [[step]]
 name = "press"
-load = {{ shear = 0.0 }}
+load = { shear = 0.0 }
 
 [[step]]
 name = "up"
-load = {{ shear = 1.0 }}
+load = { shear = 1.0 }
 
 [[step]]
 name = "down"
-load = {{ shear = -1.0 }}
+load = { shear = -1.0 }
 
 [[step]]
 name = "back"
-load = {{ shear = 1.0 }}
-
-{cycle}
-
-{quantities}
-
-[[method]]
-type = "monte_carlo"
-runs = 3
-"#
-    )
-}
+load = { shear = 1.0 }
+"#;
 
 const QUANTITIES: &str = r#"
 [[quantity]]

@@ -15,73 +15,22 @@
 //!   (the block overhangs the base by 5 mm: its contact zone and pressure move);
 //! - the load checks of the combinations refused with large sliding (file, line, field).
 
+mod fretting_block;
+
 use alea_study::Source;
 use alea_study::runner::{NoProgress, Study, run_study};
 
-/// The block on the base, its top loaded by `top` (loads and/or constraint), with the
-/// interface's `sliding`, then `steps`, `cycle` and `quantities`.
+/// The block on the base (`fretting_block`), its top loaded by `top`, with the interface's
+/// `sliding`, then `steps`, `cycle` and `quantities`.
 fn model(top: &str, sliding: &str, steps: &str, cycle: &str, quantities: &str) -> String {
-    format!(
-        r#"
-[study]
-title = "fretting cycle, large sliding"
-seed = 3
-
-[units]
-length = "mm"
-force = "N"
-stress = "MPa"
-
-[mesh]
-generator = "stacked_blocks"
-kind = "quad4"
-params = {{ width = 40.0, h_lower = 20.0, h_upper = 20.0, n_x = 20, n_lower = 10, n_upper = 10 }}
-
-[analysis]
-type = "plane_strain"
-thickness = 1.0
-
-[[parameter]]
-name = "mu"
-law = "uniform"
-lo = 0.3
-hi = 0.35
-
-[[substructure]]
-name = "base"
-cells = "lower"
-young = 70e3
-poisson = 0.3
-constraint = [ {{ group = "lower_bottom", x = 0.0, y = 0.0 }} ]
-
-[[substructure]]
-name = "block"
-cells = "upper"
-young = 210e3
-poisson = 0.3
-{top}
-
-[[interface]]
-name = "contact"
-side1 = ["base", "lower_top"]
-side2 = ["block", "upper_bottom"]
-law = "coulomb"
-mu = "mu"
-sliding = "{sliding}"
-
-[solver]
-tolerance = 1e-9
-
-{steps}
-
-{cycle}
-
-{quantities}
-
-[[method]]
-type = "monte_carlo"
-runs = 2
-"#
+    fretting_block::block_on_base(
+        "fretting cycle, large sliding",
+        top,
+        sliding,
+        steps,
+        cycle,
+        quantities,
+        2,
     )
 }
 
