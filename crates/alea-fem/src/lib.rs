@@ -25,6 +25,7 @@ pub mod post;
 mod problem;
 pub mod quadrature;
 mod simplicial;
+mod single;
 mod solver;
 mod sparse;
 

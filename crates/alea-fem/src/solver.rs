@@ -23,6 +23,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
 use crate::simplicial::SimplicialFactor;
+use crate::single::{RefineWork, SingleFactor};
 use crate::{FemError, SymCsc};
 
 /// Pivots with `L_jj^2 < SINGULAR_PIVOT_RATIO * A_jj` mean a numerically singular stiffness
@@ -75,7 +76,10 @@ pub struct Cholesky {
     n: usize,
     /// Shared by the factorisations of the same pattern ([`Cholesky::same_pattern`]).
     symbolic: std::sync::Arc<SymbolicCholesky<usize>>,
+    /// The factor's values in double precision (empty when stored in single precision).
     l_values: Vec<f64>,
+    /// The factor in single precision ([`Cholesky::store_single`]).
+    single: Option<SingleFactor>,
     factorized: bool,
     stack: MemBuffer,
     /// Row-interleaved block of the simplicial solves of [`Cholesky::solve_in_place`].
@@ -86,7 +90,8 @@ impl std::fmt::Debug for Cholesky {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Cholesky")
             .field("n", &self.n)
-            .field("len_l", &self.l_values.len())
+            .field("len_l", &self.symbolic.len_val())
+            .field("single", &self.single.is_some())
             .finish()
     }
 }
@@ -227,6 +232,7 @@ impl Cholesky {
             n,
             symbolic: std::sync::Arc::new(symbolic),
             l_values,
+            single: None,
             factorized: false,
             stack: MemBuffer::new(req),
             rows: Vec::new(),
@@ -244,7 +250,8 @@ impl Cholesky {
         Cholesky {
             n: self.n,
             symbolic: self.symbolic.clone(),
-            l_values: vec![0.0; self.l_values.len()],
+            l_values: vec![0.0; self.symbolic.len_val()],
+            single: None,
             factorized: false,
             stack: MemBuffer::new(req),
             rows: Vec::new(),
@@ -263,7 +270,56 @@ impl Cholesky {
 
     /// Number of stored entries of `L`.
     pub fn nnz_factor(&self) -> usize {
-        self.l_values.len()
+        self.symbolic.len_val()
+    }
+
+    /// True if the factor is stored in single precision ([`Cholesky::store_single`]).
+    pub fn is_single(&self) -> bool {
+        self.single.is_some()
+    }
+
+    /// Bytes of the factor's values (and, in single precision, of the matrix kept for the
+    /// refinement).
+    pub fn factor_bytes(&self) -> usize {
+        match &self.single {
+            Some(s) => s.bytes(),
+            None => 8 * self.l_values.len(),
+        }
+    }
+
+    /// Contraction per step of the single-precision refinement (module `single`),
+    /// measured when the factor was stored so; `None` in double precision.
+    pub fn refinement_rate(&self) -> Option<f64> {
+        self.single.as_ref().map(SingleFactor::rate)
+    }
+
+    /// Stores the factor (of `a`, factorised) in single precision with `a` kept for the
+    /// iterative refinement of every solve (module `single`): the solves of
+    /// [`Cholesky::solve_with`] keep full accuracy, [`Cholesky::solve_near`] makes one step.
+    /// Returns `false`, keeping double precision, when the refinement would contract by more
+    /// than 1e-2 per step (`kappa(A)` beyond about 1e5) or `a` is too large for 32-bit indices.
+    ///
+    /// # Panics
+    /// If not factorised or `a` is not the factorised matrix's size.
+    pub fn store_single(&mut self, a: &SymCsc) -> bool {
+        assert!(
+            self.factorized,
+            "store_single before a successful factorisation"
+        );
+        assert_eq!(a.n, self.n, "matrix size changed");
+        if self.single.is_some() {
+            return true;
+        }
+        let req = self.symbolic.solve_in_place_scratch::<f32>(1, Par::Seq);
+        let mut stack = MemBuffer::new(req);
+        match SingleFactor::new(&self.symbolic, &self.l_values, a, &mut stack) {
+            Some(single) => {
+                self.single = Some(single);
+                self.l_values = Vec::new();
+                true
+            }
+            None => false,
+        }
     }
 
     /// Numeric factorisation of `a` (same pattern as at construction).
@@ -278,6 +334,8 @@ impl Cholesky {
             SymbolicSparseColMatRef::new_checked(self.n, self.n, &a.col_ptr, None, &a.row_idx);
         let mat = SparseColMatRef::new(sym, &a.values);
         self.factorized = false;
+        self.single = None;
+        self.l_values.resize(self.symbolic.len_val(), 0.0);
         self.symbolic
             .factorize_numeric_llt(
                 &mut self.l_values,
@@ -335,22 +393,30 @@ impl Cholesky {
     /// If not factorised, or if `rhs.len()` is not a multiple of `n`.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         let stack = std::mem::replace(&mut self.stack, MemBuffer::new(StackReq::EMPTY));
-        let mut scratch = SolveScratch(stack, std::mem::take(&mut self.rows));
+        let mut scratch = SolveScratch {
+            stack,
+            rows: std::mem::take(&mut self.rows),
+            refine: RefineWork::default(),
+        };
         self.solve_with(rhs, &mut scratch);
-        self.stack = scratch.0;
-        self.rows = scratch.1;
+        self.stack = scratch.stack;
+        self.rows = scratch.rows;
     }
 }
 
 /// Scratch memory for [`Cholesky::solve_with`]: one per thread, so that one factorisation can
 /// serve concurrent solves (faer's stack for supernodal solves, the row-interleaved block of a
-/// simplicial one).
-pub struct SolveScratch(MemBuffer, Vec<f64>);
+/// simplicial one, the work space of a single-precision factor's refinement).
+pub struct SolveScratch {
+    stack: MemBuffer,
+    rows: Vec<f64>,
+    refine: RefineWork,
+}
 
 impl std::fmt::Debug for SolveScratch {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("SolveScratch")
-            .field("bytes", &self.0.len())
+            .field("bytes", &self.stack.len())
             .finish()
     }
 }
@@ -358,13 +424,19 @@ impl std::fmt::Debug for SolveScratch {
 impl Cholesky {
     /// Scratch for solves with up to `ncols` right-hand sides.
     pub fn solve_scratch(&self, ncols: usize) -> SolveScratch {
-        SolveScratch(
-            MemBuffer::new(
-                self.symbolic
-                    .solve_in_place_scratch::<f64>(ncols.max(1), Par::Seq),
-            ),
-            Vec::new(),
-        )
+        let req = match self.single {
+            Some(_) => self
+                .symbolic
+                .solve_in_place_scratch::<f32>(ncols.max(1), Par::Seq),
+            None => self
+                .symbolic
+                .solve_in_place_scratch::<f64>(ncols.max(1), Par::Seq),
+        };
+        SolveScratch {
+            stack: MemBuffer::new(req),
+            rows: Vec::new(),
+            refine: RefineWork::default(),
+        }
     }
 
     /// Solves `A x = b` in place like [`Cholesky::solve_in_place`], through a shared reference
@@ -377,6 +449,11 @@ impl Cholesky {
         assert!(self.factorized, "solve before a successful factorisation");
         assert_eq!(rhs.len() % self.n.max(1), 0);
         let ncols = rhs.len() / self.n.max(1);
+        if let Some(single) = &self.single {
+            let SolveScratch { stack, refine, .. } = scratch;
+            single.solve(&self.symbolic, rhs, self.n, ncols, stack, refine);
+            return;
+        }
         if let SymbolicCholeskyRaw::Simplicial(sym) = self.symbolic.raw() {
             let fwd = self.symbolic.perm().map(|p| p.arrays());
             let factor = SimplicialFactor {
@@ -385,16 +462,41 @@ impl Cholesky {
                 values: &self.l_values,
                 perm: fwd,
             };
-            factor.solve(rhs, self.n, ncols, &mut scratch.1);
+            factor.solve(rhs, self.n, ncols, &mut scratch.rows);
             return;
         }
         let req = self.symbolic.solve_in_place_scratch::<f64>(ncols, Par::Seq);
-        if req.size_bytes() > scratch.0.len() {
-            scratch.0 = MemBuffer::new(req);
+        if req.size_bytes() > scratch.stack.len() {
+            scratch.stack = MemBuffer::new(req);
         }
         let llt = LltRef::new(&self.symbolic, &self.l_values);
         let mat = MatMut::from_column_major_slice_mut(rhs, self.n, ncols);
-        llt.solve_in_place_with_conj(Conj::No, mat, Par::Seq, MemStack::new(&mut scratch.0));
+        llt.solve_in_place_with_conj(Conj::No, mat, Par::Seq, MemStack::new(&mut scratch.stack));
+    }
+
+    /// Solves `A x = b` for the columns of `rhs` (in place) knowing a nearby solution
+    /// `previous` (same layout), for an outer iteration that converges: in double precision the
+    /// solve of [`Cholesky::solve_with`], in single precision **one** refinement step from
+    /// `previous`, `x = previous + A~^{-1} (b - A previous)`, whose error is about
+    /// [`Cholesky::refinement_rate`] times `|x - previous|` (module `single`).
+    ///
+    /// # Panics
+    /// If not factorised, or if `rhs.len()` is not a multiple of `n` or differs from
+    /// `previous.len()`.
+    pub fn solve_near(&self, rhs: &mut [f64], previous: &[f64], scratch: &mut SolveScratch) {
+        let Some(single) = &self.single else {
+            return self.solve_with(rhs, scratch);
+        };
+        assert!(self.factorized, "solve before a successful factorisation");
+        assert_eq!(rhs.len() % self.n.max(1), 0);
+        assert_eq!(
+            rhs.len(),
+            previous.len(),
+            "previous solution of another size"
+        );
+        let ncols = rhs.len() / self.n.max(1);
+        let SolveScratch { stack, refine, .. } = scratch;
+        single.solve_near(&self.symbolic, rhs, previous, self.n, ncols, stack, refine);
     }
 }
 

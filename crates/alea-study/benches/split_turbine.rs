@@ -76,6 +76,12 @@ fn main() {
         None => LatinSolver::new(asm.clone(), options.clone()).expect("solver"),
     };
     println!("set-up {:.2} s", t0.elapsed().as_secs_f64());
+    for part in solver.linear_stage_summary() {
+        println!(
+            "  {}: {} dof, {} factor entries, {} interface unknowns, condensed {}",
+            part.name, part.dofs, part.factor_entries, part.interface_unknowns, part.condensed
+        );
+    }
     let points = &study.methods[0].points;
     let thetas: Vec<Vec<f64>> = std::iter::once(points[points.len() / 2].clone())
         .chain(points.iter().cloned())

@@ -281,6 +281,11 @@ pub struct SolverSpec {
     /// Target size of a subdomain, in unknowns. Default 20000.
     #[serde(default)]
     pub subdomain_dofs: Option<Spanned<usize>>,
+    /// Precision of the stored factors: `"auto"` (default: single precision, refined, for
+    /// large 3D factors on the volume path), `"double"` or `"single"`
+    /// (`alea_latin::FactorPrecision`).
+    #[serde(default)]
+    pub factor_precision: Option<Spanned<String>>,
     /// MPI ranks that solve one run together, each owning some substructures (`alea run`
     /// under `mpirun`, feature `mpi`; `alea_study::distributed`). Default 1. Not part of what
     /// defines a run: the results are the same bits for any value.

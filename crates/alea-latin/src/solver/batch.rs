@@ -46,6 +46,10 @@ type Column<'r> = (
     Option<&'r [f64]>,
 );
 
+/// Per substructure: the solve's scratch, the block of right-hand sides and the block of the
+/// runs' previous solutions.
+type BlockScratch = (Option<SolveScratch>, Vec<f64>, Vec<f64>);
+
 /// One run of a batch with its iteration state.
 struct Lane<'a> {
     run: Run<'a>,
@@ -102,17 +106,17 @@ impl LatinSolver {
                 })
             })
             .collect();
-        // Per substructure, the solve's scratch and the block of right-hand sides, allocated
-        // once for the batch (not in every iteration).
-        let mut scratch: Vec<(Option<SolveScratch>, Vec<f64>)> = self
+        // Per substructure, the solve's scratch and the blocks of right-hand sides and of the
+        // previous solutions, allocated once for the batch (not in every iteration).
+        let mut scratch: Vec<BlockScratch> = self
             .subs
             .iter()
             .map(|op| {
                 let Some(chol) = &op.chol else {
-                    return (None, Vec::new());
+                    return (None, Vec::new(), Vec::new());
                 };
-                let block = Vec::with_capacity(op.dofs.num_free() * inputs.len());
-                (Some(chol.solve_scratch(inputs.len())), block)
+                let block = || Vec::with_capacity(op.dofs.num_free() * inputs.len());
+                (Some(chol.solve_scratch(inputs.len())), block(), block())
             })
             .collect();
         let max_iterations = lanes
@@ -178,11 +182,7 @@ impl LatinSolver {
     /// right-hand sides of all runs as the columns of one block, one solve, then each run's
     /// `W`, `F`. Returns the seconds of the triangular solves (summed over substructures).
     /// With ranks, only this rank's substructures (module `ranks`).
-    fn batch_solves(
-        &self,
-        active: &mut [&mut Lane<'_>],
-        scratch: &mut [(Option<SolveScratch>, Vec<f64>)],
-    ) -> f64 {
+    fn batch_solves(&self, active: &mut [&mut Lane<'_>], scratch: &mut [BlockScratch]) -> f64 {
         let nsub = self.subs.len();
         // Per substructure: each run's state of it, with what its right-hand side needs.
         let mut per_sub: Vec<Vec<Column<'_>>> = (0..nsub).map(|_| Vec::new()).collect();
@@ -205,7 +205,7 @@ impl LatinSolver {
             .zip(self.condensed.par_iter())
             .zip(per_sub.par_iter_mut())
             .zip(scratch.par_iter_mut())
-            .map(|(((op, cd), cols), (scratch, block))| {
+            .map(|(((op, cd), cols), (scratch, block, previous))| {
                 let (Some(chol), Some(scratch)) = (&op.chol, scratch) else {
                     // Another rank's substructure (module `ranks`).
                     return 0.0;
@@ -222,11 +222,16 @@ impl LatinSolver {
                 }
                 block.clear();
                 block.resize(n * cols.len(), 0.0);
-                for ((_, istate, base, alpha, _), r) in cols.iter().zip(block.chunks_exact_mut(n)) {
+                previous.clear();
+                for ((st, istate, base, alpha, _), r) in cols.iter().zip(block.chunks_exact_mut(n))
+                {
                     assemble_rhs(op, istate, base, *alpha, r);
+                    previous.extend_from_slice(&st.rhs);
                 }
                 let t0 = Instant::now();
-                chol.solve_with(block, scratch);
+                // The last iterate is the start of a single-precision factor's refinement step
+                // (module `precision`); a double-precision factor just solves.
+                chol.solve_near(block, previous, scratch);
                 let t = t0.elapsed().as_secs_f64();
                 for ((st, istate, _, alpha, _), u) in cols.iter_mut().zip(block.chunks_exact(n)) {
                     st.rhs.copy_from_slice(u);

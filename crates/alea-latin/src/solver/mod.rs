@@ -67,12 +67,14 @@ pub(crate) mod direction;
 mod existence;
 mod linear_stage;
 mod local_stage;
+mod precision;
 mod ranks;
 mod result;
 mod setup;
 pub mod split;
 mod start;
 
+pub use precision::{FactorPrecision, SINGLE_MIN_ENTRIES};
 pub(crate) use setup::direction_scale;
 
 use std::sync::Arc;
@@ -150,6 +152,20 @@ pub struct LinearStageSummary {
     pub condensed: bool,
     /// Bytes of its dense interface operator and responses (0 on the volume path).
     pub bytes: f64,
+    /// Its factor stored in single precision (module `precision`).
+    pub single_precision: bool,
+    /// Bytes of its factor (in single precision with the matrix kept for the refinement).
+    pub factor_bytes: f64,
+}
+
+/// The factorisation of a substructure, as the set-up made it ([`LatinSolver::factor_summary`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct FactorInfo {
+    n: usize,
+    entries: usize,
+    supernodal: bool,
+    single: bool,
+    bytes: usize,
 }
 
 /// Solver options.
@@ -193,6 +209,8 @@ pub struct LatinOptions {
     pub subdomains: Subdomains,
     /// The target size of a subdomain, in unknowns (default [`split::SUBDOMAIN_DOFS`]).
     pub subdomain_dofs: usize,
+    /// Precision of the stored factors (module `precision`; default [`FactorPrecision::Auto`]).
+    pub factor_precision: FactorPrecision,
 }
 
 /// Whether the solver cuts substructures into subdomains (module [`split`]).
@@ -225,6 +243,7 @@ impl Default for LatinOptions {
             expected_runs: 1,
             subdomains: Subdomains::Auto,
             subdomain_dofs: split::SUBDOMAIN_DOFS,
+            factor_precision: FactorPrecision::Auto,
         }
     }
 }
@@ -461,10 +480,15 @@ impl LatinSolver {
     /// ([`alea_fem::FactorKind`]). On a solver spread over ranks, the owner's factor
     /// ([`LatinSolver::with_ranks`]).
     pub fn factor_summary(&self, s: usize) -> (usize, usize, bool) {
+        let f = self.factor_info(s);
+        (f.n, f.entries, f.supernodal)
+    }
+
+    fn factor_info(&self, s: usize) -> FactorInfo {
         match (&self.subs[s].chol, &self.ranks) {
-            (Some(c), _) => (c.n(), c.nnz_factor(), c.is_supernodal()),
+            (Some(c), _) => setup::factor_info(c),
             (None, Some(r)) => r.factors[s],
-            (None, None) => (0, 0, false),
+            (None, None) => FactorInfo::default(),
         }
     }
 
@@ -480,10 +504,13 @@ impl LatinSolver {
                     Some(r) => r.condensed[s],
                     None => cd.as_ref().map(|c| c.bytes()),
                 };
+                let factor = self.factor_info(s);
                 LinearStageSummary {
                     name: op.name.clone(),
                     dofs: op.dofs.num_free(),
-                    factor_entries: self.factor_summary(s).1,
+                    factor_entries: factor.entries,
+                    single_precision: factor.single,
+                    factor_bytes: factor.bytes as f64,
                     interface_unknowns: condensed::interface_unknowns(op.dofs.dim, &op.links),
                     condensed: bytes.is_some(),
                     bytes: bytes.unwrap_or(0.0),

@@ -13,7 +13,7 @@
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
-use super::{LatinSolver, SubState, V3};
+use super::{FactorInfo, LatinSolver, SubState, V3};
 use crate::coarse::{MacroColumn, SubMacro};
 use crate::ranks::{RankExchange, assign_substructures};
 use crate::{Assembly, LatinError, LatinOptions, SubEquilibrium};
@@ -24,7 +24,7 @@ pub(super) struct Ranks {
     exchange: Arc<dyn RankExchange>,
     owner: Vec<usize>,
     /// Per substructure: order, factor entries and supernodal storage of its factor.
-    pub(super) factors: Vec<(usize, usize, bool)>,
+    pub(super) factors: Vec<FactorInfo>,
     /// Per substructure: bytes of its condensed stage (`None`: volume solves).
     pub(super) condensed: Vec<Option<f64>>,
     /// One batch of runs at a time on this rank (their exchanges must not interleave).
@@ -268,21 +268,31 @@ impl LatinSolver {
 
 /// The factor of every substructure (order, entries, supernodal) from its owner; `local`: this
 /// rank's, `None` where it holds none.
-pub(super) fn share_factors(
-    ranks: &Ranks,
-    local: &[Option<(usize, usize, bool)>],
-) -> Vec<(usize, usize, bool)> {
+pub(super) fn share_factors(ranks: &Ranks, local: &[Option<FactorInfo>]) -> Vec<FactorInfo> {
     let all = vec![true; local.len()];
+    let flag = |b: bool| f64::from(u8::from(b));
     ranks
         .share(&all, |s| {
-            local[s].map_or_else(Vec::new, |(n, nnz, sn)| {
-                vec![n as f64, nnz as f64, f64::from(u8::from(sn))]
+            local[s].map_or_else(Vec::new, |f| {
+                vec![
+                    f.n as f64,
+                    f.entries as f64,
+                    flag(f.supernodal),
+                    flag(f.single),
+                    f.bytes as f64,
+                ]
             })
         })
         .into_iter()
         .map(|v| match v.as_deref() {
-            Some([n, nnz, sn]) => (*n as usize, *nnz as usize, *sn != 0.0),
-            _ => (0, 0, false),
+            Some([n, entries, supernodal, single, bytes]) => FactorInfo {
+                n: *n as usize,
+                entries: *entries as usize,
+                supernodal: *supernodal != 0.0,
+                single: *single != 0.0,
+                bytes: *bytes as usize,
+            },
+            _ => FactorInfo::default(),
         })
         .collect()
 }

@@ -13,9 +13,11 @@ use alea_fem::{Cholesky, DofMap, Ordering, SymCsc, assemble_stiffness};
 use rayon::prelude::*;
 
 use super::direction::PointDirection;
+use super::precision::PrecisionChoice;
 use super::ranks::Ranks;
 use super::{
-    Coarse, InterfaceOperator, LatinOptions, LatinSolver, Link, SearchDirection, SubOperator,
+    Coarse, FactorInfo, InterfaceOperator, LatinOptions, LatinSolver, Link, SearchDirection,
+    SubOperator,
 };
 use crate::coarse::{InterfaceModes, MacroLink, SubMacro};
 use crate::equilibrium::RigidModes;
@@ -96,6 +98,7 @@ impl LatinSolver {
             )?);
         }
         let ordering = options.ordering;
+        let precision = PrecisionChoice::new(&options, configuration.is_some());
         let owned: Vec<bool> = (0..nsub)
             .map(|s| ranks.as_ref().is_none_or(|r| r.owns(s)))
             .collect();
@@ -103,7 +106,9 @@ impl LatinSolver {
             .into_par_iter()
             .zip(links.into_par_iter())
             .zip(owned.into_par_iter())
-            .map(|((sub, links), own)| build_operator(sub, links, ordering, own).map(Arc::new))
+            .map(|((sub, links), own)| {
+                build_operator(sub, links, ordering, precision, own).map(Arc::new)
+            })
             .collect();
         let ops = Self::agree(ranks.as_ref(), ops)?;
         let factors: Vec<_> = ops
@@ -120,7 +125,7 @@ impl LatinSolver {
         let coarse = options
             .coarse
             .then(|| coarse_with(&ops, &ifaces, None, ranks.as_ref()));
-        let nnz: Vec<usize> = factors.iter().map(|f| f.1).collect();
+        let nnz: Vec<usize> = factors.iter().map(|f| f.entries).collect();
         let want = super::condensed::choose(
             &ops,
             &nnz,
@@ -427,9 +432,15 @@ fn side_young(model: &alea_fem::Model, group: &str) -> Result<f64, alea_fem::Fem
     Ok(sum / facets.len().max(1) as f64)
 }
 
-/// Order, factor entries and supernodal storage of a factorisation.
-fn factor_info(c: &Cholesky) -> (usize, usize, bool) {
-    (c.n(), c.nnz_factor(), c.is_supernodal())
+/// Order, factor entries, storage and precision of a factorisation.
+pub(super) fn factor_info(c: &Cholesky) -> FactorInfo {
+    FactorInfo {
+        n: c.n(),
+        entries: c.nnz_factor(),
+        supernodal: c.is_supernodal(),
+        single: c.is_single(),
+        bytes: c.factor_bytes(),
+    }
 }
 
 /// The operator of one substructure; `own`: this rank computes it (module `ranks`), else
@@ -438,6 +449,7 @@ fn build_operator(
     sub: Substructure,
     links: Vec<Link>,
     ordering: Ordering,
+    precision: PrecisionChoice,
     own: bool,
 ) -> Result<SubOperator, LatinError> {
     let name = sub.name.clone();
@@ -448,6 +460,8 @@ fn build_operator(
         let mut chol =
             Cholesky::new(&a0, ordering, Some(&dofs.node_of_dof())).map_err(fem_err(&name))?;
         chol.factorize(&a0).map_err(fem_err(&name))?;
+        let interface_unknowns = super::condensed::interface_unknowns(model.mesh.dim, &links);
+        precision.apply(&mut chol, &a0, interface_unknowns);
         (Some(chol), r_presc)
     } else {
         (None, Vec::new())

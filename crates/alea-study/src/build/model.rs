@@ -2,7 +2,9 @@
 //! file, assembled with its interfaces (`interfaces.rs`) into the built model.
 
 use alea_fem::{Analysis, Constraints, Loads, Material, Model};
-use alea_latin::{Assembly, LatinOptions, LinearStage, SearchDirection, Subdomains, Substructure};
+use alea_latin::{
+    Assembly, FactorPrecision, LatinOptions, LinearStage, SearchDirection, Subdomains, Substructure,
+};
 use alea_mesh::Mesh;
 
 use super::checks::check_interfaces;
@@ -506,6 +508,20 @@ fn latin_options(src: &Source, sv: &crate::spec::SolverSpec) -> Result<LatinOpti
         };
     }
     subdomain_options(src, sv, &mut options)?;
+    if let Some(m) = &sv.factor_precision {
+        options.factor_precision = match m.get_ref().as_str() {
+            "auto" => FactorPrecision::Auto,
+            "double" => FactorPrecision::Double,
+            "single" => FactorPrecision::Single,
+            other => {
+                return Err(src.error(
+                    m.span(),
+                    "solver.factor_precision",
+                    format!("must be \"auto\", \"double\" or \"single\", got \"{other}\""),
+                ));
+            }
+        };
+    }
     if let Some(k) = &sv.search_direction_factor {
         options.search_direction = SearchDirection::Auto {
             factor: positive(src, k, "solver.search_direction_factor")?,
