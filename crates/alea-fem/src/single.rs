@@ -17,8 +17,9 @@
 //! level `~ eps_64 kappa(A)` of the `f64` residual. Each correction `A~^{-1} r` is solved on the
 //! residual scaled by its largest entry, so `f32`'s range never over- or underflows.
 //!
-//! * [`SingleFactor::solve`]: refinement until the correction is below `REFINE_TOL` of the
-//!   solution, or stops shrinking (the `f64` floor), or `MAX_STEPS`;
+//! * [`SingleFactor::solve`]: refinement until the next correction, predicted from the last
+//!   one and its contraction, is below `REFINE_TOL` of the solution, or the corrections stop
+//!   shrinking (the `f64` floor), or `MAX_STEPS`;
 //! * [`SingleFactor::solve_near`]: **one** step from a nearby solution `x_prev` (the previous
 //!   iterate of an outer fixed-point iteration, the LATIN method's linear stage):
 //!   `x = x_prev + A~^{-1} (b - A x_prev)`, whose error is `delta |A^{-1} b - x_prev|`. In an
@@ -40,7 +41,8 @@ use faer::{Conj, MatMut, Par};
 
 use crate::SymCsc;
 
-/// Refinement stops when every column's correction is below this fraction of its solution.
+/// Refinement stops when every column's next correction is predicted below this fraction of
+/// its solution.
 const REFINE_TOL: f64 = 1e-13;
 
 /// At most this many corrections after the first solve.
@@ -235,7 +237,8 @@ impl SingleFactor {
         self.correct(symbolic, x, n, ncols, stack, correction);
         r.resize(x.len(), 0.0);
         let mut sizes = Vec::new();
-        let mut previous = vec![f64::INFINITY; ncols];
+        // The relative size of each column's last correction (the first solve: 1).
+        let mut previous = vec![1.0; ncols];
         for _ in 0..MAX_STEPS {
             self.matrix.residual(b, x, r, n, ncols);
             self.correct(symbolic, r, n, ncols, stack, correction);
@@ -250,8 +253,11 @@ impl SingleFactor {
                 let scale = xc.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 let relative = if scale > 0.0 { size / scale } else { 0.0 };
                 largest = largest.max(relative);
-                // Converged, or at the level of the f64 residual (no longer shrinking).
-                if relative > REFINE_TOL && relative < 0.5 * previous[c] {
+                // Done when the next correction, shrunk by this step's contraction, would be
+                // below the tolerance, or at the level of the f64 residual (no longer
+                // shrinking).
+                let contraction = relative / previous[c];
+                if relative * contraction > REFINE_TOL && contraction < 0.5 {
                     done = false;
                 }
                 previous[c] = relative;
