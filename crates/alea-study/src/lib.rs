@@ -46,6 +46,7 @@ pub mod sensitivity;
 mod settings_check;
 pub mod sliding_note;
 pub mod solve;
+pub mod solver_spec;
 mod source;
 mod sparse;
 mod spatial;
