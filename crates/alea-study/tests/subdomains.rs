@@ -133,6 +133,11 @@ fn bad_subdomain_settings_are_refused_at_load_with_file_line_and_field() {
             "solver.subdomain_dofs",
             "no effect",
         ),
+        (
+            "factor_precision = \"half\"",
+            "solver.factor_precision",
+            "\"single\"",
+        ),
     ] {
         let text = text(setting);
         let err = Study::from_source(Source::from_text("turbine-3d-coarse.toml", &text))
@@ -147,5 +152,24 @@ fn bad_subdomain_settings_are_refused_at_load_with_file_line_and_field() {
                 && err.contains(says),
             "{setting}: {err}"
         );
+    }
+}
+
+#[test]
+fn factor_precision_reaches_the_solver() {
+    for (setting, expected) in [
+        ("", alea_latin::FactorPrecision::Auto),
+        (
+            "factor_precision = \"double\"",
+            alea_latin::FactorPrecision::Double,
+        ),
+        (
+            "factor_precision = \"single\"",
+            alea_latin::FactorPrecision::Single,
+        ),
+    ] {
+        let study = Study::from_source(Source::from_text("turbine-3d-coarse.toml", &text(setting)))
+            .unwrap_or_else(|e| panic!("{setting}: {e}"));
+        assert_eq!(study.model.options.factor_precision, expected, "{setting}");
     }
 }
