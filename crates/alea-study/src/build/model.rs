@@ -11,7 +11,7 @@ use super::checks::check_interfaces;
 use super::interfaces::build_interfaces;
 use super::mesh::build_mesh;
 use super::parametric::{BuiltModel, Parametric};
-use super::values::{compile, field_place, finite, positive, vec3};
+use super::values::{choice, compile, field_place, finite, positive, vec3};
 use crate::expr::Expr;
 use crate::params::ParamSpace;
 use crate::random_field::FieldDomain;
@@ -494,33 +494,29 @@ fn latin_options(src: &Source, sv: &crate::spec::SolverSpec) -> Result<LatinOpti
         options.max_rigid_motion = positive(src, t, "solver.max_rigid_motion")?;
     }
     if let Some(m) = &sv.linear_stage {
-        options.linear_stage = match m.get_ref().as_str() {
-            "auto" => LinearStage::Auto,
-            "condensed" => LinearStage::Condensed,
-            "volume" => LinearStage::Volume,
-            other => {
-                return Err(src.error(
-                    m.span(),
-                    "solver.linear_stage",
-                    format!("must be \"auto\", \"condensed\" or \"volume\", got \"{other}\""),
-                ));
-            }
-        };
+        options.linear_stage = choice(
+            src,
+            m,
+            "solver.linear_stage",
+            &[
+                ("auto", LinearStage::Auto),
+                ("condensed", LinearStage::Condensed),
+                ("volume", LinearStage::Volume),
+            ],
+        )?;
     }
     subdomain_options(src, sv, &mut options)?;
     if let Some(m) = &sv.factor_precision {
-        options.factor_precision = match m.get_ref().as_str() {
-            "auto" => FactorPrecision::Auto,
-            "double" => FactorPrecision::Double,
-            "single" => FactorPrecision::Single,
-            other => {
-                return Err(src.error(
-                    m.span(),
-                    "solver.factor_precision",
-                    format!("must be \"auto\", \"double\" or \"single\", got \"{other}\""),
-                ));
-            }
-        };
+        options.factor_precision = choice(
+            src,
+            m,
+            "solver.factor_precision",
+            &[
+                ("auto", FactorPrecision::Auto),
+                ("double", FactorPrecision::Double),
+                ("single", FactorPrecision::Single),
+            ],
+        )?;
     }
     if let Some(k) = &sv.search_direction_factor {
         options.search_direction = SearchDirection::Auto {
@@ -549,18 +545,16 @@ fn subdomain_options(
     options: &mut LatinOptions,
 ) -> Result<(), StudyError> {
     if let Some(m) = &sv.subdomains {
-        options.subdomains = match m.get_ref().as_str() {
-            "auto" => Subdomains::Auto,
-            "always" => Subdomains::Always,
-            "never" => Subdomains::Never,
-            other => {
-                return Err(src.error(
-                    m.span(),
-                    "solver.subdomains",
-                    format!("must be \"auto\", \"always\" or \"never\", got \"{other}\""),
-                ));
-            }
-        };
+        options.subdomains = choice(
+            src,
+            m,
+            "solver.subdomains",
+            &[
+                ("auto", Subdomains::Auto),
+                ("always", Subdomains::Always),
+                ("never", Subdomains::Never),
+            ],
+        )?;
     }
     if let Some(d) = &sv.subdomain_dofs {
         let v = *d.get_ref();

@@ -43,6 +43,30 @@ pub(super) fn positive(src: &Source, v: &Spanned<f64>, field: &str) -> Result<f6
     Ok(x)
 }
 
+/// The value named by `v` among `choices` (`(name, value)`), else an error at `v` listing the
+/// names: `must be "auto", "double" or "single", got "half"`.
+pub(super) fn choice<T: Copy>(
+    src: &Source,
+    v: &Spanned<String>,
+    field: &str,
+    choices: &[(&str, T)],
+) -> Result<T, StudyError> {
+    let given = v.get_ref().as_str();
+    if let Some((_, value)) = choices.iter().find(|(name, _)| *name == given) {
+        return Ok(*value);
+    }
+    let names: Vec<String> = choices.iter().map(|(n, _)| format!("\"{n}\"")).collect();
+    let listed = match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.join(""),
+    };
+    Err(src.error(
+        v.span(),
+        field,
+        format!("must be {listed}, got \"{given}\""),
+    ))
+}
+
 /// The value of `v`, which must be finite.
 pub(super) fn finite(src: &Source, v: &Spanned<f64>, field: &str) -> Result<f64, StudyError> {
     let x = *v.get_ref();
