@@ -148,10 +148,11 @@ fn case_single(name: &str, model: &Model, reps: usize) {
             .enumerate()
             .map(|(i, v)| v * (1.0 + 1e-3 * ((i % 7) as f64 - 3.0)))
             .collect();
+        let columns: Vec<&[f64]> = previous.chunks_exact(n).collect();
         let mut x = x0.clone();
         let t_near = best(reps, || {
             x.copy_from_slice(&x0);
-            single.solve_near(&mut x, &previous, &mut s32);
+            single.solve_near(&mut x, &columns, &mut s32);
         });
         let rel = |a: &[f64]| {
             let num: f64 = a.iter().zip(&exact).map(|(p, q)| (p - q).powi(2)).sum();

@@ -76,39 +76,35 @@ impl CompactSym {
         })
     }
 
-    /// `r_c = b_c - A x_c` for the `ncols` columns (column-major, `n` rows): one pass over `A`
-    /// per group of up to 4 columns.
-    fn residual(&self, b: &[f64], x: &[f64], r: &mut [f64], n: usize, ncols: usize) {
-        r.copy_from_slice(b);
-        let mut c0 = 0;
-        while c0 < ncols {
-            let (x, r) = (&x[c0 * n..], &mut r[c0 * n..]);
-            match ncols - c0 {
-                1 => self.residual_group::<1>(x, r, n),
-                2 => self.residual_group::<2>(x, r, n),
-                3 => self.residual_group::<3>(x, r, n),
-                _ => self.residual_group::<4>(x, r, n),
+    /// `r_c -= A x_c` for the columns `x[c]` of `x` (`r`: as many columns of `n`, holding `b`
+    /// on entry, the residual on exit): one pass over `A` per group of up to 4 columns.
+    fn subtract_product(&self, x: &[&[f64]], r: &mut [f64], n: usize) {
+        for (xs, rs) in x.chunks(4).zip(r.chunks_mut(4 * n)) {
+            match xs.len() {
+                1 => self.subtract_group::<1>([xs[0]], rs, n),
+                2 => self.subtract_group::<2>([xs[0], xs[1]], rs, n),
+                3 => self.subtract_group::<3>([xs[0], xs[1], xs[2]], rs, n),
+                _ => self.subtract_group::<4>([xs[0], xs[1], xs[2], xs[3]], rs, n),
             }
-            c0 += 4.min(ncols - c0);
         }
     }
 
-    /// `r_c -= A x_c` for the first `W` columns of `x`, `r`. Rows are sorted in each column of
-    /// the upper triangle, so the diagonal is the column's last entry.
-    fn residual_group<const W: usize>(&self, x: &[f64], r: &mut [f64], n: usize) {
+    /// `r_c -= A x_c` for `W` columns. Rows are sorted in each column of the upper triangle,
+    /// so the diagonal is the column's last entry.
+    fn subtract_group<const W: usize>(&self, x: [&[f64]; W], r: &mut [f64], n: usize) {
         for j in 0..n {
             let (p0, p1) = (self.col_ptr[j] as usize, self.col_ptr[j + 1] as usize);
             if p0 == p1 {
                 continue;
             }
-            let xj: [f64; W] = std::array::from_fn(|c| x[c * n + j]);
+            let xj: [f64; W] = std::array::from_fn(|c| x[c][j]);
             let mut rj = [0.0; W];
             for p in p0..p1 - 1 {
                 let i = self.row_idx[p] as usize;
                 let v = self.values[p];
                 for c in 0..W {
                     r[c * n + i] -= v * xj[c];
-                    rj[c] += v * x[c * n + i];
+                    rj[c] += v * x[c][i];
                 }
             }
             let d = self.values[p1 - 1];
@@ -142,7 +138,7 @@ pub(crate) struct SingleFactor {
 impl SingleFactor {
     /// The factor `l_values` (of `a`, with `symbolic`) rounded to `f32`, if its refinement
     /// contracts by at most [`MAX_RATE`] on a test solve with a known solution; `None`
-    /// otherwise (or if `a` has more than `u32::MAX` entries).
+    /// otherwise (or if `a` is empty or has more than `u32::MAX` entries).
     pub(crate) fn new(
         symbolic: &SymbolicCholesky<usize>,
         l_values: &[f64],
@@ -150,14 +146,14 @@ impl SingleFactor {
         stack: &mut MemBuffer,
     ) -> Option<Self> {
         let n = a.n;
+        if n == 0 {
+            return None;
+        }
         let single = SingleFactor {
             values: l_values.iter().map(|&v| v as f32).collect(),
             matrix: CompactSym::new(a)?,
             rate: 0.0,
         };
-        if n == 0 {
-            return Some(single);
-        }
         // A smooth and a rough component, so that both ends of the spectrum are excited.
         let x_true: Vec<f64> = (0..n)
             .map(|i| 1.0 + 0.5 * ((i * 7919) % 1013) as f64 / 1013.0)
@@ -200,23 +196,30 @@ impl SingleFactor {
         self.refine(symbolic, rhs, n, ncols, stack, work);
     }
 
-    /// One refinement step from `previous`: `rhs <- previous + A~^{-1} (rhs - A previous)`.
+    /// One refinement step from `previous` (one slice per column):
+    /// `rhs <- previous + A~^{-1} (rhs - A previous)`.
     pub(crate) fn solve_near(
         &self,
         symbolic: &SymbolicCholesky<usize>,
         rhs: &mut [f64],
-        previous: &[f64],
+        previous: &[&[f64]],
         n: usize,
-        ncols: usize,
         stack: &mut MemBuffer,
         work: &mut RefineWork,
     ) {
-        work.b.clear();
-        work.b.extend_from_slice(rhs);
-        self.matrix.residual(&work.b, previous, rhs, n, ncols);
-        self.correct(symbolic, rhs, n, ncols, stack, &mut work.correction);
-        for (x, p) in rhs.iter_mut().zip(previous) {
-            *x += p;
+        self.matrix.subtract_product(previous, rhs, n);
+        self.correct(
+            symbolic,
+            rhs,
+            n,
+            previous.len(),
+            stack,
+            &mut work.correction,
+        );
+        for (r, x) in rhs.chunks_exact_mut(n).zip(previous) {
+            for (ri, xi) in r.iter_mut().zip(*x) {
+                *ri += xi;
+            }
         }
     }
 
@@ -240,7 +243,9 @@ impl SingleFactor {
         // The relative size of each column's last correction (the first solve: 1).
         let mut previous = vec![1.0; ncols];
         for _ in 0..MAX_STEPS {
-            self.matrix.residual(b, x, r, n, ncols);
+            r.copy_from_slice(b);
+            let columns: Vec<&[f64]> = x.chunks_exact(n).collect();
+            self.matrix.subtract_product(&columns, r, n);
             self.correct(symbolic, r, n, ncols, stack, correction);
             let mut done = true;
             let mut largest = 0.0f64;

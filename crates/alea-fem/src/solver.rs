@@ -474,29 +474,31 @@ impl Cholesky {
         llt.solve_in_place_with_conj(Conj::No, mat, Par::Seq, MemStack::new(&mut scratch.stack));
     }
 
-    /// Solves `A x = b` for the columns of `rhs` (in place) knowing a nearby solution
-    /// `previous` (same layout), for an outer iteration that converges: in double precision the
-    /// solve of [`Cholesky::solve_with`], in single precision **one** refinement step from
-    /// `previous`, `x = previous + A~^{-1} (b - A previous)`, whose error is about
+    /// Solves `A x = b` for the columns of `rhs` (in place) knowing a nearby solution of each,
+    /// `previous[c]`, for an outer iteration that converges: in double precision the solve of
+    /// [`Cholesky::solve_with`], in single precision **one** refinement step from `previous`,
+    /// `x = previous + A~^{-1} (b - A previous)`, whose error is about
     /// [`Cholesky::refinement_rate`] times `|x - previous|` (module `single`).
     ///
     /// # Panics
-    /// If not factorised, or if `rhs.len()` is not a multiple of `n` or differs from
-    /// `previous.len()`.
-    pub fn solve_near(&self, rhs: &mut [f64], previous: &[f64], scratch: &mut SolveScratch) {
+    /// If not factorised, or if `rhs` is not `previous.len()` columns of `n`, or a previous
+    /// solution is not of length `n`.
+    pub fn solve_near(&self, rhs: &mut [f64], previous: &[&[f64]], scratch: &mut SolveScratch) {
         let Some(single) = &self.single else {
             return self.solve_with(rhs, scratch);
         };
         assert!(self.factorized, "solve before a successful factorisation");
-        assert_eq!(rhs.len() % self.n.max(1), 0);
         assert_eq!(
             rhs.len(),
-            previous.len(),
+            self.n * previous.len(),
+            "one previous solution per column"
+        );
+        assert!(
+            previous.iter().all(|p| p.len() == self.n),
             "previous solution of another size"
         );
-        let ncols = rhs.len() / self.n.max(1);
         let SolveScratch { stack, refine, .. } = scratch;
-        single.solve_near(&self.symbolic, rhs, previous, self.n, ncols, stack, refine);
+        single.solve_near(&self.symbolic, rhs, previous, self.n, stack, refine);
     }
 }
 

@@ -99,7 +99,7 @@ fn refined_solves_match_double_precision() {
             .map(|(i, v)| v * (1.0 + 1e-3 * ((i % 7) as f64 - 3.0)))
             .collect();
         let mut near = b.clone();
-        single.solve_near(&mut near, &previous, &mut single.solve_scratch(1));
+        single.solve_near(&mut near, &[&previous], &mut single.solve_scratch(1));
         let before = rel_diff(&previous, exact);
         let after = rel_diff(&near, exact);
         eprintln!("  one step: {before:.1e} -> {after:.1e}");
@@ -109,7 +109,7 @@ fn refined_solves_match_double_precision() {
         let mut one = b.clone();
         double.solve_with(&mut one, &mut double.solve_scratch(1));
         let mut plain = b.clone();
-        double.solve_near(&mut plain, &previous, &mut double.solve_scratch(1));
+        double.solve_near(&mut plain, &[&previous], &mut double.solve_scratch(1));
         assert_eq!(plain, one);
 
         // Refactorising gives double precision again, the same solve.

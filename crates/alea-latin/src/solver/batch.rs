@@ -46,9 +46,8 @@ type Column<'r> = (
     Option<&'r [f64]>,
 );
 
-/// Per substructure: the solve's scratch, the block of right-hand sides and the block of the
-/// runs' previous solutions.
-type BlockScratch = (Option<SolveScratch>, Vec<f64>, Vec<f64>);
+/// Per substructure: the solve's scratch and the block of right-hand sides.
+type BlockScratch = (Option<SolveScratch>, Vec<f64>);
 
 /// One run of a batch with its iteration state.
 struct Lane<'a> {
@@ -106,17 +105,17 @@ impl LatinSolver {
                 })
             })
             .collect();
-        // Per substructure, the solve's scratch and the blocks of right-hand sides and of the
-        // previous solutions, allocated once for the batch (not in every iteration).
+        // Per substructure, the solve's scratch and the block of right-hand sides, allocated
+        // once for the batch (not in every iteration).
         let mut scratch: Vec<BlockScratch> = self
             .subs
             .iter()
             .map(|op| {
                 let Some(chol) = &op.chol else {
-                    return (None, Vec::new(), Vec::new());
+                    return (None, Vec::new());
                 };
-                let block = || Vec::with_capacity(op.dofs.num_free() * inputs.len());
-                (Some(chol.solve_scratch(inputs.len())), block(), block())
+                let block = Vec::with_capacity(op.dofs.num_free() * inputs.len());
+                (Some(chol.solve_scratch(inputs.len())), block)
             })
             .collect();
         let max_iterations = lanes
@@ -205,7 +204,7 @@ impl LatinSolver {
             .zip(self.condensed.par_iter())
             .zip(per_sub.par_iter_mut())
             .zip(scratch.par_iter_mut())
-            .map(|(((op, cd), cols), (scratch, block, previous))| {
+            .map(|(((op, cd), cols), (scratch, block))| {
                 let (Some(chol), Some(scratch)) = (&op.chol, scratch) else {
                     // Another rank's substructure (module `ranks`).
                     return 0.0;
@@ -222,16 +221,14 @@ impl LatinSolver {
                 }
                 block.clear();
                 block.resize(n * cols.len(), 0.0);
-                previous.clear();
-                for ((st, istate, base, alpha, _), r) in cols.iter().zip(block.chunks_exact_mut(n))
-                {
+                for ((_, istate, base, alpha, _), r) in cols.iter().zip(block.chunks_exact_mut(n)) {
                     assemble_rhs(op, istate, base, *alpha, r);
-                    previous.extend_from_slice(&st.rhs);
                 }
                 let t0 = Instant::now();
                 // The last iterate is the start of a single-precision factor's refinement step
                 // (module `precision`); a double-precision factor just solves.
-                chol.solve_near(block, previous, scratch);
+                let previous: Vec<&[f64]> = cols.iter().map(|c| c.0.rhs.as_slice()).collect();
+                chol.solve_near(block, &previous, scratch);
                 let t = t0.elapsed().as_secs_f64();
                 for ((st, istate, _, alpha, _), u) in cols.iter_mut().zip(block.chunks_exact(n)) {
                     st.rhs.copy_from_slice(u);
