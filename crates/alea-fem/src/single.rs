@@ -162,7 +162,7 @@ impl SingleFactor {
         a.mul_vec(&x_true, &mut b);
         let mut work = RefineWork::default();
         let mut x = b.clone();
-        let corrections = single.refine(symbolic, &mut x, n, 1, stack, &mut work);
+        let corrections = single.solve(symbolic, &mut x, n, 1, stack, &mut work);
         // The first correction's size is the initial error, `delta |x|` (module doc).
         let rate = corrections.first().copied().unwrap_or(0.0);
         let scale = x_true.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -181,19 +181,6 @@ impl SingleFactor {
     /// Bytes of the factor and the kept matrix.
     pub(crate) fn bytes(&self) -> usize {
         4 * self.values.len() + self.matrix.bytes()
-    }
-
-    /// `A x = b` for the columns of `rhs` (in place) to full accuracy (module doc).
-    pub(crate) fn solve(
-        &self,
-        symbolic: &SymbolicCholesky<usize>,
-        rhs: &mut [f64],
-        n: usize,
-        ncols: usize,
-        stack: &mut MemBuffer,
-        work: &mut RefineWork,
-    ) {
-        self.refine(symbolic, rhs, n, ncols, stack, work);
     }
 
     /// One refinement step from `previous` (one slice per column):
@@ -223,9 +210,9 @@ impl SingleFactor {
         }
     }
 
-    /// The refinement loop on `x` (holding `b` on entry); returns the largest relative
-    /// correction of each step.
-    fn refine(
+    /// `A x = b` for the columns of `x` (holding `b` on entry) to full accuracy by the
+    /// refinement loop (module doc); returns the largest relative correction of each step.
+    pub(crate) fn solve(
         &self,
         symbolic: &SymbolicCholesky<usize>,
         x: &mut [f64],
