@@ -14,8 +14,14 @@
 //!
 //! so that `|y|^2 / alpha = sum_q w_q |J_q| t eps^T (alpha D0) eps = u^T K(alpha) u`: the
 //! samples reproduce the FE energy of the assembled stiffness exactly (to round-off), for any
-//! cell type and dimension. The physical gradients of every point are computed once (a few MB
-//! per 10 000 Hex8 cells); sampling a displacement is then a product per point.
+//! cell type and dimension. The points' geometry (`|J_q|`, the physical gradients) is computed
+//! again at each sampling, from the model's coordinates, by the function that checked it at
+//! construction (`alea_fem::kinematics::point_geometry`, the same bits): storing it would take
+//! 192 doubles per Hex8 cell (0.3 GB on the 3D turbine refined once, 190 000 cells), for about
+//! 0.2 s of recomputation per sampled run there. The Cholesky factors `R_E` are stored once per
+//! distinct material.
+
+use std::collections::HashMap;
 
 use alea_fem::kinematics::point_geometry;
 use alea_fem::{Model, Quadrature};
@@ -24,24 +30,23 @@ use crate::CreError;
 use crate::fe::check_jacobian;
 use crate::linalg::cholesky_factor;
 
-/// Stiffness-rule points of every cell and the maps from strains to compliance coordinates,
-/// built once per substructure (reference materials).
+/// The stiffness rules of a model's cell types and the maps from strains to compliance
+/// coordinates, built once per substructure (reference materials).
 #[derive(Clone, Debug)]
 pub struct FeEnergySampler {
     /// Spatial dimension (displacement components per node).
     dim: usize,
     /// Voigt size of the analysis (3 in 2D, 6 in 3D).
     nv: usize,
-    /// Offset of each cell's points (`num_cells + 1` entries).
-    cell_points: Vec<usize>,
-    /// Per point: `sqrt(w |J| t)`.
-    scale: Vec<f64>,
-    /// Per point: offset of its node gradients in `grads` (`num_points + 1` entries).
-    grad_offsets: Vec<usize>,
-    /// Physical gradients `dN_a/dx_l` of the cell's nodes at each point, `3` per node.
-    grads: Vec<f64>,
-    /// Per cell: lower Cholesky factor `R` of the reference Hooke matrix, row-major `nv x nv`.
+    /// Thickness factor `t` of the analysis.
+    thickness: f64,
+    /// The stiffness rule of each cell type of the mesh.
+    rules: Vec<(alea_mesh::CellType, Quadrature)>,
+    /// Lower Cholesky factors `R` of the distinct reference Hooke matrices, row-major
+    /// `nv x nv` each.
     factors: Vec<f64>,
+    /// Per cell: its factor in `factors`.
+    factor_of_cell: Vec<u32>,
     /// Offset of each cell's values in a sample vector (`num_cells + 1` entries).
     offsets: Vec<usize>,
 }
@@ -56,44 +61,52 @@ impl FeEnergySampler {
         let mesh = &model.mesh;
         let dim = mesh.dim;
         let nv = model.analysis.n_voigt();
-        let th = model.analysis.thickness();
-        let mut rules: Vec<(alea_mesh::CellType, Quadrature)> = Vec::new();
         let mut out = FeEnergySampler {
             dim,
             nv,
-            cell_points: vec![0],
-            scale: Vec::new(),
-            grad_offsets: vec![0],
-            grads: Vec::new(),
-            factors: Vec::with_capacity(mesh.num_cells() * nv * nv),
+            thickness: model.analysis.thickness(),
+            rules: Vec::new(),
+            factors: Vec::new(),
+            factor_of_cell: Vec::with_capacity(mesh.num_cells()),
             offsets: vec![0],
         };
+        // Distinct factors by their bits.
+        let mut known: HashMap<Vec<u64>, u32> = HashMap::new();
+        let mut coords = Vec::new();
         for c in 0..mesh.num_cells() {
             let kind = mesh.cell_type(c);
-            if !rules.iter().any(|r| r.0 == kind) {
-                rules.push((kind, Quadrature::stiffness(kind)));
+            if !out.rules.iter().any(|r| r.0 == kind) {
+                out.rules.push((kind, Quadrature::stiffness(kind)));
             }
-            let rule = &rules
-                .iter()
-                .find(|r| r.0 == kind)
-                .expect("rule just added")
-                .1;
-            let coords = model.cell_coords(c);
+            let rule = out.rule(kind);
+            cell_coords(model, c, &mut coords);
+            for xi in &rule.points {
+                check_jacobian(&point_geometry(kind, &coords, *xi), c, kind)?;
+            }
+            let points = rule.points.len();
             let l = cholesky_factor(&model.material(c)?.hooke(model.analysis), nv).ok_or_else(
                 || CreError::Invalid(format!("cell {c}: Hooke matrix is not positive definite")),
             )?;
-            out.factors.extend_from_slice(&l);
-            for (xi, w) in rule.points.iter().zip(&rule.weights) {
-                let g = point_geometry(kind, &coords, *xi);
-                check_jacobian(&g, c, kind)?;
-                out.scale.push((w * g.det * th).sqrt());
-                out.grads.extend(g.grad[..g.nn].iter().flatten());
-                out.grad_offsets.push(out.grads.len());
-            }
-            out.cell_points.push(out.scale.len());
-            out.offsets.push(out.offsets[c] + nv * rule.len());
+            let bits: Vec<u64> = l.iter().map(|v| v.to_bits()).collect();
+            let next = known.len() as u32;
+            let id = *known.entry(bits).or_insert_with(|| {
+                out.factors.extend_from_slice(&l);
+                next
+            });
+            out.factor_of_cell.push(id);
+            out.offsets.push(out.offsets[c] + nv * points);
         }
         Ok(out)
+    }
+
+    /// The stiffness rule of cell type `kind` (one of the mesh's).
+    fn rule(&self, kind: alea_mesh::CellType) -> &Quadrature {
+        &self
+            .rules
+            .iter()
+            .find(|r| r.0 == kind)
+            .expect("a rule per cell type of the mesh")
+            .1
     }
 
     /// Length of a sample vector.
@@ -130,14 +143,19 @@ impl FeEnergySampler {
         }
         let mut out = Vec::with_capacity(self.len());
         let mut eps = [0.0; 6];
+        let mut coords = Vec::new();
         for c in 0..mesh.num_cells() {
             let nodes = mesh.cell_nodes(c);
-            let l = &self.factors[c * nv * nv..(c + 1) * nv * nv];
-            for q in self.cell_points[c]..self.cell_points[c + 1] {
-                let grads = &self.grads[self.grad_offsets[q]..self.grad_offsets[q + 1]];
+            let kind = mesh.cell_type(c);
+            let rule = self.rule(kind);
+            let f = self.factor_of_cell[c] as usize;
+            let l = &self.factors[f * nv * nv..(f + 1) * nv * nv];
+            cell_coords(model, c, &mut coords);
+            for (xi, w) in rule.points.iter().zip(&rule.weights) {
+                let g = point_geometry(kind, &coords, *xi);
                 eps.fill(0.0);
                 for (a, &n) in nodes.iter().enumerate() {
-                    let gr = &grads[3 * a..3 * a + 3];
+                    let gr = &g.grad[a];
                     let un = &u[dim * n..dim * n + dim];
                     if dim == 2 {
                         // [xx, yy, xy] with engineering shear.
@@ -155,7 +173,7 @@ impl FeEnergySampler {
                     }
                 }
                 // y = sqrt(w |J| t) alpha R^T eps.
-                let s = self.scale[q] * alpha;
+                let s = (w * g.det * self.thickness).sqrt() * alpha;
                 for i in 0..nv {
                     let v: f64 = (i..nv).map(|k| l[k * nv + i] * eps[k]).sum();
                     out.push(s * v);
@@ -164,4 +182,16 @@ impl FeEnergySampler {
         }
         Ok(out)
     }
+}
+
+/// The coordinates of cell `c`'s nodes into `out`.
+fn cell_coords(model: &Model, c: usize, out: &mut Vec<[f64; 3]>) {
+    out.clear();
+    out.extend(
+        model
+            .mesh
+            .cell_nodes(c)
+            .iter()
+            .map(|&n| model.mesh.coords[n]),
+    );
 }
