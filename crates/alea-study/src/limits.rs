@@ -15,12 +15,17 @@
 //! | mean / std fields | their weight-moment matrices <= half the available memory, else refused (set `mean_fields = false`) |
 //! | `[solver] linear_stage = "condensed"` | the dense interface operators, `8 n_i^2` bytes per substructure of `n_i` interface unknowns, <= a quarter of the available memory ([`check_condensed`]; `"auto"` keeps volume solves beyond it) |
 //!
-//! **Memory of a mesh** (measured peak resident memory of `alea solve`, release build, METIS
-//! ordering; `BENCHMARKS.md`, "memory per node"): 2D 3.4-4.5 kB per node (Q4 and Q8, 40k-160k
-//! nodes); 3D 22-30 kB per node at 9k-30k nodes (Hex8, Tet10), growing like `n^(1/3)` (nested
-//! dissection fill). The estimate is `5 kB x nodes` in 2D and `30 kB x nodes x max(1,
-//! (nodes / 30 000)^(1/3))` in 3D. Nodes are counted from the generator's block counts before
-//! generating (exactly for `rectangle`, `box` and the shapes; a Gmsh file's size bounds it).
+//! **Memory of a mesh** (measured peak resident memory, release build, METIS ordering;
+//! `BENCHMARKS.md`, "memory per node" and "Single-precision factors"): 2D 3.4-4.5 kB per node
+//! (Q4 and Q8, 40k-160k nodes); 3D with double-precision factors 22-30 kB per node at 9k-30k
+//! nodes (Hex8, Tet10, `alea solve`), growing like `n^(1/3)` (nested-dissection fill); 3D with
+//! the default single-precision factors, 2-run studies of the 3D turbine: 14.5 kB per node
+//! undivided (27 508 nodes), 13.2 kB in 30 parts (200 700 nodes) and 14.1 kB in 96 parts
+//! (722 364 nodes). The estimate is `5 kB x nodes` in 2D and `c x nodes x max(1, (part /
+//! 30 000)^(1/3))` in 3D, `part` the nodes of the largest part automatic subdomains leave,
+//! `c = 20 kB` in single precision and `30 kB` in double. Nodes are counted from the generator's
+//! block counts before generating (exactly for `rectangle`, `box` and the shapes; a Gmsh file's
+//! size bounds it).
 //! Available memory is `MemAvailable` of `/proc/meminfo` (8 GiB assumed where it cannot be read).
 
 use crate::spec::{MeshSpec, MethodSpec, ModelFile};
@@ -67,32 +72,60 @@ pub fn human_bytes(b: f64) -> String {
     }
 }
 
+/// What the memory of a mesh's factorisations depends on in the `[solver]` table
+/// ([`mesh_memory`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FactorLayout {
+    /// The largest part, in unknowns, that `[solver] subdomains` leaves a substructure
+    /// (`alea_latin::split::plan`): `None` with `"never"`.
+    pub part_dofs: Option<usize>,
+    /// Large 3D factors stored in single precision (`[solver] factor_precision` other than
+    /// `"double"`).
+    pub single: bool,
+}
+
+impl FactorLayout {
+    /// Undivided substructures with double-precision factors (the largest estimate).
+    pub const UNDIVIDED_DOUBLE: FactorLayout = FactorLayout {
+        part_dofs: None,
+        single: false,
+    };
+}
+
 /// Estimated peak memory (bytes) of the factorisations of a mesh of `nodes` nodes in `dim`
-/// dimensions (module doc), its factorised parts at most `part_dofs` unknowns when automatic
-/// subdomains may cut it ([`subdomain_dofs`]): in 3D the fill of a part grows like the cube
-/// root of its size, so cut parts bound it.
-pub fn mesh_memory(nodes: f64, dim: usize, part_dofs: Option<usize>) -> f64 {
+/// dimensions (module doc), its factorised parts at most `layout.part_dofs` unknowns when
+/// automatic subdomains may cut it: in 3D the fill of a part grows like the cube root of its
+/// size, so cut parts bound it; single-precision factors take 20 kB a node where
+/// double-precision ones take 30 kB.
+pub fn mesh_memory(nodes: f64, dim: usize, layout: FactorLayout) -> f64 {
     if dim == 2 {
         5e3 * nodes
     } else {
-        let part = part_dofs.map_or(nodes, |d| nodes.min(d as f64 / dim as f64));
-        30e3 * nodes * (part / 30_000.0).cbrt().max(1.0)
+        let part = layout
+            .part_dofs
+            .map_or(nodes, |d| nodes.min(d as f64 / dim as f64));
+        let per_node = if layout.single { 20e3 } else { 30e3 };
+        per_node * nodes * (part / 30_000.0).cbrt().max(1.0)
     }
 }
 
-/// The largest part, in unknowns, that `[solver] subdomains` leaves a substructure
-/// (`alea_latin::split::plan`): `None` with `"never"`.
-pub fn subdomain_dofs(solver: &crate::spec::SolverSpec) -> Option<usize> {
+/// The [`FactorLayout`] a `[solver]` table asks for.
+pub fn factor_layout(solver: &crate::spec::SolverSpec) -> FactorLayout {
     let target = solver
         .subdomain_dofs
         .as_ref()
         .map_or(alea_latin::split::SUBDOMAIN_DOFS, |d| *d.get_ref());
-    match solver.subdomains.as_ref().map(|s| s.get_ref().as_str()) {
+    let part_dofs = match solver.subdomains.as_ref().map(|s| s.get_ref().as_str()) {
         Some("never") => None,
         Some("always") => Some(2 * target),
         // 3D only (`alea_latin::split::plan`); `mesh_memory` caps 3D meshes only.
         _ => Some(alea_latin::split::AUTO_MIN_DOFS.max(target)),
-    }
+    };
+    let single = solver
+        .factor_precision
+        .as_ref()
+        .is_none_or(|p| p.get_ref() != "double");
+    FactorLayout { part_dofs, single }
 }
 
 /// Nodes per structured block cell (a quad or hex of the generator's lattice) for a cell kind.
@@ -251,15 +284,11 @@ pub fn mesh_estimate(
 ///
 /// # Errors
 /// [`StudyError::Input`] naming the field, with the cell and memory estimates.
-pub fn check_mesh(
-    src: &Source,
-    spec: &MeshSpec,
-    part_dofs: Option<usize>,
-) -> Result<(), StudyError> {
+pub fn check_mesh(src: &Source, spec: &MeshSpec, layout: FactorLayout) -> Result<(), StudyError> {
     let Some((nodes, block_cells, dim, span, field)) = mesh_estimate(spec) else {
         return Ok(());
     };
-    let need = mesh_memory(nodes, dim, part_dofs);
+    let need = mesh_memory(nodes, dim, layout);
     let have = available_memory() as f64;
     if need > have || !need.is_finite() {
         return Err(src.error(
@@ -288,10 +317,10 @@ pub fn check_split(
     nodes: usize,
     dim: usize,
     split: usize,
-    part_dofs: Option<usize>,
+    layout: FactorLayout,
 ) -> Result<(), StudyError> {
     let refined = nodes as f64 * power(1 << dim, split);
-    let need = mesh_memory(refined, dim, part_dofs);
+    let need = mesh_memory(refined, dim, layout);
     let have = available_memory() as f64;
     if need > have || !need.is_finite() {
         return Err(src.error(

@@ -360,7 +360,7 @@ pub(crate) fn build_fields(
         return Ok((Vec::new(), Vec::new()));
     }
     let mesh =
-        crate::build::build_mesh(src, &file.mesh, crate::limits::subdomain_dofs(&file.solver))?;
+        crate::build::build_mesh(src, &file.mesh, crate::limits::factor_layout(&file.solver))?;
     let mut taken: Vec<String> = taken.to_vec();
     let (mut fields, mut variables) = (Vec::new(), Vec::new());
     for (i, f) in file.field.iter().enumerate() {

@@ -646,3 +646,39 @@ fn chaos_designs_that_cannot_determine_it_are_refused_at_load() {
     .unwrap();
     assert_eq!(s.methods[0].points.len(), 20);
 }
+
+/// The load-time memory estimate of a 3D mesh (`alea_study::limits::mesh_memory`) bounds the
+/// peaks measured on the 3D turbine studies (BENCHMARKS.md, "Single-precision factors": 2 Monte
+/// Carlo runs, `/usr/bin/time -f %M`), within 2x, so that it neither accepts a model that does
+/// not fit nor refuses one that fits with half the memory to spare.
+#[test]
+fn the_3d_memory_estimate_bounds_the_measured_peaks() {
+    use alea_study::limits::{FactorLayout, mesh_memory};
+    let auto = FactorLayout {
+        part_dofs: Some(alea_latin::split::AUTO_MIN_DOFS),
+        single: true,
+    };
+    let never = FactorLayout {
+        part_dofs: None,
+        ..auto
+    };
+    let double = FactorLayout {
+        single: false,
+        ..auto
+    };
+    // (nodes, layout, measured peak in bytes)
+    let measured = [
+        (27_508.0, auto, 0.40e9),    // unrefined, 4 substructures undivided
+        (200_700.0, auto, 2.65e9),   // split = 1, 30 parts
+        (722_364.0, auto, 10.2e9),   // split = 1 and 40 layers, 96 parts
+        (200_700.0, never, 5.20e9),  // split = 1 undivided (set-up in double precision)
+        (200_700.0, double, 3.62e9), // split = 1, 30 parts, factor_precision = "double"
+    ];
+    for (nodes, layout, peak) in measured {
+        let estimate = mesh_memory(nodes, 3, layout);
+        assert!(
+            estimate >= peak && estimate <= 2.0 * peak.max(1e9),
+            "{nodes} nodes, {layout:?}: estimate {estimate:.3e} bytes against {peak:.3e} measured"
+        );
+    }
+}

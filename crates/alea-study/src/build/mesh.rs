@@ -289,18 +289,18 @@ pub fn split_count(src: &Source, spec: &MeshSpec) -> Result<usize, StudyError> {
 }
 
 /// The mesh of a `[mesh]` table: generated or read, then refined `split` times; its size
-/// checked against the memory of factorised parts of at most `part_dofs` unknowns
-/// ([`crate::limits::subdomain_dofs`]; `None`: undivided).
+/// checked against the memory of its factorisations (`layout`: the parts automatic subdomains
+/// leave and the factors' precision, [`crate::limits::factor_layout`]).
 ///
 /// # Errors
 /// [`StudyError::Input`] naming the field of the table at fault.
 pub fn build_mesh(
     src: &Source,
     spec: &MeshSpec,
-    part_dofs: Option<usize>,
+    layout: crate::limits::FactorLayout,
 ) -> Result<Mesh, StudyError> {
     let split = split_count(src, spec)?;
-    let mesh = build_base_mesh(src, spec, part_dofs)?;
+    let mesh = build_base_mesh(src, spec, layout)?;
     if split == 0 {
         return Ok(mesh);
     }
@@ -308,14 +308,7 @@ pub fn build_mesh(
         .split
         .as_ref()
         .map_or(spec.generator.span(), |s| s.span());
-    crate::limits::check_split(
-        src,
-        span.clone(),
-        mesh.num_nodes(),
-        mesh.dim,
-        split,
-        part_dofs,
-    )?;
+    crate::limits::check_split(src, span.clone(), mesh.num_nodes(), mesh.dim, split, layout)?;
     mesh.refined(split)
         .map_err(|e| src.error(span, "mesh.split", e.to_string()))
 }
@@ -327,9 +320,13 @@ mod tests {
     #[test]
     fn the_generators_checked_for_their_keys_are_the_generators_built() {
         let spec: MeshSpec = toml::from_str("generator = \"disc\"").unwrap();
-        let e = build_mesh(&Source::from_text("t.toml", ""), &spec, None)
-            .unwrap_err()
-            .to_string();
+        let e = build_mesh(
+            &Source::from_text("t.toml", ""),
+            &spec,
+            crate::limits::FactorLayout::UNDIVIDED_DOUBLE,
+        )
+        .unwrap_err()
+        .to_string();
         let list = e
             .split("; expected ")
             .nth(1)
@@ -371,7 +368,8 @@ mod tests {
         for text in cases {
             let f: F = toml::from_str(&format!("[mesh]\n{text}\n")).unwrap();
             let src = Source::from_text("t.toml", text);
-            let mesh = build_mesh(&src, &f.mesh, None).unwrap();
+            let mesh =
+                build_mesh(&src, &f.mesh, crate::limits::FactorLayout::UNDIVIDED_DOUBLE).unwrap();
             let (nodes, ..) = crate::limits::mesh_estimate(&f.mesh).unwrap();
             let ratio = nodes / mesh.num_nodes() as f64;
             assert!(

@@ -133,7 +133,7 @@ pub fn build_model(
     params: &ParamSpace,
 ) -> Result<BuiltModel, StudyError> {
     let (vars, defines) = model_vars(src, file, params)?;
-    let mesh = build_mesh(src, &file.mesh, crate::limits::subdomain_dofs(&file.solver))?;
+    let mesh = build_mesh(src, &file.mesh, crate::limits::factor_layout(&file.solver))?;
     let analysis = analysis_of(src, file, mesh.dim)?;
     if file.substructure.is_empty() {
         return Err(src.error(

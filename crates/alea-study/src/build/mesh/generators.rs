@@ -92,10 +92,10 @@ impl MeshInput<'_> {
 pub(super) fn build_base_mesh(
     src: &Source,
     spec: &MeshSpec,
-    part_dofs: Option<usize>,
+    layout: crate::limits::FactorLayout,
 ) -> Result<Mesh, StudyError> {
     check_generator_keys(src, spec)?;
-    crate::limits::check_mesh(src, spec, part_dofs)?;
+    crate::limits::check_mesh(src, spec, layout)?;
     let input = MeshInput { src, spec };
     let mesh_err = |e| input.mesh_err(e);
     match spec.generator.get_ref().as_str() {
