@@ -188,7 +188,7 @@ fn hertz_scaling() {
                 let opts = LatinOptions {
                     tolerance: 1e-7,
                     max_iterations: 5000,
-                    acceleration: acc,
+                    acceleration: Some(acc),
                     coarse,
                     search_direction: SearchDirection::Auto { factor },
                     ..Default::default()

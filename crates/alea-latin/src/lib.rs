@@ -60,7 +60,7 @@ pub use ranks::{RankExchange, ThreadExchange};
 pub use result::{InterfaceResult, RunResult, RunStatus, RunTimings};
 pub use rotation::Cyclic;
 pub use solver::{
-    FactorPrecision, LatinOptions, LatinSolver, LinearStage, LinearStageSummary, RunInput,
-    SINGLE_MIN_ENTRIES, SearchDirection, Subdomains,
+    DEFAULT_ACCELERATION, FactorPrecision, LatinOptions, LatinSolver, LinearStage,
+    LinearStageSummary, RunInput, SINGLE_MIN_ENTRIES, SearchDirection, Subdomains,
 };
 pub use state::LocalState;

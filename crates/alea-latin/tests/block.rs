@@ -299,7 +299,7 @@ fn anderson_acceleration_matches_plain_iterations_with_fewer_of_them() {
             LatinOptions {
                 tolerance: 1e-10,
                 max_iterations: 20000,
-                acceleration: depth,
+                acceleration: Some(depth),
                 ..Default::default()
             },
         )

@@ -63,7 +63,7 @@ fn solve(asm: &Assembly, coarse: bool, acceleration: usize, max_iterations: usiz
         LatinOptions {
             tolerance: 1e-8,
             max_iterations,
-            acceleration,
+            acceleration: Some(acceleration),
             coarse,
             ..Default::default()
         },

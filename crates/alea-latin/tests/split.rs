@@ -196,3 +196,41 @@ fn the_solver_cuts_the_model_by_itself_and_speaks_of_the_users_model() {
         .unwrap();
     assert_eq!(from_user.status, RunStatus::Converged);
 }
+
+/// A model cut into subdomains runs a deeper Anderson history by default
+/// (`split::SPLIT_ACCELERATION`: the cuts are perfect interfaces, on which the iteration is
+/// linear), the same iterates as asking for that depth; an explicit depth is kept.
+#[test]
+fn a_cut_model_runs_the_split_anderson_depth_unless_told_otherwise() {
+    use alea_latin::DEFAULT_ACCELERATION;
+    use alea_latin::split::SPLIT_ACCELERATION;
+    let asm = press_and_shear(3, false);
+    let cut_with = |acceleration: Option<usize>| {
+        LatinSolver::new(
+            asm.clone(),
+            LatinOptions {
+                subdomains: alea_latin::Subdomains::Always,
+                subdomain_dofs: 150,
+                acceleration,
+                ..options()
+            },
+        )
+        .unwrap()
+    };
+    let whole = LatinSolver::new(asm.clone(), options()).unwrap();
+    assert_eq!(whole.acceleration(), DEFAULT_ACCELERATION);
+    let by_default = cut_with(None);
+    assert_eq!(by_default.acceleration(), SPLIT_ACCELERATION);
+    assert_eq!(cut_with(Some(3)).acceleration(), 3);
+    let run = |s: &LatinSolver| s.run_shared(&RunInput::default()).unwrap();
+    let (d, told) = (run(&by_default), run(&cut_with(Some(SPLIT_ACCELERATION))));
+    assert_eq!(d.status, RunStatus::Converged);
+    assert_eq!(d.iterations, told.iterations);
+    assert_eq!(d.displacements, told.displacements);
+    let shallow = run(&cut_with(Some(DEFAULT_ACCELERATION)));
+    eprintln!(
+        "cut model: {} iterations at depth {SPLIT_ACCELERATION}, {} at {DEFAULT_ACCELERATION}",
+        d.iterations, shallow.iterations
+    );
+    assert_ne!(d.displacements, shallow.displacements);
+}

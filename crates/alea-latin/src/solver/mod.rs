@@ -90,6 +90,12 @@ use direction::PointDirection;
 
 type V3 = [f64; 3];
 
+/// The Anderson depth of [`LatinOptions::acceleration`] by default (models not cut into
+/// subdomains). Measured on the 225-run 2D turbine study (BENCHMARKS.md, "Where the iteration
+/// count stands"): deeper histories saturate (12: 59.7 iterations per run against 65.9, 30:
+/// 59.4; with the split search direction 42.1 against 44.8).
+pub const DEFAULT_ACCELERATION: usize = 5;
+
 /// Search direction choice.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SearchDirection {
@@ -181,8 +187,10 @@ pub struct LatinOptions {
     pub search_direction: SearchDirection,
     /// Fill-reducing ordering of the substructure factorisations.
     pub ordering: Ordering,
-    /// Anderson acceleration depth (0: off; default 5): see the `anderson` module.
-    pub acceleration: usize,
+    /// Anderson acceleration depth (0: off): see the `anderson` module. `None` (the default):
+    /// [`DEFAULT_ACCELERATION`], or [`split::SPLIT_ACCELERATION`] on a model cut into
+    /// subdomains.
+    pub acceleration: Option<usize>,
     /// Two-scale LATIN: the coarse problem on the interface resultants and moments (module
     /// `coarse`; default on). Without acceleration (`acceleration = 0`) the linear stage is then
     /// relaxed by at most 0.8 (`min(relaxation, 0.8)`), which the macro correction of floating
@@ -235,7 +243,7 @@ impl Default for LatinOptions {
             relaxation: 1.0,
             search_direction: SearchDirection::Auto { factor: 3.0 },
             ordering: Ordering::Metis,
-            acceleration: 5,
+            acceleration: None,
             coarse: true,
             equilibrium_tolerance: 1e-4,
             max_rigid_motion: 10.0,
@@ -427,6 +435,18 @@ struct Run<'a> {
     max_iterations: usize,
     acceleration: usize,
     timings: RunTimings,
+}
+
+impl LatinSolver {
+    /// The Anderson depth of a run ([`LatinOptions::acceleration`]; by default
+    /// [`DEFAULT_ACCELERATION`], or [`split::SPLIT_ACCELERATION`] on a model cut into
+    /// subdomains).
+    pub fn acceleration(&self) -> usize {
+        self.options.acceleration.unwrap_or(match self.split {
+            Some(_) => split::SPLIT_ACCELERATION,
+            None => DEFAULT_ACCELERATION,
+        })
+    }
 }
 
 impl LatinSolver {

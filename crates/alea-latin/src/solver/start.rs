@@ -112,11 +112,7 @@ impl LatinSolver {
             } else {
                 self.options.max_iterations
             },
-            acceleration: if input.damped {
-                0
-            } else {
-                self.options.acceleration
-            },
+            acceleration: if input.damped { 0 } else { self.acceleration() },
             timings: RunTimings::default(),
         })
     }

@@ -482,7 +482,7 @@ fn latin_options(src: &Source, sv: &crate::spec::SolverSpec) -> Result<LatinOpti
         options.relaxation = v;
     }
     if let Some(a) = &sv.acceleration {
-        options.acceleration = *a.get_ref();
+        options.acceleration = Some(*a.get_ref());
     }
     if let Some(c) = &sv.coarse {
         options.coarse = *c.get_ref();
