@@ -17,6 +17,10 @@
 //! `single` of alea-fem): one refinement step from a nearby solution (`solve_near`, what a
 //! LATIN linear stage makes) and the solve refined to full accuracy (`solve_with`), each
 //! against the double-precision solve of the same columns, timed in the same process.
+//!
+//! A third table streams: 32 single-precision factors of a turbine-part-sized box (more bytes
+//! than the caches hold, as the parts of a large model), one refinement step on each over 2
+//! threads, and the bytes a pass reads per second (against `scripts/read_bandwidth.c`).
 
 #[path = "support/cantilever.rs"]
 mod support;
@@ -216,4 +220,81 @@ fn main() {
         case_single("3D Hex8 (a turbine part)", &hex([18, 18, 18]), 10);
         case_single("3D Hex8", &m, 3);
     });
+    streamed(&hex_model([18, 18, 18]), 32);
+}
+
+fn hex_model(cells: [usize; 3]) -> Model {
+    let mesh = generate::box_mesh([1.0; 3], cells, CellType::Hex8).unwrap();
+    let mut m = Model::new(mesh, Analysis::Solid).unwrap();
+    m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
+    m
+}
+
+/// `parts` single-precision factors of `model` (more bytes than the caches hold, as the parts
+/// of a large model; each a copy of the same factor), one refinement step (`solve_near`) on
+/// each, over 2 threads, for 1 and 2 columns: the bytes a pass reads (the factor twice, forward
+/// and backward, the matrix once) per second, against what this machine streams
+/// (`scripts/read_bandwidth.c`).
+fn streamed(model: &Model, parts: usize) {
+    use rayon::prelude::*;
+    let (cons, loads) = support::cantilever(model);
+    let dofs = DofMap::for_mesh(&model.mesh, &cons).unwrap();
+    let asm = assemble_stiffness(model, &dofs).unwrap();
+    let blocks = dofs.node_of_dof();
+    let factors: Vec<Cholesky> = (0..parts)
+        .map(|_| {
+            let mut c = Cholesky::with_kind(
+                &asm.k,
+                Ordering::Metis,
+                Some(&blocks),
+                FactorKind::Supernodal,
+            )
+            .unwrap();
+            c.factorize(&asm.k).unwrap();
+            assert!(c.store_single(&asm.k));
+            c
+        })
+        .collect();
+    let b = dofs.reduce(&loads.f);
+    let n = b.len();
+    let factor_bytes = 4.0 * factors[0].nnz_factor() as f64 * parts as f64;
+    let matrix_bytes = 12.0 * asm.k.nnz() as f64 * parts as f64;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    println!();
+    println!(
+        "| parts | dofs each | f32 factors | matrices | threads | columns | one step, all parts ms | GB/s read |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for k in [1usize, 2] {
+        let x0: Vec<f64> = (0..k)
+            .flat_map(|j| b.iter().map(move |v| v * (1.0 + 0.1 * j as f64)))
+            .collect();
+        let mut exact = x0.clone();
+        factors[0].solve_with(&mut exact, &mut factors[0].solve_scratch(k));
+        let previous: Vec<f64> = exact.iter().map(|v| v * (1.0 + 1e-3)).collect();
+        let columns: Vec<&[f64]> = previous.chunks_exact(n).collect();
+        let mut xs: Vec<Vec<f64>> = vec![x0.clone(); parts];
+        let mut scratch: Vec<_> = factors.iter().map(|f| f.solve_scratch(k)).collect();
+        let t = pool.install(|| {
+            best(5, || {
+                xs.par_iter_mut()
+                    .zip(&mut scratch)
+                    .zip(&factors)
+                    .for_each(|((x, s), f)| {
+                        x.copy_from_slice(&x0);
+                        f.solve_near(x, &columns, s);
+                    })
+            })
+        });
+        println!(
+            "| {parts} | {n} | {:.2} GB | {:.2} GB | 2 | {k} | {:.1} | {:.1} |",
+            factor_bytes / 1e9,
+            matrix_bytes / 1e9,
+            t * 1e3,
+            (2.0 * factor_bytes + matrix_bytes) / t / 1e9
+        );
+    }
 }

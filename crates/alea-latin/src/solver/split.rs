@@ -38,8 +38,10 @@
 //! scale is then the user's interfaces' (module `local_stage`): the cuts carry the inner forces
 //! of a body, whose size would dilute `eta` (at the same indicator the split model's error was
 //! 14x the undivided one's; with the user's scale it is the same, `alea-study
-//! tests/subdomains.rs`). Over MPI ranks (`LatinSolver::with_ranks`, module `ranks`) the
-//! subdomains are spread over the ranks, each factorising its own.
+//! tests/subdomains.rs`). Unless the options set one, a run's Anderson depth is
+//! [`SPLIT_ACCELERATION`] (`LatinSolver::acceleration`). Over MPI ranks
+//! (`LatinSolver::with_ranks`, module `ranks`) the subdomains are spread over the ranks, each
+//! factorising its own.
 //!
 //! **Cost.** The coarse problem has `6` unknowns per interface in 3D (`3` in 2D), cuts
 //! included, and is inverted densely per run (module `crate::coarse`): thousands of
