@@ -117,19 +117,8 @@ fn case_single(name: &str, model: &Model, reps: usize) {
     let dofs = DofMap::for_mesh(&model.mesh, &cons).unwrap();
     let asm = assemble_stiffness(model, &dofs).unwrap();
     let blocks = dofs.node_of_dof();
-    let factor = || {
-        let mut c = Cholesky::with_kind(
-            &asm.k,
-            Ordering::Metis,
-            Some(&blocks),
-            FactorKind::Supernodal,
-        )
-        .unwrap();
-        c.factorize(&asm.k).unwrap();
-        c
-    };
-    let double = factor();
-    let mut single = factor();
+    let double = supernodal_factor(&asm.k, &blocks);
+    let mut single = supernodal_factor(&asm.k, &blocks);
     assert!(
         single.store_single(&asm.k),
         "{name}: kept in double precision"
@@ -202,25 +191,25 @@ fn main() {
         let both = [FactorKind::Simplicial, FactorKind::Supernodal];
         case("2D Q8 (turbine quarter)", &q8(42, 21), 30, &both);
         case("2D Q8 (turbine whole)", &q8(84, 42), 20, &both);
-        let mesh = generate::box_mesh([1.0; 3], [26; 3], CellType::Hex8).unwrap();
-        let mut m = Model::new(mesh, Analysis::Solid).unwrap();
-        m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
+        let m = hex_model([26; 3]);
         case("3D Hex8", &m, 3, &[FactorKind::Supernodal]);
         println!();
         println!(
             "| model | dofs | factor entries | refinement rate | columns k | f64 solve ms | f32 one step from 1e-3 ms | f32 refined ms |"
         );
         println!("|---|---|---|---|---|---|---|---|");
-        let hex = |cells: [usize; 3]| {
-            let mesh = generate::box_mesh([1.0; 3], cells, CellType::Hex8).unwrap();
-            let mut m = Model::new(mesh, Analysis::Solid).unwrap();
-            m.set_material_all(Material::new(210e3, 0.3, 7.85e-9).unwrap());
-            m
-        };
-        case_single("3D Hex8 (a turbine part)", &hex([18, 18, 18]), 10);
+        case_single("3D Hex8 (a turbine part)", &hex_model([18, 18, 18]), 10);
         case_single("3D Hex8", &m, 3);
     });
     streamed(&hex_model([18, 18, 18]), 32);
+}
+
+/// The supernodal factorisation of `k` (METIS ordering on the node blocks).
+fn supernodal_factor(k: &alea_fem::SymCsc, blocks: &[usize]) -> Cholesky {
+    let mut c =
+        Cholesky::with_kind(k, Ordering::Metis, Some(blocks), FactorKind::Supernodal).unwrap();
+    c.factorize(k).unwrap();
+    c
 }
 
 fn hex_model(cells: [usize; 3]) -> Model {
@@ -243,14 +232,7 @@ fn streamed(model: &Model, parts: usize) {
     let blocks = dofs.node_of_dof();
     let factors: Vec<Cholesky> = (0..parts)
         .map(|_| {
-            let mut c = Cholesky::with_kind(
-                &asm.k,
-                Ordering::Metis,
-                Some(&blocks),
-                FactorKind::Supernodal,
-            )
-            .unwrap();
-            c.factorize(&asm.k).unwrap();
+            let mut c = supernodal_factor(&asm.k, &blocks);
             assert!(c.store_single(&asm.k));
             c
         })
