@@ -224,7 +224,7 @@ pub fn stored_runs(dir: &Path, study: Option<&Path>) -> Result<StoredRuns, Error
         }
         None => (stored_hash(&db)?, None),
     };
-    let records = Store::open(dir, &hash, false).and_then(|s| s.runs())?;
+    let records = Store::open(dir, &hash, false).and_then(|s| s.runs_without_states())?;
     Ok(StoredRuns {
         hash,
         study,

@@ -155,7 +155,12 @@ impl<'a> Runner<'a> {
         let store = Store::open_study(dir, &study.hash, study.identity.keys(), restart)?;
         store.save_study(&study.source.path, &study.source.text)?;
         let note = |m: &str| progress.note(m);
-        let previous = crate::integrity::usable_runs(study, &store, store.runs()?, compute, &note);
+        // Warm-start states are read only by a runner that solves.
+        let stored = match compute {
+            true => store.runs()?,
+            false => store.runs_without_states()?,
+        };
+        let previous = crate::integrity::usable_runs(study, &store, stored, compute, &note);
         let mut index = PointIndex::new(&study.params.lo, &study.params.hi);
         for r in &previous {
             index.insert(&r.params);

@@ -409,3 +409,24 @@ fn a_directory_with_field_files_is_read_and_resumed() {
     assert!(!d.join("fields").exists() && !d.join("cre").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn runs_read_without_states_are_the_runs_with_empty_states() {
+    let d = dir("nostates");
+    let h = study_hash("study", &[]);
+    let store = Store::open(&d, &h, false).unwrap();
+    store.commit(&record(1.0), &[1.0], None).unwrap();
+    store.commit(&record(2.0), &[2.0], None).unwrap();
+    let full = store.runs().unwrap();
+    assert_eq!(full, vec![record(1.0), record(2.0)]);
+    let light = store.runs_without_states().unwrap();
+    let expected: Vec<RunRecord> = full
+        .into_iter()
+        .map(|r| RunRecord {
+            state: Vec::new(),
+            ..r
+        })
+        .collect();
+    assert_eq!(light, expected);
+    let _ = std::fs::remove_dir_all(&d);
+}
