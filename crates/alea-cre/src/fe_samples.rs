@@ -79,7 +79,7 @@ impl FeEnergySampler {
                 out.rules.push((kind, Quadrature::stiffness(kind)));
             }
             let rule = out.rule(kind);
-            cell_coords(model, c, &mut coords);
+            model.cell_coords_into(c, &mut coords);
             for xi in &rule.points {
                 check_jacobian(&point_geometry(kind, &coords, *xi), c, kind)?;
             }
@@ -150,7 +150,7 @@ impl FeEnergySampler {
             let rule = self.rule(kind);
             let f = self.factor_of_cell[c] as usize;
             let l = &self.factors[f * nv * nv..(f + 1) * nv * nv];
-            cell_coords(model, c, &mut coords);
+            model.cell_coords_into(c, &mut coords);
             for (xi, w) in rule.points.iter().zip(&rule.weights) {
                 let g = point_geometry(kind, &coords, *xi);
                 eps.fill(0.0);
@@ -182,16 +182,4 @@ impl FeEnergySampler {
         }
         Ok(out)
     }
-}
-
-/// The coordinates of cell `c`'s nodes into `out`.
-fn cell_coords(model: &Model, c: usize, out: &mut Vec<[f64; 3]>) {
-    out.clear();
-    out.extend(
-        model
-            .mesh
-            .cell_nodes(c)
-            .iter()
-            .map(|&n| model.mesh.coords[n]),
-    );
 }

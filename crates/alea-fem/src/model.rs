@@ -146,10 +146,15 @@ impl Model {
 
     /// Coordinates of the nodes of cell `c`.
     pub fn cell_coords(&self, c: usize) -> Vec<[f64; 3]> {
-        self.mesh
-            .cell_nodes(c)
-            .iter()
-            .map(|&n| self.mesh.coords[n])
-            .collect()
+        let mut out = Vec::new();
+        self.cell_coords_into(c, &mut out);
+        out
+    }
+
+    /// [`Model::cell_coords`] into `out` (cleared first), for loops over cells that reuse one
+    /// buffer.
+    pub fn cell_coords_into(&self, c: usize, out: &mut Vec<[f64; 3]>) {
+        out.clear();
+        out.extend(self.mesh.cell_nodes(c).iter().map(|&n| self.mesh.coords[n]));
     }
 }

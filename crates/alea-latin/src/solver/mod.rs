@@ -447,9 +447,7 @@ impl LatinSolver {
             None => DEFAULT_ACCELERATION,
         })
     }
-}
 
-impl LatinSolver {
     /// Options in force.
     pub fn options(&self) -> &LatinOptions {
         &self.options
